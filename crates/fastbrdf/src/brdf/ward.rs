@@ -1,0 +1,216 @@
+//! `ward`, `ward-pow`, `ward-power16`: Ward's 1992 BRDF and seed 000's one-function forms.
+//!
+//! - `ward` (isotropic, `alpha`; anisotropic with `alpha_x`, `alpha_y`):
+//!   `f = exp(-(h_x^2/alpha_x^2 + h_y^2/alpha_y^2) / h_z^2) / (4 pi alpha_x alpha_y sqrt(cos_i cos_o))`;
+//!   isotropic: `exp(-tan^2 theta_h / alpha^2) / (4 pi alpha^2 sqrt(cos_i cos_o))`.
+//!   Cost: 6 mul, 1 add, 2 div, 1 sqrt, 1 exp (plus the pair set-up).
+//! - `ward-pow`: the exponential replaced by `cos^(2/alpha^2) theta_h` (seed 000).
+//!   Cost: 2 mul, 1 div, 1 sqrt, 1 pow.
+//! - `ward-power16`: by `max(0, 1 + (2/alpha^2/16)(cos theta_h - 1))^16` (seed 000, g = 16).
+//!   Cost: 6 mul, 2 add, 2 div, 1 sqrt.
+//!
+//! Parameters: `alpha` in [0.01, 1] (default 0.3); `ward` also `alpha_x`, `alpha_y` (both or
+//! neither; when given they replace `alpha`). Source: Ward 1992; seed 000. Reciprocal.
+//! Ward's normalisation is approximate: the albedo exceeds 1 at grazing incidence for rough
+//! surfaces (measured in `tests/energy.rs`). The approximations' error is that of their
+//! exponential factor (the rest is identical): see the `INFO` bounds.
+
+use crate::error::{Error, Result};
+use crate::model::{Brdf, ErrorBound, Kind, Metric, Model, ModelInfo, Ops, Zone};
+use crate::params::{self, ParamKind, ParamSpec, Params};
+use crate::real::{Real, pow2k, sqr};
+use crate::registry::Entry;
+use crate::vec3::Pair;
+
+pub const ALPHA_X: ParamSpec = ParamSpec {
+    name: "alpha_x",
+    kind: ParamKind::Number {
+        min: 0.01,
+        max: 1.0,
+        default: None,
+    },
+    doc: "anisotropic slope along x (with alpha_y; replaces alpha)",
+};
+pub const ALPHA_Y: ParamSpec = ParamSpec {
+    name: "alpha_y",
+    kind: ParamKind::Number {
+        min: 0.01,
+        max: 1.0,
+        default: None,
+    },
+    doc: "anisotropic slope along y (with alpha_x; replaces alpha)",
+};
+
+pub const INFO: ModelInfo = ModelInfo {
+    id: "ward",
+    kind: Kind::Brdf,
+    params: &[params::ALPHA, ALPHA_X, ALPHA_Y],
+    formula: "exp(-(h_x^2/ax^2 + h_y^2/ay^2)/h_z^2) / (4 pi ax ay sqrt(cos_i cos_o))",
+    source: "Ward 1992, 'Measuring and modeling anisotropic reflection'",
+    ops: Ops::new(6, 1, 2, 1, 1),
+    bounds: &[],
+    f32_bound: 5e-5,
+    note: "albedo exceeds 1 at grazing incidence for rough surfaces (approximate normalisation)",
+};
+
+pub const INFO_POW: ModelInfo = ModelInfo {
+    id: "ward-pow",
+    kind: Kind::Brdf,
+    params: &[params::ALPHA],
+    formula: "cos^(2/alpha^2) theta_h / (4 pi alpha^2 sqrt(cos_i cos_o))",
+    source: "seed 000 (exp replaced by one power)",
+    ops: Ops::new(2, 0, 1, 1, 1),
+    bounds: &[
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.05, 0.6),
+            bound: 0.108,
+        },
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.05, 1.0),
+            bound: 0.396,
+        },
+    ],
+    f32_bound: 1e-5,
+    note: "isotropic only",
+};
+
+pub const INFO_POWER16: ModelInfo = ModelInfo {
+    id: "ward-power16",
+    kind: Kind::Brdf,
+    params: &[params::ALPHA],
+    formula: "max(0, 1 + (2/alpha^2/16)(cos theta_h - 1))^16 / (4 pi alpha^2 sqrt(cos_i cos_o))",
+    source: "seed 000 (g = 16 form of the exponential)",
+    ops: Ops::new(6, 2, 2, 1, 0),
+    bounds: &[
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.05, 0.6),
+            bound: 0.142,
+        },
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.05, 1.0),
+            bound: 0.549,
+        },
+    ],
+    f32_bound: 1e-5,
+    note: "isotropic only",
+};
+
+pub const ENTRY: Entry = Entry {
+    info: INFO,
+    build32: build::<f32, 0>,
+    build64: build::<f64, 0>,
+};
+pub const ENTRY_POW: Entry = Entry {
+    info: INFO_POW,
+    build32: build::<f32, 1>,
+    build64: build::<f64, 1>,
+};
+pub const ENTRY_POWER16: Entry = Entry {
+    info: INFO_POWER16,
+    build32: build::<f32, 2>,
+    build64: build::<f64, 2>,
+};
+
+/// Which exponential factor a Ward BRDF uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum WardForm {
+    Exact,
+    Pow,
+    Power16,
+}
+
+/// Ward's BRDF and its seed-000 variants.
+#[derive(Clone, Debug)]
+pub struct Ward<T> {
+    form: WardForm,
+    inv_ax2: T,
+    inv_ay2: T,
+    /// `2 / alpha^2` (pow) or `2 / alpha^2 / 16` (power16).
+    e: T,
+    scale: T,
+}
+
+impl<T: Real> Ward<T> {
+    /// Isotropic Ward of the given form; `alpha` in [0.01, 1].
+    pub fn isotropic(alpha: f64, form: WardForm) -> Result<Self> {
+        let a = params::check("ward", &params::ALPHA, alpha)?;
+        let e = match form {
+            WardForm::Power16 => 2.0 / (a * a) / 16.0,
+            _ => 2.0 / (a * a),
+        };
+        Ok(Self {
+            form,
+            inv_ax2: T::c(1.0 / (a * a)),
+            inv_ay2: T::c(1.0 / (a * a)),
+            e: T::c(e),
+            scale: T::c(1.0 / (4.0 * std::f64::consts::PI * a * a)),
+        })
+    }
+
+    /// Anisotropic exact Ward; both slopes in [0.01, 1].
+    pub fn anisotropic(alpha_x: f64, alpha_y: f64) -> Result<Self> {
+        let ax = params::check("ward", &ALPHA_X, alpha_x)?;
+        let ay = params::check("ward", &ALPHA_Y, alpha_y)?;
+        Ok(Self {
+            form: WardForm::Exact,
+            inv_ax2: T::c(1.0 / (ax * ax)),
+            inv_ay2: T::c(1.0 / (ay * ay)),
+            e: T::zero(),
+            scale: T::c(1.0 / (4.0 * std::f64::consts::PI * ax * ay)),
+        })
+    }
+}
+
+impl<T: Real> Brdf<T> for Ward<T> {
+    #[inline]
+    fn eval_pair(&self, p: &Pair<T>) -> T {
+        let lobe = match self.form {
+            WardForm::Exact => {
+                let q = sqr(p.h[0]) * self.inv_ax2 + sqr(p.h[1]) * self.inv_ay2;
+                (-q / sqr(p.cos_h)).exp()
+            }
+            WardForm::Pow => p.cos_h.powf(self.e),
+            WardForm::Power16 => {
+                let cos_minus_1 = -p.sin2_h / (T::one() + p.cos_h);
+                pow2k((T::one() + self.e * cos_minus_1).max(T::zero()), 4)
+            }
+        };
+        self.scale * lobe / (p.cos_i * p.cos_o).sqrt()
+    }
+}
+
+fn build<T: Real, const FORM: u8>(p: &Params) -> Result<Model<T>> {
+    let w = match FORM {
+        0 => match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
+            (Some(ax), Some(ay)) => Ward::<T>::anisotropic(ax, ay)?,
+            (None, None) => Ward::<T>::isotropic(p.num("alpha"), WardForm::Exact)?,
+            (Some(_), None) => {
+                return Err(Error::MissingParam {
+                    model: "ward".into(),
+                    param: "alpha_y".into(),
+                });
+            }
+            (None, Some(_)) => {
+                return Err(Error::MissingParam {
+                    model: "ward".into(),
+                    param: "alpha_x".into(),
+                });
+            }
+        },
+        1 => Ward::<T>::isotropic(p.num("alpha"), WardForm::Pow)?,
+        _ => Ward::<T>::isotropic(p.num("alpha"), WardForm::Power16)?,
+    };
+    Ok(Model::Brdf(Box::new(w)))
+}

@@ -1,0 +1,258 @@
+//! `cubic` and `cubic3`: seed 003's cubic polynomials in `c`, clipped to be non-negative.
+//!
+//! - `cubic`: `a c^3 + b c^2 + (1 - a - b) c`: value 0 at `c = 0`, 1 at `c = 1`, and value 0.5
+//!   with the slope of `c^n` at `q = 0.5^(1/n)` (Hermite conditions). Seed 003 gives the closed
+//!   forms `a = ((q-1)(2q+n)+1) / (2 (q-1)^2 q^2)`, `b = -(q^2(4q-3) + n(q^2-1) + 1) / (2 (q-1)^2 q^2)`.
+//!   Decision: we use `q = 0.5^(1/n)` exactly; the seed's `q = e^(-0.6931471/n)` rounds ln 2,
+//!   which at n = 1000 moves the cubic by 1.4e-3.
+//! - `cubic3`: through `(0, 0)`, `(1, 1)`, `(r, Q)` and `(l, G)` with `r = Q^(1/n)`,
+//!   `l = G^(1/n)`, `Q = 0.5`, `G = 1/18` (the seed's chosen values).
+//!
+//! Both are zero below the cubic's local minimum (where one lies in (0, q)) and wherever the
+//! cubic is negative, as seed 003 prescribes ("the function must be clipped").
+//!
+//! Conditioning (the reason for this file's form): the monomial coefficients grow like `n^2`
+//! (`a ~ 3e5` at n = 1000), so `a c^3 + b c^2 + ...` cancels catastrophically in f32. We
+//! evaluate instead the Newton form of the same interpolating cubic in `x = c - 1` (exact in
+//! floating point for `c >= 0.5`), around the nodes near the peak:
+//! `p(x) = 1 + x (d1 + (x - x1)(d2 + (x - x2) d3))`, where every term is of order 1 in the
+//! epicentre. The divided differences `d1..d3` and the nodes `x1 = q - 1` (computed with
+//! `expm1`) are precomputed in f64. `tests/precision.rs` proves the f32 bound over n in [1, 1000].
+//!
+//! Parameters: `n` in [1, 10000] (default 20). Cost: 3 mul, 4 add (Newton form, constants
+//! precomputed); the seed's monomial form is 5 mul, 2 add. Error bounds: see `INFO`.
+
+use crate::error::Result;
+use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
+use crate::params::{self, Params};
+use crate::real::Real;
+use crate::registry::Entry;
+
+pub const INFO: ModelInfo = ModelInfo {
+    id: "cubic",
+    kind: Kind::Lobe,
+    params: &[params::N],
+    formula: "a c^3 + b c^2 + (1 - a - b) c, Hermite fit of c^n at q = 0.5^(1/n); 0 below its local minimum and where negative",
+    source: "seed 003 (Romanyuk, Chan et al., cubic approximation of Phong)",
+    ops: Ops::new(3, 4, 0, 0, 0),
+    bounds: &[
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::Epicentre,
+            param: ("n", 4.0, 1000.0),
+            bound: 0.00552,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 4.0, 1000.0),
+            bound: 0.228,
+        },
+    ],
+    f32_bound: 1e-6,
+    note: "q = 0.5^(1/n) exactly (the seed rounds ln 2); evaluated in a Newton form in (c - 1) for f32 accuracy",
+};
+
+pub const INFO3: ModelInfo = ModelInfo {
+    id: "cubic3",
+    kind: Kind::Lobe,
+    params: &[params::N],
+    formula: "a c^3 + b c^2 + c' c through (1, 1), (0.5^(1/n), 0.5), ((1/18)^(1/n), 1/18); 0 below its local minimum and where negative",
+    source: "seed 003 (three-point variant, Q = 0.5, G = 1/18)",
+    ops: Ops::new(3, 4, 0, 0, 0),
+    bounds: &[
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::Epicentre,
+            param: ("n", 4.0, 1000.0),
+            bound: 0.0215,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 4.0, 1000.0),
+            bound: 0.108,
+        },
+    ],
+    f32_bound: 1e-6,
+    note: "evaluated in a Newton form in (c - 1) for f32 accuracy",
+};
+
+pub const ENTRY: Entry = Entry {
+    info: INFO,
+    build32: build::<f32, 0>,
+    build64: build::<f64, 0>,
+};
+pub const ENTRY3: Entry = Entry {
+    info: INFO3,
+    build32: build::<f32, 1>,
+    build64: build::<f64, 1>,
+};
+
+/// A cubic through `(c=0, 0)` and `(c=1, 1)` in Newton form around `x = c - 1`, clipped.
+#[derive(Clone, Debug)]
+pub struct Cubic<T> {
+    d1: T,
+    d2: T,
+    d3: T,
+    x1: T,
+    x2: T,
+    /// Zero below this cosine (the local minimum), 0 if none.
+    cut: f64,
+    cut_t: T,
+}
+
+/// The precomputed f64 shape of a clipped cubic: Newton coefficients, nodes and cut.
+#[derive(Clone, Copy, Debug)]
+pub struct CubicShape {
+    pub d1: f64,
+    pub d2: f64,
+    pub d3: f64,
+    pub x1: f64,
+    pub x2: f64,
+    pub cut: f64,
+}
+
+impl CubicShape {
+    /// Seed 003's Hermite cubic: nodes `x = 0` (value 1), `x = q - 1` twice (value 0.5, slope
+    /// `n 0.5 / q`), `x = -1` (value 0).
+    pub fn hermite(n: f64) -> Self {
+        let xq = (0.5f64.ln() / n).exp_m1(); // q - 1, accurately
+        let q = 1.0 + xq;
+        let s = n * 0.5 / q; // slope of c^n at q
+        let f0q = -0.5 / xq;
+        let fqm = 0.5 / q; // f[xq, -1]
+        let f0qq = (s - f0q) / xq;
+        let fqqm = (fqm - s) / (-1.0 - xq);
+        let d3 = (fqqm - f0qq) / -1.0;
+        Self::finish(f0q, f0qq, d3, xq, xq)
+    }
+
+    /// Seed 003's three-point cubic through `(r, Q)` and `(l, G)`.
+    pub fn three_point(n: f64, big_q: f64, big_g: f64) -> Self {
+        let xr = (big_q.ln() / n).exp_m1();
+        let xl = (big_g.ln() / n).exp_m1();
+        let f0r = (big_q - 1.0) / xr;
+        let frl = (big_g - big_q) / (xl - xr);
+        let flm = big_g / (1.0 + xl); // f[xl, -1]
+        let f0rl = (frl - f0r) / xl;
+        let frlm = (flm - frl) / (-1.0 - xr);
+        let d3 = (frlm - f0rl) / -1.0;
+        Self::finish(f0r, f0rl, d3, xr, xl)
+    }
+
+    fn finish(d1: f64, d2: f64, d3: f64, x1: f64, x2: f64) -> Self {
+        // Monomial coefficients in x: p = 1 + al x + be x^2 + ga x^3.
+        let al = d1 - d2 * x1 + d3 * x1 * x2;
+        let be = d2 - d3 * (x1 + x2);
+        let ga = d3;
+        // Critical points: 3 ga x^2 + 2 be x + al = 0; keep the local minimum in (-1, x1).
+        let mut cut = 0.0;
+        for x in quadratic_roots(3.0 * ga, 2.0 * be, al) {
+            let curvature = 2.0 * be + 6.0 * ga * x;
+            if x > -1.0 && x < x1 && curvature > 0.0 {
+                cut = f64::max(cut, 1.0 + x);
+            }
+        }
+        Self {
+            d1,
+            d2,
+            d3,
+            x1,
+            x2,
+            cut,
+        }
+    }
+
+    /// The unclipped cubic at `c`, in f64 (for analysis).
+    pub fn raw(&self, c: f64) -> f64 {
+        let x = c - 1.0;
+        1.0 + x * (self.d1 + (x - self.x1) * (self.d2 + (x - self.x2) * self.d3))
+    }
+}
+
+/// Real roots of `a x^2 + b x + c` (a linear equation when `a` is negligible).
+fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
+    let scale = a.abs().max(b.abs()).max(c.abs());
+    if scale == 0.0 {
+        return vec![];
+    }
+    if a.abs() <= 1e-14 * scale {
+        return if b != 0.0 { vec![-c / b] } else { vec![] };
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc < 0.0 {
+        return vec![];
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    let mut r = vec![q / a];
+    if q != 0.0 {
+        r.push(c / q);
+    }
+    r
+}
+
+impl<T: Real> Cubic<T> {
+    /// Seed 003's Hermite cubic (`cubic`); `n` must be in [1, 10000].
+    pub fn hermite(n: f64) -> Result<Self> {
+        Ok(Self::from_shape(CubicShape::hermite(params::check(
+            "cubic",
+            &params::N,
+            n,
+        )?)))
+    }
+
+    /// Seed 003's three-point cubic (`cubic3`); `n` must be in [1, 10000].
+    pub fn three_point(n: f64) -> Result<Self> {
+        Ok(Self::from_shape(CubicShape::three_point(
+            params::check("cubic3", &params::N, n)?,
+            0.5,
+            1.0 / 18.0,
+        )))
+    }
+
+    /// From a precomputed shape.
+    pub fn from_shape(s: CubicShape) -> Self {
+        Self {
+            d1: T::c(s.d1),
+            d2: T::c(s.d2),
+            d3: T::c(s.d3),
+            x1: T::c(s.x1),
+            x2: T::c(s.x2),
+            cut: s.cut,
+            cut_t: T::c(s.cut),
+        }
+    }
+}
+
+impl<T: Real> Lobe<T> for Cubic<T> {
+    #[inline]
+    fn eval(&self, c: T) -> T {
+        let Some(c) = super::arg(c) else {
+            return T::zero();
+        };
+        if c < self.cut_t {
+            return T::zero();
+        }
+        let x = c - T::one();
+        let p = T::one() + x * (self.d1 + (x - self.x1) * (self.d2 + (x - self.x2) * self.d3));
+        p.max(T::zero())
+    }
+    fn zero_below(&self) -> f64 {
+        self.cut
+    }
+}
+
+fn build<T: Real, const THREE: u8>(p: &Params) -> Result<Model<T>> {
+    let n = p.num("n");
+    let c = if THREE == 1 {
+        Cubic::<T>::three_point(n)?
+    } else {
+        Cubic::<T>::hermite(n)?
+    };
+    Ok(Model::Lobe(Box::new(c)))
+}

@@ -1,0 +1,47 @@
+//! Lobes: functions of one cosine `c` in [0, 1] with a specular exponent `n`.
+//! The reference is [`pow`] (`c^n`); every other lobe approximates it.
+//!
+//! Conventions shared by every lobe (see `Lobe::eval`): the cosine is clamped to [0, 1]
+//! (../shared/MODELS.md), so `c < 0` gives the value at 0 (non-zero for `sg`, `gauss` and the
+//! power forms with `n < g`) and `c > 1` the value at 1; NaN gives 0. `n` is in [1, 10000]; error bounds are documented for n in [1, 1000].
+
+pub mod cubic;
+pub mod flog;
+pub mod gauss;
+pub mod pow;
+pub mod power;
+pub mod rational;
+pub mod schlick;
+pub mod sg;
+
+use crate::real::Real;
+
+/// The lenient lobe argument: `c` clamped to [0, 1]; `None` (value 0) for NaN.
+#[inline(always)]
+pub fn arg<T: Real>(c: T) -> Option<T> {
+    if c.is_nan() {
+        None
+    } else {
+        Some(c.max(T::zero()).min(T::one()))
+    }
+}
+
+/// Every lobe id, in registry order (the choices of `phong`'s and `blinn-phong`'s `lobe`).
+pub const IDS: &[&str] = &[
+    "pow",
+    "schlick",
+    "schlick-modified",
+    "gauss",
+    "flog",
+    "flog-normalized",
+    "flog-normalized-clamped",
+    "cubic",
+    "cubic3",
+    "rational",
+    "cubic-rational",
+    "power4",
+    "power8",
+    "power16",
+    "sg",
+    "ue4-phong-approx",
+];

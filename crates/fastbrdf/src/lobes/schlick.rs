@@ -1,0 +1,136 @@
+//! `schlick` and `schlick-modified`: rational stand-ins for `c^n`.
+//!
+//! - `schlick`: `c / (n - n c + c)` (Schlick 1994; seeds 001, 003). Value 1 and slope `n` at
+//!   `c = 1`, like `c^n`, but a much heavier tail. Cost: 2 mul, 2 add, 1 div.
+//! - `schlick-modified`: `2 c / (1.25 (n - n c + 1.25 c)^2)`, exactly as printed in seed 001
+//!   (its reference [15]). Decision: we keep the printed formula although it is not 1 at the
+//!   peak: its value at `c = 1` is `2 / 1.25^3 = 1.024` and its slope there is about `1.64 n`.
+//!   No reading of the OCR text that we found gives a peak of 1 with the printed constants, so
+//!   we implement it as printed and let the error sweeps show its behaviour.
+//!   Cost: 4 mul, 2 add, 1 div.
+//!
+//! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
+
+use crate::error::Result;
+use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
+use crate::params::{self, Params};
+use crate::real::{Real, sqr};
+use crate::registry::Entry;
+
+pub const INFO: ModelInfo = ModelInfo {
+    id: "schlick",
+    kind: Kind::Lobe,
+    params: &[params::N],
+    formula: "c / (n - n c + c)",
+    source: "Schlick 1994, 'A fast alternative to Phong's specular model'; seeds 001, 003",
+    ops: Ops::new(2, 2, 1, 0, 0),
+    bounds: &[
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 1.0, 1000.0),
+            bound: 0.204,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("n", 1.0, 1000.0),
+            bound: 0.182,
+        },
+    ],
+    f32_bound: 2e-7,
+    note: "",
+};
+
+pub const INFO_MODIFIED: ModelInfo = ModelInfo {
+    id: "schlick-modified",
+    kind: Kind::Lobe,
+    params: &[params::N],
+    formula: "2 c / (1.25 (n - n c + 1.25 c)^2)",
+    source: "seed 001, its reference [15] (Romanyuk et al.)",
+    ops: Ops::new(4, 2, 1, 0, 0),
+    bounds: &[ErrorBound {
+        reference: "pow",
+        metric: Metric::MaxAbs,
+        zone: Zone::All,
+        param: ("n", 1.0, 1000.0),
+        bound: 0.133,
+    }],
+    f32_bound: 3e-7,
+    note: "implemented as printed in seed 001; its value at c = 1 is 1.024, not 1",
+};
+
+pub const ENTRY: Entry = Entry {
+    info: INFO,
+    build32: build::<f32>,
+    build64: build::<f64>,
+};
+pub const ENTRY_MODIFIED: Entry = Entry {
+    info: INFO_MODIFIED,
+    build32: build_modified::<f32>,
+    build64: build_modified::<f64>,
+};
+
+/// Schlick's rational lobe.
+#[derive(Clone, Debug)]
+pub struct Schlick<T> {
+    n: T,
+}
+
+impl<T: Real> Schlick<T> {
+    /// `n` must be in [1, 10000].
+    pub fn new(n: f64) -> Result<Self> {
+        Ok(Self {
+            n: T::c(params::check("schlick", &params::N, n)?),
+        })
+    }
+}
+
+impl<T: Real> Lobe<T> for Schlick<T> {
+    #[inline]
+    fn eval(&self, c: T) -> T {
+        let Some(c) = super::arg(c) else {
+            return T::zero();
+        };
+        // n - n c + c written as n (1 - c) + c: 1 - c is exact for c >= 0.5.
+        c / (self.n * (T::one() - c) + c)
+    }
+}
+
+/// Seed 001's modified Schlick lobe, as printed.
+#[derive(Clone, Debug)]
+pub struct SchlickModified<T> {
+    n: T,
+}
+
+impl<T: Real> SchlickModified<T> {
+    /// `n` must be in [1, 10000].
+    pub fn new(n: f64) -> Result<Self> {
+        Ok(Self {
+            n: T::c(params::check("schlick-modified", &params::N, n)?),
+        })
+    }
+}
+
+impl<T: Real> Lobe<T> for SchlickModified<T> {
+    #[inline]
+    fn eval(&self, c: T) -> T {
+        let Some(c) = super::arg(c) else {
+            return T::zero();
+        };
+        let d = self.n * (T::one() - c) + T::c(1.25) * c;
+        T::c(2.0) * c / (T::c(1.25) * sqr(d))
+    }
+}
+
+fn build<T: Real>(p: &Params) -> Result<Model<T>> {
+    Ok(Model::Lobe(Box::new(Schlick::<T>::new(p.num("n"))?)))
+}
+
+fn build_modified<T: Real>(p: &Params) -> Result<Model<T>> {
+    Ok(Model::Lobe(Box::new(SchlickModified::<T>::new(
+        p.num("n"),
+    )?)))
+}

@@ -1,0 +1,316 @@
+//! What a model is: its kind, its self-description ([`ModelInfo`]) and its evaluator
+//! ([`Model`]), one trait per kind.
+
+use crate::error::{Error, Result};
+use crate::params::ParamSpec;
+use crate::real::Real;
+use crate::vec3::{Pair, V3};
+use serde::Serialize;
+
+/// The kinds of model, by what they take as input.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kind {
+    /// A function of one cosine `c` in [0, 1] (input column `cos`).
+    Lobe,
+    /// A microfacet distribution `D(cos theta_h)` (input column `cos_h`).
+    Distribution,
+    /// A shadowing-masking term (input columns `cos_v`, optional `cos_l`; the V-cavity also
+    /// `cos_h`, `cos_vh`).
+    Shadowing,
+    /// A Fresnel term of the cosine between the view and the microfacet normal (`cos_vh`).
+    Fresnel,
+    /// A full BRDF of `(wi, wo)` in the local frame, without the cosine factor.
+    Brdf,
+}
+
+impl Kind {
+    /// The name used in tables and errors.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::Lobe => "lobe",
+            Kind::Distribution => "distribution",
+            Kind::Shadowing => "shadowing",
+            Kind::Fresnel => "fresnel",
+            Kind::Brdf => "brdf",
+        }
+    }
+}
+
+/// Operation counts of one evaluation, with the per-parameter constants precomputed.
+/// Comparisons, `min`/`max` and clamps are not counted; `pow` counts as one transcendental.
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct Ops {
+    pub mul: u8,
+    pub add: u8,
+    pub div: u8,
+    pub sqrt: u8,
+    pub transcendental: u8,
+}
+
+impl Ops {
+    /// Builds a count: multiplies, adds, divides, square roots, transcendental calls.
+    pub const fn new(mul: u8, add: u8, div: u8, sqrt: u8, transcendental: u8) -> Self {
+        Self {
+            mul,
+            add,
+            div,
+            sqrt,
+            transcendental,
+        }
+    }
+}
+
+/// How an error is measured.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Metric {
+    /// `max |f - ref|`, for distributions and BRDFs divided by the reference's peak.
+    MaxAbs,
+    /// `max |f - ref| / ref`.
+    MaxRel,
+}
+
+/// Where an error is measured, by the value of the reference relative to its peak.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "kebab-case", tag = "zone")]
+pub enum Zone {
+    /// The whole domain.
+    All,
+    /// Where the reference is at least half its peak (`c^n >= 0.5` for lobes).
+    Epicentre,
+    /// Where `lo < reference / peak < hi`.
+    Band { lo: f64, hi: f64 },
+}
+
+/// A documented error bound against a reference model, enforced by `tests/bounds.rs`.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ErrorBound {
+    /// The reference model id (same parameters).
+    pub reference: &'static str,
+    pub metric: Metric,
+    #[serde(flatten)]
+    pub zone: Zone,
+    /// The parameter range the bound holds on: `(name, lo, hi)`.
+    pub param: (&'static str, f64, f64),
+    /// The bound itself (measured maximum, rounded up).
+    pub bound: f64,
+}
+
+/// A model's self-description: everything `fastbrdf models` prints.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ModelInfo {
+    pub id: &'static str,
+    pub kind: Kind,
+    pub params: &'static [ParamSpec],
+    pub formula: &'static str,
+    pub source: &'static str,
+    pub ops: Ops,
+    /// Error bounds against reference models (empty for references and exact models).
+    pub bounds: &'static [ErrorBound],
+    /// Documented bound of the f32 evaluation against the f64 one on the same inputs, in the
+    /// mixed metric `|v32 - v64| / max(1, |v64|)`, over the whole documented domain.
+    pub f32_bound: f64,
+    /// A note on conventions or decisions (where this reading differs from a seed).
+    pub note: &'static str,
+}
+
+/// A function of one cosine.
+pub trait Lobe<T: Real>: Send + Sync {
+    /// The value at cosine `c`, clamped to [0, 1] first (../shared/MODELS.md): `c < 0` gives
+    /// the value at 0, `c > 1` (round-off in a normalised dot product) the value at 1; NaN
+    /// gives 0. Finite and non-negative everywhere.
+    fn eval(&self, c: T) -> T;
+    /// The largest cosine below which the lobe is identically zero (0 when it has none).
+    fn zero_below(&self) -> f64 {
+        0.0
+    }
+    /// Cosines where the lobe is not smooth (junctions of piecewise forms), for quadrature.
+    fn kinks(&self) -> Vec<f64> {
+        Vec::new()
+    }
+}
+
+/// A microfacet distribution of `cos theta_h`.
+pub trait Distribution<T: Real>: Send + Sync {
+    /// `D` given `cos theta_h` and `sin^2 theta_h` (both supplied so that callers with the
+    /// half vector avoid the cancellation in `1 - cos^2`). Returns 0 for `cos_h < COS_MIN`.
+    fn d(&self, cos_h: T, sin2_h: T) -> T;
+    /// `D(cos theta_h)`; NaN or `cos_h < COS_MIN` give 0, `cos_h > 1` is treated as 1.
+    fn eval(&self, cos_h: T) -> T {
+        if !(cos_h >= T::c(crate::vec3::COS_MIN)) {
+            return T::zero();
+        }
+        let c = cos_h.min(T::one());
+        self.d(c, (T::one() - c) * (T::one() + c))
+    }
+}
+
+/// The cosines a shadowing term may use.
+#[derive(Clone, Copy, Debug)]
+pub struct ShadowInput<T> {
+    /// `n.v`.
+    pub cos_v: T,
+    /// `n.l`; `None` asks for the one-sided (masking) term of `v` alone.
+    pub cos_l: Option<T>,
+    /// `n.h` (V-cavity only).
+    pub cos_h: T,
+    /// `v.h = l.h` (V-cavity only).
+    pub cos_vh: T,
+}
+
+/// A shadowing-masking term.
+pub trait Shadowing<T: Real>: Send + Sync {
+    /// `G`, in [0, 1]. Cosines that are NaN or `<= 0` give 0.
+    fn g(&self, s: &ShadowInput<T>) -> T;
+    /// Whether the term uses `cos_h` and `cos_vh`.
+    fn needs_half_vector(&self) -> bool {
+        false
+    }
+}
+
+/// A Fresnel term.
+pub trait Fresnel<T: Real>: Send + Sync {
+    /// Reflectance in [0, 1] at the cosine between the view and the microfacet normal;
+    /// NaN or negative cosines give the value at 0, cosines above 1 the value at 1.
+    fn f(&self, cos_vh: T) -> T;
+}
+
+/// A full BRDF of (wi, wo) in the local frame, without the cosine factor.
+pub trait Brdf<T: Real>: Send + Sync {
+    /// The value on a prepared geometric pair (unit vectors, both above `COS_MIN`).
+    fn eval_pair(&self, p: &Pair<T>) -> T;
+    /// The value for any `wi`, `wo` (normalised here). Zero vectors, NaN components and
+    /// directions below the horizon (`cos theta < COS_MIN`) give 0.
+    fn eval(&self, wi: V3<T>, wo: V3<T>) -> T {
+        match Pair::new(wi, wo) {
+            Some(p) => self.eval_pair(&p),
+            None => T::zero(),
+        }
+    }
+    /// Whether `f(wi, wo) = f(wo, wi)` holds (tested on random pairs when it does).
+    fn reciprocal(&self) -> bool {
+        true
+    }
+}
+
+/// A built model of any kind, in precision `T`.
+pub enum Model<T: Real> {
+    Lobe(Box<dyn Lobe<T>>),
+    Distribution(Box<dyn Distribution<T>>),
+    Shadowing(Box<dyn Shadowing<T>>),
+    Fresnel(Box<dyn Fresnel<T>>),
+    Brdf(Box<dyn Brdf<T>>),
+}
+
+impl<T: Real> Model<T> {
+    /// The kind of model.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Model::Lobe(_) => Kind::Lobe,
+            Model::Distribution(_) => Kind::Distribution,
+            Model::Shadowing(_) => Kind::Shadowing,
+            Model::Fresnel(_) => Kind::Fresnel,
+            Model::Brdf(_) => Kind::Brdf,
+        }
+    }
+
+    /// The input columns this model reads: `(required, optional)`.
+    pub fn columns(&self) -> (&'static [&'static str], &'static [&'static str]) {
+        match self {
+            Model::Lobe(_) => (&["cos"], &[]),
+            Model::Distribution(_) => (&["cos_h"], &[]),
+            Model::Shadowing(s) if s.needs_half_vector() => {
+                (&["cos_v", "cos_h", "cos_vh"], &["cos_l"])
+            }
+            Model::Shadowing(_) => (&["cos_v"], &["cos_l"]),
+            Model::Fresnel(_) => (&["cos_vh"], &[]),
+            Model::Brdf(_) => (&["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"], &[]),
+        }
+    }
+
+    /// Evaluates with the lenient shading rules (out-of-domain inputs give 0).
+    /// `input` holds the required columns in order, then the optional ones (`None` if absent).
+    pub fn eval_row(&self, input: &[Option<T>]) -> T {
+        let v = |i: usize| input.get(i).copied().flatten().unwrap_or_else(T::nan);
+        match self {
+            Model::Lobe(l) => l.eval(v(0)),
+            Model::Distribution(d) => d.eval(v(0)),
+            Model::Shadowing(s) => {
+                let needs_h = s.needs_half_vector();
+                let (cos_h, cos_vh, l) = if needs_h {
+                    (v(1), v(2), 3)
+                } else {
+                    (T::one(), T::one(), 1)
+                };
+                s.g(&ShadowInput {
+                    cos_v: v(0),
+                    cos_l: input.get(l).copied().flatten(),
+                    cos_h,
+                    cos_vh,
+                })
+            }
+            Model::Fresnel(f) => f.f(v(0)),
+            Model::Brdf(b) => b.eval([v(0), v(1), v(2)], [v(3), v(4), v(5)]),
+        }
+    }
+
+    /// Evaluates with strict checks: inputs outside the documented domain are an error
+    /// (used by `fastbrdf eval`, which must say what is wrong rather than print 0).
+    pub fn try_eval_row(&self, input: &[Option<T>]) -> Result<T> {
+        let (req, opt) = self.columns();
+        for (i, name) in req.iter().chain(opt.iter()).enumerate() {
+            if let Some(x) = input.get(i).copied().flatten() {
+                if !x.is_finite() {
+                    return Err(Error::Domain {
+                        input: (*name).into(),
+                        reason: format!("{x} is not a finite number"),
+                    });
+                }
+                let is_cos = !matches!(self, Model::Brdf(_));
+                if is_cos && !(x >= T::zero() && x <= T::one()) {
+                    return Err(Error::Domain {
+                        input: (*name).into(),
+                        reason: format!("{x} is outside the domain [0, 1] of a cosine"),
+                    });
+                }
+            } else if i < req.len() {
+                return Err(Error::Domain {
+                    input: (*name).into(),
+                    reason: "missing".into(),
+                });
+            }
+        }
+        if let Model::Brdf(_) = self {
+            let w = |o: usize| {
+                [
+                    input[o].unwrap(),
+                    input[o + 1].unwrap(),
+                    input[o + 2].unwrap(),
+                ]
+            };
+            for (name, v) in [("wi", w(0)), ("wo", w(3))] {
+                match crate::vec3::normalize(v) {
+                    None => {
+                        return Err(Error::Domain {
+                            input: name.into(),
+                            reason: "zero-length vector".into(),
+                        });
+                    }
+                    Some(u) if !(u[2] >= T::c(crate::vec3::COS_MIN)) => {
+                        return Err(Error::Domain {
+                            input: name.into(),
+                            reason: format!(
+                                "below the horizon or grazing (cos theta = {} < {}): the local frame's normal is +z and both directions point away from the surface",
+                                u[2],
+                                crate::vec3::COS_MIN
+                            ),
+                        });
+                    }
+                    Some(_) => {}
+                }
+            }
+        }
+        Ok(self.eval_row(input))
+    }
+}

@@ -1,0 +1,226 @@
+//! Parameter specifications (name, range or choices, default) and their validation.
+//! The same names are used by the library, the CLI (`--param NAME=VALUE`) and, later, WGSL.
+
+use crate::error::{Error, Result};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// What values a parameter takes.
+#[derive(Clone, Copy, Debug, Serialize)]
+#[serde(tag = "type", rename_all = "lowercase")]
+pub enum ParamKind {
+    /// A real number in `[min, max]`. `default: None` means "optional" (see the doc line).
+    Number {
+        min: f64,
+        max: f64,
+        default: Option<f64>,
+    },
+    /// One of a fixed set of names.
+    Choice {
+        options: &'static [&'static str],
+        default: &'static str,
+    },
+}
+
+/// One parameter of a model.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ParamSpec {
+    pub name: &'static str,
+    #[serde(flatten)]
+    pub kind: ParamKind,
+    pub doc: &'static str,
+}
+
+impl ParamSpec {
+    /// The default as text (`-` when optional).
+    pub fn default_text(&self) -> String {
+        match self.kind {
+            ParamKind::Number {
+                default: Some(d), ..
+            } => fmt_num(d),
+            ParamKind::Number { default: None, .. } => "-".into(),
+            ParamKind::Choice { default, .. } => default.into(),
+        }
+    }
+    /// The range or the choices as text.
+    pub fn range_text(&self) -> String {
+        match self.kind {
+            ParamKind::Number { min, max, .. } => format!("[{}, {}]", fmt_num(min), fmt_num(max)),
+            ParamKind::Choice { options, .. } => options.join("|"),
+        }
+    }
+}
+
+fn fmt_num(x: f64) -> String {
+    format!("{x}")
+}
+
+/// The specular exponent of every lobe.
+pub const N: ParamSpec = ParamSpec {
+    name: "n",
+    kind: ParamKind::Number {
+        min: 1.0,
+        max: 10000.0,
+        default: Some(20.0),
+    },
+    doc: "specular exponent",
+};
+
+/// The microfacet slope parameter of distributions, shadowing and Ward.
+pub const ALPHA: ParamSpec = ParamSpec {
+    name: "alpha",
+    kind: ParamKind::Number {
+        min: 0.01,
+        max: 1.0,
+        default: Some(0.3),
+    },
+    doc: "RMS microfacet slope m",
+};
+
+/// A parameter value.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Value {
+    Num(f64),
+    Text(String),
+}
+
+/// Validated parameters of one model: every spec'd parameter that has a value or a default.
+#[derive(Clone, Debug)]
+pub struct Params {
+    model: &'static str,
+    values: BTreeMap<&'static str, Value>,
+}
+
+impl Params {
+    /// Validates `given` (name, value-as-text pairs) against `specs` and fills in defaults.
+    /// Errors name the parameter, the value and what was expected.
+    pub fn resolve(
+        model: &'static str,
+        specs: &[ParamSpec],
+        given: &[(&str, &str)],
+    ) -> Result<Self> {
+        let mut values = BTreeMap::new();
+        for (name, text) in given {
+            let spec =
+                specs
+                    .iter()
+                    .find(|s| s.name == *name)
+                    .ok_or_else(|| Error::UnknownParam {
+                        model: model.into(),
+                        param: (*name).into(),
+                    })?;
+            if values.contains_key(spec.name) {
+                return Err(Error::InvalidParam {
+                    model: model.into(),
+                    param: spec.name.into(),
+                    value: (*text).into(),
+                    expected: "a single value (it was given twice)".into(),
+                });
+            }
+            values.insert(spec.name, parse(model, spec, text)?);
+        }
+        for spec in specs {
+            if values.contains_key(spec.name) {
+                continue;
+            }
+            match spec.kind {
+                ParamKind::Number {
+                    default: Some(d), ..
+                } => {
+                    values.insert(spec.name, Value::Num(d));
+                }
+                ParamKind::Choice { default, .. } => {
+                    values.insert(spec.name, Value::Text(default.into()));
+                }
+                ParamKind::Number { default: None, .. } => {}
+            }
+        }
+        Ok(Self { model, values })
+    }
+
+    /// The model these parameters belong to.
+    pub fn model(&self) -> &'static str {
+        self.model
+    }
+
+    /// A numeric parameter (its default when not given).
+    ///
+    /// # Panics
+    /// When the model has no such numeric parameter with a default: a bug in the model file.
+    pub fn num(&self, name: &str) -> f64 {
+        self.opt_num(name)
+            .unwrap_or_else(|| panic!("{}: no numeric parameter {name}", self.model))
+    }
+
+    /// An optional numeric parameter.
+    pub fn opt_num(&self, name: &str) -> Option<f64> {
+        match self.values.get(name) {
+            Some(Value::Num(x)) => Some(*x),
+            _ => None,
+        }
+    }
+
+    /// A choice parameter (its default when not given).
+    ///
+    /// # Panics
+    /// When the model has no such choice parameter: a bug in the model file.
+    pub fn choice(&self, name: &str) -> &str {
+        match self.values.get(name) {
+            Some(Value::Text(s)) => s,
+            _ => panic!("{}: no choice parameter {name}", self.model),
+        }
+    }
+
+    /// Every resolved value, for display.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static str, &Value)> {
+        self.values.iter().map(|(k, v)| (*k, v))
+    }
+}
+
+fn parse(model: &'static str, spec: &ParamSpec, text: &str) -> Result<Value> {
+    let invalid = |expected: String| Error::InvalidParam {
+        model: model.into(),
+        param: spec.name.into(),
+        value: text.into(),
+        expected,
+    };
+    match spec.kind {
+        ParamKind::Number { min, max, .. } => {
+            let x: f64 = text
+                .trim()
+                .parse()
+                .map_err(|_| invalid(format!("a number in [{min}, {max}]")))?;
+            if !(x >= min && x <= max) {
+                return Err(invalid(format!("a number in [{min}, {max}]")));
+            }
+            Ok(Value::Num(x))
+        }
+        ParamKind::Choice { options, .. } => {
+            let t = text.trim();
+            if options.contains(&t) {
+                Ok(Value::Text(t.into()))
+            } else {
+                Err(invalid(format!("one of {}", options.join(", "))))
+            }
+        }
+    }
+}
+
+/// Checks a typed constructor argument against its spec (for the typed `new` functions,
+/// which bypass [`Params::resolve`]).
+pub fn check(model: &'static str, spec: &ParamSpec, x: f64) -> Result<f64> {
+    parse(model, spec, &format!("{x}"))
+        .map(|_| x)
+        .and_then(|_| {
+            if x.is_finite() {
+                Ok(x)
+            } else {
+                Err(Error::InvalidParam {
+                    model: model.into(),
+                    param: spec.name.into(),
+                    value: format!("{x}"),
+                    expected: spec.range_text(),
+                })
+            }
+        })
+}

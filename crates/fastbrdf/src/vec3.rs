@@ -1,0 +1,85 @@
+//! Direction helpers in the local shading frame: normal = +z, `wi` and `wo` both point away
+//! from the surface. Plain `[T; 3]` arrays keep every formula generic over `f32`/`f64`
+//! (glam's types are concrete per precision; see ARCHITECTURE.md).
+
+use crate::real::{Real, sqr};
+
+/// A 3-vector in the local shading frame.
+pub type V3<T> = [T; 3];
+
+/// Dot product.
+#[inline(always)]
+pub fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// Unit vector along `v`, or `None` when `v` is zero, infinite or has a NaN component.
+#[inline]
+pub fn normalize<T: Real>(v: V3<T>) -> Option<V3<T>> {
+    let len2 = dot(v, v);
+    if !(len2 > T::zero()) || !len2.is_finite() {
+        return None;
+    }
+    let inv = len2.sqrt().recip();
+    Some([v[0] * inv, v[1] * inv, v[2] * inv])
+}
+
+/// Mirror direction of `w` about the normal: `2 (w.n) n - w`.
+#[inline(always)]
+pub fn reflect<T: Real>(w: V3<T>) -> V3<T> {
+    [-w[0], -w[1], w[2]]
+}
+
+/// The geometry of one (wi, wo) pair that every full BRDF needs.
+#[derive(Clone, Copy, Debug)]
+pub struct Pair<T> {
+    /// Unit incident direction.
+    pub wi: V3<T>,
+    /// Unit outgoing direction.
+    pub wo: V3<T>,
+    /// Unit half vector `normalize(wi + wo)`.
+    pub h: V3<T>,
+    /// `cos theta_i = wi.z`.
+    pub cos_i: T,
+    /// `cos theta_o = wo.z`.
+    pub cos_o: T,
+    /// `cos theta_h = h.z`.
+    pub cos_h: T,
+    /// `sin^2 theta_h = h.x^2 + h.y^2`, computed without cancellation near the peak.
+    pub sin2_h: T,
+    /// `wi.h = wo.h`.
+    pub cos_ih: T,
+}
+
+/// `2^-20` (about 9.5e-7, 89.99995 degrees), exactly representable in f32 and f64 so that
+/// both precisions draw the line at the same input.
+/// Cosines below this count as grazing: full BRDFs return 0 when `cos theta_i` or
+/// `cos theta_o` is below it, and distributions return 0 when `cos theta_h` is below it.
+/// It keeps `1 / (cos_i cos_o)` finite in f32 and removes the pole that the seed's
+/// `beckmann-pow` has at `cos theta_h = 0` when `alpha > 1/sqrt(2)`.
+pub const COS_MIN: f64 = 1.0 / 1_048_576.0;
+
+impl<T: Real> Pair<T> {
+    /// Normalises `wi` and `wo` and builds the half vector. `None` (the BRDF is 0) when either
+    /// vector is zero or not finite, or lies below `COS_MIN` (back-facing or grazing).
+    #[inline]
+    pub fn new(wi: V3<T>, wo: V3<T>) -> Option<Self> {
+        let wi = normalize(wi)?;
+        let wo = normalize(wo)?;
+        let cmin = T::c(COS_MIN);
+        if !(wi[2] >= cmin && wo[2] >= cmin) {
+            return None;
+        }
+        let h = normalize([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]])?;
+        Some(Self {
+            wi,
+            wo,
+            h,
+            cos_i: wi[2],
+            cos_o: wo[2],
+            cos_h: h[2],
+            sin2_h: sqr(h[0]) + sqr(h[1]),
+            cos_ih: dot(wi, h).max(T::zero()),
+        })
+    }
+}
