@@ -192,6 +192,11 @@ pub trait Brdf<T: Real>: Send + Sync {
     fn reciprocal(&self) -> bool {
         true
     }
+    /// Values of `reflect(wi) . wo` where the BRDF is discontinuous or has a kink (the lobe's
+    /// cut and junctions, for lobe-based BRDFs), so that quadrature can split there.
+    fn mirror_breaks(&self) -> Vec<f64> {
+        Vec::new()
+    }
 }
 
 /// A built model of any kind, in precision `T`.

@@ -103,3 +103,64 @@ pub fn integrate(
         work.iter().map(|w| w.3).sum(),
     )
 }
+
+/// Directional albedo `integral over the hemisphere of f(wo) cos theta_o dwo` for a BRDF
+/// slice `f` whose lobe peaks around the unit direction `peak` (the mirror direction of `wi`,
+/// or the normal). Integrates over the whole sphere in polar coordinates centred on `peak`
+/// (so a narrow lobe is a narrow band in the outer variable `u = cos angle(wo, peak)`), with
+/// the integrand zero below the horizon; nested adaptive Gauss-Kronrod to `rel_tol`.
+/// `u_breaks` are values of `u` where the integrand jumps or kinks (Gauss-Kronrod's error
+/// estimate does not see a jump that falls between its nodes).
+/// Returns `(albedo, error estimate)`.
+pub fn albedo(
+    f: impl Fn([f64; 3]) -> f64,
+    peak: [f64; 3],
+    u_breaks: &[f64],
+    rel_tol: f64,
+) -> (f64, f64) {
+    // An orthonormal frame (t, b, peak).
+    let p = peak;
+    let t = if p[2].abs() < 0.9 {
+        [p[1], -p[0], 0.0]
+    } else {
+        [0.0, p[2], -p[1]]
+    };
+    let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+    let t = [t[0] / tl, t[1] / tl, t[2] / tl];
+    let b = [
+        p[1] * t[2] - p[2] * t[1],
+        p[2] * t[0] - p[0] * t[2],
+        p[0] * t[1] - p[1] * t[0],
+    ];
+    let inner_err = std::cell::Cell::new(0.0);
+    let ring = |u: f64| {
+        let s = (1.0 - u * u).max(0.0).sqrt();
+        let g = |phi: f64| {
+            let (sp, cp) = phi.sin_cos();
+            let w = [
+                s * (cp * t[0] + sp * b[0]) + u * p[0],
+                s * (cp * t[1] + sp * b[1]) + u * p[1],
+                s * (cp * t[2] + sp * b[2]) + u * p[2],
+            ];
+            if w[2] > 0.0 { f(w) * w[2] } else { 0.0 }
+        };
+        // The horizon cuts the ring where s (cos phi t_z + sin phi b_z) + u p_z = 0.
+        let mut breaks = vec![];
+        let (a, bb, c) = (s * t[2], s * b[2], u * p[2]);
+        let r = (a * a + bb * bb).sqrt();
+        if r > 0.0 && (c / r).abs() < 1.0 {
+            let base = bb.atan2(a);
+            let d = (-c / r).acos();
+            for x in [base + d, base - d] {
+                breaks.push(x.rem_euclid(2.0 * std::f64::consts::PI));
+            }
+        }
+        let (v, e) = integrate(g, 0.0, 2.0 * std::f64::consts::PI, &breaks, rel_tol * 0.1);
+        inner_err.set(inner_err.get() + e);
+        v
+    };
+    let mut breaks: Vec<f64> = (1..=7).map(|k| 1.0 - 10f64.powi(-k)).collect();
+    breaks.extend_from_slice(u_breaks);
+    let (v, e) = integrate(ring, -1.0, 1.0, &breaks, rel_tol);
+    (v, e)
+}

@@ -70,7 +70,15 @@ impl<T: Real> Pair<T> {
         if !(wi[2] >= cmin && wo[2] >= cmin) {
             return None;
         }
-        let h = normalize([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]])?;
+        // For unit wi, wo: wi.h = wo.h = |wi + wo| / 2. Taking it from the length (rather than
+        // a dot product) is cheaper and exactly symmetric in (wi, wo), so every BRDF built on
+        // a Pair is reciprocal to the last bit.
+        let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
+        let len = dot(s, s).sqrt();
+        if !(len > T::zero()) {
+            return None;
+        }
+        let h = [s[0] / len, s[1] / len, s[2] / len];
         Some(Self {
             wi,
             wo,
@@ -79,7 +87,7 @@ impl<T: Real> Pair<T> {
             cos_o: wo[2],
             cos_h: h[2],
             sin2_h: sqr(h[0]) + sqr(h[1]),
-            cos_ih: dot(wi, h).max(T::zero()),
+            cos_ih: T::c(0.5) * len,
         })
     }
 }

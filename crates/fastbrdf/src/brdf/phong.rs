@@ -145,6 +145,14 @@ impl<T: Real> Brdf<T> for LobeBrdf<T> {
             self.coef * self.lobe.eval(dot(reflect(p.wi), p.wo))
         }
     }
+    fn mirror_breaks(&self) -> Vec<f64> {
+        if self.blinn {
+            return Vec::new();
+        }
+        let mut b = self.lobe.kinks();
+        b.push(self.lobe.zero_below());
+        b
+    }
 }
 
 fn build<T: Real, const BLINN: u8>(p: &Params) -> Result<Model<T>> {

@@ -1,0 +1,257 @@
+//! Properties over the whole documented domain (proptest), reciprocity on random pairs, and
+//! the out-of-domain rules: 0 by a documented rule or an error, never NaN or a panic.
+
+mod common;
+
+use common::{as_refs, configs, direction_pairs};
+use fastbrdf::model::{ModelInfo, ShadowInput};
+use fastbrdf::params::ParamKind;
+use fastbrdf::{Model, Real, registry};
+use proptest::prelude::*;
+
+/// A strategy for a valid parameter set of `info`: numbers anywhere in their range (edges
+/// weighted), choices uniformly.
+fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, String)>> {
+    let parts: Vec<BoxedStrategy<Option<(String, String)>>> = info
+        .params
+        .iter()
+        .map(|p| {
+            let name = p.name.to_string();
+            match p.kind {
+                ParamKind::Number { min, max, default } => {
+                    let n2 = name.clone();
+                    let value = prop_oneof![
+                        Just(min),
+                        Just(max),
+                        min..=max,
+                        (0.0f64..1.0).prop_map(move |t| min + (max - min) * t * t * t)
+                    ];
+                    if default.is_none() {
+                        // Optional (Ward's alpha_x, alpha_y): both given or neither, decided below.
+                        value
+                            .prop_map(move |v| Some((n2.clone(), v.to_string())))
+                            .boxed()
+                    } else {
+                        value
+                            .prop_map(move |v| Some((n2.clone(), v.to_string())))
+                            .boxed()
+                    }
+                }
+                ParamKind::Choice { options, .. } => (0..options.len())
+                    .prop_map(move |i| Some((name.clone(), options[i].to_string())))
+                    .boxed(),
+            }
+        })
+        .collect();
+    let optional: Vec<&str> = info
+        .params
+        .iter()
+        .filter(|p| matches!(p.kind, ParamKind::Number { default: None, .. }))
+        .map(|p| p.name)
+        .collect();
+    (parts, any::<bool>())
+        .prop_map(move |(v, keep_optional)| {
+            v.into_iter()
+                .flatten()
+                .filter(|(k, _)| keep_optional || !optional.contains(&k.as_str()))
+                .collect()
+        })
+        .boxed()
+}
+
+fn any_model() -> impl Strategy<Value = (&'static ModelInfo, Vec<(String, String)>)> {
+    (0..registry::all().len()).prop_flat_map(|i| {
+        let info = &registry::all()[i].info;
+        params_strategy(info).prop_map(move |p| (info, p))
+    })
+}
+
+/// Evaluates a model on in-domain inputs derived from `u` (three numbers in [0, 1]).
+fn eval_in_domain<T: Real>(m: &Model<T>, u: [f64; 6]) -> T {
+    let c = |x: f64| T::c(x);
+    match m {
+        Model::Lobe(l) => l.eval(c(u[0])),
+        Model::Distribution(d) => d.eval(c(u[0])),
+        Model::Shadowing(s) => s.g(&ShadowInput {
+            cos_v: c(u[0]),
+            cos_l: Some(c(u[1])),
+            cos_h: c(u[2]),
+            cos_vh: c(u[3].max(1e-3)),
+        }),
+        Model::Fresnel(f) => f.f(c(u[0])),
+        Model::Brdf(b) => {
+            let dir = |a: f64, b: f64| {
+                let z = 1e-3 + (1.0 - 1e-3) * a;
+                let r = (1.0 - z * z).sqrt();
+                let phi = 2.0 * std::f64::consts::PI * b;
+                [c(r * phi.cos()), c(r * phi.sin()), c(z)]
+            };
+            b.eval(dir(u[0], u[1]), dir(u[2], u[3]))
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 3000, ..ProptestConfig::default() })]
+
+    /// Any model, any valid parameters, any input in the documented domain: finite and
+    /// non-negative, in f32 and in f64.
+    #[test]
+    fn finite_and_non_negative_on_the_domain((info, params) in any_model(), u in proptest::array::uniform6(0.0f64..=1.0)) {
+        let given = as_refs(&params);
+        let m64 = registry::build::<f64>(info.id, &given).unwrap();
+        let m32 = registry::build::<f32>(info.id, &given).unwrap();
+        let v64 = eval_in_domain(&m64, u);
+        let v32 = eval_in_domain(&m32, u);
+        prop_assert!(v64.is_finite() && v64 >= 0.0, "{} {:?} {:?}: f64 {}", info.id, params, u, v64);
+        prop_assert!(v32.is_finite() && v32 >= 0.0, "{} {:?} {:?}: f32 {}", info.id, params, u, v32);
+    }
+
+    /// Out-of-domain inputs (NaN, infinities, negative or > 1 cosines, zero vectors,
+    /// directions below the horizon): finite and non-negative, never NaN, never a panic.
+    #[test]
+    fn out_of_domain_inputs_are_harmless((info, params) in any_model(),
+        x in prop_oneof![Just(f64::NAN), Just(f64::INFINITY), Just(f64::NEG_INFINITY), Just(0.0), Just(-0.0), -10.0f64..0.0, 1.0f64..10.0, Just(1.0 + 1e-7)],
+        v in proptest::array::uniform3(-1.0f64..1.0)) {
+        let given = as_refs(&params);
+        for m in [registry::build::<f64>(info.id, &given).unwrap()] {
+            let vals: Vec<f64> = match &m {
+                Model::Lobe(l) => vec![l.eval(x)],
+                Model::Distribution(d) => vec![d.eval(x)],
+                Model::Shadowing(s) => vec![
+                    s.g(&ShadowInput { cos_v: x, cos_l: None, cos_h: x, cos_vh: x }),
+                    s.g(&ShadowInput { cos_v: 0.5, cos_l: Some(x), cos_h: 0.9, cos_vh: 0.7 }),
+                ],
+                Model::Fresnel(f) => vec![f.f(x)],
+                Model::Brdf(b) => vec![
+                    b.eval([x, v[1], v[2]], [v[0], v[1], 1.0]),
+                    b.eval([0.0, 0.0, 0.0], [v[0], v[1], 1.0]),
+                    b.eval([v[0], v[1], -v[2].abs()], [0.1, 0.2, 0.9]),
+                    b.eval([0.1, 0.2, 0.9], [v[0], v[1], -v[2].abs() - 1e-9]),
+                    b.eval([x, x, x], [x, x, x]),
+                ],
+            };
+            for val in vals {
+                prop_assert!(val.is_finite() && val >= 0.0, "{} {:?} x={} v={:?}: {}", info.id, params, x, v, val);
+            }
+        }
+        let m32 = registry::build::<f32>(info.id, &given).unwrap();
+        if let Model::Brdf(b) = &m32 {
+            let w = [x as f32, v[1] as f32, v[2] as f32];
+            let val = b.eval(w, [0.0, 0.0, 1.0]);
+            prop_assert!(val.is_finite() && val >= 0.0);
+        }
+    }
+
+    /// Invalid parameter values are an error, never a panic or a model.
+    #[test]
+    fn invalid_parameters_are_errors((info, params) in any_model(), bad in prop_oneof![Just(f64::NAN), Just(f64::INFINITY), Just(-1.0), Just(0.0), Just(1e9), Just(-1e-300)]) {
+        for p in info.params {
+            if let ParamKind::Number { min, max, .. } = p.kind {
+                if bad >= min && bad <= max { continue; }
+                let mut given = params.clone();
+                given.retain(|(k, _)| k != p.name);
+                given.push((p.name.to_string(), bad.to_string()));
+                let r = registry::build::<f32>(info.id, &as_refs(&given));
+                prop_assert!(r.is_err(), "{} {}={} was accepted", info.id, p.name, bad);
+            }
+        }
+    }
+}
+
+#[test]
+fn brdfs_are_reciprocal() {
+    let pairs = direction_pairs(200, 21);
+    for e in registry::all()
+        .iter()
+        .filter(|e| e.info.kind == fastbrdf::Kind::Brdf)
+    {
+        for cfg in configs(&e.info, true) {
+            let given = as_refs(&cfg);
+            let Model::Brdf(b) = registry::build::<f64>(e.info.id, &given).unwrap() else {
+                panic!()
+            };
+            assert!(b.reciprocal(), "{} claims not to be reciprocal", e.info.id);
+            let Model::Brdf(b32) = registry::build::<f32>(e.info.id, &given).unwrap() else {
+                panic!()
+            };
+            for (wi, wo) in &pairs {
+                let (a, r) = (b.eval(*wi, *wo), b.eval(*wo, *wi));
+                // Pair::new is symmetric in (wi, wo) to the last bit, so equality is exact.
+                assert_eq!(
+                    a.to_bits(),
+                    r.to_bits(),
+                    "{} {cfg:?}: f(wi, wo) = {a}, f(wo, wi) = {r}",
+                    e.info.id
+                );
+                let (i32, o32) = (wi.map(|x| x as f32), wo.map(|x| x as f32));
+                let (a, r) = (b32.eval(i32, o32), b32.eval(o32, i32));
+                assert_eq!(
+                    a.to_bits(),
+                    r.to_bits(),
+                    "{} {cfg:?} f32: {a} vs {r}",
+                    e.info.id
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn unknown_ids_and_params_are_errors() {
+    assert!(matches!(
+        registry::build::<f32>("phong-fast", &[]),
+        Err(fastbrdf::Error::UnknownModel(_))
+    ));
+    assert!(matches!(
+        registry::build::<f32>("pow", &[("m", "3")]),
+        Err(fastbrdf::Error::UnknownParam { .. })
+    ));
+    assert!(matches!(
+        registry::build::<f32>("pow", &[("n", "abc")]),
+        Err(fastbrdf::Error::InvalidParam { .. })
+    ));
+    assert!(matches!(
+        registry::build::<f32>("pow", &[("n", "2"), ("n", "3")]),
+        Err(fastbrdf::Error::InvalidParam { .. })
+    ));
+    assert!(matches!(
+        registry::build::<f32>("cook-torrance", &[("d", "ggx")]),
+        Err(fastbrdf::Error::InvalidParam { .. })
+    ));
+    assert!(matches!(
+        registry::build::<f32>("ward", &[("alpha_x", "0.2")]),
+        Err(fastbrdf::Error::MissingParam { .. })
+    ));
+    let e = registry::build::<f32>("beckmann", &[("alpha", "0")])
+        .err()
+        .unwrap();
+    assert_eq!(
+        e.to_string(),
+        "model 'beckmann': parameter alpha = 0 is invalid: expected a number in [0.01, 1]"
+    );
+}
+
+#[test]
+fn strict_evaluation_rejects_out_of_domain_rows() {
+    let m = registry::build::<f64>("pow", &[]).unwrap();
+    assert!(m.try_eval_row(&[Some(0.5)]).is_ok());
+    for bad in [f64::NAN, -0.1, 1.5, f64::INFINITY] {
+        assert!(m.try_eval_row(&[Some(bad)]).is_err(), "{bad}");
+    }
+    let b = registry::build::<f64>("ward", &[]).unwrap();
+    let row = |v: [f64; 6]| v.map(Some);
+    assert!(b.try_eval_row(&row([0.0, 0.0, 1.0, 0.3, 0.0, 0.9])).is_ok());
+    assert!(
+        b.try_eval_row(&row([0.0, 0.0, 0.0, 0.3, 0.0, 0.9]))
+            .unwrap_err()
+            .to_string()
+            .contains("zero-length")
+    );
+    assert!(
+        b.try_eval_row(&row([0.0, 0.2, -1.0, 0.3, 0.0, 0.9]))
+            .unwrap_err()
+            .to_string()
+            .contains("below the horizon")
+    );
+}
