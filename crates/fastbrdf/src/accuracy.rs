@@ -237,3 +237,208 @@ pub fn worst(model_id: &str, bound: &ErrorBound) -> Result<Worst> {
     best.samples = samples;
     Ok(best)
 }
+
+/// The mixed f32-vs-f64 error `|v32 - v64| / max(1, |v64|)` used by every `f32_bound`.
+pub fn mixed_error(v32: f32, v64: f64) -> f64 {
+    (v32 as f64 - v64).abs() / v64.abs().max(1.0)
+}
+
+/// Direction pairs covering the hemisphere for BRDF checks: normal incidence, random pairs,
+/// near-specular pairs (where narrow lobes live) and a near-grazing back-to-back pair; all
+/// with `cos theta >= 1e-3`. Deterministic for a given `seed`.
+pub fn direction_pairs(count: usize, seed: u64) -> Vec<([f64; 3], [f64; 3])> {
+    let mut state = seed;
+    let mut next = move || {
+        // SplitMix64.
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let hemisphere = |next: &mut dyn FnMut() -> f64| {
+        let z = 1e-3 + (1.0 - 1e-3) * next();
+        let r = (1.0 - z * z).sqrt();
+        let phi = 2.0 * std::f64::consts::PI * next();
+        [r * phi.cos(), r * phi.sin(), z]
+    };
+    let mut out = vec![
+        ([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]),
+        ([0.6, 0.0, 0.8], [-0.6, 0.0, 0.8]),
+    ];
+    for i in 0..count {
+        let wi = hemisphere(&mut next);
+        let wo = match i % 3 {
+            0 => hemisphere(&mut next),
+            _ => {
+                let s = if i % 3 == 1 { 0.02 } else { 0.2 };
+                let m = [
+                    -wi[0] + s * (next() - 0.5),
+                    -wi[1] + s * (next() - 0.5),
+                    wi[2],
+                ];
+                let l = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+                [m[0] / l, m[1] / l, (m[2] / l).max(1e-3)]
+            }
+        };
+        out.push((wi, wo));
+    }
+    out.push(([0.9999, 0.0, 0.0141], [-0.9999, 0.0, 0.0141]));
+    out
+}
+
+/// The worst mixed f32-vs-f64 error of one model configuration over inputs covering its
+/// domain (the same f32 inputs fed to both precisions), and a description of where.
+pub fn f32_worst(id: &str, given: &[(&str, &str)]) -> Result<(f64, String)> {
+    use crate::model::ShadowInput;
+    let m32 = registry::build::<f32>(id, given)?;
+    let m64 = registry::build::<f64>(id, given)?;
+    let param = |name: &str, default: f64| {
+        given
+            .iter()
+            .find(|(k, _)| *k == name)
+            .and_then(|(_, v)| v.parse().ok())
+            .unwrap_or(default)
+    };
+    let mut worst = (0.0, String::new());
+    let mut note = |e: f64, what: &dyn Fn() -> String| {
+        if !(e <= worst.0) {
+            worst = (e, what());
+        }
+    };
+    match (&m32, &m64) {
+        (Model::Lobe(a), Model::Lobe(b)) => {
+            let n = param("n", 20.0);
+            for c in lobe_samples(n)
+                .into_iter()
+                .chain((0..=1000).map(|i| i as f64 / 1000.0))
+            {
+                let c32 = c as f32;
+                note(mixed_error(a.eval(c32), b.eval(c32 as f64)), &|| {
+                    format!("c={c32}")
+                });
+            }
+        }
+        (Model::Distribution(a), Model::Distribution(b)) => {
+            for c in samples(&m64, param("alpha", 0.3)) {
+                let c32 = c as f32;
+                note(mixed_error(a.eval(c32), b.eval(c32 as f64)), &|| {
+                    format!("cos_h={c32}")
+                });
+            }
+        }
+        (Model::Shadowing(a), Model::Shadowing(b)) => {
+            for (wi, wo) in direction_pairs(400, 5) {
+                let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
+                let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+                let s32 = ShadowInput {
+                    cos_v: wo[2] as f32,
+                    cos_l: Some(wi[2] as f32),
+                    cos_h: (s[2] / len) as f32,
+                    cos_vh: (0.5 * len) as f32,
+                };
+                let s64 = ShadowInput {
+                    cos_v: s32.cos_v as f64,
+                    cos_l: s32.cos_l.map(f64::from),
+                    cos_h: s32.cos_h as f64,
+                    cos_vh: s32.cos_vh as f64,
+                };
+                note(mixed_error(a.g(&s32), b.g(&s64)), &|| format!("{s32:?}"));
+                let (o32, o64) = (
+                    ShadowInput { cos_l: None, ..s32 },
+                    ShadowInput { cos_l: None, ..s64 },
+                );
+                note(mixed_error(a.g(&o32), b.g(&o64)), &|| format!("{o32:?}"));
+            }
+        }
+        (Model::Fresnel(a), Model::Fresnel(b)) => {
+            for i in 0..=2000 {
+                let c32 = i as f32 / 2000.0;
+                note(mixed_error(a.f(c32), b.f(c32 as f64)), &|| {
+                    format!("cos={c32}")
+                });
+            }
+        }
+        (Model::Brdf(a), Model::Brdf(b)) => {
+            for (wi, wo) in direction_pairs(600, 3) {
+                let (i32, o32) = (wi.map(|x| x as f32), wo.map(|x| x as f32));
+                let e = mixed_error(
+                    a.eval(i32, o32),
+                    b.eval(i32.map(f64::from), o32.map(f64::from)),
+                );
+                note(e, &|| format!("wi={i32:?} wo={o32:?}"));
+            }
+        }
+        _ => unreachable!("both precisions build the same kind"),
+    }
+    Ok(worst)
+}
+
+/// Parameter sets covering a model's documented domain: every combination of its choice
+/// parameters, crossed with "rows" that walk each numeric parameter through representative
+/// values including the range's edges (cycling, so that every value of every parameter
+/// appears). Optional parameters (Ward's `alpha_x`, `alpha_y`) are given on odd rows only.
+/// `light` keeps about four numeric rows (for the BRDFs, whose choice products are large).
+pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, String)>> {
+    use crate::params::ParamKind;
+    fn values(name: &str, min: f64, max: f64) -> Vec<f64> {
+        match name {
+            "n" => vec![
+                1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0, 16.0, 20.0, 33.0, 50.0, 100.0, 128.0,
+                200.0, 333.0, 500.0, 777.0, 1000.0, 2000.0, 5000.0, 10000.0,
+            ],
+            // 0.7072 sits just above 1/sqrt(2), where seed 000's exponent 2/alpha^2 - 4 changes sign.
+            "alpha" | "alpha_x" | "alpha_y" => {
+                vec![0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7072, 0.85, 1.0]
+            }
+            "f0" => vec![0.0, 0.04, 0.5, 1.0],
+            "eta" => vec![0.01, 0.5, 1.0, 1.33, 1.5, 3.0, 10.0],
+            "k" => vec![0.0, 0.5, 3.0, 20.0],
+            _ => vec![min, 0.5 * (min + max), max],
+        }
+    }
+    let mut choice_sets: Vec<Vec<(String, String)>> = vec![vec![]];
+    let mut numeric: Vec<(&str, Vec<f64>, bool)> = vec![];
+    for p in info.params {
+        match p.kind {
+            ParamKind::Choice { options, .. } => {
+                choice_sets = choice_sets
+                    .iter()
+                    .flat_map(|set| {
+                        options.iter().map(move |o| {
+                            let mut s = set.clone();
+                            s.push((p.name.to_string(), o.to_string()));
+                            s
+                        })
+                    })
+                    .collect();
+            }
+            ParamKind::Number { min, max, default } => {
+                numeric.push((p.name, values(p.name, min, max), default.is_none()))
+            }
+        }
+    }
+    let rows = numeric.iter().map(|(_, v, _)| v.len()).max().unwrap_or(1);
+    let rows: Vec<usize> = if light {
+        (0..rows).step_by(rows.div_ceil(4).max(1)).collect()
+    } else {
+        (0..rows).collect()
+    };
+    let mut out = vec![];
+    for set in &choice_sets {
+        for &r in &rows {
+            let mut s = set.clone();
+            for (name, vals, optional) in &numeric {
+                if *optional && r % 2 == 0 {
+                    continue;
+                }
+                s.push((
+                    name.to_string(),
+                    vals[(r * 7 + name.len()) % vals.len()].to_string(),
+                ));
+            }
+            out.push(s);
+        }
+    }
+    out
+}

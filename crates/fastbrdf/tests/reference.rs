@@ -40,8 +40,9 @@ fn three_point_coefficients(n: f64) -> (f64, f64, f64) {
         for row in 0..3 {
             if row != col {
                 let f = m[row][col] / m[col][col];
-                for k in 0..4 {
-                    m[row][k] -= f * m[col][k];
+                let pivot_row = m[col];
+                for (x, p) in m[row].iter_mut().zip(pivot_row) {
+                    *x -= f * p;
                 }
             }
         }
@@ -102,6 +103,8 @@ fn ref_lobe(id: &str, n: f64, c: f64) -> f64 {
         "power8" => power(8),
         "power16" => power(16),
         "sg" => ((n / std::f64::consts::LN_2) * (c - 1.0)).exp2(),
+        // UE4's own literal, not LOG2_E.
+        #[allow(clippy::approx_constant)]
         "ue4-phong-approx" => (1.4427 * (n + 0.775) * (c - 1.0)).exp2(),
         _ => panic!("no reference for lobe {id}"),
     }

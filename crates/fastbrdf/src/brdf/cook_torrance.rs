@@ -78,7 +78,7 @@ pub const INFO: ModelInfo = ModelInfo {
     source: "Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators)",
     ops: Ops::new(3, 0, 1, 0, 0),
     bounds: &[],
-    f32_bound: 1e-4,
+    f32_bound: 1e-5,
     note: "ops exclude D, G, F and the pair set-up; equals Mitsuba 3 roughconductor eval / cos_o",
 };
 

@@ -1,0 +1,5 @@
+//! One module per subcommand: `Args` (clap) and `run`.
+
+pub mod check;
+pub mod eval;
+pub mod models;
