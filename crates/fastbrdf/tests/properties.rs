@@ -18,24 +18,16 @@ fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, Strin
         .map(|p| {
             let name = p.name.to_string();
             match p.kind {
-                ParamKind::Number { min, max, default } => {
-                    let n2 = name.clone();
+                ParamKind::Number { min, max, .. } => {
                     let value = prop_oneof![
                         Just(min),
                         Just(max),
                         min..=max,
                         (0.0f64..1.0).prop_map(move |t| min + (max - min) * t * t * t)
                     ];
-                    if default.is_none() {
-                        // Optional (Ward's alpha_x, alpha_y): both given or neither, decided below.
-                        value
-                            .prop_map(move |v| Some((n2.clone(), v.to_string())))
-                            .boxed()
-                    } else {
-                        value
-                            .prop_map(move |v| Some((n2.clone(), v.to_string())))
-                            .boxed()
-                    }
+                    value
+                        .prop_map(move |v| Some((name.clone(), v.to_string())))
+                        .boxed()
                 }
                 ParamKind::Choice { options, .. } => (0..options.len())
                     .prop_map(move |i| Some((name.clone(), options[i].to_string())))
@@ -43,6 +35,7 @@ fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, Strin
             }
         })
         .collect();
+    // Optional parameters (Ward's alpha_x, alpha_y) are given together or not at all.
     let optional: Vec<&str> = info
         .params
         .iter()
