@@ -48,6 +48,11 @@ impl Curve {
         })
     }
 
+    /// The built model.
+    pub fn model(&self) -> &Model<f64> {
+        &self.model
+    }
+
     /// The value at `x` (see the module header for what `x` is per kind).
     pub fn at(&self, x: f64) -> f64 {
         match &self.model {
@@ -108,7 +113,8 @@ pub fn lobe_samples(n: f64) -> Vec<f64> {
     xs
 }
 
-fn in_zone(zone: Zone, rel: f64) -> bool {
+/// Whether a reference value, divided by its peak, lies in `zone`.
+pub fn in_zone(zone: Zone, rel: f64) -> bool {
     match zone {
         Zone::All => true,
         Zone::Epicentre => rel >= 0.5,
@@ -116,7 +122,8 @@ fn in_zone(zone: Zone, rel: f64) -> bool {
     }
 }
 
-fn error(metric: Metric, f: f64, r: f64, peak: f64) -> f64 {
+/// The error of `f` against the reference value `r` under `metric` (`peak` scales `MaxAbs`).
+pub fn error(metric: Metric, f: f64, r: f64, peak: f64) -> f64 {
     match metric {
         Metric::MaxAbs => (f - r).abs() / peak,
         Metric::MaxRel => {
@@ -131,8 +138,18 @@ fn error(metric: Metric, f: f64, r: f64, peak: f64) -> f64 {
     }
 }
 
-/// The worst error of `model` against `bound.reference` for one parameter value `p`.
+/// The worst error of `model` against `bound.reference` for one parameter value `p`, with
+/// golden-section refinement around the largest grid errors.
 pub fn worst_at(model_id: &str, bound: &ErrorBound, p: f64) -> Result<Worst> {
+    worst_at_impl(model_id, bound, p, true)
+}
+
+/// The same on the grid alone, without refinement (to show what refinement adds).
+pub fn worst_at_grid(model_id: &str, bound: &ErrorBound, p: f64) -> Result<Worst> {
+    worst_at_impl(model_id, bound, p, false)
+}
+
+fn worst_at_impl(model_id: &str, bound: &ErrorBound, p: f64, refine: bool) -> Result<Worst> {
     let name = bound.param.0;
     let m = Curve::new(model_id, name, p)?;
     let r = Curve::new(bound.reference, name, p)?;
@@ -174,7 +191,7 @@ pub fn worst_at(model_id: &str, bound: &ErrorBound, p: f64) -> Result<Worst> {
         samples: xs.len(),
     };
     // Refine around the eight largest grid errors, between their sorted neighbours.
-    for &i in order.iter().take(8) {
+    for &i in order.iter().take(if refine { 8 } else { 0 }) {
         let x = xs[i];
         let k = sorted_x.partition_point(|v| *v < x);
         let lo = sorted_x[k.saturating_sub(1)];

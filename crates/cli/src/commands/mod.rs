@@ -1,5 +1,8 @@
 //! One module per subcommand: `Args` (clap) and `run`.
 
+pub mod analysis;
 pub mod check;
 pub mod eval;
 pub mod models;
+pub mod plot;
+pub mod reproduce;

@@ -1,0 +1,22 @@
+//! fastbrdf-analysis: what a graphics engineer needs before trusting an approximation.
+//!
+//! - [`errors`]: max absolute, max relative and RMS error of a model against a reference, per
+//!   parameter value, with true maxima (dense grid, then golden-section refinement).
+//! - [`normalize`]: `Int(n)` and `coef(n) = 1 / (2 pi Int(n))` of a lobe by adaptive f64
+//!   quadrature, and least-squares fits of closed forms for `coef(n)`.
+//! - [`albedo`]: directional albedo against incidence angle, with a white-furnace verdict.
+//! - [`reproduce`]: every numeric claim of the three seed papers, measured.
+//! - [`plot`]: the charts (PNG and SVG).
+//! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
+
+// Guards written `if !(x > lo)` also catch NaN, on purpose (see the fastbrdf crate).
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
+pub mod albedo;
+pub mod errors;
+pub mod normalize;
+pub mod plot;
+pub mod range;
+pub mod reproduce;
+
+pub use fastbrdf::{Error, Result};

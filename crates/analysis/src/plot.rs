@@ -1,0 +1,231 @@
+//! Charts, PNG and SVG at 1200x800 (plotters): line charts with a title, axis labels and a
+//! legend, on a linear or logarithmic y axis, and equal-aspect "polar" lobe plots.
+//!
+//! Text uses an embedded DejaVu Sans (plotters' `ab_glyph`), so plots render on machines
+//! without fonts. Files are written to a temporary name and renamed: an error never leaves a
+//! half-written picture.
+
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+/// Width and height of every chart, in pixels.
+pub const SIZE: (u32, u32) = (1200, 800);
+
+static FONT: Once = Once::new();
+
+fn register_font() {
+    FONT.call_once(|| {
+        let bytes: &'static [u8] = include_bytes!("../assets/DejaVuSans.ttf");
+        // A failure here would be a corrupt embedded file: the charts would lack text only.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, bytes);
+    });
+}
+
+/// One named curve.
+#[derive(Clone, Debug)]
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+impl Series {
+    /// A curve from a name and points.
+    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Self {
+            name: name.into(),
+            points,
+        }
+    }
+}
+
+/// A line chart.
+#[derive(Clone, Debug)]
+pub struct Chart {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub series: Vec<Series>,
+    /// Logarithmic y axis (non-positive values are dropped).
+    pub log_y: bool,
+    /// Equal scales on both axes (polar lobe plots).
+    pub equal_aspect: bool,
+}
+
+const COLORS: [RGBColor; 8] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(23, 190, 207),
+];
+
+fn bounds(c: &Chart) -> ((f64, f64), (f64, f64)) {
+    let pts = c
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter())
+        .filter(|(x, y)| x.is_finite() && y.is_finite() && (!c.log_y || *y > 0.0));
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for &(x, y) in pts {
+        (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+    }
+    if !x0.is_finite() {
+        return ((0.0, 1.0), (if c.log_y { 1e-3 } else { 0.0 }, 1.0));
+    }
+    if x1 <= x0 {
+        x1 = x0 + 1.0;
+    }
+    if c.log_y {
+        y0 = y0.max(y1 * 1e-12);
+        if y1 <= y0 {
+            y1 = y0 * 10.0;
+        }
+        return ((x0, x1), (y0 / 1.5, y1 * 1.5));
+    }
+    if y1 <= y0 {
+        y1 = y0 + 1.0;
+    }
+    let pad = 0.05 * (y1 - y0);
+    if c.equal_aspect {
+        // Make the data ranges match the plot area's aspect.
+        let (w, h) = (x1 - x0, y1 - y0 + 2.0 * pad);
+        let aspect = 1060.0 / 640.0;
+        if w / h < aspect {
+            let extra = (h * aspect - w) / 2.0;
+            return ((x0 - extra, x1 + extra), (y0 - pad, y1 + pad));
+        }
+        let extra = (w / aspect - h) / 2.0;
+        return ((x0, x1), (y0 - pad - extra, y1 + pad + extra));
+    }
+    (
+        (x0, x1),
+        (
+            y0.min(0.0)
+                .min(y0 - pad)
+                .max(if y0 >= 0.0 { 0.0 } else { f64::NEG_INFINITY }),
+            y1 + pad,
+        ),
+    )
+}
+
+macro_rules! draw_chart {
+    ($root:expr, $c:expr, $xr:expr, $yr:expr) => {{
+        let mut chart = ChartBuilder::on(&$root)
+            .caption(&$c.title, ("sans-serif", 30))
+            .margin(24)
+            .x_label_area_size(60)
+            .y_label_area_size(90)
+            .build_cartesian_2d($xr, $yr)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc($c.x_label.as_str())
+            .y_desc($c.y_label.as_str())
+            .label_style(("sans-serif", 18))
+            .axis_desc_style(("sans-serif", 22))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for (i, s) in $c.series.iter().enumerate() {
+            let color = COLORS[i % COLORS.len()];
+            let pts: Vec<(f64, f64)> = s
+                .points
+                .iter()
+                .copied()
+                .filter(|(x, y)| x.is_finite() && y.is_finite() && (!$c.log_y || *y > 0.0))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts, color.stroke_width(3)))
+                .map_err(|e| e.to_string())?
+                .label(s.name.as_str())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 30, y)], color.stroke_width(3))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .label_font(("sans-serif", 20))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .position(SeriesLabelPosition::UpperRight)
+            .draw()
+            .map_err(|e| e.to_string())?;
+    }};
+}
+
+fn draw<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    c: &Chart,
+) -> Result<(), String>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let ((x0, x1), (y0, y1)) = bounds(c);
+    if c.log_y {
+        draw_chart!(root, c, x0..x1, (y0..y1).log_scale());
+    } else {
+        draw_chart!(root, c, x0..x1, y0..y1);
+    }
+    root.present().map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)?;
+    }
+    let tmp = path.with_extension(format!(
+        "{}.tmp",
+        path.extension().and_then(|e| e.to_str()).unwrap_or("")
+    ));
+    std::fs::write(&tmp, bytes)?;
+    std::fs::rename(&tmp, path).inspect_err(|_| {
+        let _ = std::fs::remove_file(&tmp);
+    })
+}
+
+/// Renders `c` to `base.png` and `base.svg`; returns both paths.
+pub fn save(c: &Chart, base: &Path) -> Result<[PathBuf; 2], String> {
+    register_font();
+    let (w, h) = SIZE;
+    let mut rgb = vec![255u8; (w * h * 3) as usize];
+    draw(
+        BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area(),
+        c,
+    )?;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image_impl(&rgb, w, h)
+        .map_err(|e| format!("PNG encoding: {e}"))?;
+    let mut svg = String::new();
+    draw(
+        SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
+        c,
+    )?;
+    let png_path = base.with_extension("png");
+    let svg_path = base.with_extension("svg");
+    write_atomic(&png_path, &png).map_err(|e| format!("{}: {e}", png_path.display()))?;
+    write_atomic(&svg_path, svg.as_bytes()).map_err(|e| format!("{}: {e}", svg_path.display()))?;
+    Ok([png_path, svg_path])
+}
+
+trait WritePng {
+    fn write_image_impl(self, rgb: &[u8], w: u32, h: u32) -> image::ImageResult<()>;
+}
+
+impl<W: std::io::Write> WritePng for image::codecs::png::PngEncoder<W> {
+    fn write_image_impl(self, rgb: &[u8], w: u32, h: u32) -> image::ImageResult<()> {
+        use image::ImageEncoder;
+        self.write_image(rgb, w, h, image::ExtendedColorType::Rgb8)
+    }
+}

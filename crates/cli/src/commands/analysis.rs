@@ -1,0 +1,342 @@
+//! `fastbrdf errors`, `normalize`, `albedo`: the analysis commands (see fastbrdf-analysis).
+
+use super::eval::parse_params;
+use crate::CliError;
+use fastbrdf::Zone;
+use fastbrdf_analysis::{albedo, errors, normalize, range};
+use indicatif::{ProgressBar, ProgressStyle};
+use std::fmt::Write;
+
+/// A progress bar on stderr (drawn only on a terminal).
+pub fn bar(len: u64, msg: &'static str) -> ProgressBar {
+    let b = ProgressBar::new(len);
+    b.set_style(
+        ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos}/{len} {elapsed}")
+            .expect("valid template"),
+    );
+    b.set_message(msg);
+    b
+}
+
+fn parse_zone(z: &str) -> Result<Zone, CliError> {
+    match z {
+        "all" => Ok(Zone::All),
+        "epicentre" | "epicenter" => Ok(Zone::Epicentre),
+        _ => {
+            let band = z.strip_prefix("band:").ok_or_else(|| {
+                CliError::input(format!(
+                    "--zone '{z}': expected all, epicentre or band:LO,HI"
+                ))
+            })?;
+            let (lo, hi) = band
+                .split_once(',')
+                .ok_or_else(|| CliError::input(format!("--zone '{z}': expected band:LO,HI")))?;
+            let (lo, hi): (f64, f64) = (
+                lo.trim().parse().map_err(|_| {
+                    CliError::input(format!("--zone '{z}': '{lo}' is not a number"))
+                })?,
+                hi.trim().parse().map_err(|_| {
+                    CliError::input(format!("--zone '{z}': '{hi}' is not a number"))
+                })?,
+            );
+            if !(lo >= 0.0 && hi > lo && hi <= 1.0) {
+                return Err(CliError::input(format!(
+                    "--zone '{z}': need 0 <= LO < HI <= 1 (fractions of the reference's peak)"
+                )));
+            }
+            Ok(Zone::Band { lo, hi })
+        }
+    }
+}
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  \
+fastbrdf errors --model rational --reference pow --n 2..1000 --zone band:0.42,0.5 --csv\n  \
+fastbrdf errors --model beckmann-power16 --reference beckmann-ct --m 0.2,0.4,0.6 --json"
+)]
+pub struct ErrorsArgs {
+    /// The approximation.
+    #[arg(long)]
+    model: String,
+    /// The reference model (same kind).
+    #[arg(long)]
+    reference: String,
+    /// Exponents for lobes: LO..HI[:STEP] (step 1) or a list A,B,C.
+    #[arg(long, conflicts_with = "m")]
+    n: Option<String>,
+    /// Slopes (alpha) for microfacet terms and Ward: LO..HI[:STEP] (step 0.01) or a list.
+    #[arg(long)]
+    m: Option<String>,
+    /// Where to measure: all, epicentre (reference >= 0.5 of its peak) or band:LO,HI.
+    #[arg(long, default_value = "all")]
+    zone: String,
+    /// Print JSON: {"model", "reference", "param", "zone", "worst": {...}, "rows": [...]}.
+    #[arg(long, conflicts_with = "csv")]
+    json: bool,
+    /// Print CSV, one row per parameter value.
+    #[arg(long)]
+    csv: bool,
+}
+
+pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
+    let (param, text, step) = match (&a.n, &a.m) {
+        (Some(n), None) => ("n", n, 1.0),
+        (None, Some(m)) => ("alpha", m, 0.01),
+        _ => {
+            return Err(CliError::input(
+                "give --n RANGE (lobes) or --m RANGE (microfacet terms, Ward)",
+            ));
+        }
+    };
+    let values = range::parse(text, step)
+        .map_err(|e| CliError::input(format!("--{}: {e}", if param == "n" { "n" } else { "m" })))?;
+    let spec = errors::Spec {
+        model: a.model.clone(),
+        reference: a.reference.clone(),
+        param: param.into(),
+        zone: parse_zone(&a.zone)?,
+    };
+    spec.validate()?;
+    // Reject out-of-range parameter values before the sweep, with the registry's message.
+    for e in [&a.model, &a.reference] {
+        fastbrdf::registry::build::<f64>(e, &[(param, &values[0].to_string())])?;
+        fastbrdf::registry::build::<f64>(e, &[(param, &values[values.len() - 1].to_string())])?;
+    }
+    let pb = bar(values.len() as u64, "errors");
+    let rows = errors::sweep(&spec, &values, &|| pb.inc(1))?;
+    pb.finish_and_clear();
+    let (wa, wr, wq) = errors::worst(&rows).expect("at least one value");
+    if a.json {
+        let v = serde_json::json!({
+            "model": a.model, "reference": a.reference, "param": param, "zone": a.zone,
+            "worst": {"max_abs": wa.max_abs, "max_abs_param": wa.param, "max_abs_at": wa.max_abs_at,
+                      "max_rel": wr.max_rel, "max_rel_param": wr.param, "max_rel_at": wr.max_rel_at,
+                      "rms": wq.rms, "rms_param": wq.param},
+            "rows": rows,
+        });
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).expect("serialisable")
+        );
+    } else if a.csv {
+        let mut s = format!("{param},max_abs,max_abs_at,max_rel,max_rel_at,rms,samples\n");
+        for r in &rows {
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{}",
+                r.param, r.max_abs, r.max_abs_at, r.max_rel, r.max_rel_at, r.rms, r.samples
+            );
+        }
+        print!("{s}");
+    } else {
+        let x = if matches!(
+            fastbrdf::registry::find(&a.model)?.info.kind,
+            fastbrdf::Kind::Brdf
+        ) {
+            "theta"
+        } else {
+            "cos"
+        };
+        println!(
+            "{} vs {} over {param} in {} ({} values), zone {}",
+            a.model,
+            a.reference,
+            text,
+            values.len(),
+            a.zone
+        );
+        println!(
+            "  max abs error {:.6e} at {param} = {}, {x} = {:.8}",
+            wa.max_abs, wa.param, wa.max_abs_at
+        );
+        println!(
+            "  max rel error {:.6e} at {param} = {}, {x} = {:.8}",
+            wr.max_rel, wr.param, wr.max_rel_at
+        );
+        println!("  max RMS error {:.6e} at {param} = {}", wq.rms, wq.param);
+        if rows.len() <= 30 {
+            println!(
+                "\n  {param:>8} {:>13} {:>13} {:>13}",
+                "max abs", "max rel", "rms"
+            );
+            for r in &rows {
+                println!(
+                    "  {:>8} {:>13.6e} {:>13.6e} {:>13.6e}",
+                    r.param, r.max_abs, r.max_rel, r.rms
+                );
+            }
+        } else {
+            println!("  (per-{param} rows: --csv or --json)");
+        }
+    }
+    Ok(())
+}
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf normalize --model flog --n 1..7\n  \
+fastbrdf normalize --model flog --n 1..1000 --fit seed\n  fastbrdf normalize --model cubic-rational --n 1..1000 --fit linear --json"
+)]
+pub struct NormalizeArgs {
+    /// A lobe id.
+    #[arg(long)]
+    model: String,
+    /// Exponents: LO..HI[:STEP] (step 1) or a list.
+    #[arg(long)]
+    n: String,
+    /// Fit a closed form to coef(n): seed (a (n + b) + c / (d + n)), linear (a (n + b)), or
+    /// seed-published (seed 001's printed constants, not fitted).
+    #[arg(long, value_parser = ["seed", "linear", "seed-published"])]
+    fit: Option<String>,
+    /// Print JSON: {"model", "rows": [{n, int, coef, int_err}], "fit": {...}}.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
+    let e = fastbrdf::registry::find(&a.model)?;
+    if e.info.kind != fastbrdf::Kind::Lobe {
+        return Err(CliError::input(format!(
+            "normalize needs a lobe; '{}' is a {}",
+            a.model,
+            e.info.kind.name()
+        )));
+    }
+    let ns = range::parse(&a.n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?;
+    for n in [ns[0], ns[ns.len() - 1]] {
+        fastbrdf::registry::build::<f64>(&a.model, &[("n", &n.to_string())])?;
+    }
+    let rows = normalize::table(&a.model, &ns)?;
+    let fit = a
+        .fit
+        .as_deref()
+        .and_then(normalize::Form::parse)
+        .map(|f| normalize::fit(f, &rows));
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(
+                &serde_json::json!({"model": a.model, "rows": rows, "fit": fit})
+            )
+            .expect("serialisable")
+        );
+        return Ok(());
+    }
+    println!(
+        "Int(n) = integral_0^1 {}(c) c dc and coef(n) = 1 / (2 pi Int(n)) (adaptive Gauss-Kronrod, rel. tol. 1e-12)",
+        a.model
+    );
+    let shown: Vec<_> = if rows.len() <= 40 {
+        rows.iter().collect()
+    } else {
+        rows.iter()
+            .step_by(rows.len().div_ceil(20))
+            .chain(rows.last())
+            .collect()
+    };
+    println!(
+        "  {:>8} {:>20} {:>14} {:>10}",
+        "n", "Int(n)", "coef(n)", "err(Int)"
+    );
+    for r in shown {
+        println!(
+            "  {:>8} {:>20.14e} {:>14.8} {:>10.1e}",
+            r.n, r.int, r.coef, r.int_err
+        );
+    }
+    if let Some(f) = fit {
+        println!("\nfit {} over {} values of n:", f.form, rows.len());
+        for (k, v) in &f.constants {
+            println!("  {k} = {v:.8}");
+        }
+        println!("  RMS of coef_fit - coef        {:.6e}", f.rms);
+        println!(
+            "  max |coef_fit / coef - 1|     {:.6e} (n = {})",
+            f.max_rel, f.max_rel_at
+        );
+        println!(
+            "  energy residual max |coef_fit 2 pi Int - 1| = {:.6e}",
+            f.energy_residual_max
+        );
+    }
+    Ok(())
+}
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf albedo --model cook-torrance --param alpha=0.3\n  \
+fastbrdf albedo --model flog-normalized --param n=50 --norm none\n  fastbrdf albedo --model ward --param alpha=1 --angles 0,60,85,89,89.9"
+)]
+pub struct AlbedoArgs {
+    /// A BRDF id, or a lobe id (evaluated as --as phong|blinn-phong).
+    #[arg(long)]
+    model: String,
+    /// A parameter, NAME=VALUE; repeat for several.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// Incidence angles in degrees: LO..HI[:STEP] (step 5) or a list.
+    #[arg(long, default_value = "0..85:5")]
+    angles: String,
+    /// For lobes: the BRDF geometry.
+    #[arg(long = "as", default_value = "phong", value_parser = ["phong", "blinn-phong"])]
+    as_brdf: String,
+    /// For lobes: energy (coef(n) = 1 / (2 pi Int(n))) or none (the lobe as it is).
+    #[arg(long, default_value = "energy", value_parser = ["energy", "none"])]
+    norm: String,
+    /// Print JSON: {"model", "claims_energy", "conserves", "rows": [{theta_deg, albedo, error}]}.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
+    let params = parse_params(&a.params)?;
+    let angles =
+        range::parse(&a.angles, 5.0).map_err(|e| CliError::input(format!("--angles: {e}")))?;
+    if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
+        return Err(CliError::input(format!(
+            "--angles: {bad} is outside [0, 90) degrees"
+        )));
+    }
+    let t = albedo::target(&a.model, &params, &a.as_brdf, &a.norm)?;
+    let pb = bar(1, "albedo");
+    let rows = albedo::curve(&t, &angles, 1e-7)?;
+    pb.finish_and_clear();
+    let (holds, worst) = albedo::furnace(&rows, 1e-6);
+    if a.json {
+        let v = serde_json::json!({"model": a.model, "brdf": t.id, "params": t.params, "claims_energy": t.claims_energy,
+            "conserves": holds, "rows": rows});
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).expect("serialisable")
+        );
+        return Ok(());
+    }
+    let p: Vec<String> = t.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    println!(
+        "directional albedo of {} {} (nested adaptive Gauss-Kronrod, rel. tol. 1e-7)",
+        t.id,
+        p.join(" ")
+    );
+    println!("  {:>8} {:>12} {:>10}", "theta", "albedo", "error");
+    for r in &rows {
+        println!("  {:>8} {:>12.6} {:>10.1e}", r.theta_deg, r.albedo, r.error);
+    }
+    let w = worst.expect("at least one angle");
+    let verdict = match (t.claims_energy, holds) {
+        (true, true) => format!(
+            "white furnace: passes (max albedo {:.6} at {} deg <= 1)",
+            w.albedo, w.theta_deg
+        ),
+        (true, false) => format!(
+            "white furnace: FAILS (albedo {:.6} at {} deg > 1)",
+            w.albedo, w.theta_deg
+        ),
+        (false, _) => format!(
+            "no energy claim (unnormalised model); max albedo {:.6} at {} deg",
+            w.albedo, w.theta_deg
+        ),
+    };
+    println!("{verdict}");
+    Ok(())
+}
