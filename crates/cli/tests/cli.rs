@@ -638,4 +638,13 @@ fn reproduce_has_every_claim_and_readme_shows_its_output() {
         readme[start..end] == md,
         "README's reproduction table is stale: paste `fastbrdf reproduce --markdown`"
     );
+    let doc = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/reproduction/REPRODUCTION.md"
+    ))
+    .unwrap();
+    assert!(
+        doc.ends_with(&md),
+        "docs/reproduction is stale: run `fastbrdf reproduce --out docs/reproduction`"
+    );
 }
