@@ -18,5 +18,6 @@ pub mod normalize;
 pub mod plot;
 pub mod range;
 pub mod reproduce;
+pub mod speed;
 
 pub use fastbrdf::{Error, Result};

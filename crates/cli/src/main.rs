@@ -69,6 +69,8 @@ enum Command {
     Plot(commands::plot::Args),
     /// Every numeric claim of the three seed papers, measured, with a verdict.
     Reproduce(commands::reproduce::Args),
+    /// Scalar and SIMD throughput of every model, the FMA peak, and the seeds' speedups.
+    Bench(commands::bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -82,6 +84,7 @@ fn main() -> ExitCode {
         Command::Albedo(a) => commands::analysis::albedo(&a),
         Command::Plot(a) => commands::plot::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
+        Command::Bench(a) => commands::bench::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -626,7 +626,15 @@ fn reproduce_has_every_claim_and_readme_shows_its_output() {
         let verdict = c["verdict"].as_str().unwrap();
         assert!(["agrees", "differs", "no claim", "not measured"].contains(&verdict));
     }
-    let md = stdout(&fastbrdf(&["reproduce", "--markdown"], ""));
+    let bench = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    let md = stdout(&fastbrdf(
+        &["reproduce", "--markdown", "--speedups", bench],
+        "",
+    ));
+    assert!(
+        md.contains("| `ct.speedup` | 000 | 4.34 | 1."),
+        "speed rows are filled from the saved run"
+    );
     let readme =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
     let open = "<!-- reproduce:begin -->\n";
@@ -636,7 +644,7 @@ fn reproduce_has_every_claim_and_readme_shows_its_output() {
         .expect("README closes the reproduce block");
     assert!(
         readme[start..end] == md,
-        "README's reproduction table is stale: paste `fastbrdf reproduce --markdown`"
+        "README's reproduction table is stale: paste `fastbrdf reproduce --markdown --speedups docs/bench/bench.json`"
     );
     let doc = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -646,5 +654,90 @@ fn reproduce_has_every_claim_and_readme_shows_its_output() {
     assert!(
         doc.ends_with(&md),
         "docs/reproduction is stale: run `fastbrdf reproduce --out docs/reproduction`"
+    );
+}
+
+#[test]
+fn bench_json_has_the_documented_shape_and_round_trips() {
+    let o = fastbrdf(
+        &[
+            "bench",
+            "--quick",
+            "--models",
+            "pow,power16,ward,ward-power16,cook-torrance",
+            "--large",
+            "4096",
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for key in ["cpu", "isa", "fma_per_s", "kernels", "speedups"] {
+        assert!(!v[key].is_null(), "no {key}");
+    }
+    assert!(v["fma_per_s"].as_f64().unwrap() > 0.0);
+    let kernels = v["kernels"].as_array().unwrap();
+    for k in kernels {
+        for key in ["model", "variant", "batch", "evals_per_s"] {
+            assert!(!k[key].is_null(), "{k} lacks {key}");
+        }
+        assert!(["scalar", "simd", "simd-threads"].contains(&k["variant"].as_str().unwrap()));
+        assert!(k["evals_per_s"].as_f64().unwrap() > 0.0);
+    }
+    assert!(
+        kernels.iter().any(|k| k["model"] == "power16"
+            && k["variant"] == "simd-threads"
+            && k["batch"] == 4096)
+    );
+    let names: Vec<&str> = v["speedups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"ward.speedup"), "{names:?}");
+    let ward = v["speedups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == "ward.speedup")
+        .unwrap();
+    assert_eq!(ward["claimed"], 2.0);
+    // Render the saved run.
+    let path = std::env::temp_dir().join(format!("fastbrdf-bench-{}.json", std::process::id()));
+    std::fs::write(&path, &o.stdout).unwrap();
+    let md = fastbrdf(
+        &["bench", "--from", path.to_str().unwrap(), "--markdown"],
+        "",
+    );
+    assert!(
+        md.status.success() && stdout(&md).contains("| `power16` |"),
+        "{}",
+        stderr(&md)
+    );
+    std::fs::remove_file(&path).unwrap();
+    // Bad input.
+    let o = fastbrdf(&["bench", "--models", "nope"], "");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("unknown model id 'nope'"));
+    let o = fastbrdf(&["bench", "--from", "/nonexistent.json"], "");
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn readme_benchmark_tables_are_the_saved_run() {
+    let bench = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    let md = stdout(&fastbrdf(&["bench", "--from", bench, "--markdown"], ""));
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let open = "<!-- bench:begin -->\n";
+    let start = readme.find(open).expect("README has the bench block") + open.len();
+    let end = readme
+        .find("<!-- bench:end -->")
+        .expect("README closes the bench block");
+    assert!(
+        readme[start..end] == md,
+        "README's benchmark tables are stale: paste `fastbrdf bench --from docs/bench/bench.json --markdown`"
     );
 }

@@ -26,6 +26,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod accuracy;
+pub mod batch;
 pub mod brdf;
 pub mod error;
 pub mod lobes;

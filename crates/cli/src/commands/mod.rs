@@ -1,6 +1,7 @@
 //! One module per subcommand: `Args` (clap) and `run`.
 
 pub mod analysis;
+pub mod bench;
 pub mod check;
 pub mod eval;
 pub mod models;

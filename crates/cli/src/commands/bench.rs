@@ -1,0 +1,228 @@
+//! `fastbrdf bench`: scalar and SIMD throughput of every model, the FMA peak, and the seeds'
+//! speedup claims, in one run (fastbrdf-analysis::speed).
+
+use super::analysis::bar;
+use crate::CliError;
+use fastbrdf_analysis::speed::{self, Report};
+use std::fmt::Write;
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf bench --quick\n  fastbrdf bench --json > bench.json\n  \
+fastbrdf bench --from bench.json --markdown\n  fastbrdf bench --models pow,power16,cook-torrance"
+)]
+pub struct Args {
+    /// About 10 s instead of about a minute (shorter timing rounds; one run of the large batch).
+    #[arg(long)]
+    quick: bool,
+    /// Print JSON: {"cpu", "isa", "threads", "fma_per_s", "kernels": [{model, variant, batch,
+    /// evals_per_s, isa, fma_fraction}], "speedups": [{name, measured, claimed, how}], "quick"}.
+    #[arg(long, conflicts_with = "markdown")]
+    json: bool,
+    /// Print the Markdown tables that README.md shows.
+    #[arg(long)]
+    markdown: bool,
+    /// Render a saved `--json` run instead of measuring.
+    #[arg(long, value_name = "FILE")]
+    from: Option<PathBuf>,
+    /// Only these models (comma-separated ids).
+    #[arg(long, value_delimiter = ',')]
+    models: Vec<String>,
+    /// Elements of the large batch.
+    #[arg(long, default_value_t = 16 * 1024 * 1024)]
+    large: usize,
+}
+
+pub fn run(a: &Args) -> Result<(), CliError> {
+    let report: Report = match &a.from {
+        Some(path) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| CliError::input(format!("cannot read {}: {e}", path.display())))?;
+            serde_json::from_str(&text).map_err(|e| {
+                CliError::input(format!(
+                    "{}: not a `fastbrdf bench --json` run: {e}",
+                    path.display()
+                ))
+            })?
+        }
+        None => {
+            if !(1024..=(1usize << 28)).contains(&a.large) {
+                return Err(CliError::input(format!(
+                    "--large {}: must be between 1024 and 268435456",
+                    a.large
+                )));
+            }
+            for m in &a.models {
+                fastbrdf::registry::find(m)?;
+            }
+            let pb = bar(1, "bench");
+            let opts = speed::Options {
+                quick: a.quick,
+                large: a.large,
+                models: a.models.clone(),
+            };
+            let r = speed::run(&opts, &|done, total| {
+                pb.set_length(total as u64);
+                pb.set_position(done as u64);
+            })?;
+            pb.finish_and_clear();
+            r
+        }
+    };
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).expect("serialisable")
+        );
+    } else if a.markdown {
+        print!("{}", markdown(&report));
+    } else {
+        print!("{}", text(&report));
+    }
+    Ok(())
+}
+
+fn eng(x: f64) -> String {
+    if x >= 1e9 {
+        format!("{:.2} G", x / 1e9)
+    } else if x >= 1e6 {
+        format!("{:.1} M", x / 1e6)
+    } else {
+        format!("{:.0} k", x / 1e3)
+    }
+}
+
+fn table(r: &Report, md: bool) -> String {
+    let mut s = String::new();
+    let large = r.kernels.iter().map(|k| k.batch).max().unwrap_or(0);
+    let models: Vec<&str> = {
+        let mut v: Vec<&str> = vec![];
+        for k in &r.kernels {
+            if !v.contains(&k.model.as_str()) {
+                v.push(&k.model);
+            }
+        }
+        v
+    };
+    let get = |m: &str, variant: &str, batch: usize| {
+        r.kernels
+            .iter()
+            .find(|k| k.model == m && k.variant == variant && k.batch == batch)
+    };
+    if md {
+        let _ = writeln!(
+            s,
+            "| model | scalar (4096) | SIMD (4096) | % FMA peak | SIMD 1 thread ({large}) | SIMD {} threads ({large}) | ISA |",
+            r.threads
+        );
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    } else {
+        let _ = writeln!(
+            s,
+            "  {:<40} {:>12} {:>12} {:>8} {:>14} {:>14}  isa",
+            "model (evals/s)",
+            "scalar 4096",
+            "simd 4096",
+            "%fma",
+            "simd 1T large",
+            "simd all large"
+        );
+    }
+    for m in models {
+        let c = |v: &str, b: usize| {
+            get(m, v, b)
+                .map(|k| eng(k.evals_per_s))
+                .unwrap_or_else(|| "-".into())
+        };
+        let frac = get(m, "simd", 4096)
+            .and_then(|k| k.fma_fraction)
+            .map(|f| format!("{:.0}%", 100.0 * f))
+            .unwrap_or_else(|| "-".into());
+        let isa = get(m, "simd", 4096)
+            .map(|k| k.isa.clone())
+            .unwrap_or_else(|| "scalar".into());
+        if md {
+            let _ = writeln!(
+                s,
+                "| `{m}` | {} | {} | {frac} | {} | {} | {isa} |",
+                c("scalar", 4096),
+                c("simd", 4096),
+                c("simd", large),
+                c("simd-threads", large)
+            );
+        } else {
+            let _ = writeln!(
+                s,
+                "  {:<40} {:>12} {:>12} {:>8} {:>14} {:>14}  {isa}",
+                m,
+                c("scalar", 4096),
+                c("simd", 4096),
+                frac,
+                c("simd", large),
+                c("simd-threads", large)
+            );
+        }
+    }
+    s
+}
+
+fn speed_table(r: &Report, md: bool) -> String {
+    let mut s = String::new();
+    if md {
+        let _ = writeln!(
+            s,
+            "| speedup | measured | seed's claim | how |\n|---|---|---|---|"
+        );
+    }
+    for sp in &r.speedups {
+        let claim = sp
+            .claimed
+            .map(|c| format!("{c}"))
+            .unwrap_or_else(|| "-".into());
+        if md {
+            let _ = writeln!(
+                s,
+                "| `{}` | {:.2} | {claim} | {} |",
+                sp.name, sp.measured, sp.how
+            );
+        } else {
+            let _ = writeln!(
+                s,
+                "  {:<40} {:>8.2}x  claimed {:>5}   {}",
+                sp.name, sp.measured, claim, sp.how
+            );
+        }
+    }
+    s
+}
+
+fn header(r: &Report) -> String {
+    format!(
+        "CPU: {}; instruction set: {}; {} threads; FMA peak {} lane-FMA/s per core{}",
+        r.cpu,
+        r.isa,
+        r.threads,
+        eng(r.fma_per_s),
+        if r.quick { " (quick run)" } else { "" }
+    )
+}
+
+fn text(r: &Report) -> String {
+    format!(
+        "{}\n\nThroughput (evaluations per second, best of repeated rounds)\n{}\nSpeedups (ratios within this run)\n{}",
+        header(r),
+        table(r, false),
+        speed_table(r, false)
+    )
+}
+
+/// The Markdown README shows.
+pub fn markdown(r: &Report) -> String {
+    format!(
+        "{}.\n\n{}\n{}",
+        header(r),
+        table(r, true),
+        speed_table(r, true)
+    )
+}

@@ -1,0 +1,170 @@
+//! Branch-free f32 elementary functions that LLVM vectorises (no libm calls, no branches
+//! that cannot become selects): the fair exact baseline of the SIMD kernels.
+//!
+//! Accuracy against f64 for f32 inputs (measured by `tests/batch.rs`):
+//! - `exp2`: relative error <= 2 ulp (split `x = k + f` exactly, degree-7 Taylor polynomial of
+//!   `2^f` on [-0.5, 0.5], truncation 5e-9). Exactly 0 below -127, +inf from 128.
+//! - `log2_wide` (f64 result) for x in (0, 4): absolute error <= 1e-12 (atanh series to t^15 in
+//!   f64 on |t| <= 0.1716); `log2` is it rounded to f32 (<= 1 ulp). `log2(0) = -inf`;
+//!   negative inputs give NaN (callers clamp first).
+//! - `pow(x, y) = 2^(y log2 x)` for x in [0, 1], y in (0, 1e4]: the product in f64, its integer
+//!   part split off exactly, so relative error <= 2 ulp where the result is normal.
+//! - `exp`: relative error <= 2 ulp for x in [-87, 88] (Cody-Waite reduction in f32).
+//! - `acos` on [0, 1]: absolute error <= 2e-8 plus f32 rounding (Abramowitz and Stegun 4.4.46).
+//!
+//! Rounding to the nearest integer uses the 1.5 * 2^23 (2^52) trick instead of `floor`, because
+//! `floor` is a libm call under plain SSE2.
+
+/// `2^x`.
+#[inline(always)]
+pub fn exp2(x: f32) -> f32 {
+    const MAGIC: f32 = 12_582_912.0; // 1.5 * 2^23: t = MAGIC + k holds k in its low bits
+    let xc = x.clamp(-127.0, 128.0);
+    let t = xc + MAGIC;
+    let k = t - MAGIC;
+    // No float-to-int conversion (Rust's saturating `as` blocks vectorisation): read k from
+    // the bits of t.
+    let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let r = scale2(ki, xc - k);
+    let r = if xc <= -127.0 { 0.0 } else { r };
+    let r = if x >= 128.0 { f32::INFINITY } else { r };
+    if x.is_nan() { x } else { r }
+}
+
+/// `c0 + c1 x + ... + c7 x^7` by Estrin's scheme: dependency depth 3 instead of Horner's 7,
+/// with the same kind of IEEE operations (so every instruction set gets the same bits).
+#[inline(always)]
+fn estrin7(x: f32, c: &[f32; 8]) -> f32 {
+    let x2 = x * x;
+    let x4 = x2 * x2;
+    let a = c[0] + c[1] * x;
+    let b = c[2] + c[3] * x;
+    let d = c[4] + c[5] * x;
+    let e = c[6] + c[7] * x;
+    (a + x2 * b) + x4 * (d + x2 * e)
+}
+
+/// `2^(k + f)` for an integer `k` in [-127, 128] and `f` in [-0.5, 0.5].
+#[inline(always)]
+fn scale2(ki: i32, f: f32) -> f32 {
+    const C: [f32; 8] = [
+        1.0,
+        std::f32::consts::LN_2,
+        0.240_226_5,
+        0.055_504_11,
+        0.009_618_129,
+        0.001_333_355_8,
+        0.000_154_035_3,
+        0.000_015_252_734,
+    ];
+    let p = estrin7(f, &C);
+    f32::from_bits((p.to_bits() as i32).wrapping_add(ki << 23) as u32)
+}
+
+/// `2^a` for an f64 exponent, rounded to f32: the integer part is split off in f64, so the
+/// argument's own rounding does not enter.
+#[inline(always)]
+fn exp2_wide(a: f64) -> f32 {
+    const MAGIC: f64 = 6_755_399_441_055_744.0; // 1.5 * 2^52
+    let ac = a.clamp(-127.0, 128.0);
+    let t = ac + MAGIC;
+    let k = t - MAGIC;
+    let ki = (t.to_bits() as i64).wrapping_sub(MAGIC.to_bits() as i64) as i32;
+    let r = scale2(ki, (ac - k) as f32);
+    let r = if ac <= -127.0 { 0.0 } else { r };
+    let r = if a >= 128.0 { f32::INFINITY } else { r };
+    if a.is_nan() { f32::NAN } else { r }
+}
+
+/// `e^x`, in f32 only: `k = round(x / ln 2)`, `r = x - k ln2_hi - k ln2_lo` (Cody and Waite;
+/// `k ln2_hi` is exact because ln2_hi has 9 significant bits and |k| <= 128), `e^r` by its
+/// Taylor polynomial of degree 7 on |r| <= 0.347 (truncation 5e-9).
+#[inline(always)]
+pub fn exp(x: f32) -> f32 {
+    const MAGIC: f32 = 12_582_912.0;
+    const LN2_HI: f32 = 0.693_359_4; // 0x3f318000
+    const LN2_LO: f32 = -2.121_944_4e-4;
+    let xc = x.clamp(-88.5, 88.8);
+    let t = xc * std::f32::consts::LOG2_E + MAGIC;
+    let k = t - MAGIC;
+    let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let r = (xc - k * LN2_HI) - k * LN2_LO;
+    const C: [f32; 8] = [
+        1.0,
+        1.0,
+        0.5,
+        1.0 / 6.0,
+        1.0 / 24.0,
+        1.0 / 120.0,
+        1.0 / 720.0,
+        1.0 / 5040.0,
+    ];
+    let p = estrin7(r, &C);
+    // 2^k may be 2^-127 or 2^128 at the ends: scale in two halves to stay finite.
+    let h = ki >> 1;
+    let s1 = f32::from_bits(((h + 127) << 23) as u32);
+    let s2 = f32::from_bits(((ki - h + 127) << 23) as u32);
+    let r = p * s1 * s2;
+    let r = if x < -88.5 { 0.0 } else { r };
+    let r = if x > 88.8 { f32::INFINITY } else { r };
+    if x.is_nan() { x } else { r }
+}
+
+/// `log2(x)` in f64 for an f32 `x >= 0` (normal or zero; subnormals are treated as zero).
+#[inline(always)]
+pub fn log2_wide(x: f32) -> f64 {
+    let bits = x.to_bits();
+    let e = ((bits >> 23) & 0xff) as i32 - 127;
+    let m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000) as f64; // [1, 2)
+    let big = m > std::f64::consts::SQRT_2;
+    let m = if big { m * 0.5 } else { m };
+    let e = if big { e + 1 } else { e } as f64;
+    let t = (m - 1.0) / (m + 1.0);
+    let t2 = t * t;
+    const K: f64 = 2.0 * std::f64::consts::LOG2_E;
+    // Estrin's scheme (depth 3 instead of 7: the loop is latency-bound otherwise).
+    let t4 = t2 * t2;
+    let t8 = t4 * t4;
+    let p01 = 1.0 + t2 * (1.0 / 3.0);
+    let p23 = 1.0 / 5.0 + t2 * (1.0 / 7.0);
+    let p45 = 1.0 / 9.0 + t2 * (1.0 / 11.0);
+    let p67 = 1.0 / 13.0 + t2 * (1.0 / 15.0);
+    let s = t * ((p01 + t4 * p23) + t8 * (p45 + t4 * p67));
+    let r = e + K * s;
+    let r = if x < f32::MIN_POSITIVE {
+        f64::NEG_INFINITY
+    } else {
+        r
+    };
+    if x >= 0.0 { r } else { f64::NAN }
+}
+
+/// `log2(x)` for x >= 0 (see `log2_wide`).
+#[inline(always)]
+pub fn log2(x: f32) -> f32 {
+    log2_wide(x) as f32
+}
+
+/// `x^y` for x in [0, 1] and y > 0 (the lobes' and distributions' use), `0^y = 0`.
+#[inline(always)]
+pub fn pow(x: f32, y: f32) -> f32 {
+    exp2_wide(y as f64 * log2_wide(x))
+}
+
+/// `acos(x)` for x in [0, 1].
+#[inline(always)]
+#[allow(clippy::approx_constant)]
+pub fn acos(x: f32) -> f32 {
+    const A: [f32; 8] = [
+        1.570_796_3, // A&S's fitted 1.5707963050, one f32 ulp below pi/2 on purpose
+        -0.214_598_8,
+        0.088_978_99,
+        -0.050_174_303,
+        0.030_891_88,
+        -0.017_088_126,
+        0.006_670_09,
+        -0.001_262_491_1,
+    ];
+    let p = estrin7(x, &A);
+    (1.0 - x).max(0.0).sqrt() * p
+}
