@@ -71,6 +71,13 @@ enum Command {
     Reproduce(commands::reproduce::Args),
     /// Scalar and SIMD throughput of every model, the FMA peak, and the seeds' speedups.
     Bench(commands::bench::Args),
+    /// Render a sphere or an OBJ mesh shaded by one model, to PNG or EXR.
+    Render(commands::render::RenderArgs),
+    /// Render several models and a reference side by side, with heat maps and RMSE/PSNR/FLIP.
+    Compare(commands::render::CompareArgs),
+    /// The main job on built-in defaults: every lobe on spheres, the seeds' comparisons,
+    /// plots and the reproduction table, in a folder with index.html.
+    Demo(commands::demo::Args),
 }
 
 fn main() -> ExitCode {
@@ -85,6 +92,9 @@ fn main() -> ExitCode {
         Command::Plot(a) => commands::plot::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
         Command::Bench(a) => commands::bench::run(&a),
+        Command::Render(a) => commands::render::run_render(&a),
+        Command::Compare(a) => commands::render::run_compare(&a),
+        Command::Demo(a) => commands::demo::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -3,7 +3,9 @@
 pub mod analysis;
 pub mod bench;
 pub mod check;
+pub mod demo;
 pub mod eval;
 pub mod models;
 pub mod plot;
+pub mod render;
 pub mod reproduce;

@@ -1,0 +1,323 @@
+//! `fastbrdf demo`: the main job on built-in defaults. Writes a folder with sphere grids of
+//! every lobe, the seeds' comparisons with difference maps and metrics, the analysis plots,
+//! the reproduction table, and `index.html` that shows it all.
+
+use super::render::{Entry, compare_models, render_model};
+use crate::CliError;
+use fastbrdf_analysis::reproduce;
+use fastbrdf_render::bump::Bump;
+use fastbrdf_render::compare::{Cell, Metrics, grid};
+use fastbrdf_render::film::{png_bytes, write_atomic};
+use fastbrdf_render::render::{Options, Shading};
+use fastbrdf_render::setup::{self, SceneSpec};
+use glam::Vec3;
+use std::fmt::Write;
+use std::path::{Path, PathBuf};
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf demo\n  fastbrdf demo --out my-demo --mesh face.obj\n  fastbrdf demo --size 256"
+)]
+pub struct Args {
+    /// Output folder.
+    #[arg(long, default_value = "fastbrdf-out")]
+    out: PathBuf,
+    /// A mesh (OBJ) for the skin comparisons instead of the built-in bumpy sphere.
+    #[arg(long)]
+    mesh: Option<PathBuf>,
+    /// Side of each comparison picture in pixels (sphere grid cells are half of it).
+    #[arg(long, default_value_t = 384)]
+    size: u32,
+}
+
+struct Section {
+    title: String,
+    caption: String,
+    image: String,
+    metrics: Vec<Metrics>,
+}
+
+fn p(k: &str, v: &str) -> (String, String) {
+    (k.into(), v.into())
+}
+
+fn save(dir: &Path, name: &str, rgb: &[u8], w: u32, h: u32) -> Result<String, CliError> {
+    write_atomic(&dir.join(name), &png_bytes(rgb, w, h)?)?;
+    eprintln!("wrote {}", dir.join(name).display());
+    Ok(name.into())
+}
+
+pub fn run(a: &Args) -> Result<(), CliError> {
+    if !(64..=2048).contains(&a.size) {
+        return Err(CliError::input(format!(
+            "--size {}: must be 64 to 2048",
+            a.size
+        )));
+    }
+    let t0 = std::time::Instant::now();
+    let dir = &a.out;
+    let mut sections = Vec::new();
+    // 1. Every lobe on a sphere, at n = 20 and n = 200.
+    let cell = a.size / 2;
+    let opts = Options {
+        width: cell,
+        height: cell,
+        spp: 2,
+        shading: Shading::Batch,
+    };
+    let spec = SceneSpec::new();
+    let loaded = setup::load(&spec)?;
+    for n in ["20", "200"] {
+        let mut rows: Vec<Vec<Cell>> = vec![];
+        for chunk in fastbrdf::lobes::IDS.chunks(4) {
+            let mut row = vec![];
+            for id in chunk {
+                let film = render_model(&spec, &loaded, &opts, id, &[p("n", n)])?;
+                row.push(Cell {
+                    label: (*id).into(),
+                    rgb: film.to_srgb8(1.0),
+                });
+            }
+            rows.push(row);
+        }
+        let (rgb, w, h) = grid(&rows, cell, cell, None)?;
+        let image = save(dir, &format!("lobes-n{n}.png"), &rgb, w, h)?;
+        sections.push(Section {
+            title: format!("Every lobe at n = {n}"),
+            caption: format!("Each lobe as the specular term (lobe of n.h, kd 0.6, ks 0.4, one directional light), n = {n}. pow is the reference; the normalised flog is brighter by design (coef(n)), its clamped GLSL twin saturates."),
+            image,
+            metrics: vec![],
+        });
+    }
+    // 2. The seeds' comparisons.
+    let opts = Options {
+        width: a.size,
+        height: a.size,
+        spp: 3,
+        shading: Shading::Batch,
+    };
+    let mut cmp = |title: &str,
+                   caption: &str,
+                   file: &str,
+                   spec: &SceneSpec,
+                   reference: Entry,
+                   models: Vec<Entry>|
+     -> Result<(), CliError> {
+        let (rgb, w, h, metrics) = compare_models(spec, &opts, 1.0, &reference, &models)?;
+        let image = save(dir, file, &rgb, w, h)?;
+        sections.push(Section {
+            title: title.into(),
+            caption: caption.into(),
+            image,
+            metrics,
+        });
+        Ok(())
+    };
+    let n = "50";
+    cmp(
+        "Seed 001: normalised and original flog, and Schlick",
+        "Against cos^n at n = 50. flog-normalized multiplies flog by the seed's coef(n) (energy conserving, so brighter than the unnormalised lobes); flog-normalized-clamped is the seed's GLSL, which clamps to 1 and loses the peak.",
+        "seed001-flog.png",
+        &SceneSpec::new(),
+        Entry::new("pow", vec![p("n", n)]),
+        vec![
+            Entry::new("flog", vec![p("n", n)]),
+            Entry::new("flog-normalized", vec![p("n", n)]),
+            Entry::new("flog-normalized-clamped", vec![p("n", n)]),
+            Entry::new("schlick", vec![p("n", n)]),
+        ],
+    )?;
+    cmp(
+        "Seed 003: cubic and rational stand-ins for cos^n",
+        "Against cos^n at n = 100: the seed's cubic (epicentre), rational (fall-off) and the piecewise cubic-rational.",
+        "seed003-cubic-rational.png",
+        &SceneSpec::new(),
+        Entry::new("pow", vec![p("n", "100")]),
+        vec![
+            Entry::new("cubic-rational", vec![p("n", "100")]),
+            Entry::new("cubic", vec![p("n", "100")]),
+            Entry::new("rational", vec![p("n", "100")]),
+        ],
+    )?;
+    let mut skin = SceneSpec::new();
+    skin.albedo = Vec3::new(0.78, 0.52, 0.42);
+    skin.bump = Some(Bump {
+        scale: if a.mesh.is_some() { 3.0 } else { 40.0 },
+        depth: if a.mesh.is_some() { 0.3 } else { 0.6 },
+    });
+    skin.mesh = a.mesh.clone();
+    skin.kd = 0.6;
+    skin.ks = 1.0;
+    let object = if a.mesh.is_some() {
+        "the given mesh"
+    } else {
+        "a sphere"
+    };
+    let ct = |d: &str, label: &str| {
+        let mut e = Entry::new(
+            "cook-torrance",
+            vec![
+                p("alpha", "0.35"),
+                p("d", d),
+                p("g", "v-cavity"),
+                p("f", "schlick"),
+                p("f0", "0.028"),
+                p("denominator", "seed-000"),
+            ],
+        );
+        e.label = format!("{label} (d={d})");
+        e
+    };
+    cmp(
+        "Seed 000: Cook-Torrance on skin, exact D against its one-function forms",
+        &format!(
+            "Seed 000's Cook-Torrance (V-cavity G, Schlick F with f0 = 0.028, denominator (V.N)(L.N)), m = 0.35, on {object} with a procedural micro-relief standing in for skin. Reference: the exp-based D; compared: D16 (g = 16) and the one-pow D."
+        ),
+        "seed000-cook-torrance-skin.png",
+        &skin,
+        ct("beckmann-ct", "exp D"),
+        vec![
+            ct("beckmann-power16", "D16"),
+            ct("beckmann-pow", "one-pow D"),
+        ],
+    )?;
+    cmp(
+        "Seed 000: Ward on skin, exp against its one-function forms",
+        &format!(
+            "Isotropic Ward, m = 0.35, on {object} with the same micro-relief. Reference: exp(-tan^2 / m^2); compared: the g = 16 form and the one-pow form."
+        ),
+        "seed000-ward-skin.png",
+        &skin,
+        Entry::new("ward", vec![p("alpha", "0.35")]),
+        vec![
+            Entry::new("ward-power16", vec![p("alpha", "0.35")]),
+            Entry::new("ward-pow", vec![p("alpha", "0.35")]),
+        ],
+    )?;
+    // 3. Plots and the reproduction table.
+    let plots = dir.join("plots");
+    super::plot::write_seed_figures(&plots)?;
+    let report = reproduce::run(&[], &|| {})?;
+    let md = reproduce::markdown(&report);
+    write_atomic(&dir.join("REPRODUCTION.md"), md.as_bytes())?;
+    let html = index_html(&sections, &report, t0.elapsed().as_secs_f64());
+    write_atomic(&dir.join("index.html"), html.as_bytes())?;
+    eprintln!(
+        "wrote {} ({:.1} s): open it in a browser",
+        dir.join("index.html").display(),
+        t0.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+fn index_html(sections: &[Section], report: &reproduce::Report, secs: f64) -> String {
+    let mut h = String::from(
+        "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>fastbrdf demo</title>\n<style>body{font-family:sans-serif;max-width:1400px;margin:auto;padding:1em}\
+img{max-width:100%;border:1px solid #ccc}table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:3px 8px;font-size:14px}\
+th{background:#eee}.agrees{color:#060}.differs{color:#a00}figure{margin:1em 0 2em 0}</style></head><body>\n<h1>fastbrdf demo</h1>\n",
+    );
+    let _ = writeln!(
+        h,
+        "<p>Generated by <code>fastbrdf demo</code> in {secs:.1} s. Every picture and number below was computed by this run.</p>"
+    );
+    let _ = writeln!(h, "<h2>Renders</h2>");
+    for s in sections {
+        let _ = writeln!(
+            h,
+            "<figure><h3>{}</h3><img src=\"{}\" alt=\"{}\"><figcaption>{}</figcaption>",
+            esc(&s.title),
+            esc(&s.image),
+            esc(&s.title),
+            esc(&s.caption)
+        );
+        if !s.metrics.is_empty() {
+            let _ = writeln!(
+                h,
+                "<table><tr><th>model</th><th>RMSE</th><th>PSNR (dB)</th><th>FLIP</th></tr>"
+            );
+            for m in &s.metrics {
+                let psnr = if m.psnr.is_finite() {
+                    format!("{:.2}", m.psnr)
+                } else {
+                    "inf".into()
+                };
+                let _ = writeln!(
+                    h,
+                    "<tr><td>{}</td><td>{:.5}</td><td>{psnr}</td><td>{:.4}</td></tr>",
+                    esc(&m.model),
+                    m.rmse,
+                    m.flip
+                );
+            }
+            let _ = writeln!(h, "</table>");
+        }
+        let _ = writeln!(h, "</figure>");
+    }
+    let _ = writeln!(h, "<h2>Plots of the seeds' figures</h2>");
+    for (file, caption) in [
+        (
+            "seed001-fig2-lobes-n20.png",
+            "Seed 001 Fig. 2: flog, cos^n and Schlick at n = 20",
+        ),
+        (
+            "seed001-fig3-max-rel-epicentre.png",
+            "Seed 001 Fig. 3: max relative error in the epicentre against n",
+        ),
+        (
+            "seed001-fig4-max-abs.png",
+            "Seed 001 Fig. 4: max absolute error against n",
+        ),
+        (
+            "seed001-fig9-energy-residual.png",
+            "Seed 001 Fig. 9: energy residual of the published coef(n)",
+        ),
+        (
+            "seed003-fig1-cubic-epicentre.png",
+            "Seed 003 Fig. 1: max absolute error in the epicentre against n",
+        ),
+        (
+            "seed003-fig3-lobes-n20.png",
+            "Seed 003 Fig. 3: Schlick, rational and cos^n at n = 20",
+        ),
+        (
+            "seed000-fig1-3-beckmann-forms.png",
+            "Seed 000 Fig. 1 and 3: D, D4, D8, D16 at m = 0.3",
+        ),
+        (
+            "seed000-fig2-4-relative-error.png",
+            "Seed 000 Fig. 2 and 4: their relative error",
+        ),
+    ] {
+        let _ = writeln!(
+            h,
+            "<figure><img src=\"plots/{file}\" alt=\"{}\"><figcaption>{}</figcaption></figure>",
+            esc(caption),
+            esc(caption)
+        );
+    }
+    let _ = writeln!(
+        h,
+        "<h2>The seeds' claims, reproduced</h2><table><tr><th>claim</th><th>seed</th><th>claimed</th><th>measured</th><th>verdict</th><th>domain</th></tr>"
+    );
+    for c in &report.claims {
+        let _ = writeln!(
+            h,
+            "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td></tr>",
+            esc(&c.id),
+            c.seed,
+            esc(c.claimed.as_deref().unwrap_or("-")),
+            esc(c.measured.as_deref().unwrap_or("-")),
+            c.verdict.replace(' ', "-"),
+            c.verdict,
+            esc(&c.domain)
+        );
+    }
+    h.push_str("</table>\n<p>Speed rows: run <code>fastbrdf bench --json &gt; bench.json</code> and <code>fastbrdf reproduce --speedups bench.json</code>.</p>\n</body></html>\n");
+    h
+}

@@ -1,0 +1,368 @@
+//! `fastbrdf render` and `fastbrdf compare`: pictures of a model, and of several models against
+//! a reference with difference heat maps and RMSE / PSNR / FLIP (fastbrdf-render).
+
+use super::analysis::bar;
+use super::eval::parse_params;
+use crate::CliError;
+use fastbrdf_render::bump::Bump;
+use fastbrdf_render::compare::{self, Cell};
+use fastbrdf_render::film::{Film, parse_size, write_atomic};
+use fastbrdf_render::render::{Options, Shading, render};
+use fastbrdf_render::scene::{Light, Specular};
+use fastbrdf_render::setup::{self, SceneSpec};
+use fastbrdf_render::{RenderError, Result as RResult};
+use glam::Vec3;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+impl From<RenderError> for CliError {
+    fn from(e: RenderError) -> Self {
+        match e {
+            RenderError::Output { .. } => CliError {
+                code: 1,
+                message: e.to_string(),
+            },
+            _ => CliError::input(e.to_string()),
+        }
+    }
+}
+
+/// Scene options shared by render, compare and demo.
+#[derive(clap::Args, Clone, Debug)]
+pub struct SceneArgs {
+    /// An OBJ mesh to render instead of the built-in sphere (normals computed when absent).
+    #[arg(long)]
+    pub mesh: Option<PathBuf>,
+    /// An albedo texture (PNG or JPEG, sRGB), mapped by the mesh's texture coordinates.
+    #[arg(long)]
+    pub texture: Option<PathBuf>,
+    /// A light: dir:X,Y,Z[:R,G,B[:INTENSITY]] (direction towards the light) or
+    /// point:X,Y,Z[:R,G,B[:INTENSITY]]; repeat for several. Default: one key light.
+    #[arg(long = "light", value_name = "SPEC")]
+    pub lights: Vec<String>,
+    /// Image size WIDTHxHEIGHT (at most 8192 per side and 2^25 pixels).
+    #[arg(long, default_value = "512x512")]
+    pub size: String,
+    /// Supersampling: N x N samples per pixel (1..16).
+    #[arg(long, default_value_t = 2)]
+    pub spp: u32,
+    /// Procedural micro-relief SCALE,DEPTH (features per unit, relative height), e.g. 40,0.6.
+    #[arg(long)]
+    pub bump: Option<String>,
+    /// Diffuse and specular weights KD,KS.
+    #[arg(long, default_value = "0.6,0.4")]
+    pub weights: String,
+    /// Linear albedo R,G,B.
+    #[arg(long, default_value = "0.8,0.8,0.8")]
+    pub albedo: String,
+    /// Exposure multiplier applied before sRGB encoding.
+    #[arg(long, default_value_t = 1.0)]
+    pub exposure: f32,
+}
+
+fn floats(name: &str, s: &str, n: usize) -> Result<Vec<f32>, CliError> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| CliError::input(format!("--{name} '{s}': not numbers")))?;
+    if v.len() != n || v.iter().any(|x| !x.is_finite() || *x < 0.0) {
+        return Err(CliError::input(format!(
+            "--{name} '{s}': expected {n} non-negative numbers"
+        )));
+    }
+    Ok(v)
+}
+
+impl SceneArgs {
+    /// The scene spec and render options.
+    pub fn spec(&self) -> Result<(SceneSpec, Options), CliError> {
+        let (width, height) = parse_size(&self.size)?;
+        let mut spec = SceneSpec::new();
+        spec.mesh = self.mesh.clone();
+        spec.texture = self.texture.clone();
+        spec.lights = self
+            .lights
+            .iter()
+            .map(|l| Light::parse(l))
+            .collect::<RResult<_>>()?;
+        if let Some(b) = &self.bump {
+            let v = floats("bump", b, 2)?;
+            if v[0] <= 0.0 {
+                return Err(CliError::input("--bump: the scale must be positive"));
+            }
+            spec.bump = Some(Bump {
+                scale: v[0],
+                depth: v[1],
+            });
+        }
+        let w = floats("weights", &self.weights, 2)?;
+        (spec.kd, spec.ks) = (w[0], w[1]);
+        let a = floats("albedo", &self.albedo, 3)?;
+        spec.albedo = Vec3::new(a[0], a[1], a[2]);
+        if !(self.exposure > 0.0 && self.exposure.is_finite()) {
+            return Err(CliError::input("--exposure must be a positive number"));
+        }
+        if !(1..=16).contains(&self.spp) {
+            return Err(CliError::input(format!(
+                "--spp {}: must be 1 to 16",
+                self.spp
+            )));
+        }
+        Ok((
+            spec,
+            Options {
+                width,
+                height,
+                spp: self.spp,
+                shading: Shading::Batch,
+            },
+        ))
+    }
+}
+
+/// Renders one model with a progress bar.
+pub fn render_model(
+    spec: &SceneSpec,
+    loaded: &setup::Loaded,
+    opts: &Options,
+    id: &str,
+    params: &[(String, String)],
+) -> Result<Film, CliError> {
+    let specular = Arc::new(Specular::new(id, params)?);
+    let scene = setup::scene(spec, loaded, specular);
+    let pb = bar(1, "render");
+    let film = render(&scene, opts, &|d, t| {
+        pb.set_length(t as u64);
+        pb.set_position(d as u64);
+    })?;
+    pb.finish_and_clear();
+    Ok(film)
+}
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf render --model flog --param n=50 --out flog.png\n  \
+fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
+fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png"
+)]
+pub struct RenderArgs {
+    /// Specular model id (a lobe, a distribution or a BRDF).
+    #[arg(long)]
+    model: String,
+    /// A model parameter, NAME=VALUE; repeat for several.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// Output file: .png (sRGB) or .exr (linear).
+    #[arg(long)]
+    out: PathBuf,
+}
+
+pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
+    let (spec, opts) = a.scene.spec()?;
+    check_out(&a.out, &["png", "exr"])?;
+    let loaded = setup::load(&spec)?;
+    let t = std::time::Instant::now();
+    let film = render_model(&spec, &loaded, &opts, &a.model, &parse_params(&a.params)?)?;
+    film.save(&a.out, a.scene.exposure)?;
+    eprintln!(
+        "wrote {} ({}x{}, {} samples/pixel, {:.2} s)",
+        a.out.display(),
+        opts.width,
+        opts.height,
+        opts.spp * opts.spp,
+        t.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    if !exts.contains(&ext.as_str()) {
+        return Err(CliError::input(format!(
+            "--out {}: the file must end in .{}",
+            path.display(),
+            exts.join(" or .")
+        )));
+    }
+    Ok(())
+}
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf compare --models flog,schlick,cubic-rational --reference pow --param n=100 --out cmp.png\n  \
+fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png"
+)]
+pub struct CompareArgs {
+    /// Models to compare (comma-separated ids).
+    #[arg(long, value_delimiter = ',', required = true)]
+    models: Vec<String>,
+    /// The reference model id.
+    #[arg(long)]
+    reference: String,
+    /// A parameter, NAME=VALUE, given to every model that takes it; repeat for several.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// The grid picture (.png).
+    #[arg(long, default_value = "fastbrdf-out/compare.png")]
+    out: PathBuf,
+    /// Print the metrics as JSON: {"reference", "metrics": [{model, rmse, psnr, flip}]}
+    /// (psnr null when infinite).
+    #[arg(long)]
+    json: bool,
+}
+
+/// Parameters of `params` that model `id` takes.
+pub fn params_for(
+    id: &str,
+    params: &[(String, String)],
+) -> Result<Vec<(String, String)>, CliError> {
+    let e = fastbrdf::registry::find(id)?;
+    let mut names: Vec<&str> = e.info.params.iter().map(|p| p.name).collect();
+    if e.info.kind == fastbrdf::Kind::Distribution {
+        names.extend(["g", "f", "f0", "eta", "k", "denominator"]);
+    }
+    Ok(params
+        .iter()
+        .filter(|(k, _)| names.contains(&k.as_str()))
+        .cloned()
+        .collect())
+}
+
+/// One model of a comparison: label, id and its own parameters.
+pub struct Entry {
+    pub label: String,
+    pub id: String,
+    pub params: Vec<(String, String)>,
+}
+
+impl Entry {
+    /// An entry labelled by its id and parameters.
+    pub fn new(id: &str, params: Vec<(String, String)>) -> Self {
+        let p: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let label = if p.is_empty() {
+            id.to_string()
+        } else {
+            format!("{id} {}", p.join(" "))
+        };
+        Self {
+            label,
+            id: id.into(),
+            params,
+        }
+    }
+}
+
+/// Renders the reference and models, builds the grid; returns (grid rgb, w, h, metrics).
+pub fn compare_models(
+    spec: &SceneSpec,
+    opts: &Options,
+    exposure: f32,
+    reference: &Entry,
+    models: &[Entry],
+) -> Result<(Vec<u8>, u32, u32, Vec<compare::Metrics>), CliError> {
+    let loaded = setup::load(spec)?;
+    let (w, h) = (opts.width, opts.height);
+    let r = render_model(spec, &loaded, opts, &reference.id, &reference.params)?.to_srgb8(exposure);
+    let mut tests = vec![];
+    for m in models {
+        tests.push(render_model(spec, &loaded, opts, &m.id, &m.params)?.to_srgb8(exposure));
+    }
+    let metrics: Vec<compare::Metrics> = models
+        .iter()
+        .zip(&tests)
+        .map(|(m, t)| compare::metrics(&m.label, &r, t, w, h))
+        .collect();
+    let diffs: Vec<Vec<f32>> = tests.iter().map(|t| compare::difference(&r, t)).collect();
+    let scale = diffs
+        .iter()
+        .flatten()
+        .copied()
+        .fold(0.0f32, f32::max)
+        .max(1.0 / 255.0);
+    let mut top = vec![Cell {
+        label: format!("reference: {}", reference.label),
+        rgb: r.clone(),
+    }];
+    let mut bottom = vec![Cell {
+        label: "difference to the reference:".into(),
+        rgb: vec![255; (w * h * 3) as usize],
+    }];
+    for ((m, t), (d, mt)) in models.iter().zip(&tests).zip(diffs.iter().zip(&metrics)) {
+        top.push(Cell {
+            label: m.label.clone(),
+            rgb: t.clone(),
+        });
+        let psnr = if mt.psnr.is_finite() {
+            format!("{:.1} dB", mt.psnr)
+        } else {
+            "inf dB".into()
+        };
+        bottom.push(Cell {
+            label: format!("PSNR {psnr}, FLIP {:.3}", mt.flip),
+            rgb: compare::heat_map(d, scale),
+        });
+    }
+    let (rgb, gw, gh) = compare::grid(&[top, bottom], w, h, Some(scale))?;
+    Ok((rgb, gw, gh, metrics))
+}
+
+pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
+    let (spec, opts) = a.scene.spec()?;
+    check_out(&a.out, &["png"])?;
+    let params = parse_params(&a.params)?;
+    for (k, _) in &params {
+        let mut used = false;
+        for id in a.models.iter().chain([&a.reference]) {
+            used |= params_for(id, &[(k.clone(), String::new())])?.len() == 1;
+        }
+        if !used {
+            return Err(CliError::input(format!(
+                "--param {k}: none of the models takes it"
+            )));
+        }
+    }
+    let reference = Entry::new(&a.reference, params_for(&a.reference, &params)?);
+    let models: Vec<Entry> = a
+        .models
+        .iter()
+        .map(|m| Ok(Entry::new(m, params_for(m, &params)?)))
+        .collect::<Result<_, CliError>>()?;
+    let (rgb, gw, gh, metrics) =
+        compare_models(&spec, &opts, a.scene.exposure, &reference, &models)?;
+    write_atomic(&a.out, &fastbrdf_render::film::png_bytes(&rgb, gw, gh)?)?;
+    eprintln!("wrote {}", a.out.display());
+    if a.json {
+        let rows: Vec<serde_json::Value> = metrics
+            .iter()
+            .map(|m| serde_json::json!({"model": m.model, "rmse": m.rmse, "psnr": if m.psnr.is_finite() { Some(m.psnr) } else { None }, "flip": m.flip}))
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(
+                &serde_json::json!({"reference": a.reference, "metrics": rows})
+            )
+            .expect("serialisable")
+        );
+    } else {
+        println!(
+            "{:<24} {:>10} {:>10} {:>8}   (against {})",
+            "model", "RMSE", "PSNR dB", "FLIP", a.reference
+        );
+        for m in &metrics {
+            println!(
+                "{:<24} {:>10.5} {:>10.2} {:>8.4}",
+                m.model, m.rmse, m.psnr, m.flip
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,265 @@
+//! Scenes: a perspective camera, directional and point lights, an ambient term, and objects
+//! (sphere, plane, triangle mesh) each with a material.
+
+use crate::bump::Bump;
+use crate::error::{RenderError, Result};
+use crate::geometry::{Hit, Plane, Ray, Sphere, TriMesh};
+use crate::texture::Texture;
+use fastbrdf::batch::Kernel;
+use fastbrdf::{Kind, Model, registry};
+use glam::Vec3;
+use std::sync::Arc;
+
+/// A pinhole camera.
+#[derive(Clone, Copy, Debug)]
+pub struct Camera {
+    pub eye: Vec3,
+    pub target: Vec3,
+    pub up: Vec3,
+    /// Vertical field of view in degrees.
+    pub fov_y_deg: f32,
+}
+
+impl Camera {
+    /// The ray through image position (x, y) in pixels (y down) of a `w` x `h` image.
+    pub fn ray(&self, x: f32, y: f32, w: u32, h: u32) -> Ray {
+        let f = (self.target - self.eye).normalize();
+        let r = f.cross(self.up).normalize();
+        let u = r.cross(f);
+        let th = (self.fov_y_deg.to_radians() * 0.5).tan();
+        let aspect = w as f32 / h as f32;
+        let sx = (2.0 * x / w as f32 - 1.0) * th * aspect;
+        let sy = (1.0 - 2.0 * y / h as f32) * th;
+        Ray {
+            o: self.eye,
+            d: (f + sx * r + sy * u).normalize(),
+        }
+    }
+
+    /// The image position (x, y) in pixels of world point `p` (inverse of `ray`).
+    pub fn project(&self, p: Vec3, w: u32, h: u32) -> (f32, f32) {
+        let f = (self.target - self.eye).normalize();
+        let r = f.cross(self.up).normalize();
+        let u = r.cross(f);
+        let d = p - self.eye;
+        let z = d.dot(f);
+        let th = (self.fov_y_deg.to_radians() * 0.5).tan();
+        let aspect = w as f32 / h as f32;
+        let (sx, sy) = (d.dot(r) / z / (th * aspect), d.dot(u) / z / th);
+        ((sx + 1.0) * 0.5 * w as f32, (1.0 - sy) * 0.5 * h as f32)
+    }
+
+    /// A camera looking along `dir` at the box `[lo, hi]`, far enough to frame it.
+    pub fn framing(lo: Vec3, hi: Vec3, dir: Vec3, fov_y_deg: f32) -> Self {
+        let c = 0.5 * (lo + hi);
+        let radius = 0.5 * (hi - lo).length();
+        let dist = radius / (fov_y_deg.to_radians() * 0.5).sin() * 1.05;
+        let up = if dir.normalize().y.abs() > 0.95 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
+        Self {
+            eye: c - dir.normalize() * dist,
+            target: c,
+            up,
+            fov_y_deg,
+        }
+    }
+}
+
+/// Where a light is.
+#[derive(Clone, Copy, Debug)]
+pub enum LightKind {
+    /// Light arriving from direction `to_light` (unit, from the surface towards the light).
+    Directional { to_light: Vec3 },
+    /// A point light; its irradiance falls off as 1 / distance^2.
+    Point { position: Vec3 },
+}
+
+/// A light: where, colour (linear RGB), intensity.
+#[derive(Clone, Copy, Debug)]
+pub struct Light {
+    pub kind: LightKind,
+    pub color: Vec3,
+    pub intensity: f32,
+}
+
+impl Light {
+    /// Parses `dir:X,Y,Z[:R,G,B[:I]]` or `point:X,Y,Z[:R,G,B[:I]]`.
+    pub fn parse(s: &str) -> Result<Self> {
+        let bad = |m: &str| {
+            RenderError::Invalid(format!(
+                "--light '{s}': {m} (expected dir:X,Y,Z[:R,G,B[:INTENSITY]] or point:X,Y,Z[:R,G,B[:INTENSITY]])"
+            ))
+        };
+        let parts: Vec<&str> = s.split(':').collect();
+        let vec3 = |t: &str| -> Result<Vec3> {
+            let v: Vec<f32> = t
+                .split(',')
+                .map(|x| x.trim().parse::<f32>())
+                .collect::<Result<_, _>>()
+                .map_err(|_| bad("not a number"))?;
+            if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
+                return Err(bad("three finite numbers needed"));
+            }
+            Ok(Vec3::new(v[0], v[1], v[2]))
+        };
+        if parts.len() < 2 || parts.len() > 4 {
+            return Err(bad("wrong number of fields"));
+        }
+        let p = vec3(parts[1])?;
+        let color = if parts.len() > 2 {
+            vec3(parts[2])?
+        } else {
+            Vec3::ONE
+        };
+        let intensity: f32 = if parts.len() > 3 {
+            parts[3]
+                .trim()
+                .parse()
+                .map_err(|_| bad("the intensity is not a number"))?
+        } else {
+            1.0
+        };
+        if !(intensity >= 0.0 && intensity.is_finite()) || color.min_element() < 0.0 {
+            return Err(bad("colour and intensity must be non-negative"));
+        }
+        let kind = match parts[0] {
+            "dir" => {
+                if p.length_squared() == 0.0 {
+                    return Err(bad("a zero-length direction"));
+                }
+                LightKind::Directional {
+                    to_light: p.normalize(),
+                }
+            }
+            "point" => LightKind::Point { position: p },
+            _ => return Err(bad("unknown kind")),
+        };
+        Ok(Self {
+            kind,
+            color,
+            intensity,
+        })
+    }
+
+    /// (unit direction to the light, radiance scale) seen from `p`.
+    pub fn at(&self, p: Vec3) -> (Vec3, Vec3) {
+        match self.kind {
+            LightKind::Directional { to_light } => (to_light, self.color * self.intensity),
+            LightKind::Point { position } => {
+                let d = position - p;
+                let d2 = d.length_squared().max(1e-12);
+                (d / d2.sqrt(), self.color * (self.intensity / d2))
+            }
+        }
+    }
+}
+
+/// The specular model of a material: a registry id turned into a BRDF, in batch and scalar form.
+pub struct Specular {
+    pub id: String,
+    /// The BRDF actually evaluated (id and parameters).
+    pub brdf: (String, Vec<(String, String)>),
+    pub kernel: Kernel,
+    pub scalar: Box<dyn fastbrdf::Brdf<f32>>,
+}
+
+impl Specular {
+    /// Lobes become the lobe of `n . h` (`blinn-phong`, `norm = none`: the seeds' pictures),
+    /// distributions the `d` of `cook-torrance` (alpha passed on), BRDFs stay as they are.
+    pub fn new(id: &str, params: &[(String, String)]) -> Result<Self> {
+        let e = registry::find(id)?;
+        let mut p: Vec<(String, String)> = params.to_vec();
+        let brdf = match e.info.kind {
+            Kind::Brdf => e.info.id.to_string(),
+            Kind::Lobe => {
+                p.push(("lobe".into(), id.into()));
+                p.push(("norm".into(), "none".into()));
+                "blinn-phong".into()
+            }
+            Kind::Distribution => {
+                p.push(("d".into(), id.into()));
+                "cook-torrance".into()
+            }
+            k => {
+                return Err(RenderError::Invalid(format!(
+                    "'{id}' is a {}, not something to shade with: give a lobe, a distribution or a BRDF",
+                    k.name()
+                )));
+            }
+        };
+        let given: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+        let kernel = Kernel::new(&brdf, &given)?;
+        let Model::Brdf(scalar) = registry::build::<f32>(&brdf, &given)? else {
+            unreachable!("brdf ids build BRDFs")
+        };
+        Ok(Self {
+            id: id.into(),
+            brdf: (brdf, p),
+            kernel,
+            scalar,
+        })
+    }
+}
+
+/// A surface material.
+pub struct Material {
+    pub kd: f32,
+    pub ks: f32,
+    /// Linear RGB albedo (multiplied by the texture when there is one).
+    pub albedo: Vec3,
+    pub texture: Option<Arc<Texture>>,
+    pub bump: Option<Bump>,
+    pub specular: Arc<Specular>,
+}
+
+/// Geometry.
+pub enum Shape {
+    Sphere(Sphere),
+    Plane(Plane),
+    Mesh(Arc<TriMesh>),
+}
+
+/// An object: a shape and its material.
+pub struct Object {
+    pub shape: Shape,
+    pub material: Material,
+}
+
+/// A scene.
+pub struct Scene {
+    pub camera: Camera,
+    pub lights: Vec<Light>,
+    /// Ambient radiance (times kd * albedo).
+    pub ambient: Vec3,
+    pub background: Vec3,
+    pub objects: Vec<Object>,
+}
+
+impl Scene {
+    /// The nearest hit along `ray`.
+    pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut t_max = f32::INFINITY;
+        for (i, o) in self.objects.iter().enumerate() {
+            let h = match &o.shape {
+                Shape::Sphere(s) => s.intersect(ray, 1e-4, t_max),
+                Shape::Plane(p) => p.intersect(ray, 1e-4, t_max),
+                Shape::Mesh(m) => m.intersect(ray, 1e-4, t_max),
+            };
+            if let Some((t, n, uv)) = h {
+                t_max = t;
+                best = Some(Hit {
+                    t,
+                    p: ray.o + t * ray.d,
+                    n,
+                    uv,
+                    object: i,
+                });
+            }
+        }
+        best
+    }
+}

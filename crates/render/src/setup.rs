@@ -1,0 +1,139 @@
+//! Building scenes from options: the built-in sphere (or a mesh), lights, material. Shared by
+//! `fastbrdf render`, `compare` and `demo`.
+
+use crate::bump::Bump;
+use crate::error::Result;
+use crate::geometry::{Plane, Sphere};
+use crate::mesh::load_obj;
+use crate::scene::{Camera, Light, LightKind, Material, Object, Scene, Shape, Specular};
+use crate::texture::Texture;
+use glam::Vec3;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// Scene options (everything except the specular model).
+#[derive(Clone, Debug, Default)]
+pub struct SceneSpec {
+    /// An OBJ mesh instead of the built-in sphere.
+    pub mesh: Option<PathBuf>,
+    pub texture: Option<PathBuf>,
+    /// Lights; none means the default key light.
+    pub lights: Vec<Light>,
+    pub bump: Option<Bump>,
+    /// Add a ground plane under the object.
+    pub floor: bool,
+    pub kd: f32,
+    pub ks: f32,
+    pub albedo: Vec3,
+}
+
+impl SceneSpec {
+    /// The defaults: kd 0.6, ks 0.4, albedo 0.8 grey.
+    pub fn new() -> Self {
+        Self {
+            kd: 0.6,
+            ks: 0.4,
+            albedo: Vec3::splat(0.8),
+            ..Default::default()
+        }
+    }
+}
+
+/// Loaded resources shared by several renders (mesh, texture).
+pub struct Loaded {
+    mesh: Option<Arc<crate::geometry::TriMesh>>,
+    texture: Option<Arc<Texture>>,
+}
+
+/// Loads the mesh and texture once.
+pub fn load(spec: &SceneSpec) -> Result<Loaded> {
+    Ok(Loaded {
+        mesh: spec
+            .mesh
+            .as_deref()
+            .map(load_obj)
+            .transpose()?
+            .map(Arc::new),
+        texture: spec
+            .texture
+            .as_deref()
+            .map(Texture::load)
+            .transpose()?
+            .map(Arc::new),
+    })
+}
+
+/// The scene for one specular model.
+pub fn scene(spec: &SceneSpec, loaded: &Loaded, specular: Arc<Specular>) -> Scene {
+    let material = || Material {
+        kd: spec.kd,
+        ks: spec.ks,
+        albedo: spec.albedo,
+        texture: loaded.texture.clone(),
+        bump: spec.bump,
+        specular: specular.clone(),
+    };
+    let (shape, camera) = match &loaded.mesh {
+        Some(m) => {
+            let (lo, hi) = m.bounds();
+            (
+                Shape::Mesh(m.clone()),
+                Camera::framing(lo, hi, -Vec3::Z, 30.0),
+            )
+        }
+        None => (
+            Shape::Sphere(Sphere {
+                center: Vec3::ZERO,
+                radius: 1.0,
+            }),
+            Camera {
+                eye: Vec3::new(0.0, 0.0, 4.6),
+                target: Vec3::ZERO,
+                up: Vec3::Y,
+                fov_y_deg: 30.0,
+            },
+        ),
+    };
+    let mut objects = vec![Object {
+        shape,
+        material: material(),
+    }];
+    if spec.floor {
+        let y = match &loaded.mesh {
+            Some(m) => m.bounds().0.y,
+            None => -1.0,
+        };
+        objects.push(Object {
+            shape: Shape::Plane(Plane {
+                point: Vec3::new(0.0, y, 0.0),
+                normal: Vec3::Y,
+            }),
+            material: Material {
+                kd: 0.8,
+                ks: 0.0,
+                albedo: Vec3::splat(0.5),
+                texture: None,
+                bump: None,
+                specular: specular.clone(),
+            },
+        });
+    }
+    let lights = if spec.lights.is_empty() {
+        vec![Light {
+            kind: LightKind::Directional {
+                to_light: Vec3::new(-0.45, 0.55, 0.7).normalize(),
+            },
+            color: Vec3::ONE,
+            intensity: 3.0,
+        }]
+    } else {
+        spec.lights.clone()
+    };
+    Scene {
+        camera,
+        lights,
+        ambient: Vec3::splat(0.04),
+        background: Vec3::splat(0.015),
+        objects,
+    }
+}

@@ -1,0 +1,324 @@
+//! Renderer tests: the highlight where the mirror direction predicts it, the face mesh lit from
+//! the camera, identical models giving a zero difference, batch and scalar shading agreeing,
+//! golden images, and bad inputs.
+
+use fastbrdf_render::bump::Bump;
+use fastbrdf_render::compare;
+use fastbrdf_render::film::Film;
+use fastbrdf_render::mesh::{load_obj, validate_obj};
+use fastbrdf_render::render::{Options, Shading, render};
+use fastbrdf_render::scene::{Light, LightKind, Specular};
+use fastbrdf_render::setup::{self, SceneSpec};
+use glam::Vec3;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+fn face() -> PathBuf {
+    PathBuf::from(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../../shared/data/canonical_face_model.obj"
+    ))
+}
+
+fn shoot(
+    spec: &SceneSpec,
+    id: &str,
+    params: &[(&str, &str)],
+    opts: Options,
+) -> (Film, fastbrdf_render::scene::Camera) {
+    let params: Vec<(String, String)> = params
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    let loaded = setup::load(spec).unwrap();
+    let scene = setup::scene(spec, &loaded, Arc::new(Specular::new(id, &params).unwrap()));
+    (render(&scene, &opts, &|_, _| {}).unwrap(), scene.camera)
+}
+
+fn opts(w: u32, h: u32, spp: u32) -> Options {
+    Options {
+        width: w,
+        height: h,
+        spp,
+        shading: Shading::Batch,
+    }
+}
+
+fn lum(c: Vec3) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+#[test]
+fn the_highlight_sits_where_the_mirror_direction_predicts() {
+    for to_light in [
+        Vec3::Z,
+        Vec3::new(0.5, 0.3, 1.0).normalize(),
+        Vec3::new(-0.6, -0.2, 0.8).normalize(),
+    ] {
+        let mut spec = SceneSpec::new();
+        spec.kd = 0.0;
+        spec.ks = 1.0;
+        spec.lights = vec![Light {
+            kind: LightKind::Directional { to_light },
+            color: Vec3::ONE,
+            intensity: 1.0,
+        }];
+        let (w, h) = (201, 201);
+        let (film, cam) = shoot(&spec, "pow", &[("n", "5000")], opts(w, h, 1));
+        let (mut best, mut at) = (0.0, (0, 0));
+        for y in 0..h {
+            for x in 0..w {
+                if lum(film.at(x, y)) > best {
+                    best = lum(film.at(x, y));
+                    at = (x, y);
+                }
+            }
+        }
+        // Prediction by geometry alone: the sphere point whose mirror reflection of the view
+        // direction is the light direction.
+        let (mut err_best, mut pred) = (f32::INFINITY, (0, 0));
+        for y in 0..h {
+            for x in 0..w {
+                let ray = cam.ray(x as f32 + 0.5, y as f32 + 0.5, w, h);
+                let oc = ray.o;
+                let b = oc.dot(ray.d);
+                let disc = b * b - (oc.length_squared() - 1.0);
+                if disc < 0.0 {
+                    continue;
+                }
+                let n = (ray.o + (-b - disc.sqrt()) * ray.d).normalize();
+                let v = -ray.d;
+                let r = 2.0 * n.dot(v) * n - v;
+                let e = (r - to_light).length();
+                if e < err_best {
+                    err_best = e;
+                    pred = (x, y);
+                }
+            }
+        }
+        let d =
+            ((at.0 as f32 - pred.0 as f32).powi(2) + (at.1 as f32 - pred.1 as f32).powi(2)).sqrt();
+        assert!(
+            d <= 1.5,
+            "light {to_light}: brightest pixel {at:?}, mirror prediction {pred:?}"
+        );
+    }
+}
+
+#[test]
+fn face_mesh_lit_from_the_camera_has_a_bright_nose_and_dark_cheek_edge() {
+    let mut spec = SceneSpec::new();
+    spec.mesh = Some(face());
+    spec.lights = vec![Light {
+        kind: LightKind::Directional { to_light: Vec3::Z },
+        color: Vec3::ONE,
+        intensity: 2.0,
+    }];
+    let (w, h) = (256, 256);
+    let (film, cam) = shoot(&spec, "cook-torrance", &[("alpha", "0.4")], opts(w, h, 2));
+    let covered = film.pixels.iter().filter(|p| lum(**p) > 0.05).count();
+    assert!(
+        covered > (w * h) as usize / 5,
+        "the face covers only {covered} pixels"
+    );
+    let nose = cam.project(Vec3::new(0.0, -0.463, 7.587), w, h);
+    // A vertex near the right cheek's silhouette (large |x|, small z).
+    let cheek = cam.project(Vec3::new(7.2, -1.0, 1.0), w, h);
+    let around = |(x, y): (f32, f32)| {
+        let mut s = 0.0;
+        for dy in -1..=1 {
+            for dx in -1..=1 {
+                s += lum(film.at((x as i32 + dx) as u32, (y as i32 + dy) as u32));
+            }
+        }
+        s / 9.0
+    };
+    let (ln, lc) = (around(nose), around(cheek));
+    assert!(ln > 2.0 * lc && lc > 0.0, "nose {ln} vs cheek edge {lc}");
+    // Normals were computed (the file has none), smooth and facing out at the nose tip.
+    let mesh = load_obj(&face()).unwrap();
+    assert_eq!(mesh.triangles.len(), 898);
+    let tip = mesh
+        .positions
+        .iter()
+        .position(|p| (*p - Vec3::new(0.0, -0.463_17, 7.586_58)).length() < 1e-4)
+        .unwrap();
+    assert!(
+        mesh.normals[tip].z.abs() > 0.9,
+        "nose tip normal {}",
+        mesh.normals[tip]
+    );
+}
+
+#[test]
+fn identical_models_give_zero_difference_and_infinite_psnr() {
+    let spec = SceneSpec::new();
+    let (a, _) = shoot(&spec, "ward", &[("alpha", "0.3")], opts(64, 64, 1));
+    let (b, _) = shoot(&spec, "ward", &[("alpha", "0.3")], opts(64, 64, 1));
+    let (ra, rb) = (a.to_srgb8(1.0), b.to_srgb8(1.0));
+    let m = compare::metrics("ward", &ra, &rb, 64, 64);
+    assert_eq!(m.rmse, 0.0);
+    assert!(m.psnr.is_infinite() && m.flip == 0.0);
+    assert!(compare::difference(&ra, &rb).iter().all(|d| *d == 0.0));
+    // And a different model does differ.
+    let (c, _) = shoot(&spec, "ward-power16", &[("alpha", "0.3")], opts(64, 64, 1));
+    let m = compare::metrics("ward-power16", &ra, &c.to_srgb8(1.0), 64, 64);
+    assert!(m.rmse > 0.0 && m.psnr.is_finite() && m.flip > 0.0);
+}
+
+#[test]
+fn batch_and_scalar_shading_agree() {
+    let mut spec = SceneSpec::new();
+    spec.bump = Some(Bump {
+        scale: 30.0,
+        depth: 0.5,
+    });
+    for (id, p) in [
+        ("flog", ("n", "80")),
+        ("cook-torrance", ("alpha", "0.2")),
+        ("beckmann-power16", ("alpha", "0.3")),
+    ] {
+        let (a, _) = shoot(&spec, id, &[p], opts(96, 96, 1));
+        let (b, _) = shoot(
+            &spec,
+            id,
+            &[p],
+            Options {
+                shading: Shading::Scalar,
+                ..opts(96, 96, 1)
+            },
+        );
+        let worst = a
+            .pixels
+            .iter()
+            .zip(&b.pixels)
+            .map(|(x, y)| (*x - *y).abs().max_element() / y.max_element().max(1.0))
+            .fold(0.0, f32::max);
+        assert!(worst < 1e-4, "{id}: batch and scalar differ by {worst}");
+    }
+}
+
+/// Golden images: small scenes rendered and compared with checked-in PNGs. Tolerance: at most
+/// 2/255 per channel and PSNR >= 45 dB, because the batch kernels' results can differ in the
+/// last bits between CPUs (libm's sin/cos/sqrt used by the camera and bump are not
+/// bit-reproducible across platforms). Set FASTBRDF_BLESS=1 to rewrite them.
+#[test]
+fn golden_images() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden");
+    let mut bumpy = SceneSpec::new();
+    bumpy.bump = Some(Bump {
+        scale: 25.0,
+        depth: 0.5,
+    });
+    bumpy.albedo = Vec3::new(0.8, 0.5, 0.4);
+    let mut floor = SceneSpec::new();
+    floor.floor = true;
+    floor.lights = vec![Light {
+        kind: LightKind::Point {
+            position: Vec3::new(2.0, 3.0, 3.0),
+        },
+        color: Vec3::new(1.0, 0.9, 0.8),
+        intensity: 20.0,
+    }];
+    type Case<'a> = (&'a str, &'a SceneSpec, &'a str, &'a [(&'a str, &'a str)]);
+    let cases: [Case; 4] = [
+        ("sphere-pow-n50", &SceneSpec::new(), "pow", &[("n", "50")]),
+        (
+            "sphere-cubic-rational-n100",
+            &SceneSpec::new(),
+            "cubic-rational",
+            &[("n", "100")],
+        ),
+        (
+            "bumpy-cook-torrance",
+            &bumpy,
+            "cook-torrance",
+            &[("alpha", "0.3"), ("f", "schlick")],
+        ),
+        (
+            "floor-point-light-ward",
+            &floor,
+            "ward",
+            &[("alpha", "0.2")],
+        ),
+    ];
+    for (name, spec, id, params) in cases {
+        let (film, _) = shoot(spec, id, params, opts(64, 64, 2));
+        let got = film.to_srgb8(1.0);
+        let path = dir.join(format!("{name}.png"));
+        if std::env::var_os("FASTBRDF_BLESS").is_some() {
+            std::fs::write(
+                &path,
+                fastbrdf_render::film::png_bytes(&got, 64, 64).unwrap(),
+            )
+            .unwrap();
+            continue;
+        }
+        let want = image::open(&path)
+            .unwrap_or_else(|e| panic!("{}: {e} (FASTBRDF_BLESS=1 creates it)", path.display()))
+            .to_rgb8()
+            .into_raw();
+        let max = got
+            .iter()
+            .zip(&want)
+            .map(|(a, b)| (*a as i32 - *b as i32).abs())
+            .max()
+            .unwrap();
+        let m = compare::metrics(name, &want, &got, 64, 64);
+        assert!(
+            max <= 2 && m.psnr >= 45.0,
+            "{name}: max difference {max}/255, PSNR {:.1} dB",
+            m.psnr
+        );
+    }
+}
+
+#[test]
+fn bad_obj_files_name_the_file_and_line() {
+    let f = Path::new("bad.obj");
+    let cases = [
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
+            "bad.obj:4: face: vertex index 4 is out of range (3 vertexs defined so far)",
+        ),
+        (
+            "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n",
+            "bad.obj:2: vertex: 'nan' is not a finite number",
+        ),
+        (
+            "v 0 0 0\nv 1 0\n",
+            "bad.obj:2: vertex needs 3 numbers, found 2",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n",
+            "bad.obj: no faces (3 vertices)",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n",
+            "bad.obj:4: a face needs at least 3 vertices",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/5 2 3\n",
+            "bad.obj:4: face: texture coordinate index 5 is out of range",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n",
+            "bad.obj:4: face: 'x' has a non-integer vertex index",
+        ),
+    ];
+    for (text, expected) in cases {
+        let e = validate_obj(f, text).unwrap_err().to_string();
+        assert!(
+            e.starts_with(expected),
+            "{e:?} should start with {expected:?}"
+        );
+    }
+    assert_eq!(
+        validate_obj(f, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n").unwrap(),
+        1
+    );
+    let e = load_obj(Path::new("/nonexistent/face.obj"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("/nonexistent/face.obj: cannot read"), "{e}");
+}
