@@ -14,6 +14,7 @@
 
 pub mod albedo;
 pub mod errors;
+pub mod fit;
 pub mod normalize;
 pub mod plot;
 pub mod range;

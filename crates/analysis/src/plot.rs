@@ -229,3 +229,135 @@ impl<W: std::io::Write> WritePng for image::codecs::png::PngEncoder<W> {
         self.write_image(rgb, w, h, image::ExtendedColorType::Rgb8)
     }
 }
+
+/// A labelled point of a scatter plot; `highlight` draws it filled and larger.
+#[derive(Clone, Debug)]
+pub struct Point {
+    pub label: String,
+    pub x: f64,
+    pub y: f64,
+    pub highlight: bool,
+}
+
+/// A scatter plot on log-log axes with labelled points and a line through `front` (sorted by
+/// x), written as `base.png` and `base.svg`.
+pub fn save_scatter(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    front: &[(f64, f64)],
+    points: &[Point],
+    base: &Path,
+) -> Result<[PathBuf; 2], String> {
+    register_font();
+    let finite: Vec<&Point> = points
+        .iter()
+        .filter(|p| p.x > 0.0 && p.y > 0.0 && p.x.is_finite() && p.y.is_finite())
+        .collect();
+    let (x0, x1) = finite.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+        (a.min(p.x), b.max(p.x))
+    });
+    let (y0, y1) = finite.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+        (a.min(p.y), b.max(p.y))
+    });
+    let (x0, x1, y0, y1) = if finite.is_empty() {
+        (0.1, 1.0, 1e-3, 1.0)
+    } else {
+        (x0 / 1.3, x1 * 2.5, y0 / 1.6, y1 * 1.6)
+    };
+    fn draw<DB: DrawingBackend>(
+        root: DrawingArea<DB, plotters::coord::Shift>,
+        t: &str,
+        xl: &str,
+        yl: &str,
+        front: &[(f64, f64)],
+        pts: &[&Point],
+        r: (f64, f64, f64, f64),
+    ) -> Result<(), String>
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(t, ("sans-serif", 28))
+            .margin(24)
+            .x_label_area_size(60)
+            .y_label_area_size(90)
+            .build_cartesian_2d((r.0..r.1).log_scale(), (r.2..r.3).log_scale())
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc(xl)
+            .y_desc(yl)
+            .label_style(("sans-serif", 18))
+            .axis_desc_style(("sans-serif", 22))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        chart
+            .draw_series(LineSeries::new(front.to_vec(), COLORS[1].stroke_width(3)))
+            .map_err(|e| e.to_string())?
+            .label("Pareto front")
+            .legend(|(x, y)| {
+                PathElement::new(vec![(x, y), (x + 30, y)], COLORS[1].stroke_width(3))
+            });
+        for p in pts {
+            let style = if p.highlight {
+                COLORS[1].filled()
+            } else {
+                COLORS[0].filled()
+            };
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    (p.x, p.y),
+                    if p.highlight { 7 } else { 5 },
+                    style,
+                )))
+                .map_err(|e| e.to_string())?;
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    p.label.clone(),
+                    (p.x * 1.04, p.y * 1.05),
+                    ("sans-serif", 15).into_font(),
+                )))
+                .map_err(|e| e.to_string())?;
+        }
+        chart
+            .configure_series_labels()
+            .label_font(("sans-serif", 20))
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| e.to_string())?;
+        root.present().map_err(|e| e.to_string())?;
+        Ok(())
+    }
+    let (w, h) = SIZE;
+    let mut rgb = vec![255u8; (w * h * 3) as usize];
+    draw(
+        BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area(),
+        title,
+        x_label,
+        y_label,
+        front,
+        &finite,
+        (x0, x1, y0, y1),
+    )?;
+    let mut png = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut png)
+        .write_image_impl(&rgb, w, h)
+        .map_err(|e| format!("PNG encoding: {e}"))?;
+    let mut svg = String::new();
+    draw(
+        SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
+        title,
+        x_label,
+        y_label,
+        front,
+        &finite,
+        (x0, x1, y0, y1),
+    )?;
+    let (png_path, svg_path) = (base.with_extension("png"), base.with_extension("svg"));
+    write_atomic(&png_path, &png).map_err(|e| format!("{}: {e}", png_path.display()))?;
+    write_atomic(&svg_path, svg.as_bytes()).map_err(|e| format!("{}: {e}", svg_path.display()))?;
+    Ok([png_path, svg_path])
+}

@@ -78,6 +78,10 @@ enum Command {
     /// The main job on built-in defaults: every lobe on spheres, the seeds' comparisons,
     /// plots and the reproduction table, in a folder with index.html.
     Demo(commands::demo::Args),
+    /// Minimax-tuned coefficients of an approximation family, per n, and their closed form.
+    Fit(commands::fit::FitArgs),
+    /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot).
+    Pareto(commands::fit::ParetoArgs),
 }
 
 fn main() -> ExitCode {
@@ -95,6 +99,8 @@ fn main() -> ExitCode {
         Command::Render(a) => commands::render::run_render(&a),
         Command::Compare(a) => commands::render::run_compare(&a),
         Command::Demo(a) => commands::demo::run(&a),
+        Command::Fit(a) => commands::fit::run_fit(&a),
+        Command::Pareto(a) => commands::fit::run_pareto(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

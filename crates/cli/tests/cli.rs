@@ -964,6 +964,7 @@ fn demo_writes_every_picture_and_an_index() {
         "seed003-cubic-rational.png",
         "seed000-cook-torrance-skin.png",
         "seed000-ward-skin.png",
+        "tuned-vs-untuned.png",
         "plots/seed001-fig3-max-rel-epicentre.png",
         "plots/seed000-fig2-4-relative-error.png",
     ] {
@@ -975,4 +976,100 @@ fn demo_writes_every_picture_and_an_index() {
     }
     assert!(html.contains("log.abs_err_max") && html.contains("<th>FLIP</th>"));
     std::fs::remove_dir_all(&d).unwrap();
+}
+
+#[test]
+fn fit_and_pareto_commands() {
+    let r = fastbrdf(
+        &[
+            "fit",
+            "--family",
+            "power16",
+            "--reference",
+            "pow",
+            "--n",
+            "8,16,40,100,300",
+            "--json",
+        ],
+        "",
+    );
+    assert!(r.status.success(), "{}", stderr(&r));
+    let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
+    for row in v["rows"].as_array().unwrap() {
+        let (e, u) = (
+            row["error"].as_f64().unwrap(),
+            row["untuned_error"].as_f64().unwrap(),
+        );
+        assert!(e <= 0.5 * u || u < 1e-12, "{row}");
+    }
+    assert_eq!(v["closed_form"]["r"].as_array().unwrap().len(), 5);
+    for (args, expected) in [
+        (
+            vec![
+                "fit",
+                "--family",
+                "power16",
+                "--reference",
+                "beckmann-ct",
+                "--n",
+                "8",
+            ],
+            "approximates pow",
+        ),
+        (
+            vec![
+                "fit",
+                "--family",
+                "beckmann-power16",
+                "--reference",
+                "beckmann-ct",
+                "--n",
+                "8",
+            ],
+            "takes --m RANGE",
+        ),
+        (
+            vec![
+                "fit",
+                "--family",
+                "power16",
+                "--reference",
+                "pow",
+                "--n",
+                "0..4",
+            ],
+            "n = 0 is outside",
+        ),
+    ] {
+        let r = fastbrdf(&args, "");
+        assert_eq!(r.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&r).contains(expected), "{args:?}: {}", stderr(&r));
+    }
+    let bench = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    let out = std::env::temp_dir().join(format!("fastbrdf-pareto-{}", std::process::id()));
+    let r = fastbrdf(
+        &[
+            "pareto",
+            "--bench",
+            bench,
+            "--markdown",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(r.status.success(), "{}", stderr(&r));
+    let md = stdout(&r);
+    assert!(out.with_extension("png").exists() && out.with_extension("svg").exists());
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let open = "<!-- pareto:begin -->\n";
+    let start = readme.find(open).expect("README has the pareto block") + open.len();
+    let end = readme
+        .find("<!-- pareto:end -->")
+        .expect("README closes the pareto block");
+    assert!(
+        readme[start..end] == md,
+        "README's Pareto table is stale: paste `fastbrdf pareto --bench docs/bench/bench.json --markdown`"
+    );
 }

@@ -3,7 +3,7 @@
 
 use crate::brdf::{cook_torrance, lambert, phong, ward};
 use crate::error::{Error, Result};
-use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
+use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
 use crate::model::{Model, ModelInfo};
 use crate::params::Params;
@@ -40,6 +40,11 @@ pub static REGISTRY: &[Entry] = &[
     power::ENTRY16,
     sg::ENTRY,
     sg::ENTRY_UE4,
+    tuned::ENTRY_POWER4,
+    tuned::ENTRY_POWER8,
+    tuned::ENTRY_POWER16,
+    tuned::ENTRY_SG,
+    tuned::ENTRY_CUBIC_RATIONAL,
     // Microfacet distributions (reference: beckmann / beckmann-ct).
     beckmann::ENTRY,
     beckmann::ENTRY_CT,

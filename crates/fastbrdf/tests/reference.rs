@@ -7,6 +7,7 @@ mod common;
 
 use common::{ALPHA_VALUES, N_VALUES, Rng, direction_pairs};
 use fastbrdf::accuracy::lobe_samples;
+use fastbrdf::lobes::tuned;
 use fastbrdf::{Model, registry};
 use num_complex::Complex64;
 use std::f64::consts::PI;
@@ -106,6 +107,33 @@ fn ref_lobe(id: &str, n: f64, c: f64) -> f64 {
         // UE4's own literal, not LOG2_E.
         #[allow(clippy::approx_constant)]
         "ue4-phong-approx" => (1.4427 * (n + 0.775) * (c - 1.0)).exp2(),
+        // Tuned lobes: the printed family formula with the library's coefficient.
+        "power4-tuned" => (1.0 + tuned::power_slope(4, n) * (c - 1.0))
+            .max(0.0)
+            .powi(4),
+        "power8-tuned" => (1.0 + tuned::power_slope(8, n) * (c - 1.0))
+            .max(0.0)
+            .powi(8),
+        "power16-tuned" => (1.0 + tuned::power_slope(16, n) * (c - 1.0))
+            .max(0.0)
+            .powi(16),
+        "sg-tuned" => (tuned::exp2_rate(n) * (c - 1.0)).exp2(),
+        "cubic-rational-tuned" => {
+            let level = tuned::cubic_rational_level(n);
+            let q = level.powf(1.0 / n);
+            if c >= q {
+                // p(c) = c (al + be (c - q) + ga (c - q)^2): p(0) = 0 by construction; p(q) = Q,
+                // p'(q) = n Q / q and p(1) = 1 give al, be, ga directly.
+                let al = level / q;
+                let be = (n * level / q - al) / q;
+                let d = 1.0 - q;
+                let ga = (1.0 - al - be * d) / (d * d);
+                let t = c - q;
+                c * (al + be * t + ga * t * t)
+            } else {
+                c / (n * q / level - (n - 1.0) / level * c)
+            }
+        }
         _ => panic!("no reference for lobe {id}"),
     }
 }
@@ -116,7 +144,7 @@ fn lobe_tolerance(id: &str, n: f64) -> f64 {
         // The reference sums monomials whose coefficients reach ~3e5 (n = 1000): its own f64
         // rounding is ~ 1e-16 * a ~ 1e-10 per term, and the coefficients themselves carry ~1e-13
         // relative error from the closed forms' cancellation.
-        "cubic" | "cubic3" | "cubic-rational" => 1e-12 * n * n,
+        "cubic" | "cubic3" | "cubic-rational" | "cubic-rational-tuned" => 1e-12 * n * n,
         "rational" => 1e-13 * n,
         _ => 1e-13,
     }

@@ -139,6 +139,19 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             Entry::new("rational", vec![p("n", "100")]),
         ],
     )?;
+    cmp(
+        "Beyond the seeds: minimax-tuned coefficients at the same cost",
+        "Against cos^n at n = 40: the power-16 form with its textbook slope n/16 and with the minimax-tuned slope (same operations, half the maximum error), and UE4's exp2 approximation against the tuned exp2 rate (same single exp2).",
+        "tuned-vs-untuned.png",
+        &SceneSpec::new(),
+        Entry::new("pow", vec![p("n", "40")]),
+        vec![
+            Entry::new("power16", vec![p("n", "40")]),
+            Entry::new("power16-tuned", vec![p("n", "40")]),
+            Entry::new("ue4-phong-approx", vec![p("n", "40")]),
+            Entry::new("sg-tuned", vec![p("n", "40")]),
+        ],
+    )?;
     let mut skin = SceneSpec::new();
     skin.albedo = Vec3::new(0.78, 0.52, 0.42);
     skin.bump = Some(Bump {

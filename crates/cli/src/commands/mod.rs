@@ -5,6 +5,7 @@ pub mod bench;
 pub mod check;
 pub mod demo;
 pub mod eval;
+pub mod fit;
 pub mod models;
 pub mod plot;
 pub mod render;

@@ -383,6 +383,7 @@ trait LobeVisitor {
 fn lobe_op<V: LobeVisitor>(id: &str, n: f64, v: V) -> Option<Box<dyn Imp>> {
     use crate::lobes::cubic::CubicShape;
     use crate::lobes::flog::{seed_coef, zero_cos};
+    use crate::lobes::tuned;
     let _ = zero_cos;
     let cubic = |s: CubicShape| ops::Cubic {
         d1: s.d1 as f32,
@@ -392,9 +393,16 @@ fn lobe_op<V: LobeVisitor>(id: &str, n: f64, v: V) -> Option<Box<dyn Imp>> {
         x2: s.x2 as f32,
         cut: s.cut as f32,
     };
-    let rational = || ops::Rational {
-        two_n: (2.0 * n) as f32,
-        xq: ((0.5f64.ln() / n).exp_m1()) as f32,
+    let rational_at = |level: f64| ops::Rational {
+        n: n as f32,
+        xq: ((level.ln() / n).exp_m1()) as f32,
+        level: level as f32,
+    };
+    let rational = || rational_at(0.5);
+    let cubic_rational = |level: f64| ops::CubicRational {
+        cubic: cubic(CubicShape::hermite_at(n, level)),
+        rational: rational_at(level),
+        q: level.powf(1.0 / n) as f32,
     };
     Some(match id {
         "pow" => v.visit(ops::Pow { n: n as f32 }),
@@ -421,10 +429,19 @@ fn lobe_op<V: LobeVisitor>(id: &str, n: f64, v: V) -> Option<Box<dyn Imp>> {
         "cubic" => v.visit(cubic(CubicShape::hermite(n))),
         "cubic3" => v.visit(cubic(CubicShape::three_point(n, 0.5, 1.0 / 18.0))),
         "rational" => v.visit(rational()),
-        "cubic-rational" => v.visit(ops::CubicRational {
-            cubic: cubic(CubicShape::hermite(n)),
-            rational: rational(),
-            q: 0.5f64.powf(1.0 / n) as f32,
+        "cubic-rational" => v.visit(cubic_rational(0.5)),
+        "cubic-rational-tuned" => v.visit(cubic_rational(tuned::cubic_rational_level(n))),
+        "power4-tuned" => v.visit(ops::Power::<2> {
+            s: tuned::power_slope(4, n) as f32,
+        }),
+        "power8-tuned" => v.visit(ops::Power::<3> {
+            s: tuned::power_slope(8, n) as f32,
+        }),
+        "power16-tuned" => v.visit(ops::Power::<4> {
+            s: tuned::power_slope(16, n) as f32,
+        }),
+        "sg-tuned" => v.visit(ops::Exp2Lobe {
+            k: tuned::exp2_rate(n) as f32,
         }),
         "power4" => v.visit(ops::Power::<2> {
             s: (n / 4.0) as f32,

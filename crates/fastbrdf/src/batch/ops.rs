@@ -119,15 +119,16 @@ impl Op1 for Cubic {
 }
 
 pub struct Rational {
-    pub two_n: f32,
+    pub n: f32,
     pub xq: f32,
+    pub level: f32,
 }
 impl Op1 for Rational {
     #[inline(always)]
     fn f(&self, c: f32) -> f32 {
         let cc = clamp01(c);
         let x = cc - 1.0;
-        finish(c, cc / (self.two_n * (self.xq - x) + (cc + cc)))
+        finish(c, self.level * cc / (self.n * (self.xq - x) + cc))
     }
 }
 

@@ -121,11 +121,16 @@ impl CubicShape {
     /// Seed 003's Hermite cubic: nodes `x = 0` (value 1), `x = q - 1` twice (value 0.5, slope
     /// `n 0.5 / q`), `x = -1` (value 0).
     pub fn hermite(n: f64) -> Self {
-        let xq = (0.5f64.ln() / n).exp_m1(); // q - 1, accurately
+        Self::hermite_at(n, 0.5)
+    }
+
+    /// The Hermite cubic matched to `c^n` at the level `c^n = level` (seed 003: 0.5).
+    pub fn hermite_at(n: f64, level: f64) -> Self {
+        let xq = (level.ln() / n).exp_m1(); // q - 1, accurately
         let q = 1.0 + xq;
-        let s = n * 0.5 / q; // slope of c^n at q
-        let f0q = -0.5 / xq;
-        let fqm = 0.5 / q; // f[xq, -1]
+        let s = n * level / q; // slope of c^n at q
+        let f0q = (level - 1.0) / xq;
+        let fqm = level / q; // f[xq, -1]
         let f0qq = (s - f0q) / xq;
         let fqqm = (fqm - s) / (-1.0 - xq);
         let d3 = (fqqm - f0qq) / -1.0;

@@ -13,6 +13,7 @@ pub mod power;
 pub mod rational;
 pub mod schlick;
 pub mod sg;
+pub mod tuned;
 
 use crate::real::Real;
 
@@ -44,4 +45,9 @@ pub const IDS: &[&str] = &[
     "power16",
     "sg",
     "ue4-phong-approx",
+    "power4-tuned",
+    "power8-tuned",
+    "power16-tuned",
+    "sg-tuned",
+    "cubic-rational-tuned",
 ];

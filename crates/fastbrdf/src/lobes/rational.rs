@@ -81,21 +81,30 @@ pub const ENTRY_CUBIC_RATIONAL: Entry = Entry {
     build64: build::<f64, 1>,
 };
 
-/// Seed 003's rational fall-off lobe.
+/// Seed 003's rational fall-off lobe, matched to `c^n` at the level `c^n = level` (the seed:
+/// 0.5): `level c / (n (q - c) + c)`, which at 0.5 is the seed's `c / (2n (q - c) + 2c)`
+/// (bit for bit: the factor 2 is exact).
 #[derive(Clone, Debug)]
 pub struct Rational<T> {
-    two_n: T,
+    n: T,
     xq: T,
+    level: T,
 }
 
 impl<T: Real> Rational<T> {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("rational", &params::N, n)?;
-        Ok(Self {
-            two_n: T::c(2.0 * n),
-            xq: T::c((0.5f64.ln() / n).exp_m1()),
-        })
+        Ok(Self::at_level(n, 0.5))
+    }
+
+    /// Matched at the level `c^n = level`.
+    pub fn at_level(n: f64, level: f64) -> Self {
+        Self {
+            n: T::c(n),
+            xq: T::c((level.ln() / n).exp_m1()),
+            level: T::c(level),
+        }
     }
 }
 
@@ -106,7 +115,7 @@ impl<T: Real> Lobe<T> for Rational<T> {
             return T::zero();
         };
         let x = c - T::one();
-        c / (self.two_n * (self.xq - x) + (c + c))
+        self.level * c / (self.n * (self.xq - x) + c)
     }
 }
 
@@ -123,13 +132,18 @@ impl<T: Real> CubicRational<T> {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("cubic-rational", &params::N, n)?;
-        let q64 = 0.5f64.powf(1.0 / n);
-        Ok(Self {
-            cubic: Cubic::from_shape(CubicShape::hermite(n)),
-            rational: Rational::new(n)?,
+        Ok(Self::at_level(n, 0.5))
+    }
+
+    /// With the junction at the level `c^n = level` (the seed: 0.5).
+    pub fn at_level(n: f64, level: f64) -> Self {
+        let q64 = level.powf(1.0 / n);
+        Self {
+            cubic: Cubic::from_shape(CubicShape::hermite_at(n, level)),
+            rational: Rational::at_level(n, level),
             q: T::c(q64),
             q64,
-        })
+        }
     }
 }
 

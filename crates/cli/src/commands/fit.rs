@@ -1,0 +1,336 @@
+//! `fastbrdf fit` and `fastbrdf pareto`: coefficients that minimise the error over the whole
+//! lobe, and error against cost for every lobe (fastbrdf-analysis::fit).
+
+use super::analysis::bar;
+use crate::CliError;
+use fastbrdf::Kind;
+use fastbrdf::batch::{Input, Kernel};
+use fastbrdf_analysis::fit::{self, Family, Metric};
+use fastbrdf_analysis::plot::{Point, save_scatter};
+use fastbrdf_analysis::range;
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf fit --family power16 --reference pow --n 1..1000:3\n  \
+fastbrdf fit --family exp2 --reference pow --n 8,16,100 --metric max-rel-epicentre\n  \
+fastbrdf fit --family beckmann-power16 --reference beckmann-ct --m 0.05..0.6:0.05 --json"
+)]
+pub struct FitArgs {
+    /// power4, power8, power16, exp2, cubic-rational or beckmann-power16.
+    #[arg(long, value_parser = ["power4", "power8", "power16", "exp2", "cubic-rational", "beckmann-power16"])]
+    family: String,
+    /// The exact model: pow for the lobe families, beckmann-ct for beckmann-power16.
+    #[arg(long)]
+    reference: String,
+    /// Exponents (lobe families): LO..HI[:STEP] or a list.
+    #[arg(long, conflicts_with = "m")]
+    n: Option<String>,
+    /// Slopes (beckmann-power16): LO..HI[:STEP] or a list.
+    #[arg(long)]
+    m: Option<String>,
+    /// What to minimise.
+    #[arg(long, default_value = "max-abs", value_parser = ["max-abs", "max-rel-epicentre", "rms"])]
+    metric: String,
+    /// Print JSON: {"family", "metric", "rows": [{param, coefficient, error, untuned_coefficient,
+    /// untuned_error}], "closed_form": {r, max_coefficient_deviation, worst_gain, worst_gain_at}}.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
+    let family = Family::parse(&a.family).expect("clap checked it");
+    let metric = Metric::parse(&a.metric).expect("clap checked it");
+    let want_ref = if family.is_microfacet() {
+        "beckmann-ct"
+    } else {
+        "pow"
+    };
+    fastbrdf::registry::find(&a.reference)?;
+    if a.reference != want_ref {
+        return Err(CliError::input(format!(
+            "--reference {}: the {} family approximates {want_ref}",
+            a.reference,
+            family.name()
+        )));
+    }
+    let (text, step, name, lo, hi) = match (&a.n, &a.m, family.is_microfacet()) {
+        (Some(n), None, false) => (n, 1.0, "n", 1.0, 10000.0),
+        (None, Some(m), true) => (m, 0.01, "alpha", 0.01, 1.0),
+        (_, _, true) => {
+            return Err(CliError::input(
+                "the beckmann-power16 family takes --m RANGE",
+            ));
+        }
+        _ => return Err(CliError::input("the lobe families take --n RANGE")),
+    };
+    let ps = range::parse(text, step)
+        .map_err(|e| CliError::input(format!("--{}: {e}", if name == "n" { "n" } else { "m" })))?;
+    if let Some(bad) = ps.iter().find(|p| !(**p >= lo && **p <= hi)) {
+        return Err(CliError::input(format!(
+            "{name} = {bad} is outside [{lo}, {hi}]"
+        )));
+    }
+    let pb = bar(ps.len() as u64, "fitting");
+    let rows = fit::fit(family, metric, &ps, &|| pb.inc(1));
+    pb.finish_and_clear();
+    let closed = (!family.is_microfacet() && rows.len() >= 5)
+        .then(|| fit::closed_form(family, metric, &rows));
+    if a.json {
+        let v = serde_json::json!({"family": family.name(), "metric": a.metric, "rows": rows, "closed_form": closed});
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&v).expect("serialisable")
+        );
+        return Ok(());
+    }
+    println!(
+        "{} against {} ({}), optimal coefficient per {name}:",
+        family.name(),
+        a.reference,
+        a.metric
+    );
+    println!(
+        "  {name:>8} {:>14} {:>12} {:>14} {:>12} {:>7}",
+        "coefficient", "error", "untuned coef", "untuned err", "ratio"
+    );
+    let shown: Vec<_> = if rows.len() <= 30 {
+        rows.iter().collect()
+    } else {
+        rows.iter()
+            .step_by(rows.len().div_ceil(20))
+            .chain(rows.last())
+            .collect()
+    };
+    for r in shown {
+        let ratio = if r.untuned_error > 0.0 {
+            format!("{:.3}", r.error / r.untuned_error)
+        } else {
+            "exact".into()
+        };
+        println!(
+            "  {:>8} {:>14.8} {:>12.6e} {:>14.8} {:>12.6e} {:>7}",
+            r.param, r.coefficient, r.error, r.untuned_coefficient, r.untuned_error, ratio
+        );
+    }
+    let worst = rows
+        .iter()
+        .filter(|r| r.param >= 8.0 && r.untuned_error > 1e-9)
+        .map(|r| r.error / r.untuned_error)
+        .fold(0.0, f64::max);
+    println!("\nworst tuned / untuned error over {name} >= 8: {worst:.4}");
+    if let Some(c) = closed {
+        let what = if family == Family::CubicRational {
+            "Q(n) = R(1/n)"
+        } else {
+            "k(n) = k0(n) R(1/n)"
+        };
+        println!("closed form {what}, R(x) = r0 + r1 x + r2 x^2 + r3 x^3 + r4 x^4:");
+        println!(
+            "  r = [{}]",
+            c.r.iter()
+                .map(|v| format!("{v:e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        println!(
+            "  its own error: coefficient within {:.2e} of the optima; tuned / untuned error with it <= {:.4} (worst at {name} = {})",
+            c.max_coefficient_deviation, c.worst_gain, c.worst_gain_at
+        );
+    }
+    Ok(())
+}
+
+/// Every lobe against `pow` (the energy-normalised flog variants are left out: their scale
+/// differs from `pow` by design and the energy tests cover them).
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown"
+)]
+pub struct ParetoArgs {
+    /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1000, max_abs_8_1000,
+    /// max_rel_epicentre_8_1000, pareto}]}.
+    #[arg(long, conflicts_with = "markdown")]
+    json: bool,
+    /// Print the Markdown table README shows.
+    #[arg(long)]
+    markdown: bool,
+    /// The plot (PNG and SVG), without extension.
+    #[arg(long, default_value = "fastbrdf-out/pareto")]
+    out: PathBuf,
+    /// Use this saved `fastbrdf bench --json` run for the SIMD throughput instead of measuring.
+    #[arg(long, value_name = "BENCH.json")]
+    bench: Option<PathBuf>,
+}
+
+#[derive(serde::Serialize, Clone)]
+struct ParetoRow {
+    model: &'static str,
+    ops: String,
+    simd_evals_per_s: f64,
+    max_abs_1_1000: f64,
+    max_abs_8_1000: f64,
+    max_rel_epicentre_8_1000: f64,
+    pareto: bool,
+}
+
+fn throughput(id: &str) -> f64 {
+    let x: Vec<f32> = (0..4096).map(|i| (i as f32 + 0.5) / 4096.0).collect();
+    let mut out = vec![0.0f32; 4096];
+    let k = Kernel::new(id, &[("n", "200")]).expect("lobe kernels build");
+    let t = fastbrdf_analysis::speed::time(
+        || k.eval(Input::Cos(&x), &mut out).expect("sizes match"),
+        std::time::Duration::from_millis(60),
+    );
+    4096.0 / t
+}
+
+pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
+    let saved: Option<fastbrdf_analysis::speed::Report> = match &a.bench {
+        None => None,
+        Some(p) => Some(
+            serde_json::from_str(
+                &std::fs::read_to_string(p)
+                    .map_err(|e| CliError::input(format!("cannot read {}: {e}", p.display())))?,
+            )
+            .map_err(|e| {
+                CliError::input(format!(
+                    "{}: not a `fastbrdf bench --json` run: {e}",
+                    p.display()
+                ))
+            })?,
+        ),
+    };
+    let lobes: Vec<&'static fastbrdf::ModelInfo> = fastbrdf::registry::all()
+        .iter()
+        .map(|e| &e.info)
+        .filter(|i| i.kind == Kind::Lobe && i.id != "pow" && !i.id.starts_with("flog-normalized"))
+        .collect();
+    let pb = bar(lobes.len() as u64, "pareto");
+    let mut rows: Vec<ParetoRow> = lobes
+        .iter()
+        .map(|info| {
+            let worst = |lo: f64, metric, zone| {
+                let b = fastbrdf::ErrorBound {
+                    reference: "pow",
+                    metric,
+                    zone,
+                    param: ("n", lo, 1000.0),
+                    bound: 0.0,
+                };
+                fastbrdf::accuracy::worst(info.id, &b)
+                    .map(|w| w.err)
+                    .unwrap_or(f64::NAN)
+            };
+            let o = info.ops;
+            let speed = match &saved {
+                Some(r) => r
+                    .kernels
+                    .iter()
+                    .find(|k| k.model == info.id && k.variant == "simd" && k.batch == 4096)
+                    .map(|k| k.evals_per_s)
+                    .unwrap_or(f64::NAN),
+                None => throughput(info.id),
+            };
+            pb.inc(1);
+            ParetoRow {
+                model: info.id,
+                ops: format!(
+                    "{}/{}/{}/{}/{}",
+                    o.mul, o.add, o.div, o.sqrt, o.transcendental
+                ),
+                simd_evals_per_s: speed,
+                max_abs_1_1000: worst(1.0, fastbrdf::Metric::MaxAbs, fastbrdf::Zone::All),
+                max_abs_8_1000: worst(8.0, fastbrdf::Metric::MaxAbs, fastbrdf::Zone::All),
+                max_rel_epicentre_8_1000: worst(
+                    8.0,
+                    fastbrdf::Metric::MaxRel,
+                    fastbrdf::Zone::Epicentre,
+                ),
+                pareto: false,
+            }
+        })
+        .collect();
+    pb.finish_and_clear();
+    // Pareto front on (cost = 1 / throughput, max abs error over n in [8, 1000]).
+    for i in 0..rows.len() {
+        let (ci, ei) = (1.0 / rows[i].simd_evals_per_s, rows[i].max_abs_8_1000);
+        rows[i].pareto = !rows.iter().enumerate().any(|(j, r)| {
+            let (cj, ej) = (1.0 / r.simd_evals_per_s, r.max_abs_8_1000);
+            j != i && cj <= ci && ej <= ei && (cj < ci || ej < ei)
+        });
+    }
+    rows.sort_by(|a, b| b.simd_evals_per_s.total_cmp(&a.simd_evals_per_s));
+    let front: Vec<(f64, f64)> = {
+        let mut f: Vec<(f64, f64)> = rows
+            .iter()
+            .filter(|r| r.pareto)
+            .map(|r| (1e9 / r.simd_evals_per_s, r.max_abs_8_1000))
+            .collect();
+        f.sort_by(|a, b| a.0.total_cmp(&b.0));
+        f
+    };
+    let points: Vec<Point> = rows
+        .iter()
+        .map(|r| Point {
+            label: r.model.into(),
+            x: 1e9 / r.simd_evals_per_s,
+            y: r.max_abs_8_1000,
+            highlight: r.pareto,
+        })
+        .collect();
+    let [png, _] = save_scatter(
+        "Lobes: max |error| against cos^n (n = 8..1000) and SIMD cost",
+        "ns per evaluation (SIMD, one core, batch 4096)",
+        "max absolute error, n = 8..1000",
+        &front,
+        &points,
+        &a.out,
+    )
+    .map_err(|e| CliError {
+        code: 1,
+        message: e,
+    })?;
+    eprintln!("wrote {}", png.display());
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&serde_json::json!({"models": rows}))
+                .expect("serialisable")
+        );
+    } else if a.markdown {
+        println!(
+            "| model | ops m/a/d/s/t | SIMD evals/s | max abs, n 1..1000 | max abs, n 8..1000 | max rel epicentre, n 8..1000 | Pareto |\n|---|---|---|---|---|---|---|"
+        );
+        for r in &rows {
+            println!(
+                "| `{}` | {} | {:.2} G | {:.4} | {:.5} | {:.5} | {} |",
+                r.model,
+                r.ops,
+                r.simd_evals_per_s / 1e9,
+                r.max_abs_1_1000,
+                r.max_abs_8_1000,
+                r.max_rel_epicentre_8_1000,
+                if r.pareto { "yes" } else { "" }
+            );
+        }
+    } else {
+        println!(
+            "{:<26} {:>13} {:>12} {:>12} {:>12} {:>12}  pareto",
+            "lobe", "ops m/a/d/s/t", "SIMD eval/s", "abs n1-1000", "abs n8-1000", "rel epi 8+"
+        );
+        for r in &rows {
+            println!(
+                "{:<26} {:>13} {:>11.2}G {:>12.5} {:>12.5} {:>12.5}  {}",
+                r.model,
+                r.ops,
+                r.simd_evals_per_s / 1e9,
+                r.max_abs_1_1000,
+                r.max_abs_8_1000,
+                r.max_rel_epicentre_8_1000,
+                if r.pareto { "*" } else { "" }
+            );
+        }
+    }
+    Ok(())
+}

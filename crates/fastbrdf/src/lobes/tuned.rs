@@ -1,0 +1,221 @@
+//! `power4-tuned`, `power8-tuned`, `power16-tuned`, `sg-tuned`, `cubic-rational-tuned`: the
+//! seeds' and engines' one-coefficient families with the coefficient chosen to minimise the
+//! maximum absolute error against `c^n` over the whole lobe (minimax), instead of matching the
+//! value and slope at one point.
+//!
+//! - `powerG-tuned`: `max(0, 1 + s (c - 1))^g` with `s(n) = (n/g) R(1/n)`;
+//! - `sg-tuned`: `exp2(a (c - 1))` with `a(n) = (n / ln 2) R(1/n)` (UE4's `PhongApprox` is a
+//!   member of this family with `a = 1.4427 (n + 0.775)`);
+//! - `cubic-rational-tuned`: seed 003's cubic-rational with its junction at `c^n = Q(n)`,
+//!   `Q(n) = R(1/n)` (the seed fixes Q = 0.5; the optimum is near 0.2).
+//!
+//! `R(x) = r0 + r1 x + r2 x^2 + r3 x^3 + r4 x^4` is a least-squares fit, in x = 1/n, of the
+//! per-n minimax coefficients for n = 1..1000 step 3, printed by
+//! `fastbrdf fit --family F --reference pow --n 1..1000:3` (its "closed form" lines). The
+//! closed form reproduces the per-n optima to 2e-6 (power, exp2) and 6e-4 (cubic-rational, whose
+//! error is flat in Q); the resulting errors are the documented bounds in the registry.
+//! Cost at run time: nothing per evaluation (the coefficient is computed once per material).
+//! A power form at n = g is exactly `c^g` untuned: there the tuned slope is set to n/g exactly.
+//!
+//! Source: this project (fastbrdf). Costs are those of the untuned forms.
+//!
+//! Below the junction `q = Q^(1/n)`, the rational `c / (a - b c)` matched to `c^n` in value
+//! `Q` and slope `n Q / q` at `q` is `Q c / (n (q - c) + c)` (`a = n q / Q`, `b = (n - 1) / Q`;
+//! at `Q = 0.5` this is seed 003's `c / (2n 0.5^(1/n) - (2n - 2) c)`). Above it, the Hermite cubic
+//! through (0, 0), (1, 1) matched in value and slope at `q` (`CubicShape::hermite_at`).
+
+use super::cubic::CubicShape;
+
+/// The generalised cubic-rational lobe at exponent `n`, junction level `level`, cosine `c`, in
+/// f64 (for fitting; the models evaluate the same formula in `Real`).
+pub fn cubic_rational_at(n: f64, level: f64, c: f64) -> f64 {
+    let c = c.clamp(0.0, 1.0);
+    let xq = (level.ln() / n).exp_m1();
+    let q = 1.0 + xq;
+    if c >= q {
+        CubicShape::hermite_at(n, level).raw(c).max(0.0)
+    } else {
+        let x = c - 1.0;
+        level * c / (n * (xq - x) + c)
+    }
+}
+
+/// `R(x)` of each family (see the module header).
+pub const R_POWER4: [f64; 5] = [
+    0.845_335_433_279_367_6,
+    0.559_867_309_187_095_9,
+    0.214_570_070_822_415_1,
+    0.096_051_206_771_556_17,
+    -0.054_783_826_505_451_584,
+];
+pub const R_POWER8: [f64; 5] = [
+    0.919_956_178_174_037_4,
+    0.609_703_839_919_813_8,
+    0.233_146_132_280_650_26,
+    0.105_353_502_679_207_22,
+    -0.071_127_741_827_098_58,
+];
+pub const R_POWER16: [f64; 5] = [
+    0.959_284_230_404_340_6,
+    0.635_838_170_125_023_2,
+    0.242_845_317_123_844_88,
+    0.109_981_774_898_766_16,
+    -0.079_461_413_863_993_32,
+];
+pub const R_EXP2: [f64; 5] = [
+    0.999_999_763_292_658_8,
+    0.662_844_946_582_466_1,
+    0.252_852_961_115_901_8,
+    0.114_617_347_981_534_49,
+    -0.087_937_969_837_646_15,
+];
+pub const R_CUBIC_RATIONAL: [f64; 5] = [
+    0.203_785_803_593_783_57,
+    -0.354_061_769_250_445_5,
+    -0.171_661_918_416_914_97,
+    -1.735_324_838_165_574_4,
+    2.082_652_596_938_463_5,
+];
+
+/// `R(1/n)`.
+pub fn poly(r: &[f64; 5], n: f64) -> f64 {
+    let x = 1.0 / n;
+    r[0] + x * (r[1] + x * (r[2] + x * (r[3] + x * r[4])))
+}
+
+/// The tuned slope of `max(0, 1 + s (c - 1))^g` at exponent `n` (`g` = 4, 8 or 16).
+pub fn power_slope(g: u32, n: f64) -> f64 {
+    let r = match g {
+        4 => &R_POWER4,
+        8 => &R_POWER8,
+        _ => &R_POWER16,
+    };
+    if n == f64::from(g) {
+        1.0
+    } else {
+        n / f64::from(g) * poly(r, n)
+    }
+}
+
+/// The tuned rate of `exp2(a (c - 1))` at exponent `n`.
+pub fn exp2_rate(n: f64) -> f64 {
+    n / std::f64::consts::LN_2 * poly(&R_EXP2, n)
+}
+
+/// The tuned junction level of the cubic-rational lobe at exponent `n`, kept in (0.02, 0.9).
+pub fn cubic_rational_level(n: f64) -> f64 {
+    poly(&R_CUBIC_RATIONAL, n).clamp(0.02, 0.9)
+}
+
+use super::power::Power;
+use super::rational::CubicRational;
+use super::sg::Exp2Lobe;
+use crate::error::Result;
+use crate::model::{ErrorBound, Kind, Metric, Model, ModelInfo, Ops, Zone};
+use crate::params::{self, Params};
+use crate::real::Real;
+use crate::registry::Entry;
+
+macro_rules! tuned_info {
+    ($id:literal, $formula:literal, $ops:expr, $abs:expr, $abs8:expr) => {
+        ModelInfo {
+            id: $id,
+            kind: Kind::Lobe,
+            params: &[params::N],
+            formula: $formula,
+            source: "fastbrdf: minimax-tuned coefficient (lobes/tuned.rs)",
+            ops: $ops,
+            bounds: &[
+                ErrorBound {
+                    reference: "pow",
+                    metric: Metric::MaxAbs,
+                    zone: Zone::All,
+                    param: ("n", 1.0, 1000.0),
+                    bound: $abs,
+                },
+                ErrorBound {
+                    reference: "pow",
+                    metric: Metric::MaxAbs,
+                    zone: Zone::All,
+                    param: ("n", 8.0, 1000.0),
+                    bound: $abs8,
+                },
+            ],
+            f32_bound: 1e-6,
+            note: "coefficient from a closed form fitted to per-n minimax optima",
+        }
+    };
+}
+
+pub const INFO_POWER4: ModelInfo = tuned_info!(
+    "power4-tuned",
+    "max(0, 1 + s(n)(c - 1))^4, s(n) = (n/4) R4(1/n)",
+    Ops::new(3, 1, 0, 0, 0),
+    0.117,
+    0.0331
+);
+pub const INFO_POWER8: ModelInfo = tuned_info!(
+    "power8-tuned",
+    "max(0, 1 + s(n)(c - 1))^8, s(n) = (n/8) R8(1/n)",
+    Ops::new(4, 1, 0, 0, 0),
+    0.131,
+    0.0161
+);
+pub const INFO_POWER16: ModelInfo = tuned_info!(
+    "power16-tuned",
+    "max(0, 1 + s(n)(c - 1))^16, s(n) = (n/16) R16(1/n)",
+    Ops::new(5, 1, 0, 0, 0),
+    0.138,
+    0.0082
+);
+pub const INFO_SG: ModelInfo = tuned_info!(
+    "sg-tuned",
+    "exp2(a(n)(c - 1)), a(n) = (n / ln 2) Re(1/n)",
+    Ops::new(1, 1, 0, 0, 1),
+    0.144,
+    0.0162
+);
+pub const INFO_CUBIC_RATIONAL: ModelInfo = tuned_info!(
+    "cubic-rational-tuned",
+    "seed 003's cubic above c^n = Q(n), its rational below, Q(n) = Rq(1/n)",
+    Ops::new(3, 4, 0, 0, 0),
+    0.0414,
+    0.0414
+);
+
+pub const ENTRY_POWER4: Entry = Entry {
+    info: INFO_POWER4,
+    build32: build::<f32, 4>,
+    build64: build::<f64, 4>,
+};
+pub const ENTRY_POWER8: Entry = Entry {
+    info: INFO_POWER8,
+    build32: build::<f32, 8>,
+    build64: build::<f64, 8>,
+};
+pub const ENTRY_POWER16: Entry = Entry {
+    info: INFO_POWER16,
+    build32: build::<f32, 16>,
+    build64: build::<f64, 16>,
+};
+pub const ENTRY_SG: Entry = Entry {
+    info: INFO_SG,
+    build32: build::<f32, 1>,
+    build64: build::<f64, 1>,
+};
+pub const ENTRY_CUBIC_RATIONAL: Entry = Entry {
+    info: INFO_CUBIC_RATIONAL,
+    build32: build::<f32, 3>,
+    build64: build::<f64, 3>,
+};
+
+fn build<T: Real, const W: u32>(p: &Params) -> Result<Model<T>> {
+    let n = params::check("tuned", &params::N, p.num("n"))?;
+    Ok(Model::Lobe(match W {
+        4 => Box::new(Power::<T, 2>::with_slope(power_slope(4, n))),
+        8 => Box::new(Power::<T, 3>::with_slope(power_slope(8, n))),
+        16 => Box::new(Power::<T, 4>::with_slope(power_slope(16, n))),
+        1 => Box::new(Exp2Lobe::<T>::with_rate(exp2_rate(n))),
+        _ => Box::new(CubicRational::<T>::at_level(n, cubic_rational_level(n))),
+    }))
+}
