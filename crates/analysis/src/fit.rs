@@ -235,11 +235,51 @@ pub fn error_of(family: Family, metric: Metric, p: f64, k: f64) -> f64 {
     )
 }
 
+/// `Int = integral_0^1 f(c) c dc` of the family member (lobe families), for normalisation.
+pub fn member_integral(family: Family, p: f64, k: f64) -> f64 {
+    let mut breaks = vec![];
+    if let Family::Power4 | Family::Power8 | Family::Power16 = family {
+        breaks.push((1.0 - 1.0 / k).max(0.0));
+    }
+    if family == Family::CubicRational {
+        breaks.push(k.powf(1.0 / p));
+    }
+    breaks.extend([1.0 - 1.0 / p, 1.0 - 4.0 / p, 1.0 - 16.0 / p]);
+    fastbrdf::quad::integrate(|c| family.eval(k, p, c) * c, 0.0, 1.0, &breaks, 1e-10).0
+}
+
+/// The error of the energy-normalised member against the normalised reference,
+/// `|coef_f f - coef_pow c^n| / coef_pow` with `coef = 1 / (2 pi Int)` (`coef_pow = (n + 2) / (2 pi)`):
+/// the shapes compared at equal energy, in units of the normalised reference's peak.
+pub fn error_of_normalized(family: Family, metric: Metric, p: f64, k: f64) -> f64 {
+    let ratio = (1.0 / (p + 2.0)) / member_integral(family, p, k);
+    let xs = samples(family, p);
+    lobe_error(
+        &|c| ratio * family.eval(k, p, c),
+        &|c| family.reference(p, c),
+        &xs,
+        metric,
+        1.0,
+    )
+}
+
 /// The optimal coefficient at parameter `p`.
 pub fn fit_one(family: Family, metric: Metric, p: f64) -> FitRow {
+    fit_one_with(family, metric, p, false)
+}
+
+/// The optimal coefficient at parameter `p`; `normalized` compares the energy-normalised
+/// member with the energy-normalised reference (lobe families only).
+pub fn fit_one_with(family: Family, metric: Metric, p: f64, normalized: bool) -> FitRow {
     let (lo, hi) = family.bracket(p);
     let k0 = family.untuned(p);
-    let obj = |k: f64| error_of(family, metric, p, k);
+    let obj = |k: f64| {
+        if normalized {
+            error_of_normalized(family, metric, p, k)
+        } else {
+            error_of(family, metric, p, k)
+        }
+    };
     // Scan (linear for brackets that include zero or negative values, else log-spaced).
     let mut pts: Vec<f64> = (0..=60)
         .map(|i| {
@@ -291,10 +331,21 @@ pub fn fit(
     params: &[f64],
     progress: &(dyn Fn() + Sync),
 ) -> Vec<FitRow> {
+    fit_with(family, metric, params, false, progress)
+}
+
+/// As `fit`, optionally for the energy-normalised forms.
+pub fn fit_with(
+    family: Family,
+    metric: Metric,
+    params: &[f64],
+    normalized: bool,
+    progress: &(dyn Fn() + Sync),
+) -> Vec<FitRow> {
     params
         .par_iter()
         .map(|&p| {
-            let r = fit_one(family, metric, p);
+            let r = fit_one_with(family, metric, p, normalized);
             progress();
             r
         })

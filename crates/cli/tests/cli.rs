@@ -1003,6 +1003,29 @@ fn fit_and_pareto_commands() {
         assert!(e <= 0.5 * u || u < 1e-12, "{row}");
     }
     assert_eq!(v["closed_form"]["r"].as_array().unwrap().len(), 5);
+    let r = fastbrdf(
+        &[
+            "fit",
+            "--family",
+            "power16",
+            "--reference",
+            "pow",
+            "--n",
+            "40,200",
+            "--normalized",
+            "--json",
+        ],
+        "",
+    );
+    assert!(r.status.success(), "{}", stderr(&r));
+    let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
+    assert_eq!(v["normalized"], true);
+    for row in v["rows"].as_array().unwrap() {
+        assert!(
+            row["error"].as_f64().unwrap() < row["untuned_error"].as_f64().unwrap(),
+            "{row}"
+        );
+    }
     for (args, expected) in [
         (
             vec![

@@ -32,7 +32,11 @@ pub struct FitArgs {
     /// What to minimise.
     #[arg(long, default_value = "max-abs", value_parser = ["max-abs", "max-rel-epicentre", "rms"])]
     metric: String,
-    /// Print JSON: {"family", "metric", "rows": [{param, coefficient, error, untuned_coefficient,
+    /// Fit the energy-normalised forms: coef(n) lobe against (n + 2)/(2 pi) c^n, coef(n) by
+    /// quadrature for every candidate coefficient (lobe families).
+    #[arg(long)]
+    normalized: bool,
+    /// Print JSON: {"family", "metric", "normalized", "rows": [{param, coefficient, error, untuned_coefficient,
     /// untuned_error}], "closed_form": {r, max_coefficient_deviation, worst_gain, worst_gain_at}}.
     #[arg(long)]
     json: bool,
@@ -72,20 +76,28 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         )));
     }
     let pb = bar(ps.len() as u64, "fitting");
-    let rows = fit::fit(family, metric, &ps, &|| pb.inc(1));
+    if a.normalized && family.is_microfacet() {
+        return Err(CliError::input("--normalized applies to the lobe families"));
+    }
+    let rows = fit::fit_with(family, metric, &ps, a.normalized, &|| pb.inc(1));
     pb.finish_and_clear();
     let closed = (!family.is_microfacet() && rows.len() >= 5)
         .then(|| fit::closed_form(family, metric, &rows));
     if a.json {
-        let v = serde_json::json!({"family": family.name(), "metric": a.metric, "rows": rows, "closed_form": closed});
+        let v = serde_json::json!({"family": family.name(), "metric": a.metric, "normalized": a.normalized, "rows": rows, "closed_form": closed});
         println!(
             "{}",
             serde_json::to_string_pretty(&v).expect("serialisable")
         );
         return Ok(());
     }
+    let norm = if a.normalized {
+        ", energy-normalised forms, errors in units of the normalised reference's peak"
+    } else {
+        ""
+    };
     println!(
-        "{} against {} ({}), optimal coefficient per {name}:",
+        "{} against {} ({}{norm}), optimal coefficient per {name}:",
         family.name(),
         a.reference,
         a.metric
