@@ -382,46 +382,22 @@ pub fn closed_form_coefficient(family: Family, r: &[f64; 5], p: f64) -> f64 {
 
 /// Fits the closed form to per-parameter optima (lobe families).
 pub fn closed_form(family: Family, metric: Metric, rows: &[FitRow]) -> ClosedForm {
-    let m = 5;
-    let mut a = vec![vec![0.0; m + 1]; m];
-    for r in rows {
-        let x = 1.0 / r.param;
-        let y = if ratio_form(family) {
-            r.coefficient / r.untuned_coefficient
-        } else {
-            r.coefficient
-        };
-        let pw: Vec<f64> = (0..m).map(|j| x.powi(j as i32)).collect();
-        for j in 0..m {
-            for k in 0..m {
-                a[j][k] += pw[j] * pw[k];
+    let xs: Vec<Vec<f64>> = rows
+        .iter()
+        .map(|r| (0..5).map(|j| (1.0 / r.param).powi(j)).collect())
+        .collect();
+    let ys: Vec<f64> = rows
+        .iter()
+        .map(|r| {
+            if ratio_form(family) {
+                r.coefficient / r.untuned_coefficient
+            } else {
+                r.coefficient
             }
-            a[j][m] += pw[j] * y;
-        }
-    }
-    for col in 0..m {
-        let piv = (col..m)
-            .max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))
-            .unwrap_or(col);
-        a.swap(col, piv);
-        for row in 0..m {
-            if row != col && a[col][col] != 0.0 {
-                let f = a[row][col] / a[col][col];
-                let pivot = a[col].clone();
-                for (x, p) in a[row].iter_mut().zip(pivot) {
-                    *x -= f * p;
-                }
-            }
-        }
-    }
-    let mut r = [0.0; 5];
-    for j in 0..m {
-        r[j] = if a[j][j] != 0.0 {
-            a[j][m] / a[j][j]
-        } else {
-            0.0
-        };
-    }
+        })
+        .collect();
+    let beta = crate::normalize::lstsq(&xs, &ys, &vec![1.0; ys.len()]);
+    let r: [f64; 5] = std::array::from_fn(|j| beta[j]);
     let (mut dev, mut gain, mut at) = (0.0f64, 0.0f64, 0.0);
     for row in rows {
         let k = closed_form_coefficient(family, &r, row.param);

@@ -119,8 +119,8 @@ fn eval_form(form: Form, k: &[f64], n: f64) -> f64 {
 }
 
 /// Weighted linear least squares (weights `w`) of `y ~ sum_j beta_j x_j`, by normal equations
-/// with partial pivoting (at most 3 unknowns here).
-fn lstsq(xs: &[Vec<f64>], y: &[f64], w: &[f64]) -> Vec<f64> {
+/// with partial pivoting (a handful of unknowns).
+pub fn lstsq(xs: &[Vec<f64>], y: &[f64], w: &[f64]) -> Vec<f64> {
     let m = xs[0].len();
     let mut a = vec![vec![0.0; m + 1]; m];
     for (i, row) in xs.iter().enumerate() {

@@ -196,24 +196,27 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 
 /// Renders `c` to `base.png` and `base.svg`; returns both paths.
 pub fn save(c: &Chart, base: &Path) -> Result<[PathBuf; 2], String> {
+    render_both(base, |root| draw(root, c), |root| draw(root, c))
+}
+
+/// Draws a picture twice, on a bitmap and on an SVG string, and writes `base.png` and
+/// `base.svg` atomically (the drawing code is passed once per backend type).
+fn render_both(
+    base: &Path,
+    bitmap: impl FnOnce(DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
+    svg_draw: impl FnOnce(DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
+) -> Result<[PathBuf; 2], String> {
     register_font();
     let (w, h) = SIZE;
     let mut rgb = vec![255u8; (w * h * 3) as usize];
-    draw(
-        BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area(),
-        c,
-    )?;
+    bitmap(BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area())?;
     let mut png = Vec::new();
     image::codecs::png::PngEncoder::new(&mut png)
         .write_image_impl(&rgb, w, h)
         .map_err(|e| format!("PNG encoding: {e}"))?;
     let mut svg = String::new();
-    draw(
-        SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
-        c,
-    )?;
-    let png_path = base.with_extension("png");
-    let svg_path = base.with_extension("svg");
+    svg_draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area())?;
+    let (png_path, svg_path) = (base.with_extension("png"), base.with_extension("svg"));
     write_atomic(&png_path, &png).map_err(|e| format!("{}: {e}", png_path.display()))?;
     write_atomic(&svg_path, svg.as_bytes()).map_err(|e| format!("{}: {e}", svg_path.display()))?;
     Ok([png_path, svg_path])
@@ -249,7 +252,6 @@ pub fn save_scatter(
     points: &[Point],
     base: &Path,
 ) -> Result<[PathBuf; 2], String> {
-    register_font();
     let finite: Vec<&Point> = points
         .iter()
         .filter(|p| p.x > 0.0 && p.y > 0.0 && p.x.is_finite() && p.y.is_finite())
@@ -331,33 +333,10 @@ pub fn save_scatter(
         root.present().map_err(|e| e.to_string())?;
         Ok(())
     }
-    let (w, h) = SIZE;
-    let mut rgb = vec![255u8; (w * h * 3) as usize];
-    draw(
-        BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area(),
-        title,
-        x_label,
-        y_label,
-        front,
-        &finite,
-        (x0, x1, y0, y1),
-    )?;
-    let mut png = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut png)
-        .write_image_impl(&rgb, w, h)
-        .map_err(|e| format!("PNG encoding: {e}"))?;
-    let mut svg = String::new();
-    draw(
-        SVGBackend::with_string(&mut svg, SIZE).into_drawing_area(),
-        title,
-        x_label,
-        y_label,
-        front,
-        &finite,
-        (x0, x1, y0, y1),
-    )?;
-    let (png_path, svg_path) = (base.with_extension("png"), base.with_extension("svg"));
-    write_atomic(&png_path, &png).map_err(|e| format!("{}: {e}", png_path.display()))?;
-    write_atomic(&svg_path, svg.as_bytes()).map_err(|e| format!("{}: {e}", svg_path.display()))?;
-    Ok([png_path, svg_path])
+    let r = (x0, x1, y0, y1);
+    render_both(
+        base,
+        |root| draw(root, title, x_label, y_label, front, &finite, r),
+        |root| draw(root, title, x_label, y_label, front, &finite, r),
+    )
 }

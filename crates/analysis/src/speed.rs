@@ -15,6 +15,7 @@
 //!   loops a user would write naively, `out[i] = c[i].powf(n)`, `out[i] = (-k x[i]).exp()`, and
 //!   the Beckmann formula with one `expf` per element; scalar.
 
+use fastbrdf::accuracy::splitmix;
 use fastbrdf::batch::{Input, Isa, Kernel};
 use fastbrdf::{Kind, Model, registry};
 use rayon::prelude::*;
@@ -153,14 +154,6 @@ pub fn fma_per_s(isa: Isa, budget: Duration) -> f64 {
 }
 
 // ---------- inputs ----------
-
-fn splitmix(state: &mut u64) -> f64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-}
 
 /// Benchmark inputs of one size: cosines uniform in [0, 1] (uniform in solid angle), and
 /// direction pairs uniform over the upper hemisphere.
@@ -311,14 +304,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         },
         budget,
     );
-    kernels.push(KernelRow {
-        model: "powf-loop".into(),
-        variant: "scalar".into(),
-        batch: small,
-        evals_per_s: small as f64 / t,
-        isa: "scalar".into(),
-        fma_fraction: None,
-    });
+    kernels.push(baseline("powf-loop", t));
     progress(1, total);
     let k = black_box(3.0f32);
     let t = time(
@@ -330,14 +316,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         },
         budget,
     );
-    kernels.push(KernelRow {
-        model: "expf-loop".into(),
-        variant: "scalar".into(),
-        batch: small,
-        evals_per_s: small as f64 / t,
-        isa: "scalar".into(),
-        fma_fraction: None,
-    });
+    kernels.push(baseline("expf-loop", t));
     // The Beckmann formula as a user would write it, one expf per element.
     let (inv_a2, scale) = (
         black_box(1.0f32 / 0.09),
@@ -357,14 +336,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         },
         budget,
     );
-    kernels.push(KernelRow {
-        model: "beckmann-expf-loop".into(),
-        variant: "scalar".into(),
-        batch: small,
-        evals_per_s: small as f64 / t,
-        isa: "scalar".into(),
-        fma_fraction: None,
-    });
+    kernels.push(baseline("beckmann-expf-loop", t));
     progress(2, total);
     for (i, (name, params)) in configs.iter().enumerate() {
         let id = registry_id(name);
@@ -441,6 +413,18 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         speedups,
         quick: opts.quick,
     })
+}
+
+/// A naive scalar baseline's row from its time per 4096-element call.
+fn baseline(model: &str, secs: f64) -> KernelRow {
+    KernelRow {
+        model: model.into(),
+        variant: "scalar".into(),
+        batch: 4096,
+        evals_per_s: 4096.0 / secs,
+        isa: "scalar".into(),
+        fma_fraction: None,
+    }
 }
 
 fn find(k: &[KernelRow], model: &str, variant: &str, batch: usize) -> Option<f64> {

@@ -260,19 +260,22 @@ pub fn mixed_error(v32: f32, v64: f64) -> f64 {
     (v32 as f64 - v64).abs() / v64.abs().max(1.0)
 }
 
+/// A uniform number in [0, 1) from SplitMix64, advancing `state` (deterministic test and
+/// benchmark inputs; no statistical claims).
+pub fn splitmix(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+}
+
 /// Direction pairs covering the hemisphere for BRDF checks: normal incidence, random pairs,
 /// near-specular pairs (where narrow lobes live) and a near-grazing back-to-back pair; all
 /// with `cos theta >= 1e-3`. Deterministic for a given `seed`.
 pub fn direction_pairs(count: usize, seed: u64) -> Vec<([f64; 3], [f64; 3])> {
     let mut state = seed;
-    let mut next = move || {
-        // SplitMix64.
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = move || splitmix(&mut state);
     let hemisphere = |next: &mut dyn FnMut() -> f64| {
         let z = 1e-3 + (1.0 - 1e-3) * next();
         let r = (1.0 - z * z).sqrt();
