@@ -1,0 +1,411 @@
+//! Model instances on the GPU: a model id and its parameters become one WGSL function,
+//! `fb_<id>` (dashes as underscores), that calls the library's core functions with the
+//! instance's coefficients as f32 literals.
+//!
+//! The coefficients are computed here in f64 exactly as the CPU batch kernels compute them
+//! (`fastbrdf::batch`, `build` and friends): cubic shapes, rational nodes, tuned slopes and
+//! normalisation integrals need f64 and `expm1`, which a shader does not have. The CPU-GPU
+//! parity tests (`tests/parity.rs`) compare every model through these instances, so a
+//! difference between the two mappings fails a test.
+//!
+//! Signatures of the generated function, by kind:
+//! - lobe: `fn fb_<id>(c: f32) -> f32`
+//! - distribution: `fn fb_<id>(cos_h: f32) -> f32`
+//! - shadowing: `fn fb_<id>(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32` (two-sided)
+//! - Fresnel: `fn fb_<id>(cos_vh: f32) -> f32`
+//! - BRDF: `fn fb_<id>(wi: vec3<f32>, wo: vec3<f32>) -> f32` (local frame, normal +z, no cosine)
+
+use crate::library;
+use fastbrdf::brdf::phong::lobe_integral;
+use fastbrdf::lobes::cubic::CubicShape;
+use fastbrdf::lobes::flog::seed_coef;
+use fastbrdf::lobes::tuned;
+use fastbrdf::microfacet::beckmann_pow::exponent;
+use fastbrdf::model::{Kind, ModelInfo};
+use fastbrdf::params::{Params, Value};
+use fastbrdf::{Error, Result, registry};
+use std::f64::consts::{LN_2, PI};
+
+/// One model with fixed parameters, as WGSL.
+#[derive(Clone, Debug)]
+pub struct Instance {
+    /// The registry entry.
+    pub info: &'static ModelInfo,
+    /// Every resolved parameter (given or default), as text.
+    pub params: Vec<(String, String)>,
+    /// The generated function's name, `fb_<id>`.
+    pub function: String,
+    /// The generated function (WGSL, with a doc comment).
+    pub wrapper: String,
+    /// The coefficients the function reads from `fb_k` (empty with literals).
+    pub coefs: Vec<f32>,
+}
+
+impl Instance {
+    /// Builds the instance of `id` with parameters given as text, validated like
+    /// `fastbrdf::registry::build`, with its coefficients as literals (for exported code).
+    pub fn new(id: &str, given: &[(&str, &str)]) -> Result<Self> {
+        Self::with(id, given, Emit::literals())
+    }
+
+    /// As `new`, with the coefficients in the storage array
+    /// `fb_k: array<f32>` (for the compute and render paths).
+    pub fn with_storage(id: &str, given: &[(&str, &str)]) -> Result<Self> {
+        Self::with(id, given, Emit::storage())
+    }
+
+    /// Builds the instance with coefficients placed as `emit` says.
+    pub fn with(id: &str, given: &[(&str, &str)], emit: Emit) -> Result<Self> {
+        let e = registry::find(id)?;
+        let p = Params::resolve(e.info.id, e.info.params, given)?;
+        let function = function_name(e.info.id);
+        let body = body(&emit, e.info.id, e.info.kind, &p)?;
+        let signature = match e.info.kind {
+            Kind::Lobe => "c: f32",
+            Kind::Distribution => "cos_h: f32",
+            Kind::Shadowing => "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
+            Kind::Fresnel => "cos_vh: f32",
+            Kind::Brdf => "wi: vec3<f32>, wo: vec3<f32>",
+        };
+        let params: Vec<(String, String)> = p
+            .iter()
+            .map(|(k, v)| {
+                let v = match v {
+                    Value::Num(x) => format!("{x}"),
+                    Value::Text(t) => t.clone(),
+                };
+                (k.to_string(), v)
+            })
+            .collect();
+        let shown = if params.is_empty() {
+            "no parameters".to_string()
+        } else {
+            params
+                .iter()
+                .map(|(k, v)| format!("{k} = {v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        let wrapper = format!(
+            "/// {id}: {formula}\n/// Source: {source}. Instance: {shown}.\nfn {function}({signature}) -> f32 {{\n{body}}}\n",
+            id = e.info.id,
+            formula = e.info.formula,
+            source = e.info.source,
+        );
+        Ok(Self {
+            info: &e.info,
+            params,
+            function,
+            wrapper,
+            coefs: emit.values.into_inner(),
+        })
+    }
+
+    /// A self-contained WGSL module: the library items the function needs, then the function.
+    pub fn module_source(&self) -> String {
+        let mut s = library::closure_source(&self.wrapper);
+        s.push('\n');
+        s.push_str(&self.wrapper);
+        s
+    }
+}
+
+/// `fb_` and the id with dashes as underscores.
+pub fn function_name(id: &str) -> String {
+    format!("fb_{}", id.replace('-', "_"))
+}
+
+/// An f32 literal that parses back to the same f32.
+pub fn lit(x: f64) -> String {
+    let f = x as f32;
+    assert!(f.is_finite(), "non-finite coefficient {x}");
+    format!("{f:?}f")
+}
+
+/// Where the coefficients of an instance go: inline as literals (exported code), or into the
+/// storage array `fb_k` (the compute and render paths).
+///
+/// Why both: a shader compiler folds literal constants into reassociated expressions (Mesa
+/// turns the cubic's Newton form `(x - x2) d3` into `x d3 - x2 d3`, which cancels
+/// catastrophically when `d3 ~ 1e8`). Coefficients it cannot see keep the arrangement the CPU
+/// uses; `tests/parity.rs` measures both forms.
+#[derive(Debug, Default)]
+pub struct Emit {
+    uniform: bool,
+    values: std::cell::RefCell<Vec<f32>>,
+}
+
+impl Emit {
+    /// Coefficients as literals.
+    pub fn literals() -> Self {
+        Self::default()
+    }
+    /// Coefficients as `fb_k[i]`.
+    pub fn storage() -> Self {
+        Self {
+            uniform: true,
+            values: Default::default(),
+        }
+    }
+    /// One coefficient.
+    pub fn k(&self, x: f64) -> String {
+        if !self.uniform {
+            return lit(x);
+        }
+        let mut v = self.values.borrow_mut();
+        v.push(x as f32);
+        format!("fb_k[{}]", v.len() - 1)
+    }
+    fn args(&self, xs: &[f64]) -> String {
+        xs.iter().map(|x| self.k(*x)).collect::<Vec<_>>().join(", ")
+    }
+    fn cubic(&self, s: CubicShape) -> String {
+        self.args(&[s.d1, s.d2, s.d3, s.x1, s.x2, s.cut])
+    }
+    /// `(n, xq, level)` of seed 003's rational at `level`.
+    fn rational(&self, n: f64, level: f64) -> String {
+        self.args(&[n, (level.ln() / n).exp_m1(), level])
+    }
+}
+
+/// The call of lobe `id` at exponent `n` on the expression `c` (twin: batch `lobe_op`).
+pub fn lobe_call(e: &Emit, id: &str, n: f64, c: &str) -> Option<String> {
+    let power = |g: u32, s: f64| format!("fb_lobe_power{g}({c}, {})", e.k(s));
+    let cubic_rational = |level: f64| {
+        format!(
+            "fb_lobe_cubic_rational({c}, {}, {}, {})",
+            e.cubic(CubicShape::hermite_at(n, level)),
+            e.rational(n, level),
+            e.k(level.powf(1.0 / n))
+        )
+    };
+    Some(match id {
+        "pow" => format!("fb_lobe_pow({c}, {})", e.k(n)),
+        "schlick" => format!("fb_lobe_schlick({c}, {})", e.k(n)),
+        "schlick-modified" => format!("fb_lobe_schlick_modified({c}, {})", e.k(n)),
+        "gauss" => format!("fb_lobe_gauss({c}, {})", e.k(0.5 * n)),
+        "flog" => format!("fb_lobe_flog({c}, {}, 1.0f, false)", e.k(n)),
+        "flog-normalized" => {
+            format!(
+                "fb_lobe_flog({c}, {}, {}, false)",
+                e.k(n),
+                e.k(seed_coef(n))
+            )
+        }
+        "flog-normalized-clamped" => {
+            format!("fb_lobe_flog({c}, {}, {}, true)", e.k(n), e.k(seed_coef(n)))
+        }
+        "cubic" => format!("fb_lobe_cubic({c}, {})", e.cubic(CubicShape::hermite(n))),
+        "cubic3" => format!(
+            "fb_lobe_cubic({c}, {})",
+            e.cubic(CubicShape::three_point(n, 0.5, 1.0 / 18.0))
+        ),
+        "rational" => format!("fb_lobe_rational({c}, {})", e.rational(n, 0.5)),
+        "cubic-rational" => cubic_rational(0.5),
+        "cubic-rational-tuned" => cubic_rational(tuned::cubic_rational_level(n)),
+        "power4" => power(4, n / 4.0),
+        "power8" => power(8, n / 8.0),
+        "power16" => power(16, n / 16.0),
+        "power4-tuned" => power(4, tuned::power_slope(4, n)),
+        "power8-tuned" => power(8, tuned::power_slope(8, n)),
+        "power16-tuned" => power(16, tuned::power_slope(16, n)),
+        "sg" => format!("fb_lobe_exp2({c}, {})", e.k(n / LN_2)),
+        "sg-tuned" => format!("fb_lobe_exp2({c}, {})", e.k(tuned::exp2_rate(n))),
+        #[allow(clippy::approx_constant)]
+        "ue4-phong-approx" => format!("fb_lobe_exp2({c}, {})", e.k(1.4427 * (n + 0.775))),
+        _ => return None,
+    })
+}
+
+/// The call of distribution `id` at slope `alpha` on `c` (cos theta_h, <= 1) and `s2`
+/// (sin^2 theta_h) (twin: batch `dist_op`).
+pub fn dist_call(e: &Emit, id: &str, alpha: f64, c: &str, s2: &str) -> Option<String> {
+    let a2 = alpha * alpha;
+    let ct = 1.0 / (4.0 * a2);
+    let ex = exponent(alpha);
+    let power = |g: u32| {
+        format!(
+            "fb_d_beckmann_power{g}({c}, {s2}, {}, {})",
+            e.k(ex / g as f64),
+            e.k(ct)
+        )
+    };
+    Some(match id {
+        "beckmann" => format!(
+            "fb_d_beckmann({c}, {s2}, {}, {})",
+            e.k(1.0 / a2),
+            e.k(1.0 / (PI * a2))
+        ),
+        "beckmann-ct" => format!("fb_d_beckmann({c}, {s2}, {}, {})", e.k(1.0 / a2), e.k(ct)),
+        "beckmann-pow" => format!("fb_d_beckmann_pow({c}, {}, {})", e.k(ex), e.k(ct)),
+        "beckmann-power4" => power(4),
+        "beckmann-power8" => power(8),
+        "beckmann-power16" => power(16),
+        _ => return None,
+    })
+}
+
+fn fresnel_call(e: &Emit, id: &str, p: &Params, c: &str) -> String {
+    match id {
+        "none" => "1.0f".into(),
+        "schlick" => format!("fb_f_schlick({c}, {})", e.k(p.num("f0"))),
+        "dielectric" => format!("fb_f_dielectric({c}, {})", e.k(p.num("eta"))),
+        _ => format!(
+            "fb_f_conductor({c}, {}, {})",
+            e.k(p.num("eta")),
+            e.k(p.num("k"))
+        ),
+    }
+}
+
+fn shadow_call(e: &Emit, id: &str, p: &Params, v: &str, l: &str, h: &str, vh: &str) -> String {
+    match id {
+        "v-cavity" => format!("fb_g_v_cavity({v}, {l}, {h}, {vh})"),
+        "smith" => {
+            let a = e.k(p.num("alpha"));
+            format!("fb_g1_smith({v}, {a}) * fb_g1_smith({l}, {a})")
+        }
+        _ => {
+            let a = e.k(p.num("alpha"));
+            format!("fb_g1_smith_rational({v}, {a}) * fb_g1_smith_rational({l}, {a})")
+        }
+    }
+}
+
+const PAIR: &str = "    let p = fb_pair(wi, wo);\n";
+
+fn body(e: &Emit, id: &str, kind: Kind, p: &Params) -> Result<String> {
+    let missing = || Error::MissingParam {
+        model: id.into(),
+        param: "a GPU twin".into(),
+    };
+    Ok(match kind {
+        Kind::Lobe => format!(
+            "    return {};\n",
+            lobe_call(e, id, p.num("n"), "c").ok_or_else(missing)?
+        ),
+        Kind::Distribution => format!(
+            "    let cc = min(cos_h, 1.0);\n    let d = {};\n    return select(0.0, d, cos_h >= FB_COS_MIN);\n",
+            dist_call(e, id, p.num("alpha"), "cc", "(1.0 - cc) * (1.0 + cc)")
+                .ok_or_else(missing)?
+        ),
+        Kind::Fresnel => format!(
+            "    let c = max(cos_vh, 0.0);\n    return {};\n",
+            fresnel_call(e, id.trim_start_matches("fresnel-"), p, "c")
+        ),
+        Kind::Shadowing => {
+            // The scalar model's rule: any non-positive cosine gives 0.
+            let guard = if id == "v-cavity" {
+                "cos_v > 0.0 && cos_l > 0.0 && cos_h > 0.0 && cos_vh > 0.0"
+            } else {
+                "cos_v > 0.0 && cos_l > 0.0"
+            };
+            format!(
+                "    let g = {};\n    return select(0.0, g, {guard});\n",
+                shadow_call(e, id, p, "cos_v", "cos_l", "cos_h", "cos_vh")
+            )
+        }
+        Kind::Brdf => brdf_body(e, id, p)?,
+    })
+}
+
+fn brdf_body(e: &Emit, id: &str, p: &Params) -> Result<String> {
+    Ok(match id {
+        "cook-torrance" => {
+            let k = match p.choice("denominator") {
+                "4" => 0.25,
+                "seed-000" => 1.0,
+                _ => 1.0 / PI,
+            };
+            let d = dist_call(e, p.choice("d"), p.num("alpha"), "p.h.z", "p.sin2_h").ok_or_else(
+                || Error::MissingParam {
+                    model: id.into(),
+                    param: "d".into(),
+                },
+            )?;
+            format!(
+                "{PAIR}    let d = select(0.0, {d}, p.h.z >= FB_COS_MIN);\n    let g = {g};\n    let f = {f};\n    let v = f * d * g * {k} / (p.cos_i * p.cos_o);\n    return select(0.0, v, p.valid);\n",
+                g = shadow_call(
+                    e,
+                    p.choice("g"),
+                    p,
+                    "p.cos_o",
+                    "p.cos_i",
+                    "p.h.z",
+                    "p.cos_ih"
+                ),
+                f = fresnel_call(e, p.choice("f"), p, "p.cos_ih"),
+                k = e.k(k),
+            )
+        }
+        "ward" | "ward-pow" | "ward-power16" => {
+            let (ax, ay) = match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
+                (Some(ax), Some(ay)) => (ax, ay),
+                (None, None) => (p.num("alpha"), p.num("alpha")),
+                _ => {
+                    return Err(Error::MissingParam {
+                        model: id.into(),
+                        param: "alpha_x and alpha_y".into(),
+                    });
+                }
+            };
+            let scale = e.k(1.0 / (4.0 * PI * ax * ay));
+            let ex = 2.0 / (ax * ax);
+            match id {
+                "ward" => format!(
+                    "    return fb_brdf_ward(wi, wo, {}, {}, {scale});\n",
+                    e.k(1.0 / (ax * ax)),
+                    e.k(1.0 / (ay * ay))
+                ),
+                "ward-pow" => format!(
+                    "    return fb_brdf_ward_pow(wi, wo, {}, {scale});\n",
+                    e.k(ex)
+                ),
+                _ => format!(
+                    "    return fb_brdf_ward_power16(wi, wo, {}, {scale});\n",
+                    e.k(ex / 16.0)
+                ),
+            }
+        }
+        "lambert" => format!(
+            "{PAIR}    return select(0.0, {}, p.valid);\n",
+            e.k(p.num("albedo") / PI)
+        ),
+        "phong" | "blinn-phong" => {
+            let normalized = p.choice("norm") == "energy";
+            let n = p.num("n");
+            let lobe = p.choice("lobe");
+            let coef = if normalized {
+                1.0 / (2.0 * PI * lobe_integral(lobe, n)?)
+            } else {
+                1.0
+            };
+            let v = if id == "blinn-phong" {
+                let l = lobe_call(e, lobe, n, "p.h.z").unwrap_or_default();
+                if normalized {
+                    format!("{} * {l} / (4.0 * p.cos_ih)", e.k(coef))
+                } else {
+                    l
+                }
+            } else {
+                format!(
+                    "{} * {}",
+                    e.k(coef),
+                    lobe_call(e, lobe, n, "r_dot_wo").unwrap_or_default()
+                )
+            };
+            let r = if id == "phong" {
+                "    let r_dot_wo = -p.wi.x * p.wo.x - p.wi.y * p.wo.y + p.wi.z * p.wo.z;\n"
+            } else {
+                ""
+            };
+            format!("{PAIR}{r}    let v = {v};\n    return select(0.0, v, p.valid);\n")
+        }
+        _ => {
+            return Err(Error::MissingParam {
+                model: id.into(),
+                param: "a GPU twin".into(),
+            });
+        }
+    })
+}

@@ -1,0 +1,93 @@
+// fastbrdf WGSL library: microfacet distributions D, shadowing G and Fresnel F.
+// Twins: crates/fastbrdf/src/microfacet/* (formulas, sources, bounds) and batch/ops.rs.
+
+/// beckmann, beckmann-ct: scale exp(-tan^2 / alpha^2) / cos^4, given cos and sin^2 of theta_h.
+/// beckmann: scale = 1 / (pi alpha^2) (normalised, Walter et al. 2007); beckmann-ct:
+/// scale = 1 / (4 alpha^2) (Cook & Torrance 1982 as printed in seed 000).
+fn fb_d_beckmann(c: f32, s2: f32, inv_alpha2: f32, scale: f32) -> f32 {
+    let inv_c2 = 1.0 / (c * c);
+    return scale * exp(-(s2 * inv_c2) * inv_alpha2) * (inv_c2 * inv_c2);
+}
+
+/// beckmann-pow (seed 000): scale cos^e, e = 2 / alpha^2 - 4 (one power instead of exp).
+fn fb_d_beckmann_pow(c: f32, e: f32, scale: f32) -> f32 {
+    return scale * pow(c, e);
+}
+
+/// beckmann-power4/8/16 (seed 000): scale max(1 + s (cos - 1), 0)^g, s = (2 / alpha^2 - 4) / g;
+/// cos - 1 computed as -sin^2 / (1 + cos) (no cancellation).
+fn fb_d_beckmann_power4(c: f32, s2: f32, s: f32, scale: f32) -> f32 {
+    return scale * fb_pow4(max(1.0 + s * (-s2 / (1.0 + c)), 0.0));
+}
+
+fn fb_d_beckmann_power8(c: f32, s2: f32, s: f32, scale: f32) -> f32 {
+    return scale * fb_pow8(max(1.0 + s * (-s2 / (1.0 + c)), 0.0));
+}
+
+fn fb_d_beckmann_power16(c: f32, s2: f32, s: f32, scale: f32) -> f32 {
+    return scale * fb_pow16(max(1.0 + s * (-s2 / (1.0 + c)), 0.0));
+}
+
+/// v-cavity (Cook & Torrance 1982): min(1, 2 NH NV / VH, 2 NH NL / VH).
+fn fb_g_v_cavity(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32 {
+    let k = 2.0 * cos_h / cos_vh;
+    return min(min(1.0, k * cos_v), k * cos_l);
+}
+
+/// smith (Walter et al. 2007, eq. 25-27): G1 = 1 / (1 + Lambda(a)), a = 1 / (alpha tan theta),
+/// Lambda = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2.
+fn fb_g1_smith(c: f32, alpha: f32) -> f32 {
+    let sin = sqrt(max((1.0 - c) * (1.0 + c), 0.0));
+    let a = c / (alpha * sin);
+    let lambda = 0.5 * (exp(-a * a) * FB_INV_SQRT_PI / a - fb_erfc(a));
+    return select(1.0 / (1.0 + lambda), 1.0, c >= 1.0);
+}
+
+/// smith-rational (Walter et al. 2007, eq. 27): G1 = (3.535 a + 2.181 a^2) /
+/// (1 + 2.276 a + 2.577 a^2) for a < 1.6, else 1.
+fn fb_g1_smith_rational(c: f32, alpha: f32) -> f32 {
+    let sin = sqrt(max((1.0 - c) * (1.0 + c), 0.0));
+    let a = c / (alpha * sin);
+    let a2 = a * a;
+    let g = (3.535 * a + 2.181 * a2) / (1.0 + 2.276 * a + 2.577 * a2);
+    return select(g, 1.0, a >= 1.6 || c >= 1.0);
+}
+
+/// fresnel-schlick (Schlick 1994): f0 + (1 - f0)(1 - c)^5.
+fn fb_f_schlick(c: f32, f0: f32) -> f32 {
+    let m = 1.0 - fb_clamp01(c);
+    let m2 = m * m;
+    return f0 + (1.0 - f0) * (m2 * m2 * m);
+}
+
+/// fresnel-dielectric: the exact unpolarised Fresnel reflectance of a dielectric of relative
+/// index eta (1 on total internal reflection).
+fn fb_f_dielectric(c_in: f32, eta: f32) -> f32 {
+    let c = fb_clamp01(c_in);
+    let sin2_t = (1.0 - c * c) / (eta * eta);
+    let cos_t = sqrt(max(1.0 - sin2_t, 0.0));
+    let r_par = (eta * c - cos_t) / (eta * c + cos_t);
+    let r_perp = (c - eta * cos_t) / (c + eta * cos_t);
+    let f = (r_par * r_par + r_perp * r_perp) * 0.5;
+    return select(f, 1.0, sin2_t >= 1.0);
+}
+
+/// fresnel-conductor: the exact unpolarised Fresnel reflectance of a conductor eta + i k
+/// (Mitsuba 3's fresnel_conductor arrangement), clamped to [0, 1].
+fn fb_f_conductor(c_in: f32, eta: f32, k: f32) -> f32 {
+    let c = fb_clamp01(c_in);
+    let cos2 = c * c;
+    let sin2 = 1.0 - cos2;
+    let eta2 = eta * eta;
+    let k2 = k * k;
+    let t0 = eta2 - k2 - sin2;
+    let a2b2 = sqrt(t0 * t0 + 4.0 * eta2 * k2);
+    let t1 = a2b2 + cos2;
+    let a = sqrt(max(0.5 * (a2b2 + t0), 0.0));
+    let t2 = 2.0 * c * a;
+    let rs = (t1 - t2) / (t1 + t2);
+    let t3 = cos2 * a2b2 + sin2 * sin2;
+    let t4 = t2 * sin2;
+    let rp = rs * (t3 - t4) / (t3 + t4);
+    return fb_clamp01((rp + rs) * 0.5);
+}
