@@ -1,0 +1,1 @@
+//! Shader export (see the crate docs).

@@ -1,0 +1,1 @@
+//! The GPU renderer (see the crate docs).
