@@ -33,6 +33,12 @@ impl From<fastbrdf::Error> for CliError {
     }
 }
 
+impl From<fastbrdf_gpu::GpuError> for CliError {
+    fn from(e: fastbrdf_gpu::GpuError) -> Self {
+        Self::input(e.to_string())
+    }
+}
+
 #[derive(Parser)]
 #[command(
     name = "fastbrdf",
@@ -82,6 +88,8 @@ enum Command {
     Fit(commands::fit::FitArgs),
     /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot).
     Pareto(commands::fit::ParetoArgs),
+    /// One model as a shader function: WGSL, GLSL, HLSL, MSL, or a BRDF Explorer .brdf file.
+    Shader(commands::shader::Args),
 }
 
 fn main() -> ExitCode {
@@ -101,6 +109,7 @@ fn main() -> ExitCode {
         Command::Demo(a) => commands::demo::run(&a),
         Command::Fit(a) => commands::fit::run_fit(&a),
         Command::Pareto(a) => commands::fit::run_pareto(&a),
+        Command::Shader(a) => commands::shader::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

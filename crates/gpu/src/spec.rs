@@ -296,9 +296,9 @@ fn body(e: &Emit, id: &str, kind: Kind, p: &Params) -> Result<String> {
         Kind::Shadowing => {
             // The scalar model's rule: any non-positive cosine gives 0.
             let guard = if id == "v-cavity" {
-                "cos_v > 0.0 && cos_l > 0.0 && cos_h > 0.0 && cos_vh > 0.0"
+                "(cos_v > 0.0) & (cos_l > 0.0) & (cos_h > 0.0) & (cos_vh > 0.0)"
             } else {
-                "cos_v > 0.0 && cos_l > 0.0"
+                "(cos_v > 0.0) & (cos_l > 0.0)"
             };
             format!(
                 "    let g = {};\n    return select(0.0, g, {guard});\n",

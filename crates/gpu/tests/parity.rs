@@ -204,122 +204,132 @@ fn every_model_matches_the_cpu() {
                 .collect();
             let cpu = registry::build::<f32>(info.id, &given).unwrap();
             let exact = registry::build::<f64>(info.id, &given).unwrap();
-            let instance = Instance::with_storage(info.id, &given).unwrap();
-            let kernel = GpuKernel::new(d, instance).unwrap();
-            let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>);
-            let cos;
-            let sh;
-            let dirs;
-            match info.kind {
-                Kind::Lobe | Kind::Distribution | Kind::Fresnel => {
-                    let n: f64 = config
-                        .iter()
-                        .find(|(k, _)| k == "n")
-                        .map(|(_, v)| v.parse().unwrap())
-                        .unwrap_or(0.0);
-                    cos = cos_grid(info.kind, n);
-                    rows = cos.iter().map(|&c| vec![Some(c)]).collect();
-                    inputs = GpuInput::Cos(&cos);
-                }
-                Kind::Shadowing => {
-                    sh = shadow_grid();
-                    let vcav = info.id == "v-cavity";
-                    rows = (0..sh[0].len())
-                        .map(|i| {
-                            let (v, l, h, vh) = (sh[0][i], sh[1][i], sh[2][i], sh[3][i]);
-                            if vcav {
-                                vec![Some(v), Some(h), Some(vh), Some(l)]
-                            } else {
-                                vec![Some(v), Some(l)]
-                            }
-                        })
-                        .collect();
-                    inputs = GpuInput::Shadow([&sh[0], &sh[1], &sh[2], &sh[3]]);
-                }
-                Kind::Brdf => {
-                    dirs = dir_grid();
-                    rows = (0..dirs[0].len())
-                        .map(|i| dirs.iter().map(|c| Some(c[i])).collect())
-                        .collect();
-                    inputs = GpuInput::Dirs([
-                        &dirs[0], &dirs[1], &dirs[2], &dirs[3], &dirs[4], &dirs[5],
-                    ]);
-                }
-            }
-            let mut out = vec![0.0f32; rows.len()];
-            kernel.eval(d, q, inputs, &mut out).unwrap();
-            let mut worst = (0.0f64, 0usize);
-            let mut plain = 0.0f64;
-            let geometry = LobeGeometry::new(info.id, &config);
-            let n: f64 = config
-                .iter()
-                .find(|(k, _)| k == "n")
-                .map(|(_, v)| v.parse().unwrap())
-                .unwrap_or(0.0);
-            let tol = TOL + PER_N * n;
-            let mut skipped = 0;
-            let lobe_like = info.kind == Kind::Lobe || geometry.is_some();
-            let peak = rows
-                .iter()
-                .map(|r| cpu.eval_row(r).abs() as f64)
-                .fold(0.0, f64::max);
-            for (i, row) in rows.iter().enumerate() {
-                if geometry.as_ref().is_some_and(|g| g.near_mark(row)) {
-                    skipped += 1;
-                    continue;
-                }
-                let want = cpu.eval_row(row);
-                plain = plain.max(if out[i].is_finite() {
-                    mixed_error(out[i], want as f64)
+            // Both forms: coefficients in storage (compute and render paths) and as literals
+            // (exported code), which a compiler may fold into reassociated expressions.
+            for literals in [false, true] {
+                let instance = if literals {
+                    Instance::new(info.id, &given).unwrap()
                 } else {
-                    f64::INFINITY
-                });
-                let (mut lo, mut hi) = (want, want);
-                if mixed_error(out[i], want as f64) > tol {
-                    let delta = if geometry.is_some() {
-                        DELTA_LOBE_BRDF
-                    } else {
-                        DELTA
-                    };
-                    for r in perturbed(row, delta) {
-                        let v = cpu.eval_row(&r);
-                        lo = lo.min(v);
-                        hi = hi.max(v);
+                    Instance::with_storage(info.id, &given).unwrap()
+                };
+                let kernel = GpuKernel::new(d, instance).unwrap();
+                let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>);
+                let cos;
+                let sh;
+                let dirs;
+                match info.kind {
+                    Kind::Lobe | Kind::Distribution | Kind::Fresnel => {
+                        let n: f64 = config
+                            .iter()
+                            .find(|(k, _)| k == "n")
+                            .map(|(_, v)| v.parse().unwrap())
+                            .unwrap_or(0.0);
+                        cos = cos_grid(info.kind, n);
+                        rows = cos.iter().map(|&c| vec![Some(c)]).collect();
+                        inputs = GpuInput::Cos(&cos);
+                    }
+                    Kind::Shadowing => {
+                        sh = shadow_grid();
+                        let vcav = info.id == "v-cavity";
+                        rows = (0..sh[0].len())
+                            .map(|i| {
+                                let (v, l, h, vh) = (sh[0][i], sh[1][i], sh[2][i], sh[3][i]);
+                                if vcav {
+                                    vec![Some(v), Some(h), Some(vh), Some(l)]
+                                } else {
+                                    vec![Some(v), Some(l)]
+                                }
+                            })
+                            .collect();
+                        inputs = GpuInput::Shadow([&sh[0], &sh[1], &sh[2], &sh[3]]);
+                    }
+                    Kind::Brdf => {
+                        dirs = dir_grid();
+                        rows = (0..dirs[0].len())
+                            .map(|i| dirs.iter().map(|c| Some(c[i])).collect())
+                            .collect();
+                        inputs = GpuInput::Dirs([
+                            &dirs[0], &dirs[1], &dirs[2], &dirs[3], &dirs[4], &dirs[5],
+                        ]);
                     }
                 }
-                let mut err = outside(out[i], lo, hi);
-                if lobe_like && ((out[i] - want).abs() as f64) <= PEAK_TOL * peak {
-                    err = 0.0;
-                }
-                if err > tol {
-                    let row64: Vec<Option<f64>> = row.iter().map(|x| x.map(f64::from)).collect();
-                    let v64 = exact.eval_row(&row64);
-                    let cpu_err = mixed_error(want, v64);
-                    let gpu_err = mixed_error(out[i], v64);
-                    if gpu_err <= f64::max(2.0 * cpu_err, info.f32_bound) {
+                let mut out = vec![0.0f32; rows.len()];
+                kernel.eval(d, q, inputs, &mut out).unwrap();
+                let mut worst = (0.0f64, 0usize);
+                let mut plain = 0.0f64;
+                let geometry = LobeGeometry::new(info.id, &config);
+                let n: f64 = config
+                    .iter()
+                    .find(|(k, _)| k == "n")
+                    .map(|(_, v)| v.parse().unwrap())
+                    .unwrap_or(0.0);
+                let tol = TOL + PER_N * n;
+                let mut skipped = 0;
+                let lobe_like = info.kind == Kind::Lobe || geometry.is_some();
+                let peak = rows
+                    .iter()
+                    .map(|r| cpu.eval_row(r).abs() as f64)
+                    .fold(0.0, f64::max);
+                for (i, row) in rows.iter().enumerate() {
+                    if geometry.as_ref().is_some_and(|g| g.near_mark(row)) {
+                        skipped += 1;
+                        continue;
+                    }
+                    let want = cpu.eval_row(row);
+                    plain = plain.max(if out[i].is_finite() {
+                        mixed_error(out[i], want as f64)
+                    } else {
+                        f64::INFINITY
+                    });
+                    let (mut lo, mut hi) = (want, want);
+                    if mixed_error(out[i], want as f64) > tol {
+                        let delta = if geometry.is_some() {
+                            DELTA_LOBE_BRDF
+                        } else {
+                            DELTA
+                        };
+                        for r in perturbed(row, delta) {
+                            let v = cpu.eval_row(&r);
+                            lo = lo.min(v);
+                            hi = hi.max(v);
+                        }
+                    }
+                    let mut err = outside(out[i], lo, hi);
+                    if lobe_like && ((out[i] - want).abs() as f64) <= PEAK_TOL * peak {
                         err = 0.0;
                     }
+                    if err > tol {
+                        let row64: Vec<Option<f64>> =
+                            row.iter().map(|x| x.map(f64::from)).collect();
+                        let v64 = exact.eval_row(&row64);
+                        let cpu_err = mixed_error(want, v64);
+                        let gpu_err = mixed_error(out[i], v64);
+                        if gpu_err <= f64::max(2.0 * cpu_err, info.f32_bound) {
+                            err = 0.0;
+                        }
+                    }
+                    if err > worst.0 {
+                        worst = (err, i);
+                    }
                 }
-                if err > worst.0 {
-                    worst = (err, i);
+                let line = format!(
+                    "{}{} {:?}: plain {:.2e}, outside the perturbed range {:.2e} (tolerance {:.1e}, {skipped} rows near a jump skipped) at row {} ({:?}: gpu {}, cpu {})",
+                    info.id,
+                    if literals { " (literals)" } else { "" },
+                    config,
+                    plain,
+                    worst.0,
+                    tol,
+                    worst.1,
+                    rows[worst.1],
+                    out[worst.1],
+                    cpu.eval_row(&rows[worst.1]),
+                );
+                if worst.0.is_nan() || worst.0 > tol {
+                    failures.push(line.clone());
                 }
+                report.push(line);
             }
-            let line = format!(
-                "{} {:?}: plain {:.2e}, outside the perturbed range {:.2e} (tolerance {:.1e}, {skipped} rows near a jump skipped) at row {} ({:?}: gpu {}, cpu {})",
-                info.id,
-                config,
-                plain,
-                worst.0,
-                tol,
-                worst.1,
-                rows[worst.1],
-                out[worst.1],
-                cpu.eval_row(&rows[worst.1]),
-            );
-            if worst.0.is_nan() || worst.0 > tol {
-                failures.push(line.clone());
-            }
-            report.push(line);
         }
     }
     if std::env::var_os("FASTBRDF_PARITY_REPORT").is_some() {

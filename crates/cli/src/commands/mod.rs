@@ -10,3 +10,4 @@ pub mod models;
 pub mod plot;
 pub mod render;
 pub mod reproduce;
+pub mod shader;

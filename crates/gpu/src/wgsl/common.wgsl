@@ -91,6 +91,6 @@ fn fb_pair(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FbPair {
     let s = wi + wo;
     let len = sqrt(dot(s, s));
     let h = s / len;
-    let valid = li > 0.0 && lo > 0.0 && wi.z >= FB_COS_MIN && wo.z >= FB_COS_MIN && len > 0.0;
+    let valid = (li > 0.0) & (lo > 0.0) & (wi.z >= FB_COS_MIN) & (wo.z >= FB_COS_MIN) & (len > 0.0);
     return FbPair(valid, wi.z, wo.z, h, h.x * h.x + h.y * h.y, 0.5 * len, wi, wo);
 }

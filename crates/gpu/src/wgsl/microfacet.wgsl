@@ -50,7 +50,7 @@ fn fb_g1_smith_rational(c: f32, alpha: f32) -> f32 {
     let a = c / (alpha * sin);
     let a2 = a * a;
     let g = (3.535 * a + 2.181 * a2) / (1.0 + 2.276 * a + 2.577 * a2);
-    return select(g, 1.0, a >= 1.6 || c >= 1.0);
+    return select(g, 1.0, (a >= 1.6) | (c >= 1.0));
 }
 
 /// fresnel-schlick (Schlick 1994): f0 + (1 - f0)(1 - c)^5.

@@ -1,0 +1,79 @@
+//! `fastbrdf shader`: one model as a self-contained shader function (WGSL, or GLSL, HLSL and
+//! MSL translated by naga), or as a BRDF Explorer `.brdf` file. Needs no GPU.
+
+use crate::CliError;
+use crate::commands::eval::parse_params;
+use fastbrdf_gpu::export::{Lang, export};
+use std::path::PathBuf;
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf shader --model cook-torrance --param alpha=0.2 --param f=schlick --lang glsl\n  \
+fastbrdf shader --model flog-normalized --param n=100 --lang hlsl --out flog.hlsl\n  \
+fastbrdf shader --model ward --param alpha_x=0.1 --param alpha_y=0.4 --lang brdf-explorer --out ward.brdf\n  \
+fastbrdf shader --all --lang msl --out shaders/\n\n\
+Output: a comment header (formula, source, parameters, documented error bounds, the command),\n\
+then the library functions the model needs and `fb_<id>` (dashes as underscores). Lobes take\n\
+(c), distributions (cos_h), Fresnel terms (cos_vh), shadowing (cos_v, cos_l, cos_h, cos_vh),\n\
+BRDFs (wi, wo) in the local frame with the normal along +z. Coefficients are computed in f64\n\
+for the given parameters and written as literals."
+)]
+pub struct Args {
+    /// Model id (see `fastbrdf models`).
+    #[arg(long, required_unless_present = "all", conflicts_with = "all")]
+    model: Option<String>,
+    /// A parameter, NAME=VALUE; repeat for several.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// Output language.
+    #[arg(long, default_value = "wgsl", value_parser = ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"])]
+    lang: String,
+    /// Write to this file instead of stdout (with --all: a folder, one file per model).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Every model, with default parameters (needs --out DIR).
+    #[arg(long, requires = "out")]
+    all: bool,
+}
+
+pub fn run(a: &Args) -> Result<(), CliError> {
+    let lang = Lang::parse(&a.lang).ok_or_else(|| CliError::input("unknown --lang"))?;
+    if a.all {
+        let dir = a.out.as_ref().expect("clap: --all requires --out");
+        if !a.params.is_empty() {
+            return Err(CliError::input(
+                "--all exports default parameters: drop --param, or export one --model",
+            ));
+        }
+        // Build everything first: an error leaves no partial folder behind.
+        let mut files = vec![];
+        for e in fastbrdf::registry::all() {
+            let text = export(e.info.id, &[], lang)?;
+            files.push((format!("{}.{}", e.info.id, lang.extension()), text));
+        }
+        std::fs::create_dir_all(dir)
+            .map_err(|e| CliError::input(format!("cannot create {}: {e}", dir.display())))?;
+        for (name, text) in &files {
+            fastbrdf_render::film::write_atomic(&dir.join(name), text.as_bytes())?;
+        }
+        eprintln!(
+            "wrote {} {} files to {}",
+            files.len(),
+            lang.name(),
+            dir.display()
+        );
+        return Ok(());
+    }
+    let id = a.model.as_deref().expect("clap: --model or --all");
+    let params = parse_params(&a.params)?;
+    let given: Vec<(&str, &str)> = params
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.as_str()))
+        .collect();
+    let text = export(id, &given, lang)?;
+    match &a.out {
+        Some(path) => fastbrdf_render::film::write_atomic(path, text.as_bytes())?,
+        None => print!("{text}"),
+    }
+    Ok(())
+}

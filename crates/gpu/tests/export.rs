@@ -1,0 +1,170 @@
+//! Shader export: every model in every language against the golden files in
+//! `tests/golden/shaders/` (default parameters), each validated by naga: WGSL parsed and
+//! validated as it is; GLSL and the `.brdf` shader block parsed back with naga's GLSL front
+//! end (inside a test entry point) and validated; HLSL and MSL come from a module naga
+//! validated before translating, and must define the model's function.
+//!
+//! `FASTBRDF_BLESS=1 cargo test -p fastbrdf-gpu --test export` rewrites the golden files
+//! (review the diff: the files are what users paste).
+
+use fastbrdf::model::Kind;
+use fastbrdf::registry;
+use fastbrdf_gpu::export::{Lang, export, exported_name, validate};
+use fastbrdf_gpu::spec::function_name;
+use std::path::PathBuf;
+
+fn golden_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/shaders")
+}
+
+/// A GLSL call of `f` for a model of `kind` (the same arguments as the WGSL entry point).
+fn glsl_call(f: &str, kind: Kind) -> String {
+    match kind {
+        Kind::Brdf => format!("{f}(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8))"),
+        Kind::Shadowing => format!("{f}(0.8, 0.8, 0.9, 0.9)"),
+        _ => format!("{f}(0.9)"),
+    }
+}
+
+/// Parses GLSL functions back with naga's GLSL front end, inside a compute entry point that
+/// calls `call`, and validates the result.
+fn parse_glsl(functions: &str, call: &str, what: &str) {
+    let src = format!(
+        "#version 450\nlayout(local_size_x = 1) in;\n{functions}\nvoid main() {{\n    float r = {call};\n}}\n"
+    );
+    let mut front = naga::front::glsl::Frontend::default();
+    let module = front
+        .parse(
+            &naga::front::glsl::Options::from(naga::ShaderStage::Compute),
+            &src,
+        )
+        .unwrap_or_else(|e| panic!("{what}: naga cannot parse the GLSL back: {e:?}\n{src}"));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{what}: GLSL parsed back does not validate: {e:?}"));
+}
+
+fn check_one(id: &str, kind: Kind, lang: Lang, text: &str) {
+    let what = format!("{id} ({})", lang.name());
+    let f = exported_name(&function_name(id), lang);
+    assert!(text.contains("Formula: "), "{what}: no header");
+    assert!(
+        text.contains("Made by: fastbrdf shader --model"),
+        "{what}: no command"
+    );
+    match lang {
+        Lang::Wgsl => {
+            validate(text, &what).unwrap();
+            assert!(text.contains(&format!("fn {f}(")), "{what}: no {f}");
+        }
+        Lang::Glsl => {
+            assert!(!text.contains("void main"), "{what}: entry point left in");
+            assert!(!text.contains("#version"), "{what}: #version left in");
+            parse_glsl(text, &glsl_call(&f, kind), &what);
+        }
+        Lang::Hlsl | Lang::Msl => {
+            assert!(text.contains(&format!("float {f}(")), "{what}: no {f}");
+            assert!(
+                !text.contains("[numthreads") && !text.contains("kernel void"),
+                "{what}"
+            );
+        }
+        Lang::BrdfExplorer => {
+            assert!(text.starts_with("analytic\n"), "{what}: not a .brdf file");
+            assert!(text.contains("::begin parameters\n") && text.contains("::end parameters\n"));
+            let body = text
+                .split("::begin shader\n")
+                .nth(1)
+                .and_then(|s| s.split("::end shader").next())
+                .unwrap_or_else(|| panic!("{what}: no shader block"));
+            assert!(body.contains("vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"));
+            parse_glsl(
+                body,
+                "BRDF(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8), vec3(0.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0)).x",
+                &what,
+            );
+        }
+    }
+}
+
+#[test]
+fn every_model_in_every_language_matches_its_golden_file_and_validates() {
+    let bless = std::env::var_os("FASTBRDF_BLESS").is_some();
+    let dir = golden_dir();
+    if bless {
+        std::fs::create_dir_all(&dir).unwrap();
+    }
+    let mut stale = vec![];
+    let mut count = 0;
+    for e in registry::all() {
+        for lang in Lang::ALL {
+            let text = export(e.info.id, &[], lang)
+                .unwrap_or_else(|err| panic!("{} ({}): {err}", e.info.id, lang.name()));
+            check_one(e.info.id, e.info.kind, lang, &text);
+            let path = dir.join(format!("{}.{}", e.info.id, lang.extension()));
+            if bless {
+                std::fs::write(&path, &text).unwrap();
+            } else {
+                let want = std::fs::read_to_string(&path).unwrap_or_default();
+                if want != text {
+                    stale.push(path.display().to_string());
+                }
+            }
+            count += 1;
+        }
+    }
+    assert_eq!(count, registry::all().len() * Lang::ALL.len());
+    assert!(count >= 200, "only {count} exports");
+    assert!(
+        stale.is_empty(),
+        "{} exports differ from their golden files (FASTBRDF_BLESS=1 rewrites them):\n{}",
+        stale.len(),
+        stale.join("\n")
+    );
+    // No stray golden files for models that no longer exist.
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names.len(),
+        count,
+        "golden folder has extra files: {names:?}"
+    );
+}
+
+#[test]
+fn parameters_reach_the_code_and_bad_ones_are_errors() {
+    let a = export("pow", &[("n", "50")], Lang::Wgsl).unwrap();
+    assert!(a.contains("fb_lobe_pow(c, 50.0f)"), "{a}");
+    assert!(a.contains("this export: n = 50"));
+    let b = export(
+        "cook-torrance",
+        &[
+            ("d", "beckmann-power16"),
+            ("g", "v-cavity"),
+            ("f", "schlick"),
+            ("f0", "0.5"),
+        ],
+        Lang::Glsl,
+    )
+    .unwrap();
+    assert!(b.contains("fb_d_beckmann_power16") && b.contains("fb_g_v_cavity"));
+    assert!(b.contains("fb_f_schlick") && b.contains("0.5"));
+    assert!(!b.contains("fb_g1_smith"), "unused library code exported");
+    for (id, given) in [
+        ("no-such-model", vec![]),
+        ("pow", vec![("n", "0")]),
+        ("pow", vec![("n", "NaN")]),
+        ("pow", vec![("alpha", "0.3")]),
+        ("beckmann", vec![("alpha", "0")]),
+    ] {
+        assert!(
+            export(id, &given, Lang::Hlsl).is_err(),
+            "{id} {given:?} accepted"
+        );
+    }
+}

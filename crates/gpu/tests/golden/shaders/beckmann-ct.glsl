@@ -1,0 +1,26 @@
+// fastbrdf 0.1.0 (distribution): beckmann-ct
+// Made by: fastbrdf shader --model beckmann-ct --lang glsl
+//
+// Formula: exp(-tan^2 theta_h / m^2) / (4 m^2 cos^4 theta_h)
+// Source: Cook & Torrance 1982; seed 000
+// Note: = beckmann * pi / 4 (integral of D cos theta_h = pi / 4)
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_beckmann_ct(cos_h) with cos_h = n.h; returns f32.
+
+const float FB_COS_MIN = 9.536743e-7;
+
+
+float fb_d_beckmann(float c, float s2_, float inv_alpha2_, float scale) {
+    float inv_c2_ = (1.0 / (c * c));
+    return ((scale * exp((-((s2_ * inv_c2_)) * inv_alpha2_))) * (inv_c2_ * inv_c2_));
+}
+
+float fb_beckmann_ct(float cos_h) {
+    float cc = min(cos_h, 1.0);
+    float _e10 = fb_d_beckmann(cc, ((1.0 - cc) * (1.0 + cc)), 11.111111, 2.7777777);
+    return ((cos_h >= FB_COS_MIN) ? _e10 : 0.0);
+}

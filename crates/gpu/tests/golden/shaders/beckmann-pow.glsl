@@ -1,0 +1,27 @@
+// fastbrdf 0.1.0 (distribution): beckmann-pow
+// Made by: fastbrdf shader --model beckmann-pow --lang glsl
+//
+// Formula: cos^(2/m^2 - 4) theta_h / (4 m^2)
+// Source: seed 000 ('one function' D)
+// Note: unbounded as cos theta_h -> 0 for m > 1/sqrt(2) (negative exponent), by the seed's construction
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Documented error bounds (measured by `fastbrdf check`):
+//   beckmann-pow vs beckmann-ct: max rel error <= 0.403 over alpha in [0.05, 0.6], epicentre (reference >= half its peak)
+//   beckmann-pow vs beckmann-ct: max rel error <= 4.65 over alpha in [0.05, 1], epicentre (reference >= half its peak)
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_beckmann_pow(cos_h) with cos_h = n.h; returns f32.
+
+const float FB_COS_MIN = 9.536743e-7;
+
+
+float fb_d_beckmann_pow(float c, float e, float scale) {
+    return (scale * pow(c, e));
+}
+
+float fb_beckmann_pow(float cos_h) {
+    float cc = min(cos_h, 1.0);
+    float _e5 = fb_d_beckmann_pow(cc, 18.222221, 2.7777777);
+    return ((cos_h >= FB_COS_MIN) ? _e5 : 0.0);
+}

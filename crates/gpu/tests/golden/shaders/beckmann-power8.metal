@@ -1,0 +1,53 @@
+// fastbrdf 0.1.0 (distribution): beckmann-power8
+// Made by: fastbrdf shader --model beckmann-power8 --lang msl
+//
+// Formula: max(0, 1 + ((2/m^2 - 4)/8)(cos theta_h - 1))^8 / (4 m^2)
+// Source: seed 000 (D4, D8, D16); Lyon 1993
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Documented error bounds (measured by `fastbrdf check`):
+//   beckmann-power8 vs beckmann-ct: max rel error <= 0.447 over alpha in [0.05, 0.6], epicentre (reference >= half its peak)
+//   beckmann-power8 vs beckmann-ct: max rel error <= 2.55 over alpha in [0.05, 1], epicentre (reference >= half its peak)
+// Precision: f32 on the CPU within 2e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_beckmann_power8_(cos_h) with cos_h = n.h; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+constant float FB_COS_MIN = 0.0000009536743;
+
+float fb_pow4_(
+    float x
+) {
+    float x2_ = x * x;
+    return x2_ * x2_;
+}
+
+float fb_pow8_(
+    float x_1
+) {
+    float _e1 = fb_pow4_(x_1);
+    return _e1 * _e1;
+}
+
+float fb_d_beckmann_power8_(
+    float c,
+    float s2_,
+    float s,
+    float scale
+) {
+    float _e13 = fb_pow8_(metal::max(1.0 + (s * (-(s2_) / (1.0 + c))), 0.0));
+    return scale * _e13;
+}
+
+float fb_beckmann_power8_(
+    float cos_h
+) {
+    float cc = metal::min(cos_h, 1.0);
+    float _e10 = fb_d_beckmann_power8_(cc, (1.0 - cc) * (1.0 + cc), 2.2777777, 2.7777777);
+    return (cos_h >= FB_COS_MIN) ? _e10 : 0.0;
+}

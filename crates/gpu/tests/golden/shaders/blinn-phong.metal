@@ -1,0 +1,74 @@
+// fastbrdf 0.1.0 (brdf): blinn-phong
+// Made by: fastbrdf shader --model blinn-phong --lang msl
+//
+// Formula: coef(n) lobe(n . h) / (4 wi . h) (energy) or lobe(n . h) (none)
+// Source: Blinn 1977; Torrance & Sparrow 1967 (microfacet form); seed 001 (coef by Int(n))
+// Note: ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy
+// Parameters (this export: lobe = pow, n = 20, norm = energy):
+//   lobe: lobe id (one of pow, schlick, schlick-modified, gauss, flog, flog-normalized, flog-normalized-clamped, cubic, cubic3, rational, cubic-rational, power4, power8, power16, sg, ue4-phong-approx, power4-tuned, power8-tuned, power16-tuned, sg-tuned, cubic-rational-tuned, default pow)
+//   n: specular exponent (range [1, 10000], default 20)
+//   norm: energy: coef(n) = 1 / (2 pi Int(n)); none: the bare lobe (one of energy, none, default energy)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-2 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_blinn_phong(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+struct FbPair {
+    bool valid;
+    char _pad1[3];
+    float cos_i;
+    float cos_o;
+    char _pad3[4];
+    metal::packed_float3 h;
+    float sin2_h;
+    float cos_ih;
+    char _pad6[12];
+    metal::float3 wi;
+    metal::float3 wo;
+};
+constant float FB_COS_MIN = 0.0000009536743;
+
+float fb_clamp01_(
+    float c
+) {
+    return metal::min(metal::max(c, 0.0), 1.0);
+}
+
+FbPair fb_pair(
+    metal::float3 wi_in,
+    metal::float3 wo_in
+) {
+    float li = metal::dot(wi_in, wi_in);
+    float lo = metal::dot(wo_in, wo_in);
+    metal::float3 wi_1 = wi_in * (1.0 / metal::sqrt(li));
+    metal::float3 wo_1 = wo_in * (1.0 / metal::sqrt(lo));
+    metal::float3 s = wi_1 + wo_1;
+    float len = metal::sqrt(metal::dot(s, s));
+    metal::float3 h = s / metal::float3(len);
+    bool valid = ((((li > 0.0) & (lo > 0.0)) & (wi_1.z >= FB_COS_MIN)) & (wo_1.z >= FB_COS_MIN)) & (len > 0.0);
+    return FbPair {valid, {}, wi_1.z, wo_1.z, {}, h, (h.x * h.x) + (h.y * h.y), 0.5 * len, {}, wi_1, wo_1};
+}
+
+float fb_lobe_pow(
+    float c_1,
+    float n
+) {
+    float _e2 = fb_clamp01_(c_1);
+    return (_e2 > 0.0) ? metal::pow(_e2, n) : 0.0;
+}
+
+float fb_blinn_phong(
+    metal::float3 wi,
+    metal::float3 wo
+) {
+    FbPair _e2 = fb_pair(wi, wo);
+    float _e7 = fb_lobe_pow(_e2.h[2], 20.0);
+    float v = (3.5014088 * _e7) / (4.0 * _e2.cos_ih);
+    return _e2.valid ? v : 0.0;
+}

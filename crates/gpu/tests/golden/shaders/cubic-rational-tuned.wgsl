@@ -1,0 +1,52 @@
+// fastbrdf 0.1.0 (lobe): cubic-rational-tuned
+// Made by: fastbrdf shader --model cubic-rational-tuned --lang wgsl
+//
+// Formula: seed 003's cubic above c^n = Q(n), its rational below, Q(n) = Rq(1/n)
+// Source: fastbrdf: minimax-tuned coefficient (lobes/tuned.rs)
+// Note: coefficient from a closed form fitted to per-n minimax optima
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   cubic-rational-tuned vs pow: max abs error (relative to the peak) <= 0.0414 over n in [1, 1000], whole domain
+//   cubic-rational-tuned vs pow: max abs error (relative to the peak) <= 0.0414 over n in [8, 1000], whole domain
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_cubic_rational_tuned(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
+
+/// Clamps a cosine to [0, 1] (twin: ops::clamp01).
+fn fb_clamp01(c: f32) -> f32 {
+    return min(max(c, 0.0), 1.0);
+}
+
+/// cubic and cubic3 (seed 003): the clipped cubic in Newton form in x = c - 1,
+/// p = 1 + x (d1 + (x - x1)(d2 + (x - x2) d3)), 0 below `cut` (its local minimum) and where
+/// negative. Coefficients: fastbrdf::lobes::cubic::CubicShape (f64). Cost: 3 mul, 4 add.
+fn fb_lobe_cubic(c: f32, d1: f32, d2: f32, d3: f32, x1: f32, x2: f32, cut: f32) -> f32 {
+    let cc = fb_clamp01(c);
+    let x = cc - 1.0;
+    let p = 1.0 + x * (d1 + (x - x1) * (d2 + (x - x2) * d3));
+    return select(max(p, 0.0), 0.0, cc < cut);
+}
+
+/// rational (seed 003): level c / (n (xq - x) + c), x = c - 1, xq = level^(1/n) - 1
+/// (computed with expm1 in f64); level = 0.5 for `rational`. Cost: 1 mul, 3 add, 1 div.
+fn fb_lobe_rational(c: f32, n: f32, xq: f32, level: f32) -> f32 {
+    let cc = fb_clamp01(c);
+    let x = cc - 1.0;
+    return level * cc / (n * (xq - x) + cc);
+}
+
+/// cubic-rational (seed 003): the cubic above q = level^(1/n), the rational below.
+fn fb_lobe_cubic_rational(c: f32, d1: f32, d2: f32, d3: f32, x1: f32, x2: f32, cut: f32, n: f32,
+                          xq: f32, level: f32, q: f32) -> f32 {
+    let cc = fb_clamp01(c);
+    let a = fb_lobe_cubic(cc, d1, d2, d3, x1, x2, cut);
+    let b = fb_lobe_rational(cc, n, xq, level);
+    return select(b, a, cc >= q);
+}
+
+/// cubic-rational-tuned: seed 003's cubic above c^n = Q(n), its rational below, Q(n) = Rq(1/n)
+/// Source: fastbrdf: minimax-tuned coefficient (lobes/tuned.rs). Instance: n = 20.
+fn fb_cubic_rational_tuned(c: f32) -> f32 {
+    return fb_lobe_cubic_rational(c, 10.0814085f, 74.83417f, 70.66397f, -0.08079728f, -0.08079728f, 0.8885781f, 20.0f, -0.08079728f, 0.18544966f, 0.91920274f);
+}

@@ -1,0 +1,35 @@
+// fastbrdf 0.1.0 (lobe): cubic3
+// Made by: fastbrdf shader --model cubic3 --lang wgsl
+//
+// Formula: a c^3 + b c^2 + c' c through (1, 1), (0.5^(1/n), 0.5), ((1/18)^(1/n), 1/18); 0 below its local minimum and where negative
+// Source: seed 003 (three-point variant, Q = 0.5, G = 1/18)
+// Note: evaluated in a Newton form in (c - 1) for f32 accuracy
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   cubic3 vs pow: max abs error (relative to the peak) <= 0.0215 over n in [4, 1000], epicentre (reference >= half its peak)
+//   cubic3 vs pow: max abs error (relative to the peak) <= 0.108 over n in [4, 1000], whole domain
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_cubic3(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
+
+/// Clamps a cosine to [0, 1] (twin: ops::clamp01).
+fn fb_clamp01(c: f32) -> f32 {
+    return min(max(c, 0.0), 1.0);
+}
+
+/// cubic and cubic3 (seed 003): the clipped cubic in Newton form in x = c - 1,
+/// p = 1 + x (d1 + (x - x1)(d2 + (x - x2) d3)), 0 below `cut` (its local minimum) and where
+/// negative. Coefficients: fastbrdf::lobes::cubic::CubicShape (f64). Cost: 3 mul, 4 add.
+fn fb_lobe_cubic(c: f32, d1: f32, d2: f32, d3: f32, x1: f32, x2: f32, cut: f32) -> f32 {
+    let cc = fb_clamp01(c);
+    let x = cc - 1.0;
+    let p = 1.0 + x * (d1 + (x - x1) * (d2 + (x - x2) * d3));
+    return select(max(p, 0.0), 0.0, cc < cut);
+}
+
+/// cubic3: a c^3 + b c^2 + c' c through (1, 1), (0.5^(1/n), 0.5), ((1/18)^(1/n), 1/18); 0 below its local minimum and where negative
+/// Source: seed 003 (three-point variant, Q = 0.5, G = 1/18). Instance: n = 20.
+fn fb_cubic3(c: f32) -> f32 {
+    return fb_lobe_cubic(c, 14.678394f, 76.217766f, 71.70582f, -0.03406367f, -0.13456118f, 0.8839193f);
+}

@@ -1,0 +1,28 @@
+// fastbrdf 0.1.0 (fresnel): fresnel-schlick
+// Made by: fastbrdf shader --model fresnel-schlick --lang glsl
+//
+// Formula: f0 + (1 - f0)(1 - cos)^5
+// Source: Schlick 1994
+// Parameters (this export: f0 = 0.04):
+//   f0: reflectance at normal incidence (Schlick) (range [0, 1], default 0.04)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_fresnel_schlick(cos_vh) with cos_vh = v.h; returns f32.
+
+float fb_clamp01_(float c) {
+    return min(max(c, 0.0), 1.0);
+}
+
+float fb_f_schlick(float c_1, float f0_) {
+    float _e2 = fb_clamp01_(c_1);
+    float m = (1.0 - _e2);
+    float m2_ = (m * m);
+    return (f0_ + ((1.0 - f0_) * ((m2_ * m2_) * m)));
+}
+
+float fb_fresnel_schlick(float cos_vh) {
+    float c_2 = max(cos_vh, 0.0);
+    float _e4 = fb_f_schlick(c_2, 0.04);
+    return _e4;
+}

@@ -1,0 +1,49 @@
+// fastbrdf 0.1.0 (lobe): gauss
+// Made by: fastbrdf shader --model gauss --lang msl
+//
+// Formula: exp(-n theta^2 / 2), theta = acos(c)
+// Source: seed 001 (Gauss BRDF, its reference [10])
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   gauss vs pow: max abs error (relative to the peak) <= 0.292 over n in [1, 1000], whole domain
+//   gauss vs pow: max rel error <= 0.156 over n in [1, 1000], epicentre (reference >= half its peak)
+// Precision: f32 on the CPU within 2e-7 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_gauss(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+
+float fb_clamp01_(
+    float c
+) {
+    return metal::min(metal::max(c, 0.0), 1.0);
+}
+
+float fb_acos(
+    float x
+) {
+    float p = 1.5707963 + (x * (-0.2145988 + (x * (0.08897899 + (x * (-0.050174303 + (x * (0.03089188 + (x * (-0.017088126 + (x * (0.00667009 + (x * -0.0012624911)))))))))))));
+    return metal::sqrt(metal::max(1.0 - x, 0.0)) * p;
+}
+
+float fb_lobe_gauss(
+    float c_1,
+    float half_n
+) {
+    float _e2 = fb_clamp01_(c_1);
+    float _e3 = fb_acos(_e2);
+    return metal::exp(-(half_n) * (_e3 * _e3));
+}
+
+float fb_gauss(
+    float c_2
+) {
+    float _e2 = fb_lobe_gauss(c_2, 10.0);
+    return _e2;
+}

@@ -1,0 +1,63 @@
+// fastbrdf 0.1.0 (brdf): lambert
+// Made by: fastbrdf shader --model lambert --lang hlsl
+//
+// Formula: albedo / pi
+// Source: Lambert 1760
+// Parameters (this export: albedo = 1):
+//   albedo: directional-hemispherical reflectance (range [0, 1], default 1)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_lambert(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns f32.
+
+struct FbPair {
+    bool valid;
+    float cos_i;
+    float cos_o;
+    int _pad3_0;
+    float3 h;
+    float sin2_h;
+    float cos_ih;
+    int _pad6_0;
+    int _pad6_1;
+    int _pad6_2;
+    float3 wi;
+    int _pad7_0;
+    float3 wo;
+    int _end_pad_0;
+};
+
+static const float FB_COS_MIN = 9.536743e-7;
+
+FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg4, float arg5, float3 arg6, float3 arg7) {
+    FbPair ret = (FbPair)0;
+    ret.valid = arg0;
+    ret.cos_i = arg1;
+    ret.cos_o = arg2;
+    ret.h = arg3;
+    ret.sin2_h = arg4;
+    ret.cos_ih = arg5;
+    ret.wi = arg6;
+    ret.wo = arg7;
+    return ret;
+}
+
+FbPair fb_pair(float3 wi_in, float3 wo_in)
+{
+    float li = dot(wi_in, wi_in);
+    float lo = dot(wo_in, wo_in);
+    float3 wi_1 = (wi_in * (1.0 / sqrt(li)));
+    float3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
+    float3 s = (wi_1 + wo_1);
+    float len = sqrt(dot(s, s));
+    float3 h = (s / (len).xxx);
+    bool valid = (((((li > 0.0) & (lo > 0.0)) & (wi_1.z >= FB_COS_MIN)) & (wo_1.z >= FB_COS_MIN)) & (len > 0.0));
+    const FbPair fbpair = ConstructFbPair(valid, wi_1.z, wo_1.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_1, wo_1);
+    return fbpair;
+}
+
+float fb_lambert(float3 wi, float3 wo)
+{
+    const FbPair _e2 = fb_pair(wi, wo);
+    return (_e2.valid ? 0.31830987 : 0.0);
+}

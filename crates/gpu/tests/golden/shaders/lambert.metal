@@ -1,0 +1,55 @@
+// fastbrdf 0.1.0 (brdf): lambert
+// Made by: fastbrdf shader --model lambert --lang msl
+//
+// Formula: albedo / pi
+// Source: Lambert 1760
+// Parameters (this export: albedo = 1):
+//   albedo: directional-hemispherical reflectance (range [0, 1], default 1)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_lambert(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+struct FbPair {
+    bool valid;
+    char _pad1[3];
+    float cos_i;
+    float cos_o;
+    char _pad3[4];
+    metal::packed_float3 h;
+    float sin2_h;
+    float cos_ih;
+    char _pad6[12];
+    metal::float3 wi;
+    metal::float3 wo;
+};
+constant float FB_COS_MIN = 0.0000009536743;
+
+FbPair fb_pair(
+    metal::float3 wi_in,
+    metal::float3 wo_in
+) {
+    float li = metal::dot(wi_in, wi_in);
+    float lo = metal::dot(wo_in, wo_in);
+    metal::float3 wi_1 = wi_in * (1.0 / metal::sqrt(li));
+    metal::float3 wo_1 = wo_in * (1.0 / metal::sqrt(lo));
+    metal::float3 s = wi_1 + wo_1;
+    float len = metal::sqrt(metal::dot(s, s));
+    metal::float3 h = s / metal::float3(len);
+    bool valid = ((((li > 0.0) & (lo > 0.0)) & (wi_1.z >= FB_COS_MIN)) & (wo_1.z >= FB_COS_MIN)) & (len > 0.0);
+    return FbPair {valid, {}, wi_1.z, wo_1.z, {}, h, (h.x * h.x) + (h.y * h.y), 0.5 * len, {}, wi_1, wo_1};
+}
+
+float fb_lambert(
+    metal::float3 wi,
+    metal::float3 wo
+) {
+    FbPair _e2 = fb_pair(wi, wo);
+    return _e2.valid ? 0.31830987 : 0.0;
+}

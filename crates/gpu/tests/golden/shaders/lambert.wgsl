@@ -1,0 +1,53 @@
+// fastbrdf 0.1.0 (brdf): lambert
+// Made by: fastbrdf shader --model lambert --lang wgsl
+//
+// Formula: albedo / pi
+// Source: Lambert 1760
+// Parameters (this export: albedo = 1):
+//   albedo: directional-hemispherical reflectance (range [0, 1], default 1)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_lambert(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns f32.
+
+/// Cosines below this give zero in distributions and BRDFs: 2^-20, exact in f32 and f64
+/// (Rust twin: fastbrdf::vec3::COS_MIN).
+const FB_COS_MIN: f32 = 9.5367431640625e-7;
+
+/// The geometry of a direction pair (twin: ops::pair and fastbrdf::vec3::Pair::new).
+struct FbPair {
+    /// Both directions non-zero, above the surface (cos >= FB_COS_MIN), not opposite.
+    valid: bool,
+    /// cos theta_i (wi . n) and cos theta_o (wo . n), n = +z.
+    cos_i: f32,
+    cos_o: f32,
+    /// The half vector, normalised.
+    h: vec3<f32>,
+    /// sin^2 theta_h = h.x^2 + h.y^2.
+    sin2_h: f32,
+    /// wi . h, computed as |wi + wo| / 2 (exactly symmetric in wi and wo).
+    cos_ih: f32,
+    /// The normalised directions.
+    wi: vec3<f32>,
+    wo: vec3<f32>,
+}
+
+/// Normalises wi and wo (local frame, normal +z) and builds their half vector.
+fn fb_pair(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FbPair {
+    let li = dot(wi_in, wi_in);
+    let lo = dot(wo_in, wo_in);
+    let wi = wi_in * (1.0 / sqrt(li));
+    let wo = wo_in * (1.0 / sqrt(lo));
+    let s = wi + wo;
+    let len = sqrt(dot(s, s));
+    let h = s / len;
+    let valid = (li > 0.0) & (lo > 0.0) & (wi.z >= FB_COS_MIN) & (wo.z >= FB_COS_MIN) & (len > 0.0);
+    return FbPair(valid, wi.z, wo.z, h, h.x * h.x + h.y * h.y, 0.5 * len, wi, wo);
+}
+
+/// lambert: albedo / pi
+/// Source: Lambert 1760. Instance: albedo = 1.
+fn fb_lambert(wi: vec3<f32>, wo: vec3<f32>) -> f32 {
+    let p = fb_pair(wi, wo);
+    return select(0.0, 0.31830987f, p.valid);
+}

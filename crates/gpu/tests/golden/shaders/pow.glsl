@@ -1,0 +1,25 @@
+// fastbrdf 0.1.0 (lobe): pow
+// Made by: fastbrdf shader --model pow --lang glsl
+//
+// Formula: c^n
+// Source: Phong 1975; Blinn 1977 (reference lobe of seeds 000, 001, 003)
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 2e-7 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_pow(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
+
+float fb_clamp01_(float c) {
+    return min(max(c, 0.0), 1.0);
+}
+
+float fb_lobe_pow(float c_1, float n) {
+    float _e2 = fb_clamp01_(c_1);
+    return ((_e2 > 0.0) ? pow(_e2, n) : 0.0);
+}
+
+float fb_pow(float c_2) {
+    float _e2 = fb_lobe_pow(c_2, 20.0);
+    return _e2;
+}

@@ -1,0 +1,30 @@
+// fastbrdf 0.1.0 (lobe): rational
+// Made by: fastbrdf shader --model rational --lang glsl
+//
+// Formula: c / (a - b c), a = 2 n 0.5^(1/n), b = 2n - 2
+// Source: seed 003 (fall-off zone approximation g)
+// Note: denominator evaluated as 2n(q - c) + 2c for f32 accuracy
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   rational vs pow: max rel error <= 0.0138 over n in [2, 1000], where 0.42 < reference / peak < 0.5
+//   rational vs pow: max rel error <= 0.0386 over n in [2, 1000], where 0.37 < reference / peak < 0.42
+//   rational vs pow: max rel error <= 0.146 over n in [2, 1000], where 0.27 < reference / peak < 0.37
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_rational(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
+
+float fb_clamp01_(float c) {
+    return min(max(c, 0.0), 1.0);
+}
+
+float fb_lobe_rational(float c_1, float n, float xq, float level) {
+    float _e4 = fb_clamp01_(c_1);
+    float x = (_e4 - 1.0);
+    return ((level * _e4) / ((n * (xq - x)) + _e4));
+}
+
+float fb_rational(float c_2) {
+    float _e4 = fb_lobe_rational(c_2, 20.0, -0.03406367, 0.5);
+    return _e4;
+}

@@ -1,0 +1,34 @@
+// fastbrdf 0.1.0 (lobe): rational
+// Made by: fastbrdf shader --model rational --lang wgsl
+//
+// Formula: c / (a - b c), a = 2 n 0.5^(1/n), b = 2n - 2
+// Source: seed 003 (fall-off zone approximation g)
+// Note: denominator evaluated as 2n(q - c) + 2c for f32 accuracy
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   rational vs pow: max rel error <= 0.0138 over n in [2, 1000], where 0.42 < reference / peak < 0.5
+//   rational vs pow: max rel error <= 0.0386 over n in [2, 1000], where 0.37 < reference / peak < 0.42
+//   rational vs pow: max rel error <= 0.146 over n in [2, 1000], where 0.27 < reference / peak < 0.37
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_rational(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
+
+/// Clamps a cosine to [0, 1] (twin: ops::clamp01).
+fn fb_clamp01(c: f32) -> f32 {
+    return min(max(c, 0.0), 1.0);
+}
+
+/// rational (seed 003): level c / (n (xq - x) + c), x = c - 1, xq = level^(1/n) - 1
+/// (computed with expm1 in f64); level = 0.5 for `rational`. Cost: 1 mul, 3 add, 1 div.
+fn fb_lobe_rational(c: f32, n: f32, xq: f32, level: f32) -> f32 {
+    let cc = fb_clamp01(c);
+    let x = cc - 1.0;
+    return level * cc / (n * (xq - x) + cc);
+}
+
+/// rational: c / (a - b c), a = 2 n 0.5^(1/n), b = 2n - 2
+/// Source: seed 003 (fall-off zone approximation g). Instance: n = 20.
+fn fb_rational(c: f32) -> f32 {
+    return fb_lobe_rational(c, 20.0f, -0.03406367f, 0.5f);
+}

@@ -1,0 +1,31 @@
+// fastbrdf 0.1.0 (lobe): schlick-modified
+// Made by: fastbrdf shader --model schlick-modified --lang wgsl
+//
+// Formula: 2 c / (1.25 (n - n c + 1.25 c)^2)
+// Source: seed 001, its reference [15] (Romanyuk et al.)
+// Note: implemented as printed in seed 001; its value at c = 1 is 1.024, not 1
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   schlick-modified vs pow: max abs error (relative to the peak) <= 0.133 over n in [1, 1000], whole domain
+// Precision: f32 on the CPU within 3e-7 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_schlick_modified(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
+
+/// Clamps a cosine to [0, 1] (twin: ops::clamp01).
+fn fb_clamp01(c: f32) -> f32 {
+    return min(max(c, 0.0), 1.0);
+}
+
+/// schlick-modified: 2 c / (1.25 (n - n c + 1.25 c)^2), as printed in seed 003 (peak 1.024).
+fn fb_lobe_schlick_modified(c: f32, n: f32) -> f32 {
+    let x = fb_clamp01(c);
+    let d = n * (1.0 - x) + 1.25 * x;
+    return 2.0 * x / (1.25 * (d * d));
+}
+
+/// schlick-modified: 2 c / (1.25 (n - n c + 1.25 c)^2)
+/// Source: seed 001, its reference [15] (Romanyuk et al.). Instance: n = 20.
+fn fb_schlick_modified(c: f32) -> f32 {
+    return fb_lobe_schlick_modified(c, 20.0f);
+}

@@ -1,0 +1,73 @@
+// fastbrdf 0.1.0 (brdf): ward-pow
+// Made by: fastbrdf shader --model ward-pow --lang hlsl
+//
+// Formula: cos^(2/alpha^2) theta_h / (4 pi alpha^2 sqrt(cos_i cos_o))
+// Source: seed 000 (exp replaced by one power)
+// Note: isotropic only
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Documented error bounds (measured by `fastbrdf check`):
+//   ward-pow vs ward: max rel error <= 0.108 over alpha in [0.05, 0.6], epicentre (reference >= half its peak)
+//   ward-pow vs ward: max rel error <= 0.396 over alpha in [0.05, 1], epicentre (reference >= half its peak)
+// Precision: f32 on the CPU within 1e-5 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_ward_pow(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns f32.
+
+struct FbPair {
+    bool valid;
+    float cos_i;
+    float cos_o;
+    int _pad3_0;
+    float3 h;
+    float sin2_h;
+    float cos_ih;
+    int _pad6_0;
+    int _pad6_1;
+    int _pad6_2;
+    float3 wi;
+    int _pad7_0;
+    float3 wo;
+    int _end_pad_0;
+};
+
+static const float FB_COS_MIN = 9.536743e-7;
+
+FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg4, float arg5, float3 arg6, float3 arg7) {
+    FbPair ret = (FbPair)0;
+    ret.valid = arg0;
+    ret.cos_i = arg1;
+    ret.cos_o = arg2;
+    ret.h = arg3;
+    ret.sin2_h = arg4;
+    ret.cos_ih = arg5;
+    ret.wi = arg6;
+    ret.wo = arg7;
+    return ret;
+}
+
+FbPair fb_pair(float3 wi_in, float3 wo_in)
+{
+    float li = dot(wi_in, wi_in);
+    float lo = dot(wo_in, wo_in);
+    float3 wi_2 = (wi_in * (1.0 / sqrt(li)));
+    float3 wo_2 = (wo_in * (1.0 / sqrt(lo)));
+    float3 s = (wi_2 + wo_2);
+    float len = sqrt(dot(s, s));
+    float3 h = (s / (len).xxx);
+    bool valid = (((((li > 0.0) & (lo > 0.0)) & (wi_2.z >= FB_COS_MIN)) & (wo_2.z >= FB_COS_MIN)) & (len > 0.0));
+    const FbPair fbpair = ConstructFbPair(valid, wi_2.z, wo_2.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_2, wo_2);
+    return fbpair;
+}
+
+float fb_brdf_ward_pow(float3 wi, float3 wo, float e, float scale)
+{
+    const FbPair _e4 = fb_pair(wi, wo);
+    float lobe = pow(_e4.h.z, e);
+    return (_e4.valid ? ((scale * lobe) / sqrt((_e4.cos_i * _e4.cos_o))) : 0.0);
+}
+
+float fb_ward_pow(float3 wi_1, float3 wo_1)
+{
+    const float _e4 = fb_brdf_ward_pow(wi_1, wo_1, 22.222221, 0.88419414);
+    return _e4;
+}

@@ -1,0 +1,50 @@
+// fastbrdf 0.1.0 (brdf): ward
+// Made by: fastbrdf shader --model ward --lang glsl
+//
+// Formula: exp(-(h_x^2/ax^2 + h_y^2/ay^2)/h_z^2) / (4 pi ax ay sqrt(cos_i cos_o))
+// Source: Ward 1992, 'Measuring and modeling anisotropic reflection'
+// Note: albedo <= 1 up to 85 degrees; exceeds 1 within ~0.5 degree of grazing (1.50 at 89.9 degrees, alpha = 1)
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   alpha_x: anisotropic slope along x (with alpha_y; replaces alpha) (range [0.01, 1], default -)
+//   alpha_y: anisotropic slope along y (with alpha_x; replaces alpha) (range [0.01, 1], default -)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 5e-5 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Entry: fb_ward(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns f32.
+
+struct FbPair {
+    bool valid;
+    float cos_i;
+    float cos_o;
+    vec3 h;
+    float sin2_h;
+    float cos_ih;
+    vec3 wi;
+    vec3 wo;
+};
+const float FB_COS_MIN = 9.536743e-7;
+
+
+FbPair fb_pair(vec3 wi_in, vec3 wo_in) {
+    float li = dot(wi_in, wi_in);
+    float lo = dot(wo_in, wo_in);
+    vec3 wi_2 = (wi_in * (1.0 / sqrt(li)));
+    vec3 wo_2 = (wo_in * (1.0 / sqrt(lo)));
+    vec3 s = (wi_2 + wo_2);
+    float len = sqrt(dot(s, s));
+    vec3 h = (s / vec3(len));
+    bool valid = (((((li > 0.0) && (lo > 0.0)) && (wi_2.z >= FB_COS_MIN)) && (wo_2.z >= FB_COS_MIN)) && (len > 0.0));
+    return FbPair(valid, wi_2.z, wo_2.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_2, wo_2);
+}
+
+float fb_brdf_ward(vec3 wi, vec3 wo, float inv_ax2_, float inv_ay2_, float scale) {
+    FbPair _e5 = fb_pair(wi, wo);
+    float lobe = exp((-((((_e5.h.x * _e5.h.x) * inv_ax2_) + ((_e5.h.y * _e5.h.y) * inv_ay2_))) / (_e5.h.z * _e5.h.z)));
+    return (_e5.valid ? ((scale * lobe) / sqrt((_e5.cos_i * _e5.cos_o))) : 0.0);
+}
+
+float fb_ward(vec3 wi_1, vec3 wo_1) {
+    float _e5 = fb_brdf_ward(wi_1, wo_1, 11.111111, 11.111111, 0.88419414);
+    return _e5;
+}
