@@ -59,6 +59,10 @@ pub struct Report {
     pub kernels: Vec<KernelRow>,
     pub speedups: Vec<SpeedupRow>,
     pub quick: bool,
+    /// The GPU adapter of `--gpu` rows (variants `gpu`, `gpu+transfer`), with a warning when it
+    /// is a software adapter (its figures are CPU figures); absent without `--gpu`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gpu: Option<String>,
 }
 
 /// The CPU's model name (Linux /proc/cpuinfo), or "unknown".
@@ -263,7 +267,8 @@ pub fn configurations() -> Vec<(String, Vec<(String, String)>)> {
     v
 }
 
-fn registry_id(name: &str) -> &str {
+/// The registry id of a configuration name (`cook-torrance[seed-000,d=...]` -> `cook-torrance`).
+pub fn registry_id(name: &str) -> &str {
     name.split('[').next().unwrap_or(name)
 }
 
@@ -412,6 +417,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         kernels,
         speedups,
         quick: opts.quick,
+        gpu: None,
     })
 }
 
@@ -430,6 +436,13 @@ fn baseline(model: &str, secs: f64) -> KernelRow {
 fn find(k: &[KernelRow], model: &str, variant: &str, batch: usize) -> Option<f64> {
     k.iter()
         .find(|r| r.model == model && r.variant == variant && r.batch == batch)
+        .map(|r| r.evals_per_s)
+}
+
+/// A GPU figure (one batch size per run).
+fn find_gpu(k: &[KernelRow], model: &str) -> Option<f64> {
+    k.iter()
+        .find(|r| r.model == model && r.variant == "gpu")
         .map(|r| r.evals_per_s)
 }
 
@@ -533,6 +546,42 @@ pub fn speedups(k: &[KernelRow], small: usize, large: usize) -> Vec<SpeedupRow> 
         None,
         "SIMD exact beckmann (exp and 12 more operations) over a bare scalar expf loop".into(),
     );
+    // GPU rows (`fastbrdf bench --gpu`): the same ratios on the GPU, and GPU over all CPU threads.
+    push(
+        "ct.speedup.gpu".into(),
+        find_gpu(k, &ct("beckmann-power16")),
+        find_gpu(k, &ct("beckmann-ct")),
+        None,
+        "seed 000's Cook-Torrance on the GPU: D16 over exp-based D".into(),
+    );
+    push(
+        "ward.speedup.gpu".into(),
+        find_gpu(k, "ward-power16"),
+        find_gpu(k, "ward"),
+        None,
+        "isotropic Ward on the GPU: the g = 16 form over exp".into(),
+    );
+    for e in registry::all() {
+        for b in e.info.bounds.iter().take(1) {
+            let id = e.info.id;
+            push(
+                format!("{id}.over.{}.gpu", b.reference),
+                find_gpu(k, id),
+                find_gpu(k, b.reference),
+                None,
+                format!("GPU {id} over GPU {}", b.reference),
+            );
+        }
+    }
+    for m in ["pow", "power16", "beckmann", "cook-torrance", "ward"] {
+        push(
+            format!("{m}.gpu.over.cpu-threads"),
+            find_gpu(k, m),
+            find(k, m, "simd-threads", large),
+            None,
+            format!("{m}: GPU (data resident) over SIMD on all CPU threads, batch {large}"),
+        );
+    }
     for m in ["power16", "pow", "cook-torrance", "ward"] {
         push(
             format!("{m}.threads.scaling"),

@@ -4,10 +4,12 @@
 //! - [`spec`]: a model id and parameters as one WGSL function `fb_<id>`.
 //! - [`context`]: instance, adapter and device set-up; everything else takes `&Device, &Queue`.
 //! - [`compute`]: evaluate any model over a batch (the CPU batch API's inputs).
+//! - [`bench`]: evaluations per second on the GPU (kernel alone, and with transfers).
 //! - [`render`]: the CPU renderer's scenes, rasterised on the GPU, shaded by any model.
 //! - [`export`]: a model as a self-contained function in WGSL, GLSL, HLSL, MSL (through
 //!   naga) or a BRDF Explorer `.brdf` file.
 
+pub mod bench;
 pub mod compute;
 pub mod context;
 pub mod export;

@@ -10,7 +10,12 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf bench --quick\n  fastbrdf bench --json > bench.json\n  \
-fastbrdf bench --from bench.json --markdown\n  fastbrdf bench --models pow,power16,cook-torrance"
+fastbrdf bench --from bench.json --markdown\n  fastbrdf bench --models pow,power16,cook-torrance\n  \
+fastbrdf bench --gpu --quick\n\n\
+--gpu adds, in the same run, each model's evaluations per second on the GPU with the data\n\
+resident (variant `gpu`) and with upload and read-back (`gpu+transfer`), batch min(--large,\n\
+4194304), and GPU speedup rows. The adapter is named in the output; a software adapter\n\
+(lavapipe, llvmpipe) runs on the CPU, and the output says its figures are CPU figures."
 )]
 pub struct Args {
     /// About 10 s instead of about a minute (shorter timing rounds; one run of the large batch).
@@ -32,6 +37,62 @@ pub struct Args {
     /// Elements of the large batch.
     #[arg(long, default_value_t = 16 * 1024 * 1024)]
     large: usize,
+    /// Also measure every model on the GPU (wgpu; fails if there is no adapter).
+    #[arg(long, conflicts_with = "from")]
+    gpu: bool,
+}
+
+/// Adds the GPU rows and speedups to a CPU run.
+fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
+    use fastbrdf_gpu::compute::{CHUNK, GpuInput};
+    let gpu = fastbrdf_gpu::Gpu::new()?;
+    let label = gpu.label();
+    eprintln!("GPU: {label}");
+    let n = a.large.min(CHUNK);
+    let inputs = speed::Inputs::new(n);
+    let budget = std::time::Duration::from_millis(if a.quick { 40 } else { 200 });
+    let configs: Vec<_> = speed::configurations()
+        .into_iter()
+        .filter(|(name, _)| {
+            a.models.is_empty() || a.models.iter().any(|m| m == speed::registry_id(name))
+        })
+        .collect();
+    let pb = bar(configs.len() as u64, "bench --gpu");
+    for (name, params) in &configs {
+        let id = speed::registry_id(name);
+        let given: Vec<(&str, &str)> = params
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        let kind = fastbrdf::registry::find(id)?.info.kind;
+        let input = if kind == fastbrdf::Kind::Brdf {
+            let d = &inputs.dirs;
+            GpuInput::Dirs([&d[0], &d[1], &d[2], &d[3], &d[4], &d[5]])
+        } else {
+            GpuInput::Cos(&inputs.cos)
+        };
+        let m =
+            fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, id, &given, input, n, budget)?;
+        for (variant, v) in [
+            ("gpu", m.kernel_evals_per_s),
+            ("gpu+transfer", m.transfer_evals_per_s),
+        ] {
+            r.kernels.push(speed::KernelRow {
+                model: name.clone(),
+                variant: variant.into(),
+                batch: n,
+                evals_per_s: v,
+                isa: "gpu".into(),
+                fma_fraction: None,
+            });
+        }
+        pb.inc(1);
+    }
+    pb.finish_and_clear();
+    let large = r.kernels.iter().map(|k| k.batch).max().unwrap_or(0);
+    r.speedups = speed::speedups(&r.kernels, 4096, large);
+    r.gpu = Some(label);
+    Ok(())
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
@@ -67,6 +128,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 pb.set_position(done as u64);
             })?;
             pb.finish_and_clear();
+            let mut r = r;
+            if a.gpu {
+                add_gpu(&mut r, a)?;
+            }
             r
         }
     };
@@ -95,7 +160,18 @@ fn eng(x: f64) -> String {
 
 fn table(r: &Report, md: bool) -> String {
     let mut s = String::new();
-    let large = r.kernels.iter().map(|k| k.batch).max().unwrap_or(0);
+    let large = r
+        .kernels
+        .iter()
+        .filter(|k| !k.variant.starts_with("gpu"))
+        .map(|k| k.batch)
+        .max()
+        .unwrap_or(0);
+    let gpu_batch = r
+        .kernels
+        .iter()
+        .find(|k| k.variant == "gpu")
+        .map(|k| k.batch);
     let models: Vec<&str> = {
         let mut v: Vec<&str> = vec![];
         for k in &r.kernels {
@@ -110,17 +186,25 @@ fn table(r: &Report, md: bool) -> String {
             .iter()
             .find(|k| k.model == m && k.variant == variant && k.batch == batch)
     };
+    let (gpu_md, gpu_md_rule, gpu_txt) = match gpu_batch {
+        Some(b) => (
+            format!(" GPU ({b}) | GPU with transfers ({b}) |"),
+            "---|---|",
+            format!(" {:>12} {:>12}", "gpu", "gpu+xfer"),
+        ),
+        None => (String::new(), "", String::new()),
+    };
     if md {
         let _ = writeln!(
             s,
-            "| model | scalar (4096) | SIMD (4096) | % FMA peak | SIMD 1 thread ({large}) | SIMD {} threads ({large}) | ISA |",
+            "| model | scalar (4096) | SIMD (4096) | % FMA peak | SIMD 1 thread ({large}) | SIMD {} threads ({large}) | ISA |{gpu_md}",
             r.threads
         );
-        let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|{gpu_md_rule}");
     } else {
         let _ = writeln!(
             s,
-            "  {:<40} {:>12} {:>12} {:>8} {:>14} {:>14}  isa",
+            "  {:<40} {:>12} {:>12} {:>8} {:>14} {:>14}{gpu_txt}  isa",
             "model (evals/s)",
             "scalar 4096",
             "simd 4096",
@@ -142,10 +226,17 @@ fn table(r: &Report, md: bool) -> String {
         let isa = get(m, "simd", 4096)
             .map(|k| k.isa.clone())
             .unwrap_or_else(|| "scalar".into());
+        let (g_md, g_txt) = match gpu_batch {
+            Some(b) => (
+                format!(" {} | {} |", c("gpu", b), c("gpu+transfer", b)),
+                format!(" {:>12} {:>12}", c("gpu", b), c("gpu+transfer", b)),
+            ),
+            None => (String::new(), String::new()),
+        };
         if md {
             let _ = writeln!(
                 s,
-                "| `{m}` | {} | {} | {frac} | {} | {} | {isa} |",
+                "| `{m}` | {} | {} | {frac} | {} | {} | {isa} |{g_md}",
                 c("scalar", 4096),
                 c("simd", 4096),
                 c("simd", large),
@@ -154,7 +245,7 @@ fn table(r: &Report, md: bool) -> String {
         } else {
             let _ = writeln!(
                 s,
-                "  {:<40} {:>12} {:>12} {:>8} {:>14} {:>14}  {isa}",
+                "  {:<40} {:>12} {:>12} {:>8} {:>14} {:>14}{g_txt}  {isa}",
                 m,
                 c("scalar", 4096),
                 c("simd", 4096),
@@ -198,8 +289,12 @@ fn speed_table(r: &Report, md: bool) -> String {
 }
 
 fn header(r: &Report) -> String {
+    let gpu = match &r.gpu {
+        Some(g) => format!("; GPU: {g}"),
+        None => String::new(),
+    };
     format!(
-        "CPU: {}; instruction set: {}; {} threads; FMA peak {} lane-FMA/s per core{}",
+        "CPU: {}; instruction set: {}; {} threads; FMA peak {} lane-FMA/s per core{}{gpu}",
         r.cpu,
         r.isa,
         r.threads,

@@ -1,0 +1,171 @@
+//! The GPU-related commands end to end: `fastbrdf shader` (no GPU needed) and
+//! `fastbrdf bench --gpu` (needs an adapter: skipped without one, a failure when `CI` is set).
+
+use std::process::{Command, Output};
+
+fn fastbrdf(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).unwrap()
+}
+
+fn temp_dir(tag: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("fastbrdf-gpu-cli-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn have_gpu() -> bool {
+    match fastbrdf_gpu::Gpu::new() {
+        Ok(_) => true,
+        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
+        Err(e) => {
+            eprintln!("skipping: {e}");
+            false
+        }
+    }
+}
+
+#[test]
+fn shader_prints_every_language_and_matches_the_library() {
+    for lang in ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"] {
+        let o = fastbrdf(&[
+            "shader",
+            "--model",
+            "flog-normalized",
+            "--param",
+            "n=100",
+            "--lang",
+            lang,
+        ]);
+        assert!(o.status.success(), "{lang}: {}", stderr(&o));
+        let text = stdout(&o);
+        let want = fastbrdf_gpu::export::export(
+            "flog-normalized",
+            &[("n", "100")],
+            fastbrdf_gpu::export::Lang::parse(lang).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(text, want, "{lang}");
+        assert!(text.contains("n = 100"), "{lang}");
+    }
+    // Default language is WGSL.
+    let o = fastbrdf(&["shader", "--model", "pow"]);
+    assert!(stdout(&o).contains("fn fb_pow(c: f32) -> f32"));
+}
+
+#[test]
+fn shader_writes_files_and_rejects_bad_input_without_writing() {
+    let dir = temp_dir("shader");
+    let out = dir.join("ct.hlsl");
+    let o = fastbrdf(&[
+        "shader",
+        "--model",
+        "cook-torrance",
+        "--param",
+        "f=schlick",
+        "--lang",
+        "hlsl",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).is_empty());
+    assert!(
+        std::fs::read_to_string(&out)
+            .unwrap()
+            .contains("float fb_cook_torrance(")
+    );
+
+    let all = dir.join("all");
+    let o = fastbrdf(&[
+        "shader",
+        "--all",
+        "--lang",
+        "glsl",
+        "--out",
+        all.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let n = std::fs::read_dir(&all).unwrap().count();
+    assert_eq!(n, fastbrdf::registry::all().len());
+
+    let bad = dir.join("bad.glsl");
+    for args in [
+        vec!["shader", "--model", "nope", "--lang", "glsl"],
+        vec![
+            "shader", "--model", "pow", "--param", "n=-3", "--lang", "glsl",
+        ],
+        vec!["shader", "--model", "pow", "--param", "n", "--lang", "glsl"],
+        vec!["shader", "--model", "pow", "--lang", "cuda"],
+        vec![
+            "shader", "--model", "beckmann", "--param", "alpha=0", "--lang", "glsl",
+        ],
+        vec!["shader", "--all", "--param", "n=3", "--lang", "glsl"],
+    ] {
+        let mut a = args.clone();
+        a.extend(["--out", bad.to_str().unwrap()]);
+        let o = fastbrdf(&a);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(stdout(&o).is_empty(), "{args:?}");
+        assert!(!bad.exists(), "{args:?} wrote a file");
+        assert!(
+            stderr(&o).starts_with("error:") || stderr(&o).contains("error"),
+            "{args:?}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bench_gpu_adds_labelled_gpu_rows_to_the_cpu_run() {
+    if !have_gpu() {
+        return;
+    }
+    let o = fastbrdf(&[
+        "bench",
+        "--gpu",
+        "--quick",
+        "--json",
+        "--models",
+        "power16,ward",
+        "--large",
+        "65536",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let label = j["gpu"].as_str().expect("the adapter is named");
+    let rows = j["kernels"].as_array().unwrap();
+    for m in ["power16", "ward"] {
+        for v in ["gpu", "gpu+transfer", "simd"] {
+            let r = rows
+                .iter()
+                .find(|r| r["model"] == m && r["variant"] == v)
+                .unwrap_or_else(|| panic!("no {m} {v} row"));
+            assert!(r["evals_per_s"].as_f64().unwrap() > 0.0);
+        }
+    }
+    let names: Vec<&str> = j["speedups"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert!(names.contains(&"ward.gpu.over.cpu-threads"), "{names:?}");
+    if label.contains("llvmpipe") || label.contains("lavapipe") {
+        assert!(label.contains("CPU figures"), "{label}");
+    }
+    // --gpu and --from do not mix.
+    let o = fastbrdf(&["bench", "--gpu", "--from", "x.json"]);
+    assert_eq!(o.status.code(), Some(2));
+}
