@@ -21,7 +21,7 @@
 //! back with naga's GLSL front end.
 
 use crate::context::GpuError;
-use crate::spec::{Emit, Instance};
+use crate::spec::{Emit, Instance, shown};
 use fastbrdf::model::{Kind, Metric, Zone};
 use fastbrdf::params::ParamKind;
 use std::fmt::Write as _;
@@ -282,18 +282,6 @@ fn header_text(
         );
     }
     s
-}
-
-fn shown(params: &[(String, String)]) -> String {
-    if params.is_empty() {
-        "no parameters".into()
-    } else {
-        params
-            .iter()
-            .map(|(k, v)| format!("{k} = {v}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    }
 }
 
 fn header(

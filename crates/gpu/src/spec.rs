@@ -77,15 +77,7 @@ impl Instance {
                 (k.to_string(), v)
             })
             .collect();
-        let shown = if params.is_empty() {
-            "no parameters".to_string()
-        } else {
-            params
-                .iter()
-                .map(|(k, v)| format!("{k} = {v}"))
-                .collect::<Vec<_>>()
-                .join(", ")
-        };
+        let shown = shown(&params);
         let wrapper = format!(
             "/// {id}: {formula}\n/// Source: {source}. Instance: {shown}.\nfn {function}({signature}) -> f32 {{\n{body}}}\n",
             id = e.info.id,
@@ -107,6 +99,19 @@ impl Instance {
         s.push('\n');
         s.push_str(&self.wrapper);
         s
+    }
+}
+
+/// `a = 1, b = x`, or `no parameters`.
+pub fn shown(params: &[(String, String)]) -> String {
+    if params.is_empty() {
+        "no parameters".into()
+    } else {
+        params
+            .iter()
+            .map(|(k, v)| format!("{k} = {v}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 }
 
