@@ -169,3 +169,66 @@ fn bench_gpu_adds_labelled_gpu_rows_to_the_cpu_run() {
     let o = fastbrdf(&["bench", "--gpu", "--from", "x.json"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn render_gpu_matches_the_cpu_render_and_rejects_bad_input() {
+    if !have_gpu() {
+        return;
+    }
+    let dir = temp_dir("render");
+    let (cpu, gpu) = (dir.join("cpu.png"), dir.join("gpu.png"));
+    let args = [
+        "--model", "flog", "--param", "n=50", "--size", "64x48", "--spp", "2",
+    ];
+    let o = fastbrdf(&[&["render"], &args[..], &["--out", cpu.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = fastbrdf(
+        &[
+            &["render", "--gpu"],
+            &args[..],
+            &["--out", gpu.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("GPU: "),
+        "the adapter is named: {}",
+        stderr(&o)
+    );
+    let a = image::open(&cpu).unwrap().to_rgb8();
+    let b = image::open(&gpu).unwrap().to_rgb8();
+    assert_eq!(a.dimensions(), (64, 48));
+    assert_eq!(a.dimensions(), b.dimensions());
+    let max = a
+        .as_raw()
+        .iter()
+        .zip(b.as_raw())
+        .map(|(x, y)| x.abs_diff(*y))
+        .max()
+        .unwrap();
+    assert!(max <= 2, "GPU and CPU PNGs differ by {max}/255");
+
+    let bad = dir.join("bad.png");
+    for extra in [
+        vec!["--size", "100000x100000"],
+        vec!["--size", "0x10"],
+        vec!["--model", "nope"],
+        vec!["--spp", "17"],
+        vec!["--texture", "/nonexistent/skin.png"],
+    ] {
+        let mut a = vec![
+            "render",
+            "--gpu",
+            "--model",
+            "pow",
+            "--out",
+            bad.to_str().unwrap(),
+        ];
+        a.extend(extra.iter());
+        let o = fastbrdf(&a);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {}", stderr(&o));
+        assert!(!bad.exists(), "{extra:?} left a file");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

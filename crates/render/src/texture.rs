@@ -71,6 +71,12 @@ impl Texture {
         }
     }
 
+    /// The linear texels (row-major, top row first), for renderers that filter themselves
+    /// (the GPU renderer uploads them).
+    pub fn texels(&self) -> &[Vec3] {
+        &self.texels
+    }
+
     /// Bilinear sample at `uv` (v = 0 at the bottom, as OBJ), wrapping.
     pub fn sample(&self, uv: Vec2) -> Vec3 {
         let (w, h) = (self.width as f32, self.height as f32);

@@ -1,0 +1,527 @@
+// fastbrdf GPU renderer: the CPU renderer's per-sample work (crates/render/src/render.rs) as
+// vertex and fragment shaders. See crates/gpu/src/render.rs for the design.
+//
+// Every function here is the twin of the CPU code named in its comment, with the same
+// arrangement of f32 operations (left-to-right sums, glam's formulas for dot, cross, normalize,
+// lerp and any_orthonormal_pair), so that the two renders differ only by what WGSL allows a
+// GPU to do differently (fused multiply-adds, looser division, sqrt, atan2, asin) and by the
+// model functions' own CPU-GPU differences (tests/parity.rs).
+//
+// The module is completed at run time by the model library (`spec::Instance::module_source`)
+// and one line defining `rd_brdf(wi, wo)` as the model's `fb_<id>`.
+
+/// Per-frame (per-tile) data. Vectors are vec4 to keep the uniform layout obvious.
+struct Frame {
+    /// Camera: eye; forward f, right r, up u (Camera::ray's frame, computed by glam on the CPU).
+    eye: vec4<f32>,
+    fwd: vec4<f32>,
+    right: vec4<f32>,
+    up: vec4<f32>,
+    /// tan(fov_y / 2), aspect w / h, w as f32, h as f32.
+    cam: vec4<f32>,
+    /// Ambient radiance (rgb).
+    ambient: vec4<f32>,
+    /// Image width, height (pixels), samples per pixel along each axis N, number of lights.
+    size: vec4<u32>,
+    /// The tile: first sample column and row (in the (W N) x (H N) sample grid).
+    tile: vec4<u32>,
+    /// World point -> clip position of the tile (meshes), rows of a 4x4 matrix.
+    clip_x: vec4<f32>,
+    clip_y: vec4<f32>,
+    clip_z: vec4<f32>,
+    clip_w: vec4<f32>,
+}
+
+/// A light (twin: scene::Light). kind_pos.w: 0 directional (xyz: unit direction to the
+/// light), 1 point (xyz: position). color.w: intensity.
+struct Light {
+    kind_pos: vec4<f32>,
+    color: vec4<f32>,
+}
+
+/// One object: shape and material (twin: scene::Object).
+struct Object {
+    /// Sphere: centre, radius. Plane: point.
+    a: vec4<f32>,
+    /// Plane: normal; and its tangent pair (glam's any_orthonormal_pair, from the CPU).
+    normal: vec4<f32>,
+    tu: vec4<f32>,
+    tv: vec4<f32>,
+    /// Albedo (rgb) and kd.
+    albedo: vec4<f32>,
+    /// ks, bump scale, bump depth, 0.
+    mat: vec4<f32>,
+    /// Texture width and height as f32, 0, 0.
+    tex: vec4<f32>,
+    /// Shape (0 sphere, 1 plane, 2 mesh), has a texture, has a bump, mesh has uvs.
+    flags: vec4<u32>,
+    /// Texture width and height, 0, 0.
+    tex_size: vec4<u32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: Frame;
+@group(0) @binding(1) var<storage, read> lights: array<Light>;
+
+@group(1) @binding(0) var<uniform> object: Object;
+/// Linear albedo texels (rgb), read with textureLoad: the bilinear filter is texture.rs's.
+@group(1) @binding(1) var albedo_tex: texture_2d<f32>;
+/// Mesh vertices: 8 floats each (position, normal, uv).
+@group(1) @binding(2) var<storage, read> mesh_v: array<f32>;
+/// Mesh triangles: 4 u32 each, the vertex indices a, b, c and a mask of the triangle's
+/// boundary edges (edges no other triangle shares): 1 for a-b, 2 for b-c, 4 for c-a.
+@group(1) @binding(3) var<storage, read> mesh_t: array<u32>;
+/// The model instance's coefficients (spec::Emit::storage).
+@group(1) @binding(4) var<storage, read> fb_k: array<f32>;
+
+const RD_PI: f32 = 3.14159265358979323846;
+const RD_TAU: f32 = 6.28318530717958647692;
+/// Ray parameters at or below this are no hit (twin: Scene::intersect's 1e-4).
+const RD_T_MIN: f32 = 1e-4;
+/// The largest f32 below 1: depth values stay inside the depth attachment's range.
+const RD_DEPTH_MAX: f32 = 0.99999994;
+
+// ---- glam twins ------------------------------------------------------------------------
+
+/// glam Vec3::dot: (x x') + (y y') + (z z').
+fn rd_dot(a: vec3<f32>, b: vec3<f32>) -> f32 {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+/// glam Vec3::cross.
+fn rd_cross(a: vec3<f32>, b: vec3<f32>) -> vec3<f32> {
+    return vec3<f32>(a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y);
+}
+
+/// glam Vec3::length_recip: 1 / sqrt(dot).
+fn rd_length_recip(a: vec3<f32>) -> f32 {
+    return 1.0 / sqrt(rd_dot(a, a));
+}
+
+/// glam Vec3::normalize: a * length_recip.
+fn rd_normalize(a: vec3<f32>) -> vec3<f32> {
+    return a * rd_length_recip(a);
+}
+
+/// glam Vec3::normalize_or: the fallback when 1 / length is not finite and positive.
+fn rd_normalize_or(a: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
+    let rcp = rd_length_recip(a);
+    // Finite and positive: below the largest f32 (this also rejects NaN).
+    if rcp > 0.0 && rcp <= 3.40282347e38 {
+        return a * rcp;
+    }
+    return fallback;
+}
+
+/// glam Vec3::lerp: a (1 - s) + b s.
+fn rd_lerp3(a: vec3<f32>, b: vec3<f32>, s: f32) -> vec3<f32> {
+    return a * (1.0 - s) + b * s;
+}
+
+/// Rust's f32::signum for non-NaN x: copysign(1, x), so -0.0 gives -1.
+fn rd_signum(x: f32) -> f32 {
+    return select(1.0, -1.0, (bitcast<u32>(x) & 0x80000000u) != 0u);
+}
+
+struct RdPair {
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
+/// glam Vec3::any_orthonormal_pair (Duff et al., "Building an orthonormal basis, revisited").
+fn rd_orthonormal_pair(n: vec3<f32>) -> RdPair {
+    let sign = rd_signum(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    return RdPair(
+        vec3<f32>(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        vec3<f32>(b, sign + n.y * n.y * a, -n.y),
+    );
+}
+
+// ---- inverse trigonometry --------------------------------------------------------------
+
+/// atan(a) for a in [0, 1], within 2 ulp: Cephes' atanf (range reduction at tan(pi/8), a
+/// degree-9 odd polynomial). WGSL's built-in atan2 and asin may err by much more (lavapipe's
+/// put sphere uvs off by 1e-4 of a texel row), which a texture turns into visible differences.
+fn rd_atan01(a: f32) -> f32 {
+    var x = a;
+    var y = 0.0;
+    if a > 0.41421356 {
+        x = (a - 1.0) / (a + 1.0);
+        y = 0.78539816;
+    }
+    let z = x * x;
+    return y + (((0.0805374449538 * z - 0.138776856032) * z + 0.199777106478) * z
+        - 0.333329491539) * z * x + x;
+}
+
+/// Rust's f32::atan2 (for finite inputs; the sign of a zero y is kept, as in libm).
+fn rd_atan2(y: f32, x: f32) -> f32 {
+    let ax = abs(x);
+    let ay = abs(y);
+    let hi = max(ax, ay);
+    if hi == 0.0 {
+        return select(0.0, RD_PI, x < 0.0 || (bitcast<u32>(x) & 0x80000000u) != 0u)
+            * rd_signum(y);
+    }
+    var r = rd_atan01(min(ax, ay) / hi);
+    if ay > ax {
+        r = 1.57079633 - r;
+    }
+    if x < 0.0 {
+        r = RD_PI - r;
+    }
+    return r * rd_signum(y);
+}
+
+/// Rust's f32::asin for x in [-1, 1]: atan2(x, sqrt((1 - x)(1 + x))).
+fn rd_asin(x: f32) -> f32 {
+    return rd_atan2(x, sqrt((1.0 - x) * (1.0 + x)));
+}
+
+// ---- camera and geometry (twins: scene.rs, geometry.rs) -------------------------------------
+
+struct RdRay {
+    o: vec3<f32>,
+    d: vec3<f32>,
+}
+
+/// The primary ray of the sample at fragment position `pos` (twins: render_tile's stratified
+/// sample position and Camera::ray).
+fn rd_primary_ray(pos: vec2<f32>) -> RdRay {
+    let gx = frame.tile.x + u32(pos.x);
+    let gy = frame.tile.y + u32(pos.y);
+    let n = frame.size.z;
+    let x = f32(gx / n) + (f32(gx % n) + 0.5) / f32(n);
+    let y = f32(gy / n) + (f32(gy % n) + 0.5) / f32(n);
+    let th = frame.cam.x;
+    let aspect = frame.cam.y;
+    let sx = (2.0 * x / frame.cam.z - 1.0) * th * aspect;
+    let sy = (1.0 - 2.0 * y / frame.cam.w) * th;
+    let d = frame.fwd.xyz + sx * frame.right.xyz + sy * frame.up.xyz;
+    return RdRay(frame.eye.xyz, rd_normalize(d));
+}
+
+struct RdHit {
+    ok: bool,
+    t: f32,
+    n: vec3<f32>,
+    uv: vec2<f32>,
+}
+
+fn rd_miss() -> RdHit {
+    return RdHit(false, 0.0, vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0, 0.0));
+}
+
+/// Sphere::intersect with t in (RD_T_MIN, inf).
+fn rd_sphere(r: RdRay) -> RdHit {
+    let center = object.a.xyz;
+    let radius = object.a.w;
+    let oc = r.o - center;
+    let b = rd_dot(oc, r.d);
+    let c = rd_dot(oc, oc) - radius * radius;
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return rd_miss();
+    }
+    let s = sqrt(disc);
+    let t = select(-b + s, -b - s, -b - s > RD_T_MIN);
+    if !(t > RD_T_MIN) {
+        return rd_miss();
+    }
+    let p = r.o + t * r.d;
+    let n = (p - center) / radius;
+    let uv = vec2<f32>(
+        0.5 + rd_atan2(n.z, n.x) / RD_TAU,
+        0.5 - rd_asin(clamp(n.y, -1.0, 1.0)) / RD_PI,
+    );
+    return RdHit(true, t, n, uv);
+}
+
+/// Plane::intersect with t in (RD_T_MIN, inf).
+fn rd_plane(r: RdRay) -> RdHit {
+    let point = object.a.xyz;
+    let normal = object.normal.xyz;
+    let denom = rd_dot(normal, r.d);
+    if abs(denom) < 1e-8 {
+        return rd_miss();
+    }
+    let t = rd_dot(point - r.o, normal) / denom;
+    if !(t > RD_T_MIN) {
+        return rd_miss();
+    }
+    let p = r.o + t * r.d;
+    let uv = vec2<f32>(rd_dot(p - point, object.tu.xyz), rd_dot(p - point, object.tv.xyz));
+    return RdHit(true, t, normal, uv);
+}
+
+fn rd_vertex_p(i: u32) -> vec3<f32> {
+    return vec3<f32>(mesh_v[8u * i], mesh_v[8u * i + 1u], mesh_v[8u * i + 2u]);
+}
+
+fn rd_vertex_n(i: u32) -> vec3<f32> {
+    return vec3<f32>(mesh_v[8u * i + 3u], mesh_v[8u * i + 4u], mesh_v[8u * i + 5u]);
+}
+
+fn rd_vertex_uv(i: u32) -> vec2<f32> {
+    return vec2<f32>(mesh_v[8u * i + 6u], mesh_v[8u * i + 7u]);
+}
+
+/// TriMesh::hit_triangle (Moller-Trumbore) and TriMesh::intersect's interpolation, for the
+/// triangle the rasteriser chose. Where the rasteriser and the ray test disagree about a
+/// sample within rounding of an edge: across a boundary edge (a silhouette of an open mesh)
+/// the sample is discarded, as the CPU's ray misses; across a shared edge it is shaded with
+/// its barycentrics as they are (the neighbour, which the CPU's ray hits, did not get the
+/// sample from the rasteriser, and shading is continuous across the edge).
+fn rd_triangle(r: RdRay, tri: u32) -> RdHit {
+    let ia = mesh_t[4u * tri];
+    let ib = mesh_t[4u * tri + 1u];
+    let ic = mesh_t[4u * tri + 2u];
+    let boundary = mesh_t[4u * tri + 3u];
+    let a = rd_vertex_p(ia);
+    let b = rd_vertex_p(ib);
+    let c = rd_vertex_p(ic);
+    let e1 = b - a;
+    let e2 = c - a;
+    let p = rd_cross(r.d, e2);
+    let det = rd_dot(e1, p);
+    if abs(det) < 1e-12 {
+        return rd_miss();
+    }
+    let inv = 1.0 / det;
+    let s = r.o - a;
+    let u = rd_dot(s, p) * inv;
+    let q = rd_cross(s, e1);
+    let v = rd_dot(r.d, q) * inv;
+    let t = rd_dot(e2, q) * inv;
+    if !(t > RD_T_MIN) {
+        return rd_miss();
+    }
+    // Outside edge c-a (u < 0), a-b (v < 0), b-c (u > 1 or u + v > 1): the CPU's tests.
+    var outside = 0u;
+    if !(u >= 0.0) {
+        outside |= 4u;
+    }
+    if !(v >= 0.0) {
+        outside |= 1u;
+    }
+    if u > 1.0 || u + v > 1.0 {
+        outside |= 2u;
+    }
+    if (outside & boundary) != 0u {
+        return rd_miss();
+    }
+    let w = 1.0 - u - v;
+    var n = rd_normalize_or(
+        rd_vertex_n(ia) * w + rd_vertex_n(ib) * u + rd_vertex_n(ic) * v,
+        vec3<f32>(0.0),
+    );
+    if all(n == vec3<f32>(0.0)) {
+        n = rd_normalize_or(rd_cross(e1, e2), vec3<f32>(0.0));
+    }
+    var uv = vec2<f32>(u, v);
+    if object.flags.w != 0u {
+        uv = rd_vertex_uv(ia) * w + rd_vertex_uv(ib) * u + rd_vertex_uv(ic) * v;
+    }
+    return RdHit(true, t, n, uv);
+}
+
+// ---- texture (twin: texture.rs) -------------------------------------------------------------
+
+/// f32::rem_euclid(1.0): x - trunc(x) is Rust's exact fmod for a divisor of 1.
+fn rd_rem1(x: f32) -> f32 {
+    let r = x - trunc(x);
+    return select(r, r + 1.0, r < 0.0);
+}
+
+fn rd_texel(xi: f32, yi: f32) -> vec3<f32> {
+    let w = i32(object.tex_size.x);
+    let h = i32(object.tex_size.y);
+    let x = ((i32(xi) % w) + w) % w;
+    let y = ((i32(yi) % h) + h) % h;
+    return textureLoad(albedo_tex, vec2<i32>(x, y), 0).xyz;
+}
+
+/// Texture::sample: bilinear, wrapping, v = 0 at the bottom.
+fn rd_texture(uv: vec2<f32>) -> vec3<f32> {
+    let x = rd_rem1(uv.x) * object.tex.x - 0.5;
+    let y = (1.0 - rd_rem1(uv.y)) * object.tex.y - 0.5;
+    let x0 = floor(x);
+    let y0 = floor(y);
+    let fx = x - x0;
+    let fy = y - y0;
+    let top = rd_lerp3(rd_texel(x0, y0), rd_texel(x0 + 1.0, y0), fx);
+    let bottom = rd_lerp3(rd_texel(x0, y0 + 1.0), rd_texel(x0 + 1.0, y0 + 1.0), fx);
+    return rd_lerp3(top, bottom, fy);
+}
+
+// ---- micro-relief (twin: bump.rs) -----------------------------------------------------------
+
+fn rd_hash(i: i32, j: i32, k: i32) -> f32 {
+    var h = (bitcast<u32>(i) * 0x8da6b343u) ^ (bitcast<u32>(j) * 0xd8163841u)
+        ^ (bitcast<u32>(k) * 0xcb1ab31fu);
+    h ^= h >> 13u;
+    h = h * 0x5bd1e995u;
+    h ^= h >> 15u;
+    return f32(h & 0x00ffffffu) / 16777215.0;
+}
+
+fn rd_smooth(t: f32) -> f32 {
+    return t * t * (3.0 - 2.0 * t);
+}
+
+fn rd_lerp(a: f32, b: f32, t: f32) -> f32 {
+    return a + (b - a) * t;
+}
+
+/// bump::noise: value noise in [0, 1].
+fn rd_noise(p: vec3<f32>) -> f32 {
+    let f = floor(p);
+    let i = i32(f.x);
+    let j = i32(f.y);
+    let k = i32(f.z);
+    let t = p - f;
+    let u = rd_smooth(t.x);
+    let v = rd_smooth(t.y);
+    let w = rd_smooth(t.z);
+    let x00 = rd_lerp(rd_hash(i, j, k), rd_hash(i + 1, j, k), u);
+    let x10 = rd_lerp(rd_hash(i, j + 1, k), rd_hash(i + 1, j + 1, k), u);
+    let x01 = rd_lerp(rd_hash(i, j, k + 1), rd_hash(i + 1, j, k + 1), u);
+    let x11 = rd_lerp(rd_hash(i, j + 1, k + 1), rd_hash(i + 1, j + 1, k + 1), u);
+    return rd_lerp(rd_lerp(x00, x10, v), rd_lerp(x01, x11, v), w);
+}
+
+/// Bump::height.
+fn rd_height(p: vec3<f32>) -> f32 {
+    let scale = object.mat.y;
+    let depth = object.mat.z;
+    let q = p * scale;
+    return (rd_noise(q) + 0.5 * rd_noise(q * 2.03 + 17.0) + 0.25 * rd_noise(q * 4.07 + 31.0))
+        / 1.75 * depth / scale;
+}
+
+/// Bump::perturb.
+fn rd_perturb(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    let f = rd_orthonormal_pair(n);
+    let eps = 0.25 / object.mat.y;
+    let dt = (rd_height(p + eps * f.t) - rd_height(p - eps * f.t)) / (2.0 * eps);
+    let db = (rd_height(p + eps * f.b) - rd_height(p - eps * f.b)) / (2.0 * eps);
+    return rd_normalize_or(n - dt * f.t - db * f.b, n);
+}
+
+// ---- shading (twin: render_tile) ------------------------------------------------------------
+
+/// Light::at: (unit direction to the light, radiance scale).
+fn rd_light_at(l: Light, p: vec3<f32>) -> RdPair {
+    if l.kind_pos.w == 0.0 {
+        return RdPair(l.kind_pos.xyz, l.color.xyz * l.color.w);
+    }
+    let d = l.kind_pos.xyz - p;
+    let d2 = max(rd_dot(d, d), 1e-12);
+    return RdPair(d / sqrt(d2), l.color.xyz * (l.color.w / d2));
+}
+
+/// The radiance of a hit: two-sided normal, micro-relief, texture, ambient, then per light
+/// the diffuse and the specular term, accumulated in the CPU's order.
+fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
+    let p = r.o + hit.t * r.d;
+    let v = -r.d;
+    var n = hit.n;
+    if rd_dot(hit.n, v) < 0.0 {
+        n = -hit.n;
+    }
+    if object.flags.z != 0u {
+        let pn = rd_perturb(p, n);
+        if rd_dot(pn, v) > 0.0 {
+            n = pn;
+        }
+    }
+    var albedo = object.albedo.xyz;
+    if object.flags.y != 0u {
+        albedo = albedo * rd_texture(hit.uv);
+    }
+    let base = albedo * object.albedo.w;
+    let ks = object.mat.x;
+    var radiance = frame.ambient.xyz * base;
+    for (var i = 0u; i < frame.size.w; i++) {
+        let la = rd_light_at(lights[i], p);
+        let l = la.t;
+        let li = la.b;
+        let cos_i = rd_dot(n, l);
+        if cos_i <= 0.0 {
+            continue;
+        }
+        radiance += li * base * (cos_i / RD_PI);
+        if ks > 0.0 {
+            let f = rd_orthonormal_pair(n);
+            let wi = vec3<f32>(rd_dot(l, f.t), rd_dot(l, f.b), cos_i);
+            let wo = vec3<f32>(rd_dot(v, f.t), rd_dot(v, f.b), rd_dot(v, n));
+            radiance += li * (ks * rd_brdf(wi, wo) * cos_i);
+        }
+    }
+    return radiance;
+}
+
+/// t as a depth value: scaling by 2^-40 is exact, so the depth test orders hits exactly as
+/// the CPU's t comparisons do (strictly nearer wins; draws go in scene order).
+fn rd_depth(t: f32) -> f32 {
+    return min(ldexp(t, -40), RD_DEPTH_MAX);
+}
+
+struct RdOut {
+    @location(0) color: vec4<f32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+// ---- entry points ---------------------------------------------------------------------------
+
+/// Spheres and planes: one triangle covering the tile.
+@vertex
+fn rd_vs_full(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    let x = select(-1.0, 3.0, i == 1u);
+    let y = select(-1.0, 3.0, i == 2u);
+    return vec4<f32>(x, y, 0.5, 1.0);
+}
+
+/// Spheres and planes: the analytic intersection of the sample's primary ray.
+@fragment
+fn rd_fs_analytic(@builtin(position) pos: vec4<f32>) -> RdOut {
+    let r = rd_primary_ray(pos.xy);
+    var hit: RdHit;
+    if object.flags.x == 0u {
+        hit = rd_sphere(r);
+    } else {
+        hit = rd_plane(r);
+    }
+    if !hit.ok {
+        discard;
+    }
+    return RdOut(vec4<f32>(rd_shade(r, hit), 1.0), rd_depth(hit.t));
+}
+
+struct RdMeshVertex {
+    @builtin(position) clip: vec4<f32>,
+    @location(0) @interpolate(flat) tri: u32,
+}
+
+/// Meshes: triangle corners (three per triangle, in triangle order) to clip space.
+@vertex
+fn rd_vs_mesh(@builtin(vertex_index) i: u32, @location(0) p: vec3<f32>) -> RdMeshVertex {
+    let q = vec4<f32>(p, 1.0);
+    let clip = vec4<f32>(dot(frame.clip_x, q), dot(frame.clip_y, q), dot(frame.clip_z, q),
+        dot(frame.clip_w, q));
+    return RdMeshVertex(clip, i / 3u);
+}
+
+/// Meshes: the ray-triangle intersection of the sample's primary ray with the covering
+/// triangle (the CPU's barycentrics, t and interpolation).
+@fragment
+fn rd_fs_mesh(@builtin(position) pos: vec4<f32>, @location(0) @interpolate(flat) tri: u32)
+    -> RdOut {
+    let r = rd_primary_ray(pos.xy);
+    let hit = rd_triangle(r, tri);
+    if !hit.ok {
+        discard;
+    }
+    return RdOut(vec4<f32>(rd_shade(r, hit), 1.0), rd_depth(hit.t));
+}
