@@ -232,3 +232,34 @@ fn render_gpu_matches_the_cpu_render_and_rejects_bad_input() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn readme_gpu_table_is_the_saved_run() {
+    let bench = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/bench/bench-gpu.json"
+    );
+    let o = fastbrdf(&["bench", "--from", bench, "--gpu-only", "--markdown"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let md = stdout(&o);
+    assert!(
+        md.contains("software adapter") || md.contains("GPU"),
+        "{md}"
+    );
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
+    let open = "<!-- bench-gpu:begin -->\n";
+    let start = readme.find(open).expect("README has the GPU bench block") + open.len();
+    let end = readme[start..]
+        .find("<!-- bench-gpu:end -->")
+        .expect("README closes the GPU bench block");
+    assert_eq!(
+        &readme[start..start + end],
+        md,
+        "README's GPU table is stale: paste `fastbrdf bench --from docs/bench/bench-gpu.json --gpu-only --markdown`"
+    );
+    // A run without GPU figures cannot print GPU tables.
+    let cpu = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    let o = fastbrdf(&["bench", "--from", cpu, "--gpu-only"]);
+    assert_eq!(o.status.code(), Some(2));
+}

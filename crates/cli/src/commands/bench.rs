@@ -22,7 +22,9 @@ pub struct Args {
     #[arg(long)]
     quick: bool,
     /// Print JSON: {"cpu", "isa", "threads", "fma_per_s", "kernels": [{model, variant, batch,
-    /// evals_per_s, isa, fma_fraction}], "speedups": [{name, measured, claimed, how}], "quick"}.
+    /// evals_per_s, isa, fma_fraction}], "speedups": [{name, measured, claimed, how}], "quick",
+    /// and with --gpu "gpu" (the adapter's label)}; GPU rows have variant "gpu" or
+    /// "gpu+transfer" and isa "gpu".
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown tables that README.md shows.
@@ -40,6 +42,10 @@ pub struct Args {
     /// Also measure every model on the GPU (wgpu; fails if there is no adapter).
     #[arg(long, conflicts_with = "from")]
     gpu: bool,
+    /// Print only the GPU figures (with the CPU's all-thread SIMD figure beside them) and the
+    /// GPU speedups; for a run made with --gpu.
+    #[arg(long, conflicts_with = "json")]
+    gpu_only: bool,
 }
 
 /// Adds the GPU rows and speedups to a CPU run.
@@ -135,7 +141,14 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             r
         }
     };
-    if a.json {
+    if a.gpu_only {
+        if report.gpu.is_none() {
+            return Err(CliError::input(
+                "--gpu-only: this run has no GPU figures (measure with --gpu)",
+            ));
+        }
+        print!("{}", gpu_tables(&report, a.markdown));
+    } else if a.json {
         println!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
@@ -255,6 +268,93 @@ fn table(r: &Report, md: bool) -> String {
             );
         }
     }
+    s
+}
+
+/// The GPU figures: per model, all-thread SIMD on the CPU, the GPU with data resident and with
+/// transfers, and their ratio; then the GPU speedup rows.
+fn gpu_tables(r: &Report, md: bool) -> String {
+    let mut s = String::new();
+    let gpu = r.gpu.as_deref().unwrap_or("-");
+    let large = r
+        .kernels
+        .iter()
+        .filter(|k| k.variant == "simd-threads")
+        .map(|k| k.batch)
+        .max()
+        .unwrap_or(0);
+    let get = |m: &str, v: &str| {
+        r.kernels
+            .iter()
+            .find(|k| k.model == m && k.variant == v)
+            .map(|k| (k.evals_per_s, k.batch))
+    };
+    let mut models: Vec<&str> = vec![];
+    for k in r.kernels.iter().filter(|k| k.variant == "gpu") {
+        if !models.contains(&k.model.as_str()) {
+            models.push(&k.model);
+        }
+    }
+    let batch = models
+        .first()
+        .and_then(|m| get(m, "gpu"))
+        .map(|g| g.1)
+        .unwrap_or(0);
+    if md {
+        let _ = writeln!(
+            s,
+            "GPU: {gpu}; CPU: {} ({} threads){}.\n",
+            r.cpu,
+            r.threads,
+            if r.quick { " (quick run)" } else { "" }
+        );
+        let _ = writeln!(
+            s,
+            "| model | CPU SIMD, {} threads ({large}) | GPU ({batch}) | GPU with transfers ({batch}) | GPU / CPU |\n|---|---|---|---|---|",
+            r.threads
+        );
+    } else {
+        let _ = writeln!(s, "GPU: {gpu}\nCPU: {} ({} threads)\n", r.cpu, r.threads);
+        let _ = writeln!(
+            s,
+            "  {:<40} {:>14} {:>12} {:>12} {:>9}",
+            "model (evals/s)", "cpu all simd", "gpu", "gpu+xfer", "gpu/cpu"
+        );
+    }
+    for m in models {
+        let cpu = get(m, "simd-threads").map(|k| k.0);
+        let g = get(m, "gpu").map(|k| k.0);
+        let x = get(m, "gpu+transfer").map(|k| k.0);
+        let f = |v: Option<f64>| v.map(eng).unwrap_or_else(|| "-".into());
+        let ratio = match (g, cpu) {
+            (Some(g), Some(c)) => format!("{:.2}", g / c),
+            _ => "-".into(),
+        };
+        if md {
+            let _ = writeln!(s, "| `{m}` | {} | {} | {} | {ratio} |", f(cpu), f(g), f(x));
+        } else {
+            let _ = writeln!(
+                s,
+                "  {:<40} {:>14} {:>12} {:>12} {:>9}",
+                m,
+                f(cpu),
+                f(g),
+                f(x),
+                ratio
+            );
+        }
+    }
+    let gpu_rows = Report {
+        speedups: r
+            .speedups
+            .iter()
+            .filter(|sp| sp.name.contains("gpu"))
+            .cloned()
+            .collect(),
+        ..r.clone()
+    };
+    let _ = writeln!(s);
+    s.push_str(&speed_table(&gpu_rows, md));
     s
 }
 
