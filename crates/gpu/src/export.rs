@@ -95,16 +95,24 @@ pub fn export(id: &str, given: &[(&str, &str)], lang: Lang) -> Result<String, Gp
         Lang::BrdfExplorer => {
             let inst = Instance::new(id, given)?;
             let kind = inst.info.kind;
-            let shaded = match kind {
-                Kind::Lobe | Kind::Distribution => {
-                    let (brdf, p) = as_brdf(id, kind, given);
-                    let p: Vec<(&str, &str)> =
-                        p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-                    Some(Instance::with(&brdf, &p, Emit::literals())?)
-                }
-                _ => None,
+            // What BRDF Explorer evaluates: the BRDF fastbrdf render shades with, with its
+            // coefficients as expressions of sliders where it has them.
+            let (target, p) = match kind {
+                Kind::Lobe | Kind::Distribution => as_brdf(id, kind, given),
+                _ => (
+                    id.to_string(),
+                    given
+                        .iter()
+                        .map(|(a, b)| (a.to_string(), b.to_string()))
+                        .collect(),
+                ),
             };
-            (inst, shaded)
+            let p: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+            let shaded = match Instance::symbolic(&target, &p)? {
+                Some(sym) => sym,
+                None => Instance::with(&target, &p, Emit::literals())?,
+            };
+            (inst, Some(shaded))
         }
         _ => (Instance::new(id, given)?, None),
     };
@@ -144,10 +152,17 @@ fn as_brdf(id: &str, kind: Kind, given: &[(&str, &str)]) -> (String, Vec<(String
 /// A call of the instance's function on fixed arguments (for entry points).
 pub fn call_of(inst: &Instance) -> String {
     let f = &inst.function;
+    let extra: String = inst
+        .sliders
+        .iter()
+        .map(|(_, v)| format!(", {}", crate::spec::lit(*v)))
+        .collect();
     match inst.info.kind {
-        Kind::Brdf => format!("{f}(vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.0, -0.6, 0.8))"),
-        Kind::Shadowing => format!("{f}(0.8, 0.8, 0.9, 0.9)"),
-        _ => format!("{f}(0.9)"),
+        Kind::Brdf => {
+            format!("{f}(vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.0, -0.6, 0.8){extra})")
+        }
+        Kind::Shadowing => format!("{f}(0.8, 0.8, 0.9, 0.9{extra})"),
+        _ => format!("{f}(0.9{extra})"),
     }
 }
 
@@ -251,12 +266,14 @@ fn header_text(
          tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).",
         info.f32_bound
     );
-    let _ = writeln!(
-        s,
-        "Coefficients are literals computed in f64 for these parameters; for other values \
-         re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, \
-         less accurate expressions)."
-    );
+    if lang != Lang::BrdfExplorer {
+        let _ = writeln!(
+            s,
+            "Coefficients are literals computed in f64 for these parameters; for other values \
+             re-export, or pass them as uniforms (a compiler cannot fold those into \
+             reassociated, less accurate expressions)."
+        );
+    }
     let sig = match info.kind {
         Kind::Lobe => "(c) with c the cosine to the lobe's axis, clamped to [0, 1]",
         Kind::Distribution => "(cos_h) with cos_h = n.h",
@@ -273,13 +290,35 @@ fn header_text(
         exported_name(&inst.function, lang)
     );
     if let Some(b) = shaded {
-        let _ = writeln!(
-            s,
-            "BRDF Explorer shades this {} through {} ({}).",
-            info.kind.name(),
-            b.info.id,
-            shown(&b.params)
-        );
+        if b.info.id != info.id {
+            let _ = writeln!(
+                s,
+                "BRDF Explorer shades this {} through {} ({}).",
+                info.kind.name(),
+                b.info.id,
+                shown(&b.params)
+            );
+        }
+        let numeric = b
+            .info
+            .params
+            .iter()
+            .any(|p| matches!(p.kind, ParamKind::Number { .. }));
+        if b.sliders.is_empty() && !numeric {
+            let _ = writeln!(s, "No sliders: the model has no numeric parameters.");
+        } else if b.sliders.is_empty() {
+            let _ = writeln!(
+                s,
+                "No sliders: this model's coefficients need f64 on the CPU; re-export for other values."
+            );
+        } else {
+            let names: Vec<&str> = b.sliders.iter().map(|(n, _)| n.as_str()).collect();
+            let _ = writeln!(
+                s,
+                "Sliders: {} (the coefficients are computed from them in the shader, in f32).",
+                names.join(", ")
+            );
+        }
     }
     s
 }
@@ -405,32 +444,45 @@ fn brdf_explorer(
 ) -> Result<String, GpuError> {
     let target = shaded.unwrap_or(inst);
     let f = &exported_name(&target.function, Lang::Glsl);
-    let (wrapper, body) = match target.info.kind {
-        Kind::Brdf => (
-            String::new(),
-            format!(
-                "    vec3 wi = vec3(dot(L, X), dot(L, Y), dot(L, N));\n    vec3 wo = vec3(dot(V, X), dot(V, Y), dot(V, N));\n    return vec3({f}(wi, wo));"
-            ),
+    let extra: String = target
+        .sliders
+        .iter()
+        .map(|(n, _)| format!(", {n}"))
+        .collect();
+    let body = match target.info.kind {
+        Kind::Brdf => format!(
+            "    vec3 wi = vec3(dot(L, X), dot(L, Y), dot(L, N));\n    vec3 wo = vec3(dot(V, X), dot(V, Y), dot(V, N));\n    return vec3({f}(wi, wo{extra}));"
         ),
-        Kind::Fresnel => (
-            String::new(),
-            format!("    vec3 H = normalize(L + V);\n    return vec3({f}(dot(V, H)));"),
-        ),
-        Kind::Shadowing => (
-            String::new(),
-            format!(
-                "    vec3 H = normalize(L + V);\n    return vec3({f}(dot(N, V), dot(N, L), dot(N, H), dot(V, H)));"
-            ),
+        Kind::Fresnel => {
+            format!("    vec3 H = normalize(L + V);\n    return vec3({f}(dot(V, H){extra}));")
+        }
+        Kind::Shadowing => format!(
+            "    vec3 H = normalize(L + V);\n    return vec3({f}(dot(N, V), dot(N, L), dot(N, H), dot(V, H){extra}));"
         ),
         _ => unreachable!("lobes and distributions are shaded through a BRDF"),
     };
+    // One slider per numeric parameter the coefficients are computed from, over its
+    // documented range, starting at this export's value.
+    let mut sliders = String::new();
+    for (name, value) in &target.sliders {
+        let spec = target
+            .info
+            .params
+            .iter()
+            .find(|p| p.name == name)
+            .expect("sliders are parameters");
+        if let ParamKind::Number { min, max, .. } = spec.kind {
+            let _ = writeln!(sliders, "float {name} {min} {max} {value}");
+        }
+    }
     let functions = glsl_functions(&target.module_source(), &call_of(target), target.info.id)?;
     let mut s = String::new();
     s.push_str("analytic\n\n");
     s.push_str(header);
-    s.push_str("\n::begin parameters\n::end parameters\n\n::begin shader\n\n");
-    s.push_str(&wrapper);
-    s.push_str(&functions);
+    let _ = write!(
+        s,
+        "\n::begin parameters\n{sliders}::end parameters\n\n::begin shader\n\n{functions}"
+    );
     let _ = write!(
         s,
         "\nvec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)\n{{\n{body}\n}}\n\n::end shader\n"

@@ -39,6 +39,11 @@ pub struct Instance {
     pub wrapper: String,
     /// The coefficients the function reads from `fb_k` (empty with literals).
     pub coefs: Vec<f32>,
+    /// Symbolic instances: the parameters passed as arguments `p_<name>` (in order), with
+    /// this instance's values.
+    pub sliders: Vec<(String, f64)>,
+    /// Symbolic mode only: some coefficient had no expression (so literals were used).
+    opaque: bool,
 }
 
 impl Instance {
@@ -60,13 +65,26 @@ impl Instance {
         let p = Params::resolve(e.info.id, e.info.params, given)?;
         let function = function_name(e.info.id);
         let body = body(&emit, e.info.id, e.info.kind, &p)?;
-        let signature = match e.info.kind {
+        let mut signature = match e.info.kind {
             Kind::Lobe => "c: f32",
             Kind::Distribution => "cos_h: f32",
             Kind::Shadowing => "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
             Kind::Fresnel => "cos_vh: f32",
             Kind::Brdf => "wi: vec3<f32>, wo: vec3<f32>",
-        };
+        }
+        .to_string();
+        // Symbolic coefficients: the parameters they use become arguments, in registry order.
+        let used = emit.used.borrow().clone();
+        let sliders: Vec<(String, f64)> = e
+            .info
+            .params
+            .iter()
+            .filter(|spec| used.contains(spec.name))
+            .map(|spec| (spec.name.to_string(), p.num(spec.name)))
+            .collect();
+        for (name, _) in &sliders {
+            signature.push_str(&format!(", p_{name}: f32"));
+        }
         let params: Vec<(String, String)> = p
             .iter()
             .map(|(k, v)| {
@@ -90,7 +108,17 @@ impl Instance {
             function,
             wrapper,
             coefs: emit.values.into_inner(),
+            sliders,
+            opaque: emit.opaque.get(),
         })
+    }
+
+    /// The instance with coefficients as expressions of its numeric parameters, which become
+    /// arguments `p_<name>` after the model's inputs; `None` when a coefficient has no such
+    /// expression (cubic shapes, rational nodes, numerical normalisation).
+    pub fn symbolic(id: &str, given: &[(&str, &str)]) -> Result<Option<Self>> {
+        let inst = Self::with(id, given, Emit::symbolic())?;
+        Ok(if inst.opaque { None } else { Some(inst) })
     }
 
     /// A self-contained WGSL module: the library items the function needs, then the function.
@@ -127,17 +155,32 @@ pub fn lit(x: f64) -> String {
     format!("{f:?}f")
 }
 
-/// Where the coefficients of an instance go: inline as literals (exported code), or into the
-/// storage array `fb_k` (the compute and render paths).
+/// Where the coefficients of an instance go: inline as literals (exported code), into the
+/// storage array `fb_k` (the compute and render paths), or as expressions of the model's
+/// numeric parameters passed as arguments `p_<name>` (BRDF Explorer's sliders).
 ///
-/// Why both: a shader compiler folds literal constants into reassociated expressions (Mesa
-/// turns the cubic's Newton form `(x - x2) d3` into `x d3 - x2 d3`, which cancels
-/// catastrophically when `d3 ~ 1e8`). Coefficients it cannot see keep the arrangement the CPU
-/// uses; `tests/parity.rs` measures both forms.
+/// Why literals and storage: a shader compiler folds literal constants into reassociated
+/// expressions (Mesa turns the cubic's Newton form `(x - x2) d3` into `x d3 - x2 d3`, which
+/// cancels catastrophically when `d3 ~ 1e8`). Coefficients it cannot see keep the arrangement
+/// the CPU uses; `tests/parity.rs` measures both forms. Symbolic coefficients are computed in
+/// f32 in the shader, so only models whose coefficients are simple expressions offer them
+/// (not the cubics, rationals or numerically normalised lobes, which need f64 and `expm1`).
 #[derive(Debug, Default)]
 pub struct Emit {
-    uniform: bool,
+    mode: Mode,
     values: std::cell::RefCell<Vec<f32>>,
+    /// Symbolic mode: the parameters the expressions use.
+    used: std::cell::RefCell<std::collections::BTreeSet<String>>,
+    /// Symbolic mode: a coefficient had no expression.
+    opaque: std::cell::Cell<bool>,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Mode {
+    #[default]
+    Literals,
+    Storage,
+    Symbolic,
 }
 
 impl Emit {
@@ -148,18 +191,51 @@ impl Emit {
     /// Coefficients as `fb_k[i]`.
     pub fn storage() -> Self {
         Self {
-            uniform: true,
-            values: Default::default(),
+            mode: Mode::Storage,
+            ..Default::default()
         }
     }
-    /// One coefficient.
-    pub fn k(&self, x: f64) -> String {
-        if !self.uniform {
-            return lit(x);
+    /// Coefficients as expressions of `p_<param>` arguments, where every coefficient has one.
+    pub fn symbolic() -> Self {
+        Self {
+            mode: Mode::Symbolic,
+            ..Default::default()
         }
-        let mut v = self.values.borrow_mut();
-        v.push(x as f32);
-        format!("fb_k[{}]", v.len() - 1)
+    }
+    /// One coefficient with no expression in the parameters.
+    pub fn k(&self, x: f64) -> String {
+        match self.mode {
+            Mode::Literals => lit(x),
+            Mode::Symbolic => {
+                self.opaque.set(true);
+                lit(x)
+            }
+            Mode::Storage => {
+                let mut v = self.values.borrow_mut();
+                v.push(x as f32);
+                format!("fb_k[{}]", v.len() - 1)
+            }
+        }
+    }
+    /// One coefficient, value `x`, which is the WGSL expression `expr` of the parameters
+    /// `params` (written `p_<name>` in `expr`).
+    pub fn kx(&self, x: f64, expr: &str, params: &[&str]) -> String {
+        if self.mode != Mode::Symbolic {
+            return self.k(x);
+        }
+        let mut used = self.used.borrow_mut();
+        for p in params {
+            used.insert(p.to_string());
+        }
+        format!("({expr})")
+    }
+    /// A constant that does not depend on the parameters.
+    pub fn constant(&self, x: f64) -> String {
+        if self.mode == Mode::Storage {
+            self.k(x)
+        } else {
+            lit(x)
+        }
     }
     fn args(&self, xs: &[f64]) -> String {
         xs.iter().map(|x| self.k(*x)).collect::<Vec<_>>().join(", ")
@@ -173,9 +249,23 @@ impl Emit {
     }
 }
 
+/// `R(1/n)` of a tuned family as a WGSL expression of `p_n`.
+fn poly_expr(r: &[f64; 5]) -> String {
+    let x = "(1.0 / p_n)";
+    format!(
+        "{} + {x} * ({} + {x} * ({} + {x} * ({} + {x} * {})))",
+        r[0], r[1], r[2], r[3], r[4]
+    )
+}
+
+/// seed 001's energy coefficient of flog, as an expression of `p_n`.
+const FLOG_COEF: &str = "0.197 * (p_n + 1.24) + 0.068 / (0.64 + p_n)";
+
 /// The call of lobe `id` at exponent `n` on the expression `c` (twin: batch `lobe_op`).
 pub fn lobe_call(e: &Emit, id: &str, n: f64, c: &str) -> Option<String> {
-    let power = |g: u32, s: f64| format!("fb_lobe_power{g}({c}, {})", e.k(s));
+    let power =
+        |g: u32, s: f64, expr: String| format!("fb_lobe_power{g}({c}, {})", e.kx(s, &expr, &["n"]));
+    let nn = |x: f64| e.kx(x, "p_n", &["n"]);
     let cubic_rational = |level: f64| {
         format!(
             "fb_lobe_cubic_rational({c}, {}, {}, {})",
@@ -185,20 +275,24 @@ pub fn lobe_call(e: &Emit, id: &str, n: f64, c: &str) -> Option<String> {
         )
     };
     Some(match id {
-        "pow" => format!("fb_lobe_pow({c}, {})", e.k(n)),
-        "schlick" => format!("fb_lobe_schlick({c}, {})", e.k(n)),
-        "schlick-modified" => format!("fb_lobe_schlick_modified({c}, {})", e.k(n)),
-        "gauss" => format!("fb_lobe_gauss({c}, {})", e.k(0.5 * n)),
-        "flog" => format!("fb_lobe_flog({c}, {}, 1.0f, false)", e.k(n)),
+        "pow" => format!("fb_lobe_pow({c}, {})", nn(n)),
+        "schlick" => format!("fb_lobe_schlick({c}, {})", nn(n)),
+        "schlick-modified" => format!("fb_lobe_schlick_modified({c}, {})", nn(n)),
+        "gauss" => format!("fb_lobe_gauss({c}, {})", e.kx(0.5 * n, "0.5 * p_n", &["n"])),
+        "flog" => format!("fb_lobe_flog({c}, {}, 1.0f, false)", nn(n)),
         "flog-normalized" => {
             format!(
                 "fb_lobe_flog({c}, {}, {}, false)",
-                e.k(n),
-                e.k(seed_coef(n))
+                nn(n),
+                e.kx(seed_coef(n), FLOG_COEF, &["n"])
             )
         }
         "flog-normalized-clamped" => {
-            format!("fb_lobe_flog({c}, {}, {}, true)", e.k(n), e.k(seed_coef(n)))
+            format!(
+                "fb_lobe_flog({c}, {}, {}, true)",
+                nn(n),
+                e.kx(seed_coef(n), FLOG_COEF, &["n"])
+            )
         }
         "cubic" => format!("fb_lobe_cubic({c}, {})", e.cubic(CubicShape::hermite(n))),
         "cubic3" => format!(
@@ -208,16 +302,50 @@ pub fn lobe_call(e: &Emit, id: &str, n: f64, c: &str) -> Option<String> {
         "rational" => format!("fb_lobe_rational({c}, {})", e.rational(n, 0.5)),
         "cubic-rational" => cubic_rational(0.5),
         "cubic-rational-tuned" => cubic_rational(tuned::cubic_rational_level(n)),
-        "power4" => power(4, n / 4.0),
-        "power8" => power(8, n / 8.0),
-        "power16" => power(16, n / 16.0),
-        "power4-tuned" => power(4, tuned::power_slope(4, n)),
-        "power8-tuned" => power(8, tuned::power_slope(8, n)),
-        "power16-tuned" => power(16, tuned::power_slope(16, n)),
-        "sg" => format!("fb_lobe_exp2({c}, {})", e.k(n / LN_2)),
-        "sg-tuned" => format!("fb_lobe_exp2({c}, {})", e.k(tuned::exp2_rate(n))),
+        "power4" => power(4, n / 4.0, "p_n / 4.0".into()),
+        "power8" => power(8, n / 8.0, "p_n / 8.0".into()),
+        "power16" => power(16, n / 16.0, "p_n / 16.0".into()),
+        "power4-tuned" => power(
+            4,
+            tuned::power_slope(4, n),
+            format!(
+                "select(p_n / 4.0 * ({}), 1.0, p_n == 4.0)",
+                poly_expr(&tuned::R_POWER4)
+            ),
+        ),
+        "power8-tuned" => power(
+            8,
+            tuned::power_slope(8, n),
+            format!(
+                "select(p_n / 8.0 * ({}), 1.0, p_n == 8.0)",
+                poly_expr(&tuned::R_POWER8)
+            ),
+        ),
+        "power16-tuned" => power(
+            16,
+            tuned::power_slope(16, n),
+            format!(
+                "select(p_n / 16.0 * ({}), 1.0, p_n == 16.0)",
+                poly_expr(&tuned::R_POWER16)
+            ),
+        ),
+        "sg" => format!(
+            "fb_lobe_exp2({c}, {})",
+            e.kx(n / LN_2, "p_n * 1.4426950408889634", &["n"])
+        ),
+        "sg-tuned" => format!(
+            "fb_lobe_exp2({c}, {})",
+            e.kx(
+                tuned::exp2_rate(n),
+                &format!("p_n * 1.4426950408889634 * ({})", poly_expr(&tuned::R_EXP2)),
+                &["n"]
+            )
+        ),
         #[allow(clippy::approx_constant)]
-        "ue4-phong-approx" => format!("fb_lobe_exp2({c}, {})", e.k(1.4427 * (n + 0.775))),
+        "ue4-phong-approx" => format!(
+            "fb_lobe_exp2({c}, {})",
+            e.kx(1.4427 * (n + 0.775), "1.4427 * (p_n + 0.775)", &["n"])
+        ),
         _ => return None,
     })
 }
@@ -228,21 +356,36 @@ pub fn dist_call(e: &Emit, id: &str, alpha: f64, c: &str, s2: &str) -> Option<St
     let a2 = alpha * alpha;
     let ct = 1.0 / (4.0 * a2);
     let ex = exponent(alpha);
+    const A: &[&str] = &["alpha"];
+    let inv_a2 = || e.kx(1.0 / a2, "1.0 / (p_alpha * p_alpha)", A);
+    let ct_k = || e.kx(ct, "0.25 / (p_alpha * p_alpha)", A);
     let power = |g: u32| {
         format!(
             "fb_d_beckmann_power{g}({c}, {s2}, {}, {})",
-            e.k(ex / g as f64),
-            e.k(ct)
+            e.kx(
+                ex / g as f64,
+                &format!("(2.0 / (p_alpha * p_alpha) - 4.0) / {g}.0"),
+                A
+            ),
+            ct_k()
         )
     };
     Some(match id {
         "beckmann" => format!(
             "fb_d_beckmann({c}, {s2}, {}, {})",
-            e.k(1.0 / a2),
-            e.k(1.0 / (PI * a2))
+            inv_a2(),
+            e.kx(
+                1.0 / (PI * a2),
+                "0.3183098861837907 / (p_alpha * p_alpha)",
+                A
+            )
         ),
-        "beckmann-ct" => format!("fb_d_beckmann({c}, {s2}, {}, {})", e.k(1.0 / a2), e.k(ct)),
-        "beckmann-pow" => format!("fb_d_beckmann_pow({c}, {}, {})", e.k(ex), e.k(ct)),
+        "beckmann-ct" => format!("fb_d_beckmann({c}, {s2}, {}, {})", inv_a2(), ct_k()),
+        "beckmann-pow" => format!(
+            "fb_d_beckmann_pow({c}, {}, {})",
+            e.kx(ex, "2.0 / (p_alpha * p_alpha) - 4.0", A),
+            ct_k()
+        ),
         "beckmann-power4" => power(4),
         "beckmann-power8" => power(8),
         "beckmann-power16" => power(16),
@@ -253,12 +396,15 @@ pub fn dist_call(e: &Emit, id: &str, alpha: f64, c: &str, s2: &str) -> Option<St
 fn fresnel_call(e: &Emit, id: &str, p: &Params, c: &str) -> String {
     match id {
         "none" => "1.0f".into(),
-        "schlick" => format!("fb_f_schlick({c}, {})", e.k(p.num("f0"))),
-        "dielectric" => format!("fb_f_dielectric({c}, {})", e.k(p.num("eta"))),
+        "schlick" => format!("fb_f_schlick({c}, {})", e.kx(p.num("f0"), "p_f0", &["f0"])),
+        "dielectric" => format!(
+            "fb_f_dielectric({c}, {})",
+            e.kx(p.num("eta"), "p_eta", &["eta"])
+        ),
         _ => format!(
             "fb_f_conductor({c}, {}, {})",
-            e.k(p.num("eta")),
-            e.k(p.num("k"))
+            e.kx(p.num("eta"), "p_eta", &["eta"]),
+            e.kx(p.num("k"), "p_k", &["k"])
         ),
     }
 }
@@ -267,11 +413,11 @@ fn shadow_call(e: &Emit, id: &str, p: &Params, v: &str, l: &str, h: &str, vh: &s
     match id {
         "v-cavity" => format!("fb_g_v_cavity({v}, {l}, {h}, {vh})"),
         "smith" => {
-            let a = e.k(p.num("alpha"));
+            let a = e.kx(p.num("alpha"), "p_alpha", &["alpha"]);
             format!("fb_g1_smith({v}, {a}) * fb_g1_smith({l}, {a})")
         }
         _ => {
-            let a = e.k(p.num("alpha"));
+            let a = e.kx(p.num("alpha"), "p_alpha", &["alpha"]);
             format!("fb_g1_smith_rational({v}, {a}) * fb_g1_smith_rational({l}, {a})")
         }
     }
@@ -340,13 +486,13 @@ fn brdf_body(e: &Emit, id: &str, p: &Params) -> Result<String> {
                     "p.cos_ih"
                 ),
                 f = fresnel_call(e, p.choice("f"), p, "p.cos_ih"),
-                k = e.k(k),
+                k = e.constant(k),
             )
         }
         "ward" | "ward-pow" | "ward-power16" => {
-            let (ax, ay) = match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
-                (Some(ax), Some(ay)) => (ax, ay),
-                (None, None) => (p.num("alpha"), p.num("alpha")),
+            let (ax, ay, nx, ny) = match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
+                (Some(ax), Some(ay)) => (ax, ay, "alpha_x", "alpha_y"),
+                (None, None) => (p.num("alpha"), p.num("alpha"), "alpha", "alpha"),
                 _ => {
                     return Err(Error::MissingParam {
                         model: id.into(),
@@ -354,27 +500,37 @@ fn brdf_body(e: &Emit, id: &str, p: &Params) -> Result<String> {
                     });
                 }
             };
-            let scale = e.k(1.0 / (4.0 * PI * ax * ay));
+            let ps = &[nx, ny];
+            let scale = e.kx(
+                1.0 / (4.0 * PI * ax * ay),
+                &format!("0.07957747154594767 / (p_{nx} * p_{ny})"),
+                ps,
+            );
             let ex = 2.0 / (ax * ax);
+            let px = &[nx];
             match id {
                 "ward" => format!(
                     "    return fb_brdf_ward(wi, wo, {}, {}, {scale});\n",
-                    e.k(1.0 / (ax * ax)),
-                    e.k(1.0 / (ay * ay))
+                    e.kx(1.0 / (ax * ax), &format!("1.0 / (p_{nx} * p_{nx})"), px),
+                    e.kx(1.0 / (ay * ay), &format!("1.0 / (p_{ny} * p_{ny})"), &[ny])
                 ),
                 "ward-pow" => format!(
                     "    return fb_brdf_ward_pow(wi, wo, {}, {scale});\n",
-                    e.k(ex)
+                    e.kx(ex, &format!("2.0 / (p_{nx} * p_{nx})"), px)
                 ),
                 _ => format!(
                     "    return fb_brdf_ward_power16(wi, wo, {}, {scale});\n",
-                    e.k(ex / 16.0)
+                    e.kx(ex / 16.0, &format!("0.125 / (p_{nx} * p_{nx})"), px)
                 ),
             }
         }
         "lambert" => format!(
             "{PAIR}    return select(0.0, {}, p.valid);\n",
-            e.k(p.num("albedo") / PI)
+            e.kx(
+                p.num("albedo") / PI,
+                "p_albedo * 0.3183098861837907",
+                &["albedo"]
+            )
         ),
         "phong" | "blinn-phong" => {
             let normalized = p.choice("norm") == "energy";
@@ -385,17 +541,27 @@ fn brdf_body(e: &Emit, id: &str, p: &Params) -> Result<String> {
             } else {
                 1.0
             };
+            // pow's integral has a closed form, 1 / (n + 2); the others are numerical.
+            let coef_k = || {
+                if !normalized {
+                    e.constant(coef)
+                } else if lobe == "pow" {
+                    e.kx(coef, "(p_n + 2.0) * 0.15915494309189535", &["n"])
+                } else {
+                    e.k(coef)
+                }
+            };
             let v = if id == "blinn-phong" {
                 let l = lobe_call(e, lobe, n, "p.h.z").unwrap_or_default();
                 if normalized {
-                    format!("{} * {l} / (4.0 * p.cos_ih)", e.k(coef))
+                    format!("{} * {l} / (4.0 * p.cos_ih)", coef_k())
                 } else {
                     l
                 }
             } else {
                 format!(
                     "{} * {}",
-                    e.k(coef),
+                    coef_k(),
                     lobe_call(e, lobe, n, "r_dot_wo").unwrap_or_default()
                 )
             };

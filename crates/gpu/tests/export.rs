@@ -81,8 +81,28 @@ fn check_one(id: &str, kind: Kind, lang: Lang, text: &str) {
                 .and_then(|s| s.split("::end shader").next())
                 .unwrap_or_else(|| panic!("{what}: no shader block"));
             assert!(body.contains("vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)"));
+            // BRDF Explorer declares a uniform per slider; here a global at its default.
+            let params = text
+                .split("::begin parameters\n")
+                .nth(1)
+                .and_then(|s| s.split("::end parameters").next())
+                .unwrap();
+            let mut globals = String::new();
+            for line in params.lines() {
+                let f: Vec<&str> = line.split_whitespace().collect();
+                assert_eq!(f.len(), 5, "{what}: slider line '{line}'");
+                assert_eq!(f[0], "float", "{what}");
+                let (lo, hi, v): (f64, f64, f64) = (
+                    f[2].parse().unwrap(),
+                    f[3].parse().unwrap(),
+                    f[4].parse().unwrap(),
+                );
+                assert!(lo <= v && v <= hi, "{what}: {line}");
+                globals.push_str(&format!("float {} = {:?};\n", f[1], v));
+            }
+            let body = format!("{globals}{body}");
             parse_glsl(
-                body,
+                &body,
                 "BRDF(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8), vec3(0.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0)).x",
                 &what,
             );

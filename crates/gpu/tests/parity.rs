@@ -92,6 +92,32 @@ fn dir_grid() -> [Vec<f32>; 6] {
     cols
 }
 
+/// A symbolic instance (coefficients computed in the shader from `p_<param>` arguments, as
+/// BRDF Explorer exports use them) behind an entry with the model's plain signature.
+fn symbolic_entry(mut sym: Instance) -> Instance {
+    let args: String = sym
+        .sliders
+        .iter()
+        .map(|(_, v)| format!(", {}", fastbrdf_gpu::spec::lit(*v)))
+        .collect();
+    let (sig, call) = match sym.info.kind {
+        Kind::Brdf => ("wi: vec3<f32>, wo: vec3<f32>", "wi, wo"),
+        Kind::Shadowing => (
+            "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
+            "cos_v, cos_l, cos_h, cos_vh",
+        ),
+        Kind::Distribution => ("cos_h: f32", "cos_h"),
+        Kind::Fresnel => ("cos_vh: f32", "cos_vh"),
+        Kind::Lobe => ("c: f32", "c"),
+    };
+    sym.wrapper = format!(
+        "{}\nfn fb_symbolic_entry({sig}) -> f32 {{\n    return {}({call}{args});\n}}\n",
+        sym.wrapper, sym.function
+    );
+    sym.function = "fb_symbolic_entry".into();
+    sym
+}
+
 /// Relative input perturbation: 8 f32 ulp.
 const DELTA: f32 = 8.0 / 16_777_216.0;
 /// For phong and blinn-phong: 32 ulp. The half vector and the reflected cosine go through
@@ -204,13 +230,17 @@ fn every_model_matches_the_cpu() {
                 .collect();
             let cpu = registry::build::<f32>(info.id, &given).unwrap();
             let exact = registry::build::<f64>(info.id, &given).unwrap();
-            // Both forms: coefficients in storage (compute and render paths) and as literals
-            // (exported code), which a compiler may fold into reassociated expressions.
-            for literals in [false, true] {
-                let instance = if literals {
-                    Instance::new(info.id, &given).unwrap()
-                } else {
-                    Instance::with_storage(info.id, &given).unwrap()
+            // Every form: coefficients in storage (compute and render paths), as literals
+            // (exported code), which a compiler may fold into reassociated expressions, and as
+            // f32 expressions of the parameters (BRDF Explorer's sliders), where they exist.
+            for form in ["storage", "literals", "symbolic"] {
+                let instance = match form {
+                    "storage" => Instance::with_storage(info.id, &given).unwrap(),
+                    "literals" => Instance::new(info.id, &given).unwrap(),
+                    _ => match Instance::symbolic(info.id, &given).unwrap() {
+                        Some(sym) => symbolic_entry(sym),
+                        None => continue,
+                    },
                 };
                 let kernel = GpuKernel::new(d, instance).unwrap();
                 let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>);
@@ -315,7 +345,11 @@ fn every_model_matches_the_cpu() {
                 let line = format!(
                     "{}{} {:?}: plain {:.2e}, outside the perturbed range {:.2e} (tolerance {:.1e}, {skipped} rows near a jump skipped) at row {} ({:?}: gpu {}, cpu {})",
                     info.id,
-                    if literals { " (literals)" } else { "" },
+                    if form == "storage" {
+                        String::new()
+                    } else {
+                        format!(" ({form})")
+                    },
                     config,
                     plain,
                     worst.0,
