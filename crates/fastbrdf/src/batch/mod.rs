@@ -619,16 +619,8 @@ fn build(id: &str, p: &Params) -> Result<Option<Box<dyn Imp>>> {
             ))
         }
         "ward" | "ward-pow" | "ward-power16" => {
-            let (ax, ay) = match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
-                (Some(ax), Some(ay)) => (ax, ay),
-                (None, None) => (p.num("alpha"), p.num("alpha")),
-                _ => {
-                    return Err(Error::MissingParam {
-                        model: "ward".into(),
-                        param: "alpha_x and alpha_y".into(),
-                    });
-                }
-            };
+            let (nx, ny) = crate::brdf::ward::slope_params(p)?;
+            let (ax, ay) = (p.num(nx), p.num(ny));
             let scale = (1.0 / (4.0 * std::f64::consts::PI * ax * ay)) as f32;
             let (inv_ax2, inv_ay2) = ((1.0 / (ax * ax)) as f32, (1.0 / (ay * ay)) as f32);
             let e = 2.0 / (ax * ax);

@@ -192,23 +192,29 @@ impl<T: Real> Brdf<T> for Ward<T> {
     }
 }
 
+/// The names of the parameters that hold Ward's slopes along x and y: `alpha_x`, `alpha_y`
+/// when both are given, else `alpha` twice; one without the other is an error. Shared by the
+/// scalar model, the batch kernel and the GPU twin.
+pub fn slope_params(p: &Params) -> Result<(&'static str, &'static str)> {
+    match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
+        (Some(_), Some(_)) => Ok(("alpha_x", "alpha_y")),
+        (None, None) => Ok(("alpha", "alpha")),
+        (Some(_), None) => Err(Error::MissingParam {
+            model: "ward".into(),
+            param: "alpha_y".into(),
+        }),
+        (None, Some(_)) => Err(Error::MissingParam {
+            model: "ward".into(),
+            param: "alpha_x".into(),
+        }),
+    }
+}
+
 fn build<T: Real, const FORM: u8>(p: &Params) -> Result<Model<T>> {
     let w = match FORM {
-        0 => match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
-            (Some(ax), Some(ay)) => Ward::<T>::anisotropic(ax, ay)?,
-            (None, None) => Ward::<T>::isotropic(p.num("alpha"), WardForm::Exact)?,
-            (Some(_), None) => {
-                return Err(Error::MissingParam {
-                    model: "ward".into(),
-                    param: "alpha_y".into(),
-                });
-            }
-            (None, Some(_)) => {
-                return Err(Error::MissingParam {
-                    model: "ward".into(),
-                    param: "alpha_x".into(),
-                });
-            }
+        0 => match slope_params(p)? {
+            ("alpha", _) => Ward::<T>::isotropic(p.num("alpha"), WardForm::Exact)?,
+            (x, y) => Ward::<T>::anisotropic(p.num(x), p.num(y))?,
         },
         1 => Ward::<T>::isotropic(p.num("alpha"), WardForm::Pow)?,
         _ => Ward::<T>::isotropic(p.num("alpha"), WardForm::Power16)?,
