@@ -453,11 +453,7 @@ impl Pipelines {
 
 /// The camera frame exactly as `Camera::ray` computes it: (f, r, u, tan(fov/2), aspect).
 fn camera_frame(scene: &Scene, w: u32, h: u32) -> (Vec3, Vec3, Vec3, f32, f32) {
-    let c = &scene.camera;
-    let f = (c.target - c.eye).normalize();
-    let r = f.cross(c.up).normalize();
-    let u = r.cross(f);
-    let th = (c.fov_y_deg.to_radians() * 0.5).tan();
+    let (f, r, u, th) = scene.camera.frame();
     (f, r, u, th, w as f32 / h as f32)
 }
 

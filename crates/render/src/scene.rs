@@ -21,12 +21,18 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// The ray through image position (x, y) in pixels (y down) of a `w` x `h` image.
-    pub fn ray(&self, x: f32, y: f32, w: u32, h: u32) -> Ray {
+    /// The camera frame: forward `f`, right `r`, up `u` (unit), and tan(fov_y / 2). The GPU
+    /// renderer uses it too, so both build rays from the same f32 values.
+    pub fn frame(&self) -> (Vec3, Vec3, Vec3, f32) {
         let f = (self.target - self.eye).normalize();
         let r = f.cross(self.up).normalize();
         let u = r.cross(f);
-        let th = (self.fov_y_deg.to_radians() * 0.5).tan();
+        (f, r, u, (self.fov_y_deg.to_radians() * 0.5).tan())
+    }
+
+    /// The ray through image position (x, y) in pixels (y down) of a `w` x `h` image.
+    pub fn ray(&self, x: f32, y: f32, w: u32, h: u32) -> Ray {
+        let (f, r, u, th) = self.frame();
         let aspect = w as f32 / h as f32;
         let sx = (2.0 * x / w as f32 - 1.0) * th * aspect;
         let sy = (1.0 - 2.0 * y / h as f32) * th;
@@ -38,12 +44,9 @@ impl Camera {
 
     /// The image position (x, y) in pixels of world point `p` (inverse of `ray`).
     pub fn project(&self, p: Vec3, w: u32, h: u32) -> (f32, f32) {
-        let f = (self.target - self.eye).normalize();
-        let r = f.cross(self.up).normalize();
-        let u = r.cross(f);
+        let (f, r, u, th) = self.frame();
         let d = p - self.eye;
         let z = d.dot(f);
-        let th = (self.fov_y_deg.to_radians() * 0.5).tan();
         let aspect = w as f32 / h as f32;
         let (sx, sy) = (d.dot(r) / z / (th * aspect), d.dot(u) / z / th);
         ((sx + 1.0) * 0.5 * w as f32, (1.0 - sy) * 0.5 * h as f32)
@@ -170,26 +173,7 @@ impl Specular {
     /// Lobes become the lobe of `n . h` (`blinn-phong`, `norm = none`: the seeds' pictures),
     /// distributions the `d` of `cook-torrance` (alpha passed on), BRDFs stay as they are.
     pub fn new(id: &str, params: &[(String, String)]) -> Result<Self> {
-        let e = registry::find(id)?;
-        let mut p: Vec<(String, String)> = params.to_vec();
-        let brdf = match e.info.kind {
-            Kind::Brdf => e.info.id.to_string(),
-            Kind::Lobe => {
-                p.push(("lobe".into(), id.into()));
-                p.push(("norm".into(), "none".into()));
-                "blinn-phong".into()
-            }
-            Kind::Distribution => {
-                p.push(("d".into(), id.into()));
-                "cook-torrance".into()
-            }
-            k => {
-                return Err(RenderError::Invalid(format!(
-                    "'{id}' is a {}, not something to shade with: give a lobe, a distribution or a BRDF",
-                    k.name()
-                )));
-            }
-        };
+        let (brdf, p) = shading_brdf(id, params)?;
         let given: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
         let kernel = Kernel::new(&brdf, &given)?;
         let Model::Brdf(scalar) = registry::build::<f32>(&brdf, &given)? else {
@@ -202,6 +186,37 @@ impl Specular {
             scalar,
         })
     }
+}
+
+/// The BRDF (id and parameters) that shading with model `id` evaluates: BRDFs as they are,
+/// a lobe as `blinn-phong` with that lobe and `norm = none` (the seeds' pictures), a
+/// distribution as `cook-torrance` with that `d`; shadowing and Fresnel terms are an error.
+/// Used by `Specular::new` and by the GPU crate's BRDF Explorer export.
+pub fn shading_brdf(
+    id: &str,
+    params: &[(String, String)],
+) -> Result<(String, Vec<(String, String)>)> {
+    let e = registry::find(id)?;
+    let mut p: Vec<(String, String)> = params.to_vec();
+    let brdf = match e.info.kind {
+        Kind::Brdf => e.info.id.to_string(),
+        Kind::Lobe => {
+            p.push(("lobe".into(), id.into()));
+            p.push(("norm".into(), "none".into()));
+            "blinn-phong".into()
+        }
+        Kind::Distribution => {
+            p.push(("d".into(), id.into()));
+            "cook-torrance".into()
+        }
+        k => {
+            return Err(RenderError::Invalid(format!(
+                "'{id}' is a {}, not something to shade with: give a lobe, a distribution or a BRDF",
+                k.name()
+            )));
+        }
+    };
+    Ok((brdf, p))
 }
 
 /// A surface material.
