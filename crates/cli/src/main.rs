@@ -33,9 +33,19 @@ impl From<fastbrdf::Error> for CliError {
     }
 }
 
+/// Bad input and a missing adapter are exit code 2; failures on the GPU itself (a shader that
+/// does not validate, a failed read-back) are 1.
 impl From<fastbrdf_gpu::GpuError> for CliError {
     fn from(e: fastbrdf_gpu::GpuError) -> Self {
-        Self::input(e.to_string())
+        use fastbrdf_gpu::GpuError as G;
+        let code = match e {
+            G::Input(_) | G::Model(_) | G::NoAdapter(_) => 2,
+            _ => 1,
+        };
+        Self {
+            code,
+            message: e.to_string(),
+        }
     }
 }
 

@@ -28,6 +28,25 @@ pub enum GpuInput<'a> {
 }
 
 impl<'a> GpuInput<'a> {
+    /// The number of elements (of the first column; `GpuKernel` checks the others).
+    pub fn len(&self) -> usize {
+        self.columns()[0].len()
+    }
+
+    /// Whether there are no elements.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Elements `lo..hi` of every column.
+    fn slice(&self, lo: usize, hi: usize) -> Self {
+        match *self {
+            GpuInput::Cos(x) => GpuInput::Cos(&x[lo..hi]),
+            GpuInput::Shadow(c) => GpuInput::Shadow(c.map(|s| &s[lo..hi])),
+            GpuInput::Dirs(c) => GpuInput::Dirs(c.map(|s| &s[lo..hi])),
+        }
+    }
+
     fn columns(&self) -> Vec<&'a [f32]> {
         match *self {
             GpuInput::Cos(x) => vec![x],
@@ -179,12 +198,8 @@ impl GpuKernel {
     }
 
     /// Uploads one chunk (at most `CHUNK` elements) and prepares its bind group.
-    pub fn upload(
-        &self,
-        device: &wgpu::Device,
-        input: GpuInput,
-        n: usize,
-    ) -> Result<Resident, GpuError> {
+    pub fn upload(&self, device: &wgpu::Device, input: GpuInput) -> Result<Resident, GpuError> {
+        let n = input.len();
         self.check(&input, n)?;
         if n == 0 || n > CHUNK {
             return Err(GpuError::Input(format!(
@@ -284,17 +299,10 @@ impl GpuKernel {
     ) -> Result<(), GpuError> {
         let n = out.len();
         self.check(&input, n)?;
-        let cols = input.columns();
         let mut lo = 0;
         while lo < n {
             let hi = (lo + CHUNK).min(n);
-            let part: Vec<&[f32]> = cols.iter().map(|c| &c[lo..hi]).collect();
-            let chunk = match part.len() {
-                1 => GpuInput::Cos(part[0]),
-                4 => GpuInput::Shadow([part[0], part[1], part[2], part[3]]),
-                _ => GpuInput::Dirs([part[0], part[1], part[2], part[3], part[4], part[5]]),
-            };
-            let r = self.upload(device, chunk, hi - lo)?;
+            let r = self.upload(device, input.slice(lo, hi))?;
             self.dispatch(device, queue, &r, 1);
             self.read(device, queue, &r, &mut out[lo..hi])?;
             lo = hi;

@@ -11,9 +11,11 @@
 //!   norm = none) and distributions as `cook-torrance` with that D, as `fastbrdf render` does;
 //!   shadowing and Fresnel terms are plotted as the factor itself (not a BRDF).
 //!
-//! Coefficients are literals here, computed in f64 from the parameters; a shader compiler
-//! may fold literals into reassociated expressions (Mesa does, see `spec::Emit`), so a header
-//! line says where passing them as uniforms keeps more precision.
+//! Coefficients are literals, computed in f64 from the parameters; a shader compiler may fold
+//! literals into reassociated expressions (Mesa does, see `spec::Emit`), so a header line says
+//! that passing them as uniforms keeps more precision. BRDF Explorer files instead compute
+//! the coefficients in f32 from sliders (`Instance::symbolic`) where every coefficient has an
+//! expression in the parameters, and keep literals (no sliders) where not.
 //!
 //! GLSL back end detail: naga writes GLSL only for an entry point, so the module gets a
 //! one-line compute entry point that calls the function, and its text (with `#version` and
@@ -97,15 +99,14 @@ pub fn export(id: &str, given: &[(&str, &str)], lang: Lang) -> Result<String, Gp
             let kind = inst.info.kind;
             // What BRDF Explorer evaluates: the BRDF fastbrdf render shades with, with its
             // coefficients as expressions of sliders where it has them.
+            let given: Vec<(String, String)> = given
+                .iter()
+                .map(|(a, b)| (a.to_string(), b.to_string()))
+                .collect();
             let (target, p) = match kind {
-                Kind::Lobe | Kind::Distribution => as_brdf(id, kind, given),
-                _ => (
-                    id.to_string(),
-                    given
-                        .iter()
-                        .map(|(a, b)| (a.to_string(), b.to_string()))
-                        .collect(),
-                ),
+                Kind::Lobe | Kind::Distribution => fastbrdf_render::scene::shading_brdf(id, &given)
+                    .map_err(|e| GpuError::Input(e.to_string()))?,
+                _ => (id.to_string(), given),
             };
             let p: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
             let shaded = match Instance::symbolic(&target, &p)? {
@@ -127,26 +128,13 @@ pub fn export(id: &str, given: &[(&str, &str)], lang: Lang) -> Result<String, Gp
         Lang::Hlsl => hlsl(&inst.module_source(), id)?,
         Lang::Msl => msl(&inst.module_source(), id)?,
         Lang::BrdfExplorer => {
-            return brdf_explorer(&inst, shaded.as_ref(), &header);
+            let target = shaded
+                .as_ref()
+                .expect("BRDF Explorer exports have a shaded BRDF");
+            return brdf_explorer(target, &header);
         }
     };
     Ok(format!("{header}\n{body}"))
-}
-
-/// The BRDF that `fastbrdf render` shades with for a lobe or a distribution.
-fn as_brdf(id: &str, kind: Kind, given: &[(&str, &str)]) -> (String, Vec<(String, String)>) {
-    let mut p: Vec<(String, String)> = given
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect();
-    if kind == Kind::Lobe {
-        p.push(("lobe".into(), id.into()));
-        p.push(("norm".into(), "none".into()));
-        ("blinn-phong".into(), p)
-    } else {
-        p.push(("d".into(), id.into()));
-        ("cook-torrance".into(), p)
-    }
 }
 
 /// A call of the instance's function on fixed arguments (for entry points).
@@ -435,14 +423,10 @@ fn msl(wgsl: &str, what: &str) -> Result<String, GpuError> {
     Ok(format!("{}\n", out.trim()))
 }
 
-/// The `.brdf` file: header, no sliders (coefficients are baked), the GLSL functions and
-/// `BRDF(L, V, N, X, Y)`.
-fn brdf_explorer(
-    inst: &Instance,
-    shaded: Option<&Instance>,
-    header: &str,
-) -> Result<String, GpuError> {
-    let target = shaded.unwrap_or(inst);
+/// The `.brdf` file of `target` (the BRDF, Fresnel or shadowing instance BRDF Explorer
+/// evaluates): `header`, a slider per parameter its coefficients are computed from, the GLSL
+/// functions and `BRDF(L, V, N, X, Y)`.
+fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
     let f = &exported_name(&target.function, Lang::Glsl);
     let extra: String = target
         .sliders

@@ -1,6 +1,7 @@
 //! Model instances on the GPU: a model id and its parameters become one WGSL function,
 //! `fb_<id>` (dashes as underscores), that calls the library's core functions with the
-//! instance's coefficients as f32 literals.
+//! instance's coefficients, placed as `Emit` says: f32 literals, the storage array `fb_k`, or
+//! expressions of the parameters.
 //!
 //! The coefficients are computed here in f64 exactly as the CPU batch kernels compute them
 //! (`fastbrdf::batch`, `build` and friends): cubic shapes, rational nodes, tuned slopes and
@@ -65,14 +66,7 @@ impl Instance {
         let p = Params::resolve(e.info.id, e.info.params, given)?;
         let function = function_name(e.info.id);
         let body = body(&emit, e.info.id, e.info.kind, &p)?;
-        let mut signature = match e.info.kind {
-            Kind::Lobe => "c: f32",
-            Kind::Distribution => "cos_h: f32",
-            Kind::Shadowing => "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
-            Kind::Fresnel => "cos_vh: f32",
-            Kind::Brdf => "wi: vec3<f32>, wo: vec3<f32>",
-        }
-        .to_string();
+        let mut signature = signature(e.info.kind).to_string();
         // Symbolic coefficients: the parameters they use become arguments, in registry order.
         let used = emit.used.borrow().clone();
         let sliders: Vec<(String, f64)> = e
@@ -128,6 +122,26 @@ impl Instance {
         s.push_str(&self.wrapper);
         s
     }
+}
+
+/// The inputs of a kind's `fb_<id>`, as WGSL parameters (see the module header).
+pub fn signature(kind: Kind) -> &'static str {
+    match kind {
+        Kind::Lobe => "c: f32",
+        Kind::Distribution => "cos_h: f32",
+        Kind::Shadowing => "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
+        Kind::Fresnel => "cos_vh: f32",
+        Kind::Brdf => "wi: vec3<f32>, wo: vec3<f32>",
+    }
+}
+
+/// The names in `signature(kind)`, as a call's argument list.
+pub fn arguments(kind: Kind) -> String {
+    signature(kind)
+        .split(", ")
+        .map(|a| a.split(':').next().unwrap_or(a))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// `a = 1, b = x`, or `no parameters`.
@@ -490,16 +504,8 @@ fn brdf_body(e: &Emit, id: &str, p: &Params) -> Result<String> {
             )
         }
         "ward" | "ward-pow" | "ward-power16" => {
-            let (ax, ay, nx, ny) = match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
-                (Some(ax), Some(ay)) => (ax, ay, "alpha_x", "alpha_y"),
-                (None, None) => (p.num("alpha"), p.num("alpha"), "alpha", "alpha"),
-                _ => {
-                    return Err(Error::MissingParam {
-                        model: id.into(),
-                        param: "alpha_x and alpha_y".into(),
-                    });
-                }
-            };
+            let (nx, ny) = fastbrdf::brdf::ward::slope_params(p)?;
+            let (ax, ay) = (p.num(nx), p.num(ny));
             let ps = &[nx, ny];
             let scale = e.kx(
                 1.0 / (4.0 * PI * ax * ay),

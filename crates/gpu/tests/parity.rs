@@ -100,16 +100,8 @@ fn symbolic_entry(mut sym: Instance) -> Instance {
         .iter()
         .map(|(_, v)| format!(", {}", fastbrdf_gpu::spec::lit(*v)))
         .collect();
-    let (sig, call) = match sym.info.kind {
-        Kind::Brdf => ("wi: vec3<f32>, wo: vec3<f32>", "wi, wo"),
-        Kind::Shadowing => (
-            "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
-            "cos_v, cos_l, cos_h, cos_vh",
-        ),
-        Kind::Distribution => ("cos_h: f32", "cos_h"),
-        Kind::Fresnel => ("cos_vh: f32", "cos_vh"),
-        Kind::Lobe => ("c: f32", "c"),
-    };
+    let sig = fastbrdf_gpu::spec::signature(sym.info.kind);
+    let call = fastbrdf_gpu::spec::arguments(sym.info.kind);
     sym.wrapper = format!(
         "{}\nfn fb_symbolic_entry({sig}) -> f32 {{\n    return {}({call}{args});\n}}\n",
         sym.wrapper, sym.function

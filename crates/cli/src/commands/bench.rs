@@ -77,8 +77,7 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
         } else {
             GpuInput::Cos(&inputs.cos)
         };
-        let m =
-            fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, id, &given, input, n, budget)?;
+        let m = fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, id, &given, input, budget)?;
         for (variant, v) in [
             ("gpu", m.kernel_evals_per_s),
             ("gpu+transfer", m.transfer_evals_per_s),

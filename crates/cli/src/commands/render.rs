@@ -165,20 +165,6 @@ pub struct RenderArgs {
     gpu: bool,
 }
 
-/// A GPU error as a CLI error: bad input and a missing adapter are exit code 2, failures on
-/// the GPU itself 1.
-fn gpu_error(e: fastbrdf_gpu::GpuError) -> CliError {
-    use fastbrdf_gpu::GpuError as G;
-    let code = match e {
-        G::Input(_) | G::Model(_) | G::NoAdapter(_) => 2,
-        _ => 1,
-    };
-    CliError {
-        code,
-        message: e.to_string(),
-    }
-}
-
 /// Renders one model on the GPU; returns the film and the adapter's label.
 fn render_model_gpu(
     spec: &SceneSpec,
@@ -189,9 +175,8 @@ fn render_model_gpu(
 ) -> Result<(Film, String), CliError> {
     let specular = Arc::new(Specular::new(id, params)?);
     let scene = setup::scene(spec, loaded, specular);
-    let gpu = fastbrdf_gpu::Gpu::new().map_err(gpu_error)?;
-    let film =
-        fastbrdf_gpu::render::render(&gpu.device, &gpu.queue, &scene, opts).map_err(gpu_error)?;
+    let gpu = fastbrdf_gpu::Gpu::new()?;
+    let film = fastbrdf_gpu::render::render(&gpu.device, &gpu.queue, &scene, opts)?;
     Ok((film, gpu.label()))
 }
 
