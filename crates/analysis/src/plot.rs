@@ -179,19 +179,9 @@ where
     Ok(())
 }
 
-/// Writes `bytes` to `path` through a temporary file in the same folder and a rename.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)?;
-    }
-    let tmp = path.with_extension(format!(
-        "{}.tmp",
-        path.extension().and_then(|e| e.to_str()).unwrap_or("")
-    ));
-    std::fs::write(&tmp, bytes)?;
-    std::fs::rename(&tmp, path).inspect_err(|_| {
-        let _ = std::fs::remove_file(&tmp);
-    })
+/// Writes `bytes` to `path` atomically (see `fastbrdf_io::write_atomic`).
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), fastbrdf_io::IoError> {
+    fastbrdf_io::write_atomic(path, bytes)
 }
 
 /// Renders `c` to `base.png` and `base.svg`; returns both paths.
@@ -217,8 +207,8 @@ fn render_both(
     let mut svg = String::new();
     svg_draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area())?;
     let (png_path, svg_path) = (base.with_extension("png"), base.with_extension("svg"));
-    write_atomic(&png_path, &png).map_err(|e| format!("{}: {e}", png_path.display()))?;
-    write_atomic(&svg_path, svg.as_bytes()).map_err(|e| format!("{}: {e}", svg_path.display()))?;
+    write_atomic(&png_path, &png).map_err(|e| e.to_string())?;
+    write_atomic(&svg_path, svg.as_bytes()).map_err(|e| e.to_string())?;
     Ok([png_path, svg_path])
 }
 

@@ -1,6 +1,7 @@
 //! The `fastbrdf` command: parses arguments (clap), calls the library, prints, and maps
-//! errors to exit codes. Exit codes: 0 success, 1 a check failed (`check`), 2 bad usage or
-//! bad input (unknown model, invalid parameter, malformed CSV).
+//! errors to exit codes. Exit codes: 0 success, 1 a check failed (`check`) or the GPU failed,
+//! 2 bad usage or bad input (unknown model, invalid parameter, malformed CSV, an unreadable
+//! or oversized input file), 3 an output could not be written (I/O failure).
 
 // Guards written `if !(x >= lo)` also catch NaN, on purpose (see the fastbrdf crate).
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -17,12 +18,37 @@ pub struct CliError {
     pub message: String,
 }
 
+/// Exit code: a check failed (`check`), or the GPU itself failed.
+pub const EXIT_CHECK_FAILED: u8 = 1;
+/// Exit code: bad usage or bad input.
+pub const EXIT_INPUT: u8 = 2;
+/// Exit code: an output could not be written.
+pub const EXIT_IO: u8 = 3;
+
 impl CliError {
+    /// An output could not be written (exit code 3).
+    pub fn io(message: impl Into<String>) -> Self {
+        Self {
+            code: EXIT_IO,
+            message: message.into(),
+        }
+    }
+
     /// Bad usage or bad input (exit code 2).
     pub fn input(message: impl Into<String>) -> Self {
         Self {
-            code: 2,
+            code: EXIT_INPUT,
             message: message.into(),
+        }
+    }
+}
+
+/// An unreadable or oversized input is exit code 2; an output that cannot be written is 3.
+impl From<fastbrdf_io::IoError> for CliError {
+    fn from(e: fastbrdf_io::IoError) -> Self {
+        match e {
+            fastbrdf_io::IoError::Input { .. } => Self::input(e.to_string()),
+            fastbrdf_io::IoError::Output { .. } => Self::io(e.to_string()),
         }
     }
 }

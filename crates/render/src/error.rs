@@ -41,6 +41,22 @@ impl fmt::Display for RenderError {
 
 impl std::error::Error for RenderError {}
 
+impl From<fastbrdf_io::IoError> for RenderError {
+    fn from(e: fastbrdf_io::IoError) -> Self {
+        match e {
+            fastbrdf_io::IoError::Input { path, message } => RenderError::Input {
+                file: path,
+                line: None,
+                message,
+            },
+            fastbrdf_io::IoError::Output { path, message } => RenderError::Output {
+                file: path,
+                message,
+            },
+        }
+    }
+}
+
 impl From<fastbrdf::Error> for RenderError {
     fn from(e: fastbrdf::Error) -> Self {
         RenderError::Model(e)

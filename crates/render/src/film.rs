@@ -139,23 +139,8 @@ pub fn png_bytes(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>> {
     Ok(bytes)
 }
 
-/// Writes `bytes` through a temporary file in the same folder and a rename, so that a failure
-/// never leaves a half-written file.
+/// Writes `bytes` atomically (see `fastbrdf_io::write_atomic`): a failure leaves neither a
+/// half-written file nor a temporary one.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let out = |e: std::io::Error| RenderError::Output {
-        file: path.display().to_string(),
-        message: e.to_string(),
-    };
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(out)?;
-    }
-    let tmp = path.with_extension(format!(
-        "{}.tmp",
-        path.extension().and_then(|e| e.to_str()).unwrap_or("")
-    ));
-    std::fs::write(&tmp, bytes).map_err(out)?;
-    std::fs::rename(&tmp, path).map_err(|e| {
-        let _ = std::fs::remove_file(&tmp);
-        out(e)
-    })
+    fastbrdf_io::write_atomic(path, bytes).map_err(RenderError::from)
 }

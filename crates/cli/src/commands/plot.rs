@@ -13,10 +13,7 @@ pub use fastbrdf_analysis::plot::write_atomic as write_atomic_io;
 
 /// Writes a file atomically, mapping the error for the CLI.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    write_atomic_io(path, bytes).map_err(|e| CliError {
-        code: 1,
-        message: format!("cannot write {}: {e}", path.display()),
-    })
+    Ok(write_atomic_io(path, bytes)?)
 }
 
 #[derive(clap::Args)]

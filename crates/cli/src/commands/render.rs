@@ -18,10 +18,7 @@ use std::sync::Arc;
 impl From<RenderError> for CliError {
     fn from(e: RenderError) -> Self {
         match e {
-            RenderError::Output { .. } => CliError {
-                code: 1,
-                message: e.to_string(),
-            },
+            RenderError::Output { .. } => CliError::io(e.to_string()),
             _ => CliError::input(e.to_string()),
         }
     }
