@@ -146,16 +146,16 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 "--gpu-only: this run has no GPU figures (measure with --gpu)",
             ));
         }
-        print!("{}", gpu_tables(&report, a.markdown));
+        crate::out!("{}", gpu_tables(&report, a.markdown));
     } else if a.json {
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         );
     } else if a.markdown {
-        print!("{}", markdown(&report));
+        crate::out!("{}", markdown(&report));
     } else {
-        print!("{}", text(&report));
+        crate::out!("{}", text(&report));
     }
     Ok(())
 }
