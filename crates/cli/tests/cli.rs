@@ -1493,3 +1493,24 @@ fn every_plot_option_has_help_and_every_subcommand_an_example() {
         }
     }
 }
+
+/// Issue 11: saved runs were read with `read_to_string`, without a limit (`/dev/zero` grew
+/// until memory ran out). Every one is read once, at most 64 MiB.
+#[cfg(unix)]
+#[test]
+fn saved_runs_are_read_with_a_bound() {
+    for args in [
+        vec!["bench", "--from", "/dev/zero", "--markdown"],
+        vec!["pareto", "--bench", "/dev/zero"],
+        vec!["reproduce", "--speedups", "/dev/zero"],
+    ] {
+        let o = fastbrdf(&args, "");
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty(), "{args:?}");
+        assert!(
+            stderr(&o).contains("/dev/zero: larger than the 64 MiB"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
+}

@@ -21,7 +21,8 @@ pub struct Args {
     /// Print the Markdown table and domains (what README.md and REPRODUCTION.md show).
     #[arg(long, conflicts_with = "json")]
     markdown: bool,
-    /// Fill the speed rows (ct.speedup, ward.speedup) from a saved `fastbrdf bench --json` run.
+    /// Fill the speed rows (ct.speedup, ward.speedup) from a saved `fastbrdf bench --json` run
+    /// (read once, at most 64 MiB).
     #[arg(long, value_name = "BENCH.json")]
     speedups: Option<PathBuf>,
     /// Also write DIR/REPRODUCTION.md and the plots of the seeds' figures (PNG and SVG).
