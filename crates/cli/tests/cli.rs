@@ -1443,6 +1443,24 @@ fn errors_and_fit_name_the_parameter_the_same_way_in_json_and_csv() {
         "",
     );
     assert!(stdout(&o).starts_with("n,max_abs,"));
+    // One spelling of "no finite value": null in JSON, an empty field in CSV (was `inf`).
+    // gauss is positive at c = 0 where pow is 0: an infinite relative error.
+    let args = [
+        "errors",
+        "--model",
+        "gauss",
+        "--reference",
+        "pow",
+        "--n",
+        "10",
+    ];
+    let o = fastbrdf(&[&args[..], &["--csv"]].concat(), "");
+    let row = stdout(&o).lines().nth(1).unwrap().to_string();
+    assert_eq!(row.split(',').nth(3), Some(""), "{row}");
+    assert!(!row.contains("inf"), "{row}");
+    let o = fastbrdf(&[&args[..], &["--json"]].concat(), "");
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["rows"][0]["max_rel"].is_null() && v["worst"]["max_rel"].is_null());
     let o = fastbrdf(
         &[
             "fit",

@@ -50,7 +50,12 @@ pub fn parse_params(params: &[String]) -> Result<Vec<(String, String)>, CliError
         .map(|p| {
             p.split_once('=')
                 .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
-                .ok_or_else(|| CliError::input(format!("--param '{p}': expected NAME=VALUE")))
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "--param '{}': expected NAME=VALUE",
+                        shorten(p, QUOTE)
+                    ))
+                })
         })
         .collect()
 }
