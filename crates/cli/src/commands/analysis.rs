@@ -18,6 +18,13 @@ pub fn bar(len: u64, msg: &'static str) -> ProgressBar {
     b
 }
 
+/// A number for messages and parameter strings: shortest round-trip text, in exponent form
+/// when that is long (1e308 rather than 309 digits).
+pub fn num(x: f64) -> String {
+    let s = x.to_string();
+    if s.len() > 20 { format!("{x:e}") } else { s }
+}
+
 /// A number for CSV: the shortest round-trip text, or an empty field when it is not finite
 /// (the same "no finite value" that JSON writes as null).
 pub fn csv_num(x: f64) -> String {
@@ -113,8 +120,8 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
     spec.validate()?;
     // Reject out-of-range parameter values before the sweep, with the registry's message.
     for e in [&a.model, &a.reference] {
-        fastbrdf::registry::build::<f64>(e, &[(param, &values[0].to_string())])?;
-        fastbrdf::registry::build::<f64>(e, &[(param, &values[values.len() - 1].to_string())])?;
+        fastbrdf::registry::build::<f64>(e, &[(param, &num(values[0]))])?;
+        fastbrdf::registry::build::<f64>(e, &[(param, &num(values[values.len() - 1]))])?;
     }
     let pb = bar(values.len() as u64, "errors");
     let rows = errors::sweep(&spec, &values, &|| pb.inc(1))?;
@@ -236,7 +243,7 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
     }
     let ns = range::parse(&a.n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?;
     for n in [ns[0], ns[ns.len() - 1]] {
-        fastbrdf::registry::build::<f64>(&a.model, &[("n", &n.to_string())])?;
+        fastbrdf::registry::build::<f64>(&a.model, &[("n", &num(n))])?;
     }
     let rows = normalize::table(&a.model, &ns)?;
     let fit = a

@@ -73,7 +73,8 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::input(format!("--{}: {e}", if name == "n" { "n" } else { "m" })))?;
     if let Some(bad) = ps.iter().find(|p| !(**p >= lo && **p <= hi)) {
         return Err(CliError::input(format!(
-            "{name} = {bad} is outside [{lo}, {hi}]"
+            "{name} = {} is outside [{lo}, {hi}]",
+            super::analysis::num(*bad)
         )));
     }
     let pb = bar(ps.len() as u64, "fitting");

@@ -130,7 +130,7 @@ fn lobe(id: &str, n: f64) -> Result<Box<dyn fastbrdf::Lobe<f64>>, CliError> {
             kind.name()
         )));
     }
-    match registry::build::<f64>(id, &[("n", &n.to_string())])? {
+    match registry::build::<f64>(id, &[("n", &super::analysis::num(n))])? {
         Model::Lobe(l) => Ok(l),
         m => Err(CliError::input(format!(
             "'{id}' is a {}, not a lobe",
