@@ -35,10 +35,10 @@ enum Kind {
         after_help = "Example:\n  fastbrdf plot lobes --models pow,flog,schlick --n 20 --out lobes"
     )]
     Lobes {
-        /// Lobe ids, comma-separated (see `fastbrdf models --kind lobe`). Default: pow,flog,schlick.
+        /// Lobe ids, comma-separated (see `fastbrdf models --kind lobe`).
         #[arg(long, value_delimiter = ',', default_value = "pow,flog,schlick")]
         models: Vec<String>,
-        /// The exponent n of every lobe (dimensionless, > 0). Default: 20.
+        /// The exponent n of every lobe (dimensionless, > 0).
         #[arg(long, default_value_t = 20.0)]
         n: f64,
     },
@@ -48,10 +48,10 @@ enum Kind {
         /// The approximating lobe id.
         #[arg(long)]
         model: String,
-        /// The reference lobe id. Default: pow (cos^n).
+        /// The reference lobe id (pow is cos^n)..
         #[arg(long, default_value = "pow")]
         reference: String,
-        /// The exponent n (dimensionless, > 0). Default: 20.
+        /// The exponent n (dimensionless, > 0).
         #[arg(long, default_value_t = 20.0)]
         n: f64,
     },
@@ -60,20 +60,19 @@ enum Kind {
         after_help = "Example:\n  fastbrdf plot max-error --models flog,schlick --n 1..1000 --metric rel --zone epicentre"
     )]
     MaxError {
-        /// Lobe ids, comma-separated. Default: flog,schlick.
+        /// Lobe ids, comma-separated.
         #[arg(long, value_delimiter = ',', default_value = "flog,schlick")]
         models: Vec<String>,
-        /// The reference lobe id. Default: pow.
+        /// The reference lobe id.
         #[arg(long, default_value = "pow")]
         reference: String,
         /// Exponents: LO..HI[:STEP] (step 1) or a list A,B,C; at most 1000000 values.
-        /// Default: 1..1000.
         #[arg(long, default_value = "1..1000")]
         n: String,
-        /// abs: max |f - ref|; rel: max |f - ref| / ref. Default: abs.
+        /// abs: max |f - ref|; rel: max |f - ref| / ref.
         #[arg(long, default_value = "abs", value_parser = ["abs", "rel"])]
         metric: String,
-        /// all: every cosine in [0, 1]; epicentre: where ref >= 0.5 of its peak. Default: all.
+        /// all: every cosine in [0, 1]; epicentre: where ref >= 0.5 of its peak.
         #[arg(long, default_value = "all", value_parser = ["all", "epicentre"])]
         zone: String,
     },
@@ -82,15 +81,14 @@ enum Kind {
         after_help = "Example:\n  fastbrdf plot coef --model flog --n 1..1000 --fit seed --out coef"
     )]
     Coef {
-        /// A lobe id. Default: flog.
+        /// A lobe id.
         #[arg(long, default_value = "flog")]
         model: String,
         /// Exponents: LO..HI[:STEP] (step 1) or a list A,B,C; at most 1000000 values.
-        /// Default: 1..1000.
         #[arg(long, default_value = "1..1000")]
         n: String,
         /// The closed form: seed (a (n + b) + c / (d + n)), linear (a (n + b)) or
-        /// seed-published (seed 001's printed constants). Default: seed.
+        /// seed-published (seed 001's printed constants).
         #[arg(long, default_value = "seed", value_parser = ["seed", "linear", "seed-published"])]
         fit: String,
     },
@@ -106,7 +104,7 @@ The incident direction is drawn on the side opposite the mirror direction, at th
         /// A parameter of the model, NAME=VALUE; repeat for several.
         #[arg(long = "param", value_name = "NAME=VALUE")]
         params: Vec<String>,
-        /// Incidence angle from the normal, in degrees, in [0, 90). Default: 30.
+        /// Incidence angle from the normal, in degrees, in [0, 90).
         #[arg(long, default_value_t = 30.0)]
         theta_i: f64,
     },
