@@ -48,7 +48,7 @@ enum Kind {
         /// The approximating lobe id.
         #[arg(long)]
         model: String,
-        /// The reference lobe id (pow is cos^n)..
+        /// The reference lobe id (pow is cos^n).
         #[arg(long, default_value = "pow")]
         reference: String,
         /// The exponent n (dimensionless, > 0).
