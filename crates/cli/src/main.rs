@@ -148,8 +148,29 @@ fn ignore_file_size_signal() {
     }
 }
 
+/// Commands print through `commands::write_stdout` (exit 3 on a failed stdout). A `println!`
+/// left in a command panics when stdout is closed or full; this turns that panic into the same
+/// exit code 3 and message instead of a panic report (exit 101). Other panics are unchanged.
+fn stdout_failures_exit_3() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if let Some(rest) = msg.strip_prefix("failed printing to stdout: ") {
+            eprintln!("error: cannot write to stdout: {rest}");
+            std::process::exit(i32::from(EXIT_IO));
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
     ignore_file_size_signal();
+    stdout_failures_exit_3();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Models(a) => commands::models::run(&a),

@@ -1309,6 +1309,8 @@ fn stdout_failures_are_exit_3_and_exit_codes_are_documented() {
         "exec \"$B\" models --json > /dev/full",
         "exec \"$B\" errors --model flog --reference pow --n 10,20 --csv > /dev/full",
         "exec \"$B\" shader --model pow > /dev/full",
+        // check prints with println! (another slice's file): main's panic hook maps it.
+        "exec \"$B\" check --model flog > /dev/full",
     ] {
         let o = bash(script, &d);
         assert_eq!(o.status.code(), Some(3), "{script}: {}", stderr(&o));
