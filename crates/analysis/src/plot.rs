@@ -184,18 +184,97 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), fastbrdf_io::IoErro
     fastbrdf_io::write_atomic(path, bytes)
 }
 
-/// Renders `c` to `base.png` and `base.svg`; returns both paths.
-pub fn save(c: &Chart, base: &Path) -> Result<[PathBuf; 2], String> {
-    render_both(base, |root| draw(root, c), |root| draw(root, c))
+/// Why a chart could not be saved: drawing it failed, or writing a file failed.
+#[derive(Debug)]
+pub enum SaveError {
+    /// Drawing or encoding the picture failed (nothing was written).
+    Draw(String),
+    /// A file could not be written (nothing was left behind).
+    Io(fastbrdf_io::IoError),
 }
 
-/// Draws a picture twice, on a bitmap and on an SVG string, and writes `base.png` and
-/// `base.svg` atomically (the drawing code is passed once per backend type).
+impl std::fmt::Display for SaveError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SaveError::Draw(e) => write!(f, "cannot draw the chart: {e}"),
+            SaveError::Io(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for SaveError {}
+
+impl From<fastbrdf_io::IoError> for SaveError {
+    fn from(e: fastbrdf_io::IoError) -> Self {
+        SaveError::Io(e)
+    }
+}
+
+/// A chart drawn in memory: the PNG bytes and the SVG text.
+pub struct Drawn {
+    pub png: Vec<u8>,
+    pub svg: String,
+}
+
+/// Draws `c` as PNG and SVG in memory (nothing is written).
+pub fn render(c: &Chart) -> Result<Drawn, String> {
+    render_both(|root| draw(root, c), |root| draw(root, c))
+}
+
+/// The folder and file stem of `base` (a path without extension).
+fn split_base(base: &Path) -> (PathBuf, String) {
+    let dir = base
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+    let stem = base
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "plot".into());
+    (dir, stem)
+}
+
+/// Stages a drawn chart as `stem.png` and `stem.svg` in `set`; returns both destination paths.
+pub fn stage(
+    set: &mut fastbrdf_io::OutputSet,
+    d: &Drawn,
+    stem: &str,
+) -> Result<[PathBuf; 2], fastbrdf_io::IoError> {
+    let (png, svg) = (format!("{stem}.png"), format!("{stem}.svg"));
+    set.write(&png, &d.png)?;
+    set.write(&svg, d.svg.as_bytes())?;
+    Ok([set.dir().join(png), set.dir().join(svg)])
+}
+
+/// Writes drawn charts, each `(base, drawing)` as `base.png` and `base.svg`, all or nothing:
+/// every file is staged first and moved into place only when all were written, so a failure
+/// leaves no file and no temporary behind. All bases must share one folder.
+pub fn write_all(items: &[(&Path, &Drawn)]) -> Result<Vec<PathBuf>, fastbrdf_io::IoError> {
+    let Some((first, _)) = items.first() else {
+        return Ok(vec![]);
+    };
+    let (dir, _) = split_base(first);
+    let mut set = fastbrdf_io::OutputSet::new(&dir)?;
+    for (base, d) in items {
+        let (_, stem) = split_base(base);
+        stage(&mut set, d, &stem)?;
+    }
+    set.commit()
+}
+
+/// Renders `c` to `base.png` and `base.svg` (both or neither); returns both paths.
+pub fn save(c: &Chart, base: &Path) -> Result<[PathBuf; 2], SaveError> {
+    let d = render(c).map_err(SaveError::Draw)?;
+    let files = write_all(&[(base, &d)])?;
+    Ok([files[0].clone(), files[1].clone()])
+}
+
+/// Draws a picture twice, on a bitmap and on an SVG string, in memory (the drawing code is
+/// passed once per backend type).
 fn render_both(
-    base: &Path,
     bitmap: impl FnOnce(DrawingArea<BitMapBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
     svg_draw: impl FnOnce(DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> Result<(), String>,
-) -> Result<[PathBuf; 2], String> {
+) -> Result<Drawn, String> {
     register_font();
     let (w, h) = SIZE;
     let mut rgb = vec![255u8; (w * h * 3) as usize];
@@ -206,10 +285,7 @@ fn render_both(
         .map_err(|e| format!("PNG encoding: {e}"))?;
     let mut svg = String::new();
     svg_draw(SVGBackend::with_string(&mut svg, SIZE).into_drawing_area())?;
-    let (png_path, svg_path) = (base.with_extension("png"), base.with_extension("svg"));
-    write_atomic(&png_path, &png).map_err(|e| e.to_string())?;
-    write_atomic(&svg_path, svg.as_bytes()).map_err(|e| e.to_string())?;
-    Ok([png_path, svg_path])
+    Ok(Drawn { png, svg })
 }
 
 trait WritePng {
@@ -233,7 +309,7 @@ pub struct Point {
 }
 
 /// A scatter plot on log-log axes with labelled points and a line through `front` (sorted by
-/// x), written as `base.png` and `base.svg`.
+/// x), written as `base.png` and `base.svg` (both or neither).
 pub fn save_scatter(
     title: &str,
     x_label: &str,
@@ -241,7 +317,20 @@ pub fn save_scatter(
     front: &[(f64, f64)],
     points: &[Point],
     base: &Path,
-) -> Result<[PathBuf; 2], String> {
+) -> Result<[PathBuf; 2], SaveError> {
+    let d = render_scatter(title, x_label, y_label, front, points).map_err(SaveError::Draw)?;
+    let files = write_all(&[(base, &d)])?;
+    Ok([files[0].clone(), files[1].clone()])
+}
+
+/// [`save_scatter`] drawn in memory.
+pub fn render_scatter(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    front: &[(f64, f64)],
+    points: &[Point],
+) -> Result<Drawn, String> {
     let finite: Vec<&Point> = points
         .iter()
         .filter(|p| p.x > 0.0 && p.y > 0.0 && p.x.is_finite() && p.y.is_finite())
@@ -325,7 +414,6 @@ pub fn save_scatter(
     }
     let r = (x0, x1, y0, y1);
     render_both(
-        base,
         |root| draw(root, title, x_label, y_label, front, &finite, r),
         |root| draw(root, title, x_label, y_label, front, &finite, r),
     )

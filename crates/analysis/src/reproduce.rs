@@ -22,14 +22,29 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 /// One claim and our measurement.
+///
+/// Numbers are numbers: `claimed` and `measured` are in the unit named by `unit` (`percent`,
+/// `dimensionless` or `ratio`), `null` when there is no single number; a row with several
+/// numbers (a table) gives them in `claimed_values` and `measured_values`. The human text
+/// (as the seed printed it, and ours rounded) is in `claimed_text` and `measured_text`.
 #[derive(Clone, Debug, Serialize)]
 pub struct ClaimRow {
     pub id: String,
     pub seed: &'static str,
-    /// The seed's number as printed (or a description), `null` when it gives none.
-    pub claimed: Option<String>,
-    /// Our number (or numbers), `null` when not measured.
-    pub measured: Option<String>,
+    /// The seed's number in `unit`, `null` when it gives none (or several).
+    pub claimed: Option<f64>,
+    /// The seed's claim as printed (or a description), `null` when it gives none.
+    pub claimed_text: Option<String>,
+    /// Our number in `unit` (full precision), `null` when not measured (or several).
+    pub measured: Option<f64>,
+    /// Our number (or numbers) as text, rounded, `null` when not measured.
+    pub measured_text: Option<String>,
+    /// `percent`, `dimensionless` or `ratio`.
+    pub unit: &'static str,
+    /// The seed's numbers when it gives a table, in `unit`; empty otherwise.
+    pub claimed_values: Vec<f64>,
+    /// Our numbers when the claim is a table, in `unit`; empty otherwise.
+    pub measured_values: Vec<f64>,
     pub domain: String,
     /// `agrees`, `differs`, `no claim` or `not measured`.
     pub verdict: &'static str,
@@ -107,8 +122,8 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
         Ok(vec![ClaimRow {
             id: "log.epicentre_rel_err_max".into(),
             seed: "001",
-            claimed: Some("0.3%".into()),
-            measured: Some(pct(e)),
+            claimed: Some(0.3), claimed_text: Some("0.3%".into()),
+            measured: Some(100.0 * e), measured_text: Some(pct(e)), unit: "percent", claimed_values: vec![], measured_values: vec![],
             domain: format!("flog vs pow, max |f - ref| / ref where c^n >= 0.5, n = 1..1000 step 1; {GRID}; max at n = {p}, c = {x:.6}; a stated maximum printed with 1 decimal of a percent"),
             verdict: at_most(e, 0.003, 4),
         }])
@@ -118,8 +133,8 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
         Ok(vec![ClaimRow {
             id: "log.abs_err_max".into(),
             seed: "001",
-            claimed: Some("0.12".into()),
-            measured: Some(format!("{e:.6}")),
+            claimed: Some(0.12), claimed_text: Some("0.12".into()),
+            measured: Some(e), measured_text: Some(format!("{e:.6}")), unit: "dimensionless", claimed_values: vec![], measured_values: vec![],
             domain: format!("flog vs pow, max |f - ref| over c in [0, 1], n = 1..1000 step 1; {GRID}; max at n = {p}, c = {x:.6} (where flog reaches 0 and c^n = 1/8: the exact maximum is 1/8, which the seed truncates to 0.12)"),
             verdict: at_most(e, 0.12, 2),
         }])
@@ -129,8 +144,8 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
         Ok(vec![ClaimRow {
             id: "log.schlick_abs_err_max".into(),
             seed: "001",
-            claimed: Some("0.2".into()),
-            measured: Some(format!("{e:.6}")),
+            claimed: Some(0.2), claimed_text: Some("0.2".into()),
+            measured: Some(e), measured_text: Some(format!("{e:.6}")), unit: "dimensionless", claimed_values: vec![], measured_values: vec![],
             domain: format!("schlick vs pow, max |f - ref| over c in [0, 1], n = 1..1000 step 1; {GRID}; max at n = {p}, c = {x:.6}"),
             verdict: at_most(e, 0.2, 1),
         }])
@@ -149,8 +164,8 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
         Ok(vec![ClaimRow {
             id: "log.zero_constant".into(),
             seed: "001",
-            claimed: Some("2.08".into()),
-            measured: Some(format!("{k:.6}")),
+            claimed: Some(2.08), claimed_text: Some("2.08".into()),
+            measured: Some(k), measured_text: Some(format!("{k:.6}")), unit: "dimensionless", claimed_values: vec![], measured_values: vec![],
             domain: format!("analytic: 1 - 0.5 log2(1 - n log2 c) = 0 at c = exp(-3 ln 2 / n); checked on n = 1..1000 (flog > 0 just above, {worst:.1e} at the zero); 2.08 is 3 ln 2 = 2.0794 rounded to 2 decimals"),
             verdict: if (k - 2.08).abs() <= 0.005 { "agrees" } else { "differs" },
         }])
@@ -163,8 +178,9 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
         Ok(vec![ClaimRow {
             id: "log.coef_table".into(),
             seed: "001",
-            claimed: Some(claimed.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ")),
-            measured: Some(measured.join(", ")),
+            claimed: None, claimed_text: Some(claimed.iter().map(|c| c.to_string()).collect::<Vec<_>>().join(", ")),
+            measured: None, measured_text: Some(measured.join(", ")),
+            unit: "dimensionless", claimed_values: claimed.to_vec(), measured_values: rows.iter().map(|r| r.coef).collect(),
             domain: format!("coef(n) = 1 / (2 pi Int(n)) for n = 1..7, Int by adaptive Gauss-Kronrod (relative tolerance 1e-12) split at flog's zero; max |ours - seed| = {dev:.5}; agrees when every value rounds to the printed 3 decimals (0.0005)"),
             verdict: if dev <= 0.0005 + 1e-9 { "agrees" } else { "differs" },
         }])
@@ -178,16 +194,16 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
             ClaimRow {
                 id: "log.coef_formula_max_rel_dev".into(),
                 seed: "001",
-                claimed: Some("RMS 0.00028 on the seed's own 50 samples (no maximum given)".into()),
-                measured: Some(format!("max rel dev {}, RMS {:.5}", pct(published.max_rel), published.rms)),
+                claimed: None, claimed_text: Some("RMS 0.00028 on the seed's own 50 samples (no maximum given)".into()),
+                measured: Some(100.0 * published.max_rel), measured_text: Some(format!("max rel dev {}, RMS {:.5}", pct(published.max_rel), published.rms)), unit: "percent", claimed_values: vec![], measured_values: vec![],
                 domain: format!("0.197 (n + 1.24) + 0.068 / (0.64 + n) vs coef(n) integrated, n = 1..1000 step 1; max |fit / coef - 1| at n = {}; RMS of fit - coef over those 1000 n. Our own weighted least-squares refit of the same form: {} (max rel dev {})", published.max_rel_at, k.join(", "), pct(refit.max_rel)),
                 verdict: "no claim",
             },
             ClaimRow {
                 id: "log.energy_residual_max".into(),
                 seed: "001",
-                claimed: None,
-                measured: Some(format!("{:.6}", published.energy_residual_max)),
+                claimed: None, claimed_text: None,
+                measured: Some(published.energy_residual_max), measured_text: Some(format!("{:.6}", published.energy_residual_max)), unit: "dimensionless", claimed_values: vec![], measured_values: vec![],
                 domain: format!("max over n = 1..1000 step 1 of |coef_seed(n) 2 pi Int(n) - 1| (at n = {}); the seed's text for this number is cut off", published.max_rel_at),
                 verdict: "no claim",
             },
@@ -203,24 +219,24 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
             ClaimRow {
                 id: "cubic.epicentre_abs_err_max".into(),
                 seed: "003",
-                claimed: Some("0.67%".into()),
-                measured: Some(pct(e)),
+                claimed: Some(0.67), claimed_text: Some("0.67%".into()),
+                measured: Some(100.0 * e), measured_text: Some(pct(e)), unit: "percent", claimed_values: vec![], measured_values: vec![],
                 domain: format!("cubic (q = 0.5^(1/n) exactly) vs pow, max |f - ref| where c^n >= 0.5, n = 4..1000 step 1; {GRID}; max at n = {p}, c = {x:.6}; the seed: 'does not exceed 0.67%'"),
                 verdict: not_exceeding(e, 0.0067),
             },
             ClaimRow {
                 id: "cubic.schlick_ratio_epicentre".into(),
                 seed: "003",
-                claimed: Some("more than 17".into()),
-                measured: Some(format!("{:.2}", s / e)),
+                claimed: Some(17.0), claimed_text: Some("more than 17".into()),
+                measured: Some(s / e), measured_text: Some(format!("{:.2}", s / e)), unit: "ratio", claimed_values: vec![], measured_values: vec![],
                 domain: format!("(max abs error of schlick in the epicentre) / (that of cubic), both over n = 4..1000 step 1: {s:.5} (n = {sp}) / {e:.5}"),
                 verdict: if s / e > 17.0 { "agrees" } else { "differs" },
             },
             ClaimRow {
                 id: "cubic.whole_abs_err_max".into(),
                 seed: "003",
-                claimed: None,
-                measured: Some(format!("{w:.6}")),
+                claimed: None, claimed_text: None,
+                measured: Some(w), measured_text: Some(format!("{w:.6}")), unit: "dimensionless", claimed_values: vec![], measured_values: vec![],
                 domain: format!("cubic vs pow, max |f - ref| over c in [0, 1] (clipped below its local minimum and where negative), n = 4..1000 step 1; max at n = {wp}, c = {wx:.6}"),
                 verdict: "no claim",
             },
@@ -233,16 +249,16 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
             ClaimRow {
                 id: "cubic3.whole_abs_err_max".into(),
                 seed: "003",
-                claimed: None,
-                measured: Some(format!("{w:.6}")),
+                claimed: None, claimed_text: None,
+                measured: Some(w), measured_text: Some(format!("{w:.6}")), unit: "dimensionless", claimed_values: vec![], measured_values: vec![],
                 domain: format!("cubic3 (Q = 0.5, G = 1/18) vs pow, max |f - ref| over c in [0, 1], n = 4..1000 step 1; max at n = {wp}, c = {wx:.6}"),
                 verdict: "no claim",
             },
             ClaimRow {
                 id: "cubic3.epicentre_abs_err_max".into(),
                 seed: "003",
-                claimed: None,
-                measured: Some(pct(e)),
+                claimed: None, claimed_text: None,
+                measured: Some(100.0 * e), measured_text: Some(pct(e)), unit: "percent", claimed_values: vec![], measured_values: vec![],
                 domain: format!("cubic3 vs pow, max |f - ref| where c^n >= 0.5, n = 4..1000 step 1; max at n = {p}, c = {x:.6}"),
                 verdict: "no claim",
             },
@@ -260,8 +276,8 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
             Ok(vec![ClaimRow {
                 id: id.into(),
                 seed: "003",
-                claimed: Some(format!("<= {}%", claim * 100.0)),
-                measured: Some(pct(e)),
+                claimed: Some(claim * 100.0), claimed_text: Some(format!("<= {}%", claim * 100.0)),
+                measured: Some(100.0 * e), measured_text: Some(pct(e)), unit: "percent", claimed_values: vec![], measured_values: vec![],
                 domain: format!("rational vs pow, max |f - ref| / ref where {lo} < c^n < {hi}, n = 2..1000 step 1; {GRID}; max at n = {p}, c = {x:.6}; the seed: 'not more than'; the bound holds for every n <= {holds_to}"),
                 verdict: not_exceeding(e, claim),
             }])
@@ -277,8 +293,8 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
         Ok(vec![ClaimRow {
             id: "power16.epicentre_rel_err_max".into(),
             seed: "000",
-            claimed: Some("1.3%".into()),
-            measured: Some(pct(e)),
+            claimed: Some(1.3), claimed_text: Some("1.3%".into()),
+            measured: Some(100.0 * e), measured_text: Some(pct(e)), unit: "percent", claimed_values: vec![], measured_values: vec![],
             domain: format!("power16 vs pow (c^n), max |f - ref| / ref where c^n >= 0.5, n = 5.55..50 step 0.1 (the exponents 2/m^2 of the seed's m in [0.2, 0.6]); max at n = {p}, c = {x:.6}. Over n = 16..1000 it is {} (at n = {p_all}). The seed: 'does not exceed 1.3%' (it applies the form to exp(-tan^2/m^2): rows beckmann_exp_power16.*)", pct(e_all)),
             verdict: not_exceeding(e, 0.013),
         }])
@@ -289,8 +305,8 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
             Ok(vec![ClaimRow {
                 id: format!("beckmann_exp_power16.m{m}.epicentre_rel_err"),
                 seed: "000",
-                claimed: None,
-                measured: Some(pct(e)),
+                claimed: None, claimed_text: None,
+                measured: Some(100.0 * e), measured_text: Some(pct(e)), unit: "percent", claimed_values: vec![], measured_values: vec![],
                 domain: format!("exp(-tan^2 t / m^2) vs max(0, 1 + (2/m^2)/16 (cos t - 1))^16 at m = {m}, max relative error where the exponential >= 0.5 (t in [0, {:.4}] rad), 20001-point grid in t and golden-section refinement; max at t = {x:.5} rad. The seed's only number for this replacement is 1.3% (row power16.epicentre_rel_err_max)", (m * m * 2f64.ln()).sqrt().atan()),
                 verdict: "no claim",
             }])
@@ -299,18 +315,21 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
     let sp = speedups.to_vec();
     jobs.push(Box::new(move || {
         let get = |n: &str| sp.iter().find(|(name, _)| name == n).map(|(_, v)| *v);
-        Ok([("ct.speedup", "4.34", "seed 000's Cook-Torrance (V-cavity G, Schlick F, denominator (V.N)(L.N)) in scalar f32, D16 (beckmann-power16) over the exp-based D (beckmann-ct), 4096 random direction pairs, one thread"),
-            ("ward.speedup", "more than 2", "isotropic Ward in scalar f32, the g = 16 form (ward-power16) over exp (ward), 4096 random direction pairs, one thread")]
+        Ok([("ct.speedup", "4.34", 4.34, "seed 000's Cook-Torrance (V-cavity G, Schlick F, denominator (V.N)(L.N)) in scalar f32, D16 (beckmann-power16) over the exp-based D (beckmann-ct), 4096 random direction pairs, one thread"),
+            ("ward.speedup", "more than 2", 2.0, "isotropic Ward in scalar f32, the g = 16 form (ward-power16) over exp (ward), 4096 random direction pairs, one thread")]
             .iter()
-            .map(|(id, claim, how)| {
+            .map(|(id, claim, claim_value, how)| {
                 let m = get(id);
                 let simd = get(&format!("{id}.simd"));
                 let pow = get(&format!("{id}.pow"));
                 ClaimRow {
                     id: (*id).into(),
                     seed: "000",
-                    claimed: Some((*claim).into()),
-                    measured: m.map(|v| format!("{v:.2}")),
+                    claimed: Some(*claim_value),
+                    claimed_text: Some((*claim).into()),
+                    measured: m,
+                    measured_text: m.map(|v| format!("{v:.2}")),
+                    unit: "ratio", claimed_values: vec![], measured_values: vec![],
                     domain: match m {
                         Some(_) => format!(
                             "{how}; from a saved `fastbrdf bench --json` run (README's benchmark section). Same run: SIMD kernels on both sides {}; the one-pow form instead of g = 16: {}",
@@ -378,8 +397,8 @@ pub fn markdown(r: &Report) -> String {
             "| `{}` | {} | {} | {} | {} |\n",
             c.id,
             c.seed,
-            c.claimed.as_deref().unwrap_or("-"),
-            c.measured.as_deref().unwrap_or("-"),
+            c.claimed_text.as_deref().unwrap_or("-"),
+            c.measured_text.as_deref().unwrap_or("-"),
             c.verdict
         );
     }

@@ -86,7 +86,15 @@ each with a documented and tested error bound.",
     after_help = "Examples:\n  fastbrdf models\n  fastbrdf models --kind lobe --json\n  \
 printf 'cos\\n1\\n0.99\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
 fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  fastbrdf check\n  \
-fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  fastbrdf reproduce --out report/"
+fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  fastbrdf reproduce --out report/\n\n\
+Exit codes:\n  0  success\n  1  a check failed (`check`), or the GPU itself failed\n  \
+2  bad usage or bad input (unknown model, invalid parameter or range, malformed CSV or mesh,\n     \
+an unreadable or oversized input file); nothing is written\n  \
+3  an output could not be written (disk full, file-size limit, closed stdout); no partial\n     \
+file or temporary is left behind\n\n\
+Machine outputs (--json, --csv) carry numbers; a value with no finite number (an infinite\n\
+relative error) is null in JSON and an empty field in CSV. Parameter columns and keys use the\n\
+parameter's own name (n, alpha)."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -128,7 +136,41 @@ enum Command {
     Shader(commands::shader::Args),
 }
 
+/// A file-size limit (`ulimit -f`) must make a write fail with EFBIG, which the atomic writers
+/// turn into exit code 3 and a removed temporary, instead of SIGXFSZ killing the process and
+/// leaving the temporary behind.
+fn ignore_file_size_signal() {
+    #[cfg(unix)]
+    // SAFETY: setting a signal's disposition to SIG_IGN at start-up, before any thread exists,
+    // has no preconditions.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
+}
+
+/// Commands print through `commands::write_stdout` (exit 3 on a failed stdout). A `println!`
+/// left in a command panics when stdout is closed or full; this turns that panic into the same
+/// exit code 3 and message instead of a panic report (exit 101). Other panics are unchanged.
+fn stdout_failures_exit_3() {
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        let msg = info
+            .payload()
+            .downcast_ref::<String>()
+            .map(String::as_str)
+            .or_else(|| info.payload().downcast_ref::<&str>().copied())
+            .unwrap_or("");
+        if let Some(rest) = msg.strip_prefix("failed printing to stdout: ") {
+            eprintln!("error: cannot write to stdout: {rest}");
+            std::process::exit(i32::from(EXIT_IO));
+        }
+        default(info);
+    }));
+}
+
 fn main() -> ExitCode {
+    ignore_file_size_signal();
+    stdout_failures_exit_3();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Models(a) => commands::models::run(&a),

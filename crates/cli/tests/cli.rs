@@ -191,7 +191,7 @@ fn bad_input_is_a_clear_error_with_exit_code_2_and_no_stdout() {
         (
             &["eval", "--model", "pow"],
             "cos\n0.5\nabc\n",
-            "line 3, column 'cos': 'abc' is not a number",
+            "line 3, field 1 ('cos'): 'abc' is not a number",
         ),
         (
             &["eval", "--model", "pow"],
@@ -256,7 +256,7 @@ fn bad_input_is_a_clear_error_with_exit_code_2_and_no_stdout() {
         (
             &["eval", "--model", "pow", "--input", "/nonexistent/x.csv"],
             "",
-            "cannot read /nonexistent/x.csv",
+            "/nonexistent/x.csv: cannot open",
         ),
     ];
     for (args, input, expected) in cases {
@@ -619,9 +619,46 @@ fn reproduce_has_every_claim_and_readme_shows_its_output() {
     ] {
         assert!(ids.contains(&id), "{id} missing");
     }
+    let by_id = |id: &str| claims.iter().find(|c| c["id"] == id).unwrap();
+    let epi = by_id("log.epicentre_rel_err_max");
+    assert_eq!(epi["unit"], "percent");
+    assert_eq!(epi["claimed"], 0.3);
+    let m = epi["measured"].as_f64().unwrap();
+    assert!(m > 0.0 && m < 1.0, "{epi}");
+    assert_eq!(epi["measured_text"], format!("{m:.3}%"));
+    assert_eq!(
+        by_id("log.coef_table")["measured_values"]
+            .as_array()
+            .unwrap()
+            .len(),
+        7
+    );
     for c in claims {
-        for key in ["id", "seed", "claimed", "measured", "domain", "verdict"] {
+        for key in [
+            "id",
+            "seed",
+            "claimed",
+            "claimed_text",
+            "measured",
+            "measured_text",
+            "unit",
+            "claimed_values",
+            "measured_values",
+            "domain",
+            "verdict",
+        ] {
             assert!(c.get(key).is_some(), "{c} lacks {key}");
+        }
+        // Machine output carries numbers (issue 11: they were strings like "0.291%").
+        for key in ["claimed", "measured"] {
+            assert!(c[key].is_number() || c[key].is_null(), "{c}: {key}");
+        }
+        assert!(
+            ["percent", "dimensionless", "ratio"].contains(&c["unit"].as_str().unwrap()),
+            "{c}"
+        );
+        for key in ["claimed_values", "measured_values"] {
+            assert!(c[key].as_array().unwrap().iter().all(|x| x.is_number()));
         }
         let verdict = c["verdict"].as_str().unwrap();
         assert!(["agrees", "differs", "no claim", "not measured"].contains(&verdict));
@@ -1095,4 +1132,405 @@ fn fit_and_pareto_commands() {
         readme[start..end] == md,
         "README's Pareto table is stale: paste `fastbrdf pareto --bench docs/bench/bench.json --markdown`"
     );
+}
+
+/// Runs the binary through bash (for `ulimit -f` and redirections); `script` uses `$B` for it.
+fn bash(script: &str, dir: &std::path::Path) -> Output {
+    Command::new("bash")
+        .arg("-c")
+        .arg(script)
+        .env("B", env!("CARGO_BIN_EXE_fastbrdf"))
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+/// Everything under `d`, relative, sorted (hidden staging folders and temporaries included).
+fn tree(d: &std::path::Path) -> Vec<String> {
+    fn walk(root: &std::path::Path, d: &std::path::Path, out: &mut Vec<String>) {
+        if let Ok(r) = std::fs::read_dir(d) {
+            for e in r.flatten() {
+                let p = e.path();
+                out.push(p.strip_prefix(root).unwrap().display().to_string());
+                if p.is_dir() {
+                    walk(root, &p, out);
+                }
+            }
+        }
+    }
+    let mut v = vec![];
+    walk(d, d, &mut v);
+    v.sort();
+    v
+}
+
+/// Issue 11: degenerate ranges panicked (index out of bounds), printed a header first, or
+/// exited 0 with empty output. Every command taking a range refuses them before any output.
+#[test]
+fn every_range_argument_refuses_degenerate_ranges_before_any_output() {
+    let d = temp_dir("ranges");
+    let out = d.join("plot");
+    let o = out.to_str().unwrap();
+    let bad = [
+        "1..2:1e-300",
+        "1e308..1.7e308",
+        "-1.7e308..1.7e308",
+        "5..1",
+        "1..5:0",
+        "1..5:-1",
+        "1..5:nan",
+        "1..inf",
+        "1..1e9",
+        "",
+        "1,,2",
+    ];
+    for r in bad {
+        let cases: Vec<Vec<&str>> = vec![
+            vec!["errors", "--model", "flog", "--reference", "pow", "--n", r],
+            vec![
+                "errors",
+                "--model",
+                "beckmann-power16",
+                "--reference",
+                "beckmann-ct",
+                "--m",
+                r,
+            ],
+            vec!["normalize", "--model", "flog", "--n", r],
+            vec![
+                "albedo",
+                "--model",
+                "ward",
+                "--param",
+                "alpha=0.3",
+                "--angles",
+                r,
+            ],
+            vec!["plot", "max-error", "--n", r, "--out", o],
+            vec!["plot", "coef", "--n", r, "--out", o],
+            vec!["fit", "--family", "power16", "--reference", "pow", "--n", r],
+            vec![
+                "fit",
+                "--family",
+                "beckmann-power16",
+                "--reference",
+                "beckmann-ct",
+                "--m",
+                r,
+            ],
+        ];
+        for args in cases {
+            let res = fastbrdf(&args, "");
+            assert_eq!(res.status.code(), Some(2), "{args:?}: {}", stderr(&res));
+            assert!(res.stdout.is_empty(), "{args:?}: {}", stdout(&res));
+            assert!(!stderr(&res).contains("panicked"), "{args:?}");
+        }
+    }
+    assert!(tree(&d).is_empty(), "{:?}", tree(&d));
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Issue 11: a file-size limit killed the process (SIGXFSZ) and left temporaries and some of
+/// `shader --all`'s 41 files. Now: exit code 3, a message, and nothing left behind.
+#[cfg(unix)]
+#[test]
+fn write_failures_exit_3_and_leave_nothing_behind() {
+    let d = temp_dir("efbig");
+    for (script, target) in [
+        (
+            "ulimit -f 1; exec \"$B\" shader --model cook-torrance --param alpha=0.2 --out s.wgsl",
+            "s.wgsl",
+        ),
+        // 2 KiB: some files fit, others do not; none may remain.
+        (
+            "ulimit -f 2; exec \"$B\" shader --all --lang glsl --out all",
+            "all",
+        ),
+        (
+            "ulimit -f 8; exec \"$B\" plot lobes --out plots/lobes",
+            "plots",
+        ),
+        (
+            "ulimit -f 8; exec \"$B\" plot coef --n 1..50 --out coef",
+            "coef",
+        ),
+        ("ulimit -f 16; exec \"$B\" reproduce --out report", "report"),
+    ] {
+        let o = bash(script, &d);
+        assert_eq!(o.status.code(), Some(3), "{script}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("cannot write") && stderr(&o).contains("too large"),
+            "{script}: {}",
+            stderr(&o)
+        );
+        assert!(o.stdout.is_empty(), "{script}");
+        assert!(
+            tree(&d).is_empty(),
+            "{script} left {:?} ({target})",
+            tree(&d)
+        );
+    }
+    // Without the limit the same --all writes every file.
+    let o = bash("exec \"$B\" shader --all --lang glsl --out all", &d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_dir(d.join("all")).unwrap().count(), 41);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Issue 11: a plot write failure was exit code 1; `pareto --json` wrote
+/// fastbrdf-out/pareto.png and .svg into the current folder unasked.
+#[test]
+fn pareto_writes_a_plot_only_when_asked() {
+    let d = temp_dir("pareto-cwd");
+    let bench = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    for flag in ["--json", "--markdown"] {
+        let o = bash(&format!("exec \"$B\" pareto --bench {bench} {flag}"), &d);
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(!o.stdout.is_empty());
+        assert!(tree(&d).is_empty(), "{flag} wrote {:?}", tree(&d));
+    }
+    let o = bash(
+        &format!("exec \"$B\" pareto --bench {bench} --json --out p/pareto"),
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(tree(&d), vec!["p", "p/pareto.png", "p/pareto.svg"]);
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Issue 11: a failed stdout write was exit code 1 (eval) or a panic (println!, exit 101).
+/// Exit codes are documented in --help.
+#[cfg(unix)]
+#[test]
+fn stdout_failures_are_exit_3_and_exit_codes_are_documented() {
+    let d = temp_dir("stdout-full");
+    for script in [
+        "printf 'cos\\n0.5\\n' | \"$B\" eval --model pow --param n=2 > /dev/full",
+        "exec \"$B\" models --json > /dev/full",
+        "exec \"$B\" errors --model flog --reference pow --n 10,20 --csv > /dev/full",
+        "exec \"$B\" shader --model pow > /dev/full",
+        // check prints with println! (another slice's file): main's panic hook maps it.
+        "exec \"$B\" check --model flog > /dev/full",
+    ] {
+        let o = bash(script, &d);
+        assert_eq!(o.status.code(), Some(3), "{script}: {}", stderr(&o));
+        assert!(
+            stderr(&o).contains("cannot write to stdout") && !stderr(&o).contains("panicked"),
+            "{script}: {}",
+            stderr(&o)
+        );
+    }
+    // A reader that went away (EPIPE) is not a panic either.
+    let o = bash(
+        "(sleep 0.3; exec \"$B\" models --json) | true; echo \"rc=${PIPESTATUS[0]}\"",
+        &d,
+    );
+    assert_eq!(stdout(&o).trim(), "rc=3", "{}", stderr(&o));
+    let help = stdout(&fastbrdf(&["--help"], ""));
+    for needle in [
+        "Exit codes:",
+        "0  success",
+        "1  a check failed",
+        "2  bad usage",
+        "3  an output",
+    ] {
+        assert!(help.contains(needle), "--help lacks {needle:?}");
+    }
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// Issue 11: eval named the wrong line after blank lines or quoted multi-line fields, no line
+/// for non-UTF-8 input, echoed a 10 MB field whole and read /dev/zero without limit.
+#[test]
+fn eval_errors_point_at_the_record_and_stay_short() {
+    let cases: &[(&[u8], &str)] = &[
+        (
+            b"cos\n\n\n0.5\nabc\n",
+            "<stdin>: line 5, field 1 ('cos'): 'abc' is not a number",
+        ),
+        (
+            b"cos,note\n0.5,\"two\nlines\"\n0.7,\"a\n\nb\"\nx,y\n",
+            "<stdin>: line 7, field 1 ('cos'): 'x' is not a number",
+        ),
+        (b"cos\n0.5\n\n1.5\n", "<stdin>: line 4: input cos: 1.5"),
+        (
+            b"cos\n0.5\n0.\xff5\n",
+            "<stdin>: line 3, column 3: not UTF-8 text",
+        ),
+        (
+            b"note,cos\n\"a\nb\",0.5\n\"c\nd\",0.5,9\n",
+            "<stdin>: line 4: expected 2 fields, found 3",
+        ),
+    ];
+    for (input, expected) in cases {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
+            .args(["eval", "--model", "pow", "--param", "n=2"])
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let _ = child.stdin.take().unwrap().write_all(input);
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{expected}: {}", stderr(&o));
+        assert!(o.stdout.is_empty());
+        assert!(
+            stderr(&o).contains(expected),
+            "{:?} lacks {expected:?}",
+            stderr(&o)
+        );
+    }
+    let big = format!("cos\n0.5\n{}\n", "9".repeat(10_000_000) + "x");
+    let o = fastbrdf(&["eval", "--model", "pow"], &big);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.len() < 500 && e.contains("line 3") && e.contains("more bytes"),
+        "{}",
+        &e[..e.len().min(500)]
+    );
+    let o = fastbrdf(
+        &[
+            "eval",
+            "--model",
+            "pow",
+            "--input",
+            "/dev/zero",
+            "--max-input-mib",
+            "1",
+        ],
+        "",
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("/dev/zero: larger than the 1 MiB"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(o.stdout.is_empty());
+}
+
+/// Issue 11: one vocabulary for the swept parameter in every format (its own name).
+#[test]
+fn errors_and_fit_name_the_parameter_the_same_way_in_json_and_csv() {
+    let o = fastbrdf(
+        &[
+            "errors",
+            "--model",
+            "flog",
+            "--reference",
+            "pow",
+            "--n",
+            "10,20",
+            "--json",
+        ],
+        "",
+    );
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["param"], "n");
+    for row in v["rows"].as_array().unwrap() {
+        assert!(row["n"].is_number() && row.get("param").is_none(), "{row}");
+    }
+    let o = fastbrdf(
+        &[
+            "errors",
+            "--model",
+            "flog",
+            "--reference",
+            "pow",
+            "--n",
+            "10,20",
+            "--csv",
+        ],
+        "",
+    );
+    assert!(stdout(&o).starts_with("n,max_abs,"));
+    // One spelling of "no finite value": null in JSON, an empty field in CSV (was `inf`).
+    // gauss is positive at c = 0 where pow is 0: an infinite relative error.
+    let args = [
+        "errors",
+        "--model",
+        "gauss",
+        "--reference",
+        "pow",
+        "--n",
+        "10",
+    ];
+    let o = fastbrdf(&[&args[..], &["--csv"]].concat(), "");
+    let row = stdout(&o).lines().nth(1).unwrap().to_string();
+    assert_eq!(row.split(',').nth(3), Some(""), "{row}");
+    assert!(!row.contains("inf"), "{row}");
+    let o = fastbrdf(&[&args[..], &["--json"]].concat(), "");
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(v["rows"][0]["max_rel"].is_null() && v["worst"]["max_rel"].is_null());
+    let o = fastbrdf(
+        &[
+            "fit",
+            "--family",
+            "beckmann-power16",
+            "--reference",
+            "beckmann-ct",
+            "--m",
+            "0.3",
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["param"], "alpha");
+    let row = &v["rows"][0];
+    assert!(
+        row["alpha"].is_number() && row.get("param").is_none(),
+        "{row}"
+    );
+}
+
+/// Issue 11: `plot` subcommand options had no help text.
+#[test]
+fn every_plot_option_has_help_and_every_subcommand_an_example() {
+    for sub in ["lobes", "error", "max-error", "coef", "polar", "albedo"] {
+        let o = fastbrdf(&["plot", sub, "--help"], "");
+        assert!(o.status.success());
+        let h = stdout(&o);
+        assert!(h.contains("Example"), "plot {sub} has no example");
+        let opts = &h[h.find("Options:").expect("an options section")..];
+        let lines: Vec<&str> = opts.lines().skip(1).collect();
+        for (i, line) in lines.iter().enumerate() {
+            let t = line.trim_start();
+            if !t.starts_with('-') || t.starts_with("-h, --help") {
+                continue;
+            }
+            // The description: after the option on the same line, or on the next lines.
+            let same = t.split_once("  ").map_or("", |(_, d)| d.trim());
+            let next = lines
+                .get(i + 1)
+                .filter(|l| !l.trim_start().starts_with('-'))
+                .map_or("", |l| l.trim());
+            let text = format!("{same} {next}");
+            let stripped: String = text.split('[').next().unwrap_or("").trim().to_string();
+            assert!(!stripped.is_empty(), "plot {sub}: {t:?} has no help text");
+        }
+    }
+}
+
+/// Issue 11: saved runs were read with `read_to_string`, without a limit (`/dev/zero` grew
+/// until memory ran out). Every one is read once, at most 64 MiB.
+#[cfg(unix)]
+#[test]
+fn saved_runs_are_read_with_a_bound() {
+    for args in [
+        vec!["bench", "--from", "/dev/zero", "--markdown"],
+        vec!["pareto", "--bench", "/dev/zero"],
+        vec!["reproduce", "--speedups", "/dev/zero"],
+    ] {
+        let o = fastbrdf(&args, "");
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty(), "{args:?}");
+        assert!(
+            stderr(&o).contains("/dev/zero: larger than the 64 MiB"),
+            "{args:?}: {}",
+            stderr(&o)
+        );
+    }
 }

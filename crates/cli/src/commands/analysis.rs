@@ -18,6 +18,23 @@ pub fn bar(len: u64, msg: &'static str) -> ProgressBar {
     b
 }
 
+/// A number for messages and parameter strings: shortest round-trip text, in exponent form
+/// when that is long (1e308 rather than 309 digits).
+pub fn num(x: f64) -> String {
+    let s = x.to_string();
+    if s.len() > 20 { format!("{x:e}") } else { s }
+}
+
+/// A number for CSV: the shortest round-trip text, or an empty field when it is not finite
+/// (the same "no finite value" that JSON writes as null).
+pub fn csv_num(x: f64) -> String {
+    if x.is_finite() {
+        x.to_string()
+    } else {
+        String::new()
+    }
+}
+
 fn parse_zone(z: &str) -> Result<Zone, CliError> {
     match z {
         "all" => Ok(Zone::All),
@@ -71,10 +88,13 @@ pub struct ErrorsArgs {
     /// Where to measure: all, epicentre (reference >= 0.5 of its peak) or band:LO,HI.
     #[arg(long, default_value = "all")]
     zone: String,
-    /// Print JSON: {"model", "reference", "param", "zone", "worst": {...}, "rows": [...]}.
+    /// Print JSON: {"model", "reference", "param": "n"|"alpha", "zone", "worst": {...}, "rows":
+    /// [{n or alpha, max_abs, max_abs_at, max_rel, max_rel_at, rms, samples}]}; no finite
+    /// value (an infinite relative error) is null.
     #[arg(long, conflicts_with = "csv")]
     json: bool,
-    /// Print CSV, one row per parameter value.
+    /// Print CSV, one row per parameter value: n or alpha, max_abs, max_abs_at, max_rel,
+    /// max_rel_at, rms, samples; no finite value (an infinite relative error) is an empty field.
     #[arg(long)]
     csv: bool,
 }
@@ -100,8 +120,8 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
     spec.validate()?;
     // Reject out-of-range parameter values before the sweep, with the registry's message.
     for e in [&a.model, &a.reference] {
-        fastbrdf::registry::build::<f64>(e, &[(param, &values[0].to_string())])?;
-        fastbrdf::registry::build::<f64>(e, &[(param, &values[values.len() - 1].to_string())])?;
+        fastbrdf::registry::build::<f64>(e, &[(param, &num(values[0]))])?;
+        fastbrdf::registry::build::<f64>(e, &[(param, &num(values[values.len() - 1]))])?;
     }
     let pb = bar(values.len() as u64, "errors");
     let rows = errors::sweep(&spec, &values, &|| pb.inc(1))?;
@@ -113,9 +133,12 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
             "worst": {"max_abs": wa.max_abs, "max_abs_param": wa.param, "max_abs_at": wa.max_abs_at,
                       "max_rel": wr.max_rel, "max_rel_param": wr.param, "max_rel_at": wr.max_rel_at,
                       "rms": wq.rms, "rms_param": wq.param},
-            "rows": rows,
+            "rows": rows.iter().map(|r| serde_json::json!({
+                param: r.param, "max_abs": r.max_abs, "max_abs_at": r.max_abs_at,
+                "max_rel": r.max_rel, "max_rel_at": r.max_rel_at, "rms": r.rms, "samples": r.samples,
+            })).collect::<Vec<_>>(),
         });
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&v).expect("serialisable")
         );
@@ -125,10 +148,16 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
             let _ = writeln!(
                 s,
                 "{},{},{},{},{},{},{}",
-                r.param, r.max_abs, r.max_abs_at, r.max_rel, r.max_rel_at, r.rms, r.samples
+                csv_num(r.param),
+                csv_num(r.max_abs),
+                csv_num(r.max_abs_at),
+                csv_num(r.max_rel),
+                csv_num(r.max_rel_at),
+                csv_num(r.rms),
+                r.samples
             );
         }
-        print!("{s}");
+        crate::out!("{s}");
     } else {
         let x = if matches!(
             fastbrdf::registry::find(&a.model)?.info.kind,
@@ -138,7 +167,7 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
         } else {
             "cos"
         };
-        println!(
+        crate::outln!(
             "{} vs {} over {param} in {} ({} values), zone {}",
             a.model,
             a.reference,
@@ -146,28 +175,37 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
             values.len(),
             a.zone
         );
-        println!(
+        crate::outln!(
             "  max abs error {:.6e} at {param} = {}, {x} = {:.8}",
-            wa.max_abs, wa.param, wa.max_abs_at
+            wa.max_abs,
+            wa.param,
+            wa.max_abs_at
         );
-        println!(
+        crate::outln!(
             "  max rel error {:.6e} at {param} = {}, {x} = {:.8}",
-            wr.max_rel, wr.param, wr.max_rel_at
+            wr.max_rel,
+            wr.param,
+            wr.max_rel_at
         );
-        println!("  max RMS error {:.6e} at {param} = {}", wq.rms, wq.param);
+        crate::outln!("  max RMS error {:.6e} at {param} = {}", wq.rms, wq.param);
         if rows.len() <= 30 {
-            println!(
+            crate::outln!(
                 "\n  {param:>8} {:>13} {:>13} {:>13}",
-                "max abs", "max rel", "rms"
+                "max abs",
+                "max rel",
+                "rms"
             );
             for r in &rows {
-                println!(
+                crate::outln!(
                     "  {:>8} {:>13.6e} {:>13.6e} {:>13.6e}",
-                    r.param, r.max_abs, r.max_rel, r.rms
+                    r.param,
+                    r.max_abs,
+                    r.max_rel,
+                    r.rms
                 );
             }
         } else {
-            println!("  (per-{param} rows: --csv or --json)");
+            crate::outln!("  (per-{param} rows: --csv or --json)");
         }
     }
     Ok(())
@@ -205,7 +243,7 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
     }
     let ns = range::parse(&a.n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?;
     for n in [ns[0], ns[ns.len() - 1]] {
-        fastbrdf::registry::build::<f64>(&a.model, &[("n", &n.to_string())])?;
+        fastbrdf::registry::build::<f64>(&a.model, &[("n", &num(n))])?;
     }
     let rows = normalize::table(&a.model, &ns)?;
     let fit = a
@@ -214,7 +252,7 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
         .and_then(normalize::Form::parse)
         .map(|f| normalize::fit(f, &rows));
     if a.json {
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(
                 &serde_json::json!({"model": a.model, "rows": rows, "fit": fit})
@@ -223,7 +261,7 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
         );
         return Ok(());
     }
-    println!(
+    crate::outln!(
         "Int(n) = integral_0^1 {}(c) c dc and coef(n) = 1 / (2 pi Int(n)) (adaptive Gauss-Kronrod, rel. tol. 1e-12)",
         a.model
     );
@@ -235,27 +273,34 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
             .chain(rows.last())
             .collect()
     };
-    println!(
+    crate::outln!(
         "  {:>8} {:>20} {:>14} {:>10}",
-        "n", "Int(n)", "coef(n)", "err(Int)"
+        "n",
+        "Int(n)",
+        "coef(n)",
+        "err(Int)"
     );
     for r in shown {
-        println!(
+        crate::outln!(
             "  {:>8} {:>20.14e} {:>14.8} {:>10.1e}",
-            r.n, r.int, r.coef, r.int_err
+            r.n,
+            r.int,
+            r.coef,
+            r.int_err
         );
     }
     if let Some(f) = fit {
-        println!("\nfit {} over {} values of n:", f.form, rows.len());
+        crate::outln!("\nfit {} over {} values of n:", f.form, rows.len());
         for (k, v) in &f.constants {
-            println!("  {k} = {v:.8}");
+            crate::outln!("  {k} = {v:.8}");
         }
-        println!("  RMS of coef_fit - coef        {:.6e}", f.rms);
-        println!(
+        crate::outln!("  RMS of coef_fit - coef        {:.6e}", f.rms);
+        crate::outln!(
             "  max |coef_fit / coef - 1|     {:.6e} (n = {})",
-            f.max_rel, f.max_rel_at
+            f.max_rel,
+            f.max_rel_at
         );
-        println!(
+        crate::outln!(
             "  energy residual max |coef_fit 2 pi Int - 1| = {:.6e}",
             f.energy_residual_max
         );
@@ -306,21 +351,21 @@ pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
     if a.json {
         let v = serde_json::json!({"model": a.model, "brdf": t.id, "params": t.params, "claims_energy": t.claims_energy,
             "conserves": holds, "rows": rows});
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&v).expect("serialisable")
         );
         return Ok(());
     }
     let p: Vec<String> = t.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    println!(
+    crate::outln!(
         "directional albedo of {} {} (nested adaptive Gauss-Kronrod, rel. tol. 1e-7)",
         t.id,
         p.join(" ")
     );
-    println!("  {:>8} {:>12} {:>10}", "theta", "albedo", "error");
+    crate::outln!("  {:>8} {:>12} {:>10}", "theta", "albedo", "error");
     for r in &rows {
-        println!("  {:>8} {:>12.6} {:>10.1e}", r.theta_deg, r.albedo, r.error);
+        crate::outln!("  {:>8} {:>12.6} {:>10.1e}", r.theta_deg, r.albedo, r.error);
     }
     let w = worst.expect("at least one angle");
     let verdict = match (t.claims_energy, holds) {
@@ -337,6 +382,6 @@ pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
             w.albedo, w.theta_deg
         ),
     };
-    println!("{verdict}");
+    crate::outln!("{verdict}");
     Ok(())
 }

@@ -30,7 +30,7 @@ pub struct Args {
     /// Print the Markdown tables that README.md shows.
     #[arg(long)]
     markdown: bool,
-    /// Render a saved `--json` run instead of measuring.
+    /// Render a saved `--json` run instead of measuring (read once, at most 64 MiB).
     #[arg(long, value_name = "FILE")]
     from: Option<PathBuf>,
     /// Only these models (comma-separated ids).
@@ -103,8 +103,11 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
 pub fn run(a: &Args) -> Result<(), CliError> {
     let report: Report = match &a.from {
         Some(path) => {
-            let text = std::fs::read_to_string(path)
-                .map_err(|e| CliError::input(format!("cannot read {}: {e}", path.display())))?;
+            let text = fastbrdf_io::read_text_bounded(
+                path,
+                super::reproduce::BENCH_JSON_LIMIT,
+                "a bench run",
+            )?;
             serde_json::from_str(&text).map_err(|e| {
                 CliError::input(format!(
                     "{}: not a `fastbrdf bench --json` run: {e}",
@@ -146,16 +149,16 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 "--gpu-only: this run has no GPU figures (measure with --gpu)",
             ));
         }
-        print!("{}", gpu_tables(&report, a.markdown));
+        crate::out!("{}", gpu_tables(&report, a.markdown));
     } else if a.json {
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&report).expect("serialisable")
         );
     } else if a.markdown {
-        print!("{}", markdown(&report));
+        crate::out!("{}", markdown(&report));
     } else {
-        print!("{}", text(&report));
+        crate::out!("{}", text(&report));
     }
     Ok(())
 }

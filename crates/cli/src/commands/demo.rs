@@ -324,8 +324,8 @@ th{background:#eee}.agrees{color:#060}.differs{color:#a00}figure{margin:1em 0 2e
             "<tr><td><code>{}</code></td><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td></tr>",
             esc(&c.id),
             c.seed,
-            esc(c.claimed.as_deref().unwrap_or("-")),
-            esc(c.measured.as_deref().unwrap_or("-")),
+            esc(c.claimed_text.as_deref().unwrap_or("-")),
+            esc(c.measured_text.as_deref().unwrap_or("-")),
             c.verdict.replace(' ', "-"),
             c.verdict,
             esc(&c.domain)

@@ -4,13 +4,27 @@
 //! shadowing `cos_v` (and `cos_l` for the two-sided term; the V-cavity also `cos_h`,
 //! `cos_vh`); Fresnel `cos_vh`; full BRDFs `wi_x,wi_y,wi_z,wo_x,wo_y,wo_z`. Other columns are
 //! passed through. Output: the input columns plus `value`. Any malformed or out-of-domain row is
-//! an error naming its line and column (exit code 2), and nothing is written to stdout.
+//! an error naming its line (where the record starts) and field (exit code 2), quoting at most
+//! 40 characters of the input, and nothing is written to stdout. The input is read once and at
+//! most `--max-input-mib` MiB (default 256) of it: `/dev/zero` or an endless pipe is refused.
 
 use crate::CliError;
 use fastbrdf::{Model, Real, registry};
-use std::io::{IsTerminal, Read, Write};
+use fastbrdf_io::shorten;
+use std::io::IsTerminal;
+use std::path::Path;
+
+/// The most characters of the input quoted in a message.
+const QUOTE: usize = 40;
 
 #[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  printf 'cos\\n1\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
+fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n\n\
+Output: CSV, the input columns then `value`. Errors name the file, the line where the record\n\
+starts and the field; exit code 2 for bad input (nothing on stdout), 3 when stdout cannot be\n\
+written."
+)]
 pub struct Args {
     /// Model id (see `fastbrdf models`).
     #[arg(long)]
@@ -24,6 +38,9 @@ pub struct Args {
     /// Read CSV from this file instead of stdin.
     #[arg(long)]
     input: Option<std::path::PathBuf>,
+    /// The most input read, in MiB (the input is refused beyond it, before any output).
+    #[arg(long, default_value_t = 256, value_name = "MIB")]
+    max_input_mib: u64,
 }
 
 /// Splits `NAME=VALUE` strings.
@@ -33,7 +50,12 @@ pub fn parse_params(params: &[String]) -> Result<Vec<(String, String)>, CliError
         .map(|p| {
             p.split_once('=')
                 .map(|(k, v)| (k.trim().to_string(), v.trim().to_string()))
-                .ok_or_else(|| CliError::input(format!("--param '{p}': expected NAME=VALUE")))
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "--param '{}': expected NAME=VALUE",
+                        shorten(p, QUOTE)
+                    ))
+                })
         })
         .collect()
 }
@@ -44,10 +66,12 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .iter()
         .map(|(k, v)| (k.as_str(), v.as_str()))
         .collect();
-    let (text, source) = match &a.input {
+    let limit = a.max_input_mib.checked_mul(1 << 20).ok_or_else(|| {
+        CliError::input(format!("--max-input-mib {}: too large", a.max_input_mib))
+    })?;
+    let (bytes, source) = match &a.input {
         Some(path) => (
-            std::fs::read_to_string(path)
-                .map_err(|e| CliError::input(format!("cannot read {}: {e}", path.display())))?,
+            fastbrdf_io::read_bounded(path, limit, "eval input (see --max-input-mib)")?,
             path.display().to_string(),
         ),
         None => {
@@ -56,24 +80,24 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                     "no input: pipe CSV into stdin or use --input FILE (see --help)",
                 ));
             }
-            let mut s = String::new();
-            std::io::stdin()
-                .read_to_string(&mut s)
-                .map_err(|e| CliError::input(format!("cannot read stdin: {e}")))?;
-            (s, "<stdin>".to_string())
+            (
+                fastbrdf_io::read_reader_bounded(
+                    std::io::stdin().lock(),
+                    Path::new("<stdin>"),
+                    limit,
+                    "eval input (see --max-input-mib)",
+                )?,
+                "<stdin>".to_string(),
+            )
         }
     };
+    let text = fastbrdf_io::utf8_text(bytes, Path::new(&source))?;
     let out = if a.precision == "f64" {
         evaluate(registry::build::<f64>(&a.model, &given)?, &text, &source)?
     } else {
         evaluate(registry::build::<f32>(&a.model, &given)?, &text, &source)?
     };
-    let mut stdout = std::io::stdout().lock();
-    stdout.write_all(out.as_bytes()).map_err(|e| CliError {
-        code: 1,
-        message: format!("cannot write output: {e}"),
-    })?;
-    Ok(())
+    super::write_stdout(out.as_bytes())
 }
 
 /// Evaluates every row of `text` (CSV with a header); returns the whole output CSV.
@@ -88,11 +112,12 @@ pub fn evaluate<T: Real + std::str::FromStr>(
         .from_reader(text.as_bytes());
     let headers = reader
         .headers()
-        .map_err(|e| CliError::input(format!("{source}: cannot read the CSV header: {e}")))?
+        .map_err(|e| csv_error(source, text, &e))?
         .clone();
+    let hline = headers.position().map_or(1, |p| line_of(text, p));
     if headers.iter().any(|h| h == "value") {
         return Err(CliError::input(format!(
-            "{source}: line 1: the input already has a 'value' column"
+            "{source}: line {hline}: the input already has a 'value' column"
         )));
     }
     let (req, opt) = model.columns();
@@ -100,7 +125,7 @@ pub fn evaluate<T: Real + std::str::FromStr>(
     for name in req {
         let i = headers.iter().position(|h| h == *name).ok_or_else(|| {
             CliError::input(format!(
-                "{source}: line 1: missing column '{name}' (a {} needs columns {})",
+                "{source}: line {hline}: missing column '{name}' (a {} needs columns {})",
                 model.kind().name(),
                 req.join(",")
             ))
@@ -115,16 +140,10 @@ pub fn evaluate<T: Real + std::str::FromStr>(
     header_out.push("value");
     writer.write_record(&header_out).expect("writing to memory");
     let all_names: Vec<&str> = req.iter().chain(opt.iter()).copied().collect();
-    for (row, record) in reader.records().enumerate() {
-        let line = row + 2;
-        let record = record.map_err(|e| match e.kind() {
-            csv::ErrorKind::UnequalLengths {
-                expected_len, len, ..
-            } => CliError::input(format!(
-                "{source}: line {line}: expected {expected_len} fields, found {len}"
-            )),
-            _ => CliError::input(format!("{source}: line {line}: {e}")),
-        })?;
+    for record in reader.records() {
+        let record = record.map_err(|e| csv_error(source, text, &e))?;
+        // The line where the record starts (blank lines and quoted line breaks counted).
+        let line = record.position().map_or(0, |p| line_of(text, p));
         let mut input = Vec::with_capacity(index.len());
         for (k, i) in index.iter().enumerate() {
             let v = match i {
@@ -133,8 +152,10 @@ pub fn evaluate<T: Real + std::str::FromStr>(
                     let field = record.get(*i).unwrap_or("");
                     let x: T = field.parse().map_err(|_| {
                         CliError::input(format!(
-                            "{source}: line {line}, column '{}': '{field}' is not a number",
-                            all_names[k]
+                            "{source}: line {line}, field {} ('{}'): '{}' is not a number",
+                            i + 1,
+                            all_names[k],
+                            shorten(field, QUOTE)
                         ))
                     })?;
                     Some(x)
@@ -151,4 +172,41 @@ pub fn evaluate<T: Real + std::str::FromStr>(
     }
     let bytes = writer.into_inner().expect("writing to memory");
     Ok(String::from_utf8(bytes).expect("CSV of UTF-8 input is UTF-8"))
+}
+
+/// A CSV reading error, naming the line where the record starts.
+fn csv_error(source: &str, text: &str, e: &csv::Error) -> CliError {
+    let line = e.position().map(|p| line_of(text, p));
+    let at = line.map_or_else(String::new, |l| format!("line {l}: "));
+    let what = match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len,
+            len,
+            pos,
+        } => {
+            let l = pos.as_ref().map(|p| line_of(text, p));
+            let at = l.map_or_else(String::new, |l| format!("line {l}: "));
+            return CliError::input(format!(
+                "{source}: {at}expected {expected_len} fields, found {len}"
+            ));
+        }
+        csv::ErrorKind::Utf8 { err, .. } => format!("field {} is not UTF-8 text", err.field() + 1),
+        csv::ErrorKind::Io(err) => format!("cannot read: {err}"),
+        _ => shorten(&e.to_string(), 200),
+    };
+    CliError::input(format!("{source}: {at}{what}"))
+}
+
+/// The line where a record starts. The csv crate's own line count is one short for a record
+/// that follows blank lines (its position points at the skipped line break), so the line is
+/// computed from the byte offset, past any line breaks.
+fn line_of(text: &str, p: &csv::Position) -> u64 {
+    let bytes = text.as_bytes();
+    let mut at = usize::try_from(p.byte())
+        .unwrap_or(usize::MAX)
+        .min(bytes.len());
+    while at < bytes.len() && matches!(bytes[at], b'\n' | b'\r') {
+        at += 1;
+    }
+    fastbrdf_io::line_col(bytes, at).0 as u64
 }

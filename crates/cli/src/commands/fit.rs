@@ -36,8 +36,9 @@ pub struct FitArgs {
     /// quadrature for every candidate coefficient (lobe families).
     #[arg(long)]
     normalized: bool,
-    /// Print JSON: {"family", "metric", "normalized", "rows": [{param, coefficient, error, untuned_coefficient,
-    /// untuned_error}], "closed_form": {r, max_coefficient_deviation, worst_gain, worst_gain_at}}.
+    /// Print JSON: {"family", "metric", "normalized", "param": "n"|"alpha", "rows": [{n or alpha,
+    /// coefficient, error, untuned_coefficient, untuned_error}], "closed_form": {r,
+    /// max_coefficient_deviation, worst_gain, worst_gain_at}}; no finite value is null.
     #[arg(long)]
     json: bool,
 }
@@ -72,7 +73,8 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::input(format!("--{}: {e}", if name == "n" { "n" } else { "m" })))?;
     if let Some(bad) = ps.iter().find(|p| !(**p >= lo && **p <= hi)) {
         return Err(CliError::input(format!(
-            "{name} = {bad} is outside [{lo}, {hi}]"
+            "{name} = {} is outside [{lo}, {hi}]",
+            super::analysis::num(*bad)
         )));
     }
     let pb = bar(ps.len() as u64, "fitting");
@@ -84,8 +86,21 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     let closed = (!family.is_microfacet() && rows.len() >= 5)
         .then(|| fit::closed_form(family, metric, &rows));
     if a.json {
-        let v = serde_json::json!({"family": family.name(), "metric": a.metric, "normalized": a.normalized, "rows": rows, "closed_form": closed});
-        println!(
+        let rows: Vec<serde_json::Value> = rows
+            .iter()
+            .map(|r| {
+                let mut v = serde_json::to_value(r).expect("serialisable");
+                if let Some(o) = v.as_object_mut() {
+                    // One vocabulary: the parameter's own name (n or alpha), as in CSV.
+                    if let Some(p) = o.remove("param") {
+                        o.insert(name.into(), p);
+                    }
+                }
+                v
+            })
+            .collect();
+        let v = serde_json::json!({"family": family.name(), "metric": a.metric, "normalized": a.normalized, "param": name, "rows": rows, "closed_form": closed});
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&v).expect("serialisable")
         );
@@ -96,15 +111,19 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     } else {
         ""
     };
-    println!(
+    crate::outln!(
         "{} against {} ({}{norm}), optimal coefficient per {name}:",
         family.name(),
         a.reference,
         a.metric
     );
-    println!(
+    crate::outln!(
         "  {name:>8} {:>14} {:>12} {:>14} {:>12} {:>7}",
-        "coefficient", "error", "untuned coef", "untuned err", "ratio"
+        "coefficient",
+        "error",
+        "untuned coef",
+        "untuned err",
+        "ratio"
     );
     let shown: Vec<_> = if rows.len() <= 30 {
         rows.iter().collect()
@@ -120,9 +139,14 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         } else {
             "exact".into()
         };
-        println!(
+        crate::outln!(
             "  {:>8} {:>14.8} {:>12.6e} {:>14.8} {:>12.6e} {:>7}",
-            r.param, r.coefficient, r.error, r.untuned_coefficient, r.untuned_error, ratio
+            r.param,
+            r.coefficient,
+            r.error,
+            r.untuned_coefficient,
+            r.untuned_error,
+            ratio
         );
     }
     let worst = rows
@@ -130,24 +154,26 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         .filter(|r| r.param >= 8.0 && r.untuned_error > 1e-9)
         .map(|r| r.error / r.untuned_error)
         .fold(0.0, f64::max);
-    println!("\nworst tuned / untuned error over {name} >= 8: {worst:.4}");
+    crate::outln!("\nworst tuned / untuned error over {name} >= 8: {worst:.4}");
     if let Some(c) = closed {
         let what = if family == Family::CubicRational {
             "Q(n) = R(1/n)"
         } else {
             "k(n) = k0(n) R(1/n)"
         };
-        println!("closed form {what}, R(x) = r0 + r1 x + r2 x^2 + r3 x^3 + r4 x^4:");
-        println!(
+        crate::outln!("closed form {what}, R(x) = r0 + r1 x + r2 x^2 + r3 x^3 + r4 x^4:");
+        crate::outln!(
             "  r = [{}]",
             c.r.iter()
                 .map(|v| format!("{v:e}"))
                 .collect::<Vec<_>>()
                 .join(", ")
         );
-        println!(
+        crate::outln!(
             "  its own error: coefficient within {:.2e} of the optima; tuned / untuned error with it <= {:.4} (worst at {name} = {})",
-            c.max_coefficient_deviation, c.worst_gain, c.worst_gain_at
+            c.max_coefficient_deviation,
+            c.worst_gain,
+            c.worst_gain_at
         );
     }
     Ok(())
@@ -157,7 +183,10 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
 /// differs from `pow` by design and the energy tests cover them).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown"
+    after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown --out fastbrdf-out/pareto\n\n\
+Output: a table on stdout (text, --json or --markdown). The plot (PNG and SVG, written both or\n\
+neither) is written only with --out; nothing is written to disk otherwise. A model whose\n\
+error or throughput is unknown has null in JSON."
 )]
 pub struct ParetoArgs {
     /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1000, max_abs_8_1000,
@@ -167,9 +196,9 @@ pub struct ParetoArgs {
     /// Print the Markdown table README shows.
     #[arg(long)]
     markdown: bool,
-    /// The plot (PNG and SVG), without extension.
-    #[arg(long, default_value = "fastbrdf-out/pareto")]
-    out: PathBuf,
+    /// Also write the plot as PATH.png and PATH.svg (PATH without extension); no plot without it.
+    #[arg(long, value_name = "PATH")]
+    out: Option<PathBuf>,
     /// Use this saved `fastbrdf bench --json` run for the SIMD throughput instead of measuring.
     #[arg(long, value_name = "BENCH.json")]
     bench: Option<PathBuf>,
@@ -201,10 +230,11 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
     let saved: Option<fastbrdf_analysis::speed::Report> = match &a.bench {
         None => None,
         Some(p) => Some(
-            serde_json::from_str(
-                &std::fs::read_to_string(p)
-                    .map_err(|e| CliError::input(format!("cannot read {}: {e}", p.display())))?,
-            )
+            serde_json::from_str(&fastbrdf_io::read_text_bounded(
+                p,
+                super::reproduce::BENCH_JSON_LIMIT,
+                "a bench run",
+            )?)
             .map_err(|e| {
                 CliError::input(format!(
                     "{}: not a `fastbrdf bench --json` run: {e}",
@@ -291,31 +321,30 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
             highlight: r.pareto,
         })
         .collect();
-    let [png, _] = save_scatter(
-        "Lobes: max |error| against cos^n (n = 8..1000) and SIMD cost",
-        "ns per evaluation (SIMD, one core, batch 4096)",
-        "max absolute error, n = 8..1000",
-        &front,
-        &points,
-        &a.out,
-    )
-    .map_err(|e| CliError {
-        code: 1,
-        message: e,
-    })?;
-    eprintln!("wrote {}", png.display());
+    if let Some(out) = &a.out {
+        let [png, svg] = save_scatter(
+            "Lobes: max |error| against cos^n (n = 8..1000) and SIMD cost",
+            "ns per evaluation (SIMD, one core, batch 4096)",
+            "max absolute error, n = 8..1000",
+            &front,
+            &points,
+            out,
+        )
+        .map_err(super::plot::save_error)?;
+        eprintln!("wrote {} and {}", png.display(), svg.display());
+    }
     if a.json {
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&serde_json::json!({"models": rows}))
                 .expect("serialisable")
         );
     } else if a.markdown {
-        println!(
+        crate::outln!(
             "| model | ops m/a/d/s/t | SIMD evals/s | max abs, n 1..1000 | max abs, n 8..1000 | max rel epicentre, n 8..1000 | Pareto |\n|---|---|---|---|---|---|---|"
         );
         for r in &rows {
-            println!(
+            crate::outln!(
                 "| `{}` | {} | {:.2} G | {:.4} | {:.5} | {:.5} | {} |",
                 r.model,
                 r.ops,
@@ -327,12 +356,17 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
             );
         }
     } else {
-        println!(
+        crate::outln!(
             "{:<26} {:>13} {:>12} {:>12} {:>12} {:>12}  pareto",
-            "lobe", "ops m/a/d/s/t", "SIMD eval/s", "abs n1-1000", "abs n8-1000", "rel epi 8+"
+            "lobe",
+            "ops m/a/d/s/t",
+            "SIMD eval/s",
+            "abs n1-1000",
+            "abs n8-1000",
+            "rel epi 8+"
         );
         for r in &rows {
-            println!(
+            crate::outln!(
                 "{:<26} {:>13} {:>11.2}G {:>12.5} {:>12.5} {:>12.5}  {}",
                 r.model,
                 r.ops,

@@ -22,13 +22,13 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .collect();
     if a.json {
         let v = serde_json::json!({ "models": models });
-        println!(
+        crate::outln!(
             "{}",
             serde_json::to_string_pretty(&v).expect("registry serialises")
         );
         return Ok(());
     }
-    print!("{}", table(&models));
+    crate::out!("{}", table(&models));
     Ok(())
 }
 

@@ -5,16 +5,9 @@ use super::analysis::bar;
 use super::eval::parse_params;
 use crate::CliError;
 use fastbrdf::{Model, Zone, registry};
-use fastbrdf_analysis::plot::{Chart, Series, save};
+use fastbrdf_analysis::plot::{self as plots, Chart, Drawn, Series};
 use fastbrdf_analysis::{albedo, errors, normalize, range};
 use std::path::{Path, PathBuf};
-
-pub use fastbrdf_analysis::plot::write_atomic as write_atomic_io;
-
-/// Writes a file atomically, mapping the error for the CLI.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), CliError> {
-    Ok(write_atomic_io(path, bytes)?)
-}
 
 #[derive(clap::Args)]
 #[command(
@@ -23,70 +16,105 @@ fastbrdf plot error --model cubic --reference pow --n 200\n  \
 fastbrdf plot max-error --models flog,schlick --reference pow --n 1..1000 --metric rel --zone epicentre\n  \
 fastbrdf plot coef --model flog --n 1..1000 --fit seed\n  \
 fastbrdf plot polar --model cook-torrance --param alpha=0.3 --theta-i 45\n  \
-fastbrdf plot albedo --model ward --param alpha=0.5"
+fastbrdf plot albedo --model ward --param alpha=0.5\n\n\
+Output: OUT.png and OUT.svg (1200x800), written together or not at all (`coef` also writes\n\
+OUT-residual.png and .svg). Every option is checked before anything is computed or written."
 )]
 pub struct Args {
     #[command(subcommand)]
     kind: Kind,
     /// Output path without extension (writes .png and .svg); default fastbrdf-out/plot-KIND.
-    #[arg(long, global = true)]
+    #[arg(long, global = true, value_name = "PATH")]
     out: Option<PathBuf>,
 }
 
 #[derive(clap::Subcommand)]
 enum Kind {
     /// Lobe curves of several models against the angle, at one n (the seeds' figures).
+    #[command(
+        after_help = "Example:\n  fastbrdf plot lobes --models pow,flog,schlick --n 20 --out lobes"
+    )]
     Lobes {
+        /// Lobe ids, comma-separated (see `fastbrdf models --kind lobe`).
         #[arg(long, value_delimiter = ',', default_value = "pow,flog,schlick")]
         models: Vec<String>,
+        /// The exponent n of every lobe (dimensionless, > 0).
         #[arg(long, default_value_t = 20.0)]
         n: f64,
     },
     /// Signed error (model - reference) against the angle, at one n.
+    #[command(after_help = "Example:\n  fastbrdf plot error --model cubic --reference pow --n 200")]
     Error {
+        /// The approximating lobe id.
         #[arg(long)]
         model: String,
+        /// The reference lobe id (pow is cos^n).
         #[arg(long, default_value = "pow")]
         reference: String,
+        /// The exponent n (dimensionless, > 0).
         #[arg(long, default_value_t = 20.0)]
         n: f64,
     },
     /// Max error against n for several lobes (log scale).
+    #[command(
+        after_help = "Example:\n  fastbrdf plot max-error --models flog,schlick --n 1..1000 --metric rel --zone epicentre"
+    )]
     MaxError {
+        /// Lobe ids, comma-separated.
         #[arg(long, value_delimiter = ',', default_value = "flog,schlick")]
         models: Vec<String>,
+        /// The reference lobe id.
         #[arg(long, default_value = "pow")]
         reference: String,
+        /// Exponents: LO..HI[:STEP] (step 1) or a list A,B,C; at most 1000000 values.
         #[arg(long, default_value = "1..1000")]
         n: String,
+        /// abs: max |f - ref|; rel: max |f - ref| / ref.
         #[arg(long, default_value = "abs", value_parser = ["abs", "rel"])]
         metric: String,
+        /// all: every cosine in [0, 1]; epicentre: where ref >= 0.5 of its peak.
         #[arg(long, default_value = "all", value_parser = ["all", "epicentre"])]
         zone: String,
     },
     /// coef(n) = 1 / (2 pi Int(n)) of a lobe, with a fitted closed form.
+    #[command(
+        after_help = "Example:\n  fastbrdf plot coef --model flog --n 1..1000 --fit seed --out coef"
+    )]
     Coef {
+        /// A lobe id.
         #[arg(long, default_value = "flog")]
         model: String,
+        /// Exponents: LO..HI[:STEP] (step 1) or a list A,B,C; at most 1000000 values.
         #[arg(long, default_value = "1..1000")]
         n: String,
+        /// The closed form: seed (a (n + b) + c / (d + n)), linear (a (n + b)) or
+        /// seed-published (seed 001's printed constants).
         #[arg(long, default_value = "seed", value_parser = ["seed", "linear", "seed-published"])]
         fit: String,
     },
     /// A full BRDF in the plane of incidence, as a polar lobe (f cos theta_o along wo).
+    #[command(
+        after_help = "Example:\n  fastbrdf plot polar --model cook-torrance --param alpha=0.3 --theta-i 45\n\n\
+The incident direction is drawn on the side opposite the mirror direction, at the lobe's peak length."
+    )]
     Polar {
+        /// A BRDF id (see `fastbrdf models --kind brdf`).
         #[arg(long)]
         model: String,
+        /// A parameter of the model, NAME=VALUE; repeat for several.
         #[arg(long = "param", value_name = "NAME=VALUE")]
         params: Vec<String>,
-        /// Incidence angle in degrees.
+        /// Incidence angle from the normal, in degrees, in [0, 90).
         #[arg(long, default_value_t = 30.0)]
         theta_i: f64,
     },
     /// Directional albedo against the incidence angle.
+    #[command(after_help = "Example:\n  fastbrdf plot albedo --model ward --param alpha=0.5")]
     Albedo {
+        /// A BRDF id, or a lobe id (evaluated as an energy-normalised Phong BRDF).
         #[arg(long)]
         model: String,
+        /// A parameter of the model, NAME=VALUE; repeat for several.
         #[arg(long = "param", value_name = "NAME=VALUE")]
         params: Vec<String>,
     },
@@ -100,7 +128,7 @@ fn lobe(id: &str, n: f64) -> Result<Box<dyn fastbrdf::Lobe<f64>>, CliError> {
             kind.name()
         )));
     }
-    match registry::build::<f64>(id, &[("n", &n.to_string())])? {
+    match registry::build::<f64>(id, &[("n", &super::analysis::num(n))])? {
         Model::Lobe(l) => Ok(l),
         m => Err(CliError::input(format!(
             "'{id}' is a {}, not a lobe",
@@ -243,6 +271,7 @@ fn polar_chart(model: &str, params: &[(String, String)], theta_i: f64) -> Result
         )));
     }
     let ti = theta_i.to_radians();
+    // wi in +x; the mirror direction is -x (wo = (-sin ti, 0, cos ti)), drawn at x < 0.
     let wi = [ti.sin(), 0.0, ti.cos()];
     let pts: Vec<(f64, f64)> = (0..=1800)
         .map(|i| {
@@ -269,7 +298,7 @@ fn polar_chart(model: &str, params: &[(String, String)], theta_i: f64) -> Result
             Series::new("f(wi, wo) cos theta_o", pts),
             Series::new(
                 "incident direction",
-                vec![(0.0, 0.0), (-peak * ti.sin(), peak * ti.cos())],
+                vec![(0.0, 0.0), (peak * wi[0], peak * wi[2])],
             ),
         ],
         log_y: false,
@@ -298,13 +327,36 @@ fn albedo_chart(model: &str, params: &[(String, String)]) -> Result<Chart, CliEr
     })
 }
 
-fn saved(c: &Chart, base: &Path) -> Result<(), CliError> {
-    let [png, svg] = save(c, base).map_err(|e| CliError {
-        code: 1,
-        message: e,
-    })?;
-    eprintln!("wrote {} and {}", png.display(), svg.display());
+/// A chart that could not be saved: an output failure (exit code 3).
+pub fn save_error(e: plots::SaveError) -> CliError {
+    match e {
+        plots::SaveError::Io(e) => e.into(),
+        plots::SaveError::Draw(_) => CliError::io(e.to_string()),
+    }
+}
+
+/// Draws a chart in memory; a drawing failure means no output (exit code 3).
+fn drawn(c: &Chart) -> Result<Drawn, CliError> {
+    plots::render(c).map_err(|e| CliError::io(format!("cannot draw the chart: {e}")))
+}
+
+/// Writes every `(base, drawing)` as `base.png` and `base.svg`, all or nothing.
+fn write_drawn(items: &[(PathBuf, Drawn)]) -> Result<(), CliError> {
+    let refs: Vec<(&Path, &Drawn)> = items.iter().map(|(b, d)| (b.as_path(), d)).collect();
+    for f in plots::write_all(&refs)? {
+        eprintln!("wrote {}", f.display());
+    }
     Ok(())
+}
+
+fn finite_n(n: f64) -> Result<f64, CliError> {
+    if n.is_finite() && n > 0.0 {
+        Ok(n)
+    } else {
+        Err(CliError::input(format!(
+            "--n {n}: must be a positive finite number"
+        )))
+    }
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
@@ -320,13 +372,21 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .out
         .clone()
         .unwrap_or_else(|| PathBuf::from(format!("fastbrdf-out/plot-{name}")));
-    match &a.kind {
-        Kind::Lobes { models, n } => saved(&lobes_chart(models, *n)?, &base),
+    if base.file_name().is_none() {
+        return Err(CliError::input(format!(
+            "--out {}: expected a path without extension, e.g. out/plot",
+            base.display()
+        )));
+    }
+    // Every chart is computed and drawn in memory first; the files are written together.
+    let charts: Vec<(PathBuf, Chart)> = match &a.kind {
+        Kind::Lobes { models, n } => vec![(base, lobes_chart(models, finite_n(*n)?)?)],
         Kind::Error {
             model,
             reference,
             n,
         } => {
+            let n = &finite_n(*n)?;
             let (m, r) = (lobe(model, *n)?, lobe(reference, *n)?);
             let xs = angles(*n);
             let c = Chart {
@@ -347,7 +407,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 log_y: false,
                 equal_aspect: false,
             };
-            saved(&c, &base)
+            vec![(base, c)]
         }
         Kind::MaxError {
             models,
@@ -357,50 +417,79 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             zone,
         } => {
             let ns = range::parse(n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?;
+            for id in models.iter().chain([reference]) {
+                for n in [ns[0], ns[ns.len() - 1]] {
+                    lobe(id, n)?;
+                }
+            }
             let zone = if zone == "epicentre" {
                 Zone::Epicentre
             } else {
                 Zone::All
             };
             let title = format!("Max {metric} error against {reference} ({zone:?})");
-            saved(
-                &max_error_chart(models, reference, &ns, metric == "rel", zone, &title)?,
-                &base,
-            )
+            vec![(
+                base,
+                max_error_chart(models, reference, &ns, metric == "rel", zone, &title)?,
+            )]
         }
         Kind::Coef { model, n, fit } => {
             let ns = range::parse(n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?;
+            for n in [ns[0], ns[ns.len() - 1]] {
+                lobe(model, n)?;
+            }
             let form = normalize::Form::parse(fit).expect("clap checked the value");
             let (c, r) = coef_chart(model, &ns, form)?;
-            saved(&c, &base)?;
             let mut rb = base.clone().into_os_string();
             rb.push("-residual");
-            saved(&r, Path::new(&rb))
+            vec![(base, c), (PathBuf::from(rb), r)]
         }
         Kind::Polar {
             model,
             params,
             theta_i,
-        } => saved(
-            &polar_chart(model, &parse_params(params)?, *theta_i)?,
-            &base,
-        ),
+        } => vec![(base, polar_chart(model, &parse_params(params)?, *theta_i)?)],
         Kind::Albedo { model, params } => {
-            saved(&albedo_chart(model, &parse_params(params)?)?, &base)
+            vec![(base, albedo_chart(model, &parse_params(params)?)?)]
         }
-    }
+    };
+    let items = charts
+        .iter()
+        .map(|(b, c)| Ok((b.clone(), drawn(c)?)))
+        .collect::<Result<Vec<_>, CliError>>()?;
+    write_drawn(&items)
 }
 
-/// The plots corresponding to the seeds' figures, written into `dir`.
+/// The plots of the seeds' figures, written into `dir` all or nothing.
 pub fn write_seed_figures(dir: &Path) -> Result<(), CliError> {
+    let mut set = fastbrdf_io::OutputSet::new(dir)?;
+    stage_seed_figures(&mut set)?;
+    for f in set.commit()? {
+        eprintln!("wrote {}", f.display());
+    }
+    Ok(())
+}
+
+/// Draws the plots of the seeds' figures and stages them (PNG and SVG) in `set`.
+pub fn stage_seed_figures(set: &mut fastbrdf_io::OutputSet) -> Result<(), CliError> {
+    for (stem, chart) in seed_figures()? {
+        plots::stage(set, &drawn(&chart)?, stem)?;
+    }
+    Ok(())
+}
+
+/// The charts of the seeds' figures, with their file stems.
+fn seed_figures() -> Result<Vec<(&'static str, Chart)>, CliError> {
+    let mut out = vec![];
     let ns = range::parse("1..1000", 1.0).expect("valid range");
     let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
-    saved(
-        &lobes_chart(&s(&["pow", "flog", "schlick"]), 20.0)?,
-        &dir.join("seed001-fig2-lobes-n20"),
-    )?;
-    saved(
-        &max_error_chart(
+    out.push((
+        "seed001-fig2-lobes-n20",
+        lobes_chart(&s(&["pow", "flog", "schlick"]), 20.0)?,
+    ));
+    out.push((
+        "seed001-fig3-max-rel-epicentre",
+        max_error_chart(
             &s(&["flog", "schlick"]),
             "pow",
             &ns,
@@ -408,10 +497,10 @@ pub fn write_seed_figures(dir: &Path) -> Result<(), CliError> {
             Zone::Epicentre,
             "Seed 001 Fig. 3: max relative error in the epicentre",
         )?,
-        &dir.join("seed001-fig3-max-rel-epicentre"),
-    )?;
-    saved(
-        &max_error_chart(
+    ));
+    out.push((
+        "seed001-fig4-max-abs",
+        max_error_chart(
             &s(&["flog", "schlick"]),
             "pow",
             &ns,
@@ -419,13 +508,13 @@ pub fn write_seed_figures(dir: &Path) -> Result<(), CliError> {
             Zone::All,
             "Seed 001 Fig. 4: max absolute error",
         )?,
-        &dir.join("seed001-fig4-max-abs"),
-    )?;
+    ));
     let (_, residual) = coef_chart("flog", &ns, normalize::Form::SeedPublished)?;
-    saved(&residual, &dir.join("seed001-fig9-energy-residual"))?;
+    out.push(("seed001-fig9-energy-residual", residual));
     let n4 = range::parse("4..1000", 1.0).expect("valid range");
-    saved(
-        &max_error_chart(
+    out.push((
+        "seed003-fig1-cubic-epicentre",
+        max_error_chart(
             &s(&["cubic", "cubic3", "schlick"]),
             "pow",
             &n4,
@@ -433,12 +522,11 @@ pub fn write_seed_figures(dir: &Path) -> Result<(), CliError> {
             Zone::Epicentre,
             "Seed 003 Fig. 1: max absolute error in the epicentre",
         )?,
-        &dir.join("seed003-fig1-cubic-epicentre"),
-    )?;
-    saved(
-        &lobes_chart(&s(&["pow", "schlick", "rational", "cubic-rational"]), 20.0)?,
-        &dir.join("seed003-fig3-lobes-n20"),
-    )?;
+    ));
+    out.push((
+        "seed003-fig3-lobes-n20",
+        lobes_chart(&s(&["pow", "schlick", "rational", "cubic-rational"]), 20.0)?,
+    ));
     // Seed 000 Fig. 1-4: Beckmann (Cook-Torrance form) and its one-function forms, m = 0.3.
     let m = 0.3;
     let mut series = vec![];
@@ -480,23 +568,68 @@ pub fn write_seed_figures(dir: &Path) -> Result<(), CliError> {
         log_y,
         equal_aspect: false,
     };
-    saved(
-        &chart(
+    out.push((
+        "seed000-fig1-3-beckmann-forms",
+        chart(
             "Seed 000 Fig. 1 and 3: D and its one-function forms, m = 0.3",
             "D",
             series,
             false,
         ),
-        &dir.join("seed000-fig1-3-beckmann-forms"),
-    )?;
-    saved(
-        &chart(
+    ));
+    out.push((
+        "seed000-fig2-4-relative-error",
+        chart(
             "Seed 000 Fig. 2 and 4: relative error against beckmann-ct, m = 0.3",
             "|D / D_exact - 1|",
             rel,
             true,
         ),
-        &dir.join("seed000-fig2-4-relative-error"),
-    )?;
-    Ok(())
+    ));
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::polar_chart;
+
+    /// Issue 11: the incident direction was drawn on the mirror side, on top of the lobe. It
+    /// must lie on the opposite side of the normal (x = 0) from the specular peak.
+    #[test]
+    fn polar_incident_direction_is_opposite_the_specular_peak() {
+        for (model, params, theta_i) in [
+            ("cook-torrance", vec![("alpha", "0.2")], 45.0),
+            ("ward", vec![("alpha", "0.3")], 30.0),
+            ("cook-torrance", vec![("alpha", "0.5")], 70.0),
+        ] {
+            let p: Vec<(String, String)> = params
+                .iter()
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .collect();
+            let c = polar_chart(model, &p, theta_i).unwrap();
+            let lobe = &c.series[0].points;
+            let peak = lobe
+                .iter()
+                .copied()
+                .max_by(|a, b| a.0.hypot(a.1).total_cmp(&b.0.hypot(b.1)))
+                .unwrap();
+            let incident = c
+                .series
+                .iter()
+                .find(|s| s.name.contains("incident"))
+                .unwrap();
+            let tip = incident.points[1];
+            assert!(
+                peak.0 < 0.0,
+                "{model}: the peak {peak:?} is on the mirror side"
+            );
+            assert!(
+                tip.0 > 0.0 && tip.0 * peak.0 < 0.0,
+                "{model}: incident {tip:?} vs peak {peak:?}"
+            );
+            // The drawn direction is wi itself: its angle from the normal is theta_i.
+            let angle = tip.0.atan2(tip.1).to_degrees();
+            assert!((angle - theta_i).abs() < 1e-9, "{angle}");
+        }
+    }
 }

@@ -16,7 +16,8 @@ Output: a comment header (formula, source, parameters, documented error bounds, 
 then the library functions the model needs and `fb_<id>` (dashes as underscores). Lobes take\n\
 (c), distributions (cos_h), Fresnel terms (cos_vh), shadowing (cos_v, cos_l, cos_h, cos_vh),\n\
 BRDFs (wi, wo) in the local frame with the normal along +z. Coefficients are computed in f64\n\
-for the given parameters and written as literals."
+for the given parameters and written as literals. --out writes atomically; --all writes every\n\
+file or none. Exit codes: 0 ok, 2 bad model or parameter, 3 a file could not be written."
 )]
 pub struct Args {
     /// Model id (see `fastbrdf models`).
@@ -51,11 +52,13 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             let text = export(e.info.id, &[], lang)?;
             files.push((format!("{}.{}", e.info.id, lang.extension()), text));
         }
-        std::fs::create_dir_all(dir)
-            .map_err(|e| CliError::input(format!("cannot create {}: {e}", dir.display())))?;
+        // All or nothing: the files are staged in a hidden folder and moved into place only
+        // when every one was written (a full disk leaves no file and no temporary behind).
+        let mut set = fastbrdf_io::OutputSet::new(dir)?;
         for (name, text) in &files {
-            fastbrdf_render::film::write_atomic(&dir.join(name), text.as_bytes())?;
+            set.write(name, text.as_bytes())?;
         }
+        set.commit()?;
         eprintln!(
             "wrote {} {} files to {}",
             files.len(),
@@ -72,8 +75,8 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .collect();
     let text = export(id, &given, lang)?;
     match &a.out {
-        Some(path) => fastbrdf_render::film::write_atomic(path, text.as_bytes())?,
-        None => print!("{text}"),
+        Some(path) => fastbrdf_io::write_atomic(path, text.as_bytes())?,
+        None => super::write_stdout(text.as_bytes())?,
     }
     Ok(())
 }
