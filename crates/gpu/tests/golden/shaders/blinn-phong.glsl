@@ -30,21 +30,34 @@ float fb_clamp01_(float c) {
     return min(max(c, 0.0), 1.0);
 }
 
+float fb_log2_(float x) {
+    float t = ((x - 1.0) / (x + 1.0));
+    float t2_ = (t * t);
+    float s = (t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614)))))))))))));
+    return ((x >= 0.5) ? (s * 1.442695) : log2(x));
+}
+
+float fb_powr(float x_1, float y) {
+    float _e4 = fb_log2_(max(x_1, 1e-30));
+    return ((x_1 > 0.0) ? exp2((y * _e4)) : 0.0);
+}
+
 FbPair fb_pair(vec3 wi_in, vec3 wo_in) {
     float li = dot(wi_in, wi_in);
     float lo = dot(wo_in, wo_in);
     vec3 wi_1 = (wi_in * (1.0 / sqrt(li)));
     vec3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
-    vec3 s = (wi_1 + wo_1);
-    float len = sqrt(dot(s, s));
-    vec3 h = (s / vec3(len));
+    vec3 s_1 = (wi_1 + wo_1);
+    float len = sqrt(dot(s_1, s_1));
+    vec3 h = (s_1 / vec3(len));
     bool valid = (((((li > 0.0) && (lo > 0.0)) && (wi_1.z >= FB_COS_MIN)) && (wo_1.z >= FB_COS_MIN)) && (len > 0.0));
     return FbPair(valid, wi_1.z, wo_1.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_1, wo_1);
 }
 
 float fb_lobe_pow(float c_1, float n) {
     float _e2 = fb_clamp01_(c_1);
-    return ((_e2 > 0.0) ? pow(_e2, n) : 0.0);
+    float _e3 = fb_powr(_e2, n);
+    return _e3;
 }
 
 float fb_blinn_phong(vec3 wi, vec3 wo) {

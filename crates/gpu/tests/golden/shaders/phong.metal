@@ -40,6 +40,23 @@ float fb_clamp01_(
     return metal::min(metal::max(c, 0.0), 1.0);
 }
 
+float fb_log2_(
+    float x
+) {
+    float t = (x - 1.0) / (x + 1.0);
+    float t2_ = t * t;
+    float s = t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614))))))))))));
+    return (x >= 0.5) ? (s * 1.442695) : metal::log2(x);
+}
+
+float fb_powr(
+    float x_1,
+    float y
+) {
+    float _e4 = fb_log2_(metal::max(x_1, 0.000000000000000000000000000001));
+    return (x_1 > 0.0) ? metal::exp2(y * _e4) : 0.0;
+}
+
 FbPair fb_pair(
     metal::float3 wi_in,
     metal::float3 wo_in
@@ -48,9 +65,9 @@ FbPair fb_pair(
     float lo = metal::dot(wo_in, wo_in);
     metal::float3 wi_1 = wi_in * (1.0 / metal::sqrt(li));
     metal::float3 wo_1 = wo_in * (1.0 / metal::sqrt(lo));
-    metal::float3 s = wi_1 + wo_1;
-    float len = metal::sqrt(metal::dot(s, s));
-    metal::float3 h = s / metal::float3(len);
+    metal::float3 s_1 = wi_1 + wo_1;
+    float len = metal::sqrt(metal::dot(s_1, s_1));
+    metal::float3 h = s_1 / metal::float3(len);
     bool valid = ((((li > 0.0) & (lo > 0.0)) & (wi_1.z >= FB_COS_MIN)) & (wo_1.z >= FB_COS_MIN)) & (len > 0.0);
     return FbPair {valid, {}, wi_1.z, wo_1.z, {}, h, (h.x * h.x) + (h.y * h.y), 0.5 * len, {}, wi_1, wo_1};
 }
@@ -60,7 +77,8 @@ float fb_lobe_pow(
     float n
 ) {
     float _e2 = fb_clamp01_(c_1);
-    return (_e2 > 0.0) ? metal::pow(_e2, n) : 0.0;
+    float _e3 = fb_powr(_e2, n);
+    return _e3;
 }
 
 float fb_phong(
