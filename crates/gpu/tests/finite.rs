@@ -144,3 +144,73 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
         failures.join("\n")
     );
 }
+
+/// Every BRDF twin is scale-invariant in its directions, bit for bit, down to lengths whose
+/// squares underflow f32 and up to lengths whose squares overflow it: (1e-30, 0, 1e-30) is a
+/// direction, not a zero vector (issue 11; the CPU normalises the same way, fastbrdf::vec3::unit).
+/// Base directions have a largest component of exactly 1, so scaling by a power of two and the
+/// twin's rescaling by the largest component give back the very same f32 numbers.
+#[test]
+fn brdf_twins_are_scale_invariant_in_their_directions() {
+    let Some(gpu) = common::gpu() else { return };
+    let (d, q) = (&gpu.device, &gpu.queue);
+    let mut base: Vec<[f32; 3]> = vec![];
+    for a in [-1.0f32, -0.5, -0.1, 0.0, 0.3, 0.9] {
+        for b in [-0.7f32, 0.0, 0.2] {
+            base.push([a, b, 1.0]);
+        }
+    }
+    for z in [1e-3f32, 0.05, 0.5] {
+        base.push([1.0, 0.25, z]);
+        base.push([-1.0, 0.0, z]);
+    }
+    let scales: Vec<f32> = [-100, -90, -64, 0, 64, 70, 100, 120]
+        .iter()
+        .map(|&k| 2f32.powi(k))
+        .collect();
+    let mut cols: [Vec<f32>; 6] = Default::default();
+    for &s in &scales {
+        for a in &base {
+            for b in &base {
+                for (k, x) in a.iter().chain(b.iter()).enumerate() {
+                    cols[k].push(x * s);
+                }
+            }
+        }
+    }
+    let per_scale = base.len() * base.len();
+    let unit = scales.iter().position(|&s| s == 1.0).unwrap();
+    let mut failures = vec![];
+    for e in registry::all().iter().filter(|e| e.info.kind == Kind::Brdf) {
+        for config in domain_configs(&e.info, true) {
+            let given: Vec<(&str, &str)> = config
+                .iter()
+                .map(|(k, v)| (k.as_str(), v.as_str()))
+                .collect();
+            let kernel =
+                GpuKernel::new(d, Instance::with_storage(e.info.id, &given).unwrap()).unwrap();
+            let mut out = vec![0.0f32; cols[0].len()];
+            let input =
+                GpuInput::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
+            kernel.eval(d, q, input, &mut out).unwrap();
+            let at_one = &out[unit * per_scale..(unit + 1) * per_scale];
+            for (si, s) in scales.iter().enumerate() {
+                let at_s = &out[si * per_scale..(si + 1) * per_scale];
+                if let Some(i) = (0..per_scale).find(|&i| at_s[i].to_bits() != at_one[i].to_bits())
+                {
+                    if failures.len() < 20 {
+                        failures.push(format!(
+                            "{} {config:?}, directions scaled by {s:e}: {} instead of {} at row {i}",
+                            e.info.id, at_s[i], at_one[i]
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "BRDF twins that depend on the directions' length:\n{}",
+        failures.join("\n")
+    );
+}
