@@ -42,11 +42,20 @@ float fb_powr(float x_1, float y) {
     return ((x_1 > 0.0) ? exp2((y * _e4)) : 0.0);
 }
 
-FbPair fb_pair(vec3 wi_in, vec3 wo_in) {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    vec3 wi_1 = (wi_in * (1.0 / sqrt(li)));
-    vec3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
+vec3 fb_rescale(vec3 v) {
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) && (l <= 1.2676506e30));
+    return ((safe || (m == 0.0)) ? v : (v / vec3(m)));
+}
+
+FbPair fb_pair(vec3 wi_raw, vec3 wo_raw) {
+    vec3 _e2 = fb_rescale(wi_raw);
+    vec3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    vec3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    vec3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
     vec3 s_1 = (wi_1 + wo_1);
     float len = sqrt(dot(s_1, s_1));
     vec3 h = (s_1 / vec3(len));
@@ -63,6 +72,6 @@ float fb_lobe_pow(float c_1, float n) {
 float fb_blinn_phong(vec3 wi, vec3 wo) {
     FbPair _e2 = fb_pair(wi, wo);
     float _e7 = fb_lobe_pow(_e2.h.z, 20.0);
-    float v = ((3.5014088 * _e7) / (4.0 * _e2.cos_ih));
-    return (_e2.valid ? v : 0.0);
+    float v_1 = ((3.5014088 * _e7) / (4.0 * _e2.cos_ih));
+    return (_e2.valid ? v_1 : 0.0);
 }

@@ -51,6 +51,14 @@ float fb_powr(float x_1, float y)
     return ((x_1 > 0.0) ? exp2((y * _e4)) : 0.0);
 }
 
+float3 fb_rescale(float3 v)
+{
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) & (l <= 1.2676506e30));
+    return ((safe | (m == 0.0)) ? v : (v / (m).xxx));
+}
+
 FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg4, float arg5, float3 arg6, float3 arg7) {
     FbPair ret = (FbPair)0;
     ret.valid = arg0;
@@ -64,12 +72,14 @@ FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg
     return ret;
 }
 
-FbPair fb_pair(float3 wi_in, float3 wo_in)
+FbPair fb_pair(float3 wi_raw, float3 wo_raw)
 {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    float3 wi_1 = (wi_in * (1.0 / sqrt(li)));
-    float3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
+    const float3 _e2 = fb_rescale(wi_raw);
+    const float3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    float3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    float3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
     float3 s_1 = (wi_1 + wo_1);
     float len = sqrt(dot(s_1, s_1));
     float3 h = (s_1 / (len).xxx);
@@ -89,6 +99,6 @@ float fb_blinn_phong(float3 wi, float3 wo)
 {
     const FbPair _e2 = fb_pair(wi, wo);
     const float _e7 = fb_lobe_pow(_e2.h.z, 20.0);
-    float v = ((3.5014088 * _e7) / (4.0 * _e2.cos_ih));
-    return (_e2.valid ? v : 0.0);
+    float v_1 = ((3.5014088 * _e7) / (4.0 * _e2.cos_ih));
+    return (_e2.valid ? v_1 : 0.0);
 }

@@ -57,14 +57,25 @@ float fb_powr(
     return (x_1 > 0.0) ? metal::exp2(y * _e4) : 0.0;
 }
 
-FbPair fb_pair(
-    metal::float3 wi_in,
-    metal::float3 wo_in
+metal::float3 fb_rescale(
+    metal::float3 v
 ) {
-    float li = metal::dot(wi_in, wi_in);
-    float lo = metal::dot(wo_in, wo_in);
-    metal::float3 wi_1 = wi_in * (1.0 / metal::sqrt(li));
-    metal::float3 wo_1 = wo_in * (1.0 / metal::sqrt(lo));
+    float l = metal::dot(v, v);
+    float m = metal::max(metal::max(metal::abs(v.x), metal::abs(v.y)), metal::abs(v.z));
+    bool safe = (l >= 0.0000000000000000000000000000007888609) & (l <= 1267650600000000000000000000000.0);
+    return (safe | (m == 0.0)) ? v : (v / metal::float3(m));
+}
+
+FbPair fb_pair(
+    metal::float3 wi_raw,
+    metal::float3 wo_raw
+) {
+    metal::float3 _e2 = fb_rescale(wi_raw);
+    metal::float3 _e3 = fb_rescale(wo_raw);
+    float li = metal::dot(_e2, _e2);
+    float lo = metal::dot(_e3, _e3);
+    metal::float3 wi_1 = _e2 * (1.0 / metal::sqrt(li));
+    metal::float3 wo_1 = _e3 * (1.0 / metal::sqrt(lo));
     metal::float3 s_1 = wi_1 + wo_1;
     float len = metal::sqrt(metal::dot(s_1, s_1));
     metal::float3 h = s_1 / metal::float3(len);
@@ -87,6 +98,6 @@ float fb_blinn_phong(
 ) {
     FbPair _e2 = fb_pair(wi, wo);
     float _e7 = fb_lobe_pow(_e2.h[2], 20.0);
-    float v = (3.5014088 * _e7) / (4.0 * _e2.cos_ih);
-    return _e2.valid ? v : 0.0;
+    float v_1 = (3.5014088 * _e7) / (4.0 * _e2.cos_ih);
+    return _e2.valid ? v_1 : 0.0;
 }
