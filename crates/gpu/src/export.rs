@@ -15,7 +15,10 @@
 //! literals into reassociated expressions (Mesa does, see `spec::Emit`), so a header line says
 //! that passing them as uniforms keeps more precision. BRDF Explorer files instead compute
 //! the coefficients in f32 from sliders (`Instance::symbolic`) where every coefficient has an
-//! expression in the parameters, and keep literals (no sliders) where not.
+//! expression in the parameters, and keep literals (no sliders) where not. Its sliders are
+//! linear (it has no other kind), so parameters spanning two decades or more (n, alpha, eta)
+//! get a `log10_<name>` slider mapped in the shader; every grid passes through the export's
+//! value exactly (`slider`).
 //!
 //! GLSL back end detail: naga writes GLSL only for an entry point, so the module gets a
 //! one-line compute entry point that calls the function, and its text (with `#version` and
@@ -306,6 +309,12 @@ fn header_text(
                 "Sliders: {} (the coefficients are computed from them in the shader, in f32).",
                 names.join(", ")
             );
+            let _ = writeln!(
+                s,
+                "A parameter spanning two decades or more has the slider log10_<name> (BRDF \
+                 Explorer's sliders are linear); every slider's grid passes through this \
+                 export's value, and the shader clamps to the documented range."
+            );
         }
     }
     s
@@ -423,31 +432,147 @@ fn msl(wgsl: &str, what: &str) -> Result<String, GpuError> {
     Ok(format!("{}\n", out.trim()))
 }
 
+/// One BRDF Explorer slider: the `::begin parameters` line and the GLSL that turns the
+/// slider's value into the model parameter.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slider {
+    /// The uniform BRDF Explorer declares: the parameter's name, or `log10_<name>`.
+    pub uniform: String,
+    /// The slider's ends as written (f32 values, printed so that they parse back exactly).
+    pub lo: f32,
+    pub hi: f32,
+    /// The default as written: already what BRDF Explorer's text field shows (6 significant
+    /// digits), so the value it starts with is the value of one slider position exactly.
+    pub default_text: String,
+    /// The GLSL expression of the parameter (a name, or a clamped mapping of the uniform).
+    pub param: String,
+    /// Whether the slider is logarithmic.
+    pub log: bool,
+}
+
+/// Parameters spanning at least this ratio (two decades) get a logarithmic slider.
+pub const LOG_SLIDER_RATIO: f64 = 100.0;
+
+/// BRDF Explorer's slider positions (`FloatVarWidget`: an integer 0..=1000).
+pub const SLIDER_STEPS: u32 = 1000;
+
+/// What BRDF Explorer's text field shows for `x` (`QString::setNum(float)`: 6 significant
+/// digits), as text.
+pub fn g6(x: f64) -> String {
+    let r: f64 = format!("{x:.5e}").parse().unwrap_or(x);
+    if r == 0.0 { "0".into() } else { format!("{r}") }
+}
+
+/// The value BRDF Explorer uses at slider position `x` of a slider `lo..hi`:
+/// `FloatVarWidget::sliderToFloat` (f32: lo + (x / 1000) (hi - lo)), shown in the text field
+/// with 6 significant digits and read back from it (`getValue` parses the text).
+pub fn slider_value(lo: f32, hi: f32, x: u32) -> f32 {
+    let raw = lo + (x as f32 / SLIDER_STEPS as f32) * (hi - lo);
+    g6(raw as f64).parse().unwrap_or(raw)
+}
+
+/// The f32 nearest to `x` on its side: rounded down (`up` false) or up.
+fn f32_toward(x: f64, up: bool) -> f32 {
+    let f = x as f32;
+    let (fx, bits) = (f as f64, f.to_bits());
+    let step = |b: u32| f32::from_bits(b);
+    match (up, fx > x, fx < x) {
+        (false, true, _) => step(if f > 0.0 { bits - 1 } else { bits + 1 }),
+        (true, _, true) => step(if f >= 0.0 { bits + 1 } else { bits - 1 }),
+        _ => f,
+    }
+}
+
+/// A shortest decimal that parses back to `x` (f32).
+fn f32_text(x: f32) -> String {
+    let t = format!("{x:?}");
+    t.strip_suffix(".0").map(str::to_string).unwrap_or(t)
+}
+
+/// The slider of parameter `name` in `[min, max]` at this export's `value`.
+///
+/// BRDF Explorer's sliders are linear with 1001 positions and no other option (its parser
+/// reads `float name min max default`; `FloatVarWidget` maps position x to
+/// `min + x / 1000 (max - min)`). So a parameter spanning two decades or more gets the slider
+/// `log10_<name>` and the shader computes the parameter from it. Every slider's grid is
+/// anchored at the export's value: the grid steps by span / 998, with position k at the value,
+/// so the ends lie half a step to a step and a half beyond the documented range (the shader
+/// clamps to it), and the
+/// default text is the value BRDF Explorer computes at position k, so that the default is a
+/// slider position and, at that position, the parameter is exactly `value`.
+pub fn slider(name: &str, min: f64, max: f64, value: f64) -> Slider {
+    let log = min > 0.0 && max / min >= LOG_SLIDER_RATIO;
+    let (t, tmin, tmax) = if log {
+        (value.log10(), min.log10(), max.log10())
+    } else {
+        (value, min, max)
+    };
+    let k_of =
+        |step: f64| -> u32 { (((t - tmin) / step + 0.5).ceil().max(0.0) as u32).min(SLIDER_STEPS) };
+    // A linear parameter whose value is a position of the plain slider keeps it.
+    if !log {
+        let (lo, hi) = (min as f32, max as f32);
+        let k = ((t - tmin) / (tmax - tmin) * SLIDER_STEPS as f64).round();
+        if (0.0..=SLIDER_STEPS as f64).contains(&k)
+            && lo as f64 == min
+            && hi as f64 == max
+            && slider_value(lo, hi, k as u32) as f64 == value
+        {
+            return Slider {
+                uniform: name.into(),
+                lo,
+                hi,
+                default_text: g6(value),
+                param: name.into(),
+                log,
+            };
+        }
+    }
+    // 998 steps span the range: with position k half a step or more above the low end,
+    // both ends of the slider lie half a step or more beyond the range, so that the clamp, not
+    // the rounding of the mapping, decides that the ends reach min and max.
+    let step = (tmax - tmin) / (SLIDER_STEPS - 2) as f64;
+    let k = k_of(step);
+    let lo = f32_toward(t - k as f64 * step, false);
+    let hi = f32_toward(lo as f64 + SLIDER_STEPS as f64 * step, true);
+    let anchor = slider_value(lo, hi, k);
+    let s0 = g6(anchor as f64);
+    // GLSL float literals (`{:?}` keeps the `.0`), parsing to the same f32.
+    let v = format!("{:?}", value as f32);
+    let (a, b) = (format!("{:?}", min as f32), format!("{:?}", max as f32));
+    // `u - s0`, written `u + 0.86` for s0 = -0.86: exactly 0 at the default either way.
+    let minus_s0 = match s0.strip_prefix('-') {
+        Some(pos) => format!("+ {pos}"),
+        None => format!("- {s0}"),
+    };
+    let uniform = if log {
+        format!("log10_{name}")
+    } else {
+        format!("{name}_slider")
+    };
+    let param = if log {
+        format!("clamp({v} * exp2(({uniform} {minus_s0}) * 3.321928), {a}, {b})")
+    } else {
+        format!("clamp({v} + ({uniform} {minus_s0}), {a}, {b})")
+    };
+    Slider {
+        uniform,
+        lo,
+        hi,
+        default_text: s0,
+        param,
+        log,
+    }
+}
+
 /// The `.brdf` file of `target` (the BRDF, Fresnel or shadowing instance BRDF Explorer
-/// evaluates): `header`, a slider per parameter its coefficients are computed from, the GLSL
-/// functions and `BRDF(L, V, N, X, Y)`.
+/// evaluates): `header`, a slider per parameter its coefficients are computed from (see
+/// `slider`), the GLSL functions and `BRDF(L, V, N, X, Y)`.
 fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
     let f = &exported_name(&target.function, Lang::Glsl);
-    let extra: String = target
-        .sliders
-        .iter()
-        .map(|(n, _)| format!(", {n}"))
-        .collect();
-    let body = match target.info.kind {
-        Kind::Brdf => format!(
-            "    vec3 wi = vec3(dot(L, X), dot(L, Y), dot(L, N));\n    vec3 wo = vec3(dot(V, X), dot(V, Y), dot(V, N));\n    return vec3({f}(wi, wo{extra}));"
-        ),
-        Kind::Fresnel => {
-            format!("    vec3 H = normalize(L + V);\n    return vec3({f}(dot(V, H){extra}));")
-        }
-        Kind::Shadowing => format!(
-            "    vec3 H = normalize(L + V);\n    return vec3({f}(dot(N, V), dot(N, L), dot(N, H), dot(V, H){extra}));"
-        ),
-        _ => unreachable!("lobes and distributions are shaded through a BRDF"),
-    };
-    // One slider per numeric parameter the coefficients are computed from, over its
-    // documented range, starting at this export's value.
     let mut sliders = String::new();
+    let mut params = String::new();
+    let mut extra = String::new();
     for (name, value) in &target.sliders {
         let spec = target
             .info
@@ -456,9 +581,37 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
             .find(|p| p.name == name)
             .expect("sliders are parameters");
         if let ParamKind::Number { min, max, .. } = spec.kind {
-            let _ = writeln!(sliders, "float {name} {min} {max} {value}");
+            let s = slider(name, min, max, *value);
+            let _ = writeln!(
+                sliders,
+                "float {} {} {} {}",
+                s.uniform,
+                f32_text(s.lo),
+                f32_text(s.hi),
+                s.default_text
+            );
+            if s.param == *name {
+                let _ = write!(extra, ", {name}");
+            } else {
+                let _ = writeln!(params, "    float p_{name} = {};", s.param);
+                let _ = write!(extra, ", p_{name}");
+            }
         }
     }
+    let body = match target.info.kind {
+        Kind::Brdf => format!(
+            "{params}    vec3 wi = vec3(dot(L, X), dot(L, Y), dot(L, N));\n    vec3 wo = vec3(dot(V, X), dot(V, Y), dot(V, N));\n    return vec3({f}(wi, wo{extra}));"
+        ),
+        Kind::Fresnel => {
+            format!(
+                "{params}    vec3 H = normalize(L + V);\n    return vec3({f}(dot(V, H){extra}));"
+            )
+        }
+        Kind::Shadowing => format!(
+            "{params}    vec3 H = normalize(L + V);\n    return vec3({f}(dot(N, V), dot(N, L), dot(N, H), dot(V, H){extra}));"
+        ),
+        _ => unreachable!("lobes and distributions are shaded through a BRDF"),
+    };
     let functions = glsl_functions(&target.module_source(), &call_of(target), target.info.id)?;
     let mut s = String::new();
     s.push_str("analytic\n\n");

@@ -257,9 +257,12 @@ impl Emit {
     fn cubic(&self, s: CubicShape) -> String {
         self.args(&[s.d1, s.d2, s.d3, s.x1, s.x2, s.cut])
     }
-    /// `(n, xq, level)` of seed 003's rational at `level`.
+    /// `(peak, g)` of seed 003's rational at `level` in its fold-proof form
+    /// `peak c / (1 + g (1 - c))` (see `fb_lobe_rational`): d0 = 1 + n xq with
+    /// xq = level^(1/n) - 1 (expm1), peak = level / d0, g = (n - 1) / d0.
     fn rational(&self, n: f64, level: f64) -> String {
-        self.args(&[n, (level.ln() / n).exp_m1(), level])
+        let d0 = 1.0 + n * (level.ln() / n).exp_m1();
+        self.args(&[level / d0, (n - 1.0) / d0])
     }
 }
 

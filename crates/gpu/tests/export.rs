@@ -188,3 +188,173 @@ fn parameters_reach_the_code_and_bad_ones_are_errors() {
         );
     }
 }
+
+/// BRDF Explorer's value at slider position `x` (0..=1000), as its `FloatVarWidget` computes
+/// it: `min + (x / 1000) (max - min)` in f32, shown in a text field with 6 significant digits
+/// (`QString::setNum`) and read back from that text (`getValue`). Written here from BRDF
+/// Explorer's source, independently of the exporter.
+fn explorer_value(lo: f32, hi: f32, x: u32) -> f32 {
+    let raw = lo + (x as f32 / 1000.0) * (hi - lo);
+    explorer_text(raw)
+}
+
+/// A float through BRDF Explorer's text field (6 significant digits).
+fn explorer_text(v: f32) -> f32 {
+    format!("{:.5e}", v as f64).parse().unwrap()
+}
+
+/// Evaluates the exporter's slider-to-parameter line `clamp(V * exp2((U -/+ S) * K), A, B)`
+/// or `clamp(V + (U -/+ S), A, B)` at `u`, in f32 as a GPU would.
+fn mapped(expr: &str, u: f32) -> f32 {
+    let t: Vec<&str> = expr
+        .split(|c: char| "(),*".contains(c) || c.is_whitespace())
+        .filter(|s| !s.is_empty())
+        .collect();
+    let num = |s: &str| -> f32 { s.parse().unwrap_or_else(|_| panic!("'{s}' in {expr}")) };
+    if t[2] == "exp2" {
+        // clamp V exp2 U op S K A B
+        let s = if t[4] == "-" { -num(t[5]) } else { num(t[5]) };
+        let v = num(t[1]) * ((u + s) * num(t[6])).exp2();
+        v.clamp(num(t[7]), num(t[8]))
+    } else {
+        // clamp V + U op S A B
+        let s = if t[4] == "-" { -num(t[5]) } else { num(t[5]) };
+        (num(t[1]) + (u + s)).clamp(num(t[6]), num(t[7]))
+    }
+}
+
+#[test]
+fn brdf_explorer_sliders_reach_their_defaults_and_wide_ranges_are_logarithmic() {
+    use fastbrdf::params::ParamKind;
+    let mut cases: Vec<(String, Vec<(&str, &str)>)> = registry::all()
+        .iter()
+        .map(|e| (e.info.id.to_string(), vec![]))
+        .collect();
+    for (id, given) in [
+        ("pow", vec![("n", "37.3")]),
+        ("pow", vec![("n", "1")]),
+        ("pow", vec![("n", "10000")]),
+        ("sg", vec![("n", "1.01")]),
+        ("beckmann", vec![("alpha", "0.01")]),
+        ("beckmann", vec![("alpha", "1")]),
+        ("beckmann", vec![("alpha", "0.137")]),
+        (
+            "cook-torrance",
+            vec![("f", "schlick"), ("f0", "0.0437"), ("alpha", "0.0123")],
+        ),
+        ("ward", vec![("alpha_x", "0.1"), ("alpha_y", "0.4")]),
+        ("fresnel-dielectric", vec![("eta", "1.0001")]),
+        ("fresnel-conductor", vec![("eta", "0.2"), ("k", "3.3")]),
+        ("lambert", vec![("albedo", "0.7")]),
+    ] {
+        cases.push((id.to_string(), given));
+    }
+    let mut sliders = 0;
+    let mut logs = 0;
+    for (id, given) in &cases {
+        let text = export(id, given, Lang::BrdfExplorer).unwrap();
+        let what = format!("{id} {given:?}");
+        let info = &registry::find(id).unwrap().info;
+        // The model BRDF Explorer evaluates: lobes through blinn-phong, distributions through
+        // cook-torrance (the export's header says so).
+        let shaded = match info.kind {
+            Kind::Lobe => "blinn-phong",
+            Kind::Distribution => "cook-torrance",
+            _ => id.as_str(),
+        };
+        let specs = registry::find(shaded).unwrap().info.params;
+        let params = text
+            .split("::begin parameters\n")
+            .nth(1)
+            .and_then(|s| s.split("::end parameters").next())
+            .unwrap();
+        for line in params.lines() {
+            let f: Vec<&str> = line.split_whitespace().collect();
+            let (uniform, lo, hi, default): (&str, f32, f32, f32) = (
+                f[1],
+                f[2].parse().unwrap(),
+                f[3].parse().unwrap(),
+                f[4].parse().unwrap(),
+            );
+            sliders += 1;
+            // What BRDF Explorer starts with: the default through its text field.
+            let start = explorer_text(default);
+            assert!(lo <= start && start <= hi, "{what}: {line}");
+            let reachable = (0..=1000).find(|&x| explorer_value(lo, hi, x) == start);
+            assert!(
+                reachable.is_some(),
+                "{what}: default {start} of '{line}' is no slider position"
+            );
+            let name = uniform
+                .strip_prefix("log10_")
+                .or_else(|| uniform.strip_suffix("_slider"))
+                .unwrap_or(uniform);
+            let spec = specs
+                .iter()
+                .find(|p| p.name == name)
+                .unwrap_or_else(|| panic!("{what}: slider {uniform} of no parameter"));
+            let ParamKind::Number { min, max, .. } = spec.kind else {
+                panic!("{what}: {name} is not numeric")
+            };
+            let value: f64 = given
+                .iter()
+                .find(|(k, _)| *k == name)
+                .map(|(_, v)| v.parse().unwrap())
+                .or(match spec.kind {
+                    ParamKind::Number { default, .. } => default,
+                    _ => None,
+                })
+                .unwrap_or_else(|| {
+                    // An optional slope (ward's alpha_y): the export's header has the value.
+                    let shown = text.split("this export: ").nth(1).unwrap();
+                    let item = shown
+                        .split([',', ')'])
+                        .find(|s| s.trim().starts_with(&format!("{name} = ")))
+                        .unwrap();
+                    item.trim()[name.len() + 3..].parse().unwrap()
+                });
+            let wide = min > 0.0 && max / min >= 100.0;
+            assert_eq!(
+                uniform.starts_with("log10_"),
+                wide,
+                "{what}: {name} in [{min}, {max}] must be log-mapped exactly when it spans 2 decades"
+            );
+            if uniform == name {
+                // A plain slider over the documented range, the parameter itself.
+                assert_eq!((lo as f64, hi as f64), (min, max), "{what}: {line}");
+                assert_eq!(start, value as f32, "{what}: {line}");
+                continue;
+            }
+            if wide {
+                logs += 1;
+            }
+            let decl = format!("float p_{name} = ");
+            let expr = text
+                .lines()
+                .find_map(|l| l.trim().strip_prefix(&decl))
+                .unwrap_or_else(|| panic!("{what}: no '{decl}' in the shader"))
+                .trim_end_matches(';');
+            // At the default (and its slider position), exactly the export's value; at the ends
+            // of the slider, the ends of the documented range.
+            assert_eq!(mapped(expr, start), value as f32, "{what}: {expr}");
+            assert_eq!(
+                mapped(expr, explorer_value(lo, hi, reachable.unwrap())),
+                value as f32
+            );
+            assert_eq!(
+                mapped(expr, explorer_value(lo, hi, 0)),
+                min as f32,
+                "{what}"
+            );
+            assert_eq!(
+                mapped(expr, explorer_value(lo, hi, 1000)),
+                max as f32,
+                "{what}"
+            );
+        }
+    }
+    assert!(
+        sliders >= 40 && logs >= 30,
+        "{sliders} sliders, {logs} logarithmic"
+    );
+}

@@ -11,10 +11,10 @@ fn fb_brdf_ward(wi: vec3<f32>, wo: vec3<f32>, inv_ax2: f32, inv_ay2: f32, scale:
     return select(0.0, scale * lobe / sqrt(p.cos_i * p.cos_o), p.valid);
 }
 
-/// ward-pow (seed 000): the exponential replaced by cos^e theta_h, e = 2 / alpha^2.
+/// ward-pow (seed 000): the exponential replaced by cos^e theta_h, e = 2 / alpha^2 (fb_powr).
 fn fb_brdf_ward_pow(wi: vec3<f32>, wo: vec3<f32>, e: f32, scale: f32) -> f32 {
     let p = fb_pair(wi, wo);
-    let lobe = pow(p.h.z, e);
+    let lobe = fb_powr(p.h.z, e);
     return select(0.0, scale * lobe / sqrt(p.cos_i * p.cos_o), p.valid);
 }
 

@@ -54,6 +54,16 @@ fn fb_log2(x: f32) -> f32 {
     return select(log2(x), s * 1.442695, x >= 0.5);
 }
 
+/// x^y for x in [0, 1] (any finite y): exp2(y fb_log2(x)), and 0 at x = 0 (callers with
+/// y < 0 cut x = 0 away). WGSL's pow is exp2(y log2(x))
+/// with the built-in log2 (2^-21 absolute near 1), which a large y turns into about 2y ulp of
+/// relative error near x = 1 (issue 11: twice the "n ulp" once documented, on real GPUs at
+/// n = 5000..10000); fb_log2's relative error keeps y log2(x) to a few ulp, so the result is
+/// within a few ulp of the exact power where it is not negligible. At x = 1, exactly 1.
+fn fb_powr(x: f32, y: f32) -> f32 {
+    return select(0.0, exp2(y * fb_log2(max(x, 1e-30))), x > 0.0);
+}
+
 /// erfc(x) for x >= 0, relative error below 1.2e-7 (Numerical Recipes' erfcc, a Chebyshev
 /// fit). WGSL has no erf; the CPU uses libm's erfc.
 fn fb_erfc(x: f32) -> f32 {
@@ -82,8 +92,21 @@ struct FbPair {
     wo: vec3<f32>,
 }
 
-/// Normalises wi and wo (local frame, normal +z) and builds their half vector.
-fn fb_pair(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FbPair {
+/// v divided by its largest component when |v|^2 leaves [2^-100, 2^100] (where it would
+/// underflow to 0 or overflow in f32, and a finite direction such as (1e-30, 0, 1e-30) would
+/// read as zero-length), else v: the normalisation is then scale-safe, as the CPU's
+/// (twin: fastbrdf::vec3::unit).
+fn fb_rescale(v: vec3<f32>) -> vec3<f32> {
+    let l = dot(v, v);
+    let m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    let safe = (l >= 7.888609052210118e-31) & (l <= 1.2676506002282294e30);
+    return select(v / m, v, safe | (m == 0.0));
+}
+
+/// Normalises wi and wo (local frame, normal +z, any finite length) and builds their half vector.
+fn fb_pair(wi_raw: vec3<f32>, wo_raw: vec3<f32>) -> FbPair {
+    let wi_in = fb_rescale(wi_raw);
+    let wo_in = fb_rescale(wo_raw);
     let li = dot(wi_in, wi_in);
     let lo = dot(wo_in, wo_in);
     let wi = wi_in * (1.0 / sqrt(li));

@@ -3,17 +3,22 @@
 // (formulas, sources, error bounds in their headers) and batch/ops.rs (this arrangement).
 // Precision on the GPU: shader compilers reassociate. Mesa's NIR (lavapipe) recognises
 // `1 + t (c - 1)` as the lerp a + t (b - a) and lowers it to (1 - t) + t c, which cancels when
-// t ~ n: the power lobes and the cubics' Newton form then err by about n ulp of c absolute
-// (4.8e-4 at n = 10000, measured; the CPU's f32 keeps 2.4e-7). Writing fma() does not stop
-// it (llvmpipe lowers fma first). Relative to the lobe's peak of 1 that is what one ulp of the
-// cosine costs anyway; tests/parity.rs states the tolerance.
+// t ~ n (the power lobes and the cubics' Newton form erred by about n ulp of c absolute, 4.8e-4
+// at n = 10000 on lavapipe; fma() does not stop it), and with literal coefficients it folds
+// `(y + #a) * #k` into `y #k + #(a k)` and sums of literals (seed 003's rational: 2.6e-4 at
+// c = 1). So the lobes here are written in y = 1 - c (exact for c >= 0.5): no lerp shape, the
+// constant term exactly 1 or exactly the peak, every other term a multiple of y, so that at
+// c = 1 any such folding still gives the peak (tests/fold.rs models the folding, tests/exact.rs
+// runs lavapipe). The CPU twins keep the seed's arrangements; tests/parity.rs compares them.
 // Coefficients that need care (cubic shapes, rational nodes, tuned slopes, normalisation) are
 // computed once on the CPU in f64 and passed in, as the CPU kernels do.
 
-/// pow: c^n, the Phong/Blinn-Phong reference (Phong 1975). Cost: 1 pow (exp2 + log2).
+/// pow: c^n, the Phong/Blinn-Phong reference (Phong 1975), as fb_powr (exp2 of n fb_log2(c),
+/// not WGSL's pow, whose log2 near 1 cost about 2n ulp: 6.4e-4 at n = 10000 on lavapipe, and
+/// issue 11 reported the same on real GPUs). Cost: 1 exp2, 1 log2 (fb_log2's branch below
+/// 0.5, evaluated by the select), 1 div, 10 mul, 8 add.
 fn fb_lobe_pow(c: f32, n: f32) -> f32 {
-    let x = fb_clamp01(c);
-    return select(0.0, pow(x, n), x > 0.0);
+    return fb_powr(fb_clamp01(c), n);
 }
 
 /// schlick: c / (n - n c + c) (Schlick 1994). Cost: 1 mul, 2 add, 1 div.
@@ -54,40 +59,50 @@ fn fb_lobe_flog(c: f32, n: f32, coef: f32, clamp_to_one: bool) -> f32 {
 /// negative. Coefficients: fastbrdf::lobes::cubic::CubicShape (f64). Cost: 3 mul, 4 add.
 fn fb_lobe_cubic(c: f32, d1: f32, d2: f32, d3: f32, x1: f32, x2: f32, cut: f32) -> f32 {
     let cc = fb_clamp01(c);
-    let x = cc - 1.0;
-    let p = 1.0 + x * (d1 + (x - x1) * (d2 + (x - x2) * d3));
+    // In y = 1 - c = -x: p = 1 - y (d1 - (y + x1)(d2 - (y + x2) d3)). No `1 + t (c - 1)`
+    // shape for a compiler to take for a lerp (Mesa lowers those to (1 - t) + t c, which
+    // cancels when t ~ n), and exactly 1 at c = 1 whatever it reassociates.
+    let y = 1.0 - cc;
+    let p = 1.0 - y * (d1 - (y + x1) * (d2 - (y + x2) * d3));
     return select(max(p, 0.0), 0.0, cc < cut);
 }
 
-/// rational (seed 003): level c / (n (xq - x) + c), x = c - 1, xq = level^(1/n) - 1
-/// (computed with expm1 in f64); level = 0.5 for `rational`. Cost: 1 mul, 3 add, 1 div.
-fn fb_lobe_rational(c: f32, n: f32, xq: f32, level: f32) -> f32 {
+/// rational (seed 003): level c / (n (xq - x) + c), x = c - 1, xq = level^(1/n) - 1, written
+/// fold-proof as peak c / (1 + g y) with y = 1 - c (exact for c >= 0.5), d0 = 1 + n xq,
+/// peak = level / d0 and g = (n - 1) / d0 (computed in f64, xq with expm1); level = 0.5 for
+/// `rational`. The constant term is exactly 1 and the only other term multiplies y: a compiler
+/// that expands g (1 - c) into g - g c and folds 1 + g (Mesa does, with literals) still gets
+/// exactly 1 at c = 1 ((1 + g) - g is exact for g >= 1), where the seed's arrangement folded
+/// into n xq + n, a constant of size n with a fraction: 3.4e-4 off at c = 1, n = 5000 (issue 11).
+/// Cost: 2 mul, 2 add, 1 div.
+fn fb_lobe_rational(c: f32, peak: f32, g: f32) -> f32 {
     let cc = fb_clamp01(c);
-    let x = cc - 1.0;
-    return level * cc / (n * (xq - x) + cc);
+    let y = 1.0 - cc;
+    return peak * cc / (1.0 + g * y);
 }
 
 /// cubic-rational (seed 003): the cubic above q = level^(1/n), the rational below.
-fn fb_lobe_cubic_rational(c: f32, d1: f32, d2: f32, d3: f32, x1: f32, x2: f32, cut: f32, n: f32,
-                          xq: f32, level: f32, q: f32) -> f32 {
+fn fb_lobe_cubic_rational(c: f32, d1: f32, d2: f32, d3: f32, x1: f32, x2: f32, cut: f32,
+                          peak: f32, g: f32, q: f32) -> f32 {
     let cc = fb_clamp01(c);
     let a = fb_lobe_cubic(cc, d1, d2, d3, x1, x2, cut);
-    let b = fb_lobe_rational(cc, n, xq, level);
+    let b = fb_lobe_rational(cc, peak, g);
     return select(b, a, cc >= q);
 }
 
 /// power4/8/16 (seed 000's (1 + x/g)^g): max(1 + s (c - 1), 0)^g with s = n / g (tuned: s
-/// from a minimax fit, fastbrdf::lobes::tuned). Cost: 1 mul, 2 add, log2(g) mul.
+/// from a minimax fit, fastbrdf::lobes::tuned), written 1 - s (1 - c): not the lerp shape
+/// `1 + t (c - 1)` (see the header), and exactly 1 at c = 1. Cost: 1 mul, 2 add, log2(g) mul.
 fn fb_lobe_power4(c: f32, s: f32) -> f32 {
-    return fb_pow4(max(1.0 + s * (fb_clamp01(c) - 1.0), 0.0));
+    return fb_pow4(max(1.0 - s * (1.0 - fb_clamp01(c)), 0.0));
 }
 
 fn fb_lobe_power8(c: f32, s: f32) -> f32 {
-    return fb_pow8(max(1.0 + s * (fb_clamp01(c) - 1.0), 0.0));
+    return fb_pow8(max(1.0 - s * (1.0 - fb_clamp01(c)), 0.0));
 }
 
 fn fb_lobe_power16(c: f32, s: f32) -> f32 {
-    return fb_pow16(max(1.0 + s * (fb_clamp01(c) - 1.0), 0.0));
+    return fb_pow16(max(1.0 - s * (1.0 - fb_clamp01(c)), 0.0));
 }
 
 /// sg, sg-tuned, ue4-phong-approx: 2^(k (c - 1)), the spherical Gaussian. sg: k = n / ln 2;

@@ -17,9 +17,32 @@
 /// (Rust twin: fastbrdf::vec3::COS_MIN).
 const FB_COS_MIN: f32 = 9.5367431640625e-7;
 
-/// beckmann-pow (seed 000): scale cos^e, e = 2 / alpha^2 - 4 (one power instead of exp).
+/// log2(x) with a small relative error for x in [0.5, 1] too, where WGSL's built-in log2 is
+/// only held to 2^-21 absolute (relative error unbounded as x -> 1): 2 atanh(t) / ln 2 with
+/// t = (x - 1) / (x + 1) in [-1/3, 0], x - 1 exact (Sterbenz), series to t^13 (truncation
+/// 5e-9 relative). Below 0.5 the built-in. The CPU kernels' log2 is 0.5 ulp (an f64 series).
+fn fb_log2(x: f32) -> f32 {
+    let t = (x - 1.0) / (x + 1.0);
+    let t2 = t * t;
+    let s = t * (2.0 + t2 * (0.6666667 + t2 * (0.4 + t2 * (0.2857143 + t2 * (0.22222222
+        + t2 * (0.18181818 + t2 * 0.15384615))))));
+    return select(log2(x), s * 1.442695, x >= 0.5);
+}
+
+/// x^y for x in [0, 1] (any finite y): exp2(y fb_log2(x)), and 0 at x = 0 (callers with
+/// y < 0 cut x = 0 away). WGSL's pow is exp2(y log2(x))
+/// with the built-in log2 (2^-21 absolute near 1), which a large y turns into about 2y ulp of
+/// relative error near x = 1 (issue 11: twice the "n ulp" once documented, on real GPUs at
+/// n = 5000..10000); fb_log2's relative error keeps y log2(x) to a few ulp, so the result is
+/// within a few ulp of the exact power where it is not negligible. At x = 1, exactly 1.
+fn fb_powr(x: f32, y: f32) -> f32 {
+    return select(0.0, exp2(y * fb_log2(max(x, 1e-30))), x > 0.0);
+}
+
+/// beckmann-pow (seed 000): scale cos^e, e = 2 / alpha^2 - 4 (one power instead of exp;
+/// fb_powr, accurate near cos = 1 where e reaches 19996 at alpha = 0.01).
 fn fb_d_beckmann_pow(c: f32, e: f32, scale: f32) -> f32 {
-    return scale * pow(c, e);
+    return scale * fb_powr(c, e);
 }
 
 /// beckmann-pow: cos^(2/m^2 - 4) theta_h / (4 m^2)

@@ -30,26 +30,48 @@ float fb_clamp01_(float c) {
     return min(max(c, 0.0), 1.0);
 }
 
-FbPair fb_pair(vec3 wi_in, vec3 wo_in) {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    vec3 wi_1 = (wi_in * (1.0 / sqrt(li)));
-    vec3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
-    vec3 s = (wi_1 + wo_1);
-    float len = sqrt(dot(s, s));
-    vec3 h = (s / vec3(len));
+float fb_log2_(float x) {
+    float t = ((x - 1.0) / (x + 1.0));
+    float t2_ = (t * t);
+    float s = (t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614)))))))))))));
+    return ((x >= 0.5) ? (s * 1.442695) : log2(x));
+}
+
+float fb_powr(float x_1, float y) {
+    float _e4 = fb_log2_(max(x_1, 1e-30));
+    return ((x_1 > 0.0) ? exp2((y * _e4)) : 0.0);
+}
+
+vec3 fb_rescale(vec3 v) {
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) && (l <= 1.2676506e30));
+    return ((safe || (m == 0.0)) ? v : (v / vec3(m)));
+}
+
+FbPair fb_pair(vec3 wi_raw, vec3 wo_raw) {
+    vec3 _e2 = fb_rescale(wi_raw);
+    vec3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    vec3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    vec3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
+    vec3 s_1 = (wi_1 + wo_1);
+    float len = sqrt(dot(s_1, s_1));
+    vec3 h = (s_1 / vec3(len));
     bool valid = (((((li > 0.0) && (lo > 0.0)) && (wi_1.z >= FB_COS_MIN)) && (wo_1.z >= FB_COS_MIN)) && (len > 0.0));
     return FbPair(valid, wi_1.z, wo_1.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_1, wo_1);
 }
 
 float fb_lobe_pow(float c_1, float n) {
     float _e2 = fb_clamp01_(c_1);
-    return ((_e2 > 0.0) ? pow(_e2, n) : 0.0);
+    float _e3 = fb_powr(_e2, n);
+    return _e3;
 }
 
 float fb_blinn_phong(vec3 wi, vec3 wo) {
     FbPair _e2 = fb_pair(wi, wo);
     float _e7 = fb_lobe_pow(_e2.h.z, 20.0);
-    float v = ((3.5014088 * _e7) / (4.0 * _e2.cos_ih));
-    return (_e2.valid ? v : 0.0);
+    float v_1 = ((3.5014088 * _e7) / (4.0 * _e2.cos_ih));
+    return (_e2.valid ? v_1 : 0.0);
 }

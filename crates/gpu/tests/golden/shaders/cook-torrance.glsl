@@ -38,11 +38,20 @@ float fb_erfc(float x) {
     return (t * exp(((-(x) * x) + p)));
 }
 
-FbPair fb_pair(vec3 wi_in, vec3 wo_in) {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    vec3 wi_1 = (wi_in * (1.0 / sqrt(li)));
-    vec3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
+vec3 fb_rescale(vec3 v) {
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) && (l <= 1.2676506e30));
+    return ((safe || (m == 0.0)) ? v : (v / vec3(m)));
+}
+
+FbPair fb_pair(vec3 wi_raw, vec3 wo_raw) {
+    vec3 _e2 = fb_rescale(wi_raw);
+    vec3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    vec3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    vec3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
     vec3 s = (wi_1 + wo_1);
     float len = sqrt(dot(s, s));
     vec3 h = (s / vec3(len));
@@ -70,6 +79,6 @@ float fb_cook_torrance(vec3 wi, vec3 wo) {
     float _e17 = fb_g1_smith(_e2.cos_o, 0.3);
     float _e20 = fb_g1_smith(_e2.cos_i, 0.3);
     float g = (_e17 * _e20);
-    float v = ((((1.0 * d) * g) * 0.25) / (_e2.cos_i * _e2.cos_o));
-    return (_e2.valid ? v : 0.0);
+    float v_1 = ((((1.0 * d) * g) * 0.25) / (_e2.cos_i * _e2.cos_o));
+    return (_e2.valid ? v_1 : 0.0);
 }

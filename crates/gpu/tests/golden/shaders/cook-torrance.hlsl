@@ -45,6 +45,14 @@ float fb_erfc(float x)
     return (t * exp(((-(x) * x) + p)));
 }
 
+float3 fb_rescale(float3 v)
+{
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) & (l <= 1.2676506e30));
+    return ((safe | (m == 0.0)) ? v : (v / (m).xxx));
+}
+
 FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg4, float arg5, float3 arg6, float3 arg7) {
     FbPair ret = (FbPair)0;
     ret.valid = arg0;
@@ -58,12 +66,14 @@ FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg
     return ret;
 }
 
-FbPair fb_pair(float3 wi_in, float3 wo_in)
+FbPair fb_pair(float3 wi_raw, float3 wo_raw)
 {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    float3 wi_1 = (wi_in * (1.0 / sqrt(li)));
-    float3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
+    const float3 _e2 = fb_rescale(wi_raw);
+    const float3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    float3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    float3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
     float3 s = (wi_1 + wo_1);
     float len = sqrt(dot(s, s));
     float3 h = (s / (len).xxx);
@@ -95,6 +105,6 @@ float fb_cook_torrance(float3 wi, float3 wo)
     const float _e17 = fb_g1_smith(_e2.cos_o, 0.3);
     const float _e20 = fb_g1_smith(_e2.cos_i, 0.3);
     float g = (_e17 * _e20);
-    float v = ((((1.0 * d) * g) * 0.25) / (_e2.cos_i * _e2.cos_o));
-    return (_e2.valid ? v : 0.0);
+    float v_1 = ((((1.0 * d) * g) * 0.25) / (_e2.cos_i * _e2.cos_o));
+    return (_e2.valid ? v_1 : 0.0);
 }

@@ -48,14 +48,25 @@ float fb_erfc(
     return t * metal::exp((-(x) * x) + p);
 }
 
-FbPair fb_pair(
-    metal::float3 wi_in,
-    metal::float3 wo_in
+metal::float3 fb_rescale(
+    metal::float3 v
 ) {
-    float li = metal::dot(wi_in, wi_in);
-    float lo = metal::dot(wo_in, wo_in);
-    metal::float3 wi_1 = wi_in * (1.0 / metal::sqrt(li));
-    metal::float3 wo_1 = wo_in * (1.0 / metal::sqrt(lo));
+    float l = metal::dot(v, v);
+    float m = metal::max(metal::max(metal::abs(v.x), metal::abs(v.y)), metal::abs(v.z));
+    bool safe = (l >= 0.0000000000000000000000000000007888609) & (l <= 1267650600000000000000000000000.0);
+    return (safe | (m == 0.0)) ? v : (v / metal::float3(m));
+}
+
+FbPair fb_pair(
+    metal::float3 wi_raw,
+    metal::float3 wo_raw
+) {
+    metal::float3 _e2 = fb_rescale(wi_raw);
+    metal::float3 _e3 = fb_rescale(wo_raw);
+    float li = metal::dot(_e2, _e2);
+    float lo = metal::dot(_e3, _e3);
+    metal::float3 wi_1 = _e2 * (1.0 / metal::sqrt(li));
+    metal::float3 wo_1 = _e3 * (1.0 / metal::sqrt(lo));
     metal::float3 s = wi_1 + wo_1;
     float len = metal::sqrt(metal::dot(s, s));
     metal::float3 h = s / metal::float3(len);
@@ -94,6 +105,6 @@ float fb_cook_torrance(
     float _e17 = fb_g1_smith(_e2.cos_o, 0.3);
     float _e20 = fb_g1_smith(_e2.cos_i, 0.3);
     float g = _e17 * _e20;
-    float v = (((1.0 * d) * g) * 0.25) / (_e2.cos_i * _e2.cos_o);
-    return _e2.valid ? v : 0.0;
+    float v_1 = (((1.0 * d) * g) * 0.25) / (_e2.cos_i * _e2.cos_o);
+    return _e2.valid ? v_1 : 0.0;
 }

@@ -36,20 +36,19 @@ float fb_lobe_cubic(
     float cut
 ) {
     float _e7 = fb_clamp01_(c_1);
-    float x = _e7 - 1.0;
-    float p = 1.0 + (x * (d1_ + ((x - x1_) * (d2_ + ((x - x2_) * d3_)))));
+    float y = 1.0 - _e7;
+    float p = 1.0 - (y * (d1_ - ((y + x1_) * (d2_ - ((y + x2_) * d3_)))));
     return (_e7 < cut) ? 0.0 : metal::max(p, 0.0);
 }
 
 float fb_lobe_rational(
     float c_2,
-    float n,
-    float xq,
-    float level
+    float peak,
+    float g
 ) {
-    float _e4 = fb_clamp01_(c_2);
-    float x_1 = _e4 - 1.0;
-    return (level * _e4) / ((n * (xq - x_1)) + _e4);
+    float _e3 = fb_clamp01_(c_2);
+    float y_1 = 1.0 - _e3;
+    return (peak * _e3) / (1.0 + (g * y_1));
 }
 
 float fb_lobe_cubic_rational(
@@ -60,20 +59,19 @@ float fb_lobe_cubic_rational(
     float x1_1,
     float x2_1,
     float cut_1,
-    float n_1,
-    float xq_1,
-    float level_1,
+    float peak_1,
+    float g_1,
     float q
 ) {
-    float _e11 = fb_clamp01_(c_3);
-    float _e12 = fb_lobe_cubic(_e11, d1_1, d2_1, d3_1, x1_1, x2_1, cut_1);
-    float _e13 = fb_lobe_rational(_e11, n_1, xq_1, level_1);
-    return (_e11 >= q) ? _e12 : _e13;
+    float _e10 = fb_clamp01_(c_3);
+    float _e11 = fb_lobe_cubic(_e10, d1_1, d2_1, d3_1, x1_1, x2_1, cut_1);
+    float _e12 = fb_lobe_rational(_e10, peak_1, g_1);
+    return (_e10 >= q) ? _e11 : _e12;
 }
 
 float fb_cubic_rational_tuned(
     float c_4
 ) {
-    float _e11 = fb_lobe_cubic_rational(c_4, 10.0814085, 74.83417, 70.66397, -0.08079728, -0.08079728, 0.8885781, 20.0, -0.08079728, 0.18544966, 0.91920274);
-    return _e11;
+    float _e10 = fb_lobe_cubic_rational(c_4, 10.0814085, 74.83417, 70.66397, -0.08079728, -0.08079728, 0.8885781, -0.30108127, -30.846884, 0.91920274);
+    return _e10;
 }

@@ -21,8 +21,8 @@ float fb_clamp01_(float c)
 float fb_lobe_cubic(float c_1, float d1_, float d2_, float d3_, float x1_, float x2_, float cut)
 {
     const float _e7 = fb_clamp01_(c_1);
-    float x = (_e7 - 1.0);
-    float p = (1.0 + (x * (d1_ + ((x - x1_) * (d2_ + ((x - x2_) * d3_))))));
+    float y = (1.0 - _e7);
+    float p = (1.0 - (y * (d1_ - ((y + x1_) * (d2_ - ((y + x2_) * d3_))))));
     return ((_e7 < cut) ? 0.0 : max(p, 0.0));
 }
 

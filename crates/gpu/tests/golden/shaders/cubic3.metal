@@ -36,8 +36,8 @@ float fb_lobe_cubic(
     float cut
 ) {
     float _e7 = fb_clamp01_(c_1);
-    float x = _e7 - 1.0;
-    float p = 1.0 + (x * (d1_ + ((x - x1_) * (d2_ + ((x - x2_) * d3_)))));
+    float y = 1.0 - _e7;
+    float p = 1.0 - (y * (d1_ - ((y + x1_) * (d2_ - ((y + x2_) * d3_)))));
     return (_e7 < cut) ? 0.0 : metal::max(p, 0.0);
 }
 

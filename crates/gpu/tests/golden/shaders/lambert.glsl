@@ -23,11 +23,20 @@ struct FbPair {
 const float FB_COS_MIN = 9.536743e-7;
 
 
-FbPair fb_pair(vec3 wi_in, vec3 wo_in) {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    vec3 wi_1 = (wi_in * (1.0 / sqrt(li)));
-    vec3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
+vec3 fb_rescale(vec3 v) {
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) && (l <= 1.2676506e30));
+    return ((safe || (m == 0.0)) ? v : (v / vec3(m)));
+}
+
+FbPair fb_pair(vec3 wi_raw, vec3 wo_raw) {
+    vec3 _e2 = fb_rescale(wi_raw);
+    vec3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    vec3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    vec3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
     vec3 s = (wi_1 + wo_1);
     float len = sqrt(dot(s, s));
     vec3 h = (s / vec3(len));

@@ -31,14 +31,25 @@ struct FbPair {
 };
 constant float FB_COS_MIN = 0.0000009536743;
 
-FbPair fb_pair(
-    metal::float3 wi_in,
-    metal::float3 wo_in
+metal::float3 fb_rescale(
+    metal::float3 v
 ) {
-    float li = metal::dot(wi_in, wi_in);
-    float lo = metal::dot(wo_in, wo_in);
-    metal::float3 wi_1 = wi_in * (1.0 / metal::sqrt(li));
-    metal::float3 wo_1 = wo_in * (1.0 / metal::sqrt(lo));
+    float l = metal::dot(v, v);
+    float m = metal::max(metal::max(metal::abs(v.x), metal::abs(v.y)), metal::abs(v.z));
+    bool safe = (l >= 0.0000000000000000000000000000007888609) & (l <= 1267650600000000000000000000000.0);
+    return (safe | (m == 0.0)) ? v : (v / metal::float3(m));
+}
+
+FbPair fb_pair(
+    metal::float3 wi_raw,
+    metal::float3 wo_raw
+) {
+    metal::float3 _e2 = fb_rescale(wi_raw);
+    metal::float3 _e3 = fb_rescale(wo_raw);
+    float li = metal::dot(_e2, _e2);
+    float lo = metal::dot(_e3, _e3);
+    metal::float3 wi_1 = _e2 * (1.0 / metal::sqrt(li));
+    metal::float3 wo_1 = _e3 * (1.0 / metal::sqrt(lo));
     metal::float3 s = wi_1 + wo_1;
     float len = metal::sqrt(metal::dot(s, s));
     metal::float3 h = s / metal::float3(len);

@@ -37,6 +37,28 @@ float fb_clamp01_(float c)
     return min(max(c, 0.0), 1.0);
 }
 
+float fb_log2_(float x)
+{
+    float t = ((x - 1.0) / (x + 1.0));
+    float t2_ = (t * t);
+    float s = (t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614)))))))))))));
+    return ((x >= 0.5) ? (s * 1.442695) : log2(x));
+}
+
+float fb_powr(float x_1, float y)
+{
+    const float _e4 = fb_log2_(max(x_1, 1e-30));
+    return ((x_1 > 0.0) ? exp2((y * _e4)) : 0.0);
+}
+
+float3 fb_rescale(float3 v)
+{
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) & (l <= 1.2676506e30));
+    return ((safe | (m == 0.0)) ? v : (v / (m).xxx));
+}
+
 FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg4, float arg5, float3 arg6, float3 arg7) {
     FbPair ret = (FbPair)0;
     ret.valid = arg0;
@@ -50,15 +72,17 @@ FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg
     return ret;
 }
 
-FbPair fb_pair(float3 wi_in, float3 wo_in)
+FbPair fb_pair(float3 wi_raw, float3 wo_raw)
 {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    float3 wi_1 = (wi_in * (1.0 / sqrt(li)));
-    float3 wo_1 = (wo_in * (1.0 / sqrt(lo)));
-    float3 s = (wi_1 + wo_1);
-    float len = sqrt(dot(s, s));
-    float3 h = (s / (len).xxx);
+    const float3 _e2 = fb_rescale(wi_raw);
+    const float3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    float3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    float3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
+    float3 s_1 = (wi_1 + wo_1);
+    float len = sqrt(dot(s_1, s_1));
+    float3 h = (s_1 / (len).xxx);
     bool valid = (((((li > 0.0) & (lo > 0.0)) & (wi_1.z >= FB_COS_MIN)) & (wo_1.z >= FB_COS_MIN)) & (len > 0.0));
     const FbPair fbpair = ConstructFbPair(valid, wi_1.z, wo_1.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_1, wo_1);
     return fbpair;
@@ -67,7 +91,8 @@ FbPair fb_pair(float3 wi_in, float3 wo_in)
 float fb_lobe_pow(float c_1, float n)
 {
     const float _e2 = fb_clamp01_(c_1);
-    return ((_e2 > 0.0) ? pow(_e2, n) : 0.0);
+    const float _e3 = fb_powr(_e2, n);
+    return _e3;
 }
 
 float fb_phong(float3 wi, float3 wo)
@@ -75,6 +100,6 @@ float fb_phong(float3 wi, float3 wo)
     const FbPair _e2 = fb_pair(wi, wo);
     float r_dot_wo = (((-(_e2.wi.x) * _e2.wo.x) - (_e2.wi.y * _e2.wo.y)) + (_e2.wi.z * _e2.wo.z));
     const float _e23 = fb_lobe_pow(r_dot_wo, 20.0);
-    float v = (3.5014088 * _e23);
-    return (_e2.valid ? v : 0.0);
+    float v_1 = (3.5014088 * _e23);
+    return (_e2.valid ? v_1 : 0.0);
 }

@@ -40,17 +40,45 @@ float fb_clamp01_(
     return metal::min(metal::max(c, 0.0), 1.0);
 }
 
-FbPair fb_pair(
-    metal::float3 wi_in,
-    metal::float3 wo_in
+float fb_log2_(
+    float x
 ) {
-    float li = metal::dot(wi_in, wi_in);
-    float lo = metal::dot(wo_in, wo_in);
-    metal::float3 wi_1 = wi_in * (1.0 / metal::sqrt(li));
-    metal::float3 wo_1 = wo_in * (1.0 / metal::sqrt(lo));
-    metal::float3 s = wi_1 + wo_1;
-    float len = metal::sqrt(metal::dot(s, s));
-    metal::float3 h = s / metal::float3(len);
+    float t = (x - 1.0) / (x + 1.0);
+    float t2_ = t * t;
+    float s = t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614))))))))))));
+    return (x >= 0.5) ? (s * 1.442695) : metal::log2(x);
+}
+
+float fb_powr(
+    float x_1,
+    float y
+) {
+    float _e4 = fb_log2_(metal::max(x_1, 0.000000000000000000000000000001));
+    return (x_1 > 0.0) ? metal::exp2(y * _e4) : 0.0;
+}
+
+metal::float3 fb_rescale(
+    metal::float3 v
+) {
+    float l = metal::dot(v, v);
+    float m = metal::max(metal::max(metal::abs(v.x), metal::abs(v.y)), metal::abs(v.z));
+    bool safe = (l >= 0.0000000000000000000000000000007888609) & (l <= 1267650600000000000000000000000.0);
+    return (safe | (m == 0.0)) ? v : (v / metal::float3(m));
+}
+
+FbPair fb_pair(
+    metal::float3 wi_raw,
+    metal::float3 wo_raw
+) {
+    metal::float3 _e2 = fb_rescale(wi_raw);
+    metal::float3 _e3 = fb_rescale(wo_raw);
+    float li = metal::dot(_e2, _e2);
+    float lo = metal::dot(_e3, _e3);
+    metal::float3 wi_1 = _e2 * (1.0 / metal::sqrt(li));
+    metal::float3 wo_1 = _e3 * (1.0 / metal::sqrt(lo));
+    metal::float3 s_1 = wi_1 + wo_1;
+    float len = metal::sqrt(metal::dot(s_1, s_1));
+    metal::float3 h = s_1 / metal::float3(len);
     bool valid = ((((li > 0.0) & (lo > 0.0)) & (wi_1.z >= FB_COS_MIN)) & (wo_1.z >= FB_COS_MIN)) & (len > 0.0);
     return FbPair {valid, {}, wi_1.z, wo_1.z, {}, h, (h.x * h.x) + (h.y * h.y), 0.5 * len, {}, wi_1, wo_1};
 }
@@ -60,7 +88,8 @@ float fb_lobe_pow(
     float n
 ) {
     float _e2 = fb_clamp01_(c_1);
-    return (_e2 > 0.0) ? metal::pow(_e2, n) : 0.0;
+    float _e3 = fb_powr(_e2, n);
+    return _e3;
 }
 
 float fb_phong(
@@ -70,6 +99,6 @@ float fb_phong(
     FbPair _e2 = fb_pair(wi, wo);
     float r_dot_wo = ((-(_e2.wi.x) * _e2.wo.x) - (_e2.wi.y * _e2.wo.y)) + (_e2.wi.z * _e2.wo.z);
     float _e23 = fb_lobe_pow(r_dot_wo, 20.0);
-    float v = 3.5014088 * _e23;
-    return _e2.valid ? v : 0.0;
+    float v_1 = 3.5014088 * _e23;
+    return _e2.valid ? v_1 : 0.0;
 }

@@ -23,12 +23,30 @@ float fb_clamp01_(
     return metal::min(metal::max(c, 0.0), 1.0);
 }
 
+float fb_log2_(
+    float x
+) {
+    float t = (x - 1.0) / (x + 1.0);
+    float t2_ = t * t;
+    float s = t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614))))))))))));
+    return (x >= 0.5) ? (s * 1.442695) : metal::log2(x);
+}
+
+float fb_powr(
+    float x_1,
+    float y
+) {
+    float _e4 = fb_log2_(metal::max(x_1, 0.000000000000000000000000000001));
+    return (x_1 > 0.0) ? metal::exp2(y * _e4) : 0.0;
+}
+
 float fb_lobe_pow(
     float c_1,
     float n
 ) {
     float _e2 = fb_clamp01_(c_1);
-    return (_e2 > 0.0) ? metal::pow(_e2, n) : 0.0;
+    float _e3 = fb_powr(_e2, n);
+    return _e3;
 }
 
 float fb_pow(

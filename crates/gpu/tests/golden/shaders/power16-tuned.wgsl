@@ -35,7 +35,7 @@ fn fb_pow16(x: f32) -> f32 {
 }
 
 fn fb_lobe_power16(c: f32, s: f32) -> f32 {
-    return fb_pow16(max(1.0 + s * (fb_clamp01(c) - 1.0), 0.0));
+    return fb_pow16(max(1.0 - s * (1.0 - fb_clamp01(c)), 0.0));
 }
 
 /// power16-tuned: max(0, 1 + s(n)(c - 1))^16, s(n) = (n/16) R16(1/n)

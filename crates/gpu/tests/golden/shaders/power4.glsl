@@ -25,7 +25,7 @@ float fb_pow4_(float x) {
 
 float fb_lobe_power4_(float c_1, float s) {
     float _e2 = fb_clamp01_(c_1);
-    float _e10 = fb_pow4_(max((1.0 + (s * (_e2 - 1.0))), 0.0));
+    float _e10 = fb_pow4_(max((1.0 - (s * (1.0 - _e2))), 0.0));
     return _e10;
 }
 

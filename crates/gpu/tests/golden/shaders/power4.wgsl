@@ -26,9 +26,10 @@ fn fb_pow4(x: f32) -> f32 {
 }
 
 /// power4/8/16 (seed 000's (1 + x/g)^g): max(1 + s (c - 1), 0)^g with s = n / g (tuned: s
-/// from a minimax fit, fastbrdf::lobes::tuned). Cost: 1 mul, 2 add, log2(g) mul.
+/// from a minimax fit, fastbrdf::lobes::tuned), written 1 - s (1 - c): not the lerp shape
+/// `1 + t (c - 1)` (see the header), and exactly 1 at c = 1. Cost: 1 mul, 2 add, log2(g) mul.
 fn fb_lobe_power4(c: f32, s: f32) -> f32 {
-    return fb_pow4(max(1.0 + s * (fb_clamp01(c) - 1.0), 0.0));
+    return fb_pow4(max(1.0 - s * (1.0 - fb_clamp01(c)), 0.0));
 }
 
 /// power4: max(0, 1 + (n/4)(c - 1))^4

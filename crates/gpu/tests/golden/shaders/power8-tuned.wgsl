@@ -30,7 +30,7 @@ fn fb_pow8(x: f32) -> f32 {
 }
 
 fn fb_lobe_power8(c: f32, s: f32) -> f32 {
-    return fb_pow8(max(1.0 + s * (fb_clamp01(c) - 1.0), 0.0));
+    return fb_pow8(max(1.0 - s * (1.0 - fb_clamp01(c)), 0.0));
 }
 
 /// power8-tuned: max(0, 1 + s(n)(c - 1))^8, s(n) = (n/8) R8(1/n)

@@ -34,7 +34,7 @@ float fb_pow8_(float x_1)
 float fb_lobe_power8_(float c_1, float s)
 {
     const float _e2 = fb_clamp01_(c_1);
-    const float _e10 = fb_pow8_(max((1.0 + (s * (_e2 - 1.0))), 0.0));
+    const float _e10 = fb_pow8_(max((1.0 - (s * (1.0 - _e2))), 0.0));
     return _e10;
 }
 

@@ -46,7 +46,7 @@ float fb_lobe_power8_(
     float s
 ) {
     float _e2 = fb_clamp01_(c_1);
-    float _e10 = fb_pow8_(metal::max(1.0 + (s * (_e2 - 1.0)), 0.0));
+    float _e10 = fb_pow8_(metal::max(1.0 - (s * (1.0 - _e2)), 0.0));
     return _e10;
 }
 

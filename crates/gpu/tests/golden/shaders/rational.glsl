@@ -18,13 +18,13 @@ float fb_clamp01_(float c) {
     return min(max(c, 0.0), 1.0);
 }
 
-float fb_lobe_rational(float c_1, float n, float xq, float level) {
-    float _e4 = fb_clamp01_(c_1);
-    float x = (_e4 - 1.0);
-    return ((level * _e4) / ((n * (xq - x)) + _e4));
+float fb_lobe_rational(float c_1, float peak, float g) {
+    float _e3 = fb_clamp01_(c_1);
+    float y = (1.0 - _e3);
+    return ((peak * _e3) / (1.0 + (g * y)));
 }
 
 float fb_rational(float c_2) {
-    float _e4 = fb_lobe_rational(c_2, 20.0, -0.03406367, 0.5);
-    return _e4;
+    float _e3 = fb_lobe_rational(c_2, 1.5687428, 59.612225);
+    return _e3;
 }

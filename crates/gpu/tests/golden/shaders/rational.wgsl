@@ -19,16 +19,22 @@ fn fb_clamp01(c: f32) -> f32 {
     return min(max(c, 0.0), 1.0);
 }
 
-/// rational (seed 003): level c / (n (xq - x) + c), x = c - 1, xq = level^(1/n) - 1
-/// (computed with expm1 in f64); level = 0.5 for `rational`. Cost: 1 mul, 3 add, 1 div.
-fn fb_lobe_rational(c: f32, n: f32, xq: f32, level: f32) -> f32 {
+/// rational (seed 003): level c / (n (xq - x) + c), x = c - 1, xq = level^(1/n) - 1, written
+/// fold-proof as peak c / (1 + g y) with y = 1 - c (exact for c >= 0.5), d0 = 1 + n xq,
+/// peak = level / d0 and g = (n - 1) / d0 (computed in f64, xq with expm1); level = 0.5 for
+/// `rational`. The constant term is exactly 1 and the only other term multiplies y: a compiler
+/// that expands g (1 - c) into g - g c and folds 1 + g (Mesa does, with literals) still gets
+/// exactly 1 at c = 1 ((1 + g) - g is exact for g >= 1), where the seed's arrangement folded
+/// into n xq + n, a constant of size n with a fraction: 3.4e-4 off at c = 1, n = 5000 (issue 11).
+/// Cost: 2 mul, 2 add, 1 div.
+fn fb_lobe_rational(c: f32, peak: f32, g: f32) -> f32 {
     let cc = fb_clamp01(c);
-    let x = cc - 1.0;
-    return level * cc / (n * (xq - x) + cc);
+    let y = 1.0 - cc;
+    return peak * cc / (1.0 + g * y);
 }
 
 /// rational: c / (a - b c), a = 2 n 0.5^(1/n), b = 2n - 2
 /// Source: seed 003 (fall-off zone approximation g). Instance: n = 20.
 fn fb_rational(c: f32) -> f32 {
-    return fb_lobe_rational(c, 20.0f, -0.03406367f, 0.5f);
+    return fb_lobe_rational(c, 1.5687428f, 59.612225f);
 }

@@ -26,22 +26,43 @@ struct FbPair {
 const float FB_COS_MIN = 9.536743e-7;
 
 
-FbPair fb_pair(vec3 wi_in, vec3 wo_in) {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    vec3 wi_2 = (wi_in * (1.0 / sqrt(li)));
-    vec3 wo_2 = (wo_in * (1.0 / sqrt(lo)));
-    vec3 s = (wi_2 + wo_2);
-    float len = sqrt(dot(s, s));
-    vec3 h = (s / vec3(len));
+float fb_log2_(float x) {
+    float t = ((x - 1.0) / (x + 1.0));
+    float t2_ = (t * t);
+    float s = (t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614)))))))))))));
+    return ((x >= 0.5) ? (s * 1.442695) : log2(x));
+}
+
+float fb_powr(float x_1, float y) {
+    float _e4 = fb_log2_(max(x_1, 1e-30));
+    return ((x_1 > 0.0) ? exp2((y * _e4)) : 0.0);
+}
+
+vec3 fb_rescale(vec3 v) {
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) && (l <= 1.2676506e30));
+    return ((safe || (m == 0.0)) ? v : (v / vec3(m)));
+}
+
+FbPair fb_pair(vec3 wi_raw, vec3 wo_raw) {
+    vec3 _e2 = fb_rescale(wi_raw);
+    vec3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    vec3 wi_2 = (_e2 * (1.0 / sqrt(li)));
+    vec3 wo_2 = (_e3 * (1.0 / sqrt(lo)));
+    vec3 s_1 = (wi_2 + wo_2);
+    float len = sqrt(dot(s_1, s_1));
+    vec3 h = (s_1 / vec3(len));
     bool valid = (((((li > 0.0) && (lo > 0.0)) && (wi_2.z >= FB_COS_MIN)) && (wo_2.z >= FB_COS_MIN)) && (len > 0.0));
     return FbPair(valid, wi_2.z, wo_2.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_2, wo_2);
 }
 
 float fb_brdf_ward_pow(vec3 wi, vec3 wo, float e, float scale) {
     FbPair _e4 = fb_pair(wi, wo);
-    float lobe = pow(_e4.h.z, e);
-    return (_e4.valid ? ((scale * lobe) / sqrt((_e4.cos_i * _e4.cos_o))) : 0.0);
+    float _e7 = fb_powr(_e4.h.z, e);
+    return (_e4.valid ? ((scale * _e7) / sqrt((_e4.cos_i * _e4.cos_o))) : 0.0);
 }
 
 float fb_ward_pow(vec3 wi_1, vec3 wo_1) {

@@ -32,6 +32,28 @@ struct FbPair {
 
 static const float FB_COS_MIN = 9.536743e-7;
 
+float fb_log2_(float x)
+{
+    float t = ((x - 1.0) / (x + 1.0));
+    float t2_ = (t * t);
+    float s = (t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614)))))))))))));
+    return ((x >= 0.5) ? (s * 1.442695) : log2(x));
+}
+
+float fb_powr(float x_1, float y)
+{
+    const float _e4 = fb_log2_(max(x_1, 1e-30));
+    return ((x_1 > 0.0) ? exp2((y * _e4)) : 0.0);
+}
+
+float3 fb_rescale(float3 v)
+{
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) & (l <= 1.2676506e30));
+    return ((safe | (m == 0.0)) ? v : (v / (m).xxx));
+}
+
 FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg4, float arg5, float3 arg6, float3 arg7) {
     FbPair ret = (FbPair)0;
     ret.valid = arg0;
@@ -45,15 +67,17 @@ FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg
     return ret;
 }
 
-FbPair fb_pair(float3 wi_in, float3 wo_in)
+FbPair fb_pair(float3 wi_raw, float3 wo_raw)
 {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    float3 wi_2 = (wi_in * (1.0 / sqrt(li)));
-    float3 wo_2 = (wo_in * (1.0 / sqrt(lo)));
-    float3 s = (wi_2 + wo_2);
-    float len = sqrt(dot(s, s));
-    float3 h = (s / (len).xxx);
+    const float3 _e2 = fb_rescale(wi_raw);
+    const float3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    float3 wi_2 = (_e2 * (1.0 / sqrt(li)));
+    float3 wo_2 = (_e3 * (1.0 / sqrt(lo)));
+    float3 s_1 = (wi_2 + wo_2);
+    float len = sqrt(dot(s_1, s_1));
+    float3 h = (s_1 / (len).xxx);
     bool valid = (((((li > 0.0) & (lo > 0.0)) & (wi_2.z >= FB_COS_MIN)) & (wo_2.z >= FB_COS_MIN)) & (len > 0.0));
     const FbPair fbpair = ConstructFbPair(valid, wi_2.z, wo_2.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_2, wo_2);
     return fbpair;
@@ -62,8 +86,8 @@ FbPair fb_pair(float3 wi_in, float3 wo_in)
 float fb_brdf_ward_pow(float3 wi, float3 wo, float e, float scale)
 {
     const FbPair _e4 = fb_pair(wi, wo);
-    float lobe = pow(_e4.h.z, e);
-    return (_e4.valid ? ((scale * lobe) / sqrt((_e4.cos_i * _e4.cos_o))) : 0.0);
+    const float _e7 = fb_powr(_e4.h.z, e);
+    return (_e4.valid ? ((scale * _e7) / sqrt((_e4.cos_i * _e4.cos_o))) : 0.0);
 }
 
 float fb_ward_pow(float3 wi_1, float3 wo_1)

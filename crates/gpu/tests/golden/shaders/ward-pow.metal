@@ -34,17 +34,45 @@ struct FbPair {
 };
 constant float FB_COS_MIN = 0.0000009536743;
 
-FbPair fb_pair(
-    metal::float3 wi_in,
-    metal::float3 wo_in
+float fb_log2_(
+    float x
 ) {
-    float li = metal::dot(wi_in, wi_in);
-    float lo = metal::dot(wo_in, wo_in);
-    metal::float3 wi_2 = wi_in * (1.0 / metal::sqrt(li));
-    metal::float3 wo_2 = wo_in * (1.0 / metal::sqrt(lo));
-    metal::float3 s = wi_2 + wo_2;
-    float len = metal::sqrt(metal::dot(s, s));
-    metal::float3 h = s / metal::float3(len);
+    float t = (x - 1.0) / (x + 1.0);
+    float t2_ = t * t;
+    float s = t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614))))))))))));
+    return (x >= 0.5) ? (s * 1.442695) : metal::log2(x);
+}
+
+float fb_powr(
+    float x_1,
+    float y
+) {
+    float _e4 = fb_log2_(metal::max(x_1, 0.000000000000000000000000000001));
+    return (x_1 > 0.0) ? metal::exp2(y * _e4) : 0.0;
+}
+
+metal::float3 fb_rescale(
+    metal::float3 v
+) {
+    float l = metal::dot(v, v);
+    float m = metal::max(metal::max(metal::abs(v.x), metal::abs(v.y)), metal::abs(v.z));
+    bool safe = (l >= 0.0000000000000000000000000000007888609) & (l <= 1267650600000000000000000000000.0);
+    return (safe | (m == 0.0)) ? v : (v / metal::float3(m));
+}
+
+FbPair fb_pair(
+    metal::float3 wi_raw,
+    metal::float3 wo_raw
+) {
+    metal::float3 _e2 = fb_rescale(wi_raw);
+    metal::float3 _e3 = fb_rescale(wo_raw);
+    float li = metal::dot(_e2, _e2);
+    float lo = metal::dot(_e3, _e3);
+    metal::float3 wi_2 = _e2 * (1.0 / metal::sqrt(li));
+    metal::float3 wo_2 = _e3 * (1.0 / metal::sqrt(lo));
+    metal::float3 s_1 = wi_2 + wo_2;
+    float len = metal::sqrt(metal::dot(s_1, s_1));
+    metal::float3 h = s_1 / metal::float3(len);
     bool valid = ((((li > 0.0) & (lo > 0.0)) & (wi_2.z >= FB_COS_MIN)) & (wo_2.z >= FB_COS_MIN)) & (len > 0.0);
     return FbPair {valid, {}, wi_2.z, wo_2.z, {}, h, (h.x * h.x) + (h.y * h.y), 0.5 * len, {}, wi_2, wo_2};
 }
@@ -56,8 +84,8 @@ float fb_brdf_ward_pow(
     float scale
 ) {
     FbPair _e4 = fb_pair(wi, wo);
-    float lobe = metal::pow(_e4.h[2], e);
-    return _e4.valid ? ((scale * lobe) / metal::sqrt(_e4.cos_i * _e4.cos_o)) : 0.0;
+    float _e7 = fb_powr(_e4.h[2], e);
+    return _e4.valid ? ((scale * _e7) / metal::sqrt(_e4.cos_i * _e4.cos_o)) : 0.0;
 }
 
 float fb_ward_pow(

@@ -50,6 +50,14 @@ float fb_pow16_(float x_2)
     return (_e1 * _e1);
 }
 
+float3 fb_rescale(float3 v)
+{
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) & (l <= 1.2676506e30));
+    return ((safe | (m == 0.0)) ? v : (v / (m).xxx));
+}
+
 FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg4, float arg5, float3 arg6, float3 arg7) {
     FbPair ret = (FbPair)0;
     ret.valid = arg0;
@@ -63,12 +71,14 @@ FbPair ConstructFbPair(bool arg0, float arg1, float arg2, float3 arg3, float arg
     return ret;
 }
 
-FbPair fb_pair(float3 wi_in, float3 wo_in)
+FbPair fb_pair(float3 wi_raw, float3 wo_raw)
 {
-    float li = dot(wi_in, wi_in);
-    float lo = dot(wo_in, wo_in);
-    float3 wi_2 = (wi_in * (1.0 / sqrt(li)));
-    float3 wo_2 = (wo_in * (1.0 / sqrt(lo)));
+    const float3 _e2 = fb_rescale(wi_raw);
+    const float3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    float3 wi_2 = (_e2 * (1.0 / sqrt(li)));
+    float3 wo_2 = (_e3 * (1.0 / sqrt(lo)));
     float3 s_1 = (wi_2 + wo_2);
     float len = sqrt(dot(s_1, s_1));
     float3 h = (s_1 / (len).xxx);

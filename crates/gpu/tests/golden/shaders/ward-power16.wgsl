@@ -51,8 +51,21 @@ struct FbPair {
     wo: vec3<f32>,
 }
 
-/// Normalises wi and wo (local frame, normal +z) and builds their half vector.
-fn fb_pair(wi_in: vec3<f32>, wo_in: vec3<f32>) -> FbPair {
+/// v divided by its largest component when |v|^2 leaves [2^-100, 2^100] (where it would
+/// underflow to 0 or overflow in f32, and a finite direction such as (1e-30, 0, 1e-30) would
+/// read as zero-length), else v: the normalisation is then scale-safe, as the CPU's
+/// (twin: fastbrdf::vec3::unit).
+fn fb_rescale(v: vec3<f32>) -> vec3<f32> {
+    let l = dot(v, v);
+    let m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    let safe = (l >= 7.888609052210118e-31) & (l <= 1.2676506002282294e30);
+    return select(v / m, v, safe | (m == 0.0));
+}
+
+/// Normalises wi and wo (local frame, normal +z, any finite length) and builds their half vector.
+fn fb_pair(wi_raw: vec3<f32>, wo_raw: vec3<f32>) -> FbPair {
+    let wi_in = fb_rescale(wi_raw);
+    let wo_in = fb_rescale(wo_raw);
     let li = dot(wi_in, wi_in);
     let lo = dot(wo_in, wo_in);
     let wi = wi_in * (1.0 / sqrt(li));
