@@ -141,7 +141,7 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
         let Some(&(_, kind)) = toks.first() else {
             continue;
         };
-        let at = |col: usize, m: String| err(file, Some(line), format!("column {col}: {m}"));
+        let at = |col: usize, m: String| err(file, Some(line), format!("{m} (column {col})"));
         let numbers = |what: &str, counts: &[usize]| -> Result<Vec<f32>> {
             let rest = &toks[1..];
             if !counts.contains(&rest.len()) {
@@ -343,8 +343,9 @@ pub fn parse_obj(file: &Path, text: &str) -> Result<TriMesh> {
 /// Loads an OBJ file: read once (bounded by [`MAX_OBJ_BYTES`]; pipes work), validated and
 /// built by the same parser.
 pub fn load_obj(path: &Path) -> Result<TriMesh> {
-    let text = fastbrdf_io::read_text_bounded(path, MAX_OBJ_BYTES, "an OBJ mesh")?;
-    parse_obj(path, &text)
+    let f = std::fs::File::open(path).map_err(|e| err(path, None, format!("cannot read: {e}")))?;
+    let bytes = fastbrdf_io::read_reader_bounded(f, path, MAX_OBJ_BYTES, "an OBJ mesh")?;
+    parse_obj(path, &fastbrdf_io::utf8_text(bytes, path)?)
 }
 
 /// Smooth vertex normals: each triangle adds its normal weighted by its area and by its angle

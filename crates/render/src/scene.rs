@@ -111,7 +111,7 @@ impl Light {
                 .map_err(|_| bad("not a number"))?;
             if v.len() != 3 || v.iter().any(|x| !(x.abs() <= MAX_LIGHT)) {
                 return Err(bad(&format!(
-                    "three finite numbers of magnitude at most {MAX_LIGHT:e} needed"
+                    "three finite numbers needed (each of magnitude at most {MAX_LIGHT:e})"
                 )));
             }
             Ok(Vec3::new(v[0], v[1], v[2]))

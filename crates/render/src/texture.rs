@@ -65,7 +65,9 @@ impl Texture {
             line: None,
             message: m,
         };
-        let bytes = fastbrdf_io::read_bounded(path, MAX_TEXTURE_BYTES, "a texture")?;
+        let f =
+            std::fs::File::open(path).map_err(|e| bad(format!("cannot read the texture: {e}")))?;
+        let bytes = fastbrdf_io::read_reader_bounded(f, path, MAX_TEXTURE_BYTES, "a texture")?;
         let reader = || {
             image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
                 .with_guessed_format()
