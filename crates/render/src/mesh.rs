@@ -316,7 +316,7 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
         ));
     }
     // A zero normal cannot shade: fall back to computed normals.
-    if p.normals.iter().any(|n| *n == Vec3::ZERO) {
+    if p.normals.contains(&Vec3::ZERO) {
         p.all_normals = false;
     }
     Ok(p)

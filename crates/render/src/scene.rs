@@ -109,7 +109,7 @@ impl Light {
                 .map(|x| x.trim().parse::<f32>())
                 .collect::<Result<_, _>>()
                 .map_err(|_| bad("not a number"))?;
-            if v.len() != 3 || v.iter().any(|x| !(x.abs() <= MAX_LIGHT)) {
+            if v.len() != 3 || v.iter().any(|x| !x.is_finite() || x.abs() > MAX_LIGHT) {
                 return Err(bad(&format!(
                     "three finite numbers needed (each of magnitude at most {MAX_LIGHT:e})"
                 )));
@@ -136,7 +136,7 @@ impl Light {
         if !(intensity >= 0.0 && intensity.is_finite()) || color.min_element() < 0.0 {
             return Err(bad("colour and intensity must be non-negative"));
         }
-        if !((color * intensity).max_element() <= MAX_LIGHT) {
+        if (color * intensity).max_element() > MAX_LIGHT {
             return Err(bad(&format!(
                 "colour x intensity must be at most {MAX_LIGHT:e} per channel (so that the render stays finite in f32)"
             )));
