@@ -29,6 +29,9 @@ use std::path::Path;
 /// Largest OBJ file read: 256 MiB (the face mesh is 40 KiB; 256 MiB is millions of faces).
 pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 
+/// Most triangles in a mesh (after triangulation): 2^23, about 1 GiB with the BVH.
+pub const MAX_TRIANGLES: usize = 1 << 23;
+
 /// Largest magnitude of a coordinate: products of coordinates in the camera and intersection
 /// code stay finite in f32 (1e9^3 < 3.4e38).
 pub const MAX_COORD: f32 = 1e9;
@@ -92,23 +95,12 @@ struct Parsed {
     faces: usize,
 }
 
-/// The tokens of a statement with their 1-based byte columns.
-fn tokens(s: &str) -> Vec<(usize, &str)> {
-    let mut out = Vec::new();
-    let mut start = None;
-    for (i, c) in s.char_indices() {
-        if c.is_whitespace() {
-            if let Some(st) = start.take() {
-                out.push((st + 1, &s[st..i]));
-            }
-        } else if start.is_none() {
-            start = Some(i);
-        }
-    }
-    if let Some(st) = start {
-        out.push((st + 1, &s[st..]));
-    }
-    out
+/// The tokens of a statement with their 1-based byte columns, lazily (a statement may be
+/// millions of tokens long; nothing per token is held beyond what the mesh keeps).
+fn tokens(s: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
+    s.split(|c: char| c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .map(move |t| (t.as_ptr() as usize - s.as_ptr() as usize + 1, t))
 }
 
 fn parse(file: &Path, text: &str) -> Result<Parsed> {
@@ -137,14 +129,16 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
                 None => break,
             }
         }
-        let toks = tokens(&stmt);
-        let Some(&(_, kind)) = toks.first() else {
+        let mut toks = tokens(&stmt);
+        let Some((_, kind)) = toks.next() else {
             continue;
         };
         let at = |col: usize, m: String| err(file, Some(line), format!("{m} (column {col})"));
         let numbers = |what: &str, counts: &[usize]| -> Result<Vec<f32>> {
-            let rest = &toks[1..];
+            // At most 8 numbers are held; a longer record is counted, not collected.
+            let rest: Vec<(usize, &str)> = toks.clone().take(8).collect();
             if !counts.contains(&rest.len()) {
+                let found = toks.clone().count();
                 let want = match counts {
                     [n] => format!("{n}"),
                     _ => {
@@ -155,7 +149,7 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
                 return Err(err(
                     file,
                     Some(line),
-                    format!("{what} needs {want} numbers, found {}", rest.len()),
+                    format!("{what} needs {want} numbers, found {found}"),
                 ));
             }
             rest.iter()
@@ -193,17 +187,24 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
                 vns.push(Vec3::new(x[0], x[1], x[2]));
             }
             "f" => {
-                let refs = &toks[1..];
-                if refs.len() < 3 {
+                let refs = toks.clone();
+                let n = refs.clone().take(3).count();
+                if n < 3 {
                     return Err(err(
                         file,
                         Some(line),
-                        format!("a face needs at least 3 vertices, found {}", refs.len()),
+                        format!("a face needs at least 3 vertices, found {n}"),
                     ));
                 }
                 let mut form = None;
-                let mut face = Vec::with_capacity(refs.len());
-                for &(col, r) in refs {
+                let mut face = Vec::new();
+                for (col, r) in refs {
+                    if p.triangles.len() + face.len() > MAX_TRIANGLES + 1 {
+                        return Err(at(
+                            col,
+                            format!("more than {MAX_TRIANGLES} triangles: the mesh is too large"),
+                        ));
+                    }
                     let parts: Vec<&str> = r.split('/').collect();
                     if parts.len() > 3 || parts[0].is_empty() {
                         return Err(at(
@@ -313,6 +314,17 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
             file,
             None,
             format!("no faces ({} vertices): nothing to render", vs.len()),
+        ));
+    }
+    let (lo, hi) = p.positions.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(lo, hi), q| (lo.min(*q), hi.max(*q)),
+    );
+    if (hi - lo).max_element() <= 0.0 {
+        return Err(err(
+            file,
+            None,
+            "every face's vertices are at one point: nothing to frame or render",
         ));
     }
     // A zero normal cannot shade: fall back to computed normals.

@@ -181,6 +181,20 @@ fn every_bad_obj_is_refused_with_its_file_line_and_column() {
     }
     let e = validate_obj(f, TRI).unwrap_err().to_string();
     assert_eq!(e, "bad.obj: no faces (3 vertices): nothing to render");
+    let e = validate_obj(f, "v 1 1 1\nv 1 1 1\nv 1 1 1\nf 1 2 3\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("bad.obj: every face's vertices are at one point"),
+        "{e}"
+    );
+    let e = validate_obj(f, "v 1 2 3 4 5 6 7 8 9 10 11\n")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("bad.obj:1: vertex needs 3, 4, 6 or 7 numbers, found 11"),
+        "{e}"
+    );
     let e = load_obj(Path::new("/nonexistent/face.obj"))
         .unwrap_err()
         .to_string();
