@@ -151,6 +151,8 @@ pub fn render_model(
         pb.set_position(d as u64);
     })?;
     pb.finish_and_clear();
+    film.check_finite()
+        .map_err(|e| CliError::input(format!("--model {id}: {e}")))?;
     Ok(film)
 }
 
@@ -354,14 +356,10 @@ pub fn compare_models(
     check_compare(opts, models.len())?;
     let (w, h) = (opts.width, opts.height);
     let rf = render_model(spec, loaded, opts, &reference.id, &reference.params)?;
-    rf.check_finite()?;
     let r = rf.to_srgb8(exposure);
     let mut films = vec![];
     for m in models {
-        let f = render_model(spec, loaded, opts, &m.id, &m.params)?;
-        f.check_finite()
-            .map_err(|e| CliError::input(format!("{}: {e}", m.label)))?;
-        films.push(f);
+        films.push(render_model(spec, loaded, opts, &m.id, &m.params)?);
     }
     let tests: Vec<Vec<u8>> = films.iter().map(|f| f.to_srgb8(exposure)).collect();
     let metrics: Vec<Scores> = models
