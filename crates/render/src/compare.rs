@@ -1,9 +1,20 @@
-//! Comparing renders: RMSE and PSNR on sRGB values in [0, 1], FLIP (NVIDIA's perceptual
-//! metric, `nv-flip` bindings to the reference implementation, default 67 pixels per degree),
-//! heat maps of the per-pixel difference (magma colour map, shared scale, with a colour bar),
-//! and a labelled grid.
+//! Comparing renders. Two sets of metrics:
+//! - on the pictures as shown ([`metrics`]): RMSE and PSNR of clipped 8-bit sRGB values in
+//!   [0, 1], and FLIP (NVIDIA's perceptual metric, `nv-flip` bindings to the reference
+//!   implementation, default 67 pixels per degree) on those pictures. Clipping hides errors in
+//!   highlights above 1.0;
+//! - on the linear film ([`linear_metrics`]): RMSE of the linear radiance (no exposure, no
+//!   clipping), PSNR against the reference's peak channel value (`20 log10(peak / rmse)`), and
+//!   FLIP after the Reinhard tone map `x / (1 + x)` (exposure applied) and sRGB encoding, which
+//!   compresses highlights instead of clipping them (nv-flip has no HDR-FLIP).
+//!
+//! Heat maps of the per-pixel difference (magma colour map, shared scale, with a colour bar),
+//! and a labelled grid whose whole size and the comparison's total work are capped
+//! ([`check_compare`]) before anything is rendered.
 
 use crate::error::{RenderError, Result};
+use crate::film::Film;
+use crate::texture::linear_to_srgb;
 use plotters::prelude::*;
 use serde::Serialize;
 
@@ -46,6 +57,130 @@ pub fn metrics(model: &str, reference: &[u8], test: &[u8], w: u32, h: u32) -> Me
         psnr,
         flip,
     }
+}
+
+/// Metrics on the linear film (see the module's documentation).
+#[derive(Clone, Debug, Serialize)]
+pub struct LinearMetrics {
+    /// Root mean square difference of linear radiance, over all channels (no exposure).
+    pub rmse: f64,
+    /// `20 log10(peak / rmse)` in dB; infinite for identical films (JSON: null).
+    pub psnr: f64,
+    /// The peak used for PSNR: the reference's largest channel value.
+    pub peak: f64,
+    /// Mean FLIP error in [0, 1] after the Reinhard tone map (exposure applied) and sRGB.
+    pub flip_reinhard: f64,
+}
+
+/// The Reinhard tone map `x / (1 + x)` per channel after `exposure`, sRGB 8-bit.
+pub fn reinhard_srgb8(film: &Film, exposure: f32) -> Vec<u8> {
+    film.pixels
+        .iter()
+        .flat_map(|p| {
+            (*p * exposure).to_array().map(|c| {
+                let c = c.max(0.0);
+                (linear_to_srgb(c / (1.0 + c)) * 255.0 + 0.5) as u8
+            })
+        })
+        .collect()
+}
+
+/// RMSE and PSNR of linear radiance and FLIP after the Reinhard tone map, of `test` against
+/// `reference` (same size).
+pub fn linear_metrics(reference: &Film, test: &Film, exposure: f32) -> LinearMetrics {
+    let se: f64 = reference
+        .pixels
+        .iter()
+        .zip(&test.pixels)
+        .map(|(a, b)| {
+            let d = (*a - *b).as_dvec3();
+            d.length_squared()
+        })
+        .sum();
+    let rmse = (se / (3 * reference.pixels.len()).max(1) as f64).sqrt();
+    let peak = reference
+        .pixels
+        .iter()
+        .map(|p| f64::from(p.max_element()))
+        .fold(0.0, f64::max);
+    let psnr = if rmse == 0.0 {
+        f64::INFINITY
+    } else {
+        20.0 * (peak.max(f64::MIN_POSITIVE) / rmse).log10()
+    };
+    let (r, t) = (
+        reinhard_srgb8(reference, exposure),
+        reinhard_srgb8(test, exposure),
+    );
+    let flip_reinhard = if r == t {
+        0.0
+    } else {
+        let (w, h) = (reference.width, reference.height);
+        let err = nv_flip::flip(
+            nv_flip::FlipImageRgb8::with_data(w, h, &r),
+            nv_flip::FlipImageRgb8::with_data(w, h, &t),
+            nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+        );
+        nv_flip::FlipPool::from_image(&err).mean() as f64
+    };
+    LinearMetrics {
+        rmse,
+        psnr,
+        peak,
+        flip_reinhard,
+    }
+}
+
+/// Most models in one comparison.
+pub const MAX_MODELS: usize = 64;
+/// Most samples a comparison may take: cells x pixels x samples per pixel (2^31, minutes of
+/// rendering).
+pub const MAX_COMPARE_SAMPLES: u64 = 1 << 31;
+/// Largest side of a grid picture.
+pub const MAX_GRID_SIDE: u64 = 1 << 16;
+/// Largest grid picture: 2^26 pixels (192 MiB of 8-bit RGB; the renders of its cells then
+/// take at most ~400 MiB).
+pub const MAX_GRID_PIXELS: u64 = 1 << 26;
+
+const LABEL_H: u32 = 34;
+const PAD: u32 = 8;
+const BAR_W: u32 = 150;
+
+/// The size of a grid of `rows` x `cols` cells of `w` x `h` (with a colour bar or not), in
+/// u64 so that it cannot overflow.
+pub fn grid_size(rows: usize, cols: usize, w: u32, h: u32, bar: bool) -> (u64, u64) {
+    let (pad, w, h) = (u64::from(PAD), u64::from(w), u64::from(h));
+    (
+        pad + cols as u64 * (w + pad) + if bar { u64::from(BAR_W) } else { 0 },
+        pad + rows as u64 * (h + u64::from(LABEL_H) + pad),
+    )
+}
+
+/// Checks a comparison of `models` models (plus the reference) at `w` x `h` pixels, `spp` x
+/// `spp` samples per pixel, before anything is rendered: at most [`MAX_MODELS`] models, the
+/// whole grid picture (two rows) within [`MAX_GRID_SIDE`] per side and [`MAX_GRID_PIXELS`]
+/// pixels, and the total work within [`MAX_COMPARE_SAMPLES`].
+pub fn check_compare(models: usize, w: u32, h: u32, spp: u32) -> Result<()> {
+    if models == 0 || models > MAX_MODELS {
+        return Err(RenderError::Invalid(format!(
+            "{models} models: compare takes 1 to {MAX_MODELS}"
+        )));
+    }
+    let (gw, gh) = grid_size(2, models + 1, w, h, true);
+    if gw > MAX_GRID_SIDE || gh > MAX_GRID_SIDE || gw * gh > MAX_GRID_PIXELS {
+        return Err(RenderError::Invalid(format!(
+            "the comparison picture would be {gw}x{gh} pixels ({} cells of {w}x{h} and their heat maps): at most {MAX_GRID_SIDE} per side and {MAX_GRID_PIXELS} pixels; use a smaller --size or fewer models",
+            models + 1
+        )));
+    }
+    let samples = (models as u64 + 1) * u64::from(w) * u64::from(h) * u64::from(spp).pow(2);
+    if samples > MAX_COMPARE_SAMPLES {
+        return Err(RenderError::Invalid(format!(
+            "the comparison would trace {samples} samples ({} renders of {w}x{h} at {spp}x{spp} samples per pixel): at most {MAX_COMPARE_SAMPLES}; use a smaller --size, --spp or fewer models",
+            models + 1
+        )));
+    }
+    Ok(())
 }
 
 /// Per-pixel difference: the mean absolute sRGB difference over the three channels, in [0, 1].
@@ -100,14 +235,16 @@ pub fn grid(
     bar_max: Option<f32>,
 ) -> Result<(Vec<u8>, u32, u32)> {
     register_font();
-    let label_h = 34;
-    let pad = 8;
-    let cols = rows.iter().map(Vec::len).max().unwrap_or(0) as u32;
-    let bar_w = if bar_max.is_some() { 150 } else { 0 };
-    let (gw, gh) = (
-        pad + cols * (w + pad) + bar_w,
-        pad + rows.len() as u32 * (h + label_h + pad),
-    );
+    let (label_h, pad) = (LABEL_H, PAD);
+    let cols = rows.iter().map(Vec::len).max().unwrap_or(0);
+    let bar_w = if bar_max.is_some() { BAR_W } else { 0 };
+    let (gw, gh) = grid_size(rows.len(), cols, w, h, bar_max.is_some());
+    if gw > MAX_GRID_SIDE || gh > MAX_GRID_SIDE || gw * gh > MAX_GRID_PIXELS {
+        return Err(RenderError::Invalid(format!(
+            "a grid of {gw}x{gh} pixels is too large: at most {MAX_GRID_SIDE} per side and {MAX_GRID_PIXELS} pixels"
+        )));
+    }
+    let (gw, gh) = (gw as u32, gh as u32);
     let mut buf = vec![255u8; (gw * gh * 3) as usize];
     for (r, row) in rows.iter().enumerate() {
         for (c, cell) in row.iter().enumerate() {

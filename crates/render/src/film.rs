@@ -1,5 +1,6 @@
-//! Film: linear HDR RGB accumulation; sRGB PNG output with exposure, linear EXR output; sizes
-//! checked against a memory cap; files written to a temporary name and renamed.
+//! Film: linear HDR RGB accumulation; sRGB PNG output (sRGB chunk) with exposure, linear EXR
+//! output (scanline ZIP, no exposure); sizes checked against a memory cap; non-finite pixels
+//! refused before any write; files written to a temporary name and renamed.
 
 use crate::error::{RenderError, Result};
 use crate::texture::linear_to_srgb;
@@ -74,68 +75,88 @@ impl Film {
             .collect()
     }
 
-    /// Writes `.png` (sRGB, exposure applied) or `.exr` (linear, exposure applied) by the
-    /// file's extension.
+    /// Errors if any pixel is NaN or infinite (the last guard before a file is written: no
+    /// NaN or inf ever reaches a PNG or EXR). The message names the first such pixel.
+    pub fn check_finite(&self) -> Result<()> {
+        let bad = self.pixels.iter().filter(|p| !p.is_finite()).count();
+        if let Some(i) = self.pixels.iter().position(|p| !p.is_finite()) {
+            let (x, y) = (i as u32 % self.width, i as u32 / self.width);
+            return Err(RenderError::Invalid(format!(
+                "the render has {bad} non-finite pixels (the first at x = {x}, y = {y}: {:?}): the model, its parameters or the lights overflow f32; nothing was written",
+                self.pixels[i].to_array()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Writes `.png` (sRGB with an sRGB chunk, `exposure` applied, clipped to [0, 1]) or
+    /// `.exr` (linear radiance, exposure NOT applied, scanline ZIP) by the file's extension,
+    /// after [`Film::check_finite`].
     pub fn save(&self, path: &Path, exposure: f32) -> Result<()> {
-        let out = |m: String| RenderError::Output {
-            file: path.display().to_string(),
-            message: m,
-        };
+        self.check_finite()?;
         match path
             .extension()
             .and_then(|e| e.to_str())
             .map(|e| e.to_ascii_lowercase())
             .as_deref()
         {
-            Some("png") => {
-                let mut bytes = Vec::new();
-                image::codecs::png::PngEncoder::new(&mut bytes)
-                    .write_image_rgb8(&self.to_srgb8(exposure), self.width, self.height)
-                    .map_err(|e| out(e.to_string()))?;
-                write_atomic(path, &bytes)
-            }
-            Some("exr") => {
-                let data: Vec<f32> = self
-                    .pixels
-                    .iter()
-                    .flat_map(|p| (*p * exposure).to_array())
-                    .collect();
-                let img =
-                    image::Rgb32FImage::from_raw(self.width, self.height, data).expect("sized");
-                let mut cursor = std::io::Cursor::new(Vec::new());
-                image::DynamicImage::ImageRgb32F(img)
-                    .write_to(&mut cursor, image::ImageFormat::OpenExr)
-                    .map_err(|e| out(e.to_string()))?;
-                write_atomic(path, cursor.get_ref())
-            }
+            Some("png") => write_atomic(
+                path,
+                &png_bytes(&self.to_srgb8(exposure), self.width, self.height)?,
+            ),
+            Some("exr") => write_atomic(path, &self.exr_bytes()?),
             _ => Err(RenderError::Invalid(format!(
                 "--out {}: the file must end in .png or .exr",
                 path.display()
             ))),
         }
     }
-}
 
-trait Rgb8 {
-    fn write_image_rgb8(self, rgb: &[u8], w: u32, h: u32) -> image::ImageResult<()>;
-}
-
-impl<W: std::io::Write> Rgb8 for image::codecs::png::PngEncoder<W> {
-    fn write_image_rgb8(self, rgb: &[u8], w: u32, h: u32) -> image::ImageResult<()> {
-        use image::ImageEncoder;
-        self.write_image(rgb, w, h, image::ExtendedColorType::Rgb8)
+    /// The film as OpenEXR: linear RGB, 32-bit float, one scanline-block layer with ZIP
+    /// compression (16 lines per block; read by every viewer, unlike tiled files).
+    pub fn exr_bytes(&self) -> Result<Vec<u8>> {
+        use exr::prelude::*;
+        self.check_finite()?;
+        let (w, h) = (self.width as usize, self.height as usize);
+        let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
+            let p = self.pixels[y * w + x];
+            (p.x, p.y, p.z)
+        });
+        let encoding = Encoding {
+            compression: Compression::ZIP16,
+            blocks: Blocks::ScanLines,
+            line_order: LineOrder::Increasing,
+        };
+        let layer = Layer::new((w, h), LayerAttributes::default(), encoding, channels);
+        let mut cursor = std::io::Cursor::new(Vec::new());
+        Image::from_layer(layer)
+            .write()
+            .to_buffered(&mut cursor)
+            .map_err(|e| RenderError::Output {
+                file: "<exr>".into(),
+                message: e.to_string(),
+            })?;
+        Ok(cursor.into_inner())
     }
 }
 
-/// Encodes 8-bit RGB as PNG.
+/// Encodes 8-bit sRGB RGB as PNG with an sRGB chunk (perceptual intent; the png crate adds
+/// the gAMA and cHRM fallbacks), so viewers know the colour space.
 pub fn png_bytes(rgb: &[u8], w: u32, h: u32) -> Result<Vec<u8>> {
+    let fail = |e: png::EncodingError| RenderError::Output {
+        file: "<png>".into(),
+        message: e.to_string(),
+    };
     let mut bytes = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut bytes)
-        .write_image_rgb8(rgb, w, h)
-        .map_err(|e| RenderError::Output {
-            file: "<png>".into(),
-            message: e.to_string(),
-        })?;
+    {
+        let mut enc = png::Encoder::new(&mut bytes, w, h);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        let mut writer = enc.write_header().map_err(fail)?;
+        writer.write_image_data(rgb).map_err(fail)?;
+        writer.finish().map_err(fail)?;
+    }
     Ok(bytes)
 }
 

@@ -1,12 +1,40 @@
-//! OBJ meshes: a line-by-line validation that names the file and line of every problem
-//! (tobj's errors carry no line numbers), loading with tobj, and smooth vertex normals,
-//! area- and angle-weighted, when the file has none.
+//! OBJ meshes: one hand-written parser that both validates and builds the mesh, so that what
+//! it accepts it can load, and every rejection names the file, line and column. Smooth vertex
+//! normals, area- and angle-weighted, when the file has none.
+//!
+//! Written by hand rather than with `tobj` because tobj's errors carry no line numbers, it
+//! reads the file itself (a pipe cannot be read twice) and follows `mtllib` into unbounded
+//! reads. Accepted (Wavefront OBJ, polygonal subset):
+//! - `v x y z [w]` or `v x y z [w] r g b` (weights and colours are checked, then ignored),
+//!   `vt u [v [w]]`, `vn x y z`: every number must be finite and of magnitude at most
+//!   [`MAX_COORD`];
+//! - `f` with 3 or more vertices in one form per face: `v`, `v/vt`, `v//vn` or `v/vt/vn`;
+//!   indices 1-based, negative ones count back from the last element defined; polygons are
+//!   triangulated as a fan (convex polygons, like tobj);
+//! - comments (`#` to the end of the line), blank lines, a `\` at the end of a line continues
+//!   the statement on the next one;
+//! - the other OBJ statements (`o`, `g`, `s`, `usemtl`, `mtllib`, `l`, `p`, free-form
+//!   geometry...) are skipped: materials are not used (the renderer's material comes from the
+//!   options), so `mtllib` files are never opened.
+//!
+//! Memory: the file is read once, bounded by [`MAX_OBJ_BYTES`]; the mesh is at most a small
+//! multiple of the file's size.
 
 use crate::error::{RenderError, Result};
 use crate::geometry::TriMesh;
 use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
+
+/// Largest OBJ file read: 256 MiB (the face mesh is 40 KiB; 256 MiB is millions of faces).
+pub const MAX_OBJ_BYTES: u64 = 256 << 20;
+
+/// Most triangles in a mesh (after triangulation): 2^23, about 1 GiB with the BVH.
+pub const MAX_TRIANGLES: usize = 1 << 23;
+
+/// Largest magnitude of a coordinate: products of coordinates in the camera and intersection
+/// code stay finite in f32 (1e9^3 < 3.4e38).
+pub const MAX_COORD: f32 = 1e9;
 
 fn err(file: &Path, line: Option<usize>, message: impl Into<String>) -> RenderError {
     RenderError::Input {
@@ -16,176 +44,320 @@ fn err(file: &Path, line: Option<usize>, message: impl Into<String>) -> RenderEr
     }
 }
 
-/// Checks an OBJ text: vertices with finite coordinates, faces with at least three valid
-/// references to elements defined before them (negative indices count back), at least one
-/// face. Returns the number of faces.
-pub fn validate_obj(file: &Path, text: &str) -> Result<usize> {
-    let (mut nv, mut nt, mut nn, mut faces) = (0usize, 0usize, 0usize, 0usize);
-    for (i, raw) in text.lines().enumerate() {
+/// OBJ statements that are valid but not rendered (skipped).
+const SKIPPED: &[&str] = &[
+    "o",
+    "g",
+    "s",
+    "usemtl",
+    "mtllib",
+    "l",
+    "p",
+    "vp",
+    "maplib",
+    "usemap",
+    "lod",
+    "shadow_obj",
+    "trace_obj",
+    "bevel",
+    "c_interp",
+    "d_interp",
+    "cstype",
+    "deg",
+    "bmat",
+    "step",
+    "curv",
+    "curv2",
+    "surf",
+    "parm",
+    "trim",
+    "hole",
+    "scrv",
+    "sp",
+    "end",
+    "con",
+    "mg",
+    "ctech",
+    "stech",
+    "call",
+    "csh",
+];
+
+/// A parsed OBJ: triangles over unique (position, uv, normal) corners, like tobj with
+/// `single_index` and `triangulate`.
+struct Parsed {
+    positions: Vec<Vec3>,
+    normals: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    triangles: Vec<[u32; 3]>,
+    all_normals: bool,
+    all_uvs: bool,
+    faces: usize,
+}
+
+/// The tokens of a statement with their 1-based byte columns, lazily (a statement may be
+/// millions of tokens long; nothing per token is held beyond what the mesh keeps).
+fn tokens(s: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
+    s.split(|c: char| c.is_whitespace())
+        .filter(|t| !t.is_empty())
+        .map(move |t| (t.as_ptr() as usize - s.as_ptr() as usize + 1, t))
+}
+
+fn parse(file: &Path, text: &str) -> Result<Parsed> {
+    let (mut vs, mut vts, mut vns) = (Vec::new(), Vec::new(), Vec::new());
+    let mut corners: HashMap<(u32, Option<u32>, Option<u32>), u32> = HashMap::new();
+    let mut p = Parsed {
+        positions: Vec::new(),
+        normals: Vec::new(),
+        uvs: Vec::new(),
+        triangles: Vec::new(),
+        all_normals: true,
+        all_uvs: true,
+        faces: 0,
+    };
+    let mut lines = text.lines().enumerate();
+    while let Some((i, raw)) = lines.next() {
         let line = i + 1;
-        let content = raw.split('#').next().unwrap_or("").trim();
-        let mut tok = content.split_whitespace();
-        let Some(kind) = tok.next() else { continue };
-        let rest: Vec<&str> = tok.collect();
-        let floats = |need: usize, what: &str| -> Result<()> {
-            if rest.len() < need {
+        // The statement: this line up to a comment, joined with continuation lines. Columns
+        // are those of the first line (continued statements are rare).
+        let mut stmt = raw.split('#').next().unwrap_or("").to_string();
+        while stmt.trim_end().ends_with('\\') {
+            let t = stmt.trim_end();
+            stmt = format!("{} ", &t[..t.len() - 1]);
+            match lines.next() {
+                Some((_, next)) => stmt.push_str(next.split('#').next().unwrap_or("")),
+                None => break,
+            }
+        }
+        let mut toks = tokens(&stmt);
+        let Some((_, kind)) = toks.next() else {
+            continue;
+        };
+        let at = |col: usize, m: String| err(file, Some(line), format!("{m} (column {col})"));
+        let numbers = |what: &str, counts: &[usize]| -> Result<Vec<f32>> {
+            // At most 8 numbers are held; a longer record is counted, not collected.
+            let rest: Vec<(usize, &str)> = toks.clone().take(8).collect();
+            if !counts.contains(&rest.len()) {
+                let found = toks.clone().count();
+                let want = match counts {
+                    [n] => format!("{n}"),
+                    _ => {
+                        let s: Vec<String> = counts.iter().map(|c| c.to_string()).collect();
+                        format!("{} or {}", s[..s.len() - 1].join(", "), s[s.len() - 1])
+                    }
+                };
                 return Err(err(
                     file,
                     Some(line),
-                    format!("{what} needs {need} numbers, found {}", rest.len()),
+                    format!("{what} needs {want} numbers, found {found}"),
                 ));
             }
-            for t in &rest[..need] {
-                let x: f32 = t
-                    .parse()
-                    .map_err(|_| err(file, Some(line), format!("{what}: '{t}' is not a number")))?;
-                if !x.is_finite() {
-                    return Err(err(
-                        file,
-                        Some(line),
-                        format!("{what}: '{t}' is not a finite number"),
-                    ));
-                }
-            }
-            Ok(())
+            rest.iter()
+                .map(|&(col, t)| {
+                    let x: f32 = t.parse().map_err(|_| {
+                        at(
+                            col,
+                            format!("{what}: '{}' is not a number", fastbrdf_io::shorten(t, 40)),
+                        )
+                    })?;
+                    if !x.is_finite() || x.abs() > MAX_COORD {
+                        return Err(at(
+                            col,
+                            format!(
+                                "{what}: '{}' is not a finite number of magnitude at most {MAX_COORD:e}",
+                                fastbrdf_io::shorten(t, 40)
+                            ),
+                        ));
+                    }
+                    Ok(x)
+                })
+                .collect()
         };
         match kind {
             "v" => {
-                floats(3, "vertex")?;
-                nv += 1;
+                let x = numbers("vertex", &[3, 4, 6, 7])?;
+                vs.push(Vec3::new(x[0], x[1], x[2]));
             }
             "vt" => {
-                floats(1, "texture coordinate")?;
-                nt += 1;
+                let x = numbers("texture coordinate", &[1, 2, 3])?;
+                vts.push(Vec2::new(x[0], x.get(1).copied().unwrap_or(0.0)));
             }
             "vn" => {
-                floats(3, "normal")?;
-                nn += 1;
+                let x = numbers("normal", &[3])?;
+                vns.push(Vec3::new(x[0], x[1], x[2]));
             }
             "f" => {
-                if rest.len() < 3 {
+                let refs = toks.clone();
+                let n = refs.clone().take(3).count();
+                if n < 3 {
                     return Err(err(
                         file,
                         Some(line),
-                        format!("a face needs at least 3 vertices, found {}", rest.len()),
+                        format!("a face needs at least 3 vertices, found {n}"),
                     ));
                 }
-                for r in &rest {
+                let mut form = None;
+                let mut face = Vec::new();
+                for (col, r) in refs {
+                    if p.triangles.len() + face.len() > MAX_TRIANGLES + 1 {
+                        return Err(at(
+                            col,
+                            format!("more than {MAX_TRIANGLES} triangles: the mesh is too large"),
+                        ));
+                    }
                     let parts: Vec<&str> = r.split('/').collect();
-                    let check = |idx: &str, count: usize, what: &str| -> Result<()> {
+                    if parts.len() > 3 || parts[0].is_empty() {
+                        return Err(at(
+                            col,
+                            format!(
+                                "face: '{}' is not v, v/vt, v//vn or v/vt/vn",
+                                fastbrdf_io::shorten(r, 40)
+                            ),
+                        ));
+                    }
+                    let this = (parts.len(), parts.get(1).is_some_and(|s| !s.is_empty()));
+                    match form {
+                        None => form = Some(this),
+                        Some(f) if f != this => {
+                            return Err(at(
+                                col,
+                                format!(
+                                    "face: '{}' mixes forms (every vertex of a face must be v, v/vt, v//vn or v/vt/vn alike)",
+                                    fastbrdf_io::shorten(r, 40)
+                                ),
+                            ));
+                        }
+                        _ => {}
+                    }
+                    let index = |idx: &str, count: usize, what: &str| -> Result<u32> {
                         if idx.is_empty() {
-                            return Ok(());
+                            return Err(at(
+                                col,
+                                format!(
+                                    "face: '{}' has an empty {what} index",
+                                    fastbrdf_io::shorten(r, 40)
+                                ),
+                            ));
                         }
                         let k: i64 = idx.parse().map_err(|_| {
-                            err(
-                                file,
-                                Some(line),
-                                format!("face: '{r}' has a non-integer {what} index"),
+                            at(
+                                col,
+                                format!(
+                                    "face: '{}' has a non-integer {what} index",
+                                    fastbrdf_io::shorten(r, 40)
+                                ),
                             )
                         })?;
                         let resolved = if k < 0 { count as i64 + k + 1 } else { k };
                         if k == 0 || resolved < 1 || resolved > count as i64 {
-                            return Err(err(
-                                file,
-                                Some(line),
+                            return Err(at(
+                                col,
                                 format!(
-                                    "face: {what} index {k} is out of range ({count} {what}s defined so far)"
+                                    "face: {what} index {k} is out of range ({count} defined so far{})",
+                                    if k == 0 { "; indices start at 1" } else { "" }
                                 ),
                             ));
                         }
-                        Ok(())
+                        Ok((resolved - 1) as u32)
                     };
-                    if parts.is_empty() || parts[0].is_empty() {
-                        return Err(err(
-                            file,
-                            Some(line),
-                            format!("face: '{r}' has no vertex index"),
-                        ));
+                    let v = index(parts[0], vs.len(), "vertex")?;
+                    let t = match parts.get(1) {
+                        Some(s) if !s.is_empty() || parts.len() == 2 => {
+                            Some(index(s, vts.len(), "texture coordinate")?)
+                        }
+                        _ => None, // v//vn
+                    };
+                    let n = match parts.get(2) {
+                        Some(s) => Some(index(s, vns.len(), "normal")?),
+                        None => None,
+                    };
+                    let next = p.positions.len() as u32;
+                    let id = *corners.entry((v, t, n)).or_insert(next);
+                    if id == next {
+                        p.positions.push(vs[v as usize]);
+                        match n {
+                            Some(n) => p.normals.push(vns[n as usize].normalize_or_zero()),
+                            None => {
+                                p.all_normals = false;
+                                p.normals.push(Vec3::ZERO);
+                            }
+                        }
+                        match t {
+                            Some(t) => p.uvs.push(vts[t as usize]),
+                            None => {
+                                p.all_uvs = false;
+                                p.uvs.push(Vec2::ZERO);
+                            }
+                        }
                     }
-                    check(parts[0], nv, "vertex")?;
-                    if let Some(t) = parts.get(1) {
-                        check(t, nt, "texture coordinate")?;
-                    }
-                    if let Some(n) = parts.get(2) {
-                        check(n, nn, "normal")?;
-                    }
+                    face.push(id);
                 }
-                faces += 1;
+                for k in 1..face.len() - 1 {
+                    p.triangles.push([face[0], face[k], face[k + 1]]);
+                }
+                p.faces += 1;
             }
-            _ => {}
+            k if SKIPPED.contains(&k) => {}
+            k => {
+                return Err(at(
+                    1 + stmt.len() - stmt.trim_start().len(),
+                    format!(
+                        "'{}' is not an OBJ statement (expected v, vt, vn, f, o, g, s, usemtl, mtllib, ...)",
+                        fastbrdf_io::shorten(k, 40)
+                    ),
+                ));
+            }
         }
     }
-    if faces == 0 {
+    if p.faces == 0 {
         return Err(err(
             file,
             None,
-            format!("no faces ({nv} vertices): nothing to render"),
+            format!("no faces ({} vertices): nothing to render", vs.len()),
         ));
     }
-    Ok(faces)
+    let (lo, hi) = p.positions.iter().fold(
+        (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)),
+        |(lo, hi), q| (lo.min(*q), hi.max(*q)),
+    );
+    if (hi - lo).max_element() <= 0.0 {
+        return Err(err(
+            file,
+            None,
+            "every face's vertices are at one point: nothing to frame or render",
+        ));
+    }
+    // A zero normal cannot shade: fall back to computed normals.
+    if p.normals.contains(&Vec3::ZERO) {
+        p.all_normals = false;
+    }
+    Ok(p)
 }
 
-/// Loads an OBJ file into one triangle mesh, validating it first.
-pub fn load_obj(path: &Path) -> Result<TriMesh> {
-    let text =
-        std::fs::read_to_string(path).map_err(|e| err(path, None, format!("cannot read: {e}")))?;
-    validate_obj(path, &text)?;
-    let opts = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
+/// Checks an OBJ text (every number of every record, every index, the face forms); returns
+/// the number of faces. The error names the file, line and column.
+pub fn validate_obj(file: &Path, text: &str) -> Result<usize> {
+    parse(file, text).map(|p| p.faces)
+}
+
+/// Builds one triangle mesh from an OBJ text (`file` names it in errors).
+pub fn parse_obj(file: &Path, text: &str) -> Result<TriMesh> {
+    let p = parse(file, text)?;
+    let normals = if p.all_normals {
+        p.normals
+    } else {
+        smooth_normals(&p.positions, &p.triangles)
     };
-    let (models, _materials) =
-        tobj::load_obj(path, &opts).map_err(|e| err(path, None, format!("cannot load: {e}")))?;
-    let (mut positions, mut normals, mut uvs, mut triangles) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let mut all_have_normals = true;
-    let mut all_have_uvs = true;
-    for m in &models {
-        let mesh = &m.mesh;
-        let base = positions.len() as u32;
-        let n = mesh.positions.len() / 3;
-        positions.extend(
-            mesh.positions
-                .chunks_exact(3)
-                .map(|p| Vec3::new(p[0], p[1], p[2])),
-        );
-        if mesh.normals.len() == mesh.positions.len() {
-            normals.extend(
-                mesh.normals
-                    .chunks_exact(3)
-                    .map(|v| Vec3::new(v[0], v[1], v[2]).normalize_or_zero()),
-            );
-        } else {
-            all_have_normals = false;
-            normals.extend(std::iter::repeat_n(Vec3::ZERO, n));
-        }
-        if mesh.texcoords.len() == 2 * n {
-            uvs.extend(
-                mesh.texcoords
-                    .chunks_exact(2)
-                    .map(|t| Vec2::new(t[0], t[1])),
-            );
-        } else {
-            all_have_uvs = false;
-            uvs.extend(std::iter::repeat_n(Vec2::ZERO, n));
-        }
-        triangles.extend(
-            mesh.indices
-                .chunks_exact(3)
-                .map(|t| [base + t[0], base + t[1], base + t[2]]),
-        );
-    }
-    if triangles.is_empty() {
-        return Err(err(path, None, "no faces after triangulation"));
-    }
-    if !all_have_normals {
-        normals = smooth_normals(&positions, &triangles);
-    }
-    if !all_have_uvs {
-        uvs.clear();
-    }
-    Ok(TriMesh::new(positions, normals, uvs, triangles))
+    let uvs = if p.all_uvs { p.uvs } else { Vec::new() };
+    Ok(TriMesh::new(p.positions, normals, uvs, p.triangles))
+}
+
+/// Loads an OBJ file: read once (bounded by [`MAX_OBJ_BYTES`]; pipes work), validated and
+/// built by the same parser.
+pub fn load_obj(path: &Path) -> Result<TriMesh> {
+    let f = std::fs::File::open(path).map_err(|e| err(path, None, format!("cannot read: {e}")))?;
+    let bytes = fastbrdf_io::read_reader_bounded(f, path, MAX_OBJ_BYTES, "an OBJ mesh")?;
+    parse_obj(path, &fastbrdf_io::utf8_text(bytes, path)?)
 }
 
 /// Smooth vertex normals: each triangle adds its normal weighted by its area and by its angle

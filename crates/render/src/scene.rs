@@ -71,6 +71,12 @@ impl Camera {
     }
 }
 
+/// Largest magnitude of a light's position or direction components and of its colour x
+/// intensity per channel: with BRDF peaks of at most ~1e8 and 1 / distance^2 clamped at 1e12
+/// the render stays well inside f32 in practice; [`crate::film::Film::check_finite`] refuses
+/// whatever still overflows.
+pub const MAX_LIGHT: f32 = 1e6;
+
 /// Where a light is.
 #[derive(Clone, Copy, Debug)]
 pub enum LightKind {
@@ -103,8 +109,10 @@ impl Light {
                 .map(|x| x.trim().parse::<f32>())
                 .collect::<Result<_, _>>()
                 .map_err(|_| bad("not a number"))?;
-            if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
-                return Err(bad("three finite numbers needed"));
+            if v.len() != 3 || v.iter().any(|x| !x.is_finite() || x.abs() > MAX_LIGHT) {
+                return Err(bad(&format!(
+                    "three finite numbers needed (each of magnitude at most {MAX_LIGHT:e})"
+                )));
             }
             Ok(Vec3::new(v[0], v[1], v[2]))
         };
@@ -128,13 +136,19 @@ impl Light {
         if !(intensity >= 0.0 && intensity.is_finite()) || color.min_element() < 0.0 {
             return Err(bad("colour and intensity must be non-negative"));
         }
+        if (color * intensity).max_element() > MAX_LIGHT {
+            return Err(bad(&format!(
+                "colour x intensity must be at most {MAX_LIGHT:e} per channel (so that the render stays finite in f32)"
+            )));
+        }
         let kind = match parts[0] {
             "dir" => {
-                if p.length_squared() == 0.0 {
+                if p == Vec3::ZERO {
                     return Err(bad("a zero-length direction"));
                 }
+                // Scale-safe: divide by the largest component first (1e-30,0,1e-30 is fine).
                 LightKind::Directional {
-                    to_light: p.normalize(),
+                    to_light: (p / p.abs().max_element()).normalize(),
                 }
             }
             "point" => LightKind::Point { position: p },

@@ -1,8 +1,31 @@
-//! Albedo textures: PNG or JPEG, decoded from sRGB to linear, sampled bilinearly with wrapping.
+//! Albedo textures: PNG, JPEG or EXR, read once with capped size and dimensions, decoded from sRGB to linear, sampled bilinearly with wrapping.
 
 use crate::error::{RenderError, Result};
 use glam::{Vec2, Vec3};
 use std::path::Path;
+
+/// Largest texture file read: 256 MiB.
+pub const MAX_TEXTURE_BYTES: u64 = 256 << 20;
+/// Largest texture side: 16384 pixels.
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+/// Largest texture: 2^25 pixels (32 Mpixel; 384 MiB of linear texels).
+pub const MAX_TEXTURE_PIXELS: u64 = 1 << 25;
+
+/// Checks a texture's declared size against the caps; the message says why.
+pub fn check_texture_size(w: u32, h: u32) -> std::result::Result<(), String> {
+    if w == 0 || h == 0 {
+        return Err(format!("the texture is empty ({w}x{h})"));
+    }
+    if w > MAX_TEXTURE_SIDE
+        || h > MAX_TEXTURE_SIDE
+        || u64::from(w) * u64::from(h) > MAX_TEXTURE_PIXELS
+    {
+        return Err(format!(
+            "the texture declares {w}x{h} pixels: at most {MAX_TEXTURE_SIDE} per side and {MAX_TEXTURE_PIXELS} pixels are accepted (nothing was decoded)"
+        ));
+    }
+    Ok(())
+}
 
 /// A linear RGB texture.
 #[derive(Clone, Debug)]
@@ -32,14 +55,37 @@ pub fn linear_to_srgb(c: f32) -> f32 {
 }
 
 impl Texture {
-    /// Loads a PNG or JPEG file.
+    /// Loads a PNG, JPEG or EXR file: read once (at most [`MAX_TEXTURE_BYTES`]), its declared
+    /// size checked against [`MAX_TEXTURE_SIDE`] and [`MAX_TEXTURE_PIXELS`] before anything is
+    /// decoded, and the decoder's allocations capped.
     pub fn load(path: &Path) -> Result<Self> {
         let file = path.display().to_string();
-        let img = image::open(path).map_err(|e| RenderError::Input {
+        let bad = |m: String| RenderError::Input {
             file: file.clone(),
             line: None,
-            message: format!("cannot read the texture: {e}"),
-        })?;
+            message: m,
+        };
+        let f =
+            std::fs::File::open(path).map_err(|e| bad(format!("cannot read the texture: {e}")))?;
+        let bytes = fastbrdf_io::read_reader_bounded(f, path, MAX_TEXTURE_BYTES, "a texture")?;
+        let reader = || {
+            image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
+                .with_guessed_format()
+                .map_err(|e| bad(format!("cannot read the texture: {e}")))
+        };
+        let (w, h) = reader()?
+            .into_dimensions()
+            .map_err(|e| bad(format!("cannot read the texture: {e}")))?;
+        check_texture_size(w, h).map_err(bad)?;
+        let mut r = reader()?;
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_TEXTURE_SIDE);
+        limits.max_image_height = Some(MAX_TEXTURE_SIDE);
+        limits.max_alloc = Some(MAX_TEXTURE_PIXELS * 16);
+        r.limits(limits);
+        let img = r
+            .decode()
+            .map_err(|e| bad(format!("cannot read the texture: {e}")))?;
         let rgb = img.to_rgb8();
         let (w, h) = rgb.dimensions();
         if w == 0 || h == 0 {

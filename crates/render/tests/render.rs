@@ -1,11 +1,11 @@
 //! Renderer tests: the highlight where the mirror direction predicts it, the face mesh lit from
 //! the camera, identical models giving a zero difference, batch and scalar shading agreeing,
-//! golden images, and bad inputs.
+//! golden images. Bad inputs: tests/inputs.rs.
 
 use fastbrdf_render::bump::Bump;
 use fastbrdf_render::compare;
 use fastbrdf_render::film::Film;
-use fastbrdf_render::mesh::{load_obj, validate_obj};
+use fastbrdf_render::mesh::load_obj;
 use fastbrdf_render::render::{Options, Shading, render};
 use fastbrdf_render::scene::{Light, LightKind, Specular};
 use fastbrdf_render::setup::{self, SceneSpec};
@@ -271,54 +271,4 @@ fn golden_images() {
             m.psnr
         );
     }
-}
-
-#[test]
-fn bad_obj_files_name_the_file_and_line() {
-    let f = Path::new("bad.obj");
-    let cases = [
-        (
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n",
-            "bad.obj:4: face: vertex index 4 is out of range (3 vertexs defined so far)",
-        ),
-        (
-            "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n",
-            "bad.obj:2: vertex: 'nan' is not a finite number",
-        ),
-        (
-            "v 0 0 0\nv 1 0\n",
-            "bad.obj:2: vertex needs 3 numbers, found 2",
-        ),
-        (
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\n",
-            "bad.obj: no faces (3 vertices)",
-        ),
-        (
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n",
-            "bad.obj:4: a face needs at least 3 vertices",
-        ),
-        (
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/5 2 3\n",
-            "bad.obj:4: face: texture coordinate index 5 is out of range",
-        ),
-        (
-            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n",
-            "bad.obj:4: face: 'x' has a non-integer vertex index",
-        ),
-    ];
-    for (text, expected) in cases {
-        let e = validate_obj(f, text).unwrap_err().to_string();
-        assert!(
-            e.starts_with(expected),
-            "{e:?} should start with {expected:?}"
-        );
-    }
-    assert_eq!(
-        validate_obj(f, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n").unwrap(),
-        1
-    );
-    let e = load_obj(Path::new("/nonexistent/face.obj"))
-        .unwrap_err()
-        .to_string();
-    assert!(e.starts_with("/nonexistent/face.obj: cannot read"), "{e}");
 }

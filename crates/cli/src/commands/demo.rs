@@ -2,12 +2,13 @@
 //! every lobe, the seeds' comparisons with difference maps and metrics, the analysis plots,
 //! the reproduction table, and `index.html` that shows it all.
 
-use super::render::{Entry, compare_models, render_model};
+use super::render::{Entry, Scores, check_compare, compare_models, render_model};
 use crate::CliError;
 use fastbrdf_analysis::reproduce;
+use fastbrdf_io::OutputSet;
 use fastbrdf_render::bump::Bump;
-use fastbrdf_render::compare::{Cell, Metrics, grid};
-use fastbrdf_render::film::{png_bytes, write_atomic};
+use fastbrdf_render::compare::{Cell, grid};
+use fastbrdf_render::film::png_bytes;
 use fastbrdf_render::render::{Options, Shading};
 use fastbrdf_render::setup::{self, SceneSpec};
 use glam::Vec3;
@@ -34,17 +35,51 @@ struct Section {
     title: String,
     caption: String,
     image: String,
-    metrics: Vec<Metrics>,
+    metrics: Vec<Scores>,
 }
 
 fn p(k: &str, v: &str) -> (String, String) {
     (k.into(), v.into())
 }
 
-fn save(dir: &Path, name: &str, rgb: &[u8], w: u32, h: u32) -> Result<String, CliError> {
-    write_atomic(&dir.join(name), &png_bytes(rgb, w, h)?)?;
-    eprintln!("wrote {}", dir.join(name).display());
+fn save(set: &mut OutputSet, name: &str, rgb: &[u8], w: u32, h: u32) -> Result<String, CliError> {
+    set.write(name, &png_bytes(rgb, w, h)?)?;
     Ok(name.into())
+}
+
+/// A scratch folder removed when dropped (on every error path too).
+struct Scratch(PathBuf);
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// The seed figures (written by `plot`'s code into a scratch folder), staged into `set` under
+/// `plots/`.
+fn stage_plots(set: &mut OutputSet) -> Result<(), CliError> {
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.as_nanos());
+    let scratch = Scratch(std::env::temp_dir().join(format!(
+        "fastbrdf-demo-plots-{}-{nanos}",
+        std::process::id()
+    )));
+    super::plot::write_seed_figures(&scratch.0)?;
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&scratch.0)
+        .map_err(|e| CliError::io(format!("{}: {e}", scratch.0.display())))?
+        .map(|e| e.map(|e| e.path()))
+        .collect::<Result<_, _>>()
+        .map_err(|e| CliError::io(format!("{}: {e}", scratch.0.display())))?;
+    names.sort();
+    for path in names {
+        let bytes =
+            std::fs::read(&path).map_err(|e| CliError::io(format!("{}: {e}", path.display())))?;
+        let name = path.file_name().expect("a file in the scratch folder");
+        set.write(Path::new("plots").join(name), &bytes)?;
+    }
+    Ok(())
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
@@ -56,6 +91,30 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     }
     let t0 = std::time::Instant::now();
     let dir = &a.out;
+    check_compare(
+        &Options {
+            width: a.size,
+            height: a.size,
+            spp: 3,
+            shading: Shading::Batch,
+        },
+        4,
+    )?;
+    // Every input is checked before anything is written: the sizes, then the mesh (read once
+    // here and shared by the skin comparisons).
+    let mut skin = SceneSpec::new();
+    skin.albedo = Vec3::new(0.78, 0.52, 0.42);
+    skin.bump = Some(Bump {
+        scale: if a.mesh.is_some() { 3.0 } else { 40.0 },
+        depth: if a.mesh.is_some() { 0.3 } else { 0.6 },
+    });
+    skin.mesh = a.mesh.clone();
+    skin.kd = 0.6;
+    skin.ks = 1.0;
+    let skin_loaded = setup::load(&skin)?;
+    let plain = setup::load(&SceneSpec::new())?;
+    // All-or-nothing: files are staged and moved into place only at the end.
+    let mut set = OutputSet::new(dir)?;
     let mut sections = Vec::new();
     // 1. Every lobe on a sphere, at n = 20 and n = 200.
     let cell = a.size / 2;
@@ -66,13 +125,13 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         shading: Shading::Batch,
     };
     let spec = SceneSpec::new();
-    let loaded = setup::load(&spec)?;
+    let loaded = &plain;
     for n in ["20", "200"] {
         let mut rows: Vec<Vec<Cell>> = vec![];
         for chunk in fastbrdf::lobes::IDS.chunks(4) {
             let mut row = vec![];
             for id in chunk {
-                let film = render_model(&spec, &loaded, &opts, id, &[p("n", n)])?;
+                let film = render_model(&spec, loaded, &opts, id, &[p("n", n)])?;
                 row.push(Cell {
                     label: (*id).into(),
                     rgb: film.to_srgb8(1.0),
@@ -81,7 +140,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             rows.push(row);
         }
         let (rgb, w, h) = grid(&rows, cell, cell, None)?;
-        let image = save(dir, &format!("lobes-n{n}.png"), &rgb, w, h)?;
+        let image = save(&mut set, &format!("lobes-n{n}.png"), &rgb, w, h)?;
         sections.push(Section {
             title: format!("Every lobe at n = {n}"),
             caption: format!("Each lobe as the specular term (lobe of n.h, kd 0.6, ks 0.4, one directional light), n = {n}. pow is the reference; the normalised flog is brighter by design (coef(n)), its clamped GLSL twin saturates."),
@@ -103,8 +162,13 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                    reference: Entry,
                    models: Vec<Entry>|
      -> Result<(), CliError> {
-        let (rgb, w, h, metrics) = compare_models(spec, &opts, 1.0, &reference, &models)?;
-        let image = save(dir, file, &rgb, w, h)?;
+        let loaded = if spec.mesh.is_some() || spec.texture.is_some() {
+            &skin_loaded
+        } else {
+            &plain
+        };
+        let (rgb, w, h, metrics) = compare_models(spec, loaded, &opts, 1.0, &reference, &models)?;
+        let image = save(&mut set, file, &rgb, w, h)?;
         sections.push(Section {
             title: title.into(),
             caption: caption.into(),
@@ -152,15 +216,6 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             Entry::new("sg-tuned", vec![p("n", "40")]),
         ],
     )?;
-    let mut skin = SceneSpec::new();
-    skin.albedo = Vec3::new(0.78, 0.52, 0.42);
-    skin.bump = Some(Bump {
-        scale: if a.mesh.is_some() { 3.0 } else { 40.0 },
-        depth: if a.mesh.is_some() { 0.3 } else { 0.6 },
-    });
-    skin.mesh = a.mesh.clone();
-    skin.kd = 0.6;
-    skin.ks = 1.0;
     let object = if a.mesh.is_some() {
         "the given mesh"
     } else {
@@ -208,13 +263,15 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         ],
     )?;
     // 3. Plots and the reproduction table.
-    let plots = dir.join("plots");
-    super::plot::write_seed_figures(&plots)?;
+    stage_plots(&mut set)?;
     let report = reproduce::run(&[], &|| {})?;
     let md = reproduce::markdown(&report);
-    write_atomic(&dir.join("REPRODUCTION.md"), md.as_bytes())?;
+    set.write("REPRODUCTION.md", md.as_bytes())?;
     let html = index_html(&sections, &report, t0.elapsed().as_secs_f64());
-    write_atomic(&dir.join("index.html"), html.as_bytes())?;
+    set.write("index.html", html.as_bytes())?;
+    for f in set.commit()? {
+        eprintln!("wrote {}", f.display());
+    }
     eprintln!(
         "wrote {} ({:.1} s): open it in a browser",
         dir.join("index.html").display(),
@@ -252,20 +309,27 @@ th{background:#eee}.agrees{color:#060}.differs{color:#a00}figure{margin:1em 0 2e
         if !s.metrics.is_empty() {
             let _ = writeln!(
                 h,
-                "<table><tr><th>model</th><th>RMSE</th><th>PSNR (dB)</th><th>FLIP</th></tr>"
+                "<table><caption>RMSE, PSNR, FLIP: on the clipped 8-bit sRGB pictures; linear: on the HDR film, PSNR against the reference's peak {:.3}; FLIP after the Reinhard tone map x/(1+x)</caption><tr><th>model</th><th>RMSE</th><th>PSNR (dB)</th><th>FLIP</th><th>RMSE linear</th><th>PSNR linear (dB)</th><th>FLIP Reinhard</th></tr>",
+                s.metrics.first().map_or(0.0, |m| m.linear.peak)
             );
-            for m in &s.metrics {
-                let psnr = if m.psnr.is_finite() {
-                    format!("{:.2}", m.psnr)
+            let db = |x: f64| {
+                if x.is_finite() {
+                    format!("{x:.2}")
                 } else {
                     "inf".into()
-                };
+                }
+            };
+            for m in &s.metrics {
                 let _ = writeln!(
                     h,
-                    "<tr><td>{}</td><td>{:.5}</td><td>{psnr}</td><td>{:.4}</td></tr>",
-                    esc(&m.model),
-                    m.rmse,
-                    m.flip
+                    "<tr><td>{}</td><td>{:.5}</td><td>{}</td><td>{:.4}</td><td>{:.5}</td><td>{}</td><td>{:.4}</td></tr>",
+                    esc(&m.srgb.model),
+                    m.srgb.rmse,
+                    db(m.srgb.psnr),
+                    m.srgb.flip,
+                    m.linear.rmse,
+                    db(m.linear.psnr),
+                    m.linear.flip_reinhard
                 );
             }
             let _ = writeln!(h, "</table>");

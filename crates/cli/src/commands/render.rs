@@ -27,14 +27,17 @@ impl From<RenderError> for CliError {
 /// Scene options shared by render, compare and demo.
 #[derive(clap::Args, Clone, Debug)]
 pub struct SceneArgs {
-    /// An OBJ mesh to render instead of the built-in sphere (normals computed when absent).
+    /// An OBJ mesh to render instead of the built-in sphere (normals computed when absent;
+    /// at most 256 MiB, read once, so pipes work; materials are not read).
     #[arg(long)]
     pub mesh: Option<PathBuf>,
-    /// An albedo texture (PNG or JPEG, sRGB), mapped by the mesh's texture coordinates.
+    /// An albedo texture (PNG or JPEG, sRGB), mapped by the mesh's texture coordinates (at most
+    /// 256 MiB, 16384 pixels per side and 2^25 pixels).
     #[arg(long)]
     pub texture: Option<PathBuf>,
     /// A light: dir:X,Y,Z[:R,G,B[:INTENSITY]] (direction towards the light) or
     /// point:X,Y,Z[:R,G,B[:INTENSITY]]; repeat for several. Default: one key light.
+    /// Coordinates and colour x intensity at most 1e6 in magnitude.
     #[arg(long = "light", value_name = "SPEC")]
     pub lights: Vec<String>,
     /// Image size WIDTHxHEIGHT (at most 8192 per side and 2^25 pixels).
@@ -43,29 +46,38 @@ pub struct SceneArgs {
     /// Supersampling: N x N samples per pixel (1..16).
     #[arg(long, default_value_t = 2)]
     pub spp: u32,
-    /// Procedural micro-relief SCALE,DEPTH (features per unit, relative height), e.g. 40,0.6.
+    /// Procedural micro-relief SCALE,DEPTH (features per unit, relative height), e.g. 40,0.6
+    /// (scale at most 1e4, depth at most 1e3).
     #[arg(long)]
     pub bump: Option<String>,
-    /// Diffuse and specular weights KD,KS.
+    /// Diffuse and specular weights KD,KS (0 to 1e3 each).
     #[arg(long, default_value = "0.6,0.4")]
     pub weights: String,
-    /// Linear albedo R,G,B.
+    /// Linear albedo R,G,B (0 to 1e3 each).
     #[arg(long, default_value = "0.8,0.8,0.8")]
     pub albedo: String,
-    /// Exposure multiplier applied before sRGB encoding.
+    /// Exposure multiplier applied before sRGB encoding of PNG pictures (at most 1e6). EXR files
+    /// hold the linear radiance, unscaled.
     #[arg(long, default_value_t = 1.0)]
     pub exposure: f32,
 }
 
-fn floats(name: &str, s: &str, n: usize) -> Result<Vec<f32>, CliError> {
+/// Largest kd, ks, albedo channel and bump depth: far beyond physical (1) but finite renders.
+pub const MAX_WEIGHT: f32 = 1e3;
+/// Largest `--exposure`.
+pub const MAX_EXPOSURE: f32 = 1e6;
+/// Largest bump scale (features per unit).
+pub const MAX_BUMP_SCALE: f32 = 1e4;
+
+fn floats(name: &str, s: &str, n: usize, max: f32) -> Result<Vec<f32>, CliError> {
     let v: Vec<f32> = s
         .split(',')
         .map(|x| x.trim().parse::<f32>())
         .collect::<Result<_, _>>()
         .map_err(|_| CliError::input(format!("--{name} '{s}': not numbers")))?;
-    if v.len() != n || v.iter().any(|x| !x.is_finite() || *x < 0.0) {
+    if v.len() != n || v.iter().any(|x| !(0.0..=max).contains(x)) {
         return Err(CliError::input(format!(
-            "--{name} '{s}': expected {n} non-negative numbers"
+            "--{name} '{s}': expected {n} numbers from 0 to {max}"
         )));
     }
     Ok(v)
@@ -84,21 +96,26 @@ impl SceneArgs {
             .map(|l| Light::parse(l))
             .collect::<RResult<_>>()?;
         if let Some(b) = &self.bump {
-            let v = floats("bump", b, 2)?;
-            if v[0] <= 0.0 {
-                return Err(CliError::input("--bump: the scale must be positive"));
+            let v = floats("bump", b, 2, MAX_BUMP_SCALE)?;
+            if v[0] <= 0.0 || v[1] > MAX_WEIGHT {
+                return Err(CliError::input(format!(
+                    "--bump '{b}': the scale must be positive (at most {MAX_BUMP_SCALE}), the depth at most {MAX_WEIGHT}"
+                )));
             }
             spec.bump = Some(Bump {
                 scale: v[0],
                 depth: v[1],
             });
         }
-        let w = floats("weights", &self.weights, 2)?;
+        let w = floats("weights", &self.weights, 2, MAX_WEIGHT)?;
         (spec.kd, spec.ks) = (w[0], w[1]);
-        let a = floats("albedo", &self.albedo, 3)?;
+        let a = floats("albedo", &self.albedo, 3, MAX_WEIGHT)?;
         spec.albedo = Vec3::new(a[0], a[1], a[2]);
-        if !(self.exposure > 0.0 && self.exposure.is_finite()) {
-            return Err(CliError::input("--exposure must be a positive number"));
+        if !(self.exposure > 0.0 && self.exposure <= MAX_EXPOSURE) {
+            return Err(CliError::input(format!(
+                "--exposure {}: must be positive and at most {MAX_EXPOSURE}",
+                self.exposure
+            )));
         }
         if !(1..=16).contains(&self.spp) {
             return Err(CliError::input(format!(
@@ -134,6 +151,8 @@ pub fn render_model(
         pb.set_position(d as u64);
     })?;
     pb.finish_and_clear();
+    film.check_finite()
+        .map_err(|e| CliError::input(format!("--model {id}: {e}")))?;
     Ok(film)
 }
 
@@ -153,7 +172,8 @@ pub struct RenderArgs {
     params: Vec<String>,
     #[command(flatten)]
     scene: SceneArgs,
-    /// Output file: .png (sRGB) or .exr (linear).
+    /// Output file: .png (8-bit sRGB with an sRGB chunk, --exposure applied) or .exr (linear
+    /// radiance, 32-bit float, scanline ZIP, no exposure).
     #[arg(long)]
     out: PathBuf,
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
@@ -240,8 +260,11 @@ pub struct CompareArgs {
     /// The grid picture (.png).
     #[arg(long, default_value = "fastbrdf-out/compare.png")]
     out: PathBuf,
-    /// Print the metrics as JSON: {"reference", "metrics": [{model, rmse, psnr, flip}]}
-    /// (psnr null when infinite).
+    /// Print the metrics as JSON: {"reference", "metrics": [{model, rmse, psnr, flip,
+    /// rmse_linear, psnr_linear, psnr_linear_peak, flip_reinhard}]}. rmse/psnr/flip: on the
+    /// clipped 8-bit sRGB pictures; *_linear: on the linear HDR film (no exposure; PSNR against
+    /// the reference's peak channel value, psnr_linear_peak); flip_reinhard: FLIP after the tone
+    /// map x/(1+x) with the exposure. PSNR is null when infinite.
     #[arg(long)]
     json: bool,
 }
@@ -287,25 +310,66 @@ impl Entry {
     }
 }
 
-/// Renders the reference and models, builds the grid; returns (grid rgb, w, h, metrics).
+/// The scores of one model: on the clipped 8-bit sRGB pictures and on the linear film.
+pub struct Scores {
+    pub srgb: compare::Metrics,
+    pub linear: compare::LinearMetrics,
+}
+
+impl Scores {
+    /// The JSON object: numbers only, PSNR null when infinite; field names say the space.
+    pub fn json(&self) -> serde_json::Value {
+        let finite = |x: f64| x.is_finite().then_some(x);
+        serde_json::json!({
+            "model": self.srgb.model,
+            "rmse": self.srgb.rmse,
+            "psnr": finite(self.srgb.psnr),
+            "flip": self.srgb.flip,
+            "rmse_linear": self.linear.rmse,
+            "psnr_linear": finite(self.linear.psnr),
+            "psnr_linear_peak": self.linear.peak,
+            "flip_reinhard": self.linear.flip_reinhard,
+        })
+    }
+}
+
+/// Checks a comparison's size and work (see `compare::check_compare`) before anything is read
+/// or rendered.
+pub fn check_compare(opts: &Options, models: usize) -> Result<(), CliError> {
+    Ok(compare::check_compare(
+        models,
+        opts.width,
+        opts.height,
+        opts.spp,
+    )?)
+}
+
+/// Renders the reference and models, builds the grid; returns (grid rgb, w, h, scores).
 pub fn compare_models(
     spec: &SceneSpec,
+    loaded: &setup::Loaded,
     opts: &Options,
     exposure: f32,
     reference: &Entry,
     models: &[Entry],
-) -> Result<(Vec<u8>, u32, u32, Vec<compare::Metrics>), CliError> {
-    let loaded = setup::load(spec)?;
+) -> Result<(Vec<u8>, u32, u32, Vec<Scores>), CliError> {
+    check_compare(opts, models.len())?;
     let (w, h) = (opts.width, opts.height);
-    let r = render_model(spec, &loaded, opts, &reference.id, &reference.params)?.to_srgb8(exposure);
-    let mut tests = vec![];
+    let rf = render_model(spec, loaded, opts, &reference.id, &reference.params)?;
+    let r = rf.to_srgb8(exposure);
+    let mut films = vec![];
     for m in models {
-        tests.push(render_model(spec, &loaded, opts, &m.id, &m.params)?.to_srgb8(exposure));
+        films.push(render_model(spec, loaded, opts, &m.id, &m.params)?);
     }
-    let metrics: Vec<compare::Metrics> = models
+    let tests: Vec<Vec<u8>> = films.iter().map(|f| f.to_srgb8(exposure)).collect();
+    let metrics: Vec<Scores> = models
         .iter()
         .zip(&tests)
-        .map(|(m, t)| compare::metrics(&m.label, &r, t, w, h))
+        .zip(&films)
+        .map(|((m, t), f)| Scores {
+            srgb: compare::metrics(&m.label, &r, t, w, h),
+            linear: compare::linear_metrics(&rf, f, exposure),
+        })
         .collect();
     let diffs: Vec<Vec<f32>> = tests.iter().map(|t| compare::difference(&r, t)).collect();
     let scale = diffs
@@ -322,11 +386,12 @@ pub fn compare_models(
         label: "difference to the reference:".into(),
         rgb: vec![255; (w * h * 3) as usize],
     }];
-    for ((m, t), (d, mt)) in models.iter().zip(&tests).zip(diffs.iter().zip(&metrics)) {
+    for ((m, t), (d, sc)) in models.iter().zip(&tests).zip(diffs.iter().zip(&metrics)) {
         top.push(Cell {
             label: m.label.clone(),
             rgb: t.clone(),
         });
+        let mt = &sc.srgb;
         let psnr = if mt.psnr.is_finite() {
             format!("{:.1} dB", mt.psnr)
         } else {
@@ -344,6 +409,7 @@ pub fn compare_models(
 pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     let (spec, opts) = a.scene.spec()?;
     check_out(&a.out, &["png"])?;
+    check_compare(&opts, a.models.len())?;
     let params = parse_params(&a.params)?;
     for (k, _) in &params {
         let mut used = false;
@@ -362,15 +428,13 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
         .iter()
         .map(|m| Ok(Entry::new(m, params_for(m, &params)?)))
         .collect::<Result<_, CliError>>()?;
+    let loaded = setup::load(&spec)?;
     let (rgb, gw, gh, metrics) =
-        compare_models(&spec, &opts, a.scene.exposure, &reference, &models)?;
+        compare_models(&spec, &loaded, &opts, a.scene.exposure, &reference, &models)?;
     write_atomic(&a.out, &fastbrdf_render::film::png_bytes(&rgb, gw, gh)?)?;
     eprintln!("wrote {}", a.out.display());
     if a.json {
-        let rows: Vec<serde_json::Value> = metrics
-            .iter()
-            .map(|m| serde_json::json!({"model": m.model, "rmse": m.rmse, "psnr": if m.psnr.is_finite() { Some(m.psnr) } else { None }, "flip": m.flip}))
-            .collect();
+        let rows: Vec<serde_json::Value> = metrics.iter().map(Scores::json).collect();
         println!(
             "{}",
             serde_json::to_string_pretty(
@@ -380,15 +444,32 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
         );
     } else {
         println!(
-            "{:<24} {:>10} {:>10} {:>8}   (against {})",
-            "model", "RMSE", "PSNR dB", "FLIP", a.reference
+            "{:<24} {:>10} {:>9} {:>7} | {:>12} {:>9} {:>8}   (against {}; peak {:.4})",
+            "model",
+            "RMSE sRGB",
+            "PSNR dB",
+            "FLIP",
+            "RMSE linear",
+            "PSNR dB",
+            "FLIP rh",
+            a.reference,
+            metrics.first().map_or(0.0, |m| m.linear.peak)
         );
         for m in &metrics {
             println!(
-                "{:<24} {:>10.5} {:>10.2} {:>8.4}",
-                m.model, m.rmse, m.psnr, m.flip
+                "{:<24} {:>10.5} {:>9.2} {:>7.4} | {:>12.5} {:>9.2} {:>8.4}",
+                m.srgb.model,
+                m.srgb.rmse,
+                m.srgb.psnr,
+                m.srgb.flip,
+                m.linear.rmse,
+                m.linear.psnr,
+                m.linear.flip_reinhard
             );
         }
+        println!(
+            "sRGB: clipped 8-bit pictures as written; linear: the HDR film (no exposure), PSNR against the reference's peak, FLIP after the Reinhard tone map x/(1+x)"
+        );
     }
     Ok(())
 }
