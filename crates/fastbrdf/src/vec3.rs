@@ -14,14 +14,34 @@ pub fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
 }
 
 /// Unit vector along `v`, or `None` when `v` is zero, infinite or has a NaN component.
+/// Scale-safe: any finite non-zero `v` (tiny, huge or subnormal components) has a direction.
 #[inline]
 pub fn normalize<T: Real>(v: V3<T>) -> Option<V3<T>> {
+    let (u, valid) = unit(v);
+    if valid { Some(u) } else { None }
+}
+
+/// `2^-100` and `2^100`: between them `|v|^2` is computed without overflow or loss to
+/// underflow, and `v` is normalised as it is.
+const LEN2_LO: f64 = 7.888_609_052_210_118e-31;
+const LEN2_HI: f64 = 1.267_650_600_228_229_4e30;
+
+/// The branch-free core of [`normalize`], shared with the batch kernels (`batch::ops`), so that
+/// both round alike: `(unit vector, valid)`. When `|v|^2` lies outside
+/// [`2^-100`, `2^100`] (where it would overflow, underflow or lose bits to subnormals), `v` is
+/// first divided by its largest `|component|`; inside, the arithmetic is the plain
+/// `v / sqrt(v.v)`. `valid` is false for zero, infinite and NaN vectors.
+#[inline(always)]
+pub fn unit<T: Real>(v: V3<T>) -> (V3<T>, bool) {
     let len2 = dot(v, v);
-    if !(len2 > T::zero()) || !len2.is_finite() {
-        return None;
-    }
-    let inv = len2.sqrt().recip();
-    Some([v[0] * inv, v[1] * inv, v[2] * inv])
+    let safe = len2 >= T::c(LEN2_LO) && len2 <= T::c(LEN2_HI);
+    let m = v[0].abs().max(v[1].abs()).max(v[2].abs());
+    let d = if safe { T::one() } else { m };
+    let s = [v[0] / d, v[1] / d, v[2] / d];
+    let l2 = dot(s, s);
+    let inv = T::one() / l2.sqrt();
+    let valid = m > T::zero() && m.is_finite() && l2.is_finite();
+    ([s[0] * inv, s[1] * inv, s[2] * inv], valid)
 }
 
 /// Mirror direction of `w` about the normal: `2 (w.n) n - w`.

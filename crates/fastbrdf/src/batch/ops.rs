@@ -348,20 +348,15 @@ impl GOp for SmithRational {
 #[inline(always)]
 #[allow(clippy::type_complexity)]
 fn pair(wi: [f32; 3], wo: [f32; 3]) -> (bool, f32, f32, [f32; 3], f32, f32, [f32; 3], [f32; 3]) {
-    let li = wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2];
-    let lo = wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2];
-    let ii = 1.0 / li.sqrt();
-    let io = 1.0 / lo.sqrt();
-    let wi = [wi[0] * ii, wi[1] * ii, wi[2] * ii];
-    let wo = [wo[0] * io, wo[1] * io, wo[2] * io];
+    // The scalar normalisation itself (scale-safe for tiny, huge and subnormal vectors).
+    let (wi, vi) = crate::vec3::unit(wi);
+    let (wo, vo) = crate::vec3::unit(wo);
     let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
     let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
     let h = [s[0] / len, s[1] / len, s[2] / len];
     let cmin = COS_MIN as f32;
-    let valid = li > 0.0
-        && li.is_finite()
-        && lo > 0.0
-        && lo.is_finite()
+    let valid = vi
+        && vo
         && wi[2] >= cmin
         && wo[2] >= cmin
         && len > 0.0;
