@@ -49,3 +49,133 @@ fn f32_tracks_f64_within_the_documented_bound() {
         failures.join("\n")
     );
 }
+
+/// Cosines over the whole range [0, 1]: zero, subnormal, tiny, log-spaced to 1, uniform.
+fn fresnel_cosines() -> Vec<f32> {
+    let mut cs = vec![0.0, f32::from_bits(1), 1e-40, 1e-30, 1e-20, 1e-10, 1.0];
+    cs.extend((0..=1000).map(|i| 10f32.powf(-12.0 + 12.0 * i as f32 / 1000.0)));
+    cs.extend((0..=1000).map(|i| i as f32 / 1000.0));
+    cs
+}
+
+/// Relative indices at and near 1, each exactly representable in f32 so that both precisions
+/// build the same model (1 + 2^-23 is the next f32 above 1).
+const ETA_NEAR_ONE: &[f32] = &[
+    1.0,
+    1.0 + f32::EPSILON,
+    1.0 - f32::EPSILON / 2.0,
+    1.0 + 1.0 / 4096.0,
+    1.0 - 1.0 / 4096.0,
+    1.0001,
+    0.9999,
+    1.01,
+    0.99,
+    1.5,
+    0.5,
+];
+
+fn build_pair(id: &str, given: &[(&str, &str)]) -> (fastbrdf::Model<f32>, fastbrdf::Model<f64>) {
+    (
+        registry::build::<f32>(id, given).unwrap(),
+        registry::build::<f64>(id, given).unwrap(),
+    )
+}
+
+/// issue 11: at eta = 1 pbrt's arrangement rounds `1 - (1 - c^2) / eta^2` to 0 in f32 for
+/// c < 1.7e-4 and returned F = 1 where the exact value is 0.
+#[test]
+fn fresnel_terms_at_and_near_eta_one_track_f64_over_every_cosine() {
+    let mut failures = vec![];
+    for &eta in ETA_NEAR_ONE {
+        let eta_s = (eta as f64).to_string(); // exact, so both precisions get this eta
+        for (id, given) in [
+            ("fresnel-dielectric", vec![("eta", eta_s.as_str())]),
+            (
+                "fresnel-conductor",
+                vec![("eta", eta_s.as_str()), ("k", "0")],
+            ),
+            (
+                "fresnel-conductor",
+                vec![("eta", eta_s.as_str()), ("k", "0.001")],
+            ),
+        ] {
+            let (m32, m64) = build_pair(id, &given);
+            let (fastbrdf::Model::Fresnel(a), fastbrdf::Model::Fresnel(b)) = (&m32, &m64) else {
+                unreachable!()
+            };
+            let bound = registry::find(id).unwrap().info.f32_bound;
+            for c in fresnel_cosines() {
+                let (v32, v64) = (a.f(c), b.f(c as f64));
+                assert!((0.0..=1.0).contains(&v32) && (0.0..=1.0).contains(&v64));
+                if eta == 1.0 && given.len() == 1 || eta == 1.0 && given[1].1 == "0" {
+                    // The exact value is 0 at every cosine.
+                    if v32 != 0.0 || v64 != 0.0 {
+                        failures.push(format!("{id} {given:?} c={c}: {v32} / {v64}, exact 0"));
+                    }
+                }
+                let e = accuracy::mixed_error(v32, v64);
+                if e > bound {
+                    failures.push(format!("{id} {given:?} c={c}: f32 {v32} f64 {v64}"));
+                }
+            }
+        }
+    }
+    assert!(
+        failures.len() == 0,
+        "{} failures, first: {:#?}",
+        failures.len(),
+        &failures[..failures.len().min(8)]
+    );
+}
+
+/// issue 11: through cook-torrance (alpha = 0.01, eta = 1, grazing) the Fresnel error became
+/// 1e8 in f32 against 0.0104 in f64. With eta = 1 and k = 0 the exact BRDF is 0.
+#[test]
+fn cook_torrance_at_eta_one_is_zero_and_near_it_tracks_f64_at_grazing() {
+    let mut failures = vec![];
+    let mut pairs: Vec<([f32; 3], [f32; 3])> = vec![];
+    for &c in &[1e-6f32, 1e-5, 1e-4, 1.7e-4, 1e-3, 1e-2, 0.1, 0.5] {
+        let s = (1.0 - c * c).sqrt();
+        pairs.push(([s, 0.0, c], [-s, 0.0, c])); // mirror pair: h = n, wi.h = c
+        pairs.push(([s, 0.0, c], [s * 0.6, s * 0.8, c]));
+        pairs.push(([s, 0.0, c], [0.0, 0.0, 1.0]));
+    }
+    for (wi, wo) in common::direction_pairs(200, 11) {
+        pairs.push((wi.map(|x| x as f32), wo.map(|x| x as f32)));
+    }
+    for &eta in ETA_NEAR_ONE {
+        let eta_s = (eta as f64).to_string(); // exact, so both precisions get this eta
+        for f in ["dielectric", "conductor"] {
+            for alpha in ["0.01", "0.3"] {
+                let given = [
+                    ("alpha", alpha),
+                    ("f", f),
+                    ("eta", eta_s.as_str()),
+                    ("k", "0"),
+                ];
+                let (m32, m64) = build_pair("cook-torrance", &given);
+                let (fastbrdf::Model::Brdf(a), fastbrdf::Model::Brdf(b)) = (&m32, &m64) else {
+                    unreachable!()
+                };
+                for &(wi, wo) in &pairs {
+                    let v32 = a.eval(wi, wo);
+                    let v64 = b.eval(wi.map(f64::from), wo.map(f64::from));
+                    if eta == 1.0 && (v32 != 0.0 || v64 != 0.0) {
+                        failures.push(format!("{given:?} {wi:?} {wo:?}: {v32} / {v64}, exact 0"));
+                    }
+                    // The Fresnel factor's own f32 error, relative to the BRDF's size.
+                    let e = (v32 as f64 - v64).abs() / v64.abs().max(1.0);
+                    if !(e <= 1e-3) {
+                        failures.push(format!("{given:?} {wi:?} {wo:?}: f32 {v32} f64 {v64}"));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures, first: {:#?}",
+        failures.len(),
+        &failures[..failures.len().min(8)]
+    );
+}

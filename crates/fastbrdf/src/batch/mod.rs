@@ -24,6 +24,7 @@ pub mod ops;
 
 use crate::error::{Error, Result};
 use crate::microfacet::beckmann_pow::exponent;
+use crate::microfacet::fresnel::Consts;
 use crate::model::{Kind, Model};
 use crate::params::Params;
 use crate::registry;
@@ -561,7 +562,7 @@ impl DistVisitor for AsCookTorrance<'_> {
                         d,
                         g,
                         fr: ops::FDielectric {
-                            eta: p.num("eta") as f32,
+                            p: Consts::new(p.num("eta"), 0.0),
                         },
                         k,
                     })),
@@ -569,8 +570,7 @@ impl DistVisitor for AsCookTorrance<'_> {
                         d,
                         g,
                         fr: ops::FConductor {
-                            eta: p.num("eta") as f32,
-                            k: p.num("k") as f32,
+                            p: Consts::new(p.num("eta"), p.num("k")),
                         },
                         k,
                     })),
@@ -600,11 +600,10 @@ fn build(id: &str, p: &Params) -> Result<Option<Box<dyn Imp>>> {
             f0: p.num("f0") as f32,
         })))),
         "fresnel-dielectric" => fres(Box::new(Map1(ops::Fres(ops::FDielectric {
-            eta: p.num("eta") as f32,
+            p: Consts::new(p.num("eta"), 0.0),
         })))),
         "fresnel-conductor" => fres(Box::new(Map1(ops::Fres(ops::FConductor {
-            eta: p.num("eta") as f32,
-            k: p.num("k") as f32,
+            p: Consts::new(p.num("eta"), p.num("k")),
         })))),
         "cook-torrance" => {
             let k = match p.choice("denominator") {

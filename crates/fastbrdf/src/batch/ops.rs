@@ -251,49 +251,23 @@ impl FOp for FSchlick {
 }
 
 pub struct FDielectric {
-    pub eta: f32,
+    pub p: crate::microfacet::fresnel::Consts<f32>,
 }
 impl FOp for FDielectric {
     #[inline(always)]
     fn fr(&self, c: f32) -> f32 {
-        let c = clamp01(c);
-        let eta = self.eta;
-        let sin2_t = (1.0 - c * c) / (eta * eta);
-        let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
-        let r_par = (eta * c - cos_t) / (eta * c + cos_t);
-        let r_perp = (c - eta * cos_t) / (c + eta * cos_t);
-        let f = (r_par * r_par + r_perp * r_perp) * 0.5;
-        if sin2_t >= 1.0 { 1.0 } else { f }
+        // The scalar model's arrangement, the same source (branch-free after inlining).
+        crate::microfacet::fresnel::dielectric(c, &self.p)
     }
 }
 
 pub struct FConductor {
-    pub eta: f32,
-    pub k: f32,
+    pub p: crate::microfacet::fresnel::Consts<f32>,
 }
 impl FOp for FConductor {
     #[inline(always)]
     fn fr(&self, c: f32) -> f32 {
-        let c = clamp01(c);
-        let cos2 = c * c;
-        let sin2 = 1.0 - cos2;
-        let eta2 = self.eta * self.eta;
-        let k2 = self.k * self.k;
-        let t0 = eta2 - k2 - sin2;
-        let a2b2 = (t0 * t0 + 4.0 * eta2 * k2).sqrt();
-        let t1 = a2b2 + cos2;
-        let a = (0.5 * (a2b2 + t0)).max(0.0).sqrt();
-        let t2 = 2.0 * c * a;
-        let rs = (t1 - t2) / (t1 + t2);
-        let t3 = cos2 * a2b2 + sin2 * sin2;
-        let t4 = t2 * sin2;
-        let rp = rs * (t3 - t4) / (t3 + t4);
-        let f = (rp + rs) * 0.5;
-        if f.is_finite() {
-            f.max(0.0).min(1.0)
-        } else {
-            1.0
-        }
+        crate::microfacet::fresnel::conductor(c, &self.p)
     }
 }
 
@@ -355,11 +329,7 @@ fn pair(wi: [f32; 3], wo: [f32; 3]) -> (bool, f32, f32, [f32; 3], f32, f32, [f32
     let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
     let h = [s[0] / len, s[1] / len, s[2] / len];
     let cmin = COS_MIN as f32;
-    let valid = vi
-        && vo
-        && wi[2] >= cmin
-        && wo[2] >= cmin
-        && len > 0.0;
+    let valid = vi && vo && wi[2] >= cmin && wo[2] >= cmin && len > 0.0;
     (
         valid,
         wi[2],
