@@ -302,7 +302,7 @@ impl<T: Real> Model<T> {
                             reason: "zero-length vector".into(),
                         });
                     }
-                    Some(u) if !(u[2] >= T::c(crate::vec3::COS_MIN)) => {
+                    Some(u) if !crate::vec3::above_cos_min(v) => {
                         return Err(Error::Domain {
                             input: name.into(),
                             reason: format!(

@@ -2,7 +2,7 @@
 //! from the surface. Plain `[T; 3]` arrays keep every formula generic over `f32`/`f64`
 //! (glam's types are concrete per precision; see ARCHITECTURE.md).
 
-use crate::real::{Real, sqr};
+use crate::real::Real;
 
 /// A 3-vector in the local shading frame.
 pub type V3<T> = [T; 3];
@@ -69,6 +69,8 @@ pub struct Pair<T> {
     pub sin2_h: T,
     /// `wi.h = wo.h`.
     pub cos_ih: T,
+    /// `reflect(wi).wo`, the cosine of the Phong lobe.
+    pub cos_r: T,
 }
 
 /// `2^-20` (about 9.5e-7, 89.99995 degrees), exactly representable in f32 and f64 so that
@@ -79,35 +81,70 @@ pub struct Pair<T> {
 /// `beckmann-pow` has at `cos theta_h = 0` when `alpha > 1/sqrt(2)`.
 pub const COS_MIN: f64 = 1.0 / 1_048_576.0;
 
+/// Whether the direction of `v` (any length) lies at or above [`COS_MIN`]:
+/// `v.z / |v| >= 2^-20`. Decided in f64 on the components as given (squares of f32 numbers
+/// are exact in f64 and neither overflow nor underflow), so that the f32 and f64 evaluations
+/// of the same f32 input fall on the same side of the cut: rounding the normalised `z` in
+/// each precision put them on opposite sides, where the BRDF jumps from its whole value to 0
+/// (issue 11). `false` for NaN, zero and infinite vectors.
+#[inline(always)]
+pub fn above_cos_min<T: Real>(v: V3<T>) -> bool {
+    let [x, y, z] = v.map(|c| c.f64());
+    let len2 = x * x + y * y + z * z;
+    if len2 >= f64::MIN_POSITIVE && len2 <= f64::MAX {
+        z > 0.0 && z * z >= COS_MIN * COS_MIN * len2
+    } else {
+        // Only f64 inputs far outside the f32 range get here: scale first.
+        let m = x.abs().max(y.abs()).max(z.abs());
+        let (x, y, z) = (x / m, y / m, z / m);
+        m > 0.0 && m.is_finite() && z > 0.0 && z * z >= COS_MIN * COS_MIN * (x * x + y * y + z * z)
+    }
+}
+
+/// The set-up of a [`Pair`] and whether it is valid, shared by the scalar models and the
+/// batch kernels (so that both round alike). It is computed in f64 whatever `T` is, then
+/// rounded once to `T`: in f32, normalising `wi` and `wo` separately and adding them loses
+/// the half vector's x and y to cancellation for back-to-back pairs near grazing (errors of
+/// 10^7 relative in narrow-lobe BRDFs, issue 11), and a cosine rounded differently in f32
+/// and f64 can fall on opposite sides of a lobe's cut. Rounded from f64, every quantity is
+/// within half an ulp of exact, and rounding is monotonic, so a comparison against a
+/// threshold representable in `T` (a cut, `COS_MIN`) decides as in f64.
+#[inline(always)]
+pub fn pair_setup<T: Real>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
+    let above = above_cos_min(wi) && above_cos_min(wo);
+    let (ui, vi) = unit(wi.map(|c| c.f64()));
+    let (uo, vo) = unit(wo.map(|c| c.f64()));
+    // For unit wi, wo: wi.h = wo.h = |wi + wo| / 2. Taking it from the length (rather than a
+    // dot product) is cheaper and exactly symmetric in (wi, wo), so every BRDF built on a
+    // Pair is reciprocal to the last bit.
+    let s = [ui[0] + uo[0], ui[1] + uo[1], ui[2] + uo[2]];
+    let len = dot(s, s).sqrt();
+    let h = [s[0] / len, s[1] / len, s[2] / len];
+    let valid = above && vi && vo && len > 0.0;
+    let t = |x: f64| T::c(x);
+    (
+        valid,
+        Pair {
+            wi: ui.map(t),
+            wo: uo.map(t),
+            h: h.map(t),
+            cos_i: t(ui[2]),
+            cos_o: t(uo[2]),
+            cos_h: t(h[2]),
+            sin2_h: t(h[0] * h[0] + h[1] * h[1]),
+            cos_ih: t(0.5 * len),
+            cos_r: t(dot(reflect(ui), uo)),
+        },
+    )
+}
+
 impl<T: Real> Pair<T> {
-    /// Normalises `wi` and `wo` and builds the half vector. `None` (the BRDF is 0) when either
-    /// vector is zero or not finite, or lies below `COS_MIN` (back-facing or grazing).
+    /// Normalises `wi` and `wo` and builds the half vector ([`pair_setup`], in f64). `None`
+    /// (the BRDF is 0) when either vector is zero or not finite, or lies below `COS_MIN`
+    /// (back-facing or grazing).
     #[inline]
     pub fn new(wi: V3<T>, wo: V3<T>) -> Option<Self> {
-        let wi = normalize(wi)?;
-        let wo = normalize(wo)?;
-        let cmin = T::c(COS_MIN);
-        if !(wi[2] >= cmin && wo[2] >= cmin) {
-            return None;
-        }
-        // For unit wi, wo: wi.h = wo.h = |wi + wo| / 2. Taking it from the length (rather than
-        // a dot product) is cheaper and exactly symmetric in (wi, wo), so every BRDF built on
-        // a Pair is reciprocal to the last bit.
-        let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
-        let len = dot(s, s).sqrt();
-        if !(len > T::zero()) {
-            return None;
-        }
-        let h = [s[0] / len, s[1] / len, s[2] / len];
-        Some(Self {
-            wi,
-            wo,
-            h,
-            cos_i: wi[2],
-            cos_o: wo[2],
-            cos_h: h[2],
-            sin2_h: sqr(h[0]) + sqr(h[1]),
-            cos_ih: T::c(0.5) * len,
-        })
+        let (valid, p) = pair_setup(wi, wo);
+        if valid { Some(p) } else { None }
     }
 }

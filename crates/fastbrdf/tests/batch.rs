@@ -300,7 +300,11 @@ fn tiny_huge_and_subnormal_directions_evaluate_like_unit_ones() {
                     // Rounding a subnormal component may leave a grazing direction.
                     let grazing = |v: [f32; 3]| {
                         let m = v.iter().fold(0f64, |m, x| m.max((*x as f64).abs()));
-                        let l = v.iter().map(|x| (*x as f64 / m).powi(2)).sum::<f64>().sqrt();
+                        let l = v
+                            .iter()
+                            .map(|x| (*x as f64 / m).powi(2))
+                            .sum::<f64>()
+                            .sqrt();
                         (v[2] as f64 / m) / l < 2e-6
                     };
                     if grazing(si) || grazing(so) {
@@ -331,12 +335,22 @@ fn tiny_huge_and_subnormal_directions_evaluate_like_unit_ones() {
                         // Normal components: the direction is exactly the unit pair's.
                         assert!(close(v64, unit64) && close(v32 as f64, unit32 as f64));
                     }
-                    let cols: Vec<Vec<f32>> = (0..6).map(|j| vec![[si, so].concat()[j]; 9]).collect();
+                    let cols: Vec<Vec<f32>> =
+                        (0..6).map(|j| vec![[si, so].concat()[j]; 9]).collect();
                     let mut out = vec![0.0f32; 9];
-                    let input = Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
+                    let input =
+                        Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
                     k.eval(input, &mut out).unwrap();
-                    let ok = |x: f32| close(x as f64, v32 as f64) || (x as f64 - v32 as f64).abs() <= 3e-6 * (v32 as f64).abs().max(1.0);
-                    assert!(out.iter().all(|&x| ok(x)), "{} batch {:?} vs scalar {v32}", e.info.id, out[0]);
+                    let ok = |x: f32| {
+                        close(x as f64, v32 as f64)
+                            || (x as f64 - v32 as f64).abs() <= 3e-6 * (v32 as f64).abs().max(1.0)
+                    };
+                    assert!(
+                        out.iter().all(|&x| ok(x)),
+                        "{} batch {:?} vs scalar {v32}",
+                        e.info.id,
+                        out[0]
+                    );
                 }
             }
         }

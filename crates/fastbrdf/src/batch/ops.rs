@@ -318,28 +318,13 @@ impl GOp for SmithRational {
 
 // ---------- full BRDFs ----------
 
-/// The scalar `Pair::new`, branch-free: `(valid, cos_i, cos_o, h, sin2_h, cos_ih, wi, wo)`.
+/// The scalar `Pair::new` (the same `vec3::pair_setup`, in f64), branch-free:
+/// `(valid, cos_i, cos_o, h, sin2_h, cos_ih, cos_r)`.
 #[inline(always)]
 #[allow(clippy::type_complexity)]
-fn pair(wi: [f32; 3], wo: [f32; 3]) -> (bool, f32, f32, [f32; 3], f32, f32, [f32; 3], [f32; 3]) {
-    // The scalar normalisation itself (scale-safe for tiny, huge and subnormal vectors).
-    let (wi, vi) = crate::vec3::unit(wi);
-    let (wo, vo) = crate::vec3::unit(wo);
-    let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
-    let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
-    let h = [s[0] / len, s[1] / len, s[2] / len];
-    let cmin = COS_MIN as f32;
-    let valid = vi && vo && wi[2] >= cmin && wo[2] >= cmin && len > 0.0;
-    (
-        valid,
-        wi[2],
-        wo[2],
-        h,
-        h[0] * h[0] + h[1] * h[1],
-        0.5 * len,
-        wi,
-        wo,
-    )
+fn pair(wi: [f32; 3], wo: [f32; 3]) -> (bool, f32, f32, [f32; 3], f32, f32, f32) {
+    let (valid, p) = crate::vec3::pair_setup(wi, wo);
+    (valid, p.cos_i, p.cos_o, p.h, p.sin2_h, p.cos_ih, p.cos_r)
 }
 
 pub struct CookTorrance<D, G, F> {
@@ -351,7 +336,7 @@ pub struct CookTorrance<D, G, F> {
 impl<D: DOp, G: GOp, F: FOp> Op6 for CookTorrance<D, G, F> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, ci, co, h, s2, cih, _, _) = pair(wi, wo);
+        let (valid, ci, co, h, s2, cih, _) = pair(wi, wo);
         let d = self.d.d(h[2], s2);
         let d = if h[2] >= COS_MIN as f32 { d } else { 0.0 };
         let g = self.g.g(co, ci, h[2], cih);
@@ -370,7 +355,7 @@ pub struct Ward<const FORM: u8> {
 impl<const FORM: u8> Op6 for Ward<FORM> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, ci, co, h, s2, _, _, _) = pair(wi, wo);
+        let (valid, ci, co, h, s2, _, _) = pair(wi, wo);
         let lobe = match FORM {
             0 => math::exp(
                 -(h[0] * h[0] * self.inv_ax2 + h[1] * h[1] * self.inv_ay2) / (h[2] * h[2]),
@@ -403,8 +388,7 @@ pub struct LobeBrdf<L> {
 impl<L: Op1> Op6 for LobeBrdf<L> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, _, _, h, _, cih, wi, wo) = pair(wi, wo);
-        let rdotwo = -wi[0] * wo[0] - wi[1] * wo[1] + wi[2] * wo[2];
+        let (valid, _, _, h, _, cih, rdotwo) = pair(wi, wo);
         let v = if self.blinn {
             let l = self.lobe.f(h[2]);
             if self.normalized {

@@ -26,7 +26,7 @@ use crate::params::{self, ParamKind, ParamSpec, Params};
 use crate::quad;
 use crate::real::Real;
 use crate::registry::{self, Entry};
-use crate::vec3::{Pair, dot, reflect};
+use crate::vec3::Pair;
 
 pub const LOBE: ParamSpec = ParamSpec {
     name: "lobe",
@@ -142,7 +142,7 @@ impl<T: Real> Brdf<T> for LobeBrdf<T> {
                 l
             }
         } else {
-            self.coef * self.lobe.eval(dot(reflect(p.wi), p.wo))
+            self.coef * self.lobe.eval(p.cos_r)
         }
     }
     fn mirror_breaks(&self) -> Vec<f64> {
