@@ -197,6 +197,11 @@ pub trait Brdf<T: Real>: Send + Sync {
     fn mirror_breaks(&self) -> Vec<f64> {
         Vec::new()
     }
+    /// Values of `cos theta_h` where the BRDF is discontinuous or has a kink (the lobe's cut
+    /// and junctions, for `blinn-phong`): where an adversarial search starts.
+    fn half_breaks(&self) -> Vec<f64> {
+        Vec::new()
+    }
 }
 
 /// A built model of any kind, in precision `T`.

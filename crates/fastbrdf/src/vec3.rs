@@ -71,6 +71,11 @@ pub struct Pair<T> {
     pub cos_ih: T,
     /// `reflect(wi).wo`, the cosine of the Phong lobe.
     pub cos_r: T,
+    /// `cos_h` and `cos_r` before their rounding to `T`: lobe-based BRDFs decide their
+    /// lobe's cut on these, so that f32 and f64 decide alike (a cosine within half an f32
+    /// ulp below a cut rounds onto it).
+    pub cos_h64: f64,
+    pub cos_r64: f64,
 }
 
 /// `2^-20` (about 9.5e-7, 89.99995 degrees), exactly representable in f32 and f64 so that
@@ -91,7 +96,7 @@ pub const COS_MIN: f64 = 1.0 / 1_048_576.0;
 pub fn above_cos_min<T: Real>(v: V3<T>) -> bool {
     let [x, y, z] = v.map(|c| c.f64());
     let len2 = x * x + y * y + z * z;
-    if len2 >= f64::MIN_POSITIVE && len2 <= f64::MAX {
+    if (f64::MIN_POSITIVE..=f64::MAX).contains(&len2) {
         z > 0.0 && z * z >= COS_MIN * COS_MIN * len2
     } else {
         // Only f64 inputs far outside the f32 range get here: scale first.
@@ -134,6 +139,8 @@ pub fn pair_setup<T: Real>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
             sin2_h: t(h[0] * h[0] + h[1] * h[1]),
             cos_ih: t(0.5 * len),
             cos_r: t(dot(reflect(ui), uo)),
+            cos_h64: h[2],
+            cos_r64: dot(reflect(ui), uo),
         },
     )
 }

@@ -34,13 +34,20 @@ fn f32_tracks_f64_within_the_documented_bound() {
                 e.info.id, model_worst.0, e.info.f32_bound, model_worst.1
             ));
         }
-        // A documented bound more than 100x the measured error says nothing useful.
+        // A documented bound more than 100x the measured error (grid or adversarial search)
+        // says nothing useful. Full BRDFs are exempt: their bounds are the maxima of
+        // `fastbrdf check --full` at one f32 rounding of a cosine on the steepest lobes,
+        // which the CI-sized search need not reach (it must stay below them).
+        let searched = accuracy::f32_search(&e.info, accuracy::SearchSize::CI).err;
+        let measured = model_worst.0.max(searched);
         assert!(
-            model_worst.0 == 0.0 || model_worst.0 > e.info.f32_bound / 100.0,
+            measured == 0.0
+                || measured > e.info.f32_bound / 100.0
+                || e.info.kind == fastbrdf::Kind::Brdf,
             "{}: bound {:.0e} is loose (measured {:.3e})",
             e.info.id,
             e.info.f32_bound,
-            model_worst.0
+            measured
         );
     }
     assert!(
@@ -107,7 +114,7 @@ fn fresnel_terms_at_and_near_eta_one_track_f64_over_every_cosine() {
             for c in fresnel_cosines() {
                 let (v32, v64) = (a.f(c), b.f(c as f64));
                 assert!((0.0..=1.0).contains(&v32) && (0.0..=1.0).contains(&v64));
-                if eta == 1.0 && given.len() == 1 || eta == 1.0 && given[1].1 == "0" {
+                if eta == 1.0 && (given.len() == 1 || given[1].1 == "0") {
                     // The exact value is 0 at every cosine.
                     if v32 != 0.0 || v64 != 0.0 {
                         failures.push(format!("{id} {given:?} c={c}: {v32} / {v64}, exact 0"));
@@ -121,7 +128,7 @@ fn fresnel_terms_at_and_near_eta_one_track_f64_over_every_cosine() {
         }
     }
     assert!(
-        failures.len() == 0,
+        failures.is_empty(),
         "{} failures, first: {:#?}",
         failures.len(),
         &failures[..failures.len().min(8)]
@@ -165,7 +172,7 @@ fn cook_torrance_at_eta_one_is_zero_and_near_it_tracks_f64_at_grazing() {
                     }
                     // The Fresnel factor's own f32 error, relative to the BRDF's size.
                     let e = (v32 as f64 - v64).abs() / v64.abs().max(1.0);
-                    if !(e <= 1e-3) {
+                    if e.is_nan() || e > 1e-3 {
                         failures.push(format!("{given:?} {wi:?} {wo:?}: f32 {v32} f64 {v64}"));
                     }
                 }
@@ -178,4 +185,34 @@ fn cook_torrance_at_eta_one_is_zero_and_near_it_tracks_f64_at_grazing() {
         failures.len(),
         &failures[..failures.len().min(8)]
     );
+}
+
+/// issue 11: a fixed grid reported `ward-pow` and `cook-torrance` "ok" at 200 times their
+/// documented f32 bound. The adversarial search (`accuracy::f32_search`, random restarts and
+/// hill climbing over parameters and inputs; the CI size of `fastbrdf check`, whose `--full`
+/// runs 32 times as many evaluations) must find every documented bound holding, and every
+/// value finite and non-negative in both precisions.
+#[test]
+fn adversarial_search_keeps_every_documented_f32_bound() {
+    let mut failures = vec![];
+    for e in registry::all() {
+        let f = accuracy::f32_search(&e.info, accuracy::SearchSize::CI);
+        println!(
+            "search {:<24} found {:.3e} (documented {:.0e}, {} evaluations) at {:?} {}",
+            e.info.id, f.err, e.info.f32_bound, f.evaluations, f.params, f.at
+        );
+        if let Some(bad) = &f.invalid {
+            failures.push(format!(
+                "{}: non-finite or negative value at {bad}",
+                e.info.id
+            ));
+        }
+        if f.err.is_nan() || f.err > e.info.f32_bound {
+            failures.push(format!(
+                "{}: {:.3e} > {:.0e} at {:?} {}",
+                e.info.id, f.err, e.info.f32_bound, f.params, f.at
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

@@ -472,6 +472,7 @@ impl LobeVisitor for AsMap1 {
 }
 
 struct AsLobeBrdf {
+    zero: f64,
     coef: f32,
     blinn: bool,
     normalized: bool,
@@ -480,6 +481,7 @@ impl LobeVisitor for AsLobeBrdf {
     fn visit<L: Op1>(self, lobe: L) -> Box<dyn Imp> {
         Box::new(Map6(ops::LobeBrdf {
             lobe,
+            zero: self.zero,
             coef: self.coef,
             blinn: self.blinn,
             normalized: self.normalized,
@@ -661,6 +663,7 @@ fn build(id: &str, p: &Params) -> Result<Option<Box<dyn Imp>>> {
                 p.choice("lobe"),
                 n,
                 AsLobeBrdf {
+                    zero: crate::brdf::phong::build_lobe::<f32>(p.choice("lobe"), n)?.zero_below(),
                     coef: coef as f32,
                     blinn: id == "blinn-phong",
                     normalized,

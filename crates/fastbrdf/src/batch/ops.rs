@@ -381,6 +381,8 @@ impl Op6 for Lambert {
 
 pub struct LobeBrdf<L> {
     pub lobe: L,
+    /// The lobe's cut, decided on the f64 cosine as the scalar model does.
+    pub zero: f64,
     pub coef: f32,
     pub blinn: bool,
     pub normalized: bool,
@@ -388,7 +390,9 @@ pub struct LobeBrdf<L> {
 impl<L: Op1> Op6 for LobeBrdf<L> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, _, _, h, _, cih, rdotwo) = pair(wi, wo);
+        let (valid, p) = crate::vec3::pair_setup(wi, wo);
+        let (h, cih, rdotwo) = (p.h, p.cos_ih, p.cos_r);
+        let cut = (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero;
         let v = if self.blinn {
             let l = self.lobe.f(h[2]);
             if self.normalized {
@@ -399,6 +403,6 @@ impl<L: Op1> Op6 for LobeBrdf<L> {
         } else {
             self.coef * self.lobe.f(rdotwo)
         };
-        if valid { v } else { 0.0 }
+        if valid && !cut { v } else { 0.0 }
     }
 }
