@@ -86,23 +86,34 @@ pub struct Pair<T> {
 /// `beckmann-pow` has at `cos theta_h = 0` when `alpha > 1/sqrt(2)`.
 pub const COS_MIN: f64 = 1.0 / 1_048_576.0;
 
-/// Whether the direction of `v` (any length) lies at or above [`COS_MIN`]:
-/// `v.z / |v| >= 2^-20`. Decided in f64 on the components as given (squares of f32 numbers
-/// are exact in f64 and neither overflow nor underflow), so that the f32 and f64 evaluations
-/// of the same f32 input fall on the same side of the cut: rounding the normalised `z` in
-/// each precision put them on opposite sides, where the BRDF jumps from its whole value to 0
-/// (issue 11). `false` for NaN, zero and infinite vectors.
+/// Whether the direction of `v` (any length) lies at or above [`COS_MIN`], decided as the
+/// pair set-up decides ([`pair_setup`]): on `v` normalised in f64, which is the same
+/// arithmetic for f32 and f64 models fed the same f32 input, so both fall on the same side
+/// of the cut (rounding the normalised `z` in each precision put them on opposite sides,
+/// where the BRDF jumps from its whole value to 0; issue 11). `false` for NaN, zero and
+/// infinite vectors.
 #[inline(always)]
 pub fn above_cos_min<T: Real>(v: V3<T>) -> bool {
-    let [x, y, z] = v.map(|c| c.f64());
-    let len2 = x * x + y * y + z * z;
-    if (f64::MIN_POSITIVE..=f64::MAX).contains(&len2) {
-        z > 0.0 && z * z >= COS_MIN * COS_MIN * len2
+    let (u, valid) = unit64(v);
+    valid && u[2] >= COS_MIN
+}
+
+/// `v` in f64, normalised directly when `|v|^2` is a normal f64 (always, for f32
+/// components, whose squares neither overflow nor underflow in f64: a compile-time choice,
+/// so that the batch kernels carry no branch), scale-safely ([`unit`]) otherwise. The same
+/// arithmetic for f32 and f64 models fed the same f32 input.
+#[inline(always)]
+fn unit64<T: Real>(v: V3<T>) -> (V3<f64>, bool) {
+    let v = v.map(|c| c.f64());
+    let len2 = dot(v, v);
+    if std::mem::size_of::<T>() == 4 || (f64::MIN_POSITIVE..=f64::MAX).contains(&len2) {
+        let inv = 1.0 / len2.sqrt();
+        (
+            [v[0] * inv, v[1] * inv, v[2] * inv],
+            len2 > 0.0 && len2.is_finite(),
+        )
     } else {
-        // Only f64 inputs far outside the f32 range get here: scale first.
-        let m = x.abs().max(y.abs()).max(z.abs());
-        let (x, y, z) = (x / m, y / m, z / m);
-        m > 0.0 && m.is_finite() && z > 0.0 && z * z >= COS_MIN * COS_MIN * (x * x + y * y + z * z)
+        unit(v)
     }
 }
 
@@ -116,16 +127,21 @@ pub fn above_cos_min<T: Real>(v: V3<T>) -> bool {
 /// threshold representable in `T` (a cut, `COS_MIN`) decides as in f64.
 #[inline(always)]
 pub fn pair_setup<T: Real>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
-    let above = above_cos_min(wi) && above_cos_min(wo);
-    let (ui, vi) = unit(wi.map(|c| c.f64()));
-    let (uo, vo) = unit(wo.map(|c| c.f64()));
+    let (ui, vi) = unit64(wi);
+    let (uo, vo) = unit64(wo);
+    // The f64 unit vectors are the same for f32 and f64 models fed the same f32 input, so
+    // this cut decides alike in both (as `above_cos_min` does for any input).
+    let above = ui[2] >= COS_MIN && uo[2] >= COS_MIN;
     // For unit wi, wo: wi.h = wo.h = |wi + wo| / 2. Taking it from the length (rather than a
     // dot product) is cheaper and exactly symmetric in (wi, wo), so every BRDF built on a
     // Pair is reciprocal to the last bit.
     let s = [ui[0] + uo[0], ui[1] + uo[1], ui[2] + uo[2]];
-    let len = dot(s, s).sqrt();
-    let h = [s[0] / len, s[1] / len, s[2] / len];
-    let valid = above && vi && vo && len > 0.0;
+    // |s|^2 is at least 2 COS_MIN^2 for valid pairs (both z >= COS_MIN): normal.
+    let len2 = dot(s, s);
+    let len = len2.sqrt();
+    let inv_len = 1.0 / len;
+    let h = [s[0] * inv_len, s[1] * inv_len, s[2] * inv_len];
+    let valid = above && vi && vo && len2 > 0.0;
     let t = |x: f64| T::c(x);
     (
         valid,

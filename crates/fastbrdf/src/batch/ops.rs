@@ -392,7 +392,7 @@ impl<L: Op1> Op6 for LobeBrdf<L> {
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
         let (valid, p) = crate::vec3::pair_setup(wi, wo);
         let (h, cih, rdotwo) = (p.h, p.cos_ih, p.cos_r);
-        let cut = (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero;
+        let cut = self.zero > 0.0 && (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero;
         let v = if self.blinn {
             let l = self.lobe.f(h[2]);
             if self.normalized {

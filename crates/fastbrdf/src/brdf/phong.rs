@@ -137,7 +137,8 @@ impl<T: Real> LobeBrdf<T> {
 impl<T: Real> Brdf<T> for LobeBrdf<T> {
     #[inline]
     fn eval_pair(&self, p: &Pair<T>) -> T {
-        if (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero {
+        // A lobe without a cut (zero = 0) takes negative cosines as 0 (clamped, not cut).
+        if self.zero > 0.0 && (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero {
             return T::zero();
         }
         if self.blinn {
