@@ -462,3 +462,491 @@ pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, 
     }
     out
 }
+
+// ---------- adversarial search over the whole documented domain ----------
+
+/// The size of an adversarial search ([`f32_search`]): per combination of a model's choice
+/// parameters, `restarts` random starts, each followed by `steps` hill-climbing steps over the
+/// numeric parameters and the inputs together. Deterministic for a given `seed`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SearchSize {
+    pub restarts: usize,
+    pub steps: usize,
+    pub seed: u64,
+}
+
+impl SearchSize {
+    /// The size `tests/precision.rs` and `fastbrdf check` use (about 7 million evaluations
+    /// for the whole registry; seconds in release, about a minute in the test profile).
+    pub const CI: Self = Self {
+        restarts: 12,
+        steps: 400,
+        seed: 0x0011_5eed,
+    };
+    /// `fastbrdf check --full`: 8x the restarts and 4x the steps of [`SearchSize::CI`]
+    /// (32x the evaluations), with another seed, so that it looks where CI did not.
+    pub const FULL: Self = Self {
+        restarts: 96,
+        steps: 1600,
+        seed: 0x00f1_11ed,
+    };
+}
+
+/// What an adversarial search found: the largest mixed f32-vs-f64 error, where, and the
+/// first non-finite or negative value (in either precision), if any.
+#[derive(Clone, Debug, Default)]
+pub struct Found {
+    /// The largest `|v32 - v64| / max(1, |v64|)` found (infinite if a value was invalid).
+    pub err: f64,
+    /// The parameters (as given to the registry) where it occurs.
+    pub params: Vec<(String, String)>,
+    /// The input where it occurs.
+    pub at: String,
+    /// A non-finite or negative value found, with its parameters and input.
+    pub invalid: Option<String>,
+    /// Model evaluations (each in both precisions).
+    pub evaluations: usize,
+}
+
+/// Values worth starting from for a numeric parameter: its edges, its default, the values
+/// of [`domain_configs`] and, for `eta`, 1 (where the Fresnel terms vanish).
+fn special_values(name: &str, min: f64, max: f64) -> Vec<f64> {
+    let mut v = match name {
+        "n" => vec![1.0, 2.0, 10.0, 100.0, 1000.0, 5000.0],
+        "alpha" | "alpha_x" | "alpha_y" => vec![0.05, 0.1, 0.5, 0.7072],
+        "eta" => vec![1.0, 0.5, 1.5, 0.99, 1.01],
+        "k" => vec![0.5, 3.0],
+        _ => vec![0.5 * (min + max)],
+    };
+    v.extend([min, max]);
+    v.retain(|x| *x >= min && *x <= max);
+    v
+}
+
+/// The f32 value nearest to `v` inside `[min, max]`, written so that f64 parses it exactly:
+/// both precisions then build the same model (a parameter's own rounding to f32 is a
+/// different model, not an arithmetic error).
+fn f32_param(v: f64, min: f64, max: f64) -> String {
+    let mut x = v.clamp(min, max) as f32;
+    while (x as f64) < min {
+        x = f32_step(x, true);
+    }
+    while (x as f64) > max {
+        x = f32_step(x, false);
+    }
+    (x as f64).to_string()
+}
+
+/// The next f32 above (`up`) or below `x` (`f32::next_up` needs Rust 1.86; MSRV 1.85).
+fn f32_step(x: f32, up: bool) -> f32 {
+    if x == 0.0 {
+        let tiny = f32::from_bits(1);
+        if up { tiny } else { -tiny }
+    } else if (x > 0.0) == up {
+        f32::from_bits(x.to_bits() + 1)
+    } else {
+        f32::from_bits(x.to_bits() - 1)
+    }
+}
+
+/// Maps `q` in [0, 1] onto a parameter range (logarithmically for ranges over positive
+/// numbers spanning a factor 4 or more: exponents, roughnesses, indices).
+fn param_at(q: f64, min: f64, max: f64) -> f64 {
+    if min > 0.0 && max / min >= 4.0 {
+        min * (max / min).powf(q)
+    } else {
+        min + q * (max - min)
+    }
+}
+
+/// A cosine from `u` in [0, 1] in one of three densities: uniform, dense near 1
+/// (`1 - u^6`: narrow lobes) and dense near 0 (`u^6`: grazing, down to 1e-36).
+fn cos_at(u: f64, mode: usize) -> f64 {
+    match mode % 3 {
+        0 => u,
+        1 => 1.0 - u.powi(6),
+        _ => u.powi(6),
+    }
+}
+
+/// The direction pair for a BRDF or shadowing term from `u[0..4]`: `wi` from its cosine
+/// (`cos_at`, or log-uniform in [COS_MIN, 1] for grazing) and azimuth, `wo` the reflection of `wi` about a microfacet normal `h` at
+/// `theta_h = (pi/2) u^3` (dense near the mirror direction). Every pair of the upper
+/// hemisphere has such a form.
+fn pair_at(u: &[f64], mode: usize, target: Target) -> ([f32; 3], [f32; 3]) {
+    use std::f64::consts::PI;
+    if let (3, Target::Mirror(b)) = (mode, target) {
+        // wo at the angle acos(b) (+- 1e-5) from the mirror direction of wi.
+        let ci = u[0].max(1e-3);
+        let si = ((1.0 - ci) * (1.0 + ci)).sqrt();
+        let pi_ = 2.0 * PI * u[1];
+        let wi = [si * pi_.cos(), si * pi_.sin(), ci];
+        let r = [-wi[0], -wi[1], wi[2]];
+        let g = b.clamp(-1.0, 1.0).acos() + 1e-5 * (2.0 * u[2] - 1.0);
+        // An orthonormal pair (t1, t2) perpendicular to r.
+        let t1 = [r[2] * pi_.cos(), r[2] * pi_.sin(), -si];
+        let t2 = [
+            r[1] * t1[2] - r[2] * t1[1],
+            r[2] * t1[0] - r[0] * t1[2],
+            r[0] * t1[1] - r[1] * t1[0],
+        ];
+        let ph = 2.0 * PI * u[3];
+        let wo: [f64; 3] = std::array::from_fn(|k| {
+            g.cos() * r[k] + g.sin() * (ph.cos() * t1[k] + ph.sin() * t2[k])
+        });
+        return (wi.map(|x| x as f32), wo.map(|x| x as f32));
+    }
+    // Grazing density: log-uniform from COS_MIN (below it every BRDF is 0 by rule) to 1.
+    let ci = if mode % 3 == 2 {
+        crate::vec3::COS_MIN.powf(1.0 - u[0])
+    } else {
+        cos_at(u[0], mode).clamp(0.0, 1.0)
+    };
+    let si = ((1.0 - ci) * (1.0 + ci)).sqrt();
+    let pi_ = 2.0 * PI * u[1];
+    let wi = [si * pi_.cos(), si * pi_.sin(), ci];
+    let th = match (mode, target) {
+        (3, Target::Half(b)) => b.clamp(-1.0, 1.0).acos() + 1e-5 * (2.0 * u[2] - 1.0),
+        _ => 0.5 * PI * u[2].powi(3),
+    };
+    let ph = 2.0 * PI * u[3];
+    let h = [th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()];
+    let d = 2.0 * (wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2]);
+    let wo = [d * h[0] - wi[0], d * h[1] - wi[1], d * h[2] - wi[2]];
+    (wi.map(|x| x as f32), wo.map(|x| x as f32))
+}
+
+/// A break of the model (a cut or kink) that restarts of mode 3 start near: a cosine (lobes,
+/// distributions), `reflect(wi).wo` (phong) or `cos theta_h` (blinn-phong).
+#[derive(Clone, Copy, Debug)]
+enum Target {
+    None,
+    Cos(f64),
+    Mirror(f64),
+    Half(f64),
+}
+
+/// The breaks of a model ([`Target`]s).
+fn targets(m: &Model<f64>) -> Vec<Target> {
+    match m {
+        Model::Lobe(l) => {
+            let mut t: Vec<Target> = l.kinks().into_iter().map(Target::Cos).collect();
+            t.push(Target::Cos(l.zero_below()));
+            t
+        }
+        Model::Brdf(b) => b
+            .mirror_breaks()
+            .into_iter()
+            .map(Target::Mirror)
+            .chain(b.half_breaks().into_iter().map(Target::Half))
+            .collect(),
+        _ => vec![],
+    }
+}
+
+/// One evaluation in both precisions on the same f32 input: `(mixed error, where)`; the
+/// error is infinite when either value is non-finite or negative.
+fn eval_both(
+    m32: &Model<f32>,
+    m64: &Model<f64>,
+    u: &[f64],
+    mode: usize,
+    target: Target,
+) -> (f64, String) {
+    use crate::model::ShadowInput;
+    let judge = |v32: f32, v64: f64| {
+        if !(v32.is_finite() && v32 >= 0.0 && v64.is_finite() && v64 >= 0.0) {
+            f64::INFINITY
+        } else {
+            mixed_error(v32, v64)
+        }
+    };
+    match (m32, m64) {
+        (Model::Lobe(a), Model::Lobe(b)) => {
+            let c = match (mode, target) {
+                (3, Target::Cos(t)) => (t + 1e-5 * (2.0 * u[0] - 1.0)).clamp(0.0, 1.0) as f32,
+                _ => cos_at(u[0], mode) as f32,
+            };
+            let (v32, v64) = (a.eval(c), b.eval(c as f64));
+            (judge(v32, v64), format!("c={c} f32={v32} f64={v64}"))
+        }
+        (Model::Distribution(a), Model::Distribution(b)) => {
+            let c = cos_at(u[0], mode) as f32;
+            let (v32, v64) = (a.eval(c), b.eval(c as f64));
+            (judge(v32, v64), format!("cos_h={c} f32={v32} f64={v64}"))
+        }
+        (Model::Fresnel(a), Model::Fresnel(b)) => {
+            let c = cos_at(u[0], mode) as f32;
+            let (v32, v64) = (a.f(c), b.f(c as f64));
+            (judge(v32, v64), format!("cos={c} f32={v32} f64={v64}"))
+        }
+        (Model::Shadowing(a), Model::Shadowing(b)) => {
+            let (wi, wo) = pair_at(u, mode, target);
+            let (wi, wo) = (wi.map(f64::from), wo.map(f64::from));
+            let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
+            let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+            let s32 = ShadowInput {
+                cos_v: wo[2] as f32,
+                cos_l: if u[4] < 0.5 { Some(wi[2] as f32) } else { None },
+                cos_h: (s[2] / len) as f32,
+                cos_vh: (0.5 * len) as f32,
+            };
+            let s64 = ShadowInput {
+                cos_v: s32.cos_v as f64,
+                cos_l: s32.cos_l.map(f64::from),
+                cos_h: s32.cos_h as f64,
+                cos_vh: s32.cos_vh as f64,
+            };
+            let (v32, v64) = (a.g(&s32), b.g(&s64));
+            (judge(v32, v64), format!("{s32:?} f32={v32} f64={v64}"))
+        }
+        (Model::Brdf(a), Model::Brdf(b)) => {
+            let (wi, wo) = pair_at(u, mode, target);
+            let v32 = a.eval(wi, wo);
+            let v64 = b.eval(wi.map(f64::from), wo.map(f64::from));
+            (
+                judge(v32, v64),
+                format!("wi={wi:?} wo={wo:?} f32={v32} f64={v64}"),
+            )
+        }
+        _ => unreachable!("both precisions build the same kind"),
+    }
+}
+
+/// Adversarial search for the largest f32-vs-f64 error of `info`'s model over its whole
+/// documented domain: for every combination of its choice parameters, random restarts
+/// (numeric parameters at their edges, at special values or uniform, logarithmically for
+/// wide positive ranges; optional parameters given or not; inputs in three densities),
+/// each refined by hill climbing over the numeric parameters and the inputs together with a
+/// step shrinking geometrically from 0.3 to 1e-7. Numeric parameters are f32 values, fed
+/// exactly to both precisions. Also records any non-finite or negative value.
+pub fn f32_search(info: &crate::ModelInfo, size: SearchSize) -> Found {
+    use crate::params::ParamKind;
+    let mut choice_sets: Vec<Vec<(String, String)>> = vec![vec![]];
+    let mut numeric: Vec<(&str, f64, f64, bool)> = vec![];
+    for p in info.params {
+        match p.kind {
+            ParamKind::Choice { options, .. } => {
+                choice_sets = choice_sets
+                    .iter()
+                    .flat_map(|set| {
+                        options.iter().map(move |o| {
+                            let mut s = set.clone();
+                            s.push((p.name.to_string(), o.to_string()));
+                            s
+                        })
+                    })
+                    .collect();
+            }
+            ParamKind::Number { min, max, default } => {
+                numeric.push((p.name, min, max, default.is_none()))
+            }
+        }
+    }
+    let dims = match info.kind {
+        crate::Kind::Brdf => 4,
+        crate::Kind::Shadowing => 5,
+        _ => 1,
+    };
+    let mut state = size.seed ^ (info.id.len() as u64).wrapping_mul(0x9E37_79B9);
+    for b in info.id.bytes() {
+        state = state.rotate_left(5) ^ b as u64;
+    }
+    let mut rnd = move || splitmix(&mut state);
+    let mut found = Found::default();
+    // q: numeric coordinates in [0, 1]; given: whether each optional one is given.
+    let given_of = |set: &[(String, String)], q: &[f64], on: &[bool]| {
+        let mut g = set.to_vec();
+        for (i, &(name, min, max, _)) in numeric.iter().enumerate() {
+            if on[i] {
+                g.push((
+                    name.to_string(),
+                    f32_param(param_at(q[i], min, max), min, max),
+                ));
+            }
+        }
+        g
+    };
+    let build = |g: &[(String, String)]| {
+        let refs: Vec<(&str, &str)> = g.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+        let m32 = registry::build::<f32>(info.id, &refs).ok()?;
+        let m64 = registry::build::<f64>(info.id, &refs).ok()?;
+        Some((m32, m64))
+    };
+    for set in &choice_sets {
+        // Whether this choice combination has breaks (at default parameters).
+        let breaks = build(set).map(|m| targets(&m.1)).unwrap_or_default();
+        for r in 0..size.restarts {
+            // Modes 0-2: input densities; mode 3 (every fourth restart of a model with cuts
+            // or kinks): near one of them.
+            let mode = if breaks.is_empty() { r % 3 } else { r % 4 };
+            let mut target = Target::None;
+            let mut q: Vec<f64> = numeric
+                .iter()
+                .map(|&(name, min, max, _)| {
+                    let t = rnd();
+                    if t < 0.2 {
+                        0.0
+                    } else if t < 0.4 {
+                        1.0
+                    } else if t < 0.6 {
+                        let s = special_values(name, min, max);
+                        let v = s[(rnd() * s.len() as f64) as usize % s.len()];
+                        // Invert param_at.
+                        if min > 0.0 && max / min >= 4.0 {
+                            (v / min).ln() / (max / min).ln()
+                        } else {
+                            (v - min) / (max - min)
+                        }
+                    } else {
+                        rnd()
+                    }
+                })
+                .collect();
+            let on: Vec<bool> = numeric
+                .iter()
+                .map(|&(_, _, _, optional)| !optional || rnd() < 0.5)
+                .collect();
+            let mut u: Vec<f64> = (0..dims).map(|_| rnd()).collect();
+            let mut g = given_of(set, &q, &on);
+            let Some(mut models) = build(&g) else {
+                continue; // e.g. a combination the model refuses: not part of its domain
+            };
+            if mode == 3 {
+                let t = targets(&models.1);
+                if t.is_empty() {
+                    continue;
+                }
+                target = t[(rnd() * t.len() as f64) as usize % t.len()];
+            }
+            let (mut e, mut at) = eval_both(&models.0, &models.1, &u, mode, target);
+            found.evaluations += 1;
+            for t in 0..size.steps {
+                let sigma = 0.3 * (1e-7f64 / 0.3).powf(t as f64 / size.steps as f64);
+                let step = |x: f64, r: f64| (x + sigma * (2.0 * r - 1.0)).clamp(0.0, 1.0);
+                if !numeric.is_empty() && mode != 3 && rnd() < 0.15 {
+                    let q2: Vec<f64> = q
+                        .iter()
+                        .map(|&x| if rnd() < 0.5 { step(x, rnd()) } else { x })
+                        .collect();
+                    let g2 = given_of(set, &q2, &on);
+                    if let Some(m2) = build(&g2) {
+                        let (e2, at2) = eval_both(&m2.0, &m2.1, &u, mode, target);
+                        found.evaluations += 1;
+                        if e2 >= e {
+                            (q, g, models, e, at) = (q2, g2, m2, e2, at2);
+                        }
+                    }
+                } else {
+                    let u2: Vec<f64> = u.iter().map(|&x| step(x, rnd())).collect();
+                    let (e2, at2) = eval_both(&models.0, &models.1, &u2, mode, target);
+                    found.evaluations += 1;
+                    if e2 >= e {
+                        (u, e, at) = (u2, e2, at2);
+                    }
+                }
+            }
+            if e.is_infinite() && found.invalid.is_none() {
+                found.invalid = Some(format!("{g:?} {at}"));
+            }
+            if e > found.err || found.params.is_empty() {
+                found.err = e;
+                found.params = g;
+                found.at = at;
+            }
+        }
+    }
+    found
+}
+
+/// Adversarial search for the worst error of `model_id` against a documented
+/// [`ErrorBound`], over the bound's whole parameter range as a continuum (the grid of
+/// [`worst`] steps `n` by 1 and `alpha` by 0.01): per restart, a parameter at an edge of the
+/// range or log-uniform in it, an input drawn from the sample set, then hill climbing over
+/// the parameter and the input together (golden-section refinement of [`worst_at`] does
+/// the final polishing around the best point). Deterministic for a given size.
+pub fn worst_search(model_id: &str, bound: &ErrorBound, size: SearchSize) -> Result<Worst> {
+    let (name, lo, hi) = bound.param;
+    let mut state = size.seed ^ 0xB0_0D5;
+    for b in model_id.bytes().chain(bound.reference.bytes()) {
+        state = state.rotate_left(7) ^ b as u64;
+    }
+    let mut rnd = move || splitmix(&mut state);
+    let p_at = |q: f64| {
+        if lo > 0.0 && hi / lo >= 4.0 {
+            lo * (hi / lo).powf(q)
+        } else {
+            lo + q * (hi - lo)
+        }
+        .clamp(lo, hi)
+    };
+    // The error function of x for one parameter value, with the sample set's peak (zones
+    // and the MaxAbs scale are relative to it, as in `worst_at`).
+    struct At {
+        m: Curve,
+        r: Curve,
+        peak: f64,
+        xs: Vec<f64>,
+    }
+    let at_p = |p: f64| -> Result<At> {
+        let m = Curve::new(model_id, name, p)?;
+        let r = Curve::new(bound.reference, name, p)?;
+        let xs = samples(&m.model, p);
+        let peak = xs
+            .iter()
+            .map(|&x| r.at(x))
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+        Ok(At { m, r, peak, xs })
+    };
+    let err = |a: &At, x: f64| {
+        let rv = a.r.at(x);
+        if in_zone(bound.zone, rv / a.peak) {
+            error(bound.metric, a.m.at(x), rv, a.peak)
+        } else {
+            0.0
+        }
+    };
+    let mut best = Worst::default();
+    let restarts = size.restarts * 4;
+    let steps = size.steps / 2;
+    for r in 0..restarts {
+        let mut q = match r % 4 {
+            0 => 0.0,
+            1 => 1.0,
+            _ => rnd(),
+        };
+        let mut a = at_p(p_at(q))?;
+        let (xlo, xhi) =
+            a.xs.iter()
+                .fold((f64::MAX, f64::MIN), |(l, h), &x| (l.min(x), h.max(x)));
+        let mut x = a.xs[(rnd() * a.xs.len() as f64) as usize % a.xs.len()];
+        let mut e = err(&a, x);
+        best.samples += 1;
+        for t in 0..steps {
+            let sigma = 0.1 * (1e-9f64 / 0.1).powf(t as f64 / steps as f64);
+            if rnd() < 0.1 && lo < hi {
+                let q2 = (q + sigma * (2.0 * rnd() - 1.0)).clamp(0.0, 1.0);
+                let a2 = at_p(p_at(q2))?;
+                best.samples += a2.xs.len();
+                let e2 = err(&a2, x);
+                if e2 >= e {
+                    (q, a, e) = (q2, a2, e2);
+                }
+            } else {
+                let x2 = (x + sigma * (xhi - xlo) * (2.0 * rnd() - 1.0)).clamp(xlo, xhi);
+                let e2 = err(&a, x2);
+                best.samples += 1;
+                if e2 >= e {
+                    (x, e) = (x2, e2);
+                }
+            }
+        }
+        if e > best.err {
+            best.err = e;
+            best.param = p_at(q);
+            best.x = x;
+        }
+    }
+    Ok(best)
+}

@@ -197,6 +197,11 @@ pub trait Brdf<T: Real>: Send + Sync {
     fn mirror_breaks(&self) -> Vec<f64> {
         Vec::new()
     }
+    /// Values of `cos theta_h` where the BRDF is discontinuous or has a kink (the lobe's cut
+    /// and junctions, for `blinn-phong`): where an adversarial search starts.
+    fn half_breaks(&self) -> Vec<f64> {
+        Vec::new()
+    }
 }
 
 /// A built model of any kind, in precision `T`.
@@ -302,7 +307,7 @@ impl<T: Real> Model<T> {
                             reason: "zero-length vector".into(),
                         });
                     }
-                    Some(u) if !(u[2] >= T::c(crate::vec3::COS_MIN)) => {
+                    Some(u) if !crate::vec3::above_cos_min(v) => {
                         return Err(Error::Domain {
                             input: name.into(),
                             reason: format!(

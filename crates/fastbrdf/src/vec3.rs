@@ -2,7 +2,7 @@
 //! from the surface. Plain `[T; 3]` arrays keep every formula generic over `f32`/`f64`
 //! (glam's types are concrete per precision; see ARCHITECTURE.md).
 
-use crate::real::{Real, sqr};
+use crate::real::Real;
 
 /// A 3-vector in the local shading frame.
 pub type V3<T> = [T; 3];
@@ -14,14 +14,34 @@ pub fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
 }
 
 /// Unit vector along `v`, or `None` when `v` is zero, infinite or has a NaN component.
+/// Scale-safe: any finite non-zero `v` (tiny, huge or subnormal components) has a direction.
 #[inline]
 pub fn normalize<T: Real>(v: V3<T>) -> Option<V3<T>> {
+    let (u, valid) = unit(v);
+    if valid { Some(u) } else { None }
+}
+
+/// `2^-100` and `2^100`: between them `|v|^2` is computed without overflow or loss to
+/// underflow, and `v` is normalised as it is.
+const LEN2_LO: f64 = 7.888_609_052_210_118e-31;
+const LEN2_HI: f64 = 1.267_650_600_228_229_4e30;
+
+/// The branch-free core of [`normalize`], shared with the batch kernels (`batch::ops`), so that
+/// both round alike: `(unit vector, valid)`. When `|v|^2` lies outside
+/// [`2^-100`, `2^100`] (where it would overflow, underflow or lose bits to subnormals), `v` is
+/// first divided by its largest `|component|`; inside, the arithmetic is the plain
+/// `v / sqrt(v.v)`. `valid` is false for zero, infinite and NaN vectors.
+#[inline(always)]
+pub fn unit<T: Real>(v: V3<T>) -> (V3<T>, bool) {
     let len2 = dot(v, v);
-    if !(len2 > T::zero()) || !len2.is_finite() {
-        return None;
-    }
-    let inv = len2.sqrt().recip();
-    Some([v[0] * inv, v[1] * inv, v[2] * inv])
+    let safe = len2 >= T::c(LEN2_LO) && len2 <= T::c(LEN2_HI);
+    let m = v[0].abs().max(v[1].abs()).max(v[2].abs());
+    let d = if safe { T::one() } else { m };
+    let s = [v[0] / d, v[1] / d, v[2] / d];
+    let l2 = dot(s, s);
+    let inv = T::one() / l2.sqrt();
+    let valid = m > T::zero() && m.is_finite() && l2.is_finite();
+    ([s[0] * inv, s[1] * inv, s[2] * inv], valid)
 }
 
 /// Mirror direction of `w` about the normal: `2 (w.n) n - w`.
@@ -49,6 +69,13 @@ pub struct Pair<T> {
     pub sin2_h: T,
     /// `wi.h = wo.h`.
     pub cos_ih: T,
+    /// `reflect(wi).wo`, the cosine of the Phong lobe.
+    pub cos_r: T,
+    /// `cos_h` and `cos_r` before their rounding to `T`: lobe-based BRDFs decide their
+    /// lobe's cut on these, so that f32 and f64 decide alike (a cosine within half an f32
+    /// ulp below a cut rounds onto it).
+    pub cos_h64: f64,
+    pub cos_r64: f64,
 }
 
 /// `2^-20` (about 9.5e-7, 89.99995 degrees), exactly representable in f32 and f64 so that
@@ -59,35 +86,88 @@ pub struct Pair<T> {
 /// `beckmann-pow` has at `cos theta_h = 0` when `alpha > 1/sqrt(2)`.
 pub const COS_MIN: f64 = 1.0 / 1_048_576.0;
 
+/// Whether the direction of `v` (any length) lies at or above [`COS_MIN`], decided as the
+/// pair set-up decides ([`pair_setup`]): on `v` normalised in f64, which is the same
+/// arithmetic for f32 and f64 models fed the same f32 input, so both fall on the same side
+/// of the cut (rounding the normalised `z` in each precision put them on opposite sides,
+/// where the BRDF jumps from its whole value to 0; issue 11). `false` for NaN, zero and
+/// infinite vectors.
+#[inline(always)]
+pub fn above_cos_min<T: Real>(v: V3<T>) -> bool {
+    let (u, valid) = unit64(v);
+    valid && u[2] >= COS_MIN
+}
+
+/// `v` in f64, normalised directly when `|v|^2` is a normal f64 (always, for f32
+/// components, whose squares neither overflow nor underflow in f64: a compile-time choice,
+/// so that the batch kernels carry no branch), scale-safely ([`unit`]) otherwise. The same
+/// arithmetic for f32 and f64 models fed the same f32 input.
+#[inline(always)]
+fn unit64<T: Real>(v: V3<T>) -> (V3<f64>, bool) {
+    let v = v.map(|c| c.f64());
+    let len2 = dot(v, v);
+    if std::mem::size_of::<T>() == 4 || (f64::MIN_POSITIVE..=f64::MAX).contains(&len2) {
+        let inv = 1.0 / len2.sqrt();
+        (
+            [v[0] * inv, v[1] * inv, v[2] * inv],
+            len2 > 0.0 && len2.is_finite(),
+        )
+    } else {
+        unit(v)
+    }
+}
+
+/// The set-up of a [`Pair`] and whether it is valid, shared by the scalar models and the
+/// batch kernels (so that both round alike). It is computed in f64 whatever `T` is, then
+/// rounded once to `T`: in f32, normalising `wi` and `wo` separately and adding them loses
+/// the half vector's x and y to cancellation for back-to-back pairs near grazing (errors of
+/// 10^7 relative in narrow-lobe BRDFs, issue 11), and a cosine rounded differently in f32
+/// and f64 can fall on opposite sides of a lobe's cut. Rounded from f64, every quantity is
+/// within half an ulp of exact, and rounding is monotonic, so a comparison against a
+/// threshold representable in `T` (a cut, `COS_MIN`) decides as in f64.
+#[inline(always)]
+pub fn pair_setup<T: Real>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
+    let (ui, vi) = unit64(wi);
+    let (uo, vo) = unit64(wo);
+    // The f64 unit vectors are the same for f32 and f64 models fed the same f32 input, so
+    // this cut decides alike in both (as `above_cos_min` does for any input).
+    let above = ui[2] >= COS_MIN && uo[2] >= COS_MIN;
+    // For unit wi, wo: wi.h = wo.h = |wi + wo| / 2. Taking it from the length (rather than a
+    // dot product) is cheaper and exactly symmetric in (wi, wo), so every BRDF built on a
+    // Pair is reciprocal to the last bit.
+    let s = [ui[0] + uo[0], ui[1] + uo[1], ui[2] + uo[2]];
+    // |s|^2 is at least 2 COS_MIN^2 for valid pairs (both z >= COS_MIN): normal.
+    let len2 = dot(s, s);
+    let len = len2.sqrt();
+    let inv_len = 1.0 / len;
+    let h = [s[0] * inv_len, s[1] * inv_len, s[2] * inv_len];
+    let valid = above && vi && vo && len2 > 0.0;
+    let t = |x: f64| T::c(x);
+    (
+        valid,
+        Pair {
+            wi: ui.map(t),
+            wo: uo.map(t),
+            h: h.map(t),
+            cos_i: t(ui[2]),
+            cos_o: t(uo[2]),
+            cos_h: t(h[2]),
+            sin2_h: t(h[0] * h[0] + h[1] * h[1]),
+            cos_ih: t(0.5 * len),
+            cos_r: t(dot(reflect(ui), uo)),
+            cos_h64: h[2],
+            cos_r64: dot(reflect(ui), uo),
+        },
+    )
+}
+
 impl<T: Real> Pair<T> {
-    /// Normalises `wi` and `wo` and builds the half vector. `None` (the BRDF is 0) when either
-    /// vector is zero or not finite, or lies below `COS_MIN` (back-facing or grazing).
+    /// Normalises `wi` and `wo` and builds the half vector ([`pair_setup`], in f64). `None`
+    /// (the BRDF is 0) when either vector is zero or not finite, or lies below `COS_MIN`
+    /// (back-facing or grazing).
     #[inline]
     pub fn new(wi: V3<T>, wo: V3<T>) -> Option<Self> {
-        let wi = normalize(wi)?;
-        let wo = normalize(wo)?;
-        let cmin = T::c(COS_MIN);
-        if !(wi[2] >= cmin && wo[2] >= cmin) {
-            return None;
-        }
-        // For unit wi, wo: wi.h = wo.h = |wi + wo| / 2. Taking it from the length (rather than
-        // a dot product) is cheaper and exactly symmetric in (wi, wo), so every BRDF built on
-        // a Pair is reciprocal to the last bit.
-        let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
-        let len = dot(s, s).sqrt();
-        if !(len > T::zero()) {
-            return None;
-        }
-        let h = [s[0] / len, s[1] / len, s[2] / len];
-        Some(Self {
-            wi,
-            wo,
-            h,
-            cos_i: wi[2],
-            cos_o: wo[2],
-            cos_h: h[2],
-            sin2_h: sqr(h[0]) + sqr(h[1]),
-            cos_ih: T::c(0.5) * len,
-        })
+        let (valid, p) = pair_setup(wi, wo);
+        if valid { Some(p) } else { None }
     }
 }

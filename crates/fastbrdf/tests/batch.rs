@@ -124,6 +124,11 @@ fn dir_inputs() -> [Vec<f32>; 6] {
         push(up, bad);
     }
     push([3.0, 1.0, 5.0], [-2.0, 0.5, 4.0]); // unnormalised
+    // Tiny, huge and subnormal lengths (issue 11: normalised scale-safely, like f64).
+    for (i, (wi, wo)) in direction_pairs(12, 21).into_iter().enumerate() {
+        let (a, b) = [(1e-30, 1e30), (3e38, 1e-42), (1e-42, 1.0), (1e-20, 1e20)][i % 4];
+        push(wi.map(|x| (x * a) as f32), wo.map(|x| (x * b) as f32));
+    }
     for c in cols.iter_mut() {
         c.truncate(c.len() / 16 * 16 + 7);
     }
@@ -262,4 +267,96 @@ fn kernels_reject_bad_shapes() {
     );
     assert!(Kernel::new("smith", &[]).is_err());
     assert!(Kernel::new("pow", &[("n", "0")]).is_err());
+}
+
+/// issue 11: finite non-zero directions of any length have a direction. In f32, (1e-30, 0,
+/// 1e-30) squared underflows to a zero length and was rejected as "zero-length" (and gave 0),
+/// while f64 evaluated it. Every BRDF, scalar f32 and f64, `try_eval_row` and the batch
+/// kernel: a scaled pair evaluates as the unit pair does.
+#[test]
+fn tiny_huge_and_subnormal_directions_evaluate_like_unit_ones() {
+    let scales: [f64; 8] = [1e-30, 1e30, 3e38, 1e-38, 1e-42, 1e-45, 1e-20, 1e20];
+    let pairs = direction_pairs(30, 33);
+    for e in registry::all().iter().filter(|e| e.info.kind == Kind::Brdf) {
+        let m32 = registry::build::<f32>(e.info.id, &[]).unwrap();
+        let m64 = registry::build::<f64>(e.info.id, &[]).unwrap();
+        let k = Kernel::new(e.info.id, &[]).unwrap();
+        for (wi, wo) in &pairs {
+            let (wi32, wo32) = (wi.map(|x| x as f32), wo.map(|x| x as f32));
+            let unit32 = m32.eval_row(&opt(&[wi32, wo32].concat()));
+            let unit64 = m64.eval_row(&opt(&[wi32.map(f64::from), wo32.map(f64::from)].concat()));
+            for &a in &scales {
+                for &b in &[1.0, a, 1.0 / a.max(1e-38)] {
+                    // f32 inputs: the scaled components as f32 (subnormal ones lose bits,
+                    // so compare with the direction they actually have).
+                    let si = wi.map(|x| (x * a) as f32);
+                    let so = wo.map(|x| (x * b) as f32);
+                    if si.iter().chain(&so).any(|x| !x.is_finite())
+                        || si.iter().all(|x| *x == 0.0)
+                        || so.iter().all(|x| *x == 0.0)
+                    {
+                        continue;
+                    }
+                    // Rounding a subnormal component may leave a grazing direction.
+                    let grazing = |v: [f32; 3]| {
+                        let m = v.iter().fold(0f64, |m, x| m.max((*x as f64).abs()));
+                        let l = v
+                            .iter()
+                            .map(|x| (*x as f64 / m).powi(2))
+                            .sum::<f64>()
+                            .sqrt();
+                        (v[2] as f64 / m) / l < 2e-6
+                    };
+                    if grazing(si) || grazing(so) {
+                        continue;
+                    }
+                    let row32: Vec<Option<f32>> = [si, so].concat().into_iter().map(Some).collect();
+                    let row64: Vec<Option<f64>> = row32.iter().map(|x| x.map(f64::from)).collect();
+                    let v32 = m32.try_eval_row(&row32).unwrap_or_else(|err| {
+                        panic!("{} f32 rejects {si:?} {so:?}: {err}", e.info.id)
+                    });
+                    let v64 = m64.try_eval_row(&row64).unwrap_or_else(|err| {
+                        panic!("{} f64 rejects {si:?} {so:?}: {err}", e.info.id)
+                    });
+                    // The f64 value of the direction the f32 components have.
+                    let dir = |v: [f32; 3]| {
+                        let m = v.iter().fold(0f64, |m, x| m.max((*x as f64).abs()));
+                        v.map(|x| x as f64 / m)
+                    };
+                    let exact = m64.eval_row(&opt(&[dir(si), dir(so)].concat()));
+                    let tol = 1e-6 + 2.0 * e.info.f32_bound;
+                    let close = |x: f64, y: f64| (x - y).abs() / y.abs().max(1.0) <= tol;
+                    assert!(
+                        close(v64, exact) && close(v32 as f64, exact),
+                        "{} a={a} b={b}: f32 {v32}, f64 {v64}, unit-length f64 {exact}",
+                        e.info.id
+                    );
+                    if a.max(b) < 1e37 && a.min(b) > 1e-37 {
+                        // Normal components: the direction is exactly the unit pair's.
+                        assert!(close(v64, unit64) && close(v32 as f64, unit32 as f64));
+                    }
+                    let cols: Vec<Vec<f32>> =
+                        (0..6).map(|j| vec![[si, so].concat()[j]; 9]).collect();
+                    let mut out = vec![0.0f32; 9];
+                    let input =
+                        Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
+                    k.eval(input, &mut out).unwrap();
+                    let ok = |x: f32| {
+                        close(x as f64, v32 as f64)
+                            || (x as f64 - v32 as f64).abs() <= 3e-6 * (v32 as f64).abs().max(1.0)
+                    };
+                    assert!(
+                        out.iter().all(|&x| ok(x)),
+                        "{} batch {:?} vs scalar {v32}",
+                        e.info.id,
+                        out[0]
+                    );
+                }
+            }
+        }
+    }
+}
+
+fn opt<T: Copy>(v: &[T]) -> Vec<Option<T>> {
+    v.iter().copied().map(Some).collect()
 }

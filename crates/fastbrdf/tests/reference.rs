@@ -404,7 +404,11 @@ fn fresnel_matches_complex_fresnel_equations() {
         for i in 0..=1000 {
             let c = i as f64 / 1000.0;
             let sin2_t = (1.0 - c * c) / (eta * eta);
-            let want = if sin2_t >= 1.0 {
+            // At eta = 1 there is no interface: 0 at every cosine, grazing included (the
+            // limit c -> 0 of F(eta = 1) = 0, not the total-reflection 1 of eta < 1).
+            let want = if eta == 1.0 {
+                0.0
+            } else if sin2_t >= 1.0 {
                 1.0
             } else {
                 fresnel_complex(c, Complex64::new(eta, 0.0))

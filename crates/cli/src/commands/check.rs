@@ -1,11 +1,19 @@
 //! `fastbrdf check`: re-measures every documented bound of the registry on this machine and
 //! says whether each holds. Two families of checks:
-//! - error against the reference model (dense grid plus golden-section refinement over the
-//!   bound's parameter range; `fastbrdf::accuracy::worst`);
-//! - f32 against f64 on the same inputs over the documented domain
-//!   (`fastbrdf::accuracy::f32_worst`, mixed metric `|v32 - v64| / max(1, |v64|)`).
+//! - error against the reference model: a dense grid plus golden-section refinement over the
+//!   bound's parameter range (`fastbrdf::accuracy::worst`) and an adversarial search over the
+//!   parameter as a continuum and the input together (`accuracy::worst_search`);
+//! - f32 against f64 on the same inputs over the whole documented domain, mixed metric
+//!   `|v32 - v64| / max(1, |v64|)`: a grid of parameter sets (`accuracy::f32_worst` over
+//!   `accuracy::domain_configs`) and an adversarial search (`accuracy::f32_search`: every
+//!   combination of choice parameters, random restarts at parameter extremes, special and
+//!   random values, hill climbing over parameters and inputs together; seeded, so
+//!   reproducible). The search also fails a model that returns a non-finite or negative
+//!   value in either precision.
 //!
-//! Exit code 1 if any bound is exceeded.
+//! The default search has the size of the test `tests/precision.rs`
+//! (`SearchSize::CI`); `--full` runs `SearchSize::FULL` (32 times the evaluations, another
+//! seed). Exit code 1 if any bound is exceeded.
 
 use crate::CliError;
 use fastbrdf::{Metric, Zone, accuracy, registry};
@@ -21,6 +29,10 @@ pub struct Args {
     /// Only this model.
     #[arg(long)]
     model: Option<String>,
+    /// Search 32 times longer (with another seed) than the default, which is the size the
+    /// test suite runs. Example: `fastbrdf check --full --model cook-torrance`.
+    #[arg(long)]
+    full: bool,
 }
 
 #[derive(Serialize)]
@@ -42,9 +54,16 @@ struct BoundRow {
 struct F32Row {
     model: &'static str,
     documented: f64,
+    /// The larger of the grid's and the search's maximum (`null` in JSON if infinite).
     measured: f64,
     configurations: usize,
+    /// Evaluations (each in both precisions) of the adversarial search.
+    evaluations: usize,
     at: String,
+    /// Every value found finite and non-negative in both precisions.
+    finite: bool,
+    /// Where a non-finite or negative value was found ("" when none).
+    invalid: String,
     ok: bool,
 }
 
@@ -57,6 +76,11 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .iter()
         .flat_map(|e| e.info.bounds.iter().map(move |b| (e, b)))
         .collect();
+    let size = if a.full {
+        accuracy::SearchSize::FULL
+    } else {
+        accuracy::SearchSize::CI
+    };
     let bar = ProgressBar::new((bound_jobs.len() + entries.len()) as u64);
     bar.set_style(
         ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos}/{len} {elapsed}")
@@ -66,7 +90,13 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let bounds: Vec<BoundRow> = bound_jobs
         .par_iter()
         .map(|(e, b)| {
-            let w = accuracy::worst(e.info.id, b).expect("registry bounds name valid models");
+            let grid = accuracy::worst(e.info.id, b).expect("registry bounds name valid models");
+            let found = accuracy::worst_search(e.info.id, b, size)
+                .expect("registry bounds name valid models");
+            let w = accuracy::Worst {
+                samples: grid.samples + found.samples,
+                ..if found.err > grid.err { found } else { grid }
+            };
             bar.inc(1);
             BoundRow {
                 model: e.info.id,
@@ -98,14 +128,26 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                     worst = (err, format!("{} {at}", params.join(" ")));
                 }
             }
+            let found = accuracy::f32_search(&e.info, size);
+            if found.err > worst.0 {
+                let params: Vec<String> = found
+                    .params
+                    .iter()
+                    .map(|(k, v)| format!("{k}={v}"))
+                    .collect();
+                worst = (found.err, format!("{} {}", params.join(" "), found.at));
+            }
             bar.inc(1);
             F32Row {
                 model: e.info.id,
                 documented: e.info.f32_bound,
                 measured: worst.0,
                 configurations: configs.len(),
+                evaluations: found.evaluations,
                 at: worst.1,
-                ok: worst.0 <= e.info.f32_bound,
+                finite: found.invalid.is_none(),
+                invalid: found.invalid.clone().unwrap_or_default(),
+                ok: worst.0 <= e.info.f32_bound && found.invalid.is_none(),
             }
         })
         .collect();
@@ -148,21 +190,32 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             );
         }
         println!(
-            "\nf32 against f64 (|v32 - v64| / max(1, |v64|), same inputs, whole documented domain)"
+            "\nf32 against f64 (|v32 - v64| / max(1, |v64|), same inputs, whole documented domain:\n  grid of parameter sets + adversarial search{})",
+            if a.full { ", --full" } else { "" }
         );
         println!(
-            "  {:<24} {:>11} {:>11} {:>8}  verdict",
-            "model", "documented", "measured", "configs"
+            "  {:<24} {:>11} {:>11} {:>8} {:>10}  verdict",
+            "model", "documented", "measured", "configs", "searched"
         );
         for r in &f32_rows {
             println!(
-                "  {:<24} {:>11.1e} {:>11.3e} {:>8}  {}",
+                "  {:<24} {:>11.1e} {:>11.3e} {:>8} {:>10}  {}",
                 r.model,
                 r.documented,
                 r.measured,
                 r.configurations,
-                if r.ok { "ok" } else { "EXCEEDED" }
+                r.evaluations,
+                if !r.finite {
+                    "NON-FINITE OR NEGATIVE VALUE"
+                } else if r.ok {
+                    "ok"
+                } else {
+                    "EXCEEDED"
+                }
             );
+            if !r.ok {
+                println!("      at {}", if r.finite { &r.at } else { &r.invalid });
+            }
         }
         let n_ok =
             bounds.iter().filter(|r| r.ok).count() + f32_rows.iter().filter(|r| r.ok).count();

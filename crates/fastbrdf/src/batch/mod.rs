@@ -24,6 +24,7 @@ pub mod ops;
 
 use crate::error::{Error, Result};
 use crate::microfacet::beckmann_pow::exponent;
+use crate::microfacet::fresnel::Consts;
 use crate::model::{Kind, Model};
 use crate::params::Params;
 use crate::registry;
@@ -471,6 +472,7 @@ impl LobeVisitor for AsMap1 {
 }
 
 struct AsLobeBrdf {
+    zero: f64,
     coef: f32,
     blinn: bool,
     normalized: bool,
@@ -479,6 +481,7 @@ impl LobeVisitor for AsLobeBrdf {
     fn visit<L: Op1>(self, lobe: L) -> Box<dyn Imp> {
         Box::new(Map6(ops::LobeBrdf {
             lobe,
+            zero: self.zero,
             coef: self.coef,
             blinn: self.blinn,
             normalized: self.normalized,
@@ -561,7 +564,7 @@ impl DistVisitor for AsCookTorrance<'_> {
                         d,
                         g,
                         fr: ops::FDielectric {
-                            eta: p.num("eta") as f32,
+                            p: Consts::new(p.num("eta"), 0.0),
                         },
                         k,
                     })),
@@ -569,8 +572,7 @@ impl DistVisitor for AsCookTorrance<'_> {
                         d,
                         g,
                         fr: ops::FConductor {
-                            eta: p.num("eta") as f32,
-                            k: p.num("k") as f32,
+                            p: Consts::new(p.num("eta"), p.num("k")),
                         },
                         k,
                     })),
@@ -600,11 +602,10 @@ fn build(id: &str, p: &Params) -> Result<Option<Box<dyn Imp>>> {
             f0: p.num("f0") as f32,
         })))),
         "fresnel-dielectric" => fres(Box::new(Map1(ops::Fres(ops::FDielectric {
-            eta: p.num("eta") as f32,
+            p: Consts::new(p.num("eta"), 0.0),
         })))),
         "fresnel-conductor" => fres(Box::new(Map1(ops::Fres(ops::FConductor {
-            eta: p.num("eta") as f32,
-            k: p.num("k") as f32,
+            p: Consts::new(p.num("eta"), p.num("k")),
         })))),
         "cook-torrance" => {
             let k = match p.choice("denominator") {
@@ -662,6 +663,7 @@ fn build(id: &str, p: &Params) -> Result<Option<Box<dyn Imp>>> {
                 p.choice("lobe"),
                 n,
                 AsLobeBrdf {
+                    zero: crate::brdf::phong::build_lobe::<f32>(p.choice("lobe"), n)?.zero_below(),
                     coef: coef as f32,
                     blinn: id == "blinn-phong",
                     normalized,

@@ -251,49 +251,23 @@ impl FOp for FSchlick {
 }
 
 pub struct FDielectric {
-    pub eta: f32,
+    pub p: crate::microfacet::fresnel::Consts<f32>,
 }
 impl FOp for FDielectric {
     #[inline(always)]
     fn fr(&self, c: f32) -> f32 {
-        let c = clamp01(c);
-        let eta = self.eta;
-        let sin2_t = (1.0 - c * c) / (eta * eta);
-        let cos_t = (1.0 - sin2_t).max(0.0).sqrt();
-        let r_par = (eta * c - cos_t) / (eta * c + cos_t);
-        let r_perp = (c - eta * cos_t) / (c + eta * cos_t);
-        let f = (r_par * r_par + r_perp * r_perp) * 0.5;
-        if sin2_t >= 1.0 { 1.0 } else { f }
+        // The scalar model's arrangement, the same source (branch-free after inlining).
+        crate::microfacet::fresnel::dielectric(c, &self.p)
     }
 }
 
 pub struct FConductor {
-    pub eta: f32,
-    pub k: f32,
+    pub p: crate::microfacet::fresnel::Consts<f32>,
 }
 impl FOp for FConductor {
     #[inline(always)]
     fn fr(&self, c: f32) -> f32 {
-        let c = clamp01(c);
-        let cos2 = c * c;
-        let sin2 = 1.0 - cos2;
-        let eta2 = self.eta * self.eta;
-        let k2 = self.k * self.k;
-        let t0 = eta2 - k2 - sin2;
-        let a2b2 = (t0 * t0 + 4.0 * eta2 * k2).sqrt();
-        let t1 = a2b2 + cos2;
-        let a = (0.5 * (a2b2 + t0)).max(0.0).sqrt();
-        let t2 = 2.0 * c * a;
-        let rs = (t1 - t2) / (t1 + t2);
-        let t3 = cos2 * a2b2 + sin2 * sin2;
-        let t4 = t2 * sin2;
-        let rp = rs * (t3 - t4) / (t3 + t4);
-        let f = (rp + rs) * 0.5;
-        if f.is_finite() {
-            f.max(0.0).min(1.0)
-        } else {
-            1.0
-        }
+        crate::microfacet::fresnel::conductor(c, &self.p)
     }
 }
 
@@ -344,37 +318,13 @@ impl GOp for SmithRational {
 
 // ---------- full BRDFs ----------
 
-/// The scalar `Pair::new`, branch-free: `(valid, cos_i, cos_o, h, sin2_h, cos_ih, wi, wo)`.
+/// The scalar `Pair::new` (the same `vec3::pair_setup`, in f64), branch-free:
+/// `(valid, cos_i, cos_o, h, sin2_h, cos_ih, cos_r)`.
 #[inline(always)]
 #[allow(clippy::type_complexity)]
-fn pair(wi: [f32; 3], wo: [f32; 3]) -> (bool, f32, f32, [f32; 3], f32, f32, [f32; 3], [f32; 3]) {
-    let li = wi[0] * wi[0] + wi[1] * wi[1] + wi[2] * wi[2];
-    let lo = wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2];
-    let ii = 1.0 / li.sqrt();
-    let io = 1.0 / lo.sqrt();
-    let wi = [wi[0] * ii, wi[1] * ii, wi[2] * ii];
-    let wo = [wo[0] * io, wo[1] * io, wo[2] * io];
-    let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
-    let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
-    let h = [s[0] / len, s[1] / len, s[2] / len];
-    let cmin = COS_MIN as f32;
-    let valid = li > 0.0
-        && li.is_finite()
-        && lo > 0.0
-        && lo.is_finite()
-        && wi[2] >= cmin
-        && wo[2] >= cmin
-        && len > 0.0;
-    (
-        valid,
-        wi[2],
-        wo[2],
-        h,
-        h[0] * h[0] + h[1] * h[1],
-        0.5 * len,
-        wi,
-        wo,
-    )
+fn pair(wi: [f32; 3], wo: [f32; 3]) -> (bool, f32, f32, [f32; 3], f32, f32, f32) {
+    let (valid, p) = crate::vec3::pair_setup(wi, wo);
+    (valid, p.cos_i, p.cos_o, p.h, p.sin2_h, p.cos_ih, p.cos_r)
 }
 
 pub struct CookTorrance<D, G, F> {
@@ -386,7 +336,7 @@ pub struct CookTorrance<D, G, F> {
 impl<D: DOp, G: GOp, F: FOp> Op6 for CookTorrance<D, G, F> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, ci, co, h, s2, cih, _, _) = pair(wi, wo);
+        let (valid, ci, co, h, s2, cih, _) = pair(wi, wo);
         let d = self.d.d(h[2], s2);
         let d = if h[2] >= COS_MIN as f32 { d } else { 0.0 };
         let g = self.g.g(co, ci, h[2], cih);
@@ -405,7 +355,7 @@ pub struct Ward<const FORM: u8> {
 impl<const FORM: u8> Op6 for Ward<FORM> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, ci, co, h, s2, _, _, _) = pair(wi, wo);
+        let (valid, ci, co, h, s2, _, _) = pair(wi, wo);
         let lobe = match FORM {
             0 => math::exp(
                 -(h[0] * h[0] * self.inv_ax2 + h[1] * h[1] * self.inv_ay2) / (h[2] * h[2]),
@@ -431,6 +381,8 @@ impl Op6 for Lambert {
 
 pub struct LobeBrdf<L> {
     pub lobe: L,
+    /// The lobe's cut, decided on the f64 cosine as the scalar model does.
+    pub zero: f64,
     pub coef: f32,
     pub blinn: bool,
     pub normalized: bool,
@@ -438,8 +390,9 @@ pub struct LobeBrdf<L> {
 impl<L: Op1> Op6 for LobeBrdf<L> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, _, _, h, _, cih, wi, wo) = pair(wi, wo);
-        let rdotwo = -wi[0] * wo[0] - wi[1] * wo[1] + wi[2] * wo[2];
+        let (valid, p) = crate::vec3::pair_setup(wi, wo);
+        let (h, cih, rdotwo) = (p.h, p.cos_ih, p.cos_r);
+        let cut = self.zero > 0.0 && (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero;
         let v = if self.blinn {
             let l = self.lobe.f(h[2]);
             if self.normalized {
@@ -450,6 +403,6 @@ impl<L: Op1> Op6 for LobeBrdf<L> {
         } else {
             self.coef * self.lobe.f(rdotwo)
         };
-        if valid { v } else { 0.0 }
+        if valid && !cut { v } else { 0.0 }
     }
 }

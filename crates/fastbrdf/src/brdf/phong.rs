@@ -26,7 +26,7 @@ use crate::params::{self, ParamKind, ParamSpec, Params};
 use crate::quad;
 use crate::real::Real;
 use crate::registry::{self, Entry};
-use crate::vec3::{Pair, dot, reflect};
+use crate::vec3::Pair;
 
 pub const LOBE: ParamSpec = ParamSpec {
     name: "lobe",
@@ -53,8 +53,8 @@ pub const INFO: ModelInfo = ModelInfo {
     source: "Phong 1975; Lewis 1994 and Lafortune 1994 (normalisation); seed 001 (coef by Int(n))",
     ops: Ops::new(3, 2, 0, 0, 0),
     bounds: &[],
-    f32_bound: 0.1,
-    note: "ops are the wrapper's, add the lobe's; albedo at normal incidence = 1 with norm = energy",
+    f32_bound: 200.0,
+    note: "ops are the wrapper's, add the lobe's; albedo at normal incidence = 1 with norm = energy; f32: reflect(wi).wo rounded once to f32 moves flog-normalized-clamped near its zero (slope ~3e6 at n = 10000) by up to 0.3, times coef(n): 85 at n = 10000 (check --full); below 0.2 for the other lobes",
 };
 
 pub const INFO_BLINN: ModelInfo = ModelInfo {
@@ -65,8 +65,8 @@ pub const INFO_BLINN: ModelInfo = ModelInfo {
     source: "Blinn 1977; Torrance & Sparrow 1967 (microfacet form); seed 001 (coef by Int(n))",
     ops: Ops::new(1, 0, 1, 0, 0),
     bounds: &[],
-    f32_bound: 1e-2,
-    note: "ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy",
+    f32_bound: 600.0,
+    note: "ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3, times coef(n) / (4 wi.h): 265 at n = 10000 (check --full); 2 for flog-normalized",
 };
 
 pub const ENTRY: Entry = Entry {
@@ -107,6 +107,8 @@ pub fn build_lobe<T: Real>(id: &str, n: f64) -> Result<Box<dyn Lobe<T>>> {
 /// A Phong or Blinn-Phong BRDF built from a lobe.
 pub struct LobeBrdf<T: Real> {
     lobe: Box<dyn Lobe<T>>,
+    /// The lobe's cut (`Lobe::zero_below`), decided on the f64 cosine of the pair.
+    zero: f64,
     coef: T,
     blinn: bool,
     normalized: bool,
@@ -123,6 +125,7 @@ impl<T: Real> LobeBrdf<T> {
             1.0
         };
         Ok(Self {
+            zero: lobe.zero_below(),
             lobe,
             coef: T::c(coef),
             blinn,
@@ -134,6 +137,10 @@ impl<T: Real> LobeBrdf<T> {
 impl<T: Real> Brdf<T> for LobeBrdf<T> {
     #[inline]
     fn eval_pair(&self, p: &Pair<T>) -> T {
+        // A lobe without a cut (zero = 0) takes negative cosines as 0 (clamped, not cut).
+        if self.zero > 0.0 && (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero {
+            return T::zero();
+        }
         if self.blinn {
             let l = self.lobe.eval(p.cos_h);
             if self.normalized {
@@ -142,11 +149,19 @@ impl<T: Real> Brdf<T> for LobeBrdf<T> {
                 l
             }
         } else {
-            self.coef * self.lobe.eval(dot(reflect(p.wi), p.wo))
+            self.coef * self.lobe.eval(p.cos_r)
         }
     }
     fn mirror_breaks(&self) -> Vec<f64> {
         if self.blinn {
+            return Vec::new();
+        }
+        let mut b = self.lobe.kinks();
+        b.push(self.lobe.zero_below());
+        b
+    }
+    fn half_breaks(&self) -> Vec<f64> {
+        if !self.blinn {
             return Vec::new();
         }
         let mut b = self.lobe.kinks();

@@ -163,13 +163,16 @@ impl CubicShape {
                 cut = f64::max(cut, 1.0 + x);
             }
         }
+        // The cut is a jump (from the local minimum to 0): it is rounded to an f32 number so
+        // that both precisions cut at the same input, as COS_MIN does (otherwise a cosine
+        // between the two roundings is the whole jump apart in f32 and f64; issue 11).
         Self {
             d1,
             d2,
             d3,
             x1,
             x2,
-            cut,
+            cut: cut as f32 as f64,
         }
     }
 

@@ -67,8 +67,8 @@ pub const INFO_NORMALIZED: ModelInfo = ModelInfo {
     source: "seed 001, section III (coef fitted with TuringBot)",
     ops: Ops::new(3, 2, 0, 0, 2),
     bounds: &[],
-    f32_bound: 1e-5,
-    note: "no clamp: a normalised lobe exceeds 1 near the peak for n > ~3",
+    f32_bound: 3e-4,
+    note: "no clamp: a normalised lobe exceeds 1 near the peak for n > ~3; f32: coef(n) ~ 2000 times the rounding of flog near its zero (1.5e-4 at n = 10000)",
 };
 
 pub const INFO_CLAMPED: ModelInfo = ModelInfo {
@@ -79,8 +79,8 @@ pub const INFO_CLAMPED: ModelInfo = ModelInfo {
     source: "seed 001, Fig. 10 (its GLSL snippet)",
     ops: Ops::new(3, 2, 0, 0, 2),
     bounds: &[],
-    f32_bound: 5e-6,
-    note: "the seed's GLSL clamp to [0, 1]: loses energy for n > ~3; kept only to reproduce the seed",
+    f32_bound: 2.5e-4,
+    note: "the seed's GLSL clamp to [0, 1]: loses energy for n > ~3; kept only to reproduce the seed; f32: as flog-normalized (1.3e-4 at n = 10000)",
 };
 
 pub const ENTRY: Entry = Entry {

@@ -179,7 +179,10 @@ pub const INFO_CUBIC_RATIONAL: ModelInfo = tuned_info!(
     "cubic-rational-tuned",
     "seed 003's cubic above c^n = Q(n), its rational below, Q(n) = Rq(1/n)",
     Ops::new(3, 4, 0, 0, 0),
-    0.0414,
+    // 0.0414 until issue 11: true at integer n, but between n = 1 and 2 the fitted level
+    // Q(n) is clamped to 0.02 and the error reaches 0.2827 at n = 1.137 (found by the
+    // adversarial search of `fastbrdf check`); from n = 8 on it is 0.0414.
+    0.283,
     0.0414
 );
 

@@ -27,8 +27,8 @@ pub const INFO: ModelInfo = ModelInfo {
     source: "Beckmann & Spizzichino 1963; Walter et al. 2007 (normalisation of Mitsuba 3, pbrt)",
     ops: Ops::new(4, 0, 2, 0, 1),
     bounds: &[],
-    f32_bound: 1e-6,
-    note: "integral of D cos theta_h over the hemisphere = 1",
+    f32_bound: 3e-6,
+    note: "integral of D cos theta_h over the hemisphere = 1; f32: 1.4e-6 at alpha = 0.01",
 };
 
 pub const INFO_CT: ModelInfo = ModelInfo {
@@ -39,8 +39,8 @@ pub const INFO_CT: ModelInfo = ModelInfo {
     source: "Cook & Torrance 1982; seed 000",
     ops: Ops::new(4, 0, 2, 0, 1),
     bounds: &[],
-    f32_bound: 1e-6,
-    note: "= beckmann * pi / 4 (integral of D cos theta_h = pi / 4)",
+    f32_bound: 3e-6,
+    note: "= beckmann * pi / 4 (integral of D cos theta_h = pi / 4); f32: 1.4e-6 at alpha = 0.01",
 };
 
 pub const ENTRY: Entry = Entry {

@@ -115,8 +115,56 @@ pub const ENTRY_CONDUCTOR: Entry = Entry {
 pub enum FresnelTerm<T> {
     None,
     Schlick { f0: T },
-    Dielectric { eta: T },
-    Conductor { eta: T, k: T },
+    Dielectric(Consts<T>),
+    Conductor(Consts<T>),
+}
+
+/// The per-parameter constants of the exact Fresnel terms, computed in f64 at construction.
+/// Near the critical angle (`cos^2 = p = k^2 + 1 - eta^2`, `eta < 1`), `t0 = c^2 - p`
+/// cancels: it is computed as `(c - s)(c + s)` with `s = sqrt(p)` held as an unevaluated sum
+/// `s_hi + s_lo` of two `T`, so that `c - s_hi` is exact (Sterbenz) and the f32 result keeps
+/// its relative accuracy instead of the absolute `2^-24` of a rounded `c^2 - p`.
+#[derive(Clone, Copy, Debug)]
+pub struct Consts<T> {
+    pub eta: T,
+    pub k: T,
+    /// `s_hi + s_lo = sqrt(p)` when `p > 0` (else both 0).
+    pub s_hi: T,
+    pub s_lo: T,
+    /// `p > 0`.
+    pub edge: bool,
+}
+
+impl<T: Real> Consts<T> {
+    /// The constants for the index `eta + i k` (`k = 0` for dielectrics).
+    pub fn new(eta: f64, k: f64) -> Self {
+        let p = k * k + (1.0 - eta) * (1.0 + eta);
+        let (s_hi, s_lo) = if p > 0.0 {
+            let s = p.sqrt();
+            let hi = T::c(s);
+            (hi, T::c(s - hi.f64()))
+        } else {
+            (T::zero(), T::zero())
+        };
+        Self {
+            eta: T::c(eta),
+            k: T::c(k),
+            s_hi,
+            s_lo,
+            edge: p > 0.0,
+        }
+    }
+
+    /// `t0 = eta^2 - k^2 - sin^2 = c^2 - p`, without cancellation.
+    #[inline(always)]
+    fn t0(&self, c: T) -> T {
+        let one = T::one();
+        if self.edge {
+            ((c - self.s_hi) - self.s_lo) * ((c + self.s_hi) + self.s_lo)
+        } else {
+            ((self.eta - one) * (self.eta + one) - self.k * self.k) + c * c
+        }
+    }
 }
 
 impl<T: Real> FresnelTerm<T> {
@@ -125,11 +173,8 @@ impl<T: Real> FresnelTerm<T> {
     pub fn from_choice(choice: &str, f0: f64, eta: f64, k: f64) -> Self {
         match choice {
             "schlick" => Self::Schlick { f0: T::c(f0) },
-            "dielectric" => Self::Dielectric { eta: T::c(eta) },
-            "conductor" => Self::Conductor {
-                eta: T::c(eta),
-                k: T::c(k),
-            },
+            "dielectric" => Self::Dielectric(Consts::new(eta, 0.0)),
+            "conductor" => Self::Conductor(Consts::new(eta, k)),
             _ => Self::None,
         }
     }
@@ -139,50 +184,117 @@ impl<T: Real> Fresnel<T> for FresnelTerm<T> {
     #[inline]
     fn f(&self, cos: T) -> T {
         let one = T::one();
-        let c = if cos >= T::zero() {
-            cos.min(one)
-        } else {
-            T::zero()
-        };
         match *self {
             Self::None => one,
             Self::Schlick { f0 } => {
+                let c = if cos >= T::zero() {
+                    cos.min(one)
+                } else {
+                    T::zero()
+                };
                 let m = one - c;
                 let m2 = m * m;
                 f0 + (one - f0) * (m2 * m2 * m)
             }
-            Self::Dielectric { eta } => {
-                let sin2_t = (one - c * c) / (eta * eta);
-                if sin2_t >= one {
-                    return one;
-                }
-                let cos_t = (one - sin2_t).sqrt();
-                let r_par = (eta * c - cos_t) / (eta * c + cos_t);
-                let r_perp = (c - eta * cos_t) / (c + eta * cos_t);
-                (r_par * r_par + r_perp * r_perp) * T::c(0.5)
-            }
-            Self::Conductor { eta, k } => {
-                let cos2 = c * c;
-                let sin2 = one - cos2;
-                let eta2 = eta * eta;
-                let k2 = k * k;
-                let t0 = eta2 - k2 - sin2;
-                let a2b2 = (sqr(t0) + T::c(4.0) * eta2 * k2).sqrt();
-                let t1 = a2b2 + cos2;
-                let a = (T::c(0.5) * (a2b2 + t0)).max(T::zero()).sqrt();
-                let t2 = T::c(2.0) * c * a;
-                let rs = (t1 - t2) / (t1 + t2);
-                let t3 = cos2 * a2b2 + sin2 * sin2;
-                let t4 = t2 * sin2;
-                let rp = rs * (t3 - t4) / (t3 + t4);
-                let f = (rp + rs) * T::c(0.5);
-                if f.is_finite() {
-                    f.max(T::zero()).min(one)
-                } else {
-                    one
-                }
-            }
+            Self::Dielectric(ref p) => dielectric(cos, p),
+            Self::Conductor(ref p) => conductor(cos, p),
         }
+    }
+}
+
+/// The smallest cosine the exact Fresnel terms evaluate at (`2^-60`): smaller cosines (and
+/// NaN or negative ones) act as this one. Its square is a normal number in f32, so no
+/// product below underflows; the value it replaces differs from it by less than `2^-48`
+/// (`F -> 1` at grazing, except for `eta = 1, k = 0` where `F = 0` for every cosine).
+pub const COS_LO: f64 = 8.673_617_379_884_035e-19;
+
+#[inline(always)]
+fn clamp_lo<T: Real>(c: T) -> T {
+    if c >= T::c(COS_LO) {
+        c.min(T::one())
+    } else {
+        T::c(COS_LO)
+    }
+}
+
+/// The exact dielectric reflectance, arranged for f32 (twins: `batch::ops::FDielectric`,
+/// `fb_f_dielectric` in the WGSL library). With `e = eta^2 - 1 = (eta - 1)(eta + 1)` (exact
+/// near `eta = 1`) and `g = eta cos_t = sqrt(e + c^2)`:
+/// `r_perp = (c - g) / (c + g) = -e / (c + g)^2` and
+/// `r_par = (eta^2 c - g) / (eta^2 c + g) = e ((eta^2 + 1) c^2 - 1) / (eta^2 c + g)^2`,
+/// so neither subtracts nearly equal numbers: both vanish exactly at `eta = 1`; `g^2` is
+/// [`Consts`]'s `t0`, exact near the critical angle too. (pbrt's form
+/// `1 - (1 - c^2) / eta^2` rounds to 1 in f32 for `c < 1.7e-4` at `eta = 1`, giving `F = 1`
+/// where the exact value is 0.) Total internal reflection (`e + c^2 <= 0`) gives 1.
+#[inline(always)]
+pub fn dielectric<T: Real>(cos: T, p: &Consts<T>) -> T {
+    let one = T::one();
+    let eta = p.eta;
+    let c = clamp_lo(cos);
+    let c2 = c * c;
+    let e = (eta - one) * (eta + one);
+    let g2 = p.t0(c);
+    let g = g2.max(T::zero()).sqrt();
+    let eta2 = eta * eta;
+    let d_perp = c + g;
+    let r_perp = -e / (d_perp * d_perp);
+    let d_par = eta2 * c + g;
+    // (eta^2 + 1) c^2 - 1, as g^2 - eta^2 sin^2 for eta < 1 (both terms vanish together at
+    // the critical angle, where the difference is accurate because g^2 is) and as
+    // eta^2 c^2 - sin^2 for eta >= 1 (where g^2 and eta^2 sin^2 approach eta^2 at grazing).
+    let s2 = (one - c) * (one + c);
+    let brewster = if p.edge {
+        g2 - eta2 * s2
+    } else {
+        eta2 * c2 - s2
+    };
+    let r_par = e * brewster / (d_par * d_par);
+    let f = (r_par * r_par + r_perp * r_perp) * T::c(0.5);
+    if g2 <= T::zero() { one } else { f.min(one) }
+}
+
+/// The exact conductor reflectance for the index `eta + i k`, arranged for f32 (twins:
+/// `batch::ops::FConductor`, `fb_f_conductor`). pbrt-v3's `FrConductor` with
+/// `t0 = eta^2 - k^2 - sin^2 = (eta - 1)(eta + 1) - k^2 + c^2` (no `1 - sin^2`
+/// cancellation), `a^2 + b^2 = |t0 + 2 i eta k|` split into `a^2`, `b^2` without
+/// cancellation (see below), and
+/// `R_s = ((a - c)^2 + b^2) / ((a + c)^2 + b^2)`,
+/// `R_p = R_s ((a c - s^2)^2 + (b c)^2) / ((a c + s^2)^2 + (b c)^2)`: sums of squares, which
+/// equal pbrt's `t1 -/+ t2`, `t3 -/+ t4` without their cancellation.
+#[inline(always)]
+pub fn conductor<T: Real>(cos: T, p: &Consts<T>) -> T {
+    let one = T::one();
+    let half = T::c(0.5);
+    let c = clamp_lo(cos);
+    let c2 = c * c;
+    let s2 = (one - c) * (one + c);
+    let t0 = p.t0(c);
+    let ek = T::c(2.0) * p.eta * p.k;
+    // a^2 + b^2 = r = |t0 + i ek|; the larger of a^2, b^2 is (r + |t0|) / 2 = |t0| + q and the
+    // smaller (r - |t0|) / 2 = q = ek^2 / (2 (r + |t0|)), so that with k = 0 they are exactly
+    // |t0| and 0 even where t0^2 underflows.
+    let at0 = t0.abs();
+    let den = (t0 * t0 + ek * ek).sqrt() + at0;
+    let q = if den > T::zero() {
+        half * ek * ek / den
+    } else {
+        T::zero()
+    };
+    let (big, small) = (at0 + q, q);
+    let (a2, b2) = if t0 >= T::zero() {
+        (big, small)
+    } else {
+        (small, big)
+    };
+    let a = a2.sqrt();
+    let rs = (sqr(a - c) + b2) / (sqr(a + c) + b2);
+    let bc2 = b2 * c2;
+    let rp = rs * (sqr(a * c - s2) + bc2) / (sqr(a * c + s2) + bc2);
+    let f = (rp + rs) * half;
+    if f.is_finite() {
+        f.max(T::zero()).min(one)
+    } else {
+        one
     }
 }
 
@@ -192,13 +304,8 @@ fn build<T: Real, const W: u8>(p: &Params) -> Result<Model<T>> {
         1 => FresnelTerm::Schlick {
             f0: T::c(p.num("f0")),
         },
-        2 => FresnelTerm::Dielectric {
-            eta: T::c(p.num("eta")),
-        },
-        _ => FresnelTerm::Conductor {
-            eta: T::c(p.num("eta")),
-            k: T::c(p.num("k")),
-        },
+        2 => FresnelTerm::Dielectric(Consts::new(p.num("eta"), 0.0)),
+        _ => FresnelTerm::Conductor(Consts::new(p.num("eta"), p.num("k"))),
     };
     Ok(Model::Fresnel(Box::new(term)))
 }

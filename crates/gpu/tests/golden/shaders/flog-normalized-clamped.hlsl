@@ -3,11 +3,11 @@
 //
 // Formula: min(1, max(0, coef(n) flog(c)))
 // Source: seed 001, Fig. 10 (its GLSL snippet)
-// Note: the seed's GLSL clamp to [0, 1]: loses energy for n > ~3; kept only to reproduce the seed
+// Note: the seed's GLSL clamp to [0, 1]: loses energy for n > ~3; kept only to reproduce the seed; f32: as flog-normalized (1.3e-4 at n = 10000)
 // Parameters (this export: n = 20):
 //   n: specular exponent (range [1, 10000], default 20)
 // Error bounds: none documented (an exact model or a reference).
-// Precision: f32 on the CPU within 5e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Precision: f32 on the CPU within 2.5e-4 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
 // Entry: fb_flog_normalized_clamped(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
 

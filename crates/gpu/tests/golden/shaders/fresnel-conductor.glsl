@@ -16,26 +16,30 @@ float fb_clamp01_(float c) {
 }
 
 float fb_f_conductor(float c_in, float eta, float k) {
-    float _e3 = fb_clamp01_(c_in);
-    float cos2_ = (_e3 * _e3);
-    float sin2_ = (1.0 - cos2_);
-    float eta2_ = (eta * eta);
-    float k2_ = (k * k);
-    float t0_ = ((eta2_ - k2_) - sin2_);
-    float a2b2_ = sqrt(((t0_ * t0_) + ((4.0 * eta2_) * k2_)));
-    float t1_ = (a2b2_ + cos2_);
-    float a = sqrt(max((0.5 * (a2b2_ + t0_)), 0.0));
-    float t2_ = ((2.0 * _e3) * a);
-    float rs = ((t1_ - t2_) / (t1_ + t2_));
-    float t3_ = ((cos2_ * a2b2_) + (sin2_ * sin2_));
-    float t4_ = (t2_ * sin2_);
-    float rp = ((rs * (t3_ - t4_)) / (t3_ + t4_));
-    float _e41 = fb_clamp01_(((rp + rs) * 0.5));
-    return _e41;
+    float c_1 = ((c_in >= 8.6736174e-19) ? min(c_in, 1.0) : 8.6736174e-19);
+    float c2_ = (c_1 * c_1);
+    float s2_ = ((1.0 - c_1) * (1.0 + c_1));
+    float p = ((k * k) + ((1.0 - eta) * (1.0 + eta)));
+    float sp = sqrt(max(p, 0.0));
+    float t0_ = ((p > 0.0) ? ((c_1 - sp) * (c_1 + sp)) : ((((eta - 1.0) * (eta + 1.0)) - (k * k)) + c2_));
+    float ek = ((2.0 * eta) * k);
+    float at0_ = abs(t0_);
+    float den = (sqrt(((t0_ * t0_) + (ek * ek))) + at0_);
+    float q = ((den > 0.0) ? (((0.5 * ek) * ek) / den) : 0.0);
+    float big = (at0_ + q);
+    float a2_ = ((t0_ >= 0.0) ? big : q);
+    float b2_ = ((t0_ >= 0.0) ? q : big);
+    float a = sqrt(a2_);
+    float rs = ((((a - c_1) * (a - c_1)) + b2_) / (((a + c_1) * (a + c_1)) + b2_));
+    float bc2_ = (b2_ * c2_);
+    float ac = (a * c_1);
+    float rp = ((rs * (((ac - s2_) * (ac - s2_)) + bc2_)) / (((ac + s2_) * (ac + s2_)) + bc2_));
+    float _e88 = fb_clamp01_(((rp + rs) * 0.5));
+    return _e88;
 }
 
 float fb_fresnel_conductor(float cos_vh) {
-    float c_1 = max(cos_vh, 0.0);
-    float _e5 = fb_f_conductor(c_1, 1.5, 0.0);
+    float c_2 = max(cos_vh, 0.0);
+    float _e5 = fb_f_conductor(c_2, 1.5, 0.0);
     return _e5;
 }

@@ -16,23 +16,28 @@ fn fb_clamp01(c: f32) -> f32 {
     return min(max(c, 0.0), 1.0);
 }
 
-/// fresnel-conductor: the exact unpolarised Fresnel reflectance of a conductor eta + i k
-/// (Mitsuba 3's fresnel_conductor arrangement), clamped to [0, 1].
+/// fresnel-conductor: the exact unpolarised Fresnel reflectance of a conductor eta + i k,
+/// clamped to [0, 1]. Twin of fresnel::conductor, same arrangement (no 1 - sin^2 and no
+/// |t0| - t0 cancellation; R_s and R_p as ratios of sums of squares).
 fn fb_f_conductor(c_in: f32, eta: f32, k: f32) -> f32 {
-    let c = fb_clamp01(c_in);
-    let cos2 = c * c;
-    let sin2 = 1.0 - cos2;
-    let eta2 = eta * eta;
-    let k2 = k * k;
-    let t0 = eta2 - k2 - sin2;
-    let a2b2 = sqrt(t0 * t0 + 4.0 * eta2 * k2);
-    let t1 = a2b2 + cos2;
-    let a = sqrt(max(0.5 * (a2b2 + t0), 0.0));
-    let t2 = 2.0 * c * a;
-    let rs = (t1 - t2) / (t1 + t2);
-    let t3 = cos2 * a2b2 + sin2 * sin2;
-    let t4 = t2 * sin2;
-    let rp = rs * (t3 - t4) / (t3 + t4);
+    let c = select(8.673617379884035e-19, min(c_in, 1.0), c_in >= 8.673617379884035e-19);
+    let c2 = c * c;
+    let s2 = (1.0 - c) * (1.0 + c);
+    let p = k * k + (1.0 - eta) * (1.0 + eta);
+    let sp = sqrt(max(p, 0.0));
+    let t0 = select(((eta - 1.0) * (eta + 1.0) - k * k) + c2, (c - sp) * (c + sp), p > 0.0);
+    let ek = 2.0 * eta * k;
+    let at0 = abs(t0);
+    let den = sqrt(t0 * t0 + ek * ek) + at0;
+    let q = select(0.0, 0.5 * ek * ek / den, den > 0.0);
+    let big = at0 + q;
+    let a2 = select(q, big, t0 >= 0.0);
+    let b2 = select(big, q, t0 >= 0.0);
+    let a = sqrt(a2);
+    let rs = ((a - c) * (a - c) + b2) / ((a + c) * (a + c) + b2);
+    let bc2 = b2 * c2;
+    let ac = a * c;
+    let rp = rs * ((ac - s2) * (ac - s2) + bc2) / ((ac + s2) * (ac + s2) + bc2);
     return fb_clamp01((rp + rs) * 0.5);
 }
 

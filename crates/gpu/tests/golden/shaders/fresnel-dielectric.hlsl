@@ -10,20 +10,23 @@
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
 // Entry: fb_fresnel_dielectric(cos_vh) with cos_vh = v.h; returns f32.
 
-float fb_clamp01_(float c)
-{
-    return min(max(c, 0.0), 1.0);
-}
-
 float fb_f_dielectric(float c_in, float eta)
 {
-    const float _e2 = fb_clamp01_(c_in);
-    float sin2_t = ((1.0 - (_e2 * _e2)) / (eta * eta));
-    float cos_t = sqrt(max((1.0 - sin2_t), 0.0));
-    float r_par = (((eta * _e2) - cos_t) / ((eta * _e2) + cos_t));
-    float r_perp = ((_e2 - (eta * cos_t)) / (_e2 + (eta * cos_t)));
-    float f = (((r_par * r_par) + (r_perp * r_perp)) * 0.5);
-    return ((sin2_t >= 1.0) ? 1.0 : f);
+    float c = ((c_in >= 8.6736174e-19) ? min(c_in, 1.0) : 8.6736174e-19);
+    float c2_ = (c * c);
+    float e = ((eta - 1.0) * (eta + 1.0));
+    float s = sqrt(max(((1.0 - eta) * (1.0 + eta)), 0.0));
+    float g2_ = ((eta < 1.0) ? ((c - s) * (c + s)) : (e + c2_));
+    float g = sqrt(max(g2_, 0.0));
+    float eta2_ = (eta * eta);
+    float d_perp = (c + g);
+    float r_perp = (-(e) / (d_perp * d_perp));
+    float d_par = ((eta2_ * c) + g);
+    float sin2_ = ((1.0 - c) * (1.0 + c));
+    float brewster = ((eta < 1.0) ? (g2_ - (eta2_ * sin2_)) : ((eta2_ * c2_) - sin2_));
+    float r_par = ((e * brewster) / (d_par * d_par));
+    float f = min((((r_par * r_par) + (r_perp * r_perp)) * 0.5), 1.0);
+    return ((g2_ <= 0.0) ? 1.0 : f);
 }
 
 float fb_fresnel_dielectric(float cos_vh)

@@ -17,23 +17,25 @@
 using metal::uint;
 
 
-float fb_clamp01_(
-    float c
-) {
-    return metal::min(metal::max(c, 0.0), 1.0);
-}
-
 float fb_f_dielectric(
     float c_in,
     float eta
 ) {
-    float _e2 = fb_clamp01_(c_in);
-    float sin2_t = (1.0 - (_e2 * _e2)) / (eta * eta);
-    float cos_t = metal::sqrt(metal::max(1.0 - sin2_t, 0.0));
-    float r_par = ((eta * _e2) - cos_t) / ((eta * _e2) + cos_t);
-    float r_perp = (_e2 - (eta * cos_t)) / (_e2 + (eta * cos_t));
-    float f = ((r_par * r_par) + (r_perp * r_perp)) * 0.5;
-    return (sin2_t >= 1.0) ? 1.0 : f;
+    float c = (c_in >= 0.00000000000000000086736174) ? metal::min(c_in, 1.0) : 0.00000000000000000086736174;
+    float c2_ = c * c;
+    float e = (eta - 1.0) * (eta + 1.0);
+    float s = metal::sqrt(metal::max((1.0 - eta) * (1.0 + eta), 0.0));
+    float g2_ = (eta < 1.0) ? ((c - s) * (c + s)) : (e + c2_);
+    float g = metal::sqrt(metal::max(g2_, 0.0));
+    float eta2_ = eta * eta;
+    float d_perp = c + g;
+    float r_perp = -(e) / (d_perp * d_perp);
+    float d_par = (eta2_ * c) + g;
+    float sin2_ = (1.0 - c) * (1.0 + c);
+    float brewster = (eta < 1.0) ? (g2_ - (eta2_ * sin2_)) : ((eta2_ * c2_) - sin2_);
+    float r_par = (e * brewster) / (d_par * d_par);
+    float f = metal::min(((r_par * r_par) + (r_perp * r_perp)) * 0.5, 1.0);
+    return (g2_ <= 0.0) ? 1.0 : f;
 }
 
 float fb_fresnel_dielectric(

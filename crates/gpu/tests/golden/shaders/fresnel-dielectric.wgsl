@@ -10,21 +10,28 @@
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
 // Entry: fb_fresnel_dielectric(cos_vh) with cos_vh = v.h; returns f32.
 
-/// Clamps a cosine to [0, 1] (twin: ops::clamp01).
-fn fb_clamp01(c: f32) -> f32 {
-    return min(max(c, 0.0), 1.0);
-}
-
 /// fresnel-dielectric: the exact unpolarised Fresnel reflectance of a dielectric of relative
-/// index eta (1 on total internal reflection).
+/// index eta (1 on total internal reflection). Twin of fresnel::dielectric, same arrangement:
+/// e = (eta - 1)(eta + 1), g = sqrt(e + c^2), r_perp = -e / (c + g)^2,
+/// r_par = e ((eta^2 + 1) c^2 - 1) / (eta^2 c + g)^2 (both exactly 0 at eta = 1); see the twin.
 fn fb_f_dielectric(c_in: f32, eta: f32) -> f32 {
-    let c = fb_clamp01(c_in);
-    let sin2_t = (1.0 - c * c) / (eta * eta);
-    let cos_t = sqrt(max(1.0 - sin2_t, 0.0));
-    let r_par = (eta * c - cos_t) / (eta * c + cos_t);
-    let r_perp = (c - eta * cos_t) / (c + eta * cos_t);
-    let f = (r_par * r_par + r_perp * r_perp) * 0.5;
-    return select(f, 1.0, sin2_t >= 1.0);
+    let c = select(8.673617379884035e-19, min(c_in, 1.0), c_in >= 8.673617379884035e-19);
+    let c2 = c * c;
+    let e = (eta - 1.0) * (eta + 1.0);
+    // Near the critical angle (eta < 1) g^2 = (c - s)(c + s), s = sqrt(1 - eta^2) (the CPU
+    // holds s in two floats; here s is rounded once).
+    let s = sqrt(max((1.0 - eta) * (1.0 + eta), 0.0));
+    let g2 = select(e + c2, (c - s) * (c + s), eta < 1.0);
+    let g = sqrt(max(g2, 0.0));
+    let eta2 = eta * eta;
+    let d_perp = c + g;
+    let r_perp = -e / (d_perp * d_perp);
+    let d_par = eta2 * c + g;
+    let sin2 = (1.0 - c) * (1.0 + c);
+    let brewster = select(eta2 * c2 - sin2, g2 - eta2 * sin2, eta < 1.0);
+    let r_par = e * brewster / (d_par * d_par);
+    let f = min((r_par * r_par + r_perp * r_perp) * 0.5, 1.0);
+    return select(f, 1.0, g2 <= 0.0);
 }
 
 /// fresnel-dielectric: (r_par^2 + r_perp^2) / 2, exact, with total internal reflection
