@@ -225,7 +225,13 @@ fn unbounded_inputs_are_refused_with_a_clear_message() {
     );
     // A PNG header declaring 20000x20000 pixels: refused before decoding.
     let tex = d.join("huge.png");
-    let png = png_declaring(20000, 20000);
+    // 65 bytes whose header declares 20000x20000 RGB pixels (made and checked by
+    // crates/render/tests/inputs.rs).
+    let png = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../render/tests/data/declares-20000x20000.png"
+    ))
+    .unwrap();
     std::fs::write(&tex, &png).unwrap();
     let o = run(&[
         "render",
@@ -457,38 +463,4 @@ fn demo_checks_the_mesh_before_writing_and_writes_all_or_nothing() {
     assert_eq!(o.status.code(), Some(3), "{}", err(&o));
     assert!(!out.exists(), "nothing written");
     assert_eq!(files(&d), ["bad.obj"]);
-}
-
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut c = !0u32;
-    for &b in bytes {
-        c ^= u32::from(b);
-        for _ in 0..8 {
-            c = if c & 1 != 0 {
-                0xedb8_8320 ^ (c >> 1)
-            } else {
-                c >> 1
-            };
-        }
-    }
-    !c
-}
-
-/// A 50-byte PNG whose header declares `w` x `h` RGB pixels.
-fn png_declaring(w: u32, h: u32) -> Vec<u8> {
-    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
-    let mut chunk = |kind: &[u8], data: &[u8]| {
-        out.extend((data.len() as u32).to_be_bytes());
-        let mut body = kind.to_vec();
-        body.extend(data);
-        out.extend(&body);
-        out.extend(crc32(&body).to_be_bytes());
-    };
-    let mut ihdr = w.to_be_bytes().to_vec();
-    ihdr.extend(h.to_be_bytes());
-    ihdr.extend([8, 2, 0, 0, 0]);
-    chunk(b"IHDR", &ihdr);
-    chunk(b"IDAT", &[0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01]);
-    chunk(b"IEND", &[]);
-    out
 }

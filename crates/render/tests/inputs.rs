@@ -349,11 +349,15 @@ fn png_declaring(w: u32, h: u32) -> Vec<u8> {
 fn a_texture_declaring_huge_dimensions_is_refused_before_decoding() {
     let path = tmp("huge.png");
     std::fs::write(&path, png_declaring(20000, 20000)).unwrap();
-    let t0 = std::time::Instant::now();
     let e = Texture::load(&path).unwrap_err().to_string();
     assert!(e.starts_with(&path.display().to_string()), "{e}");
     assert!(e.contains("declares 20000x20000 pixels"), "{e}");
-    assert!(t0.elapsed().as_secs_f64() < 5.0);
+    // The CLI tests use the same file, checked in.
+    let fixture = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/declares-20000x20000.png"
+    );
+    assert_eq!(std::fs::read(fixture).unwrap(), png_declaring(20000, 20000));
     // Within the caps, the same kind of file is decoded (and fails on its short data, with
     // the texture's name).
     std::fs::write(&path, png_declaring(4, 4)).unwrap();
