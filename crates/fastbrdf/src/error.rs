@@ -29,16 +29,35 @@ pub enum Error {
     },
 }
 
+/// Longest user-given text (an id, a parameter name or value) echoed whole in a message.
+const ECHO_MAX: usize = 40;
+
+/// `s` as echoed in a message: at most [`ECHO_MAX`] characters, control characters escaped,
+/// the rest counted ("... (N more bytes)"), so a 10 MB argument gives a one-line error.
+fn echo(s: &str) -> String {
+    let mut out = String::new();
+    for (taken, (i, ch)) in s.char_indices().enumerate() {
+        if taken == ECHO_MAX {
+            out.push_str(&format!("... ({} more bytes)", s.len() - i));
+            return out;
+        }
+        out.extend(ch.escape_debug());
+    }
+    out
+}
+
 impl fmt::Display for Error {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Error::UnknownModel(id) => {
+                let id = echo(id);
                 write!(
                     f,
                     "unknown model id '{id}' (run `fastbrdf models` for the list)"
                 )
             }
             Error::UnknownParam { model, param } => {
+                let param = echo(param);
                 write!(f, "model '{model}' has no parameter '{param}'")
             }
             Error::InvalidParam {
@@ -47,6 +66,7 @@ impl fmt::Display for Error {
                 value,
                 expected,
             } => {
+                let value = echo(value);
                 write!(
                     f,
                     "model '{model}': parameter {param} = {value} is invalid: expected {expected}"
@@ -71,6 +91,34 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 11: user-given text is shortened in messages.
+    #[test]
+    fn long_user_text_is_shortened_in_messages() {
+        let long = "9".repeat(10_000_000);
+        let e = Error::InvalidParam {
+            model: "pow".into(),
+            param: "n".into(),
+            value: long.clone(),
+            expected: "a number in [1, 10000]".into(),
+        }
+        .to_string();
+        assert!(e.len() < 200 && e.contains("(9999960 more bytes)"), "{e}");
+        let e = Error::UnknownModel(long.clone()).to_string();
+        assert!(e.len() < 200, "{e}");
+        let e = Error::UnknownParam {
+            model: "pow".into(),
+            param: "x\ny".into(),
+        }
+        .to_string();
+        assert_eq!(e, "model 'pow' has no parameter 'x\\ny'");
+        assert_eq!(echo("n"), "n");
+    }
+}
 
 /// Result with this crate's error.
 pub type Result<T, E = Error> = std::result::Result<T, E>;
