@@ -141,14 +141,25 @@ pub fn at(spec: &Spec, p: f64) -> Result<ErrorRow> {
 /// The errors at every parameter value, in parallel.
 pub fn sweep(spec: &Spec, values: &[f64], progress: &(dyn Fn() + Sync)) -> Result<Vec<ErrorRow>> {
     spec.validate()?;
-    values
+    let rows: Vec<ErrorRow> = values
         .par_iter()
         .map(|&p| {
             let r = at(spec, p);
             progress();
             r
         })
-        .collect()
+        .collect::<Result<_>>()?;
+    // A zone that holds no sample measured nothing: refuse it rather than report error 0.
+    if let Some(r) = rows.iter().find(|r| r.samples == 0) {
+        return Err(fastbrdf::Error::Domain {
+            input: "--zone".into(),
+            reason: format!(
+                "no sample of the reference lies in this zone at {} = {}: nothing to measure (widen the zone)",
+                spec.param, r.param
+            ),
+        });
+    }
+    Ok(rows)
 }
 
 /// The worst of each metric over rows: (max abs row, max rel row, max rms row).

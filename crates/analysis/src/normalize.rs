@@ -77,6 +77,28 @@ pub enum Form {
 }
 
 impl Form {
+    /// How many values of n a fit of this form needs: its fitted constants (a fit through
+    /// fewer points is underdetermined and would report a perfect, meaningless fit).
+    pub fn min_points(self) -> usize {
+        match self {
+            Form::Seed => 4,
+            Form::Linear => 2,
+            Form::SeedPublished => 1,
+        }
+    }
+
+    /// Refuses `points` values of n when the form needs more (see [`Form::min_points`]).
+    pub fn check_points(self, points: usize) -> Result<(), String> {
+        if points < self.min_points() {
+            return Err(format!(
+                "--fit needs at least {} values of n for its {} constants; --n gives {points}",
+                self.min_points(),
+                self.min_points()
+            ));
+        }
+        Ok(())
+    }
+
     /// Parses `seed`, `linear` or `seed-published`.
     pub fn parse(s: &str) -> Option<Self> {
         match s {

@@ -65,6 +65,63 @@ pub struct Report {
     pub gpu: Option<String>,
 }
 
+/// Largest saved run read (`fastbrdf bench --from`, `pareto --bench`, `reproduce --speedups`).
+pub const SAVED_RUN_LIMIT: u64 = 64 << 20;
+
+/// Largest plausible throughput figure (evaluations or lane-FMAs per second): 10^15, far above
+/// any machine, so that only impossible numbers are refused.
+const MAX_RATE: f64 = 1e15;
+
+impl Report {
+    /// Reads a saved `fastbrdf bench --json` run (once, at most [`SAVED_RUN_LIMIT`] bytes) and
+    /// checks that every figure is a possible measurement: rates finite, positive and at most
+    /// 10^15 per second, speedups finite and positive, at least one thread, batches of at least
+    /// one element. The error names the file and the first impossible field.
+    pub fn load(path: &std::path::Path) -> Result<Self, fastbrdf_io::IoError> {
+        let bad = |message: String| fastbrdf_io::IoError::Input {
+            path: path.display().to_string(),
+            message,
+        };
+        let text = fastbrdf_io::read_text_bounded(path, SAVED_RUN_LIMIT, "a bench run")?;
+        let r: Report = serde_json::from_str(&text)
+            .map_err(|e| bad(format!("not a `fastbrdf bench --json` run: {e}")))?;
+        let rate = |x: f64| x.is_finite() && x > 0.0 && x <= MAX_RATE;
+        if !rate(r.fma_per_s) {
+            return Err(bad(format!(
+                "fma_per_s = {} is not a possible rate (finite, positive, at most 1e15)",
+                r.fma_per_s
+            )));
+        }
+        if r.threads == 0 {
+            return Err(bad("threads = 0: a run has at least one thread".into()));
+        }
+        for (i, k) in r.kernels.iter().enumerate() {
+            if !rate(k.evals_per_s) || k.batch == 0 {
+                return Err(bad(format!(
+                    "kernels[{i}] ({} {}): evals_per_s = {} with batch {} is not a possible measurement",
+                    k.model, k.variant, k.evals_per_s, k.batch
+                )));
+            }
+            if let Some(f) = k.fma_fraction.filter(|f| !(f.is_finite() && *f >= 0.0)) {
+                return Err(bad(format!(
+                    "kernels[{i}] ({}): fma_fraction = {f} is not a fraction",
+                    k.model
+                )));
+            }
+        }
+        for (i, s) in r.speedups.iter().enumerate() {
+            let ok = |x: f64| x.is_finite() && x > 0.0;
+            if !ok(s.measured) || s.claimed.is_some_and(|c| !ok(c)) {
+                return Err(bad(format!(
+                    "speedups[{i}] ({}): a speedup is a finite positive ratio",
+                    s.name
+                )));
+            }
+        }
+        Ok(r)
+    }
+}
+
 /// The CPU's model name (Linux /proc/cpuinfo), or "unknown".
 pub fn cpu_name() -> String {
     std::fs::read_to_string("/proc/cpuinfo")

@@ -90,7 +90,7 @@ fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  fas
 Exit codes:\n  0  success\n  1  a check failed (`check`), or the GPU itself failed\n  \
 2  bad usage or bad input (unknown model, invalid parameter or range, malformed CSV or mesh,\n     \
 an unreadable or oversized input file); nothing is written\n  \
-3  an output could not be written (disk full, file-size limit, closed stdout); no partial\n     \
+3  an output could not be written (disk full, file-size limit, a reader that went away);\n     no partial \
 file or temporary is left behind\n\n\
 Machine outputs (--json, --csv) carry numbers; a value with no finite number (an infinite\n\
 relative error) is null in JSON and an empty field in CSV. Parameter columns and keys use the\n\

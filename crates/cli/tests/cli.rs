@@ -1534,3 +1534,132 @@ fn saved_runs_are_read_with_a_bound() {
         );
     }
 }
+
+/// Issue 11, found by a hostile review after the first fixes: an empty zone reported error 0,
+/// a fit through fewer points than constants reported a perfect fit, albedo's parameters were
+/// strings in JSON, and CR-only line endings gave the wrong line.
+#[test]
+fn empty_measurements_are_refused_and_json_parameters_are_numbers() {
+    for args in [
+        &[
+            "errors",
+            "--model",
+            "flog",
+            "--reference",
+            "pow",
+            "--n",
+            "20",
+            "--zone",
+            "band:0,1e-300",
+            "--json",
+        ][..],
+        &["normalize", "--model", "flog", "--n", "5", "--fit", "seed"][..],
+        &[
+            "normalize",
+            "--model",
+            "flog",
+            "--n",
+            "5,10,20",
+            "--fit",
+            "seed",
+        ][..],
+        &[
+            "normalize",
+            "--model",
+            "flog",
+            "--n",
+            "5",
+            "--fit",
+            "linear",
+        ][..],
+    ] {
+        let o = fastbrdf(args, "");
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty(), "{args:?}");
+    }
+    let o = fastbrdf(
+        &[
+            "errors",
+            "--model",
+            "flog",
+            "--reference",
+            "pow",
+            "--n",
+            "20",
+            "--zone",
+            "band:0,1e-300",
+        ],
+        "",
+    );
+    assert!(stderr(&o).contains("no sample"), "{}", stderr(&o));
+    let o = fastbrdf(
+        &[
+            "albedo",
+            "--model",
+            "cook-torrance",
+            "--param",
+            "alpha=0.3",
+            "--param",
+            "f=schlick",
+            "--angles",
+            "0,45",
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(
+        v["params"]["alpha"],
+        serde_json::json!(0.3),
+        "{}",
+        v["params"]
+    );
+    assert_eq!(v["params"]["f"], "schlick", "{}", v["params"]);
+    let o = fastbrdf(
+        &["eval", "--model", "pow", "--param", "n=2"],
+        "cos\r0.5\r2\r",
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("line 3"), "{}", stderr(&o));
+}
+
+/// Issue 11 (review): saved runs with impossible figures were printed as if measured
+/// ("FMA peak -0", "-1.00x", 300-digit throughputs).
+#[test]
+fn saved_runs_with_impossible_figures_are_refused() {
+    let d = temp_dir("impossible-bench");
+    let saved = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    let good: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(saved).unwrap()).unwrap();
+    type Edit = fn(&mut serde_json::Value);
+    let edits: [(&str, Edit); 3] = [
+        ("fma", |v| v["fma_per_s"] = serde_json::json!(-5.0)),
+        ("speedup", |v| {
+            v["speedups"][0]["measured"] = serde_json::json!(-1.0)
+        }),
+        ("evals", |v| {
+            v["kernels"][3]["evals_per_s"] = serde_json::json!(1e308)
+        }),
+    ];
+    for (name, edit) in edits {
+        let mut v = good.clone();
+        edit(&mut v);
+        let f = d.join(format!("{name}.json"));
+        std::fs::write(&f, serde_json::to_string(&v).unwrap()).unwrap();
+        let f = f.to_str().unwrap();
+        for args in [
+            &["bench", "--from", f][..],
+            &["reproduce", "--speedups", f, "--json"][..],
+            &["pareto", "--bench", f, "--json"][..],
+        ] {
+            let o = fastbrdf(args, "");
+            assert_eq!(o.status.code(), Some(2), "{name} {args:?}: {}", stderr(&o));
+            assert!(o.stdout.is_empty(), "{name} {args:?}");
+            assert!(stderr(&o).contains(f), "{}", stderr(&o));
+        }
+    }
+    // The saved run itself is accepted.
+    assert!(fastbrdf(&["bench", "--from", saved], "").status.success());
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -92,6 +92,9 @@ impl fmt::Display for Error {
 
 impl std::error::Error for Error {}
 
+/// Result with this crate's error.
+pub type Result<T, E = Error> = std::result::Result<T, E>;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -119,6 +122,3 @@ mod tests {
         assert_eq!(echo("n"), "n");
     }
 }
-
-/// Result with this crate's error.
-pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -223,7 +223,8 @@ pub fn write_atomic_with(
         .to_string_lossy()
         .into_owned();
     if path.is_dir() {
-        return Err(output_err(path, "is a folder"));
+        // The user named a folder where a file is wanted: bad usage (exit 2), not an I/O failure.
+        return Err(input_err(path, "is a folder, not a file to write"));
     }
     let dir = path
         .parent()
@@ -271,7 +272,8 @@ impl OutputSet {
     /// Starts a set of files to be written into `dir` (created if missing).
     pub fn new(dir: &Path) -> Result<Self, IoError> {
         if dir.exists() && !dir.is_dir() {
-            return Err(output_err(dir, "exists and is not a folder"));
+            // Bad usage (exit 2): the user named a file where a folder is wanted.
+            return Err(input_err(dir, "exists and is not a folder"));
         }
         let created = create_dirs(dir).map_err(|e| output_err(dir, e))?;
         let staging = unique_tmp(dir, "fastbrdf-staging");
@@ -457,7 +459,14 @@ mod tests {
         });
         assert!(r.is_err());
         assert_eq!(listing(&d.join("sub")), vec!["out.txt"]);
-        assert!(write_atomic(&d.join("sub"), b"x").is_err());
+        assert!(matches!(
+            write_atomic(&d.join("sub"), b"x"),
+            Err(IoError::Input { .. })
+        ));
+        assert!(matches!(
+            OutputSet::new(&d.join("sub/out.txt")),
+            Err(IoError::Input { .. })
+        ));
         fs::remove_dir_all(&d).unwrap();
     }
 

@@ -104,6 +104,8 @@ fn tokens(s: &str) -> impl Iterator<Item = (usize, &str)> + Clone {
 }
 
 fn parse(file: &Path, text: &str) -> Result<Parsed> {
+    // A UTF-8 byte-order mark (some Windows editors write one) is not part of the first line.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let (mut vs, mut vts, mut vns) = (Vec::new(), Vec::new(), Vec::new());
     let mut corners: HashMap<(u32, Option<u32>, Option<u32>), u32> = HashMap::new();
     let mut p = Parsed {

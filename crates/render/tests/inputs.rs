@@ -203,6 +203,8 @@ fn every_bad_obj_is_refused_with_its_file_line_and_column() {
 
 /// Valid OBJ texts and (triangles, has uvs) they load to.
 pub const GOOD_OBJ: &[(&str, usize, bool)] = &[
+    // A UTF-8 byte-order mark before the first statement (refused before; review of issue 11).
+    ("\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 1, false),
     (
         "v 0.1 0.2 0.3 # note\nv 1 0 0 #\nv 0 1 0\nf 1 2 3 # a face\n",
         1,

@@ -245,6 +245,9 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
     for n in [ns[0], ns[ns.len() - 1]] {
         fastbrdf::registry::build::<f64>(&a.model, &[("n", &num(n))])?;
     }
+    if let Some(form) = a.fit.as_deref().and_then(normalize::Form::parse) {
+        form.check_points(ns.len()).map_err(CliError::input)?;
+    }
     let rows = normalize::table(&a.model, &ns)?;
     let fit = a
         .fit
@@ -329,7 +332,7 @@ pub struct AlbedoArgs {
     /// For lobes: energy (coef(n) = 1 / (2 pi Int(n))) or none (the lobe as it is).
     #[arg(long, default_value = "energy", value_parser = ["energy", "none"])]
     norm: String,
-    /// Print JSON: {"model", "claims_energy", "conserves", "rows": [{theta_deg, albedo, error}]}.
+    /// Print JSON: {"model", "brdf", "params": {NAME: number, or the choice's name}, "claims_energy", "conserves", "rows": [{theta_deg, albedo, error}]}.
     #[arg(long)]
     json: bool,
 }
@@ -349,7 +352,20 @@ pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
     pb.finish_and_clear();
     let (holds, worst) = albedo::furnace(&rows, 1e-6);
     if a.json {
-        let v = serde_json::json!({"model": a.model, "brdf": t.id, "params": t.params, "claims_energy": t.claims_energy,
+        // Parameters as an object: numbers as numbers, choices (f=schlick) as their names.
+        let params: serde_json::Map<String, serde_json::Value> = t
+            .params
+            .iter()
+            .map(|(k, v)| {
+                let value = v
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .map_or_else(|| serde_json::json!(v), |x| serde_json::json!(x));
+                (k.clone(), value)
+            })
+            .collect();
+        let v = serde_json::json!({"model": a.model, "brdf": t.id, "params": params, "claims_energy": t.claims_energy,
             "conserves": holds, "rows": rows});
         crate::outln!(
             "{}",

@@ -102,19 +102,7 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
 
 pub fn run(a: &Args) -> Result<(), CliError> {
     let report: Report = match &a.from {
-        Some(path) => {
-            let text = fastbrdf_io::read_text_bounded(
-                path,
-                super::reproduce::BENCH_JSON_LIMIT,
-                "a bench run",
-            )?;
-            serde_json::from_str(&text).map_err(|e| {
-                CliError::input(format!(
-                    "{}: not a `fastbrdf bench --json` run: {e}",
-                    path.display()
-                ))
-            })?
-        }
+        Some(path) => Report::load(path)?,
         None => {
             if !(1024..=(1usize << 28)).contains(&a.large) {
                 return Err(CliError::input(format!(

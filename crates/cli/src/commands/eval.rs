@@ -140,10 +140,11 @@ pub fn evaluate<T: Real + std::str::FromStr>(
     header_out.push("value");
     writer.write_record(&header_out).expect("writing to memory");
     let all_names: Vec<&str> = req.iter().chain(opt.iter()).copied().collect();
+    let mut lines = Lines::new(text);
     for record in reader.records() {
         let record = record.map_err(|e| csv_error(source, text, &e))?;
         // The line where the record starts (blank lines and quoted line breaks counted).
-        let line = record.position().map_or(0, |p| line_of(text, p));
+        let line = record.position().map_or(0, |p| lines.of(p));
         let mut input = Vec::with_capacity(index.len());
         for (k, i) in index.iter().enumerate() {
             let v = match i {
@@ -197,16 +198,74 @@ fn csv_error(source: &str, text: &str, e: &csv::Error) -> CliError {
     CliError::input(format!("{source}: {at}{what}"))
 }
 
-/// The line where a record starts. The csv crate's own line count is one short for a record
-/// that follows blank lines (its position points at the skipped line break), so the line is
-/// computed from the byte offset, past any line breaks.
-fn line_of(text: &str, p: &csv::Position) -> u64 {
-    let bytes = text.as_bytes();
-    let mut at = usize::try_from(p.byte())
-        .unwrap_or(usize::MAX)
-        .min(bytes.len());
-    while at < bytes.len() && matches!(bytes[at], b'\n' | b'\r') {
-        at += 1;
+/// Line numbers of byte offsets, computed incrementally: records come in order, so the input is
+/// scanned once in all (a line count from the start for every record made `eval` quadratic in
+/// its input). A line ends at "\n", "\r\n" or a lone "\r", the csv crate's terminators.
+struct Lines<'a> {
+    bytes: &'a [u8],
+    at: usize,
+    line: u64,
+}
+
+impl<'a> Lines<'a> {
+    fn new(text: &'a str) -> Self {
+        Self {
+            bytes: text.as_bytes(),
+            at: 0,
+            line: 1,
+        }
     }
-    fastbrdf_io::line_col(bytes, at).0 as u64
+
+    /// The line where a record starts. The csv crate's own line count is one short for a
+    /// record that follows blank lines (its position points at the skipped line break), so the
+    /// line is computed from the byte offset, past any line breaks.
+    fn of(&mut self, p: &csv::Position) -> u64 {
+        let b = self.bytes;
+        let mut target = usize::try_from(p.byte()).unwrap_or(usize::MAX).min(b.len());
+        while target < b.len() && matches!(b[target], b'\n' | b'\r') {
+            target += 1;
+        }
+        if target < self.at {
+            (self.at, self.line) = (0, 1);
+        }
+        while self.at < target {
+            match b[self.at] {
+                b'\n' => self.line += 1,
+                b'\r' if b.get(self.at + 1) != Some(&b'\n') => self.line += 1,
+                _ => {}
+            }
+            self.at += 1;
+        }
+        self.line
+    }
+}
+
+/// The line where a record starts (one-off; see [`Lines`]).
+fn line_of(text: &str, p: &csv::Position) -> u64 {
+    Lines::new(text).of(p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Lines;
+
+    fn pos(byte: u64) -> csv::Position {
+        let mut p = csv::Position::new();
+        p.set_byte(byte);
+        p
+    }
+
+    #[test]
+    fn lines_end_at_lf_crlf_and_lone_cr() {
+        let text = "a\nb\r\nc\rd\n\n\re";
+        let mut l = Lines::new(text);
+        assert_eq!(l.of(&pos(0)), 1);
+        assert_eq!(l.of(&pos(2)), 2);
+        assert_eq!(l.of(&pos(5)), 3);
+        assert_eq!(l.of(&pos(7)), 4);
+        // Blank lines before a record are skipped: "e" is on line 7.
+        assert_eq!(l.of(&pos(9)), 7);
+        // Out of order (never happens for records) still answers right.
+        assert_eq!(l.of(&pos(2)), 2);
+    }
 }

@@ -229,19 +229,7 @@ fn throughput(id: &str) -> f64 {
 pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
     let saved: Option<fastbrdf_analysis::speed::Report> = match &a.bench {
         None => None,
-        Some(p) => Some(
-            serde_json::from_str(&fastbrdf_io::read_text_bounded(
-                p,
-                super::reproduce::BENCH_JSON_LIMIT,
-                "a bench run",
-            )?)
-            .map_err(|e| {
-                CliError::input(format!(
-                    "{}: not a `fastbrdf bench --json` run: {e}",
-                    p.display()
-                ))
-            })?,
-        ),
+        Some(p) => Some(fastbrdf_analysis::speed::Report::load(p)?),
     };
     let lobes: Vec<&'static fastbrdf::ModelInfo> = fastbrdf::registry::all()
         .iter()

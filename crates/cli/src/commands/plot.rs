@@ -206,6 +206,7 @@ fn max_error_chart(
 }
 
 fn coef_chart(model: &str, ns: &[f64], form: normalize::Form) -> Result<(Chart, Chart), CliError> {
+    form.check_points(ns.len()).map_err(CliError::input)?;
     let rows = normalize::table(model, ns)?;
     let f = normalize::fit(form, &rows);
     let k: Vec<f64> = f.constants.iter().map(|(_, v)| *v).collect();

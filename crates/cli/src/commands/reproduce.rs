@@ -30,21 +30,12 @@ pub struct Args {
     out: Option<PathBuf>,
 }
 
-/// The most bytes read from a saved `fastbrdf bench --json` run (a real one is ~100 KiB).
-pub const BENCH_JSON_LIMIT: u64 = 64 << 20;
-
 pub fn run(a: &Args) -> Result<(), CliError> {
     let pb = bar(22, "reproduce");
     let speedups: Vec<(String, f64)> = match &a.speedups {
         None => vec![],
         Some(path) => {
-            let text = fastbrdf_io::read_text_bounded(path, BENCH_JSON_LIMIT, "a bench run")?;
-            let b: fastbrdf_analysis::speed::Report = serde_json::from_str(&text).map_err(|e| {
-                CliError::input(format!(
-                    "{}: not a `fastbrdf bench --json` run: {e}",
-                    path.display()
-                ))
-            })?;
+            let b = fastbrdf_analysis::speed::Report::load(path)?;
             b.speedups
                 .iter()
                 .map(|s| (s.name.clone(), s.measured))
