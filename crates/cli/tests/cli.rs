@@ -1121,6 +1121,9 @@ fn fit_and_pareto_commands() {
     assert!(r.status.success(), "{}", stderr(&r));
     let md = stdout(&r);
     assert!(out.with_extension("png").exists() && out.with_extension("svg").exists());
+    for ext in ["png", "svg"] {
+        std::fs::remove_file(out.with_extension(ext)).unwrap();
+    }
     let readme =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
     let open = "<!-- pareto:begin -->\n";
