@@ -1619,6 +1619,9 @@ fn empty_measurements_are_refused_and_json_parameters_are_numbers() {
         v["params"]
     );
     assert_eq!(v["params"]["f"], "schlick", "{}", v["params"]);
+    let o = fastbrdf(&["eval", "--model", "pow"], "cos,cos\n0.5,0.6\n");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("more than once"), "{}", stderr(&o));
     let o = fastbrdf(
         &["eval", "--model", "pow", "--param", "n=2"],
         "cos\r0.5\r2\r",

@@ -121,11 +121,24 @@ pub fn evaluate<T: Real + std::str::FromStr>(
         )));
     }
     let (req, opt) = model.columns();
+    // An input column named twice is ambiguous: refuse it rather than pick one.
+    for name in req.iter().chain(opt.iter()) {
+        if headers.iter().filter(|h| h == name).count() > 1 {
+            return Err(CliError::input(format!(
+                "{source}: line {hline}: column '{name}' appears more than once"
+            )));
+        }
+    }
     let mut index = Vec::new();
     for name in req {
         let i = headers.iter().position(|h| h == *name).ok_or_else(|| {
+            let optional = if opt.is_empty() {
+                String::new()
+            } else {
+                format!(", optionally {}", opt.join(","))
+            };
             CliError::input(format!(
-                "{source}: line {hline}: missing column '{name}' (a {} needs columns {})",
+                "{source}: line {hline}: missing column '{name}' (a {} needs columns {}{optional})",
                 model.kind().name(),
                 req.join(",")
             ))
