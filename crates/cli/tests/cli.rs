@@ -196,12 +196,12 @@ fn bad_input_is_a_clear_error_with_exit_code_2_and_no_stdout() {
         (
             &["eval", "--model", "pow"],
             "cos\n0.5\n1.5\n",
-            "line 3: input cos: 1.5 is outside the domain [0, 1]",
+            "line 3, field 1 ('cos'): input cos: 1.5 is outside the domain [0, 1]",
         ),
         (
             &["eval", "--model", "pow"],
             "cos\nNaN\n",
-            "line 2: input cos: NaN is not a finite number",
+            "line 2, field 1 ('cos'): input cos: NaN is not a finite number",
         ),
         (
             &["eval", "--model", "pow"],
@@ -216,12 +216,12 @@ fn bad_input_is_a_clear_error_with_exit_code_2_and_no_stdout() {
         (
             &["eval", "--model", "ward"],
             "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\n0,0,1,0,0,1\n0,0,0,0,0,1\n",
-            "line 3: input wi: zero-length vector",
+            "line 3, field 1 ('wi_x'): input wi: zero-length vector",
         ),
         (
             &["eval", "--model", "ward"],
             "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\n0,0.2,-1,0,0,1\n",
-            "line 2: input wi: below the horizon",
+            "line 2, field 1 ('wi_x'): input wi: below the horizon",
         ),
         (
             &["eval", "--model", "phong-fast"],
@@ -1355,7 +1355,10 @@ fn eval_errors_point_at_the_record_and_stay_short() {
             b"cos,note\n0.5,\"two\nlines\"\n0.7,\"a\n\nb\"\nx,y\n",
             "<stdin>: line 7, field 1 ('cos'): 'x' is not a number",
         ),
-        (b"cos\n0.5\n\n1.5\n", "<stdin>: line 4: input cos: 1.5"),
+        (
+            b"cos\n0.5\n\n1.5\n",
+            "<stdin>: line 4, field 1 ('cos'): input cos: 1.5",
+        ),
         (
             b"cos\n0.5\n0.\xff5\n",
             "<stdin>: line 3, column 3: not UTF-8 text",
@@ -1627,7 +1630,11 @@ fn empty_measurements_are_refused_and_json_parameters_are_numbers() {
         "cos\r0.5\r2\r",
     );
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("line 3"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("line 3, field 1 ('cos')"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// Issue 11 (review): saved runs with impossible figures were printed as if measured

@@ -177,9 +177,20 @@ pub fn evaluate<T: Real + std::str::FromStr>(
             };
             input.push(v);
         }
-        let value = model
-            .try_eval_row(&input)
-            .map_err(|e| CliError::input(format!("{source}: line {line}: {e}")))?;
+        let value = model.try_eval_row(&input).map_err(|e| {
+            // Name the field of an out-of-domain input (a direction: its first component).
+            let field = match &e {
+                fastbrdf::Error::Domain { input, .. } => headers
+                    .iter()
+                    .position(|h| h == input || h == format!("{input}_x"))
+                    .map(|i| format!(", field {} ('{}')", i + 1, &headers[i])),
+                _ => None,
+            };
+            CliError::input(format!(
+                "{source}: line {line}{}: {e}",
+                field.unwrap_or_default()
+            ))
+        })?;
         let mut out: Vec<String> = record.iter().map(str::to_string).collect();
         out.push(value.to_string());
         writer.write_record(&out).expect("writing to memory");

@@ -69,11 +69,11 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         }
         _ => return Err(CliError::input("the lobe families take --n RANGE")),
     };
-    let ps = range::parse(text, step)
-        .map_err(|e| CliError::input(format!("--{}: {e}", if name == "n" { "n" } else { "m" })))?;
+    let flag = if name == "n" { "n" } else { "m" };
+    let ps = range::parse(text, step).map_err(|e| CliError::input(format!("--{flag}: {e}")))?;
     if let Some(bad) = ps.iter().find(|p| !(**p >= lo && **p <= hi)) {
         return Err(CliError::input(format!(
-            "{name} = {} is outside [{lo}, {hi}]",
+            "--{flag}: {name} = {} is outside [{lo}, {hi}]",
             super::analysis::num(*bad)
         )));
     }
