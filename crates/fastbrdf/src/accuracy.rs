@@ -417,25 +417,11 @@ pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, 
             _ => vec![min, 0.5 * (min + max), max],
         }
     }
-    let mut choice_sets: Vec<Vec<(String, String)>> = vec![vec![]];
+    let choice_sets = choice_sets(info);
     let mut numeric: Vec<(&str, Vec<f64>, bool)> = vec![];
     for p in info.params {
-        match p.kind {
-            ParamKind::Choice { options, .. } => {
-                choice_sets = choice_sets
-                    .iter()
-                    .flat_map(|set| {
-                        options.iter().map(move |o| {
-                            let mut s = set.clone();
-                            s.push((p.name.to_string(), o.to_string()));
-                            s
-                        })
-                    })
-                    .collect();
-            }
-            ParamKind::Number { min, max, default } => {
-                numeric.push((p.name, values(p.name, min, max), default.is_none()))
-            }
+        if let ParamKind::Number { min, max, default } = p.kind {
+            numeric.push((p.name, values(p.name, min, max), default.is_none()))
         }
     }
     let rows = numeric.iter().map(|(_, v, _)| v.len()).max().unwrap_or(1);
@@ -722,25 +708,11 @@ fn eval_both(
 /// exactly to both precisions. Also records any non-finite or negative value.
 pub fn f32_search(info: &crate::ModelInfo, size: SearchSize) -> Found {
     use crate::params::ParamKind;
-    let mut choice_sets: Vec<Vec<(String, String)>> = vec![vec![]];
+    let choice_sets = choice_sets(info);
     let mut numeric: Vec<(&str, f64, f64, bool)> = vec![];
     for p in info.params {
-        match p.kind {
-            ParamKind::Choice { options, .. } => {
-                choice_sets = choice_sets
-                    .iter()
-                    .flat_map(|set| {
-                        options.iter().map(move |o| {
-                            let mut s = set.clone();
-                            s.push((p.name.to_string(), o.to_string()));
-                            s
-                        })
-                    })
-                    .collect();
-            }
-            ParamKind::Number { min, max, default } => {
-                numeric.push((p.name, min, max, default.is_none()))
-            }
+        if let ParamKind::Number { min, max, default } = p.kind {
+            numeric.push((p.name, min, max, default.is_none()))
         }
     }
     let dims = match info.kind {
@@ -949,4 +921,24 @@ pub fn worst_search(model_id: &str, bound: &ErrorBound, size: SearchSize) -> Res
         }
     }
     Ok(best)
+}
+
+/// Every combination of a model's choice parameters (one empty set when it has none).
+fn choice_sets(info: &crate::ModelInfo) -> Vec<Vec<(String, String)>> {
+    let mut sets: Vec<Vec<(String, String)>> = vec![vec![]];
+    for p in info.params {
+        if let crate::params::ParamKind::Choice { options, .. } = p.kind {
+            sets = sets
+                .iter()
+                .flat_map(|set| {
+                    options.iter().map(move |o| {
+                        let mut s = set.clone();
+                        s.push((p.name.to_string(), o.to_string()));
+                        s
+                    })
+                })
+                .collect();
+        }
+    }
+    sets
 }
