@@ -22,6 +22,9 @@
 //!   open mesh like the face) is discarded, as the CPU's ray misses it; a sample outside a
 //!   shared edge is shaded from its barycentrics as they are (the CPU's ray hits the
 //!   neighbour, and shading is continuous across the edge).
+//!   Boundary edges are pushed a quarter sample outward for the rasteriser only
+//!   (`dilate_boundaries`), so that a sample exactly on one (which the CPU's inclusive test
+//!   draws and the top-left rule may skip) still gets a fragment for the exact test to keep.
 //! - Depth: every fragment writes `t * 2^-40` as its depth. The scaling is exact, so the
 //!   depth test (`Less`, objects drawn in scene order) picks the nearest hit exactly as
 //!   `Scene::intersect` does (strictly nearer wins, ties keep the earlier object).
@@ -138,8 +141,14 @@ pub fn render(
         if !pipelines.contains_key(&key) {
             pipelines.insert(key.clone(), Pipelines::new(device, &layouts, &instance)?);
         }
+        // World length of one sample per unit of distance from the eye (see `dilate_boundaries`).
+        let (_, _, _, th) = scene.camera.frame();
+        let reach = Reach {
+            eye: scene.camera.eye,
+            sample_per_distance: 2.0 * th / (h * n) as f32,
+        };
         objects.push(upload_object(
-            device, queue, &layouts, &limits, obj, i, &instance, key,
+            device, queue, &layouts, &limits, obj, i, &instance, key, &reach,
         )?);
     }
     let lights = lights_buffer(device, scene);
@@ -564,6 +573,7 @@ fn upload_object(
     index: usize,
     instance: &Instance,
     model: String,
+    reach: &Reach,
 ) -> Result<GpuObject, GpuError> {
     let m = &obj.material;
     let zero4 = [0.0f32; 4];
@@ -610,12 +620,7 @@ fn upload_object(
             triangles = with_boundary_edges(&mesh.positions, &mesh.triangles);
             let count = u32::try_from(3 * mesh.triangles.len())
                 .map_err(|_| GpuError::Input(format!("object {index}: too many triangles")))?;
-            let pos: Vec<f32> = mesh
-                .triangles
-                .iter()
-                .flatten()
-                .flat_map(|&i| mesh.positions[i as usize].to_array())
-                .collect();
+            let pos = dilate_boundaries(&mesh.positions, &triangles, reach);
             check_binding(limits, vertices.len() * 4, "the mesh's vertices")?;
             check_binding(limits, pos.len() * 4, "the mesh's triangle corners")?;
             let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
@@ -719,6 +724,73 @@ fn upload_object(
         model,
         corners,
     })
+}
+
+/// Where the camera is and how long one sample is at unit distance from it (world units).
+struct Reach {
+    eye: Vec3,
+    sample_per_distance: f32,
+}
+
+/// The triangle corners the rasteriser draws (three per triangle, world positions), with every
+/// boundary edge pushed outward in its triangle's plane by a quarter of a sample.
+///
+/// Why: a sample exactly on a boundary edge (an axis-aligned triangle with corners on the
+/// sample grid) is a hit for the CPU's inclusive ray-triangle test, but the rasteriser's
+/// top-left rule may give no fragment there, and the GPU showed the background (up to 188/255
+/// at 1 sample per pixel). Dilated, the rasteriser proposes those samples too; the fragment
+/// shader's exact test (`rd_triangle`) still discards every sample outside a boundary edge, so
+/// only the CPU's hits are drawn. Shared edges are not moved: across them the neighbour covers
+/// the sample, as before. Each corner moves to the meeting point of its two (shifted or not)
+/// edge lines, at most 8 shifts away (a needle's corner is not pushed to infinity).
+fn dilate_boundaries(positions: &[Vec3], triangles: &[u32], reach: &Reach) -> Vec<f32> {
+    let mut out = Vec::with_capacity(9 * triangles.len() / 4);
+    for t in triangles.chunks_exact(4) {
+        let p = [0, 1, 2].map(|k| positions[t[k] as usize]);
+        let mask = t[3];
+        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+        let area2 = normal.length_squared();
+        let corners = if mask == 0 || area2.is_nan() || area2 <= 0.0 {
+            p
+        } else {
+            // Edge k runs from p[k] to p[k + 1]; bit 1 << k marks it as a boundary edge.
+            let far = p
+                .iter()
+                .map(|q| q.distance(reach.eye))
+                .fold(0.0f32, f32::max);
+            let shift = 0.25 * reach.sample_per_distance * far;
+            let edge = |k: usize| {
+                let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+                let mut o = (b - a).cross(normal).normalize_or_zero();
+                if o.dot(c - a) > 0.0 {
+                    o = -o;
+                }
+                let s = if mask & (1 << k) != 0 { shift } else { 0.0 };
+                (o, s)
+            };
+            let e = [edge(0), edge(1), edge(2)];
+            [0, 1, 2].map(|j| {
+                // Corner j joins edge j - 1 (ending at p[j]) and edge j (starting there).
+                let ((o1, s1), (o2, s2)) = (e[(j + 2) % 3], e[j]);
+                let c = o1.dot(o2);
+                let det = 1.0 - c * c;
+                let d = if det > 1e-6 {
+                    o1 * ((s1 - c * s2) / det) + o2 * ((s2 - c * s1) / det)
+                } else {
+                    o1 * s1 + o2 * s2
+                };
+                let cap = 8.0 * shift;
+                let d = if d.length() > cap {
+                    d * (cap / d.length())
+                } else {
+                    d
+                };
+                if d.is_finite() { p[j] + d } else { p[j] }
+            })
+        };
+        out.extend(corners.iter().flat_map(|q| q.to_array()));
+    }
+    out
 }
 
 /// The triangles as `[a, b, c, mask]`, where the mask marks the edges no other triangle

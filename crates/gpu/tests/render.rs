@@ -230,6 +230,31 @@ fn tiles_join_seamlessly() {
     );
 }
 
+/// A triangle whose edges run through sample centres (axis-aligned, corners on the sample
+/// grid): the CPU's inclusive ray test draws those samples, and the rasteriser's top-left rule
+/// left some out (up to 188/255 at one sample per pixel, found by a review of issue 11) until
+/// boundary edges were dilated for the rasteriser (`dilate_boundaries`).
+#[test]
+fn edges_through_sample_centres_match_the_cpu() {
+    let dir = std::env::temp_dir().join(format!("fastbrdf-gpu-edge-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let tri = dir.join("tri.obj");
+    std::fs::write(&tri, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let make = || {
+        let mut spec = SceneSpec::new();
+        spec.mesh = Some(tri.clone());
+        scene(&spec, "flog", &[("n", "50")])
+    };
+    for spp in [1, 2] {
+        check(
+            &format!("axis-aligned triangle, spp {spp}"),
+            &make,
+            &opts(64, 64, spp),
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn face_mesh_matches_the_cpu() {
     let face_scene = |id: &str, params: &[(&str, &str)], texture: bool| {
