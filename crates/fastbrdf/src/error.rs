@@ -32,18 +32,10 @@ pub enum Error {
 /// Longest user-given text (an id, a parameter name or value) echoed whole in a message.
 const ECHO_MAX: usize = 40;
 
-/// `s` as echoed in a message: at most [`ECHO_MAX`] characters, control characters escaped,
-/// the rest counted ("... (N more bytes)"), so a 10 MB argument gives a one-line error.
+/// `s` as echoed in a message: at most [`ECHO_MAX`] characters, control characters escaped
+/// (`fastbrdf_io::shorten`), so a 10 MB argument gives a one-line error.
 fn echo(s: &str) -> String {
-    let mut out = String::new();
-    for (taken, (i, ch)) in s.char_indices().enumerate() {
-        if taken == ECHO_MAX {
-            out.push_str(&format!("... ({} more bytes)", s.len() - i));
-            return out;
-        }
-        out.extend(ch.escape_debug());
-    }
-    out
+    fastbrdf_io::shorten(s, ECHO_MAX)
 }
 
 impl fmt::Display for Error {
