@@ -78,8 +78,9 @@ impl Film {
     /// Errors if any pixel is NaN or infinite (the last guard before a file is written: no
     /// NaN or inf ever reaches a PNG or EXR). The message names the first such pixel.
     pub fn check_finite(&self) -> Result<()> {
-        let bad = self.pixels.iter().filter(|p| !p.is_finite()).count();
         if let Some(i) = self.pixels.iter().position(|p| !p.is_finite()) {
+            // Counted only on the error path: a finite film is scanned once.
+            let bad = self.pixels[i..].iter().filter(|p| !p.is_finite()).count();
             let (x, y) = (i as u32 % self.width, i as u32 / self.width);
             return Err(RenderError::Invalid(format!(
                 "the render has {bad} non-finite pixels (the first at x = {x}, y = {y}: {:?}): the model, its parameters or the lights overflow f32; nothing was written",
@@ -104,7 +105,7 @@ impl Film {
                 path,
                 &png_bytes(&self.to_srgb8(exposure), self.width, self.height)?,
             ),
-            Some("exr") => write_atomic(path, &self.exr_bytes()?),
+            Some("exr") => write_atomic(path, &self.encode_exr()?),
             _ => Err(RenderError::Invalid(format!(
                 "--out {}: the file must end in .png or .exr",
                 path.display()
@@ -115,8 +116,13 @@ impl Film {
     /// The film as OpenEXR: linear RGB, 32-bit float, one scanline-block layer with ZIP
     /// compression (16 lines per block; read by every viewer, unlike tiled files).
     pub fn exr_bytes(&self) -> Result<Vec<u8>> {
-        use exr::prelude::*;
         self.check_finite()?;
+        self.encode_exr()
+    }
+
+    /// [`Film::exr_bytes`] without the finiteness check (the caller has made it).
+    fn encode_exr(&self) -> Result<Vec<u8>> {
+        use exr::prelude::*;
         let (w, h) = (self.width as usize, self.height as usize);
         let channels = SpecificChannels::rgb(|Vec2(x, y): Vec2<usize>| {
             let p = self.pixels[y * w + x];
