@@ -179,11 +179,6 @@ where
     Ok(())
 }
 
-/// Writes `bytes` to `path` atomically (see `fastbrdf_io::write_atomic`).
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), fastbrdf_io::IoError> {
-    fastbrdf_io::write_atomic(path, bytes)
-}
-
 /// Why a chart could not be saved: drawing it failed, or writing a file failed.
 #[derive(Debug)]
 pub enum SaveError {
@@ -260,13 +255,6 @@ pub fn write_all(items: &[(&Path, &Drawn)]) -> Result<Vec<PathBuf>, fastbrdf_io:
         stage(&mut set, d, &stem)?;
     }
     set.commit()
-}
-
-/// Renders `c` to `base.png` and `base.svg` (both or neither); returns both paths.
-pub fn save(c: &Chart, base: &Path) -> Result<[PathBuf; 2], SaveError> {
-    let d = render(c).map_err(SaveError::Draw)?;
-    let files = write_all(&[(base, &d)])?;
-    Ok([files[0].clone(), files[1].clone()])
 }
 
 /// Draws a picture twice, on a bitmap and on an SVG string, in memory (the drawing code is

@@ -13,7 +13,7 @@ use fastbrdf_render::render::{Options, Shading};
 use fastbrdf_render::setup::{self, SceneSpec};
 use glam::Vec3;
 use std::fmt::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(clap::Args)]
 #[command(
@@ -45,41 +45,6 @@ fn p(k: &str, v: &str) -> (String, String) {
 fn save(set: &mut OutputSet, name: &str, rgb: &[u8], w: u32, h: u32) -> Result<String, CliError> {
     set.write(name, &png_bytes(rgb, w, h)?)?;
     Ok(name.into())
-}
-
-/// A scratch folder removed when dropped (on every error path too).
-struct Scratch(PathBuf);
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-/// The seed figures (written by `plot`'s code into a scratch folder), staged into `set` under
-/// `plots/`.
-fn stage_plots(set: &mut OutputSet) -> Result<(), CliError> {
-    let nanos = std::time::SystemTime::now()
-        .duration_since(std::time::UNIX_EPOCH)
-        .map_or(0, |d| d.as_nanos());
-    let scratch = Scratch(std::env::temp_dir().join(format!(
-        "fastbrdf-demo-plots-{}-{nanos}",
-        std::process::id()
-    )));
-    super::plot::write_seed_figures(&scratch.0)?;
-    let mut names: Vec<PathBuf> = std::fs::read_dir(&scratch.0)
-        .map_err(|e| CliError::io(format!("{}: {e}", scratch.0.display())))?
-        .map(|e| e.map(|e| e.path()))
-        .collect::<Result<_, _>>()
-        .map_err(|e| CliError::io(format!("{}: {e}", scratch.0.display())))?;
-    names.sort();
-    for path in names {
-        let bytes =
-            std::fs::read(&path).map_err(|e| CliError::io(format!("{}: {e}", path.display())))?;
-        let name = path.file_name().expect("a file in the scratch folder");
-        set.write(Path::new("plots").join(name), &bytes)?;
-    }
-    Ok(())
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
@@ -263,7 +228,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         ],
     )?;
     // 3. Plots and the reproduction table.
-    stage_plots(&mut set)?;
+    super::plot::stage_seed_figures(&mut set, "plots")?;
     let report = reproduce::run(&[], &|| {})?;
     let md = reproduce::markdown(&report);
     set.write("REPRODUCTION.md", md.as_bytes())?;

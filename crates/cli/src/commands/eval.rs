@@ -205,16 +205,8 @@ fn csv_error(source: &str, text: &str, e: &csv::Error) -> CliError {
     let at = line.map_or_else(String::new, |l| format!("line {l}: "));
     let what = match e.kind() {
         csv::ErrorKind::UnequalLengths {
-            expected_len,
-            len,
-            pos,
-        } => {
-            let l = pos.as_ref().map(|p| line_of(text, p));
-            let at = l.map_or_else(String::new, |l| format!("line {l}: "));
-            return CliError::input(format!(
-                "{source}: {at}expected {expected_len} fields, found {len}"
-            ));
-        }
+            expected_len, len, ..
+        } => format!("expected {expected_len} fields, found {len}"),
         csv::ErrorKind::Utf8 { err, .. } => format!("field {} is not UTF-8 text", err.field() + 1),
         csv::ErrorKind::Io(err) => format!("cannot read: {err}"),
         _ => shorten(&e.to_string(), 200),

@@ -461,20 +461,12 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     write_drawn(&items)
 }
 
-/// The plots of the seeds' figures, written into `dir` all or nothing.
-pub fn write_seed_figures(dir: &Path) -> Result<(), CliError> {
-    let mut set = fastbrdf_io::OutputSet::new(dir)?;
-    stage_seed_figures(&mut set)?;
-    for f in set.commit()? {
-        eprintln!("wrote {}", f.display());
-    }
-    Ok(())
-}
-
-/// Draws the plots of the seeds' figures and stages them (PNG and SVG) in `set`.
-pub fn stage_seed_figures(set: &mut fastbrdf_io::OutputSet) -> Result<(), CliError> {
+/// Draws the plots of the seeds' figures and stages them (PNG and SVG) in `set`, in its
+/// subfolder `folder` ("" for its top).
+pub fn stage_seed_figures(set: &mut fastbrdf_io::OutputSet, folder: &str) -> Result<(), CliError> {
     for (stem, chart) in seed_figures()? {
-        plots::stage(set, &drawn(&chart)?, stem)?;
+        let name = Path::new(folder).join(stem);
+        plots::stage(set, &drawn(&chart)?, &name.to_string_lossy())?;
     }
     Ok(())
 }
