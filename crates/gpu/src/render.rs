@@ -128,6 +128,12 @@ pub fn render(
     let layouts = Layouts::new(device);
     let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
     let mut objects = Vec::with_capacity(scene.objects.len());
+    // World length of one sample per unit of distance from the eye (see `dilate_boundaries`).
+    let (_, _, _, th) = scene.camera.frame();
+    let reach = Reach {
+        eye: scene.camera.eye,
+        sample_per_distance: 2.0 * th / (h * n) as f32,
+    };
     for (i, obj) in scene.objects.iter().enumerate() {
         let spec = &obj.material.specular;
         let given: Vec<(&str, &str)> = spec
@@ -141,12 +147,6 @@ pub fn render(
         if !pipelines.contains_key(&key) {
             pipelines.insert(key.clone(), Pipelines::new(device, &layouts, &instance)?);
         }
-        // World length of one sample per unit of distance from the eye (see `dilate_boundaries`).
-        let (_, _, _, th) = scene.camera.frame();
-        let reach = Reach {
-            eye: scene.camera.eye,
-            sample_per_distance: 2.0 * th / (h * n) as f32,
-        };
         objects.push(upload_object(
             device, queue, &layouts, &limits, obj, i, &instance, key, &reach,
         )?);

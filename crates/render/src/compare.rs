@@ -43,14 +43,7 @@ pub fn metrics(model: &str, reference: &[u8], test: &[u8], w: u32, h: u32) -> Me
     } else {
         20.0 * (1.0 / rmse).log10()
     };
-    let flip = if reference == test {
-        0.0
-    } else {
-        let r = nv_flip::FlipImageRgb8::with_data(w, h, reference);
-        let t = nv_flip::FlipImageRgb8::with_data(w, h, test);
-        let err = nv_flip::flip(r, t, nv_flip::DEFAULT_PIXELS_PER_DEGREE);
-        nv_flip::FlipPool::from_image(&err).mean() as f64
-    };
+    let flip = mean_flip(reference, test, w, h);
     Metrics {
         model: model.into(),
         rmse,
@@ -112,17 +105,7 @@ pub fn linear_metrics(reference: &Film, test: &Film, exposure: f32) -> LinearMet
         reinhard_srgb8(reference, exposure),
         reinhard_srgb8(test, exposure),
     );
-    let flip_reinhard = if r == t {
-        0.0
-    } else {
-        let (w, h) = (reference.width, reference.height);
-        let err = nv_flip::flip(
-            nv_flip::FlipImageRgb8::with_data(w, h, &r),
-            nv_flip::FlipImageRgb8::with_data(w, h, &t),
-            nv_flip::DEFAULT_PIXELS_PER_DEGREE,
-        );
-        nv_flip::FlipPool::from_image(&err).mean() as f64
-    };
+    let flip_reinhard = mean_flip(&r, &t, reference.width, reference.height);
     LinearMetrics {
         rmse,
         psnr,
@@ -167,7 +150,7 @@ pub fn check_compare(models: usize, w: u32, h: u32, spp: u32) -> Result<()> {
         )));
     }
     let (gw, gh) = grid_size(2, models + 1, w, h, true);
-    if gw > MAX_GRID_SIDE || gh > MAX_GRID_SIDE || gw * gh > MAX_GRID_PIXELS {
+    if !grid_fits(gw, gh) {
         return Err(RenderError::Invalid(format!(
             "the comparison picture would be {gw}x{gh} pixels ({} cells of {w}x{h} and their heat maps): at most {MAX_GRID_SIDE} per side and {MAX_GRID_PIXELS} pixels; use a smaller --size or fewer models",
             models + 1
@@ -235,11 +218,10 @@ pub fn grid(
     bar_max: Option<f32>,
 ) -> Result<(Vec<u8>, u32, u32)> {
     register_font();
-    let (label_h, pad) = (LABEL_H, PAD);
     let cols = rows.iter().map(Vec::len).max().unwrap_or(0);
     let bar_w = if bar_max.is_some() { BAR_W } else { 0 };
     let (gw, gh) = grid_size(rows.len(), cols, w, h, bar_max.is_some());
-    if gw > MAX_GRID_SIDE || gh > MAX_GRID_SIDE || gw * gh > MAX_GRID_PIXELS {
+    if !grid_fits(gw, gh) {
         return Err(RenderError::Invalid(format!(
             "a grid of {gw}x{gh} pixels is too large: at most {MAX_GRID_SIDE} per side and {MAX_GRID_PIXELS} pixels"
         )));
@@ -249,8 +231,8 @@ pub fn grid(
     for (r, row) in rows.iter().enumerate() {
         for (c, cell) in row.iter().enumerate() {
             let (ox, oy) = (
-                pad + c as u32 * (w + pad),
-                pad + r as u32 * (h + label_h + pad) + label_h,
+                PAD + c as u32 * (w + PAD),
+                PAD + r as u32 * (h + LABEL_H + PAD) + LABEL_H,
             );
             for y in 0..h {
                 let src = &cell.rgb[(y * w * 3) as usize..((y + 1) * w * 3) as usize];
@@ -268,8 +250,8 @@ pub fn grid(
         for (r, row) in rows.iter().enumerate() {
             for (c, cell) in row.iter().enumerate() {
                 let (ox, oy) = (
-                    pad + c as u32 * (w + pad),
-                    pad + r as u32 * (h + label_h + pad),
+                    PAD + c as u32 * (w + PAD),
+                    PAD + r as u32 * (h + LABEL_H + PAD),
                 );
                 let size = if w < 220 { 14 } else { 20 };
                 // Keep the label inside its cell (DejaVu Sans averages ~0.55 em per glyph).
@@ -295,8 +277,8 @@ pub fn grid(
             let lut = magma();
             let (bx, by, bh) = (
                 gw - bar_w + 20,
-                pad + label_h,
-                (gh - 2 * pad - label_h).min(400),
+                PAD + LABEL_H,
+                (gh - 2 * PAD - LABEL_H).min(400),
             );
             for i in 0..bh {
                 let c = lut
@@ -320,7 +302,7 @@ pub fn grid(
                 root.draw_text(&text, &font, (bx as i32 + 34, y as i32 - 8))
                     .map_err(|e| err(e.to_string()))?;
             }
-            root.draw_text("|difference|", &font, (bx as i32 - 10, pad as i32 + 6))
+            root.draw_text("|difference|", &font, (bx as i32 - 10, PAD as i32 + 6))
                 .map_err(|e| err(e.to_string()))?;
             root.draw_text("(sRGB)", &font, (bx as i32 - 10, (by + bh) as i32 + 6))
                 .map_err(|e| err(e.to_string()))?;
@@ -328,4 +310,23 @@ pub fn grid(
         root.present().map_err(|e| err(e.to_string()))?;
     }
     Ok((buf, gw, gh))
+}
+
+/// Mean FLIP of two 8-bit sRGB pictures (NVIDIA's metric at 67 pixels per degree); 0 when
+/// they are identical.
+fn mean_flip(reference: &[u8], test: &[u8], w: u32, h: u32) -> f64 {
+    if reference == test {
+        return 0.0;
+    }
+    let err = nv_flip::flip(
+        nv_flip::FlipImageRgb8::with_data(w, h, reference),
+        nv_flip::FlipImageRgb8::with_data(w, h, test),
+        nv_flip::DEFAULT_PIXELS_PER_DEGREE,
+    );
+    nv_flip::FlipPool::from_image(&err).mean() as f64
+}
+
+/// Whether a composed comparison picture of `gw` x `gh` pixels is within the caps.
+fn grid_fits(gw: u64, gh: u64) -> bool {
+    gw <= MAX_GRID_SIDE && gh <= MAX_GRID_SIDE && gw * gh <= MAX_GRID_PIXELS
 }

@@ -90,7 +90,6 @@ struct Parsed {
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
     triangles: Vec<[u32; 3]>,
-    all_normals: bool,
     all_uvs: bool,
     faces: usize,
 }
@@ -113,7 +112,6 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
         normals: Vec::new(),
         uvs: Vec::new(),
         triangles: Vec::new(),
-        all_normals: true,
         all_uvs: true,
         faces: 0,
     };
@@ -279,10 +277,8 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
                         p.positions.push(vs[v as usize]);
                         match n {
                             Some(n) => p.normals.push(vns[n as usize].normalize_or_zero()),
-                            None => {
-                                p.all_normals = false;
-                                p.normals.push(Vec3::ZERO);
-                            }
+                            // A corner without a normal: computed normals are used (see parse_obj).
+                            None => p.normals.push(Vec3::ZERO),
                         }
                         match t {
                             Some(t) => p.uvs.push(vts[t as usize]),
@@ -329,10 +325,6 @@ fn parse(file: &Path, text: &str) -> Result<Parsed> {
             "every face's vertices are at one point: nothing to frame or render",
         ));
     }
-    // A zero normal cannot shade: fall back to computed normals.
-    if p.normals.contains(&Vec3::ZERO) {
-        p.all_normals = false;
-    }
     Ok(p)
 }
 
@@ -345,7 +337,8 @@ pub fn validate_obj(file: &Path, text: &str) -> Result<usize> {
 /// Builds one triangle mesh from an OBJ text (`file` names it in errors).
 pub fn parse_obj(file: &Path, text: &str) -> Result<TriMesh> {
     let p = parse(file, text)?;
-    let normals = if p.all_normals {
+    // A corner without a normal, or a zero one, cannot shade: fall back to computed normals.
+    let normals = if !p.normals.contains(&Vec3::ZERO) {
         p.normals
     } else {
         smooth_normals(&p.positions, &p.triangles)

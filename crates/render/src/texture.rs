@@ -87,14 +87,8 @@ impl Texture {
             .decode()
             .map_err(|e| bad(format!("cannot read the texture: {e}")))?;
         let rgb = img.to_rgb8();
+        // Not empty: check_texture_size refused a zero side before decoding.
         let (w, h) = rgb.dimensions();
-        if w == 0 || h == 0 {
-            return Err(RenderError::Input {
-                file,
-                line: None,
-                message: "the texture is empty".into(),
-            });
-        }
         let lut: Vec<f32> = (0..256).map(|i| srgb_to_linear(i as f32 / 255.0)).collect();
         let texels = rgb
             .pixels()
