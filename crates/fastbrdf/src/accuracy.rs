@@ -349,20 +349,7 @@ pub fn f32_worst(id: &str, given: &[(&str, &str)]) -> Result<(f64, String)> {
         }
         (Model::Shadowing(a), Model::Shadowing(b)) => {
             for (wi, wo) in direction_pairs(400, 5) {
-                let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
-                let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
-                let s32 = ShadowInput {
-                    cos_v: wo[2] as f32,
-                    cos_l: Some(wi[2] as f32),
-                    cos_h: (s[2] / len) as f32,
-                    cos_vh: (0.5 * len) as f32,
-                };
-                let s64 = ShadowInput {
-                    cos_v: s32.cos_v as f64,
-                    cos_l: s32.cos_l.map(f64::from),
-                    cos_h: s32.cos_h as f64,
-                    cos_vh: s32.cos_vh as f64,
-                };
+                let (s32, s64) = shadow_inputs(wi, wo, true);
                 note(mixed_error(a.g(&s32), b.g(&s64)), &|| format!("{s32:?}"));
                 let (o32, o64) = (
                     ShadowInput { cos_l: None, ..s32 },
@@ -538,11 +525,52 @@ fn f32_step(x: f32, up: bool) -> f32 {
 /// Maps `q` in [0, 1] onto a parameter range (logarithmically for ranges over positive
 /// numbers spanning a factor 4 or more: exponents, roughnesses, indices).
 fn param_at(q: f64, min: f64, max: f64) -> f64 {
-    if min > 0.0 && max / min >= 4.0 {
+    if log_mapped(min, max) {
         min * (max / min).powf(q)
     } else {
         min + q * (max - min)
     }
+}
+
+/// A shadowing term's inputs for the unit pair (`wi`, `wo`): in f32, and the same f32 values
+/// in f64 (both precisions are fed the same inputs). `with_l` gives the two-sided form `cos_l`.
+fn shadow_inputs(
+    wi: [f64; 3],
+    wo: [f64; 3],
+    with_l: bool,
+) -> (
+    crate::model::ShadowInput<f32>,
+    crate::model::ShadowInput<f64>,
+) {
+    let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
+    let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
+    let s32 = crate::model::ShadowInput {
+        cos_v: wo[2] as f32,
+        cos_l: if with_l { Some(wi[2] as f32) } else { None },
+        cos_h: (s[2] / len) as f32,
+        cos_vh: (0.5 * len) as f32,
+    };
+    let s64 = crate::model::ShadowInput {
+        cos_v: s32.cos_v as f64,
+        cos_l: s32.cos_l.map(f64::from),
+        cos_h: s32.cos_h as f64,
+        cos_vh: s32.cos_vh as f64,
+    };
+    (s32, s64)
+}
+
+/// The inverse of [`param_at`]: the `q` of parameter value `v`.
+fn param_q(v: f64, min: f64, max: f64) -> f64 {
+    if log_mapped(min, max) {
+        (v / min).ln() / (max / min).ln()
+    } else {
+        (v - min) / (max - min)
+    }
+}
+
+/// Whether [`param_at`] maps `[min, max]` logarithmically (positive, two or more octaves).
+fn log_mapped(min: f64, max: f64) -> bool {
+    min > 0.0 && max / min >= 4.0
 }
 
 /// A cosine from `u` in [0, 1] in one of three densities: uniform, dense near 1
@@ -639,7 +667,6 @@ fn eval_both(
     mode: usize,
     target: Target,
 ) -> (f64, String) {
-    use crate::model::ShadowInput;
     let judge = |v32: f32, v64: f64| {
         if !(v32.is_finite() && v32 >= 0.0 && v64.is_finite() && v64 >= 0.0) {
             f64::INFINITY
@@ -669,20 +696,7 @@ fn eval_both(
         (Model::Shadowing(a), Model::Shadowing(b)) => {
             let (wi, wo) = pair_at(u, mode, target);
             let (wi, wo) = (wi.map(f64::from), wo.map(f64::from));
-            let s = [wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]];
-            let len = (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]).sqrt();
-            let s32 = ShadowInput {
-                cos_v: wo[2] as f32,
-                cos_l: if u[4] < 0.5 { Some(wi[2] as f32) } else { None },
-                cos_h: (s[2] / len) as f32,
-                cos_vh: (0.5 * len) as f32,
-            };
-            let s64 = ShadowInput {
-                cos_v: s32.cos_v as f64,
-                cos_l: s32.cos_l.map(f64::from),
-                cos_h: s32.cos_h as f64,
-                cos_vh: s32.cos_vh as f64,
-            };
+            let (s32, s64) = shadow_inputs(wi, wo, u[4] < 0.5);
             let (v32, v64) = (a.g(&s32), b.g(&s64));
             (judge(v32, v64), format!("{s32:?} f32={v32} f64={v64}"))
         }
@@ -764,12 +778,7 @@ pub fn f32_search(info: &crate::ModelInfo, size: SearchSize) -> Found {
                     } else if t < 0.6 {
                         let s = special_values(name, min, max);
                         let v = s[(rnd() * s.len() as f64) as usize % s.len()];
-                        // Invert param_at.
-                        if min > 0.0 && max / min >= 4.0 {
-                            (v / min).ln() / (max / min).ln()
-                        } else {
-                            (v - min) / (max - min)
-                        }
+                        param_q(v, min, max)
                     } else {
                         rnd()
                     }
@@ -844,14 +853,7 @@ pub fn worst_search(model_id: &str, bound: &ErrorBound, size: SearchSize) -> Res
         state = state.rotate_left(7) ^ b as u64;
     }
     let mut rnd = move || splitmix(&mut state);
-    let p_at = |q: f64| {
-        if lo > 0.0 && hi / lo >= 4.0 {
-            lo * (hi / lo).powf(q)
-        } else {
-            lo + q * (hi - lo)
-        }
-        .clamp(lo, hi)
-    };
+    let p_at = |q: f64| param_at(q, lo, hi).clamp(lo, hi);
     // The error function of x for one parameter value, with the sample set's peak (zones
     // and the MaxAbs scale are relative to it, as in `worst_at`).
     struct At {

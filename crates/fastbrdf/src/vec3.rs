@@ -142,6 +142,7 @@ pub fn pair_setup<T: Real>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
     let inv_len = 1.0 / len;
     let h = [s[0] * inv_len, s[1] * inv_len, s[2] * inv_len];
     let valid = above && vi && vo && len2 > 0.0;
+    let cos_r = dot(reflect(ui), uo);
     let t = |x: f64| T::c(x);
     (
         valid,
@@ -154,14 +155,22 @@ pub fn pair_setup<T: Real>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
             cos_h: t(h[2]),
             sin2_h: t(h[0] * h[0] + h[1] * h[1]),
             cos_ih: t(0.5 * len),
-            cos_r: t(dot(reflect(ui), uo)),
+            cos_r: t(cos_r),
             cos_h64: h[2],
-            cos_r64: dot(reflect(ui), uo),
+            cos_r64: cos_r,
         },
     )
 }
 
 impl<T: Real> Pair<T> {
+    /// Whether a Phong (`blinn` false: the lobe of `reflect(wi).wo`) or Blinn-Phong (`blinn`:
+    /// of `n.h`) lobe with cut `zero` is cut here. Decided on the f64 cosine, so f32 and f64
+    /// models (and the batch kernels) cut at the same inputs; `zero = 0` means no cut.
+    #[inline(always)]
+    pub fn lobe_cut(&self, zero: f64, blinn: bool) -> bool {
+        zero > 0.0 && (if blinn { self.cos_h64 } else { self.cos_r64 }) < zero
+    }
+
     /// Normalises `wi` and `wo` and builds the half vector ([`pair_setup`], in f64). `None`
     /// (the BRDF is 0) when either vector is zero or not finite, or lies below `COS_MIN`
     /// (back-facing or grazing).

@@ -318,15 +318,6 @@ impl GOp for SmithRational {
 
 // ---------- full BRDFs ----------
 
-/// The scalar `Pair::new` (the same `vec3::pair_setup`, in f64), branch-free:
-/// `(valid, cos_i, cos_o, h, sin2_h, cos_ih, cos_r)`.
-#[inline(always)]
-#[allow(clippy::type_complexity)]
-fn pair(wi: [f32; 3], wo: [f32; 3]) -> (bool, f32, f32, [f32; 3], f32, f32, f32) {
-    let (valid, p) = crate::vec3::pair_setup(wi, wo);
-    (valid, p.cos_i, p.cos_o, p.h, p.sin2_h, p.cos_ih, p.cos_r)
-}
-
 pub struct CookTorrance<D, G, F> {
     pub d: D,
     pub g: G,
@@ -336,7 +327,9 @@ pub struct CookTorrance<D, G, F> {
 impl<D: DOp, G: GOp, F: FOp> Op6 for CookTorrance<D, G, F> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, ci, co, h, s2, cih, _) = pair(wi, wo);
+        // The scalar `Pair::new`'s set-up (in f64), branch-free.
+        let (valid, p) = crate::vec3::pair_setup(wi, wo);
+        let (ci, co, h, s2, cih) = (p.cos_i, p.cos_o, p.h, p.sin2_h, p.cos_ih);
         let d = self.d.d(h[2], s2);
         let d = if h[2] >= COS_MIN as f32 { d } else { 0.0 };
         let g = self.g.g(co, ci, h[2], cih);
@@ -355,7 +348,8 @@ pub struct Ward<const FORM: u8> {
 impl<const FORM: u8> Op6 for Ward<FORM> {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, ci, co, h, s2, _, _) = pair(wi, wo);
+        let (valid, p) = crate::vec3::pair_setup(wi, wo);
+        let (ci, co, h, s2) = (p.cos_i, p.cos_o, p.h, p.sin2_h);
         let lobe = match FORM {
             0 => math::exp(
                 -(h[0] * h[0] * self.inv_ax2 + h[1] * h[1] * self.inv_ay2) / (h[2] * h[2]),
@@ -374,7 +368,7 @@ pub struct Lambert {
 impl Op6 for Lambert {
     #[inline(always)]
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, ..) = pair(wi, wo);
+        let (valid, _) = crate::vec3::pair_setup(wi, wo);
         if valid { self.value } else { 0.0 }
     }
 }
@@ -392,7 +386,7 @@ impl<L: Op1> Op6 for LobeBrdf<L> {
     fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
         let (valid, p) = crate::vec3::pair_setup(wi, wo);
         let (h, cih, rdotwo) = (p.h, p.cos_ih, p.cos_r);
-        let cut = self.zero > 0.0 && (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero;
+        let cut = p.lobe_cut(self.zero, self.blinn);
         let v = if self.blinn {
             let l = self.lobe.f(h[2]);
             if self.normalized {

@@ -138,7 +138,7 @@ impl<T: Real> Brdf<T> for LobeBrdf<T> {
     #[inline]
     fn eval_pair(&self, p: &Pair<T>) -> T {
         // A lobe without a cut (zero = 0) takes negative cosines as 0 (clamped, not cut).
-        if self.zero > 0.0 && (if self.blinn { p.cos_h64 } else { p.cos_r64 }) < self.zero {
+        if p.lobe_cut(self.zero, self.blinn) {
             return T::zero();
         }
         if self.blinn {
@@ -153,15 +153,18 @@ impl<T: Real> Brdf<T> for LobeBrdf<T> {
         }
     }
     fn mirror_breaks(&self) -> Vec<f64> {
-        if self.blinn {
-            return Vec::new();
-        }
-        let mut b = self.lobe.kinks();
-        b.push(self.lobe.zero_below());
-        b
+        self.breaks(false)
     }
     fn half_breaks(&self) -> Vec<f64> {
-        if !self.blinn {
+        self.breaks(true)
+    }
+}
+
+impl<T: Real> LobeBrdf<T> {
+    /// The lobe's kinks and cut, for the cosine it is a lobe of: that of the half vector
+    /// (`blinn`) or of the mirror direction; none for the other.
+    fn breaks(&self, blinn: bool) -> Vec<f64> {
+        if self.blinn != blinn {
             return Vec::new();
         }
         let mut b = self.lobe.kinks();
