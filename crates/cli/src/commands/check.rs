@@ -124,18 +124,15 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 let (err, at) = accuracy::f32_worst(e.info.id, &given)
                     .expect("domain configurations are valid");
                 if err.is_nan() || err > worst.0 || worst.1.is_empty() {
-                    let params: Vec<String> = c.iter().map(|(k, v)| format!("{k}={v}")).collect();
-                    worst = (err, format!("{} {at}", params.join(" ")));
+                    worst = (err, format!("{} {at}", fmt_params(c)));
                 }
             }
             let found = accuracy::f32_search(&e.info, size);
             if found.err > worst.0 {
-                let params: Vec<String> = found
-                    .params
-                    .iter()
-                    .map(|(k, v)| format!("{k}={v}"))
-                    .collect();
-                worst = (found.err, format!("{} {}", params.join(" "), found.at));
+                worst = (
+                    found.err,
+                    format!("{} {}", fmt_params(&found.params), found.at),
+                );
             }
             bar.inc(1);
             F32Row {
@@ -233,4 +230,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             message: "some documented bounds do not hold (see above)".into(),
         })
     }
+}
+
+/// Parameters as `k=v k=v` (how `check` names a configuration).
+fn fmt_params(params: &[(String, String)]) -> String {
+    let kv: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    kv.join(" ")
 }

@@ -338,7 +338,7 @@ pub fn save_error(e: plots::SaveError) -> CliError {
 
 /// Draws a chart in memory; a drawing failure means no output (exit code 3).
 fn drawn(c: &Chart) -> Result<Drawn, CliError> {
-    plots::render(c).map_err(|e| CliError::io(format!("cannot draw the chart: {e}")))
+    plots::render(c).map_err(|e| save_error(plots::SaveError::Draw(e)))
 }
 
 /// Writes every `(base, drawing)` as `base.png` and `base.svg`, all or nothing.
