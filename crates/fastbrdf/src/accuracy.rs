@@ -933,7 +933,7 @@ fn choice_sets(info: &crate::ModelInfo) -> Vec<Vec<(String, String)>> {
             sets = sets
                 .iter()
                 .flat_map(|set| {
-                    options.iter().map(move |o| {
+                    options.names().iter().map(move |o| {
                         let mut s = set.clone();
                         s.push((p.name.to_string(), o.to_string()));
                         s

@@ -10,9 +10,11 @@
 //! // A lobe by id, in f32, with its parameter given as text (as the CLI does).
 //! let Model::Lobe(flog) = registry::build::<f32>("flog", &[("n", "20")]).unwrap() else { panic!() };
 //! assert!((flog.eval(1.0) - 1.0).abs() < 1e-6);
-//! // A typed constructor, in f64.
-//! let d = fastbrdf::microfacet::beckmann::Beckmann::<f64>::new(0.3).unwrap();
-//! use fastbrdf::Distribution;
+//! // A plan from a typed constructor (coefficients in f64), evaluated in f64.
+//! let plan = fastbrdf::plan::Plan::Distribution(
+//!     fastbrdf::microfacet::beckmann::Beckmann::new(0.3).unwrap().into(),
+//! );
+//! let Model::Distribution(d) = plan.model::<f64>() else { panic!() };
 //! assert!((d.eval(1.0) - 1.0 / (std::f64::consts::PI * 0.09)).abs() < 1e-12);
 //! ```
 //!
@@ -28,15 +30,20 @@
 pub mod accuracy;
 pub mod batch;
 pub mod brdf;
+pub mod entry;
 pub mod error;
+pub mod kind;
 pub mod lobes;
+pub mod math;
 pub mod microfacet;
 pub mod model;
 pub mod params;
+pub mod plan;
 pub mod quad;
 pub mod real;
 pub mod registry;
 pub mod vec3;
+pub mod wgsl;
 
 pub use error::{Error, Result};
 pub use model::{

@@ -2,6 +2,7 @@
 //! The same names are used by the library, the CLI (`--param NAME=VALUE`) and, later, WGSL.
 
 use crate::error::{Error, Result};
+use crate::kind::Kind;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -15,11 +16,38 @@ pub enum ParamKind {
         max: f64,
         default: Option<f64>,
     },
-    /// One of a fixed set of names.
+    /// One of a set of names.
     Choice {
-        options: &'static [&'static str],
+        options: Options,
         default: &'static str,
     },
+}
+
+/// The names a choice parameter takes.
+#[derive(Clone, Copy, Debug)]
+pub enum Options {
+    /// A fixed list.
+    List(&'static [&'static str]),
+    /// Any model of a kind, by id without `prefix` (`cook-torrance`'s `f`: `fresnel-`): the
+    /// registry replaces it by the list of its ids of that kind (`registry::all`), so that a
+    /// new model is a choice without a second list to keep.
+    Models { kind: Kind, prefix: &'static str },
+}
+
+impl Options {
+    /// The names (empty for an unresolved `Models`: only the registry's copies are resolved).
+    pub fn names(&self) -> &'static [&'static str] {
+        match *self {
+            Options::List(l) => l,
+            Options::Models { .. } => &[],
+        }
+    }
+}
+
+impl Serialize for Options {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        self.names().serialize(s)
+    }
 }
 
 /// One parameter of a model.
@@ -46,7 +74,7 @@ impl ParamSpec {
     pub fn range_text(&self) -> String {
         match self.kind {
             ParamKind::Number { min, max, .. } => format!("[{}, {}]", fmt_num(min), fmt_num(max)),
-            ParamKind::Choice { options, .. } => options.join("|"),
+            ParamKind::Choice { options, .. } => options.names().join("|"),
         }
     }
 }
@@ -138,6 +166,26 @@ impl Params {
         Ok(Self { model, values })
     }
 
+    /// Validates numeric parameters given as numbers (a composite model's parts: Phong's
+    /// lobe at its `n`, Cook-Torrance's D at its `alpha`) and fills in defaults.
+    pub fn resolve_nums(
+        model: &'static str,
+        specs: &[ParamSpec],
+        given: &[(&str, f64)],
+    ) -> Result<Self> {
+        let mut p = Self::resolve(model, specs, &[])?;
+        for (name, x) in given {
+            let spec = specs.iter().find(|s| s.name == *name).ok_or_else(|| {
+                Error::UnknownParam {
+                    model: model.into(),
+                    param: (*name).into(),
+                }
+            })?;
+            p.values.insert(spec.name, Value::Num(check(model, spec, *x)?));
+        }
+        Ok(p)
+    }
+
     /// The model these parameters belong to.
     pub fn model(&self) -> &'static str {
         self.model
@@ -197,10 +245,10 @@ fn parse(model: &'static str, spec: &ParamSpec, text: &str) -> Result<Value> {
         }
         ParamKind::Choice { options, .. } => {
             let t = text.trim();
-            if options.contains(&t) {
+            if options.names().contains(&t) {
                 Ok(Value::Text(t.into()))
             } else {
-                Err(invalid(format!("one of {}", options.join(", "))))
+                Err(invalid(format!("one of {}", options.names().join(", "))))
             }
         }
     }

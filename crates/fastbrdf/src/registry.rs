@@ -1,25 +1,18 @@
-//! The registry: every model id with its self-description and its builders.
-//! Adding a model means one new file (or constant) and one line in [`REGISTRY`].
+//! The registry: every model id with its self-description and its plan builder, and the only
+//! place where a model id is looked up. Adding a model means one `ENTRY` in its family file
+//! and one line in [`REGISTRY`]; the id lists (`ids_of`), the parameter choices that name
+//! "any model of kind X" and the registry-wide tests derive from it.
 
 use crate::brdf::{cook_torrance, lambert, phong, ward};
+use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
-use crate::model::{Model, ModelInfo};
-use crate::params::Params;
+use crate::model::{Kind, Model};
+use crate::params::{Options, ParamKind, ParamSpec, Params};
+use std::sync::OnceLock;
+use crate::plan::{Models, Plan};
 use crate::real::Real;
-use std::any::Any;
-
-/// A builder of a model in one precision.
-pub type BuildFn<T> = fn(&Params) -> Result<Model<T>>;
-
-/// One registry line: the description and a builder per precision.
-#[derive(Clone, Copy)]
-pub struct Entry {
-    pub info: ModelInfo,
-    pub build32: BuildFn<f32>,
-    pub build64: BuildFn<f64>,
-}
 
 /// Every model, in display order.
 pub static REGISTRY: &[Entry] = &[
@@ -71,35 +64,98 @@ pub static REGISTRY: &[Entry] = &[
     phong::ENTRY_BLINN,
 ];
 
-/// Every registry entry.
+/// Every registry entry, with the choices that name "any model of kind X"
+/// (`Options::Models`) replaced by the ids of that kind in registry order.
 pub fn all() -> &'static [Entry] {
+    static RESOLVED: OnceLock<Vec<Entry>> = OnceLock::new();
+    RESOLVED.get_or_init(|| {
+        REGISTRY
+            .iter()
+            .map(|e| {
+                let mut e = *e;
+                if e.info.params.iter().any(|p| {
+                    matches!(p.kind, ParamKind::Choice { options: Options::Models { .. }, .. })
+                }) {
+                    let specs: Vec<ParamSpec> = e.info.params.iter().map(resolve_spec).collect();
+                    e.info.params = Box::leak(specs.into_boxed_slice());
+                }
+                e
+            })
+            .collect()
+    })
+}
+
+/// A parameter spec with `Options::Models` resolved to a list (leaked once: the registry
+/// lives as long as the program).
+fn resolve_spec(spec: &ParamSpec) -> ParamSpec {
+    let mut s = *spec;
+    if let ParamKind::Choice { options: Options::Models { kind, prefix }, default } = spec.kind {
+        let names: Vec<&'static str> = ids_of(kind)
+            .into_iter()
+            .map(|id| id.strip_prefix(prefix).unwrap_or(id))
+            .collect();
+        s.kind = ParamKind::Choice {
+            options: Options::List(Box::leak(names.into_boxed_slice())),
+            default,
+        };
+    }
+    s
+}
+
+/// The ids of every model of `kind`, in registry order.
+pub fn ids_of(kind: Kind) -> Vec<&'static str> {
     REGISTRY
+        .iter()
+        .filter(|e| e.info.kind == kind)
+        .map(|e| e.info.id)
+        .collect()
 }
 
 /// The entry of `id`.
 pub fn find(id: &str) -> Result<&'static Entry> {
-    REGISTRY
+    all()
         .iter()
         .find(|e| e.info.id == id)
         .ok_or_else(|| Error::UnknownModel(id.into()))
 }
 
+/// The registry as the sub-model builder of composite models.
+struct Registry;
+
+impl Models for Registry {
+    fn plan(&self, id: &str, nums: &dyn Fn(&str) -> Option<f64>) -> Result<Plan> {
+        let e = find(id)?;
+        let given: Vec<(&str, f64)> = e
+            .info
+            .params
+            .iter()
+            .filter_map(|s| nums(s.name).map(|x| (s.name, x)))
+            .collect();
+        let p = Params::resolve_nums(e.info.id, e.info.params, &given)?;
+        e.build_plan(&p, self)
+    }
+}
+
+/// The plan of model `id` from `(name, value)` text pairs; missing parameters take their
+/// defaults. Errors name the model, the parameter and the expected range.
+pub fn plan(id: &str, given: &[(&str, &str)]) -> Result<Plan> {
+    let e = find(id)?;
+    let p = Params::resolve(e.info.id, e.info.params, given)?;
+    plan_resolved(e, &p)
+}
+
+/// The plan from already resolved parameters.
+pub fn plan_resolved(e: &Entry, p: &Params) -> Result<Plan> {
+    e.build_plan(p, &Registry)
+}
+
 /// Builds model `id` in precision `T` from `(name, value)` text pairs; missing parameters
 /// take their defaults. Errors name the model, the parameter and the expected range.
 pub fn build<T: Real>(id: &str, given: &[(&str, &str)]) -> Result<Model<T>> {
-    let e = find(id)?;
-    let p = Params::resolve(e.info.id, e.info.params, given)?;
-    build_resolved(e, &p)
+    Ok(plan(id, given)?.model())
 }
 
 /// Builds from already resolved parameters.
 pub fn build_resolved<T: Real>(e: &Entry, p: &Params) -> Result<Model<T>> {
-    let any: Box<dyn Any> = if std::any::TypeId::of::<T>() == std::any::TypeId::of::<f32>() {
-        Box::new((e.build32)(p)?)
-    } else {
-        Box::new((e.build64)(p)?)
-    };
-    Ok(*any
-        .downcast::<Model<T>>()
-        .expect("Real is implemented for f32 and f64 only"))
+    Ok(plan_resolved(e, p)?.model())
 }

@@ -29,8 +29,8 @@ fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, Strin
                         .prop_map(move |v| Some((name.clone(), v.to_string())))
                         .boxed()
                 }
-                ParamKind::Choice { options, .. } => (0..options.len())
-                    .prop_map(move |i| Some((name.clone(), options[i].to_string())))
+                ParamKind::Choice { options, .. } => (0..options.names().len())
+                    .prop_map(move |i| Some((name.clone(), options.names()[i].to_string())))
                     .boxed(),
             }
         })

@@ -233,7 +233,7 @@ fn lobe64(id: &str, n: f64) -> Box<dyn fastbrdf::Lobe<f64>> {
 fn lobes_match_their_printed_formulas() {
     let mut ns: Vec<f64> = N_VALUES.iter().copied().filter(|n| *n <= 1000.0).collect();
     ns.extend((1..=1000).step_by(37).map(f64::from));
-    for id in fastbrdf::lobes::IDS {
+    for id in fastbrdf::registry::ids_of(fastbrdf::Kind::Lobe) {
         for &n in &ns {
             let lobe = lobe64(id, n);
             for c in lobe_samples(n) {
@@ -265,7 +265,7 @@ fn seed_cubic_is_exact_where_it_should_be() {
 
 #[test]
 fn distributions_match_their_printed_formulas() {
-    for id in fastbrdf::microfacet::DISTRIBUTION_IDS {
+    for id in fastbrdf::registry::ids_of(fastbrdf::Kind::Distribution) {
         for &alpha in ALPHA_VALUES {
             let Model::Distribution(d) =
                 registry::build::<f64>(id, &[("alpha", &alpha.to_string())]).unwrap()

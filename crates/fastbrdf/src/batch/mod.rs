@@ -3,9 +3,10 @@
 //! Inputs are structures of arrays: one slice of cosines for lobes, distributions and Fresnel
 //! terms; six slices (`wi_x, wi_y, wi_z, wo_x, wo_y, wo_z`) for full BRDFs.
 //!
-//! How it is fast: each model's formula is a branch-free, `#[inline(always)]` per-element op
-//! (`ops`), over vectorisable elementary functions (`math`: exp2, log2, pow, acos with
-//! documented accuracy, no libm calls). The loop over a slice is compiled three times, inside
+//! How it is fast: each model's formula (its family's `at`/`d`/`g`/`f`/`at_pair`, the same
+//! source as the scalar model) is instantiated with the `Fast` backend: branch-free,
+//! `#[inline(always)]`, over vectorisable elementary functions (`math`: exp2, log2, pow, acos
+//! with documented accuracy, no libm calls). The loop over a slice is compiled three times, inside
 //! functions with `#[target_feature]` AVX-512, AVX2+FMA, and the x86-64 baseline (SSE2), and
 //! LLVM vectorises each; the best one the CPU has is chosen at run time with
 //! `is_x86_feature_detected!` (tails are the same loop's remainder). Large batches are split
@@ -15,20 +16,23 @@
 //! included (tested on every model in `tests/batch.rs`); numerically they differ only by the
 //! fast elementary functions' few ulp.
 //!
-//! Models without a SIMD kernel (standalone shadowing terms, exact Smith inside Cook-Torrance,
-//! anisotropic... none else) run the scalar model per element and say so: `Kernel::simd()` is
-//! false and `Kernel::isa()` is `Isa::Scalar`.
+//! Standalone shadowing terms take several cosines: no kernel (an error). Cook-Torrance with
+//! the exact Smith term calls libm's `erfc` per element: `Kernel::simd()` is false and
+//! `Kernel::isa()` is `Isa::Scalar` for it.
 
 pub mod math;
-pub mod ops;
 
+use crate::brdf::cook_torrance::CookTorrance;
+use crate::brdf::phong::LobeBrdf;
 use crate::error::{Error, Result};
-use crate::microfacet::beckmann_pow::exponent;
-use crate::microfacet::fresnel::Consts;
-use crate::model::{Kind, Model};
-use crate::params::Params;
+use crate::math::Fast;
+use crate::model::Kind;
+use crate::plan::{
+    BrdfForm, BrdfPlan, DistForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist,
+    with_fresnel, with_lobe, with_shadow,
+};
 use crate::registry;
-use ops::{Op1, Op6};
+use crate::vec3::COS_MIN;
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -95,7 +99,60 @@ impl Isa {
     }
 }
 
-// ---------- the ISA-specific loops ----------
+// ---------- per-element ops: a family's formula with the fast backend ----------
+
+/// An operation on one cosine.
+pub trait Op1: Send + Sync + 'static {
+    fn f(&self, x: f32) -> f32;
+}
+
+/// An operation on a direction pair (wi, wo), not normalised.
+pub trait Op6: Send + Sync + 'static {
+    fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32;
+}
+
+/// A lobe with `Lobe::eval`'s rules: clamp to [0, 1], NaN gives 0 (branch-free: `max` then
+/// `min` maps NaN to 0, and the select restores 0 for NaN inputs).
+struct LobeOp<L>(L);
+impl<L: LobeForm> Op1 for LobeOp<L> {
+    #[inline(always)]
+    fn f(&self, c: f32) -> f32 {
+        #[allow(clippy::manual_clamp)]
+        let v = self.0.at::<f32, Fast>(c.max(0.0).min(1.0));
+        if c.is_nan() { 0.0 } else { v }
+    }
+}
+
+/// A distribution with `Distribution::eval`'s rules.
+struct DistOp<D>(D);
+impl<D: DistForm> Op1 for DistOp<D> {
+    #[inline(always)]
+    fn f(&self, c: f32) -> f32 {
+        let cc = c.min(1.0);
+        let v = self.0.d::<f32, Fast>(cc, (1.0 - cc) * (1.0 + cc));
+        if c >= COS_MIN as f32 { v } else { 0.0 }
+    }
+}
+
+/// A Fresnel term (its own rules for NaN and out-of-range cosines).
+struct FresnelOp<F>(F);
+impl<F: FresnelForm> Op1 for FresnelOp<F> {
+    #[inline(always)]
+    fn f(&self, c: f32) -> f32 {
+        self.0.f::<f32, Fast>(c)
+    }
+}
+
+/// A BRDF on the pair set-up of the scalar `Pair::new` (in f64, branch-free).
+struct BrdfOp<B>(B);
+impl<B: BrdfForm> Op6 for BrdfOp<B> {
+    #[inline(always)]
+    fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
+        let (valid, p) = crate::vec3::pair_setup(wi, wo);
+        let v = self.0.at_pair::<f32, Fast>(&p);
+        if valid { v } else { 0.0 }
+    }
+}
 
 #[inline(always)]
 fn map1_body<O: Op1>(op: &O, x: &[f32], out: &mut [f32]) {
@@ -196,7 +253,8 @@ impl Input<'_> {
     }
 }
 
-trait Imp: Send + Sync {
+/// A compiled kernel (one family, monomorphised; the ISA chosen per call).
+pub trait Imp: Send + Sync {
     fn run(&self, isa: Isa, input: Input, out: &mut [f32]);
     fn simd(&self) -> bool {
         true
@@ -212,42 +270,54 @@ impl<O: Op1> Imp for Map1<O> {
     }
 }
 
-struct Map6<O>(O);
+struct Map6<O> {
+    op: O,
+    simd: bool,
+}
 impl<O: Op6> Imp for Map6<O> {
     fn run(&self, isa: Isa, input: Input, out: &mut [f32]) {
         if let Input::Dirs(w) = input {
-            run6(isa, &self.0, w, out)
-        }
-    }
-}
-
-/// The scalar model, element by element (models without a SIMD kernel).
-struct Fallback(Model<f32>);
-impl Imp for Fallback {
-    fn run(&self, _isa: Isa, input: Input, out: &mut [f32]) {
-        match input {
-            Input::Cos(x) => {
-                for (o, &c) in out.iter_mut().zip(x) {
-                    *o = self.0.eval_row(&[Some(c), None, None, None]);
-                }
-            }
-            Input::Dirs(w) => {
-                for (i, o) in out.iter_mut().enumerate() {
-                    *o = self.0.eval_row(&[
-                        Some(w[0][i]),
-                        Some(w[1][i]),
-                        Some(w[2][i]),
-                        Some(w[3][i]),
-                        Some(w[4][i]),
-                        Some(w[5][i]),
-                    ]);
-                }
-            }
+            run6(isa, &self.op, w, out)
         }
     }
     fn simd(&self) -> bool {
-        false
+        self.simd
     }
+}
+
+/// The kernel of a BRDF family.
+pub fn brdf_kernel<B: BrdfForm>(b: B) -> Box<dyn Imp> {
+    Box::new(Map6 {
+        simd: b.simd(),
+        op: BrdfOp(b),
+    })
+}
+
+/// Cook-Torrance with its D, G and F as concrete families: one kernel per combination.
+pub fn cook_torrance_kernel(ct: &CookTorrance) -> Box<dyn Imp> {
+    with_dist!(&ct.d, d => with_shadow!(&ct.g, g => with_fresnel!(&ct.f, f => brdf_kernel(
+        CookTorrance { d: *d, g: *g, f: *f, k: ct.k }
+    ))))
+}
+
+/// Phong or Blinn-Phong with its lobe as a concrete family.
+pub fn lobe_brdf_kernel(b: &LobeBrdf) -> Box<dyn Imp> {
+    with_lobe!(&b.lobe, l => brdf_kernel(b.with_lobe(*l)))
+}
+
+/// The kernel of a plan; `None` for shadowing terms (several cosines per element).
+fn kernel_of(plan: &Plan) -> Option<Box<dyn Imp>> {
+    Some(match plan {
+        Plan::Lobe(l) => with_lobe!(l, x => Box::new(Map1(LobeOp(*x))) as Box<dyn Imp>),
+        Plan::Distribution(d) => with_dist!(d, x => Box::new(Map1(DistOp(*x))) as Box<dyn Imp>),
+        Plan::Fresnel(f) => with_fresnel!(f, x => Box::new(Map1(FresnelOp(*x))) as Box<dyn Imp>),
+        // Composites are instantiated with their parts' concrete families (a composite not
+        // listed here would run with its parts' plans, matched per element: correct, slower).
+        Plan::Brdf(BrdfPlan::CookTorrance(ct)) => cook_torrance_kernel(ct),
+        Plan::Brdf(BrdfPlan::LobeBrdf(b)) => lobe_brdf_kernel(b),
+        Plan::Brdf(b) => with_brdf!(b, x => brdf_kernel(*x)),
+        Plan::Shadowing(_) => return None,
+    })
 }
 
 /// A model compiled for batch evaluation.
@@ -263,21 +333,19 @@ impl Kernel {
     /// are an error here.
     pub fn new(id: &str, given: &[(&str, &str)]) -> Result<Self> {
         let e = registry::find(id)?;
-        let p = Params::resolve(e.info.id, e.info.params, given)?;
-        if e.info.kind == Kind::Shadowing {
-            return Err(Error::WrongKind {
-                model: id.into(),
-                expected: "lobe, distribution, fresnel or brdf".into(),
-                found: "shadowing".into(),
-            });
-        }
-        let imp = match build(e.info.id, &p)? {
-            Some(imp) => imp,
-            None => Box::new(Fallback(registry::build_resolved::<f32>(e, &p)?)) as Box<dyn Imp>,
-        };
+        Self::from_plan(e.info.id, &registry::plan(id, given)?)
+    }
+
+    /// The kernel of a plan (`id` names it in messages).
+    pub fn from_plan(id: &'static str, plan: &Plan) -> Result<Self> {
+        let imp = kernel_of(plan).ok_or_else(|| Error::WrongKind {
+            model: id.into(),
+            expected: "lobe, distribution, fresnel or brdf".into(),
+            found: "shadowing".into(),
+        })?;
         Ok(Self {
-            id: e.info.id,
-            kind: e.info.kind,
+            id,
+            kind: plan.kind(),
             imp,
         })
     }
@@ -371,305 +439,5 @@ impl Kernel {
             self.imp.run(isa, input.slice(lo, (lo + o.len()).min(n)), o);
         });
         Ok(())
-    }
-}
-
-// ---------- building ops from ids ----------
-
-/// Calls back with the op of lobe `id` at exponent `n` (one generic instantiation per lobe).
-trait LobeVisitor {
-    fn visit<L: Op1>(self, l: L) -> Box<dyn Imp>;
-}
-
-fn lobe_op<V: LobeVisitor>(id: &str, n: f64, v: V) -> Option<Box<dyn Imp>> {
-    use crate::lobes::cubic::CubicShape;
-    use crate::lobes::flog::{seed_coef, zero_cos};
-    use crate::lobes::tuned;
-    let _ = zero_cos;
-    let cubic = |s: CubicShape| ops::Cubic {
-        d1: s.d1 as f32,
-        d2: s.d2 as f32,
-        d3: s.d3 as f32,
-        x1: s.x1 as f32,
-        x2: s.x2 as f32,
-        cut: s.cut as f32,
-    };
-    let rational_at = |level: f64| ops::Rational {
-        n: n as f32,
-        xq: ((level.ln() / n).exp_m1()) as f32,
-        level: level as f32,
-    };
-    let rational = || rational_at(0.5);
-    let cubic_rational = |level: f64| ops::CubicRational {
-        cubic: cubic(CubicShape::hermite_at(n, level)),
-        rational: rational_at(level),
-        q: level.powf(1.0 / n) as f32,
-    };
-    Some(match id {
-        "pow" => v.visit(ops::Pow { n: n as f32 }),
-        "schlick" => v.visit(ops::Schlick { n: n as f32 }),
-        "schlick-modified" => v.visit(ops::SchlickModified { n: n as f32 }),
-        "gauss" => v.visit(ops::Gauss {
-            half_n: (0.5 * n) as f32,
-        }),
-        "flog" => v.visit(ops::Flog {
-            n: n as f32,
-            coef: 1.0,
-            clamp: false,
-        }),
-        "flog-normalized" => v.visit(ops::Flog {
-            n: n as f32,
-            coef: seed_coef(n) as f32,
-            clamp: false,
-        }),
-        "flog-normalized-clamped" => v.visit(ops::Flog {
-            n: n as f32,
-            coef: seed_coef(n) as f32,
-            clamp: true,
-        }),
-        "cubic" => v.visit(cubic(CubicShape::hermite(n))),
-        "cubic3" => v.visit(cubic(CubicShape::three_point(n, 0.5, 1.0 / 18.0))),
-        "rational" => v.visit(rational()),
-        "cubic-rational" => v.visit(cubic_rational(0.5)),
-        "cubic-rational-tuned" => v.visit(cubic_rational(tuned::cubic_rational_level(n))),
-        "power4-tuned" => v.visit(ops::Power::<2> {
-            s: tuned::power_slope(4, n) as f32,
-        }),
-        "power8-tuned" => v.visit(ops::Power::<3> {
-            s: tuned::power_slope(8, n) as f32,
-        }),
-        "power16-tuned" => v.visit(ops::Power::<4> {
-            s: tuned::power_slope(16, n) as f32,
-        }),
-        "sg-tuned" => v.visit(ops::Exp2Lobe {
-            k: tuned::exp2_rate(n) as f32,
-        }),
-        "power4" => v.visit(ops::Power::<2> {
-            s: (n / 4.0) as f32,
-        }),
-        "power8" => v.visit(ops::Power::<3> {
-            s: (n / 8.0) as f32,
-        }),
-        "power16" => v.visit(ops::Power::<4> {
-            s: (n / 16.0) as f32,
-        }),
-        "sg" => v.visit(ops::Exp2Lobe {
-            k: (n / std::f64::consts::LN_2) as f32,
-        }),
-        #[allow(clippy::approx_constant)]
-        "ue4-phong-approx" => v.visit(ops::Exp2Lobe {
-            k: (1.4427 * (n + 0.775)) as f32,
-        }),
-        _ => return None,
-    })
-}
-
-struct AsMap1;
-impl LobeVisitor for AsMap1 {
-    fn visit<L: Op1>(self, l: L) -> Box<dyn Imp> {
-        Box::new(Map1(l))
-    }
-}
-
-struct AsLobeBrdf {
-    zero: f64,
-    coef: f32,
-    blinn: bool,
-    normalized: bool,
-}
-impl LobeVisitor for AsLobeBrdf {
-    fn visit<L: Op1>(self, lobe: L) -> Box<dyn Imp> {
-        Box::new(Map6(ops::LobeBrdf {
-            lobe,
-            zero: self.zero,
-            coef: self.coef,
-            blinn: self.blinn,
-            normalized: self.normalized,
-        }))
-    }
-}
-
-/// Calls back with the distribution op `id` at slope `alpha`.
-trait DistVisitor {
-    fn visit<D: ops::DOp>(self, d: D) -> Option<Box<dyn Imp>>;
-}
-
-fn dist_op<V: DistVisitor>(id: &str, alpha: f64, v: V) -> Option<Box<dyn Imp>> {
-    let a2 = alpha * alpha;
-    let ct = (1.0 / (4.0 * a2)) as f32;
-    let power = |g: f64| (exponent(alpha) / g) as f32;
-    match id {
-        "beckmann" => v.visit(ops::Beckmann {
-            inv_alpha2: (1.0 / a2) as f32,
-            scale: (1.0 / (std::f64::consts::PI * a2)) as f32,
-        }),
-        "beckmann-ct" => v.visit(ops::Beckmann {
-            inv_alpha2: (1.0 / a2) as f32,
-            scale: ct,
-        }),
-        "beckmann-pow" => v.visit(ops::BeckmannPow {
-            e: exponent(alpha) as f32,
-            scale: ct,
-        }),
-        "beckmann-power4" => v.visit(ops::BeckmannPower::<2> {
-            s: power(4.0),
-            scale: ct,
-        }),
-        "beckmann-power8" => v.visit(ops::BeckmannPower::<3> {
-            s: power(8.0),
-            scale: ct,
-        }),
-        "beckmann-power16" => v.visit(ops::BeckmannPower::<4> {
-            s: power(16.0),
-            scale: ct,
-        }),
-        _ => None,
-    }
-}
-
-struct AsDist;
-impl DistVisitor for AsDist {
-    fn visit<D: ops::DOp>(self, d: D) -> Option<Box<dyn Imp>> {
-        Some(Box::new(Map1(ops::Dist(d))))
-    }
-}
-
-struct AsCookTorrance<'a> {
-    p: &'a Params,
-    k: f32,
-}
-impl DistVisitor for AsCookTorrance<'_> {
-    fn visit<D: ops::DOp>(self, d: D) -> Option<Box<dyn Imp>> {
-        let p = self.p;
-        let k = self.k;
-        macro_rules! with_f {
-            ($g:expr) => {{
-                let g = $g;
-                Some(match p.choice("f") {
-                    "none" => Box::new(Map6(ops::CookTorrance {
-                        d,
-                        g,
-                        fr: ops::FNone,
-                        k,
-                    })) as Box<dyn Imp>,
-                    "schlick" => Box::new(Map6(ops::CookTorrance {
-                        d,
-                        g,
-                        fr: ops::FSchlick {
-                            f0: p.num("f0") as f32,
-                        },
-                        k,
-                    })),
-                    "dielectric" => Box::new(Map6(ops::CookTorrance {
-                        d,
-                        g,
-                        fr: ops::FDielectric {
-                            p: Consts::new(p.num("eta"), 0.0),
-                        },
-                        k,
-                    })),
-                    _ => Box::new(Map6(ops::CookTorrance {
-                        d,
-                        g,
-                        fr: ops::FConductor {
-                            p: Consts::new(p.num("eta"), p.num("k")),
-                        },
-                        k,
-                    })),
-                })
-            }};
-        }
-        match p.choice("g") {
-            "v-cavity" => with_f!(ops::VCavity),
-            "smith-rational" => with_f!(ops::SmithRational {
-                alpha: p.num("alpha") as f32
-            }),
-            // The exact Smith term needs erfc: no vectorised version; the scalar model runs.
-            _ => None,
-        }
-    }
-}
-
-fn build(id: &str, p: &Params) -> Result<Option<Box<dyn Imp>>> {
-    let fres = |f: Box<dyn Imp>| Ok(Some(f));
-    match id {
-        _ if crate::lobes::IDS.contains(&id) => Ok(lobe_op(id, p.num("n"), AsMap1)),
-        _ if crate::microfacet::DISTRIBUTION_IDS.contains(&id) => {
-            Ok(dist_op(id, p.num("alpha"), AsDist))
-        }
-        "fresnel-none" => fres(Box::new(Map1(ops::Fres(ops::FNone)))),
-        "fresnel-schlick" => fres(Box::new(Map1(ops::Fres(ops::FSchlick {
-            f0: p.num("f0") as f32,
-        })))),
-        "fresnel-dielectric" => fres(Box::new(Map1(ops::Fres(ops::FDielectric {
-            p: Consts::new(p.num("eta"), 0.0),
-        })))),
-        "fresnel-conductor" => fres(Box::new(Map1(ops::Fres(ops::FConductor {
-            p: Consts::new(p.num("eta"), p.num("k")),
-        })))),
-        "cook-torrance" => {
-            let k = match p.choice("denominator") {
-                "4" => 0.25,
-                "seed-000" => 1.0,
-                _ => std::f32::consts::FRAC_1_PI,
-            };
-            Ok(dist_op(
-                p.choice("d"),
-                p.num("alpha"),
-                AsCookTorrance { p, k },
-            ))
-        }
-        "ward" | "ward-pow" | "ward-power16" => {
-            let (nx, ny) = crate::brdf::ward::slope_params(p)?;
-            let (ax, ay) = (p.num(nx), p.num(ny));
-            let scale = (1.0 / (4.0 * std::f64::consts::PI * ax * ay)) as f32;
-            let (inv_ax2, inv_ay2) = ((1.0 / (ax * ax)) as f32, (1.0 / (ay * ay)) as f32);
-            let e = 2.0 / (ax * ax);
-            Ok(Some(match id {
-                "ward" => Box::new(Map6(ops::Ward::<0> {
-                    inv_ax2,
-                    inv_ay2,
-                    e: 0.0,
-                    scale,
-                })) as Box<dyn Imp>,
-                "ward-pow" => Box::new(Map6(ops::Ward::<1> {
-                    inv_ax2,
-                    inv_ay2,
-                    e: e as f32,
-                    scale,
-                })),
-                _ => Box::new(Map6(ops::Ward::<2> {
-                    inv_ax2,
-                    inv_ay2,
-                    e: (e / 16.0) as f32,
-                    scale,
-                })),
-            }))
-        }
-        "lambert" => Ok(Some(Box::new(Map6(ops::Lambert {
-            value: (p.num("albedo") / std::f64::consts::PI) as f32,
-        })))),
-        "phong" | "blinn-phong" => {
-            let normalized = p.choice("norm") == "energy";
-            let n = p.num("n");
-            let coef = if normalized {
-                1.0 / (2.0
-                    * std::f64::consts::PI
-                    * crate::brdf::phong::lobe_integral(p.choice("lobe"), n)?)
-            } else {
-                1.0
-            };
-            Ok(lobe_op(
-                p.choice("lobe"),
-                n,
-                AsLobeBrdf {
-                    zero: crate::brdf::phong::build_lobe::<f32>(p.choice("lobe"), n)?.zero_below(),
-                    coef: coef as f32,
-                    blinn: id == "blinn-phong",
-                    normalized,
-                },
-            ))
-        }
-        _ => Ok(None),
     }
 }

@@ -19,19 +19,24 @@
 //! pair set-up: 2 normalisations of wi, wo and one of h). Reciprocal.
 
 use crate::error::{Error, Result};
-use crate::microfacet::{DISTRIBUTION_IDS, fresnel};
-use crate::model::{
-    Brdf, Distribution, Fresnel, Kind, Model, ModelInfo, Ops, ShadowInput, Shadowing,
-};
-use crate::params::{self, ParamKind, ParamSpec, Params};
+use crate::model::{Kind, ModelInfo, Ops, ShadowInput};
+use crate::params::{self, Options, ParamKind, ParamSpec, Params};
 use crate::real::Real;
-use crate::registry::{self, Entry};
+use crate::entry::Entry;
+use crate::microfacet::fresnel;
+use crate::math::Math;
+use crate::plan::{BrdfForm, DistForm, DistPlan, FresnelForm, FresnelPlan, Models, Plan, ShadowForm, ShadowPlan};
+use crate::vec3::COS_MIN;
+use crate::wgsl::{Emit, PAIR};
 use crate::vec3::Pair;
 
 pub const D: ParamSpec = ParamSpec {
     name: "d",
     kind: ParamKind::Choice {
-        options: DISTRIBUTION_IDS,
+        options: Options::Models {
+            kind: Kind::Distribution,
+            prefix: "",
+        },
         default: "beckmann",
     },
     doc: "microfacet distribution id",
@@ -39,7 +44,10 @@ pub const D: ParamSpec = ParamSpec {
 pub const G: ParamSpec = ParamSpec {
     name: "g",
     kind: ParamKind::Choice {
-        options: &["v-cavity", "smith", "smith-rational"],
+        options: Options::Models {
+            kind: Kind::Shadowing,
+            prefix: "",
+        },
         default: "smith",
     },
     doc: "shadowing-masking term",
@@ -47,7 +55,10 @@ pub const G: ParamSpec = ParamSpec {
 pub const F: ParamSpec = ParamSpec {
     name: "f",
     kind: ParamKind::Choice {
-        options: fresnel::CHOICES,
+        options: Options::Models {
+            kind: Kind::Fresnel,
+            prefix: "fresnel-",
+        },
         default: "none",
     },
     doc: "Fresnel term",
@@ -55,7 +66,7 @@ pub const F: ParamSpec = ParamSpec {
 pub const DENOMINATOR: ParamSpec = ParamSpec {
     name: "denominator",
     kind: ParamKind::Choice {
-        options: &["4", "seed-000", "seed-001"],
+        options: Options::List(&["4", "seed-000", "seed-001"]),
         default: "4",
     },
     doc: "4 cos_i cos_o (microfacet theory), cos_i cos_o (seed 000), pi cos_i cos_o (seed 001)",
@@ -82,40 +93,29 @@ pub const INFO: ModelInfo = ModelInfo {
     note: "ops exclude D, G, F and the pair set-up; equals Mitsuba 3 roughconductor eval / cos_o; f32: 1e-5 except with f = dielectric/conductor at eta << 1, where F is a near-step at the critical angle and wi.h rounded once to f32 can double it (1.0 at eta = 0.01)",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32>,
-    build64: build::<f64>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, models| {
+    Ok(Plan::Brdf(CookTorrance::from_params(p, models)?.into()))
+});
 
-/// Cook-Torrance with D, G and F chosen by name.
-pub struct CookTorrance<T: Real> {
-    d: Box<dyn Distribution<T>>,
-    g: Box<dyn Shadowing<T>>,
-    f: fresnel::FresnelTerm<T>,
-    k: T,
+/// `F D G k / (cos_i cos_o)`, generic over its parts: the plan holds the parts' plans
+/// (`CookTorrance<DistPlan, ShadowPlan, FresnelPlan>`); the batch kernels instantiate it with
+/// the concrete families (one kernel per D, G, F combination).
+#[derive(Clone, Copy, Debug)]
+pub struct CookTorrance<D = DistPlan, G = ShadowPlan, F = FresnelPlan> {
+    pub d: D,
+    pub g: G,
+    pub f: F,
+    /// `1/4`, `1` (seed 000) or `1/pi` (seed 001).
+    pub k: f64,
 }
 
-impl<T: Real> CookTorrance<T> {
-    /// Builds from validated parameters (see the table in the module header).
-    pub fn from_params(p: &Params) -> Result<Self> {
-        let alpha = p.num("alpha").to_string();
-        let d = match registry::build::<T>(p.choice("d"), &[("alpha", &alpha)])? {
-            Model::Distribution(d) => d,
-            _ => unreachable!("d choices are distributions"),
-        };
-        let g_id = p.choice("g");
-        let g_params: &[(&str, &str)] = if g_id == "v-cavity" {
-            &[]
-        } else {
-            &[("alpha", &alpha)]
-        };
-        let g = match registry::build::<T>(g_id, g_params)? {
-            Model::Shadowing(g) => g,
-            _ => unreachable!("g choices are shadowing terms"),
-        };
-        let f =
-            fresnel::FresnelTerm::from_choice(p.choice("f"), p.num("f0"), p.num("eta"), p.num("k"));
+impl CookTorrance {
+    /// The plan from resolved parameters; the parts are built by the registry (`models`),
+    /// each taking the numeric parameters it declares (`alpha`; `f0`, `eta`, `k`).
+    pub fn from_params(p: &Params, models: &dyn Models) -> Result<Self> {
+        let nums = |name: &str| p.opt_num(name);
+        let (d, g) = (p.choice("d"), p.choice("g"));
+        let f = format!("fresnel-{}", p.choice("f"));
         let k = match p.choice("denominator") {
             "4" => 0.25,
             "seed-000" => 1.0,
@@ -130,29 +130,41 @@ impl<T: Real> CookTorrance<T> {
             }
         };
         Ok(Self {
-            d,
-            g,
-            f,
-            k: T::c(k),
+            d: models.plan(d, &nums)?.distribution(d)?,
+            g: models.plan(g, &nums)?.shadowing(g)?,
+            f: models.plan(&f, &nums)?.fresnel(&f)?,
+            k,
         })
     }
 }
 
-impl<T: Real> Brdf<T> for CookTorrance<T> {
-    #[inline]
-    fn eval_pair(&self, p: &Pair<T>) -> T {
-        let d = self.d.d(p.cos_h, p.sin2_h);
-        let g = self.g.g(&ShadowInput {
+impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G, F> {
+    fn simd(&self) -> bool {
+        G::SIMD
+    }
+    fn claims_energy(&self) -> bool {
+        // Microfacet theory's denominator; the seeds' are named variants that do not.
+        self.k == 0.25
+    }
+    #[inline(always)]
+    fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
+        let d = self.d.d::<T, M>(p.cos_h, p.sin2_h);
+        let d = if p.cos_h >= T::c(COS_MIN) { d } else { T::zero() };
+        let g = self.g.g::<T, M>(&ShadowInput {
             cos_v: p.cos_o,
             cos_l: Some(p.cos_i),
             cos_h: p.cos_h,
             cos_vh: p.cos_ih,
         });
-        let f = self.f.f(p.cos_ih);
-        f * d * g * self.k / (p.cos_i * p.cos_o)
+        self.f.f::<T, M>(p.cos_ih) * d * g * T::c(self.k) / (p.cos_i * p.cos_o)
     }
-}
-
-fn build<T: Real>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Brdf(Box::new(CookTorrance::<T>::from_params(p)?)))
+    fn wgsl_body(&self, e: &Emit) -> String {
+        format!(
+            "{PAIR}    let d = select(0.0, {d}, p.h.z >= FB_COS_MIN);\n    let g = {g};\n    let f = {f};\n    let v = f * d * g * {k} / (p.cos_i * p.cos_o);\n    return select(0.0, v, p.valid);\n",
+            d = self.d.wgsl("p.h.z", "p.sin2_h", e),
+            g = self.g.wgsl("p.cos_o", "p.cos_i", "p.h.z", "p.cos_ih", e),
+            f = self.f.wgsl("p.cos_ih", e),
+            k = e.constant(self.k),
+        )
+    }
 }

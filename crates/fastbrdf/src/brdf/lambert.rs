@@ -4,10 +4,13 @@
 //! evaluation (a constant). Albedo equals `albedo` at every incidence (energy conserving).
 
 use crate::error::Result;
-use crate::model::{Brdf, Kind, Model, ModelInfo, Ops};
-use crate::params::{ParamKind, ParamSpec, Params};
+use crate::model::{Kind, ModelInfo, Ops};
+use crate::params::{ParamKind, ParamSpec};
 use crate::real::Real;
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{BrdfForm, Plan};
+use crate::wgsl::{Emit, PAIR};
 use crate::vec3::Pair;
 
 pub const ALBEDO: ParamSpec = ParamSpec {
@@ -32,35 +35,39 @@ pub const INFO: ModelInfo = ModelInfo {
     note: "",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32>,
-    build64: build::<f64>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Brdf(Lambert::new(p.num("albedo"))?.into())));
 
-/// The Lambertian BRDF.
-#[derive(Clone, Debug)]
-pub struct Lambert<T> {
-    value: T,
+/// `albedo / pi`.
+#[derive(Clone, Copy, Debug)]
+pub struct Lambert {
+    albedo: f64,
 }
 
-impl<T: Real> Lambert<T> {
+impl Lambert {
     /// `albedo` in [0, 1].
     pub fn new(albedo: f64) -> Result<Self> {
-        let a = crate::params::check("lambert", &ALBEDO, albedo)?;
         Ok(Self {
-            value: T::c(a / std::f64::consts::PI),
+            albedo: crate::params::check("lambert", &ALBEDO, albedo)?,
         })
     }
 }
 
-impl<T: Real> Brdf<T> for Lambert<T> {
-    #[inline]
-    fn eval_pair(&self, _p: &Pair<T>) -> T {
-        self.value
+impl BrdfForm for Lambert {
+    #[inline(always)]
+    fn at_pair<T: Real, M: Math<T>>(&self, _p: &Pair<T>) -> T {
+        T::c(self.albedo / std::f64::consts::PI)
     }
-}
-
-fn build<T: Real>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Brdf(Box::new(Lambert::<T>::new(p.num("albedo"))?)))
+    fn wgsl_body(&self, e: &Emit) -> String {
+        format!(
+            "{PAIR}    return select(0.0, {}, p.valid);\n",
+            e.kx(
+                self.albedo / std::f64::consts::PI,
+                "p_albedo * 0.3183098861837907",
+                &["albedo"]
+            )
+        )
+    }
+    fn claims_energy(&self) -> bool {
+        true
+    }
 }

@@ -20,18 +20,23 @@
 //! 1 mul, 1 div (blinn-phong, energy). Reciprocal.
 
 use crate::error::Result;
-use crate::lobes;
-use crate::model::{Brdf, Kind, Lobe, Model, ModelInfo, Ops};
-use crate::params::{self, ParamKind, ParamSpec, Params};
+use crate::model::{Kind, ModelInfo, Ops};
+use crate::params::{self, Options, ParamKind, ParamSpec, Params};
 use crate::quad;
 use crate::real::Real;
-use crate::registry::{self, Entry};
+use crate::entry::Entry;
+use crate::math::{Exact, Math};
+use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
+use crate::wgsl::{Emit, PAIR};
 use crate::vec3::Pair;
 
 pub const LOBE: ParamSpec = ParamSpec {
     name: "lobe",
     kind: ParamKind::Choice {
-        options: lobes::IDS,
+        options: Options::Models {
+            kind: Kind::Lobe,
+            prefix: "",
+        },
         default: "pow",
     },
     doc: "lobe id",
@@ -39,7 +44,7 @@ pub const LOBE: ParamSpec = ParamSpec {
 pub const NORM: ParamSpec = ParamSpec {
     name: "norm",
     kind: ParamKind::Choice {
-        options: &["energy", "none"],
+        options: Options::List(&["energy", "none"]),
         default: "energy",
     },
     doc: "energy: coef(n) = 1 / (2 pi Int(n)); none: the bare lobe",
@@ -69,100 +74,78 @@ pub const INFO_BLINN: ModelInfo = ModelInfo {
     note: "ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3, times coef(n) / (4 wi.h): 265 at n = 10000 (check --full); 2 for flog-normalized",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY_BLINN: Entry = Entry {
-    info: INFO_BLINN,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, models| {
+    Ok(Plan::Brdf(LobeBrdf::from_params(p, models, false)?.into()))
+});
+pub const ENTRY_BLINN: Entry = Entry::new(INFO_BLINN, |p, models| {
+    Ok(Plan::Brdf(LobeBrdf::from_params(p, models, true)?.into()))
+});
 
-/// `Int(n) = integral_0^1 lobe(c) c dc` of a lobe, by adaptive quadrature (exact for `pow`).
-pub fn lobe_integral(lobe_id: &str, n: f64) -> Result<f64> {
-    if lobe_id == "pow" {
-        return Ok(1.0 / (n + 2.0));
+/// `Int(n) = integral_0^1 lobe(c) c dc` in f64 (`1 / (n + 2)` for `pow`): the normalisation
+/// integral, by adaptive Gauss-Kronrod split at the lobe's cut and kinks.
+pub fn lobe_integral(lobe: &LobePlan) -> f64 {
+    if let LobePlan::Pow(p) = lobe {
+        return 1.0 / (p.n() + 2.0);
     }
-    let lobe = build_lobe::<f64>(lobe_id, n)?;
     let mut breaks = lobe.kinks();
     breaks.push(lobe.zero_below());
     let lo = lobe.zero_below();
-    Ok(quad::integrate(|c| lobe.eval(c) * c, lo, 1.0, &breaks, 1e-12).0)
+    let f = |c: f64| lobe.at::<f64, Exact>(c.clamp(0.0, 1.0)) * c;
+    quad::integrate(f, lo, 1.0, &breaks, 1e-12).0
 }
 
-/// Builds a lobe by id with exponent `n`.
-pub fn build_lobe<T: Real>(id: &str, n: f64) -> Result<Box<dyn Lobe<T>>> {
-    match registry::build::<T>(id, &[("n", &n.to_string())])? {
-        Model::Lobe(l) => Ok(l),
-        other => Err(crate::Error::WrongKind {
-            model: id.into(),
-            expected: "lobe".into(),
-            found: other.kind().name().into(),
-        }),
-    }
-}
-
-/// A Phong or Blinn-Phong BRDF built from a lobe.
-pub struct LobeBrdf<T: Real> {
-    lobe: Box<dyn Lobe<T>>,
-    /// The lobe's cut (`Lobe::zero_below`), decided on the f64 cosine of the pair.
+/// A lobe used as a BRDF: Phong (`lobe(reflect(wi) . wo)`) or Blinn-Phong (`lobe(n . h)`),
+/// normalised or not. Generic over the lobe: the plan holds a `LobePlan`, the batch kernels
+/// one family each.
+#[derive(Clone, Copy, Debug)]
+pub struct LobeBrdf<L = LobePlan> {
+    pub lobe: L,
+    /// The lobe's cut, decided on the f64 cosine.
     zero: f64,
-    coef: T,
+    /// `1 / (2 pi Int(n))` when normalised, else 1.
+    coef: f64,
     blinn: bool,
     normalized: bool,
 }
 
-impl<T: Real> LobeBrdf<T> {
-    /// `blinn`: lobe of `n . h` (else of `reflect(wi) . wo`); `normalized`: apply `coef(n)`.
-    pub fn new(lobe_id: &str, n: f64, blinn: bool, normalized: bool) -> Result<Self> {
-        let n = params::check(if blinn { "blinn-phong" } else { "phong" }, &params::N, n)?;
-        let lobe = build_lobe::<T>(lobe_id, n)?;
+impl LobeBrdf {
+    /// The plan from resolved parameters (`lobe`, `n`, `norm`); the lobe is built by the
+    /// registry (`models`).
+    pub fn from_params(p: &Params, models: &dyn Models, blinn: bool) -> Result<Self> {
+        let id = if blinn { "blinn-phong" } else { "phong" };
+        let n = params::check(id, &params::N, p.num("n"))?;
+        let lobe_id = p.choice("lobe");
+        let lobe = models
+            .plan(lobe_id, &|name| (name == "n").then_some(n))?
+            .lobe(lobe_id)?;
+        let normalized = p.choice("norm") == "energy";
         let coef = if normalized {
-            1.0 / (2.0 * std::f64::consts::PI * lobe_integral(lobe_id, n)?)
+            1.0 / (2.0 * std::f64::consts::PI * lobe_integral(&lobe))
         } else {
             1.0
         };
         Ok(Self {
             zero: lobe.zero_below(),
             lobe,
-            coef: T::c(coef),
+            coef,
             blinn,
             normalized,
         })
     }
-}
 
-impl<T: Real> Brdf<T> for LobeBrdf<T> {
-    #[inline]
-    fn eval_pair(&self, p: &Pair<T>) -> T {
-        // A lobe without a cut (zero = 0) takes negative cosines as 0 (clamped, not cut).
-        if p.lobe_cut(self.zero, self.blinn) {
-            return T::zero();
+    /// The same BRDF with the lobe as a concrete family (for the batch kernels).
+    pub(crate) fn with_lobe<L: LobeForm>(&self, lobe: L) -> LobeBrdf<L> {
+        LobeBrdf {
+            lobe,
+            zero: self.zero,
+            coef: self.coef,
+            blinn: self.blinn,
+            normalized: self.normalized,
         }
-        if self.blinn {
-            let l = self.lobe.eval(p.cos_h);
-            if self.normalized {
-                self.coef * l / (T::c(4.0) * p.cos_ih)
-            } else {
-                l
-            }
-        } else {
-            self.coef * self.lobe.eval(p.cos_r)
-        }
-    }
-    fn mirror_breaks(&self) -> Vec<f64> {
-        self.breaks(false)
-    }
-    fn half_breaks(&self) -> Vec<f64> {
-        self.breaks(true)
     }
 }
 
-impl<T: Real> LobeBrdf<T> {
-    /// The lobe's kinks and cut, for the cosine it is a lobe of: that of the half vector
-    /// (`blinn`) or of the mirror direction; none for the other.
+impl<L: LobeForm> LobeBrdf<L> {
     fn breaks(&self, blinn: bool) -> Vec<f64> {
         if self.blinn != blinn {
             return Vec::new();
@@ -173,12 +156,55 @@ impl<T: Real> LobeBrdf<T> {
     }
 }
 
-fn build<T: Real, const BLINN: u8>(p: &Params) -> Result<Model<T>> {
-    let b = LobeBrdf::<T>::new(
-        p.choice("lobe"),
-        p.num("n"),
-        BLINN == 1,
-        p.choice("norm") == "energy",
-    )?;
-    Ok(Model::Brdf(Box::new(b)))
+impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
+    #[inline(always)]
+    fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
+        let cut = p.lobe_cut(self.zero, self.blinn);
+        // The lobe's argument is clamped as `Lobe::eval` does (pair cosines lie in [-1, 1]).
+        let arg = |c: T| c.max(T::zero()).min(T::one());
+        let v = if self.blinn {
+            let l = self.lobe.at::<T, M>(arg(p.cos_h));
+            if self.normalized {
+                T::c(self.coef) * l / (T::c(4.0) * p.cos_ih)
+            } else {
+                l
+            }
+        } else {
+            T::c(self.coef) * self.lobe.at::<T, M>(arg(p.cos_r))
+        };
+        if cut { T::zero() } else { v }
+    }
+    fn wgsl_body(&self, e: &Emit) -> String {
+        let coef = if !self.normalized {
+            e.constant(self.coef)
+        } else if e.is_runtime() {
+            format!("(1.0 / (6.283185307179586 * {}))", self.lobe.wgsl_integral(e))
+        } else {
+            e.constant(self.coef)
+        };
+        let (r, v) = if self.blinn {
+            let l = self.lobe.wgsl("p.h.z", e);
+            let v = if self.normalized {
+                format!("{coef} * {l} / (4.0 * p.cos_ih)")
+            } else {
+                l
+            };
+            ("", v)
+        } else {
+            (
+                "    let r_dot_wo = -p.wi.x * p.wo.x - p.wi.y * p.wo.y + p.wi.z * p.wo.z;\n",
+                format!("{coef} * {}", self.lobe.wgsl("r_dot_wo", e)),
+            )
+        };
+        format!("{PAIR}{r}    let v = {v};\n    return select(0.0, v, p.valid);\n")
+    }
+    fn mirror_breaks(&self) -> Vec<f64> {
+        self.breaks(false)
+    }
+    fn half_breaks(&self) -> Vec<f64> {
+        self.breaks(true)
+    }
+    fn claims_energy(&self) -> bool {
+        self.normalized || self.lobe.normalised()
+    }
 }

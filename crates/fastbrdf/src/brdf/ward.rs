@@ -17,10 +17,13 @@
 //! exponential factor (the rest is identical): see the `INFO` bounds.
 
 use crate::error::{Error, Result};
-use crate::model::{Brdf, ErrorBound, Kind, Metric, Model, ModelInfo, Ops, Zone};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self, ParamKind, ParamSpec, Params};
 use crate::real::{Real, pow2k, sqr};
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{BrdfForm, Plan};
+use crate::wgsl::Emit;
 use crate::vec3::Pair;
 
 pub const ALPHA_X: ParamSpec = ParamSpec {
@@ -108,87 +111,111 @@ pub const INFO_POWER16: ModelInfo = ModelInfo {
     note: "isotropic only",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY_POW: Entry = Entry {
-    info: INFO_POW,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
-pub const ENTRY_POWER16: Entry = Entry {
-    info: INFO_POWER16,
-    build32: build::<f32, 2>,
-    build64: build::<f64, 2>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Brdf(
+        match slope_params(p)? {
+            ("alpha", _) => Ward::<0>::isotropic(p.num("alpha"))?,
+            (x, y) => Ward::<0>::anisotropic(p.num(x), p.num(y))?,
+        }
+        .into(),
+    ))
+});
+pub const ENTRY_POW: Entry = Entry::new(INFO_POW, |p, _| {
+    Ok(Plan::Brdf(Ward::<1>::isotropic(p.num("alpha"))?.into()))
+});
+pub const ENTRY_POWER16: Entry = Entry::new(INFO_POWER16, |p, _| {
+    Ok(Plan::Brdf(Ward::<2>::isotropic(p.num("alpha"))?.into()))
+});
 
-/// Which exponential factor a Ward BRDF uses.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum WardForm {
-    Exact,
-    Pow,
-    Power16,
-}
-
-/// Ward's BRDF and its seed-000 variants.
-#[derive(Clone, Debug)]
-pub struct Ward<T> {
-    form: WardForm,
-    inv_ax2: T,
-    inv_ay2: T,
+/// Ward's BRDF (`FORM` 0, anisotropic or isotropic) and seed 000's variants of its
+/// exponential factor: `FORM` 1 `cos_h^(2/alpha^2)`, 2 its `(1 + x/16)^16` form.
+#[derive(Clone, Copy, Debug)]
+pub struct Ward<const FORM: u8> {
+    /// `alpha_x`/`alpha_y` given (the WGSL parameters' names).
+    aniso: bool,
+    inv_ax2: f64,
+    inv_ay2: f64,
     /// `2 / alpha^2` (pow) or `2 / alpha^2 / 16` (power16).
-    e: T,
-    scale: T,
+    e: f64,
+    /// `1 / (4 pi alpha_x alpha_y)`.
+    scale: f64,
 }
 
-impl<T: Real> Ward<T> {
-    /// Isotropic Ward of the given form; `alpha` in [0.01, 1].
-    pub fn isotropic(alpha: f64, form: WardForm) -> Result<Self> {
+impl<const FORM: u8> Ward<FORM> {
+    /// Isotropic Ward of this form; `alpha` in [0.01, 1].
+    pub fn isotropic(alpha: f64) -> Result<Self> {
         let a = params::check("ward", &params::ALPHA, alpha)?;
-        let e = match form {
-            WardForm::Power16 => 2.0 / (a * a) / 16.0,
-            _ => 2.0 / (a * a),
-        };
-        Ok(Self {
-            form,
-            inv_ax2: T::c(1.0 / (a * a)),
-            inv_ay2: T::c(1.0 / (a * a)),
-            e: T::c(e),
-            scale: T::c(1.0 / (4.0 * std::f64::consts::PI * a * a)),
-        })
+        Ok(Self::with(a, a, false))
     }
 
+    fn with(ax: f64, ay: f64, aniso: bool) -> Self {
+        let e = 2.0 / (ax * ax);
+        Self {
+            aniso,
+            inv_ax2: 1.0 / (ax * ax),
+            inv_ay2: 1.0 / (ay * ay),
+            e: if FORM == 2 { e / 16.0 } else { e },
+            scale: 1.0 / (4.0 * std::f64::consts::PI * ax * ay),
+        }
+    }
+}
+
+impl Ward<0> {
     /// Anisotropic exact Ward; both slopes in [0.01, 1].
     pub fn anisotropic(alpha_x: f64, alpha_y: f64) -> Result<Self> {
-        let ax = params::check("ward", &ALPHA_X, alpha_x)?;
-        let ay = params::check("ward", &ALPHA_Y, alpha_y)?;
-        Ok(Self {
-            form: WardForm::Exact,
-            inv_ax2: T::c(1.0 / (ax * ax)),
-            inv_ay2: T::c(1.0 / (ay * ay)),
-            e: T::zero(),
-            scale: T::c(1.0 / (4.0 * std::f64::consts::PI * ax * ay)),
-        })
+        Ok(Self::with(
+            params::check("ward", &ALPHA_X, alpha_x)?,
+            params::check("ward", &ALPHA_Y, alpha_y)?,
+            true,
+        ))
     }
 }
 
-impl<T: Real> Brdf<T> for Ward<T> {
-    #[inline]
-    fn eval_pair(&self, p: &Pair<T>) -> T {
-        let lobe = match self.form {
-            WardForm::Exact => {
-                let q = sqr(p.h[0]) * self.inv_ax2 + sqr(p.h[1]) * self.inv_ay2;
-                (-q / sqr(p.cos_h)).exp()
+impl<const FORM: u8> BrdfForm for Ward<FORM> {
+    fn claims_energy(&self) -> bool {
+        true
+    }
+    #[inline(always)]
+    fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
+        let lobe = match FORM {
+            0 => {
+                let q = sqr(p.h[0]) * T::c(self.inv_ax2) + sqr(p.h[1]) * T::c(self.inv_ay2);
+                M::exp(-q / sqr(p.cos_h))
             }
-            WardForm::Pow => p.cos_h.powf(self.e),
-            WardForm::Power16 => {
+            1 => M::pow(p.cos_h, T::c(self.e)),
+            _ => {
                 let cos_minus_1 = -p.sin2_h / (T::one() + p.cos_h);
-                pow2k((T::one() + self.e * cos_minus_1).max(T::zero()), 4)
+                pow2k((T::one() + T::c(self.e) * cos_minus_1).max(T::zero()), 4)
             }
         };
-        self.scale * lobe / (p.cos_i * p.cos_o).sqrt()
+        T::c(self.scale) * lobe / (p.cos_i * p.cos_o).sqrt()
+    }
+    fn wgsl_body(&self, e: &Emit) -> String {
+        let (nx, ny) = if self.aniso {
+            ("alpha_x", "alpha_y")
+        } else {
+            ("alpha", "alpha")
+        };
+        let scale = e.kx(
+            self.scale,
+            &format!("0.07957747154594767 / (p_{nx} * p_{ny})"),
+            &[nx, ny],
+        );
+        match FORM {
+            0 => format!(
+                "    return fb_brdf_ward(wi, wo, {}, {}, {scale});\n",
+                e.kx(self.inv_ax2, &format!("1.0 / (p_{nx} * p_{nx})"), &[nx]),
+                e.kx(self.inv_ay2, &format!("1.0 / (p_{ny} * p_{ny})"), &[ny])
+            ),
+            1 => format!(
+                "    return fb_brdf_ward_pow(wi, wo, {}, {scale});\n",
+                e.kx(self.e, &format!("2.0 / (p_{nx} * p_{nx})"), &[nx])
+            ),
+            _ => format!(
+                "    return fb_brdf_ward_power16(wi, wo, {}, {scale});\n",
+                e.kx(self.e, &format!("0.125 / (p_{nx} * p_{nx})"), &[nx])
+            ),
+        }
     }
 }
 
@@ -210,14 +237,3 @@ pub fn slope_params(p: &Params) -> Result<(&'static str, &'static str)> {
     }
 }
 
-fn build<T: Real, const FORM: u8>(p: &Params) -> Result<Model<T>> {
-    let w = match FORM {
-        0 => match slope_params(p)? {
-            ("alpha", _) => Ward::<T>::isotropic(p.num("alpha"), WardForm::Exact)?,
-            (x, y) => Ward::<T>::anisotropic(p.num(x), p.num(y))?,
-        },
-        1 => Ward::<T>::isotropic(p.num("alpha"), WardForm::Pow)?,
-        _ => Ward::<T>::isotropic(p.num("alpha"), WardForm::Power16)?,
-    };
-    Ok(Model::Brdf(Box::new(w)))
-}

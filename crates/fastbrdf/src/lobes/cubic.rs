@@ -23,10 +23,13 @@
 //! precomputed); the seed's monomial form is 5 mul, 2 add. Error bounds: see `INFO`.
 
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
 use crate::real::Real;
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "cubic",
@@ -82,28 +85,17 @@ pub const INFO3: ModelInfo = ModelInfo {
     note: "evaluated in a Newton form in (c - 1) for f32 accuracy",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY3: Entry = Entry {
-    info: INFO3,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Cubic::hermite(p.num("n"))?.into())));
+pub const ENTRY3: Entry = Entry::new(INFO3, |p, _| {
+    Ok(Plan::Lobe(Cubic::three_point(p.num("n"))?.into()))
+});
 
-/// A cubic through `(c=0, 0)` and `(c=1, 1)` in Newton form around `x = c - 1`, clipped.
-#[derive(Clone, Debug)]
-pub struct Cubic<T> {
-    d1: T,
-    d2: T,
-    d3: T,
-    x1: T,
-    x2: T,
-    /// Zero below this cosine (the local minimum), 0 if none.
-    cut: f64,
-    cut_t: T,
+/// A cubic through `(c=0, 0)` and `(c=1, 1)` in Newton form around `x = c - 1`, clipped: zero
+/// below its shape's `cut` (the local minimum) and where negative.
+#[derive(Clone, Copy, Debug)]
+pub struct Cubic {
+    shape: CubicShape,
+    three: bool,
 }
 
 /// The precomputed f64 shape of a clipped cubic: Newton coefficients, nodes and cut.
@@ -204,8 +196,8 @@ fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
     r
 }
 
-impl<T: Real> Cubic<T> {
-    /// Seed 003's Hermite cubic (`cubic`); `n` must be in [1, 10000].
+impl Cubic {
+    /// Seed 003's Hermite cubic; `n` must be in [1, 10000].
     pub fn hermite(n: f64) -> Result<Self> {
         Ok(Self::from_shape(CubicShape::hermite(params::check(
             "cubic",
@@ -214,53 +206,59 @@ impl<T: Real> Cubic<T> {
         )?)))
     }
 
-    /// Seed 003's three-point cubic (`cubic3`); `n` must be in [1, 10000].
+    /// Seed 003's three-point cubic; `n` must be in [1, 10000].
     pub fn three_point(n: f64) -> Result<Self> {
-        Ok(Self::from_shape(CubicShape::three_point(
-            params::check("cubic3", &params::N, n)?,
-            0.5,
-            1.0 / 18.0,
-        )))
+        Ok(Self {
+            shape: CubicShape::three_point(
+                params::check("cubic3", &params::N, n)?,
+                0.5,
+                1.0 / 18.0,
+            ),
+            three: true,
+        })
     }
 
-    /// From a precomputed shape.
-    pub fn from_shape(s: CubicShape) -> Self {
+    /// The cubic of a given shape (the Hermite family; `cubic-rational` uses it).
+    pub fn from_shape(shape: CubicShape) -> Self {
         Self {
-            d1: T::c(s.d1),
-            d2: T::c(s.d2),
-            d3: T::c(s.d3),
-            x1: T::c(s.x1),
-            x2: T::c(s.x2),
-            cut: s.cut,
-            cut_t: T::c(s.cut),
+            shape,
+            three: false,
         }
+    }
+
+    /// The literal/storage arguments of `fb_lobe_cubic` after `c`.
+    pub(crate) fn wgsl_args(&self, e: &Emit) -> String {
+        let s = &self.shape;
+        [s.d1, s.d2, s.d3, s.x1, s.x2, s.cut]
+            .iter()
+            .map(|x| e.constant(*x))
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 }
 
-impl<T: Real> Lobe<T> for Cubic<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
-        };
-        if c < self.cut_t {
-            return T::zero();
-        }
+impl LobeForm for Cubic {
+    fn id(&self) -> &'static str {
+        if self.three { "cubic3" } else { "cubic" }
+    }
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        let s = &self.shape;
         let x = c - T::one();
-        let p = T::one() + x * (self.d1 + (x - self.x1) * (self.d2 + (x - self.x2) * self.d3));
-        p.max(T::zero())
+        let p = T::one()
+            + x * (T::c(s.d1) + (x - T::c(s.x1)) * (T::c(s.d2) + (x - T::c(s.x2)) * T::c(s.d3)));
+        // The cut is an f32 number, so both precisions cut at the same input.
+        if c < T::c(s.cut) { T::zero() } else { p.max(T::zero()) }
     }
     fn zero_below(&self) -> f64 {
-        self.cut
+        self.shape.cut
     }
-}
-
-fn build<T: Real, const THREE: u8>(p: &Params) -> Result<Model<T>> {
-    let n = p.num("n");
-    let c = if THREE == 1 {
-        Cubic::<T>::three_point(n)?
-    } else {
-        Cubic::<T>::hermite(n)?
-    };
-    Ok(Model::Lobe(Box::new(c)))
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        if e.is_runtime() {
+            let f = if self.three { "fb_rt_cubic3" } else { "fb_rt_cubic" };
+            format!("{f}({c}, {})", e.param("n"))
+        } else {
+            format!("fb_lobe_cubic({c}, {})", self.wgsl_args(e))
+        }
+    }
 }

@@ -17,10 +17,13 @@
 //! Error bounds against `pow`: see the `INFO` constants.
 
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
 use crate::real::Real;
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 /// Seed 001's fitted normalisation coefficient (its Fig. 8 formula, as rounded in the paper).
 pub fn seed_coef(n: f64) -> f64 {
@@ -83,21 +86,15 @@ pub const INFO_CLAMPED: ModelInfo = ModelInfo {
     note: "the seed's GLSL clamp to [0, 1]: loses energy for n > ~3; kept only to reproduce the seed; f32: as flog-normalized (1.3e-4 at n = 10000)",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY_NORMALIZED: Entry = Entry {
-    info: INFO_NORMALIZED,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
-pub const ENTRY_CLAMPED: Entry = Entry {
-    info: INFO_CLAMPED,
-    build32: build::<f32, 2>,
-    build64: build::<f64, 2>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Lobe(Flog::new(p.num("n"), FlogMode::Plain)?.into()))
+});
+pub const ENTRY_NORMALIZED: Entry = Entry::new(INFO_NORMALIZED, |p, _| {
+    Ok(Plan::Lobe(Flog::new(p.num("n"), FlogMode::Normalized)?.into()))
+});
+pub const ENTRY_CLAMPED: Entry = Entry::new(INFO_CLAMPED, |p, _| {
+    Ok(Plan::Lobe(Flog::new(p.num("n"), FlogMode::NormalizedClamped)?.into()))
+});
 
 /// How `Flog` scales its value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -111,15 +108,14 @@ pub enum FlogMode {
 }
 
 /// Seed 001's logarithmic lobe.
-#[derive(Clone, Debug)]
-pub struct Flog<T> {
-    n: T,
-    coef: T,
-    clamp: bool,
-    zero: f64,
+#[derive(Clone, Copy, Debug)]
+pub struct Flog {
+    n: f64,
+    coef: f64,
+    mode: FlogMode,
 }
 
-impl<T: Real> Flog<T> {
+impl Flog {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64, mode: FlogMode) -> Result<Self> {
         let n = params::check("flog", &params::N, n)?;
@@ -128,36 +124,50 @@ impl<T: Real> Flog<T> {
         } else {
             seed_coef(n)
         };
-        Ok(Self {
-            n: T::c(n),
-            coef: T::c(coef),
-            clamp: mode == FlogMode::NormalizedClamped,
-            zero: zero_cos(n),
-        })
+        Ok(Self { n, coef, mode })
     }
 }
 
-impl<T: Real> Lobe<T> for Flog<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        // c = 0 would give log2(0) = -inf; every c <= 0 is below the zero anyway.
-        let Some(c) = super::arg(c).filter(|c| *c > T::zero()) else {
-            return T::zero();
+/// seed 001's energy coefficient of flog, as a WGSL expression of `p_n`.
+const FLOG_COEF: &str = "0.197 * (p_n + 1.24) + 0.068 / (0.64 + p_n)";
+
+impl LobeForm for Flog {
+    fn id(&self) -> &'static str {
+        match self.mode {
+            FlogMode::Plain => "flog",
+            FlogMode::Normalized => "flog-normalized",
+            FlogMode::NormalizedClamped => "flog-normalized-clamped",
+        }
+    }
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        // c = 0 gives log2(0) = -inf, then -inf, clipped to 0 below; every c <= 0 is below
+        // the zero anyway, and the select keeps 0 there whatever the backend's log2(0) is.
+        let f = T::one() - T::c(0.5) * M::log2(T::one() - T::c(self.n) * M::log2(c));
+        let v = (T::c(self.coef) * f).max(T::zero());
+        let v = if self.mode == FlogMode::NormalizedClamped {
+            v.min(T::one())
+        } else {
+            v
         };
-        let f = T::one() - T::c(0.5) * (T::one() - self.n * c.log2()).log2();
-        let v = (self.coef * f).max(T::zero());
-        if self.clamp { v.min(T::one()) } else { v }
+        if c > T::zero() { v } else { T::zero() }
     }
     fn zero_below(&self) -> f64 {
-        self.zero
+        zero_cos(self.n)
     }
-}
-
-fn build<T: Real, const MODE: u8>(p: &Params) -> Result<Model<T>> {
-    let mode = match MODE {
-        0 => FlogMode::Plain,
-        1 => FlogMode::Normalized,
-        _ => FlogMode::NormalizedClamped,
-    };
-    Ok(Model::Lobe(Box::new(Flog::<T>::new(p.num("n"), mode)?)))
+    fn normalised(&self) -> bool {
+        self.mode != FlogMode::Plain
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        let coef = if self.mode == FlogMode::Plain {
+            "1.0f".to_string()
+        } else {
+            e.kx(self.coef, FLOG_COEF, &["n"])
+        };
+        format!(
+            "fb_lobe_flog({c}, {}, {coef}, {})",
+            e.kx(self.n, "p_n", &["n"]),
+            self.mode == FlogMode::NormalizedClamped
+        )
+    }
 }

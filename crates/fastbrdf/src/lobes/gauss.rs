@@ -5,10 +5,13 @@
 //! matches `pow` near the peak and has a lighter tail. Error bounds against `pow`: see `INFO`.
 
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
-use crate::real::{Real, sqr};
-use crate::registry::Entry;
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
+use crate::real::Real;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "gauss",
@@ -37,37 +40,33 @@ pub const INFO: ModelInfo = ModelInfo {
     note: "",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32>,
-    build64: build::<f64>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Gauss::new(p.num("n"))?.into())));
 
 /// The Gaussian lobe.
-#[derive(Clone, Debug)]
-pub struct Gauss<T> {
-    half_n: T,
+#[derive(Clone, Copy, Debug)]
+pub struct Gauss {
+    half_n: f64,
 }
 
-impl<T: Real> Gauss<T> {
+impl Gauss {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            half_n: T::c(0.5 * params::check("gauss", &params::N, n)?),
+            half_n: 0.5 * params::check("gauss", &params::N, n)?,
         })
     }
 }
 
-impl<T: Real> Lobe<T> for Gauss<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
-        };
-        (-self.half_n * sqr(c.acos())).exp()
+impl LobeForm for Gauss {
+    fn id(&self) -> &'static str {
+        "gauss"
     }
-}
-
-fn build<T: Real>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Lobe(Box::new(Gauss::<T>::new(p.num("n"))?)))
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        let t = M::acos(c);
+        M::exp(-T::c(self.half_n) * (t * t))
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        format!("fb_lobe_gauss({c}, {})", e.kx(self.half_n, "0.5 * p_n", &["n"]))
+    }
 }

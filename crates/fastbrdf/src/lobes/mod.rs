@@ -27,27 +27,3 @@ pub fn arg<T: Real>(c: T) -> Option<T> {
     }
 }
 
-/// Every lobe id, in registry order (the choices of `phong`'s and `blinn-phong`'s `lobe`).
-pub const IDS: &[&str] = &[
-    "pow",
-    "schlick",
-    "schlick-modified",
-    "gauss",
-    "flog",
-    "flog-normalized",
-    "flog-normalized-clamped",
-    "cubic",
-    "cubic3",
-    "rational",
-    "cubic-rational",
-    "power4",
-    "power8",
-    "power16",
-    "sg",
-    "ue4-phong-approx",
-    "power4-tuned",
-    "power8-tuned",
-    "power16-tuned",
-    "sg-tuned",
-    "cubic-rational-tuned",
-];

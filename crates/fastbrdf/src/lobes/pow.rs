@@ -6,10 +6,13 @@
 //! Energy: `Int(n) = integral_0^1 c^n c dc = 1 / (n + 2)`, so `coef(n) = (n + 2) / (2 pi)`.
 
 use crate::error::Result;
-use crate::model::{Kind, Lobe, Model, ModelInfo, Ops};
-use crate::params::{self, Params};
+use crate::model::{Kind, ModelInfo, Ops};
+use crate::params::{self};
 use crate::real::Real;
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "pow",
@@ -23,37 +26,42 @@ pub const INFO: ModelInfo = ModelInfo {
     note: "",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32>,
-    build64: build::<f64>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Pow::new(p.num("n"))?.into())));
 
 /// `c^n`.
-#[derive(Clone, Debug)]
-pub struct Pow<T> {
-    n: T,
+#[derive(Clone, Copy, Debug)]
+pub struct Pow {
+    n: f64,
 }
 
-impl<T: Real> Pow<T> {
+impl Pow {
     /// A `c^n` lobe; `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            n: T::c(params::check("pow", &params::N, n)?),
+            n: params::check("pow", &params::N, n)?,
         })
     }
 }
 
-impl<T: Real> Lobe<T> for Pow<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        match super::arg(c) {
-            Some(c) => c.powf(self.n),
-            None => T::zero(),
-        }
+impl Pow {
+    /// The exponent.
+    pub fn n(&self) -> f64 {
+        self.n
     }
 }
 
-fn build<T: Real>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Lobe(Box::new(Pow::<T>::new(p.num("n"))?)))
+impl LobeForm for Pow {
+    fn id(&self) -> &'static str {
+        "pow"
+    }
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        M::pow(c, T::c(self.n))
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        format!("fb_lobe_pow({c}, {})", e.kx(self.n, "p_n", &["n"]))
+    }
+    fn wgsl_integral(&self, e: &Emit) -> String {
+        format!("(1.0 / ({} + 2.0))", e.param("n"))
+    }
 }

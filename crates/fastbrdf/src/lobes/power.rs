@@ -8,10 +8,13 @@
 //! `k` squarings (k = 2, 3, 4). Error bounds against `pow`: see the `INFO` constants.
 
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
 use crate::real::{Real, pow2k};
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 macro_rules! power_info {
     ($id:literal, $k:literal, $formula:literal, $abs:expr, $rel:expr, $abs16:expr, $rel16:expr, $f32:expr) => {
@@ -65,62 +68,69 @@ pub const INFO16: ModelInfo = power_info!(
     1e-6
 );
 
-pub const ENTRY4: Entry = Entry {
-    info: INFO4,
-    build32: build::<f32, 2>,
-    build64: build::<f64, 2>,
-};
-pub const ENTRY8: Entry = Entry {
-    info: INFO8,
-    build32: build::<f32, 3>,
-    build64: build::<f64, 3>,
-};
-pub const ENTRY16: Entry = Entry {
-    info: INFO16,
-    build32: build::<f32, 4>,
-    build64: build::<f64, 4>,
-};
+pub const ENTRY4: Entry = Entry::new(INFO4, |p, _| Ok(Plan::Lobe(Power::<2>::new(p.num("n"))?.into())));
+pub const ENTRY8: Entry = Entry::new(INFO8, |p, _| Ok(Plan::Lobe(Power::<3>::new(p.num("n"))?.into())));
+pub const ENTRY16: Entry = Entry::new(INFO16, |p, _| Ok(Plan::Lobe(Power::<4>::new(p.num("n"))?.into())));
 
 /// `max(0, 1 + s (c - 1))^(2^K)`.
-#[derive(Clone, Debug)]
-pub struct Power<T, const K: u32> {
-    s: T,
-    zero: f64,
+#[derive(Clone, Copy, Debug)]
+pub struct Power<const K: u32> {
+    s: f64,
+    /// `s` from the minimax fit of `lobes::tuned` rather than `n / 2^K`.
+    tuned: bool,
 }
 
-impl<T: Real, const K: u32> Power<T, K> {
+impl<const K: u32> Power<K> {
+    /// `g = 2^K`.
+    pub const G: u32 = 1 << K;
+
     /// The lobe with `s = n / 2^K`; `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("power", &params::N, n)?;
-        let s = n / f64::from(1u32 << K);
         Ok(Self {
-            s: T::c(s),
-            zero: (1.0 - 1.0 / s).max(0.0),
+            s: n / f64::from(Self::G),
+            tuned: false,
         })
     }
 
-    /// The lobe with an explicit slope `s > 0` (for fitted variants).
-    pub fn with_slope(s: f64) -> Self {
-        Self {
-            s: T::c(s),
-            zero: (1.0 - 1.0 / s).max(0.0),
+    /// The tuned lobe at exponent `n` (slope `tuned::power_slope`).
+    pub fn tuned(n: f64) -> Result<Self> {
+        let n = params::check("power-tuned", &params::N, n)?;
+        Ok(Self {
+            s: super::tuned::power_slope(Self::G, n),
+            tuned: true,
+        })
+    }
+}
+
+impl<const K: u32> LobeForm for Power<K> {
+    fn id(&self) -> &'static str {
+        match (K, self.tuned) {
+            (2, false) => "power4",
+            (3, false) => "power8",
+            (4, false) => "power16",
+            (2, true) => "power4-tuned",
+            (3, true) => "power8-tuned",
+            _ => "power16-tuned",
         }
     }
-}
-
-impl<T: Real, const K: u32> Lobe<T> for Power<T, K> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
-        };
-        pow2k((T::one() + self.s * (c - T::one())).max(T::zero()), K)
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        pow2k((T::one() + T::c(self.s) * (c - T::one())).max(T::zero()), K)
     }
     fn zero_below(&self) -> f64 {
-        self.zero
+        (1.0 - 1.0 / self.s).max(0.0)
     }
-}
-
-fn build<T: Real, const K: u32>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Lobe(Box::new(Power::<T, K>::new(p.num("n"))?)))
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        let g = Self::G;
+        let expr = if self.tuned {
+            format!(
+                "select(p_n / {g}.0 * ({}), 1.0, p_n == {g}.0)",
+                super::tuned::poly_expr(super::tuned::power_poly(g))
+            )
+        } else {
+            format!("p_n / {g}.0")
+        };
+        format!("fb_lobe_power{g}({c}, {})", e.kx(self.s, &expr, &["n"]))
+    }
 }

@@ -13,10 +13,13 @@
 
 use super::cubic::{Cubic, CubicShape};
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
 use crate::real::Real;
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "rational",
@@ -70,28 +73,23 @@ pub const INFO_CUBIC_RATIONAL: ModelInfo = ModelInfo {
     note: "cost is the cubic branch; the rational branch is 2 mul, 3 add, 1 div",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY_CUBIC_RATIONAL: Entry = Entry {
-    info: INFO_CUBIC_RATIONAL,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Rational::new(p.num("n"))?.into())));
+pub const ENTRY_CUBIC_RATIONAL: Entry = Entry::new(INFO_CUBIC_RATIONAL, |p, _| {
+    Ok(Plan::Lobe(CubicRational::new(p.num("n"))?.into()))
+});
 
 /// Seed 003's rational fall-off lobe, matched to `c^n` at the level `c^n = level` (the seed:
 /// 0.5): `level c / (n (q - c) + c)`, which at 0.5 is the seed's `c / (2n (q - c) + 2c)`
 /// (bit for bit: the factor 2 is exact).
-#[derive(Clone, Debug)]
-pub struct Rational<T> {
-    n: T,
-    xq: T,
-    level: T,
+#[derive(Clone, Copy, Debug)]
+pub struct Rational {
+    n: f64,
+    /// `q - 1 = level^(1/n) - 1`, with `expm1`.
+    xq: f64,
+    level: f64,
 }
 
-impl<T: Real> Rational<T> {
+impl Rational {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("rational", &params::N, n)?;
@@ -101,74 +99,112 @@ impl<T: Real> Rational<T> {
     /// Matched at the level `c^n = level`.
     pub fn at_level(n: f64, level: f64) -> Self {
         Self {
-            n: T::c(n),
-            xq: T::c((level.ln() / n).exp_m1()),
-            level: T::c(level),
+            n,
+            xq: (level.ln() / n).exp_m1(),
+            level,
+        }
+    }
+
+    /// `(peak, g)` of the WGSL twin's fold-proof form `peak c / (1 + g (1 - c))` (see
+    /// `fb_lobe_rational`): `d0 = 1 + n xq`, `peak = level / d0`, `g = (n - 1) / d0`.
+    pub(crate) fn wgsl_args(&self, e: &Emit) -> String {
+        let d0 = 1.0 + self.n * self.xq;
+        format!(
+            "{}, {}",
+            e.constant(self.level / d0),
+            e.constant((self.n - 1.0) / d0)
+        )
+    }
+}
+
+impl LobeForm for Rational {
+    fn id(&self) -> &'static str {
+        "rational"
+    }
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        let x = c - T::one();
+        T::c(self.level) * c / (T::c(self.n) * (T::c(self.xq) - x) + c)
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        if e.is_runtime() {
+            format!("fb_rt_rational({c}, {})", e.param("n"))
+        } else {
+            format!("fb_lobe_rational({c}, {})", self.wgsl_args(e))
         }
     }
 }
 
-impl<T: Real> Lobe<T> for Rational<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
-        };
-        let x = c - T::one();
-        self.level * c / (self.n * (self.xq - x) + c)
-    }
-}
-
 /// Seed 003's piecewise lobe: cubic in the epicentre, rational in the fall-off.
-#[derive(Clone, Debug)]
-pub struct CubicRational<T> {
-    cubic: Cubic<T>,
-    rational: Rational<T>,
-    q: T,
-    q64: f64,
+#[derive(Clone, Copy, Debug)]
+pub struct CubicRational {
+    cubic: Cubic,
+    rational: Rational,
+    /// The junction `level^(1/n)`.
+    q: f64,
+    /// The level from the minimax fit of `lobes::tuned` rather than 0.5.
+    tuned: bool,
 }
 
-impl<T: Real> CubicRational<T> {
+impl CubicRational {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("cubic-rational", &params::N, n)?;
         Ok(Self::at_level(n, 0.5))
     }
 
+    /// The tuned lobe (junction level `tuned::cubic_rational_level`); `n` in [1, 10000].
+    pub fn tuned(n: f64) -> Result<Self> {
+        let n = params::check("cubic-rational-tuned", &params::N, n)?;
+        Ok(Self {
+            tuned: true,
+            ..Self::at_level(n, super::tuned::cubic_rational_level(n))
+        })
+    }
+
     /// With the junction at the level `c^n = level` (the seed: 0.5).
     pub fn at_level(n: f64, level: f64) -> Self {
-        let q64 = level.powf(1.0 / n);
         Self {
             cubic: Cubic::from_shape(CubicShape::hermite_at(n, level)),
             rational: Rational::at_level(n, level),
-            q: T::c(q64),
-            q64,
+            q: level.powf(1.0 / n),
+            tuned: false,
         }
     }
 }
 
-impl<T: Real> Lobe<T> for CubicRational<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
-        };
-        if c >= self.q {
-            self.cubic.eval(c)
+impl LobeForm for CubicRational {
+    fn id(&self) -> &'static str {
+        if self.tuned {
+            "cubic-rational-tuned"
         } else {
-            self.rational.eval(c)
+            "cubic-rational"
         }
+    }
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        let a = self.cubic.at::<T, M>(c);
+        let b = self.rational.at::<T, M>(c);
+        if c >= T::c(self.q) { a } else { b }
     }
     fn kinks(&self) -> Vec<f64> {
-        vec![self.q64]
+        vec![self.q]
     }
-}
-
-fn build<T: Real, const PIECEWISE: u8>(p: &Params) -> Result<Model<T>> {
-    let n = p.num("n");
-    Ok(Model::Lobe(if PIECEWISE == 1 {
-        Box::new(CubicRational::<T>::new(n)?)
-    } else {
-        Box::new(Rational::<T>::new(n)?)
-    }))
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        if e.is_runtime() {
+            let f = if self.tuned {
+                "fb_rt_cubic_rational_tuned"
+            } else {
+                "fb_rt_cubic_rational"
+            };
+            format!("{f}({c}, {})", e.param("n"))
+        } else {
+            format!(
+                "fb_lobe_cubic_rational({c}, {}, {}, {})",
+                self.cubic.wgsl_args(e),
+                self.rational.wgsl_args(e),
+                e.constant(self.q)
+            )
+        }
+    }
 }

@@ -12,10 +12,13 @@
 //! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
 
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
-use crate::real::{Real, sqr};
-use crate::registry::Entry;
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
+use crate::real::Real;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "schlick",
@@ -62,75 +65,67 @@ pub const INFO_MODIFIED: ModelInfo = ModelInfo {
     note: "implemented as printed in seed 001; its value at c = 1 is 1.024, not 1",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32>,
-    build64: build::<f64>,
-};
-pub const ENTRY_MODIFIED: Entry = Entry {
-    info: INFO_MODIFIED,
-    build32: build_modified::<f32>,
-    build64: build_modified::<f64>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Lobe(Schlick::new(p.num("n"))?.into()))
+});
+pub const ENTRY_MODIFIED: Entry = Entry::new(INFO_MODIFIED, |p, _| {
+    Ok(Plan::Lobe(SchlickModified::new(p.num("n"))?.into()))
+});
 
 /// Schlick's rational lobe.
-#[derive(Clone, Debug)]
-pub struct Schlick<T> {
-    n: T,
+#[derive(Clone, Copy, Debug)]
+pub struct Schlick {
+    n: f64,
 }
 
-impl<T: Real> Schlick<T> {
+impl Schlick {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            n: T::c(params::check("schlick", &params::N, n)?),
+            n: params::check("schlick", &params::N, n)?,
         })
     }
 }
 
-impl<T: Real> Lobe<T> for Schlick<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
-        };
+impl LobeForm for Schlick {
+    fn id(&self) -> &'static str {
+        "schlick"
+    }
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         // n - n c + c written as n (1 - c) + c: 1 - c is exact for c >= 0.5.
-        c / (self.n * (T::one() - c) + c)
+        c / (T::c(self.n) * (T::one() - c) + c)
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        format!("fb_lobe_schlick({c}, {})", e.kx(self.n, "p_n", &["n"]))
     }
 }
 
 /// Seed 001's modified Schlick lobe, as printed.
-#[derive(Clone, Debug)]
-pub struct SchlickModified<T> {
-    n: T,
+#[derive(Clone, Copy, Debug)]
+pub struct SchlickModified {
+    n: f64,
 }
 
-impl<T: Real> SchlickModified<T> {
+impl SchlickModified {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            n: T::c(params::check("schlick-modified", &params::N, n)?),
+            n: params::check("schlick-modified", &params::N, n)?,
         })
     }
 }
 
-impl<T: Real> Lobe<T> for SchlickModified<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
-        };
-        let d = self.n * (T::one() - c) + T::c(1.25) * c;
-        T::c(2.0) * c / (T::c(1.25) * sqr(d))
+impl LobeForm for SchlickModified {
+    fn id(&self) -> &'static str {
+        "schlick-modified"
     }
-}
-
-fn build<T: Real>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Lobe(Box::new(Schlick::<T>::new(p.num("n"))?)))
-}
-
-fn build_modified<T: Real>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Lobe(Box::new(SchlickModified::<T>::new(
-        p.num("n"),
-    )?)))
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        let d = T::c(self.n) * (T::one() - c) + T::c(1.25) * c;
+        T::c(2.0) * c / (T::c(1.25) * (d * d))
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        format!("fb_lobe_schlick_modified({c}, {})", e.kx(self.n, "p_n", &["n"]))
+    }
 }

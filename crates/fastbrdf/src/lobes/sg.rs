@@ -8,10 +8,13 @@
 //! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
 
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Lobe, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
 use crate::real::Real;
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{LobeForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "sg",
@@ -81,60 +84,76 @@ pub const INFO_UE4: ModelInfo = ModelInfo {
     note: "",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY_UE4: Entry = Entry {
-    info: INFO_UE4,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
-
-/// `exp2(k (c - 1))`.
-#[derive(Clone, Debug)]
-pub struct Exp2Lobe<T> {
-    k: T,
+/// `2^(k (c - 1))`, the spherical Gaussian with rate `k`.
+#[derive(Clone, Copy, Debug)]
+pub struct Exp2Lobe {
+    k: f64,
+    form: Exp2Form,
 }
 
-impl<T: Real> Exp2Lobe<T> {
-    /// Lagarde's spherical Gaussian, `k = n / ln 2`.
+/// Which rate an `Exp2Lobe` uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Exp2Form {
+    /// `n / ln 2`.
+    Sg,
+    /// `1.4427 (n + 0.775)` (Karis 2013).
+    Ue4,
+    /// `(n / ln 2) Re(1/n)` (`lobes::tuned`).
+    Tuned,
+}
+
+impl Exp2Lobe {
+    /// The spherical Gaussian matched to `c^n` at the peak; `n` in [1, 10000].
     pub fn sg(n: f64) -> Result<Self> {
-        Ok(Self::with_rate(
-            params::check("sg", &params::N, n)? / std::f64::consts::LN_2,
-        ))
+        let n = params::check("sg", &params::N, n)?;
+        Ok(Self {
+            k: n / std::f64::consts::LN_2,
+            form: Exp2Form::Sg,
+        })
     }
-    /// Unreal Engine 4's form, `k = 1.4427 (n + 0.775)`.
-    // 1.4427 is UE4's own rounded literal, not a typo for LOG2_E: we reproduce the engine.
+    /// Unreal Engine 4's rate; `n` in [1, 10000].
     #[allow(clippy::approx_constant)]
     pub fn ue4(n: f64) -> Result<Self> {
-        Ok(Self::with_rate(
-            1.4427 * (params::check("ue4-phong-approx", &params::N, n)? + 0.775),
-        ))
+        let n = params::check("ue4-phong-approx", &params::N, n)?;
+        Ok(Self {
+            k: 1.4427 * (n + 0.775),
+            form: Exp2Form::Ue4,
+        })
     }
-    /// An explicit rate `k` (for fitted variants).
-    pub fn with_rate(k: f64) -> Self {
-        Self { k: T::c(k) }
+    /// The tuned rate; `n` in [1, 10000].
+    pub fn tuned(n: f64) -> Result<Self> {
+        let n = params::check("sg-tuned", &params::N, n)?;
+        Ok(Self {
+            k: super::tuned::exp2_rate(n),
+            form: Exp2Form::Tuned,
+        })
     }
 }
 
-impl<T: Real> Lobe<T> for Exp2Lobe<T> {
-    #[inline]
-    fn eval(&self, c: T) -> T {
-        let Some(c) = super::arg(c) else {
-            return T::zero();
+impl LobeForm for Exp2Lobe {
+    fn id(&self) -> &'static str {
+        match self.form {
+            Exp2Form::Sg => "sg",
+            Exp2Form::Ue4 => "ue4-phong-approx",
+            Exp2Form::Tuned => "sg-tuned",
+        }
+    }
+    #[inline(always)]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        M::exp2(T::c(self.k) * (c - T::one()))
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        let expr = match self.form {
+            Exp2Form::Sg => "p_n * 1.4426950408889634".to_string(),
+            Exp2Form::Ue4 => "1.4427 * (p_n + 0.775)".to_string(),
+            Exp2Form::Tuned => format!(
+                "p_n * 1.4426950408889634 * ({})",
+                super::tuned::poly_expr(&super::tuned::R_EXP2)
+            ),
         };
-        (self.k * (c - T::one())).exp2()
+        format!("fb_lobe_exp2({c}, {})", e.kx(self.k, &expr, &["n"]))
     }
 }
 
-fn build<T: Real, const UE4: u8>(p: &Params) -> Result<Model<T>> {
-    let n = p.num("n");
-    let l = if UE4 == 1 {
-        Exp2Lobe::<T>::ue4(n)?
-    } else {
-        Exp2Lobe::<T>::sg(n)?
-    };
-    Ok(Model::Lobe(Box::new(l)))
-}
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Exp2Lobe::sg(p.num("n"))?.into())));
+pub const ENTRY_UE4: Entry = Entry::new(INFO_UE4, |p, _| Ok(Plan::Lobe(Exp2Lobe::ue4(p.num("n"))?.into())));

@@ -85,15 +85,10 @@ pub fn poly(r: &[f64; 5], n: f64) -> f64 {
 
 /// The tuned slope of `max(0, 1 + s (c - 1))^g` at exponent `n` (`g` = 4, 8 or 16).
 pub fn power_slope(g: u32, n: f64) -> f64 {
-    let r = match g {
-        4 => &R_POWER4,
-        8 => &R_POWER8,
-        _ => &R_POWER16,
-    };
     if n == f64::from(g) {
         1.0
     } else {
-        n / f64::from(g) * poly(r, n)
+        n / f64::from(g) * poly(power_poly(g), n)
     }
 }
 
@@ -110,11 +105,10 @@ pub fn cubic_rational_level(n: f64) -> f64 {
 use super::power::Power;
 use super::rational::CubicRational;
 use super::sg::Exp2Lobe;
-use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
-use crate::real::Real;
-use crate::registry::Entry;
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params::{self};
+use crate::entry::Entry;
+use crate::plan::Plan;
 
 macro_rules! tuned_info {
     ($id:literal, $formula:literal, $ops:expr, $abs:expr, $abs8:expr) => {
@@ -186,39 +180,34 @@ pub const INFO_CUBIC_RATIONAL: ModelInfo = tuned_info!(
     0.0414
 );
 
-pub const ENTRY_POWER4: Entry = Entry {
-    info: INFO_POWER4,
-    build32: build::<f32, 4>,
-    build64: build::<f64, 4>,
-};
-pub const ENTRY_POWER8: Entry = Entry {
-    info: INFO_POWER8,
-    build32: build::<f32, 8>,
-    build64: build::<f64, 8>,
-};
-pub const ENTRY_POWER16: Entry = Entry {
-    info: INFO_POWER16,
-    build32: build::<f32, 16>,
-    build64: build::<f64, 16>,
-};
-pub const ENTRY_SG: Entry = Entry {
-    info: INFO_SG,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
-pub const ENTRY_CUBIC_RATIONAL: Entry = Entry {
-    info: INFO_CUBIC_RATIONAL,
-    build32: build::<f32, 3>,
-    build64: build::<f64, 3>,
-};
+pub const ENTRY_POWER4: Entry = Entry::new(INFO_POWER4, |p, _| {
+    Ok(Plan::Lobe(Power::<2>::tuned(p.num("n"))?.into()))
+});
+pub const ENTRY_POWER8: Entry = Entry::new(INFO_POWER8, |p, _| {
+    Ok(Plan::Lobe(Power::<3>::tuned(p.num("n"))?.into()))
+});
+pub const ENTRY_POWER16: Entry = Entry::new(INFO_POWER16, |p, _| {
+    Ok(Plan::Lobe(Power::<4>::tuned(p.num("n"))?.into()))
+});
+pub const ENTRY_SG: Entry = Entry::new(INFO_SG, |p, _| Ok(Plan::Lobe(Exp2Lobe::tuned(p.num("n"))?.into())));
+pub const ENTRY_CUBIC_RATIONAL: Entry = Entry::new(INFO_CUBIC_RATIONAL, |p, _| {
+    Ok(Plan::Lobe(CubicRational::tuned(p.num("n"))?.into()))
+});
 
-fn build<T: Real, const W: u32>(p: &Params) -> Result<Model<T>> {
-    let n = params::check("tuned", &params::N, p.num("n"))?;
-    Ok(Model::Lobe(match W {
-        4 => Box::new(Power::<T, 2>::with_slope(power_slope(4, n))),
-        8 => Box::new(Power::<T, 3>::with_slope(power_slope(8, n))),
-        16 => Box::new(Power::<T, 4>::with_slope(power_slope(16, n))),
-        1 => Box::new(Exp2Lobe::<T>::with_rate(exp2_rate(n))),
-        _ => Box::new(CubicRational::<T>::at_level(n, cubic_rational_level(n))),
-    }))
+/// The tuned polynomial of `power{g}-tuned`.
+pub fn power_poly(g: u32) -> &'static [f64; 5] {
+    match g {
+        4 => &R_POWER4,
+        8 => &R_POWER8,
+        _ => &R_POWER16,
+    }
+}
+
+/// `R(1/n)` of a tuned family as a WGSL expression of `p_n` (Horner, like [`poly`]).
+pub fn poly_expr(r: &[f64; 5]) -> String {
+    let x = "(1.0 / p_n)";
+    format!(
+        "{} + {x} * ({} + {x} * ({} + {x} * ({} + {x} * {})))",
+        r[0], r[1], r[2], r[3], r[4]
+    )
 }

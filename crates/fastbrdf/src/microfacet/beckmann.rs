@@ -13,11 +13,13 @@
 //! normalisation is tested to 1e-6 for alpha in [0.05, 1].
 
 use crate::error::Result;
-use crate::model::{Distribution, Kind, Model, ModelInfo, Ops};
-use crate::params::{self, Params};
-use crate::real::{Real, sqr};
-use crate::registry::Entry;
-use crate::vec3::COS_MIN;
+use crate::model::{Kind, ModelInfo, Ops};
+use crate::params;
+use crate::real::Real;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{DistForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "beckmann",
@@ -43,61 +45,75 @@ pub const INFO_CT: ModelInfo = ModelInfo {
     note: "= beckmann * pi / 4 (integral of D cos theta_h = pi / 4); f32: 1.4e-6 at alpha = 0.01",
 };
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY_CT: Entry = Entry {
-    info: INFO_CT,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Distribution(Beckmann::new(p.num("alpha"))?.into()))
+});
+pub const ENTRY_CT: Entry = Entry::new(INFO_CT, |p, _| {
+    Ok(Plan::Distribution(Beckmann::cook_torrance(p.num("alpha"))?.into()))
+});
 
-/// The exact Beckmann distribution with a chosen constant factor.
-#[derive(Clone, Debug)]
-pub struct Beckmann<T> {
-    inv_alpha2: T,
-    scale: T,
+/// The Beckmann distribution with a given normalisation.
+#[derive(Clone, Copy, Debug)]
+pub struct Beckmann {
+    alpha: f64,
+    inv_alpha2: f64,
+    /// `1 / (pi alpha^2)` (normalised) or `1 / (4 alpha^2)` (Cook-Torrance's).
+    scale: f64,
+    ct: bool,
 }
 
-impl<T: Real> Beckmann<T> {
-    /// Normalised Beckmann, `1 / (pi alpha^2)` in front.
+impl Beckmann {
+    /// The normalised distribution; `alpha` in [0.01, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         let a = params::check("beckmann", &params::ALPHA, alpha)?;
         Ok(Self {
-            inv_alpha2: T::c(1.0 / (a * a)),
-            scale: T::c(1.0 / (std::f64::consts::PI * a * a)),
+            alpha: a,
+            inv_alpha2: 1.0 / (a * a),
+            scale: 1.0 / (std::f64::consts::PI * a * a),
+            ct: false,
         })
     }
-    /// Cook-Torrance's form, `1 / (4 m^2)` in front.
+
+    /// Cook and Torrance's normalisation `1 / (4 m^2)`; `alpha` in [0.01, 1].
     pub fn cook_torrance(alpha: f64) -> Result<Self> {
         let a = params::check("beckmann-ct", &params::ALPHA, alpha)?;
         Ok(Self {
-            inv_alpha2: T::c(1.0 / (a * a)),
-            scale: T::c(1.0 / (4.0 * a * a)),
+            alpha: a,
+            inv_alpha2: 1.0 / (a * a),
+            scale: ct_scale(a),
+            ct: true,
         })
     }
 }
 
-impl<T: Real> Distribution<T> for Beckmann<T> {
-    #[inline]
-    fn d(&self, cos_h: T, sin2_h: T) -> T {
-        if !(cos_h >= T::c(COS_MIN)) {
-            return T::zero();
-        }
-        let cos2 = sqr(cos_h);
-        let e = (-(sin2_h / cos2) * self.inv_alpha2).exp();
-        self.scale * e / sqr(cos2)
-    }
+/// Cook and Torrance's (and seed 000's) scale `1 / (4 m^2)`, shared by the power forms.
+pub fn ct_scale(alpha: f64) -> f64 {
+    1.0 / (4.0 * alpha * alpha)
 }
 
-fn build<T: Real, const CT: u8>(p: &Params) -> Result<Model<T>> {
-    let a = p.num("alpha");
-    let d = if CT == 1 {
-        Beckmann::<T>::cook_torrance(a)?
-    } else {
-        Beckmann::<T>::new(a)?
-    };
-    Ok(Model::Distribution(Box::new(d)))
+/// `ct_scale` as a WGSL coefficient of `p_alpha`.
+pub(crate) fn ct_scale_wgsl(alpha: f64, e: &Emit) -> String {
+    e.kx(ct_scale(alpha), "0.25 / (p_alpha * p_alpha)", &["alpha"])
+}
+
+impl DistForm for Beckmann {
+    #[inline(always)]
+    fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
+        let c2 = cos_h * cos_h;
+        // One division: exp(-tan^2 / alpha^2) / cos^4 as e * (1/c2)^2.
+        let inv_c2 = T::one() / c2;
+        T::c(self.scale) * M::exp(-(sin2_h * inv_c2) * T::c(self.inv_alpha2)) * (inv_c2 * inv_c2)
+    }
+    fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
+        let a = self.alpha;
+        let scale = if self.ct {
+            ct_scale_wgsl(a, e)
+        } else {
+            e.kx(self.scale, "0.3183098861837907 / (p_alpha * p_alpha)", &["alpha"])
+        };
+        format!(
+            "fb_d_beckmann({c}, {s2}, {}, {scale})",
+            e.kx(self.inv_alpha2, "1.0 / (p_alpha * p_alpha)", &["alpha"])
+        )
+    }
 }

@@ -18,11 +18,14 @@
 //! Error bounds against `beckmann-ct`: see the `INFO` constants.
 
 use crate::error::Result;
-use crate::model::{Distribution, ErrorBound, Kind, Metric, Model, ModelInfo, Ops, Zone};
-use crate::params::{self, Params};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
+use crate::params;
 use crate::real::{Real, pow2k};
-use crate::registry::Entry;
-use crate::vec3::COS_MIN;
+use crate::entry::Entry;
+use super::beckmann::{ct_scale, ct_scale_wgsl};
+use crate::math::Math;
+use crate::plan::{DistForm, Plan};
+use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
     id: "beckmann-pow",
@@ -104,101 +107,97 @@ pub const INFO16: ModelInfo = power_info!(
     2.65
 );
 
-pub const ENTRY: Entry = Entry {
-    info: INFO,
-    build32: build_pow::<f32>,
-    build64: build_pow::<f64>,
-};
-pub const ENTRY4: Entry = Entry {
-    info: INFO4,
-    build32: build_power::<f32, 2>,
-    build64: build_power::<f64, 2>,
-};
-pub const ENTRY8: Entry = Entry {
-    info: INFO8,
-    build32: build_power::<f32, 3>,
-    build64: build_power::<f64, 3>,
-};
-pub const ENTRY16: Entry = Entry {
-    info: INFO16,
-    build32: build_power::<f32, 4>,
-    build64: build_power::<f64, 4>,
-};
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Distribution(BeckmannPow::new(p.num("alpha"))?.into()))
+});
+pub const ENTRY4: Entry = Entry::new(INFO4, |p, _| {
+    Ok(Plan::Distribution(BeckmannPower::<2>::new(p.num("alpha"))?.into()))
+});
+pub const ENTRY8: Entry = Entry::new(INFO8, |p, _| {
+    Ok(Plan::Distribution(BeckmannPower::<3>::new(p.num("alpha"))?.into()))
+});
+pub const ENTRY16: Entry = Entry::new(INFO16, |p, _| {
+    Ok(Plan::Distribution(BeckmannPower::<4>::new(p.num("alpha"))?.into()))
+});
 
-/// The exponent `2 / m^2 - 4` of seed 000's forms.
+/// Seed 000's exponent `2 / m^2 - 4`.
 pub fn exponent(alpha: f64) -> f64 {
     2.0 / (alpha * alpha) - 4.0
 }
 
-/// `cos^(2/m^2 - 4) theta_h / (4 m^2)`.
-#[derive(Clone, Debug)]
-pub struct BeckmannPow<T> {
-    e: T,
-    scale: T,
+/// `exponent` as a WGSL expression of `p_alpha`.
+const EXPONENT_WGSL: &str = "2.0 / (p_alpha * p_alpha) - 4.0";
+
+/// `cos^(2/m^2 - 4) / (4 m^2)`.
+#[derive(Clone, Copy, Debug)]
+pub struct BeckmannPow {
+    alpha: f64,
+    e: f64,
+    scale: f64,
 }
 
-impl<T: Real> BeckmannPow<T> {
-    /// `alpha` must be in [0.01, 1].
+impl BeckmannPow {
+    /// `alpha` in [0.01, 1].
     pub fn new(alpha: f64) -> Result<Self> {
-        let a = params::check("beckmann-pow", &params::ALPHA, alpha)?;
+        let alpha = params::check("beckmann-pow", &params::ALPHA, alpha)?;
         Ok(Self {
-            e: T::c(exponent(a)),
-            scale: T::c(1.0 / (4.0 * a * a)),
+            alpha,
+            e: exponent(alpha),
+            scale: ct_scale(alpha),
         })
     }
 }
 
-impl<T: Real> Distribution<T> for BeckmannPow<T> {
-    #[inline]
-    fn d(&self, cos_h: T, _sin2_h: T) -> T {
-        if !(cos_h >= T::c(COS_MIN)) {
-            return T::zero();
-        }
-        self.scale * cos_h.powf(self.e)
+impl DistForm for BeckmannPow {
+    #[inline(always)]
+    fn d<T: Real, M: Math<T>>(&self, cos_h: T, _sin2_h: T) -> T {
+        T::c(self.scale) * M::pow(cos_h, T::c(self.e))
+    }
+    fn wgsl(&self, c: &str, _s2: &str, e: &Emit) -> String {
+        let a = self.alpha;
+        format!(
+            "fb_d_beckmann_pow({c}, {}, {})",
+            e.kx(exponent(a), EXPONENT_WGSL, &["alpha"]),
+            ct_scale_wgsl(a, e)
+        )
     }
 }
 
-/// `max(0, 1 + (e/g)(cos theta_h - 1))^g / (4 m^2)` with `g = 2^K`.
-#[derive(Clone, Debug)]
-pub struct BeckmannPower<T, const K: u32> {
-    s: T,
-    scale: T,
+/// `max(0, 1 + s (cos - 1))^(2^K) / (4 m^2)` with `s = (2/m^2 - 4) / 2^K`.
+#[derive(Clone, Copy, Debug)]
+pub struct BeckmannPower<const K: u32> {
+    alpha: f64,
+    s: f64,
+    scale: f64,
 }
 
-impl<T: Real, const K: u32> BeckmannPower<T, K> {
-    /// `alpha` must be in [0.01, 1].
+impl<const K: u32> BeckmannPower<K> {
+    /// `g = 2^K`.
+    pub const G: u32 = 1 << K;
+
+    /// `alpha` in [0.01, 1].
     pub fn new(alpha: f64) -> Result<Self> {
-        let a = params::check("beckmann-power", &params::ALPHA, alpha)?;
-        Ok(Self::with_slope(exponent(a) / f64::from(1u32 << K), a))
-    }
-    /// An explicit slope `s` in `1 + s (cos - 1)` (for fitted variants).
-    pub fn with_slope(s: f64, alpha: f64) -> Self {
-        Self {
-            s: T::c(s),
-            scale: T::c(1.0 / (4.0 * alpha * alpha)),
-        }
+        let alpha = params::check("beckmann-power", &params::ALPHA, alpha)?;
+        Ok(Self {
+            alpha,
+            s: exponent(alpha) / f64::from(Self::G),
+            scale: ct_scale(alpha),
+        })
     }
 }
 
-impl<T: Real, const K: u32> Distribution<T> for BeckmannPower<T, K> {
-    #[inline]
-    fn d(&self, cos_h: T, sin2_h: T) -> T {
-        if !(cos_h >= T::c(COS_MIN)) {
-            return T::zero();
-        }
+impl<const K: u32> DistForm for BeckmannPower<K> {
+    #[inline(always)]
+    fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
         let cos_minus_1 = -sin2_h / (T::one() + cos_h);
-        self.scale * pow2k((T::one() + self.s * cos_minus_1).max(T::zero()), K)
+        T::c(self.scale) * pow2k((T::one() + T::c(self.s) * cos_minus_1).max(T::zero()), K)
     }
-}
-
-fn build_pow<T: Real>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Distribution(Box::new(BeckmannPow::<T>::new(
-        p.num("alpha"),
-    )?)))
-}
-
-fn build_power<T: Real, const K: u32>(p: &Params) -> Result<Model<T>> {
-    Ok(Model::Distribution(Box::new(BeckmannPower::<T, K>::new(
-        p.num("alpha"),
-    )?)))
+    fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
+        let g = Self::G;
+        format!(
+            "fb_d_beckmann_power{g}({c}, {s2}, {}, {})",
+            e.kx(self.s, &format!("({EXPONENT_WGSL}) / {g}.0"), &["alpha"]),
+            ct_scale_wgsl(self.alpha, e)
+        )
+    }
 }

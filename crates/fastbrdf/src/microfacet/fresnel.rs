@@ -13,11 +13,13 @@
 //! Parameters: `f0` in [0, 1] (default 0.04), `eta` in [0.01, 10] (default 1.5), `k` in [0, 20]
 //! (default 0). The cosine is that between the view and the microfacet normal.
 
-use crate::error::Result;
-use crate::model::{Fresnel, Kind, Model, ModelInfo, Ops};
-use crate::params::{ParamKind, ParamSpec, Params};
+use crate::model::{Kind, ModelInfo, Ops};
+use crate::params::{ParamKind, ParamSpec};
 use crate::real::{Real, sqr};
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{FresnelForm, Plan};
+use crate::wgsl::Emit;
 
 pub const F0: ParamSpec = ParamSpec {
     name: "f0",
@@ -48,7 +50,7 @@ pub const K: ParamSpec = ParamSpec {
 };
 
 /// The Fresnel choices of `cook-torrance`.
-pub const CHOICES: &[&str] = &["none", "schlick", "dielectric", "conductor"];
+
 
 macro_rules! info {
     ($id:literal, $params:expr, $formula:literal, $source:literal, $ops:expr) => {
@@ -89,115 +91,124 @@ pub const INFO_CONDUCTOR: ModelInfo = info!(
     Ops::new(16, 8, 2, 3, 0)
 );
 
-pub const ENTRY_NONE: Entry = Entry {
-    info: INFO_NONE,
-    build32: build::<f32, 0>,
-    build64: build::<f64, 0>,
-};
-pub const ENTRY_SCHLICK: Entry = Entry {
-    info: INFO_SCHLICK,
-    build32: build::<f32, 1>,
-    build64: build::<f64, 1>,
-};
-pub const ENTRY_DIELECTRIC: Entry = Entry {
-    info: INFO_DIELECTRIC,
-    build32: build::<f32, 2>,
-    build64: build::<f64, 2>,
-};
-pub const ENTRY_CONDUCTOR: Entry = Entry {
-    info: INFO_CONDUCTOR,
-    build32: build::<f32, 3>,
-    build64: build::<f64, 3>,
-};
+pub const ENTRY_NONE: Entry = Entry::new(INFO_NONE, |_, _| Ok(Plan::Fresnel(NoFresnel.into())));
+pub const ENTRY_SCHLICK: Entry = Entry::new(INFO_SCHLICK, |p, _| {
+    Ok(Plan::Fresnel(Schlick { f0: p.num("f0") }.into()))
+});
+pub const ENTRY_DIELECTRIC: Entry = Entry::new(INFO_DIELECTRIC, |p, _| {
+    Ok(Plan::Fresnel(Dielectric(Consts::new(p.num("eta"), 0.0)).into()))
+});
+pub const ENTRY_CONDUCTOR: Entry = Entry::new(INFO_CONDUCTOR, |p, _| {
+    Ok(Plan::Fresnel(Conductor(Consts::new(p.num("eta"), p.num("k"))).into()))
+});
 
-/// A Fresnel term, chosen by name.
-#[derive(Clone, Debug)]
-pub enum FresnelTerm<T> {
-    None,
-    Schlick { f0: T },
-    Dielectric(Consts<T>),
-    Conductor(Consts<T>),
+/// No Fresnel factor (1).
+#[derive(Clone, Copy, Debug)]
+pub struct NoFresnel;
+
+impl FresnelForm for NoFresnel {
+    #[inline(always)]
+    fn f<T: Real, M: Math<T>>(&self, _cos: T) -> T {
+        T::one()
+    }
+    fn wgsl(&self, _c: &str, _e: &Emit) -> String {
+        "1.0f".into()
+    }
+}
+
+/// Schlick's approximation `f0 + (1 - f0)(1 - cos)^5`.
+#[derive(Clone, Copy, Debug)]
+pub struct Schlick {
+    pub f0: f64,
+}
+
+impl FresnelForm for Schlick {
+    #[inline(always)]
+    fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
+        let one = T::one();
+        // NaN and negative cosines act as 0 (`max` then `min` maps NaN to 0).
+        let c = cos.max(T::zero()).min(one);
+        let f0 = T::c(self.f0);
+        let m = one - c;
+        let m2 = m * m;
+        f0 + (one - f0) * (m2 * m2 * m)
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        format!("fb_f_schlick({c}, {})", e.kx(self.f0, "p_f0", &["f0"]))
+    }
+}
+
+/// The exact dielectric term (see [`dielectric`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Dielectric(pub Consts);
+
+impl FresnelForm for Dielectric {
+    #[inline(always)]
+    fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
+        dielectric(cos, &self.0)
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        format!("fb_f_dielectric({c}, {})", e.kx(self.0.eta, "p_eta", &["eta"]))
+    }
+}
+
+/// The exact conductor term (see [`conductor`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Conductor(pub Consts);
+
+impl FresnelForm for Conductor {
+    #[inline(always)]
+    fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
+        conductor(cos, &self.0)
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        format!(
+            "fb_f_conductor({c}, {}, {})",
+            e.kx(self.0.eta, "p_eta", &["eta"]),
+            e.kx(self.0.k, "p_k", &["k"])
+        )
+    }
 }
 
 /// The per-parameter constants of the exact Fresnel terms, computed in f64 at construction.
 /// Near the critical angle (`cos^2 = p = k^2 + 1 - eta^2`, `eta < 1`), `t0 = c^2 - p`
 /// cancels: it is computed as `(c - s)(c + s)` with `s = sqrt(p)` held as an unevaluated sum
-/// `s_hi + s_lo` of two `T`, so that `c - s_hi` is exact (Sterbenz) and the f32 result keeps
-/// its relative accuracy instead of the absolute `2^-24` of a rounded `c^2 - p`.
+/// `s_hi + s_lo` of two `T` (split where it is used, in the evaluation precision), so that
+/// `c - s_hi` is exact (Sterbenz) and the f32 result keeps its relative accuracy instead of
+/// the absolute `2^-24` of a rounded `c^2 - p`.
 #[derive(Clone, Copy, Debug)]
-pub struct Consts<T> {
-    pub eta: T,
-    pub k: T,
-    /// `s_hi + s_lo = sqrt(p)` when `p > 0` (else both 0).
-    pub s_hi: T,
-    pub s_lo: T,
+pub struct Consts {
+    pub eta: f64,
+    pub k: f64,
+    /// `sqrt(p)` when `p > 0` (else 0).
+    pub s: f64,
     /// `p > 0`.
     pub edge: bool,
 }
 
-impl<T: Real> Consts<T> {
+impl Consts {
     /// The constants for the index `eta + i k` (`k = 0` for dielectrics).
     pub fn new(eta: f64, k: f64) -> Self {
         let p = k * k + (1.0 - eta) * (1.0 + eta);
-        let (s_hi, s_lo) = if p > 0.0 {
-            let s = p.sqrt();
-            let hi = T::c(s);
-            (hi, T::c(s - hi.f64()))
-        } else {
-            (T::zero(), T::zero())
-        };
         Self {
-            eta: T::c(eta),
-            k: T::c(k),
-            s_hi,
-            s_lo,
+            eta,
+            k,
+            s: if p > 0.0 { p.sqrt() } else { 0.0 },
             edge: p > 0.0,
         }
     }
 
     /// `t0 = eta^2 - k^2 - sin^2 = c^2 - p`, without cancellation.
     #[inline(always)]
-    fn t0(&self, c: T) -> T {
+    fn t0<T: Real>(&self, c: T) -> T {
         let one = T::one();
         if self.edge {
-            ((c - self.s_hi) - self.s_lo) * ((c + self.s_hi) + self.s_lo)
+            let s_hi = T::c(self.s);
+            let s_lo = T::c(self.s - s_hi.f64());
+            ((c - s_hi) - s_lo) * ((c + s_hi) + s_lo)
         } else {
-            ((self.eta - one) * (self.eta + one) - self.k * self.k) + c * c
-        }
-    }
-}
-
-impl<T: Real> FresnelTerm<T> {
-    /// Builds the term named `choice` (`none`, `schlick`, `dielectric`, `conductor`) from
-    /// already validated `f0`, `eta`, `k`.
-    pub fn from_choice(choice: &str, f0: f64, eta: f64, k: f64) -> Self {
-        match choice {
-            "schlick" => Self::Schlick { f0: T::c(f0) },
-            "dielectric" => Self::Dielectric(Consts::new(eta, 0.0)),
-            "conductor" => Self::Conductor(Consts::new(eta, k)),
-            _ => Self::None,
-        }
-    }
-}
-
-impl<T: Real> Fresnel<T> for FresnelTerm<T> {
-    #[inline]
-    fn f(&self, cos: T) -> T {
-        let one = T::one();
-        match *self {
-            Self::None => one,
-            Self::Schlick { f0 } => {
-                let c = if cos >= T::zero() {
-                    cos.min(one)
-                } else {
-                    T::zero()
-                };
-                let m = one - c;
-                let m2 = m * m;
-                f0 + (one - f0) * (m2 * m2 * m)
-            }
-            Self::Dielectric(ref p) => dielectric(cos, p),
-            Self::Conductor(ref p) => conductor(cos, p),
+            let (eta, k) = (T::c(self.eta), T::c(self.k));
+            ((eta - one) * (eta + one) - k * k) + c * c
         }
     }
 }
@@ -217,7 +228,7 @@ fn clamp_lo<T: Real>(c: T) -> T {
     }
 }
 
-/// The exact dielectric reflectance, arranged for f32 (twins: `batch::ops::FDielectric`,
+/// The exact dielectric reflectance, arranged for f32 (twins: the batch kernel of [`Dielectric`],
 /// `fb_f_dielectric` in the WGSL library). With `e = eta^2 - 1 = (eta - 1)(eta + 1)` (exact
 /// near `eta = 1`) and `g = eta cos_t = sqrt(e + c^2)`:
 /// `r_perp = (c - g) / (c + g) = -e / (c + g)^2` and
@@ -227,9 +238,9 @@ fn clamp_lo<T: Real>(c: T) -> T {
 /// `1 - (1 - c^2) / eta^2` rounds to 1 in f32 for `c < 1.7e-4` at `eta = 1`, giving `F = 1`
 /// where the exact value is 0.) Total internal reflection (`e + c^2 <= 0`) gives 1.
 #[inline(always)]
-pub fn dielectric<T: Real>(cos: T, p: &Consts<T>) -> T {
+pub fn dielectric<T: Real>(cos: T, p: &Consts) -> T {
     let one = T::one();
-    let eta = p.eta;
+    let eta = T::c(p.eta);
     let c = clamp_lo(cos);
     let c2 = c * c;
     let e = (eta - one) * (eta + one);
@@ -254,7 +265,7 @@ pub fn dielectric<T: Real>(cos: T, p: &Consts<T>) -> T {
 }
 
 /// The exact conductor reflectance for the index `eta + i k`, arranged for f32 (twins:
-/// `batch::ops::FConductor`, `fb_f_conductor`). pbrt-v3's `FrConductor` with
+/// the batch kernel of [`Conductor`], `fb_f_conductor`). pbrt-v3's `FrConductor` with
 /// `t0 = eta^2 - k^2 - sin^2 = (eta - 1)(eta + 1) - k^2 + c^2` (no `1 - sin^2`
 /// cancellation), `a^2 + b^2 = |t0 + 2 i eta k|` split into `a^2`, `b^2` without
 /// cancellation (see below), and
@@ -262,14 +273,14 @@ pub fn dielectric<T: Real>(cos: T, p: &Consts<T>) -> T {
 /// `R_p = R_s ((a c - s^2)^2 + (b c)^2) / ((a c + s^2)^2 + (b c)^2)`: sums of squares, which
 /// equal pbrt's `t1 -/+ t2`, `t3 -/+ t4` without their cancellation.
 #[inline(always)]
-pub fn conductor<T: Real>(cos: T, p: &Consts<T>) -> T {
+pub fn conductor<T: Real>(cos: T, p: &Consts) -> T {
     let one = T::one();
     let half = T::c(0.5);
     let c = clamp_lo(cos);
     let c2 = c * c;
     let s2 = (one - c) * (one + c);
     let t0 = p.t0(c);
-    let ek = T::c(2.0) * p.eta * p.k;
+    let ek = T::c(2.0) * T::c(p.eta) * T::c(p.k);
     // a^2 + b^2 = r = |t0 + i ek|; the larger of a^2, b^2 is (r + |t0|) / 2 = |t0| + q and the
     // smaller (r - |t0|) / 2 = q = ek^2 / (2 (r + |t0|)), so that with k = 0 they are exactly
     // |t0| and 0 even where t0^2 underflows.
@@ -298,14 +309,3 @@ pub fn conductor<T: Real>(cos: T, p: &Consts<T>) -> T {
     }
 }
 
-fn build<T: Real, const W: u8>(p: &Params) -> Result<Model<T>> {
-    let term = match W {
-        0 => FresnelTerm::None,
-        1 => FresnelTerm::Schlick {
-            f0: T::c(p.num("f0")),
-        },
-        2 => FresnelTerm::Dielectric(Consts::new(p.num("eta"), 0.0)),
-        _ => FresnelTerm::Conductor(Consts::new(p.num("eta"), p.num("k"))),
-    };
-    Ok(Model::Fresnel(Box::new(term)))
-}

@@ -16,10 +16,13 @@
 //! Cosines that are NaN or `<= 0` give 0; a cosine of 1 gives G1 = 1.
 
 use crate::error::Result;
-use crate::model::{ErrorBound, Kind, Metric, Model, ModelInfo, Ops, ShadowInput, Shadowing, Zone};
-use crate::params::{self, Params};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, ShadowInput, Zone};
+use crate::params;
 use crate::real::{Real, sqr};
-use crate::registry::Entry;
+use crate::entry::Entry;
+use crate::math::Math;
+use crate::plan::{Plan, ShadowForm};
+use crate::wgsl::Emit;
 
 pub const INFO_VCAVITY: ModelInfo = ModelInfo {
     id: "v-cavity",
@@ -63,104 +66,124 @@ pub const INFO_RATIONAL: ModelInfo = ModelInfo {
     note: "",
 };
 
-pub const ENTRY_VCAVITY: Entry = Entry {
-    info: INFO_VCAVITY,
-    build32: build_vcavity::<f32>,
-    build64: build_vcavity::<f64>,
-};
-pub const ENTRY_SMITH: Entry = Entry {
-    info: INFO_SMITH,
-    build32: build_smith::<f32, 0>,
-    build64: build_smith::<f64, 0>,
-};
-pub const ENTRY_RATIONAL: Entry = Entry {
-    info: INFO_RATIONAL,
-    build32: build_smith::<f32, 1>,
-    build64: build_smith::<f64, 1>,
-};
+pub const ENTRY_VCAVITY: Entry = Entry::new(INFO_VCAVITY, |_, _| Ok(Plan::Shadowing(VCavity.into())));
+pub const ENTRY_SMITH: Entry = Entry::new(INFO_SMITH, |p, _| {
+    Ok(Plan::Shadowing(Smith::new(p.num("alpha"))?.into()))
+});
+pub const ENTRY_RATIONAL: Entry = Entry::new(INFO_RATIONAL, |p, _| {
+    Ok(Plan::Shadowing(SmithRational::new(p.num("alpha"))?.into()))
+});
 
-/// Cook and Torrance's V-cavity shadowing.
-#[derive(Clone, Debug, Default)]
+/// Cook and Torrance's V-cavity term.
+#[derive(Clone, Copy, Debug, Default)]
 pub struct VCavity;
 
-impl<T: Real> Shadowing<T> for VCavity {
-    #[inline]
-    fn g(&self, s: &ShadowInput<T>) -> T {
+impl ShadowForm for VCavity {
+    const HALF_VECTOR: bool = true;
+    #[inline(always)]
+    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
         let z = T::zero();
-        if !(s.cos_v > z && s.cos_h > z && s.cos_vh > z) {
-            return z;
-        }
         let k = T::c(2.0) * s.cos_h / s.cos_vh;
-        let mut g = T::one().min(k * s.cos_v);
-        if let Some(cos_l) = s.cos_l {
-            if !(cos_l > z) {
-                return z;
-            }
-            g = g.min(k * cos_l);
-        }
-        g
+        let g = T::one().min(k * s.cos_v);
+        let (g, l_ok) = match s.cos_l {
+            Some(cos_l) => (g.min(k * cos_l), cos_l > z),
+            None => (g, true),
+        };
+        if s.cos_v > z && s.cos_h > z && s.cos_vh > z && l_ok { g } else { z }
     }
-    fn needs_half_vector(&self) -> bool {
-        true
+    fn wgsl(&self, v: &str, l: &str, h: &str, vh: &str, _e: &Emit) -> String {
+        format!("fb_g_v_cavity({v}, {l}, {h}, {vh})")
     }
 }
 
-/// Smith shadowing for the Beckmann distribution, exact or rational.
-#[derive(Clone, Debug)]
-pub struct SmithBeckmann<T> {
-    alpha: T,
-    rational: bool,
+/// `a = cos / (alpha sin)` of a direction, for the Smith terms (`cos` in (0, 1)).
+#[inline(always)]
+fn smith_a<T: Real>(alpha: f64, cos: T) -> T {
+    let sin = ((T::one() - cos) * (T::one() + cos)).max(T::zero()).sqrt();
+    cos / (T::c(alpha) * sin)
 }
 
-impl<T: Real> SmithBeckmann<T> {
-    /// Exact (erf) form; `alpha` in [0.01, 1].
-    pub fn exact(alpha: f64) -> Result<Self> {
-        Ok(Self {
-            alpha: T::c(params::check("smith", &params::ALPHA, alpha)?),
-            rational: false,
-        })
-    }
-    /// Walter's rational form; `alpha` in [0.01, 1].
-    pub fn rational(alpha: f64) -> Result<Self> {
-        Ok(Self {
-            alpha: T::c(params::check("smith-rational", &params::ALPHA, alpha)?),
-            rational: true,
-        })
-    }
-
-    /// One-sided masking `G1` of a direction with cosine `cos` to the normal.
-    #[inline]
-    pub fn g1(&self, cos: T) -> T {
-        let z = T::zero();
-        if !(cos > z) {
-            return z;
-        }
-        if cos >= T::one() {
-            return T::one();
-        }
-        let sin = ((T::one() - cos) * (T::one() + cos)).sqrt();
-        let a = cos / (self.alpha * sin);
-        if self.rational {
-            if a >= T::c(1.6) {
-                return T::one();
-            }
-            let a2 = a * a;
-            (T::c(3.535) * a + T::c(2.181) * a2) / (T::one() + T::c(2.276) * a + T::c(2.577) * a2)
+/// The separable two-sided Smith form `G1(v) G1(l)` (one-sided `G1(v)` without `l`), with
+/// the domain rules: `cos <= 0` or NaN gives 0, `cos >= 1` gives 1.
+#[inline(always)]
+fn separable<T: Real>(s: &ShadowInput<T>, g1: impl Fn(T) -> T) -> T {
+    let one_side = |c: T| {
+        let g = g1(c);
+        if c >= T::one() {
+            T::one()
+        } else if c > T::zero() {
+            g
         } else {
-            let lambda = (-a.erfc() + (-a * a).exp() / (a * T::PI().sqrt())) * T::c(0.5);
-            T::one() / (T::one() + lambda)
+            T::zero()
         }
+    };
+    let gv = one_side(s.cos_v);
+    match s.cos_l {
+        Some(l) => gv * one_side(l),
+        None => gv,
     }
 }
 
-impl<T: Real> Shadowing<T> for SmithBeckmann<T> {
-    #[inline]
-    fn g(&self, s: &ShadowInput<T>) -> T {
-        let gv = self.g1(s.cos_v);
-        match s.cos_l {
-            Some(l) => gv * self.g1(l),
-            None => gv,
-        }
+/// The exact Smith term for Beckmann.
+#[derive(Clone, Copy, Debug)]
+pub struct Smith {
+    alpha: f64,
+}
+
+impl Smith {
+    /// `alpha` in [0.01, 1].
+    pub fn new(alpha: f64) -> Result<Self> {
+        Ok(Self {
+            alpha: params::check("smith", &params::ALPHA, alpha)?,
+        })
+    }
+}
+
+impl ShadowForm for Smith {
+    const SIMD: bool = false;
+    #[inline(always)]
+    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
+        separable(s, |c| {
+            let a = smith_a(self.alpha, c);
+            let lambda = (-M::erfc(a) + M::exp(-a * a) / (a * T::PI().sqrt())) * T::c(0.5);
+            T::one() / (T::one() + lambda)
+        })
+    }
+    fn wgsl(&self, v: &str, l: &str, _h: &str, _vh: &str, e: &Emit) -> String {
+        let a = e.kx(self.alpha, "p_alpha", &["alpha"]);
+        format!("fb_g1_smith({v}, {a}) * fb_g1_smith({l}, {a})")
+    }
+}
+
+/// Walter et al.'s rational fit of the Smith term for Beckmann.
+#[derive(Clone, Copy, Debug)]
+pub struct SmithRational {
+    alpha: f64,
+}
+
+impl SmithRational {
+    /// `alpha` in [0.01, 1].
+    pub fn new(alpha: f64) -> Result<Self> {
+        Ok(Self {
+            alpha: params::check("smith-rational", &params::ALPHA, alpha)?,
+        })
+    }
+}
+
+impl ShadowForm for SmithRational {
+    #[inline(always)]
+    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
+        separable(s, |c| {
+            let a = smith_a(self.alpha, c);
+            let a2 = a * a;
+            let g = (T::c(3.535) * a + T::c(2.181) * a2)
+                / (T::one() + T::c(2.276) * a + T::c(2.577) * a2);
+            if a >= T::c(1.6) { T::one() } else { g }
+        })
+    }
+    fn wgsl(&self, v: &str, l: &str, _h: &str, _vh: &str, e: &Emit) -> String {
+        let a = e.kx(self.alpha, "p_alpha", &["alpha"]);
+        format!("fb_g1_smith_rational({v}, {a}) * fb_g1_smith_rational({l}, {a})")
     }
 }
 
@@ -168,18 +191,4 @@ impl<T: Real> Shadowing<T> for SmithBeckmann<T> {
 pub fn smith_lambda(alpha: f64, cos: f64) -> f64 {
     let a = cos / (alpha * (1.0 - sqr(cos)).sqrt());
     (libm::erf(a) - 1.0) / 2.0 + (-a * a).exp() / (2.0 * a * std::f64::consts::PI.sqrt())
-}
-
-fn build_vcavity<T: Real>(_p: &Params) -> Result<Model<T>> {
-    Ok(Model::Shadowing(Box::new(VCavity)))
-}
-
-fn build_smith<T: Real, const RATIONAL: u8>(p: &Params) -> Result<Model<T>> {
-    let a = p.num("alpha");
-    let s = if RATIONAL == 1 {
-        SmithBeckmann::<T>::rational(a)?
-    } else {
-        SmithBeckmann::<T>::exact(a)?
-    };
-    Ok(Model::Shadowing(Box::new(s)))
 }

@@ -1,0 +1,86 @@
+//! The math backends a formula is written over: each model's formula is written once,
+//! generic over `T: Real` and `M: Math<T>`, and instantiated twice:
+//! - [`Exact`]: the precision's own functions (Rust's libm-backed `powf`, `exp`, ...), for the
+//!   scalar models in f32 and f64 (the analysis path and the reference for everything else);
+//! - [`Fast`]: the vectorisable approximations of `batch::math` (at most 2 ulp, no libm calls,
+//!   branch-free), f32 only, for the SIMD batch kernels.
+//!
+//! Everything else in a formula (`+`, `*`, `/`, `sqrt`, `min`, `max`, comparisons) is IEEE
+//! arithmetic, the same in both backends.
+
+use crate::batch::math;
+use crate::real::Real;
+
+/// The elementary functions a formula may call.
+pub trait Math<T: Real> {
+    fn pow(x: T, y: T) -> T;
+    fn exp(x: T) -> T;
+    fn exp2(x: T) -> T;
+    fn log2(x: T) -> T;
+    fn acos(x: T) -> T;
+    /// The complementary error function (no vectorised version: `Fast` calls libm, so a
+    /// family that needs it says so with `ShadowForm::SIMD = false`).
+    fn erfc(x: T) -> T;
+}
+
+/// The precision's exact functions.
+#[derive(Clone, Copy, Debug)]
+pub struct Exact;
+
+impl<T: Real> Math<T> for Exact {
+    #[inline(always)]
+    fn pow(x: T, y: T) -> T {
+        x.powf(y)
+    }
+    #[inline(always)]
+    fn exp(x: T) -> T {
+        x.exp()
+    }
+    #[inline(always)]
+    fn exp2(x: T) -> T {
+        x.exp2()
+    }
+    #[inline(always)]
+    fn log2(x: T) -> T {
+        x.log2()
+    }
+    #[inline(always)]
+    fn acos(x: T) -> T {
+        x.acos()
+    }
+    #[inline(always)]
+    fn erfc(x: T) -> T {
+        x.erfc()
+    }
+}
+
+/// The batch kernels' vectorisable f32 functions (`batch::math`).
+#[derive(Clone, Copy, Debug)]
+pub struct Fast;
+
+impl Math<f32> for Fast {
+    #[inline(always)]
+    fn pow(x: f32, y: f32) -> f32 {
+        math::pow(x, y)
+    }
+    #[inline(always)]
+    fn exp(x: f32) -> f32 {
+        math::exp(x)
+    }
+    #[inline(always)]
+    fn exp2(x: f32) -> f32 {
+        math::exp2(x)
+    }
+    #[inline(always)]
+    fn log2(x: f32) -> f32 {
+        math::log2(x)
+    }
+    #[inline(always)]
+    fn acos(x: f32) -> f32 {
+        math::acos(x)
+    }
+    #[inline(always)]
+    fn erfc(x: f32) -> f32 {
+        libm::erfcf(x)
+    }
+}

@@ -1,0 +1,441 @@
+//! Plans: a model instance as data, built once from its parameters by its family.
+//!
+//! A plan holds every per-parameter coefficient, computed once in f64 (rounded to the
+//! evaluation precision where it is used, `T::c`). Three consumers read it, and each matches
+//! on the plan enums exhaustively (through the `with_*!` macros generated from the family
+//! lists below), never on a model id:
+//! - the scalar models ([`Model`], f32 and f64): the family's formula with the [`Exact`]
+//!   backend;
+//! - the SIMD batch kernels (`batch`): the same formula with the [`crate::math::Fast`]
+//!   backend, monomorphised per family (and per D, G, F combination inside Cook-Torrance);
+//! - the WGSL generator: the family's `wgsl` method, which writes the call of its WGSL twin
+//!   with the coefficients as literals, storage reads or runtime expressions ([`Emit`]).
+//!
+//! A new variant of an existing family is a new builder (one registry line and an `Entry`);
+//! a new family implements one of the `*Form` traits below and adds one line to its family
+//! list here; the compiler then asks for every method (formula, WGSL call, metadata).
+
+use crate::error::{Error, Result};
+use crate::math::{Exact, Math};
+use crate::model::{self, Kind, Model, ShadowInput};
+use crate::params::Params;
+use crate::real::Real;
+use crate::vec3::{COS_MIN, Pair};
+use crate::wgsl::Emit;
+use std::fmt::Debug;
+
+use crate::brdf::{cook_torrance, lambert, phong, ward};
+use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
+use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
+
+/// A function of one cosine (a specular lobe).
+pub trait LobeForm: Clone + Debug + Send + Sync + 'static {
+    /// The registry id this instance was built as (for WGSL names and messages).
+    fn id(&self) -> &'static str;
+    /// The value at `c`, already clamped to [0, 1] and not NaN (see [`model::Lobe::eval`]).
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T;
+    /// The largest cosine below which the lobe is identically zero (0 when it has none).
+    fn zero_below(&self) -> f64 {
+        0.0
+    }
+    /// Cosines where the lobe is not smooth (junctions of piecewise forms).
+    fn kinks(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Whether the lobe carries its own energy normalisation (seed 001's `coef(n)`).
+    fn normalised(&self) -> bool {
+        false
+    }
+    /// The WGSL call of the lobe's twin on the expression `c`.
+    fn wgsl(&self, c: &str, e: &Emit) -> String;
+    /// Runtime mode: `Int(n) = integral_0^1 lobe(c) c dc` as a WGSL expression of `p_n` (for
+    /// the energy normalisation of Phong and Blinn-Phong).
+    fn wgsl_integral(&self, e: &Emit) -> String {
+        format!(
+            "fb_rt_lobe_integral_{}({})",
+            self.id().replace('-', "_"),
+            e.param("n")
+        )
+    }
+}
+
+/// A microfacet distribution `D(cos theta_h)`.
+pub trait DistForm: Clone + Debug + Send + Sync + 'static {
+    /// `D` at `cos_h` in `[COS_MIN, 1]` with `sin2_h = sin^2 theta_h`.
+    fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T;
+    /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
+    fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String;
+}
+
+/// A shadowing-masking term.
+pub trait ShadowForm: Clone + Debug + Send + Sync + 'static {
+    /// Whether its batch kernel vectorises (the exact Smith term calls libm's `erfc`).
+    const SIMD: bool = true;
+    /// Whether it uses `cos_h` and `cos_vh` (the V-cavity).
+    const HALF_VECTOR: bool = false;
+    /// `G`, in [0, 1]; cosines that are NaN or `<= 0` give 0 (see [`model::Shadowing::g`]).
+    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T;
+    /// The two-sided term's WGSL expression on `cos_v`, `cos_l`, `cos_h`, `cos_vh`.
+    fn wgsl(&self, v: &str, l: &str, h: &str, vh: &str, e: &Emit) -> String;
+}
+
+/// A Fresnel term.
+pub trait FresnelForm: Clone + Debug + Send + Sync + 'static {
+    /// Reflectance at `cos` (NaN or negative act as 0, above 1 as 1).
+    fn f<T: Real, M: Math<T>>(&self, cos: T) -> T;
+    /// The WGSL expression on `c` (non-negative).
+    fn wgsl(&self, c: &str, e: &Emit) -> String;
+}
+
+/// A full BRDF of a prepared direction pair.
+pub trait BrdfForm: Clone + Debug + Send + Sync + 'static {
+    /// Whether its batch kernel vectorises.
+    fn simd(&self) -> bool {
+        true
+    }
+    /// The value on a pair from [`crate::vec3::pair_setup`]; any value when `valid` is false
+    /// (the caller discards it), finite or not.
+    fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T;
+    /// The WGSL body of `fn fb_<id>(wi: vec3<f32>, wo: vec3<f32>) -> f32`.
+    fn wgsl_body(&self, e: &Emit) -> String;
+    /// Whether `f(wi, wo) = f(wo, wi)`.
+    fn reciprocal(&self) -> bool {
+        true
+    }
+    /// `reflect(wi) . wo` values where it is not smooth.
+    fn mirror_breaks(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// `cos theta_h` values where it is not smooth.
+    fn half_breaks(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Whether it claims energy conservation (albedo <= 1), checked by the white furnace.
+    fn claims_energy(&self) -> bool {
+        false
+    }
+}
+
+// ---------- the family lists: one line per family ----------
+
+/// Declares a plan enum with one variant per family, the enum's implementation of the family
+/// trait (dispatch), and a `with_*!` macro that matches a plan and runs an expression with the
+/// concrete family (the batch kernels use it to monomorphise).
+macro_rules! families {
+    ($d:tt $plan:ident, $with:ident { $($v:ident($t:ty)),* $(,)? }) => {
+        #[derive(Clone, Copy, Debug)]
+        pub enum $plan { $($v($t)),* }
+        $(impl From<$t> for $plan { fn from(x: $t) -> Self { $plan::$v(x) } })*
+        #[allow(unused_macros)]
+        macro_rules! $with {
+            ($d p:expr, $d f:ident => $d body:expr) => {
+                match $d p { $($crate::plan::$plan::$v($d f) => $d body),* }
+            };
+        }
+        #[allow(unused_imports)]
+        pub(crate) use $with;
+    };
+}
+
+families!($ LobePlan, with_lobe {
+    Pow(pow::Pow),
+    Schlick(schlick::Schlick),
+    SchlickModified(schlick::SchlickModified),
+    Gauss(gauss::Gauss),
+    Flog(flog::Flog),
+    Cubic(cubic::Cubic),
+    Rational(rational::Rational),
+    CubicRational(rational::CubicRational),
+    Power4(power::Power<2>),
+    Power8(power::Power<3>),
+    Power16(power::Power<4>),
+    Exp2(sg::Exp2Lobe),
+});
+
+families!($ DistPlan, with_dist {
+    Beckmann(beckmann::Beckmann),
+    BeckmannPow(beckmann_pow::BeckmannPow),
+    BeckmannPower4(beckmann_pow::BeckmannPower<2>),
+    BeckmannPower8(beckmann_pow::BeckmannPower<3>),
+    BeckmannPower16(beckmann_pow::BeckmannPower<4>),
+});
+
+families!($ ShadowPlan, with_shadow {
+    VCavity(shadowing::VCavity),
+    Smith(shadowing::Smith),
+    SmithRational(shadowing::SmithRational),
+});
+
+families!($ FresnelPlan, with_fresnel {
+    None(fresnel::NoFresnel),
+    Schlick(fresnel::Schlick),
+    Dielectric(fresnel::Dielectric),
+    Conductor(fresnel::Conductor),
+});
+
+families!($ BrdfPlan, with_brdf {
+    CookTorrance(cook_torrance::CookTorrance),
+    Ward(ward::Ward<0>),
+    WardPow(ward::Ward<1>),
+    WardPower16(ward::Ward<2>),
+    Lambert(lambert::Lambert),
+    LobeBrdf(phong::LobeBrdf),
+});
+
+/// A model instance of any kind.
+#[derive(Clone, Copy, Debug)]
+pub enum Plan {
+    Lobe(LobePlan),
+    Distribution(DistPlan),
+    Shadowing(ShadowPlan),
+    Fresnel(FresnelPlan),
+    Brdf(BrdfPlan),
+}
+
+// ---------- plan enums implement their family trait by dispatch ----------
+
+impl LobeForm for LobePlan {
+    fn id(&self) -> &'static str {
+        with_lobe!(self, l => l.id())
+    }
+    #[inline]
+    fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
+        with_lobe!(self, l => l.at::<T, M>(c))
+    }
+    fn zero_below(&self) -> f64 {
+        with_lobe!(self, l => l.zero_below())
+    }
+    fn kinks(&self) -> Vec<f64> {
+        with_lobe!(self, l => l.kinks())
+    }
+    fn normalised(&self) -> bool {
+        with_lobe!(self, l => l.normalised())
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        with_lobe!(self, l => l.wgsl(c, e))
+    }
+    fn wgsl_integral(&self, e: &Emit) -> String {
+        with_lobe!(self, l => l.wgsl_integral(e))
+    }
+}
+
+impl DistForm for DistPlan {
+    #[inline]
+    fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
+        with_dist!(self, d => d.d::<T, M>(cos_h, sin2_h))
+    }
+    fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
+        with_dist!(self, d => d.wgsl(c, s2, e))
+    }
+}
+
+impl ShadowPlan {
+    /// Whether the term uses `cos_h` and `cos_vh`.
+    pub fn needs_half_vector(&self) -> bool {
+        fn of<G: ShadowForm>(_: &G) -> bool {
+            G::HALF_VECTOR
+        }
+        with_shadow!(self, g => of(g))
+    }
+    /// Whether its batch kernel vectorises.
+    pub fn simd(&self) -> bool {
+        fn of<G: ShadowForm>(_: &G) -> bool {
+            G::SIMD
+        }
+        with_shadow!(self, g => of(g))
+    }
+}
+
+impl ShadowForm for ShadowPlan {
+    #[inline]
+    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
+        with_shadow!(self, g => g.g::<T, M>(s))
+    }
+    fn wgsl(&self, v: &str, l: &str, h: &str, vh: &str, e: &Emit) -> String {
+        with_shadow!(self, g => g.wgsl(v, l, h, vh, e))
+    }
+}
+
+impl FresnelForm for FresnelPlan {
+    #[inline]
+    fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
+        with_fresnel!(self, f => f.f::<T, M>(cos))
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        with_fresnel!(self, f => f.wgsl(c, e))
+    }
+}
+
+impl BrdfForm for BrdfPlan {
+    fn simd(&self) -> bool {
+        with_brdf!(self, b => b.simd())
+    }
+    #[inline]
+    fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
+        with_brdf!(self, b => b.at_pair::<T, M>(p))
+    }
+    fn wgsl_body(&self, e: &Emit) -> String {
+        with_brdf!(self, b => b.wgsl_body(e))
+    }
+    fn reciprocal(&self) -> bool {
+        with_brdf!(self, b => b.reciprocal())
+    }
+    fn mirror_breaks(&self) -> Vec<f64> {
+        with_brdf!(self, b => b.mirror_breaks())
+    }
+    fn half_breaks(&self) -> Vec<f64> {
+        with_brdf!(self, b => b.half_breaks())
+    }
+    fn claims_energy(&self) -> bool {
+        with_brdf!(self, b => b.claims_energy())
+    }
+}
+
+impl Plan {
+    /// The kind of model.
+    pub fn kind(&self) -> Kind {
+        match self {
+            Plan::Lobe(_) => Kind::Lobe,
+            Plan::Distribution(_) => Kind::Distribution,
+            Plan::Shadowing(_) => Kind::Shadowing,
+            Plan::Fresnel(_) => Kind::Fresnel,
+            Plan::Brdf(_) => Kind::Brdf,
+        }
+    }
+
+    /// The scalar model in precision `T` (the family's formula with the exact backend).
+    pub fn model<T: Real>(&self) -> Model<T> {
+        match self {
+            Plan::Lobe(l) => Model::Lobe(with_lobe!(l, x => Box::new(Scalar(x.clone())))),
+            Plan::Distribution(d) => {
+                Model::Distribution(with_dist!(d, x => Box::new(Scalar(x.clone()))))
+            }
+            Plan::Shadowing(g) => Model::Shadowing(with_shadow!(g, x => Box::new(Scalar(x.clone())))),
+            Plan::Fresnel(f) => Model::Fresnel(with_fresnel!(f, x => Box::new(Scalar(x.clone())))),
+            Plan::Brdf(b) => Model::Brdf(with_brdf!(b, x => Box::new(Scalar(x.clone())))),
+        }
+    }
+
+    /// Whether the model claims energy conservation (a normalised BRDF or lobe): the models
+    /// `fastbrdf albedo` holds to the white-furnace test.
+    pub fn claims_energy(&self) -> bool {
+        match self {
+            Plan::Lobe(l) => l.normalised(),
+            Plan::Brdf(b) => b.claims_energy(),
+            Plan::Distribution(_) | Plan::Shadowing(_) | Plan::Fresnel(_) => false,
+        }
+    }
+
+    /// The lobe plan, or an error naming `model`.
+    pub fn lobe(self, model: &str) -> Result<LobePlan> {
+        match self {
+            Plan::Lobe(l) => Ok(l),
+            other => Err(wrong_kind(model, "lobe", other.kind())),
+        }
+    }
+    /// The distribution plan, or an error naming `model`.
+    pub fn distribution(self, model: &str) -> Result<DistPlan> {
+        match self {
+            Plan::Distribution(d) => Ok(d),
+            other => Err(wrong_kind(model, "distribution", other.kind())),
+        }
+    }
+    /// The shadowing plan, or an error naming `model`.
+    pub fn shadowing(self, model: &str) -> Result<ShadowPlan> {
+        match self {
+            Plan::Shadowing(g) => Ok(g),
+            other => Err(wrong_kind(model, "shadowing", other.kind())),
+        }
+    }
+    /// The Fresnel plan, or an error naming `model`.
+    pub fn fresnel(self, model: &str) -> Result<FresnelPlan> {
+        match self {
+            Plan::Fresnel(f) => Ok(f),
+            other => Err(wrong_kind(model, "fresnel", other.kind())),
+        }
+    }
+}
+
+fn wrong_kind(model: &str, expected: &str, found: Kind) -> Error {
+    Error::WrongKind {
+        model: model.into(),
+        expected: expected.into(),
+        found: found.name().into(),
+    }
+}
+
+// ---------- the scalar models: a family with the exact backend ----------
+
+/// A family evaluated with the exact backend, behind the scalar model traits.
+#[derive(Clone, Debug)]
+pub struct Scalar<F>(pub F);
+
+impl<T: Real, L: LobeForm> model::Lobe<T> for Scalar<L> {
+    #[inline]
+    fn eval(&self, c: T) -> T {
+        match crate::lobes::arg(c) {
+            Some(c) => self.0.at::<T, Exact>(c),
+            None => T::zero(),
+        }
+    }
+    fn zero_below(&self) -> f64 {
+        self.0.zero_below()
+    }
+    fn kinks(&self) -> Vec<f64> {
+        self.0.kinks()
+    }
+}
+
+impl<T: Real, D: DistForm> model::Distribution<T> for Scalar<D> {
+    #[inline]
+    fn d(&self, cos_h: T, sin2_h: T) -> T {
+        if !(cos_h >= T::c(COS_MIN)) {
+            return T::zero();
+        }
+        self.0.d::<T, Exact>(cos_h, sin2_h)
+    }
+}
+
+impl<T: Real, G: ShadowForm> model::Shadowing<T> for Scalar<G> {
+    #[inline]
+    fn g(&self, s: &ShadowInput<T>) -> T {
+        self.0.g::<T, Exact>(s)
+    }
+    fn needs_half_vector(&self) -> bool {
+        G::HALF_VECTOR
+    }
+}
+
+impl<T: Real, F: FresnelForm> model::Fresnel<T> for Scalar<F> {
+    #[inline]
+    fn f(&self, cos: T) -> T {
+        self.0.f::<T, Exact>(cos)
+    }
+}
+
+impl<T: Real, B: BrdfForm> model::Brdf<T> for Scalar<B> {
+    #[inline]
+    fn eval_pair(&self, p: &Pair<T>) -> T {
+        self.0.at_pair::<T, Exact>(p)
+    }
+    fn reciprocal(&self) -> bool {
+        self.0.reciprocal()
+    }
+    fn mirror_breaks(&self) -> Vec<f64> {
+        self.0.mirror_breaks()
+    }
+    fn half_breaks(&self) -> Vec<f64> {
+        self.0.half_breaks()
+    }
+}
+
+/// Builds the plans of sub-models (Cook-Torrance's D, G and F; Phong's lobe) by id: the
+/// registry implements it, so that no family imports the registry (no module cycle).
+pub trait Models {
+    /// The plan of model `id`, each of its numeric parameters taken from `nums` (by name)
+    /// where it gives one, else its default.
+    fn plan(&self, id: &str, nums: &dyn Fn(&str) -> Option<f64>) -> Result<Plan>;
+}
+
+/// A family's builder: parameters (validated) to plan.
+pub type PlanFn = fn(&Params, &dyn Models) -> Result<Plan>;
