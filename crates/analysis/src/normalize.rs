@@ -33,7 +33,7 @@ pub struct NormRow {
 /// `Int(n)` of lobe `id` with its error estimate (closed form `1 / (n + 2)` is not used here,
 /// so that `pow` checks the quadrature).
 pub fn integral(id: &str, n: f64) -> Result<(f64, f64)> {
-    let lobe = fastbrdf::brdf::phong::build_lobe::<f64>(id, n)?;
+    let lobe = fastbrdf::registry::lobe::<f64>(id, n)?;
     let lo = lobe.zero_below();
     let mut breaks = lobe.kinks();
     breaks.push(lo);

@@ -157,7 +157,7 @@ pub fn run(speedups: &[(String, f64)], progress: &(dyn Fn() + Sync)) -> Result<R
         let mut worst: f64 = 0.0;
         for n in 1..=1000 {
             let n = f64::from(n);
-            let l = fastbrdf::brdf::phong::build_lobe::<f64>("flog", n)?;
+            let l = fastbrdf::registry::lobe::<f64>("flog", n)?;
             let c0 = (-k / n).exp();
             worst = worst.max(l.eval(c0 * (1.0 + 1e-12)).max(0.0)).max(if l.eval(c0 * (1.0 + 1e-6)) > 0.0 { 0.0 } else { 1.0 });
         }

@@ -306,7 +306,7 @@ pub fn configurations() -> Vec<(String, Vec<(String, String)>)> {
     // Lobes at n = 200 and distributions at alpha = 0.3 (defaults: n = 20 hides nothing, but a
     // sharper lobe is the more common specular case).
     for (id, p) in v.iter_mut() {
-        if fastbrdf::lobes::IDS.contains(&id.as_str()) {
+        if registry::find(id).is_ok_and(|e| e.info.kind == Kind::Lobe) {
             p.push(("n".into(), "200".into()));
         }
     }

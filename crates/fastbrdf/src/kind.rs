@@ -32,3 +32,30 @@ impl Kind {
     }
 }
 
+impl Kind {
+    /// The input columns of a model of this kind (`fastbrdf eval`, batch inputs):
+    /// `(required, optional)`. Shadowing terms that use the half vector (the V-cavity) also
+    /// need `cos_h` and `cos_vh` (`half_vector`).
+    pub fn columns(self, half_vector: bool) -> (&'static [&'static str], &'static [&'static str]) {
+        match self {
+            Kind::Lobe => (&["cos"], &[]),
+            Kind::Distribution => (&["cos_h"], &[]),
+            Kind::Shadowing if half_vector => (&["cos_v", "cos_h", "cos_vh"], &["cos_l"]),
+            Kind::Shadowing => (&["cos_v"], &["cos_l"]),
+            Kind::Fresnel => (&["cos_vh"], &[]),
+            Kind::Brdf => (&["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"], &[]),
+        }
+    }
+
+    /// The inputs of a model's WGSL function `fb_<id>`, as WGSL parameters (shadowing:
+    /// two-sided; BRDF: local frame, normal +z, no cosine factor).
+    pub fn wgsl_signature(self) -> &'static str {
+        match self {
+            Kind::Lobe => "c: f32",
+            Kind::Distribution => "cos_h: f32",
+            Kind::Shadowing => "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
+            Kind::Fresnel => "cos_vh: f32",
+            Kind::Brdf => "wi: vec3<f32>, wo: vec3<f32>",
+        }
+    }
+}

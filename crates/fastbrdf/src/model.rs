@@ -199,16 +199,8 @@ impl<T: Real> Model<T> {
 
     /// The input columns this model reads: `(required, optional)`.
     pub fn columns(&self) -> (&'static [&'static str], &'static [&'static str]) {
-        match self {
-            Model::Lobe(_) => (&["cos"], &[]),
-            Model::Distribution(_) => (&["cos_h"], &[]),
-            Model::Shadowing(s) if s.needs_half_vector() => {
-                (&["cos_v", "cos_h", "cos_vh"], &["cos_l"])
-            }
-            Model::Shadowing(_) => (&["cos_v"], &["cos_l"]),
-            Model::Fresnel(_) => (&["cos_vh"], &[]),
-            Model::Brdf(_) => (&["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"], &[]),
-        }
+        let half_vector = matches!(self, Model::Shadowing(s) if s.needs_half_vector());
+        self.kind().columns(half_vector)
     }
 
     /// Evaluates with the lenient shading rules (out-of-domain inputs give 0).

@@ -175,13 +175,16 @@ impl Params {
     ) -> Result<Self> {
         let mut p = Self::resolve(model, specs, &[])?;
         for (name, x) in given {
-            let spec = specs.iter().find(|s| s.name == *name).ok_or_else(|| {
-                Error::UnknownParam {
-                    model: model.into(),
-                    param: (*name).into(),
-                }
-            })?;
-            p.values.insert(spec.name, Value::Num(check(model, spec, *x)?));
+            let spec =
+                specs
+                    .iter()
+                    .find(|s| s.name == *name)
+                    .ok_or_else(|| Error::UnknownParam {
+                        model: model.into(),
+                        param: (*name).into(),
+                    })?;
+            p.values
+                .insert(spec.name, Value::Num(check(model, spec, *x)?));
         }
         Ok(p)
     }

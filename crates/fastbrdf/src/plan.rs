@@ -29,7 +29,7 @@ use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
 use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
 
 /// A function of one cosine (a specular lobe).
-pub trait LobeForm: Clone + Debug + Send + Sync + 'static {
+pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     /// The registry id this instance was built as (for WGSL names and messages).
     fn id(&self) -> &'static str;
     /// The value at `c`, already clamped to [0, 1] and not NaN (see [`model::Lobe::eval`]).
@@ -48,11 +48,12 @@ pub trait LobeForm: Clone + Debug + Send + Sync + 'static {
     }
     /// The WGSL call of the lobe's twin on the expression `c`.
     fn wgsl(&self, c: &str, e: &Emit) -> String;
-    /// Runtime mode: `Int(n) = integral_0^1 lobe(c) c dc` as a WGSL expression of `p_n` (for
-    /// the energy normalisation of Phong and Blinn-Phong).
-    fn wgsl_integral(&self, e: &Emit) -> String {
+    /// Runtime mode: the energy normalisation of Phong and Blinn-Phong with this lobe,
+    /// `coef(n) = 1 / (2 pi Int(n))`, `Int(n) = integral_0^1 lobe(c) c dc`, as a WGSL
+    /// expression of `p_n` (`fb_rt_lobe_integral_<id>` of `runtime.wgsl` by default).
+    fn wgsl_norm(&self, e: &Emit) -> String {
         format!(
-            "fb_rt_lobe_integral_{}({})",
+            "(1.0 / (6.283185307179586 * fb_rt_lobe_integral_{}({})))",
             self.id().replace('-', "_"),
             e.param("n")
         )
@@ -60,7 +61,7 @@ pub trait LobeForm: Clone + Debug + Send + Sync + 'static {
 }
 
 /// A microfacet distribution `D(cos theta_h)`.
-pub trait DistForm: Clone + Debug + Send + Sync + 'static {
+pub trait DistForm: Copy + Debug + Send + Sync + 'static {
     /// `D` at `cos_h` in `[COS_MIN, 1]` with `sin2_h = sin^2 theta_h`.
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T;
     /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
@@ -68,7 +69,7 @@ pub trait DistForm: Clone + Debug + Send + Sync + 'static {
 }
 
 /// A shadowing-masking term.
-pub trait ShadowForm: Clone + Debug + Send + Sync + 'static {
+pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
     /// Whether its batch kernel vectorises (the exact Smith term calls libm's `erfc`).
     const SIMD: bool = true;
     /// Whether it uses `cos_h` and `cos_vh` (the V-cavity).
@@ -80,7 +81,7 @@ pub trait ShadowForm: Clone + Debug + Send + Sync + 'static {
 }
 
 /// A Fresnel term.
-pub trait FresnelForm: Clone + Debug + Send + Sync + 'static {
+pub trait FresnelForm: Copy + Debug + Send + Sync + 'static {
     /// Reflectance at `cos` (NaN or negative act as 0, above 1 as 1).
     fn f<T: Real, M: Math<T>>(&self, cos: T) -> T;
     /// The WGSL expression on `c` (non-negative).
@@ -88,7 +89,7 @@ pub trait FresnelForm: Clone + Debug + Send + Sync + 'static {
 }
 
 /// A full BRDF of a prepared direction pair.
-pub trait BrdfForm: Clone + Debug + Send + Sync + 'static {
+pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
     /// Whether its batch kernel vectorises.
     fn simd(&self) -> bool {
         true
@@ -214,8 +215,8 @@ impl LobeForm for LobePlan {
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         with_lobe!(self, l => l.wgsl(c, e))
     }
-    fn wgsl_integral(&self, e: &Emit) -> String {
-        with_lobe!(self, l => l.wgsl_integral(e))
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        with_lobe!(self, l => l.wgsl_norm(e))
     }
 }
 
@@ -306,13 +307,15 @@ impl Plan {
     /// The scalar model in precision `T` (the family's formula with the exact backend).
     pub fn model<T: Real>(&self) -> Model<T> {
         match self {
-            Plan::Lobe(l) => Model::Lobe(with_lobe!(l, x => Box::new(Scalar(x.clone())))),
+            Plan::Lobe(l) => Model::Lobe(with_lobe!(l, x => Box::new(Scalar(*x)))),
             Plan::Distribution(d) => {
-                Model::Distribution(with_dist!(d, x => Box::new(Scalar(x.clone()))))
+                Model::Distribution(with_dist!(d, x => Box::new(Scalar(*x))))
             }
-            Plan::Shadowing(g) => Model::Shadowing(with_shadow!(g, x => Box::new(Scalar(x.clone())))),
-            Plan::Fresnel(f) => Model::Fresnel(with_fresnel!(f, x => Box::new(Scalar(x.clone())))),
-            Plan::Brdf(b) => Model::Brdf(with_brdf!(b, x => Box::new(Scalar(x.clone())))),
+            Plan::Shadowing(g) => {
+                Model::Shadowing(with_shadow!(g, x => Box::new(Scalar(*x))))
+            }
+            Plan::Fresnel(f) => Model::Fresnel(with_fresnel!(f, x => Box::new(Scalar(*x)))),
+            Plan::Brdf(b) => Model::Brdf(with_brdf!(b, x => Box::new(Scalar(*x)))),
         }
     }
 

@@ -8,11 +8,11 @@ use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
-use crate::model::{Kind, Model};
+use crate::model::{Kind, Lobe, Model};
 use crate::params::{Options, ParamKind, ParamSpec, Params};
-use std::sync::OnceLock;
 use crate::plan::{Models, Plan};
 use crate::real::Real;
+use std::sync::OnceLock;
 
 /// Every model, in display order.
 pub static REGISTRY: &[Entry] = &[
@@ -74,7 +74,13 @@ pub fn all() -> &'static [Entry] {
             .map(|e| {
                 let mut e = *e;
                 if e.info.params.iter().any(|p| {
-                    matches!(p.kind, ParamKind::Choice { options: Options::Models { .. }, .. })
+                    matches!(
+                        p.kind,
+                        ParamKind::Choice {
+                            options: Options::Models { .. },
+                            ..
+                        }
+                    )
                 }) {
                     let specs: Vec<ParamSpec> = e.info.params.iter().map(resolve_spec).collect();
                     e.info.params = Box::leak(specs.into_boxed_slice());
@@ -89,7 +95,11 @@ pub fn all() -> &'static [Entry] {
 /// lives as long as the program).
 fn resolve_spec(spec: &ParamSpec) -> ParamSpec {
     let mut s = *spec;
-    if let ParamKind::Choice { options: Options::Models { kind, prefix }, default } = spec.kind {
+    if let ParamKind::Choice {
+        options: Options::Models { kind, prefix },
+        default,
+    } = spec.kind
+    {
         let names: Vec<&'static str> = ids_of(kind)
             .into_iter()
             .map(|id| id.strip_prefix(prefix).unwrap_or(id))
@@ -158,4 +168,27 @@ pub fn build<T: Real>(id: &str, given: &[(&str, &str)]) -> Result<Model<T>> {
 /// Builds from already resolved parameters.
 pub fn build_resolved<T: Real>(e: &Entry, p: &Params) -> Result<Model<T>> {
     Ok(plan_resolved(e, p)?.model())
+}
+
+/// Lobe `id` at exponent `n` in precision `T` (Phong's and Blinn-Phong's `lobe`).
+pub fn lobe<T: Real>(id: &str, n: f64) -> Result<Box<dyn Lobe<T>>> {
+    match Registry
+        .plan(id, &|name| (name == "n").then_some(n))?
+        .model()
+    {
+        Model::Lobe(l) => Ok(l),
+        other => Err(Error::WrongKind {
+            model: id.into(),
+            expected: "lobe".into(),
+            found: other.kind().name().into(),
+        }),
+    }
+}
+
+/// `Int(n) = integral_0^1 lobe(c) c dc` of lobe `id` (`brdf::phong::lobe_integral`).
+pub fn lobe_integral(id: &str, n: f64) -> Result<f64> {
+    let plan = Registry
+        .plan(id, &|name| (name == "n").then_some(n))?
+        .lobe(id)?;
+    Ok(crate::brdf::phong::lobe_integral(&plan))
 }

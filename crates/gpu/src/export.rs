@@ -219,7 +219,7 @@ fn header_text(
     for p in info.params {
         let range = match p.kind {
             ParamKind::Number { .. } => format!("range {}", p.range_text()),
-            ParamKind::Choice { options, .. } => format!("one of {}", options.join(", ")),
+            ParamKind::Choice { options, .. } => format!("one of {}", options.names().join(", ")),
         };
         let _ = writeln!(
             s,

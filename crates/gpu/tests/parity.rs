@@ -140,7 +140,7 @@ impl LobeGeometry {
         let get = |k: &str| config.iter().find(|(n, _)| n == k).map(|(_, v)| v.clone());
         let lobe = get("lobe").unwrap_or_else(|| "pow".into());
         let n: f64 = get("n").map(|v| v.parse().unwrap()).unwrap_or(20.0);
-        let l = fastbrdf::brdf::phong::build_lobe::<f64>(&lobe, n).unwrap();
+        let l = fastbrdf::registry::lobe::<f64>(&lobe, n).unwrap();
         let mut marks = l.kinks();
         marks.push(l.zero_below());
         // flog's zero (its slope is steepest there) is its zero_below.

@@ -93,7 +93,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let loaded = &plain;
     for n in ["20", "200"] {
         let mut rows: Vec<Vec<Cell>> = vec![];
-        for chunk in fastbrdf::lobes::IDS.chunks(4) {
+        for chunk in fastbrdf::registry::ids_of(fastbrdf::Kind::Lobe).chunks(4) {
             let mut row = vec![];
             for id in chunk {
                 let film = render_model(&spec, loaded, &opts, id, &[p("n", n)])?;

@@ -28,8 +28,8 @@ use crate::error::{Error, Result};
 use crate::math::Fast;
 use crate::model::Kind;
 use crate::plan::{
-    BrdfForm, BrdfPlan, DistForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist,
-    with_fresnel, with_lobe, with_shadow,
+    BrdfForm, BrdfPlan, DistForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist, with_fresnel,
+    with_lobe, with_shadow,
 };
 use crate::registry;
 use crate::vec3::COS_MIN;

@@ -18,17 +18,19 @@
 //! Source: Cook & Torrance 1982; Walter et al. 2007. Cost: D + G + F + 3 mul, 1 div (plus the
 //! pair set-up: 2 normalisations of wi, wo and one of h). Reciprocal.
 
+use crate::entry::Entry;
 use crate::error::{Error, Result};
+use crate::math::Math;
+use crate::microfacet::fresnel;
 use crate::model::{Kind, ModelInfo, Ops, ShadowInput};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params};
+use crate::plan::{
+    BrdfForm, DistForm, DistPlan, FresnelForm, FresnelPlan, Models, Plan, ShadowForm, ShadowPlan,
+};
 use crate::real::Real;
-use crate::entry::Entry;
-use crate::microfacet::fresnel;
-use crate::math::Math;
-use crate::plan::{BrdfForm, DistForm, DistPlan, FresnelForm, FresnelPlan, Models, Plan, ShadowForm, ShadowPlan};
 use crate::vec3::COS_MIN;
-use crate::wgsl::{Emit, PAIR};
 use crate::vec3::Pair;
+use crate::wgsl::{Emit, PAIR};
 
 pub const D: ParamSpec = ParamSpec {
     name: "d",
@@ -149,7 +151,11 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G,
     #[inline(always)]
     fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
         let d = self.d.d::<T, M>(p.cos_h, p.sin2_h);
-        let d = if p.cos_h >= T::c(COS_MIN) { d } else { T::zero() };
+        let d = if p.cos_h >= T::c(COS_MIN) {
+            d
+        } else {
+            T::zero()
+        };
         let g = self.g.g::<T, M>(&ShadowInput {
             cos_v: p.cos_o,
             cos_l: Some(p.cos_i),

@@ -3,15 +3,15 @@
 //! Parameters: `albedo` in [0, 1] (default 1). Source: Lambert 1760. Cost: nothing per
 //! evaluation (a constant). Albedo equals `albedo` at every incidence (energy conserving).
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{ParamKind, ParamSpec};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{BrdfForm, Plan};
-use crate::wgsl::{Emit, PAIR};
+use crate::real::Real;
 use crate::vec3::Pair;
+use crate::wgsl::{Emit, PAIR};
 
 pub const ALBEDO: ParamSpec = ParamSpec {
     name: "albedo",
@@ -35,7 +35,9 @@ pub const INFO: ModelInfo = ModelInfo {
     note: "",
 };
 
-pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Brdf(Lambert::new(p.num("albedo"))?.into())));
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Brdf(Lambert::new(p.num("albedo"))?.into()))
+});
 
 /// `albedo / pi`.
 #[derive(Clone, Copy, Debug)]

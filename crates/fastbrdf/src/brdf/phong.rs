@@ -19,16 +19,16 @@
 //! (`energy` or `none`, default `energy`). Cost: the lobe's, plus 3 mul, 2 add (phong) or
 //! 1 mul, 1 div (blinn-phong, energy). Reciprocal.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::{Exact, Math};
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params};
+use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
 use crate::quad;
 use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::{Exact, Math};
-use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
-use crate::wgsl::{Emit, PAIR};
 use crate::vec3::Pair;
+use crate::wgsl::{Emit, PAIR};
 
 pub const LOBE: ParamSpec = ParamSpec {
     name: "lobe",
@@ -178,7 +178,7 @@ impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
         let coef = if !self.normalized {
             e.constant(self.coef)
         } else if e.is_runtime() {
-            format!("(1.0 / (6.283185307179586 * {}))", self.lobe.wgsl_integral(e))
+            self.lobe.wgsl_norm(e)
         } else {
             e.constant(self.coef)
         };

@@ -16,15 +16,15 @@
 //! (alpha = 1: 0.49 at 89 degrees, 1.50 at 89.9; measured in `tests/energy.rs`). The approximations' error is that of their
 //! exponential factor (the rest is identical): see the `INFO` bounds.
 
+use crate::entry::Entry;
 use crate::error::{Error, Result};
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self, ParamKind, ParamSpec, Params};
-use crate::real::{Real, pow2k, sqr};
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{BrdfForm, Plan};
-use crate::wgsl::Emit;
+use crate::real::{Real, pow2k, sqr};
 use crate::vec3::Pair;
+use crate::wgsl::Emit;
 
 pub const ALPHA_X: ParamSpec = ParamSpec {
     name: "alpha_x",
@@ -236,4 +236,3 @@ pub fn slope_params(p: &Params) -> Result<(&'static str, &'static str)> {
         }),
     }
 }
-

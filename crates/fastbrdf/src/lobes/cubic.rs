@@ -22,13 +22,13 @@
 //! Parameters: `n` in [1, 10000] (default 20). Cost: 3 mul, 4 add (Newton form, constants
 //! precomputed); the seed's monomial form is 5 mul, 2 add. Error bounds: see `INFO`.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -85,7 +85,9 @@ pub const INFO3: ModelInfo = ModelInfo {
     note: "evaluated in a Newton form in (c - 1) for f32 accuracy",
 };
 
-pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Cubic::hermite(p.num("n"))?.into())));
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Lobe(Cubic::hermite(p.num("n"))?.into()))
+});
 pub const ENTRY3: Entry = Entry::new(INFO3, |p, _| {
     Ok(Plan::Lobe(Cubic::three_point(p.num("n"))?.into()))
 });
@@ -248,14 +250,22 @@ impl LobeForm for Cubic {
         let p = T::one()
             + x * (T::c(s.d1) + (x - T::c(s.x1)) * (T::c(s.d2) + (x - T::c(s.x2)) * T::c(s.d3)));
         // The cut is an f32 number, so both precisions cut at the same input.
-        if c < T::c(s.cut) { T::zero() } else { p.max(T::zero()) }
+        if c < T::c(s.cut) {
+            T::zero()
+        } else {
+            p.max(T::zero())
+        }
     }
     fn zero_below(&self) -> f64 {
         self.shape.cut
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         if e.is_runtime() {
-            let f = if self.three { "fb_rt_cubic3" } else { "fb_rt_cubic" };
+            let f = if self.three {
+                "fb_rt_cubic3"
+            } else {
+                "fb_rt_cubic"
+            };
             format!("{f}({c}, {})", e.param("n"))
         } else {
             format!("fb_lobe_cubic({c}, {})", self.wgsl_args(e))

@@ -16,13 +16,13 @@
 //! Parameters: `n` in [1, 10000] (default 20). Source: seed 001 (Romanyuk et al., ACIT 2023).
 //! Error bounds against `pow`: see the `INFO` constants.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 /// Seed 001's fitted normalisation coefficient (its Fig. 8 formula, as rounded in the paper).
@@ -90,10 +90,14 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
     Ok(Plan::Lobe(Flog::new(p.num("n"), FlogMode::Plain)?.into()))
 });
 pub const ENTRY_NORMALIZED: Entry = Entry::new(INFO_NORMALIZED, |p, _| {
-    Ok(Plan::Lobe(Flog::new(p.num("n"), FlogMode::Normalized)?.into()))
+    Ok(Plan::Lobe(
+        Flog::new(p.num("n"), FlogMode::Normalized)?.into(),
+    ))
 });
 pub const ENTRY_CLAMPED: Entry = Entry::new(INFO_CLAMPED, |p, _| {
-    Ok(Plan::Lobe(Flog::new(p.num("n"), FlogMode::NormalizedClamped)?.into()))
+    Ok(Plan::Lobe(
+        Flog::new(p.num("n"), FlogMode::NormalizedClamped)?.into(),
+    ))
 });
 
 /// How `Flog` scales its value.

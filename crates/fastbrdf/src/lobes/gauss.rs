@@ -4,13 +4,13 @@
 //! Cost: 2 mul, 1 acos, 1 exp. For small angles `cos^n theta ~ exp(-n theta^2 / 2)`, so it
 //! matches `pow` near the peak and has a lighter tail. Error bounds against `pow`: see `INFO`.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -67,6 +67,9 @@ impl LobeForm for Gauss {
         M::exp(-T::c(self.half_n) * (t * t))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
-        format!("fb_lobe_gauss({c}, {})", e.kx(self.half_n, "0.5 * p_n", &["n"]))
+        format!(
+            "fb_lobe_gauss({c}, {})",
+            e.kx(self.half_n, "0.5 * p_n", &["n"])
+        )
     }
 }

@@ -26,4 +26,3 @@ pub fn arg<T: Real>(c: T) -> Option<T> {
         Some(c.max(T::zero()).min(T::one()))
     }
 }
-

@@ -5,13 +5,13 @@
 //! Cost: one `pow` (exp2 and log2 inside). Error: exact (it is the reference).
 //! Energy: `Int(n) = integral_0^1 c^n c dc = 1 / (n + 2)`, so `coef(n) = (n + 2) / (2 pi)`.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -61,7 +61,8 @@ impl LobeForm for Pow {
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_lobe_pow({c}, {})", e.kx(self.n, "p_n", &["n"]))
     }
-    fn wgsl_integral(&self, e: &Emit) -> String {
-        format!("(1.0 / ({} + 2.0))", e.param("n"))
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        // Int(n) = 1 / (n + 2): coef(n) = (n + 2) / (2 pi).
+        format!("({} + 2.0) * 0.15915494309189535", e.param("n"))
     }
 }

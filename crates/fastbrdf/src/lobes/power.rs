@@ -7,13 +7,13 @@
 //! Parameters: `n` in [1, 10000] (default 20). Cost: 1 mul, 1 add (constants precomputed) and
 //! `k` squarings (k = 2, 3, 4). Error bounds against `pow`: see the `INFO` constants.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::real::{Real, pow2k};
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::{Real, pow2k};
 use crate::wgsl::Emit;
 
 macro_rules! power_info {
@@ -68,9 +68,15 @@ pub const INFO16: ModelInfo = power_info!(
     1e-6
 );
 
-pub const ENTRY4: Entry = Entry::new(INFO4, |p, _| Ok(Plan::Lobe(Power::<2>::new(p.num("n"))?.into())));
-pub const ENTRY8: Entry = Entry::new(INFO8, |p, _| Ok(Plan::Lobe(Power::<3>::new(p.num("n"))?.into())));
-pub const ENTRY16: Entry = Entry::new(INFO16, |p, _| Ok(Plan::Lobe(Power::<4>::new(p.num("n"))?.into())));
+pub const ENTRY4: Entry = Entry::new(INFO4, |p, _| {
+    Ok(Plan::Lobe(Power::<2>::new(p.num("n"))?.into()))
+});
+pub const ENTRY8: Entry = Entry::new(INFO8, |p, _| {
+    Ok(Plan::Lobe(Power::<3>::new(p.num("n"))?.into()))
+});
+pub const ENTRY16: Entry = Entry::new(INFO16, |p, _| {
+    Ok(Plan::Lobe(Power::<4>::new(p.num("n"))?.into()))
+});
 
 /// `max(0, 1 + s (c - 1))^(2^K)`.
 #[derive(Clone, Copy, Debug)]

@@ -12,13 +12,13 @@
 //! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
 
 use super::cubic::{Cubic, CubicShape};
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -73,7 +73,9 @@ pub const INFO_CUBIC_RATIONAL: ModelInfo = ModelInfo {
     note: "cost is the cubic branch; the rational branch is 2 mul, 3 add, 1 div",
 };
 
-pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Rational::new(p.num("n"))?.into())));
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Lobe(Rational::new(p.num("n"))?.into()))
+});
 pub const ENTRY_CUBIC_RATIONAL: Entry = Entry::new(INFO_CUBIC_RATIONAL, |p, _| {
     Ok(Plan::Lobe(CubicRational::new(p.num("n"))?.into()))
 });

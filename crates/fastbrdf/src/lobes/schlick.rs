@@ -11,13 +11,13 @@
 //!
 //! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -126,6 +126,9 @@ impl LobeForm for SchlickModified {
         T::c(2.0) * c / (T::c(1.25) * (d * d))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
-        format!("fb_lobe_schlick_modified({c}, {})", e.kx(self.n, "p_n", &["n"]))
+        format!(
+            "fb_lobe_schlick_modified({c}, {})",
+            e.kx(self.n, "p_n", &["n"])
+        )
     }
 }

@@ -7,13 +7,13 @@
 //!
 //! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{LobeForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -155,5 +155,9 @@ impl LobeForm for Exp2Lobe {
     }
 }
 
-pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Exp2Lobe::sg(p.num("n"))?.into())));
-pub const ENTRY_UE4: Entry = Entry::new(INFO_UE4, |p, _| Ok(Plan::Lobe(Exp2Lobe::ue4(p.num("n"))?.into())));
+pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
+    Ok(Plan::Lobe(Exp2Lobe::sg(p.num("n"))?.into()))
+});
+pub const ENTRY_UE4: Entry = Entry::new(INFO_UE4, |p, _| {
+    Ok(Plan::Lobe(Exp2Lobe::ue4(p.num("n"))?.into()))
+});

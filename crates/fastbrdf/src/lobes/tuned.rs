@@ -105,9 +105,9 @@ pub fn cubic_rational_level(n: f64) -> f64 {
 use super::power::Power;
 use super::rational::CubicRational;
 use super::sg::Exp2Lobe;
+use crate::entry::Entry;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::entry::Entry;
 use crate::plan::Plan;
 
 macro_rules! tuned_info {
@@ -189,7 +189,9 @@ pub const ENTRY_POWER8: Entry = Entry::new(INFO_POWER8, |p, _| {
 pub const ENTRY_POWER16: Entry = Entry::new(INFO_POWER16, |p, _| {
     Ok(Plan::Lobe(Power::<4>::tuned(p.num("n"))?.into()))
 });
-pub const ENTRY_SG: Entry = Entry::new(INFO_SG, |p, _| Ok(Plan::Lobe(Exp2Lobe::tuned(p.num("n"))?.into())));
+pub const ENTRY_SG: Entry = Entry::new(INFO_SG, |p, _| {
+    Ok(Plan::Lobe(Exp2Lobe::tuned(p.num("n"))?.into()))
+});
 pub const ENTRY_CUBIC_RATIONAL: Entry = Entry::new(INFO_CUBIC_RATIONAL, |p, _| {
     Ok(Plan::Lobe(CubicRational::tuned(p.num("n"))?.into()))
 });

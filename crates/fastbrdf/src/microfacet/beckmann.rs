@@ -12,13 +12,13 @@
 //! exact value there is below 1e-300). Exact models: no error bound; `beckmann`'s
 //! normalisation is tested to 1e-6 for alpha in [0.05, 1].
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params;
-use crate::real::Real;
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{DistForm, Plan};
+use crate::real::Real;
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -49,7 +49,9 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
     Ok(Plan::Distribution(Beckmann::new(p.num("alpha"))?.into()))
 });
 pub const ENTRY_CT: Entry = Entry::new(INFO_CT, |p, _| {
-    Ok(Plan::Distribution(Beckmann::cook_torrance(p.num("alpha"))?.into()))
+    Ok(Plan::Distribution(
+        Beckmann::cook_torrance(p.num("alpha"))?.into(),
+    ))
 });
 
 /// The Beckmann distribution with a given normalisation.
@@ -109,7 +111,11 @@ impl DistForm for Beckmann {
         let scale = if self.ct {
             ct_scale_wgsl(a, e)
         } else {
-            e.kx(self.scale, "0.3183098861837907 / (p_alpha * p_alpha)", &["alpha"])
+            e.kx(
+                self.scale,
+                "0.3183098861837907 / (p_alpha * p_alpha)",
+                &["alpha"],
+            )
         };
         format!(
             "fb_d_beckmann({c}, {s2}, {}, {scale})",

@@ -17,14 +17,14 @@
 //! Cost: `beckmann-pow` 1 mul and 1 pow; power forms 2 mul, 2 add, 1 div and k squarings.
 //! Error bounds against `beckmann-ct`: see the `INFO` constants.
 
+use super::beckmann::{ct_scale, ct_scale_wgsl};
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
-use crate::real::{Real, pow2k};
-use crate::entry::Entry;
-use super::beckmann::{ct_scale, ct_scale_wgsl};
-use crate::math::Math;
 use crate::plan::{DistForm, Plan};
+use crate::real::{Real, pow2k};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -111,13 +111,19 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
     Ok(Plan::Distribution(BeckmannPow::new(p.num("alpha"))?.into()))
 });
 pub const ENTRY4: Entry = Entry::new(INFO4, |p, _| {
-    Ok(Plan::Distribution(BeckmannPower::<2>::new(p.num("alpha"))?.into()))
+    Ok(Plan::Distribution(
+        BeckmannPower::<2>::new(p.num("alpha"))?.into(),
+    ))
 });
 pub const ENTRY8: Entry = Entry::new(INFO8, |p, _| {
-    Ok(Plan::Distribution(BeckmannPower::<3>::new(p.num("alpha"))?.into()))
+    Ok(Plan::Distribution(
+        BeckmannPower::<3>::new(p.num("alpha"))?.into(),
+    ))
 });
 pub const ENTRY16: Entry = Entry::new(INFO16, |p, _| {
-    Ok(Plan::Distribution(BeckmannPower::<4>::new(p.num("alpha"))?.into()))
+    Ok(Plan::Distribution(
+        BeckmannPower::<4>::new(p.num("alpha"))?.into(),
+    ))
 });
 
 /// Seed 000's exponent `2 / m^2 - 4`.

@@ -13,12 +13,12 @@
 //! Parameters: `f0` in [0, 1] (default 0.04), `eta` in [0.01, 10] (default 1.5), `k` in [0, 20]
 //! (default 0). The cosine is that between the view and the microfacet normal.
 
-use crate::model::{Kind, ModelInfo, Ops};
-use crate::params::{ParamKind, ParamSpec};
-use crate::real::{Real, sqr};
 use crate::entry::Entry;
 use crate::math::Math;
+use crate::model::{Kind, ModelInfo, Ops};
+use crate::params::{ParamKind, ParamSpec};
 use crate::plan::{FresnelForm, Plan};
+use crate::real::{Real, sqr};
 use crate::wgsl::Emit;
 
 pub const F0: ParamSpec = ParamSpec {
@@ -48,9 +48,6 @@ pub const K: ParamSpec = ParamSpec {
     },
     doc: "extinction coefficient (imaginary part of the index, conductors)",
 };
-
-/// The Fresnel choices of `cook-torrance`.
-
 
 macro_rules! info {
     ($id:literal, $params:expr, $formula:literal, $source:literal, $ops:expr) => {
@@ -96,10 +93,14 @@ pub const ENTRY_SCHLICK: Entry = Entry::new(INFO_SCHLICK, |p, _| {
     Ok(Plan::Fresnel(Schlick { f0: p.num("f0") }.into()))
 });
 pub const ENTRY_DIELECTRIC: Entry = Entry::new(INFO_DIELECTRIC, |p, _| {
-    Ok(Plan::Fresnel(Dielectric(Consts::new(p.num("eta"), 0.0)).into()))
+    Ok(Plan::Fresnel(
+        Dielectric(Consts::new(p.num("eta"), 0.0)).into(),
+    ))
 });
 pub const ENTRY_CONDUCTOR: Entry = Entry::new(INFO_CONDUCTOR, |p, _| {
-    Ok(Plan::Fresnel(Conductor(Consts::new(p.num("eta"), p.num("k"))).into()))
+    Ok(Plan::Fresnel(
+        Conductor(Consts::new(p.num("eta"), p.num("k"))).into(),
+    ))
 });
 
 /// No Fresnel factor (1).
@@ -148,7 +149,10 @@ impl FresnelForm for Dielectric {
         dielectric(cos, &self.0)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
-        format!("fb_f_dielectric({c}, {})", e.kx(self.0.eta, "p_eta", &["eta"]))
+        format!(
+            "fb_f_dielectric({c}, {})",
+            e.kx(self.0.eta, "p_eta", &["eta"])
+        )
     }
 }
 
@@ -308,4 +312,3 @@ pub fn conductor<T: Real>(cos: T, p: &Consts) -> T {
         one
     }
 }
-

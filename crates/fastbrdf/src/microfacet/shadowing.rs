@@ -15,13 +15,13 @@
 //! Parameters: `alpha` in [0.01, 1] (default 0.3) for the Smith terms; the V-cavity has none.
 //! Cosines that are NaN or `<= 0` give 0; a cosine of 1 gives G1 = 1.
 
+use crate::entry::Entry;
 use crate::error::Result;
+use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, ShadowInput, Zone};
 use crate::params;
-use crate::real::{Real, sqr};
-use crate::entry::Entry;
-use crate::math::Math;
 use crate::plan::{Plan, ShadowForm};
+use crate::real::{Real, sqr};
 use crate::wgsl::Emit;
 
 pub const INFO_VCAVITY: ModelInfo = ModelInfo {
@@ -66,7 +66,8 @@ pub const INFO_RATIONAL: ModelInfo = ModelInfo {
     note: "",
 };
 
-pub const ENTRY_VCAVITY: Entry = Entry::new(INFO_VCAVITY, |_, _| Ok(Plan::Shadowing(VCavity.into())));
+pub const ENTRY_VCAVITY: Entry =
+    Entry::new(INFO_VCAVITY, |_, _| Ok(Plan::Shadowing(VCavity.into())));
 pub const ENTRY_SMITH: Entry = Entry::new(INFO_SMITH, |p, _| {
     Ok(Plan::Shadowing(Smith::new(p.num("alpha"))?.into()))
 });
@@ -89,7 +90,11 @@ impl ShadowForm for VCavity {
             Some(cos_l) => (g.min(k * cos_l), cos_l > z),
             None => (g, true),
         };
-        if s.cos_v > z && s.cos_h > z && s.cos_vh > z && l_ok { g } else { z }
+        if s.cos_v > z && s.cos_h > z && s.cos_vh > z && l_ok {
+            g
+        } else {
+            z
+        }
     }
     fn wgsl(&self, v: &str, l: &str, h: &str, vh: &str, _e: &Emit) -> String {
         format!("fb_g_v_cavity({v}, {l}, {h}, {vh})")
