@@ -167,7 +167,12 @@ pub fn generate() -> Result<Vec<Fit>, fastbrdf::Error> {
         .collect()
 }
 
-fn fit(name: &'static str, lobe: &'static str, n_lo: f64, degree: usize) -> Result<Fit, fastbrdf::Error> {
+fn fit(
+    name: &'static str,
+    lobe: &'static str,
+    n_lo: f64,
+    degree: usize,
+) -> Result<Fit, fastbrdf::Error> {
     let nodes = degree + 1;
     let (x_lo, x_hi) = (1.0 / N_MAX, 1.0 / n_lo);
     let pi = std::f64::consts::PI;

@@ -33,22 +33,39 @@ use fastbrdf_gpu::runtime_fits::{current_block, generate, reference_integral, wg
 use std::time::Instant;
 use wgpu::util::DeviceExt;
 
-/// (lobe id, WGSL function, bound on the mixed error).
+/// (lobe id, WGSL function, bound on the mixed error). Measured on lavapipe (max over the
+/// grid): cubic 4.1e-7, cubic3 2.2e-7, rational 3.2e-7, cubic-rational 1.6e-7,
+/// cubic-rational-tuned 1.14e-6 (at n ~ 1.05, where Q(n) is clamped to 0.02 and
+/// d0 = 1 + n (Q^(1/n) - 1) ~ 0.02 cancels by a factor ~50; the CPU does it in f64).
 const LOBES: [(&str, &str, f64); 5] = [
-    ("cubic", "fb_rt_cubic", 1e-5),
-    ("cubic3", "fb_rt_cubic3", 1e-5),
-    ("rational", "fb_rt_rational", 1e-5),
-    ("cubic-rational", "fb_rt_cubic_rational", 1e-5),
-    ("cubic-rational-tuned", "fb_rt_cubic_rational_tuned", 1e-5),
+    ("cubic", "fb_rt_cubic", 6e-7),
+    ("cubic3", "fb_rt_cubic3", 4e-7),
+    ("rational", "fb_rt_rational", 5e-7),
+    ("cubic-rational", "fb_rt_cubic_rational", 3e-7),
+    ("cubic-rational-tuned", "fb_rt_cubic_rational_tuned", 2e-6),
 ];
 
 /// The GPU's cut (1 + xcut in f32) within this many units of 2^-24 (f32 ulp of c in
 /// [0.5, 1), where the cut has a jump worth the name) of the CPU's.
+/// Measured: 43.5 (cubic, n ~ 4), 5.7 (cubic3); 0 from n ~ 100 on. A local minimum is flat,
+/// so its position moves by about sqrt(rounding error): f32 against f64, tens of units.
 const CUT_ULPS: f64 = 64.0;
 
-/// Relative error bound of every fb_rt_lobe_integral_<lobe>.
-fn integral_bound(_lobe: &str) -> f64 {
-    1e-5
+/// Relative error bound of fb_rt_lobe_integral_<lobe>: the maximum measured on lavapipe
+/// (in brackets), rounded up. The tail_3 closed form just above v = 0.5 cancels by a factor
+/// ~10 (schlick and rational near n = 2, schlick-modified near n = 2.5); cubic-rational-tuned
+/// carries its level's d0 cancellation (see LOBES).
+fn integral_bound(lobe: &str) -> f64 {
+    match lobe {
+        "pow" => 2e-7,                                                     // 8.4e-8
+        "schlick" | "schlick-modified" | "rational" => 2.5e-6,             // 1.6e-6, 1.8e-6, 1.5e-6
+        "gauss" | "flog" | "sg" | "ue4-phong-approx" | "sg-tuned" => 3e-7, // <= 2.0e-7
+        "flog-normalized" | "flog-normalized-clamped" => 4e-7,             // 2.5e-7
+        "cubic" | "cubic3" => 5e-7, // 2.9e-7, 3.4e-7 beyond the cuts' difference
+        "cubic-rational" => 7e-7,   // 4.3e-7
+        "cubic-rational-tuned" => 2e-6, // 1.1e-6
+        _ => 6e-7,                  // power4/8/16(-tuned): <= 3.9e-7
+    }
 }
 
 /// Bound on a fit's relative error against the f64 integral (f64 evaluation of the series).
@@ -71,7 +88,11 @@ fn n_grid(k: usize) -> Vec<f32> {
 }
 
 fn neighbours(x: f32) -> [f32; 3] {
-    [f32::from_bits(x.to_bits() - 1), x, f32::from_bits(x.to_bits() + 1)]
+    [
+        f32::from_bits(x.to_bits() - 1),
+        x,
+        f32::from_bits(x.to_bits() + 1),
+    ]
 }
 
 /// Runs `fb_rt` model `m` of the test shader on rows (m, c, n).
@@ -231,14 +252,16 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
         rows.push([cut_model as f32, 0.0, n]);
         rows.push([cut_model as f32 + 1.0, 0.0, n]);
     }
-    let ns_int = n_grid(300);
     for k in 0..IDS.len() {
-        for &n in &ns_int {
+        for &n in &ns {
             rows.push([(int_model + k) as f32, 0.0, n]);
         }
     }
-    let out = runner.run(dev, &queue, &rows);
+    let out = runner.run(dev, queue, &rows);
     let ran = t0.elapsed();
+    // The GPU's cut of cubic (k = 0) or cubic3 (k = 1) at the i-th n.
+    let gpu_cut = |k: usize, i: usize| out[lobe_rows + 2 * i + k].max(0.0);
+    let ulp24 = 2f64.powi(-24);
 
     // Lobes.
     let mut failures = Vec::new();
@@ -248,14 +271,18 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
     for (row, v) in rows[..lobe_rows].iter().zip(&out) {
         let (m, c, n) = (row[0] as usize, row[1], row[2]);
         let id = LOBES[m].0;
-        if cache.as_ref().is_none_or(|(cm, cn, _)| *cm != m || *cn != n) {
+        if cache
+            .as_ref()
+            .is_none_or(|(cm, cn, _)| *cm != m || *cn != n)
+        {
             cache = Some((m, n, lobe64(id, n)));
         }
         let l = &cache.as_ref().unwrap().2;
         let v64 = l.eval(f64::from(c));
         if let (Some(cut), _) = cut_and_junction(id, f64::from(n)) {
-            let gcut = out[lobe_rows + 2 * ns.iter().position(|x| *x == n).unwrap() + m];
-            if c >= cut.min(gcut) && c <= cut.max(gcut) {
+            let gcut = gpu_cut(m, ns.iter().position(|x| *x == n).unwrap());
+            let band = f64::from((gcut - cut).abs()) + 4.0 * ulp24;
+            if f64::from((c - cut).abs()) <= band {
                 at_cut[m] += 1;
                 continue;
             }
@@ -271,52 +298,68 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
             "{f}: max mixed error {e:.3e} at n = {n}, c = {c} ({} rows at the cut left out)",
             at_cut[m]
         );
-        if !(e <= *bound) {
+        if e.is_nan() || e > *bound {
             failures.push(format!("{id}: {e:.3e} > {bound:.0e} at n = {n}, c = {c}"));
         }
     }
 
-    // Cuts, in f32 ulp of the CPU's.
+    // Cuts, in units of 2^-24.
     for (k, id) in ["cubic", "cubic3"].iter().enumerate() {
         let mut w = (0.0f64, 0.0f32);
         for (i, &n) in ns.iter().enumerate() {
             let (Some(cut), _) = cut_and_junction(id, f64::from(n)) else {
                 continue;
             };
-            let g = out[lobe_rows + 2 * i + k];
-            let g = if g <= 0.0 { 0.0 } else { g };
-            let e = f64::from((g - cut).abs()) * 2f64.powi(24);
+            let e = f64::from((gpu_cut(k, i) - cut).abs()) / ulp24;
             if e > w.0 {
                 w = (e, n);
             }
         }
         eprintln!("{id} cut: max {:.1} x 2^-24 off at n = {}", w.0, w.1);
-        if !(w.0 <= CUT_ULPS) {
-            failures.push(format!("{id} cut: {:.1} ulp at n = {}", w.0, w.1));
+        if w.0.is_nan() || w.0 > CUT_ULPS {
+            failures.push(format!("{id} cut: {:.1} x 2^-24 at n = {}", w.0, w.1));
         }
     }
 
-    // Integrals.
+    // Integrals. For the cubics, the share of the error that the two cuts' difference explains
+    // (|cut_gpu - cut_cpu| times the jump there, c p(cut)) is reported and taken off: each
+    // integral is that of its own side's lobe.
     let base = lobe_rows + 2 * ns.len();
     for (k, id) in IDS.iter().enumerate() {
-        let mut w = (0.0f64, 0.0f32);
-        for (i, &n) in ns_int.iter().enumerate() {
+        let cubic = ["cubic", "cubic3"].iter().position(|x| x == id);
+        let (mut w, mut raw) = ((0.0f64, 0.0f32), 0.0f64);
+        for (i, &n) in ns.iter().enumerate() {
             let want = reference_integral(id, f64::from(n)).expect("integral");
-            let got = f64::from(out[base + k * ns_int.len() + i]);
+            let got = f64::from(out[base + k * ns.len() + i]);
             let e = (got - want).abs() / want;
-                        if !e.is_finite() || e > w.0 {
+            raw = raw.max(e);
+            let share = cubic.map_or(0.0, |j| {
+                let cut = cut_and_junction(id, f64::from(n)).0.unwrap();
+                let jump = lobe64(id, n).eval(f64::from(cut)) * f64::from(cut);
+                f64::from((gpu_cut(j, i) - cut).abs()) * jump / want
+            });
+            let e = (e - share).max(0.0);
+            if !e.is_finite() || e > w.0 {
                 w = (e, n);
             }
         }
         let bound = integral_bound(id);
+        let note = if cubic.is_some() {
+            format!(" beyond the cuts' difference ({raw:.3e} in all)")
+        } else {
+            String::new()
+        };
         eprintln!(
-            "{}: max relative error {:.3e} at n = {}",
+            "{}: max relative error {:.3e}{note} at n = {}",
             wgsl_name(id),
             w.0,
             w.1
         );
-        if !(w.0 <= bound) {
-            failures.push(format!("Int {id}: {:.3e} > {bound:.0e} at n = {}", w.0, w.1));
+        if w.0.is_nan() || w.0 > bound {
+            failures.push(format!(
+                "Int {id}: {:.3e} > {bound:.0e} at n = {}",
+                w.0, w.1
+            ));
         }
     }
     eprintln!(
@@ -349,7 +392,11 @@ fn generated_fits_are_current_and_within_their_bound() {
     let fresh = wgsl_block(&fits);
     let stored = current_block(src).expect("runtime.wgsl has its generated block");
     let (a, b) = (numbers(stored), numbers(&fresh));
-    assert_eq!(a.len(), b.len(), "the generated block's shape changed: regenerate");
+    assert_eq!(
+        a.len(),
+        b.len(),
+        "the generated block's shape changed: regenerate"
+    );
     for (x, y) in a.iter().zip(&b) {
         // The same f32 up to a few ulp (libm may differ across platforms in the last bit).
         assert!(
@@ -368,7 +415,16 @@ fn generated_fits_are_current_and_within_their_bound() {
                 w = (e, n);
             }
         }
-        eprintln!("fit {}: max relative error {:.3e} at n = {}", f.lobe, w.0, w.1);
-        assert!(w.0 <= FIT_BOUND, "fit {}: {:.3e} at n = {}", f.lobe, w.0, w.1);
+        eprintln!(
+            "fit {}: max relative error {:.3e} at n = {}",
+            f.lobe, w.0, w.1
+        );
+        assert!(
+            w.0 <= FIT_BOUND,
+            "fit {}: {:.3e} at n = {}",
+            f.lobe,
+            w.0,
+            w.1
+        );
     }
 }
