@@ -14,6 +14,7 @@
 //!   the extremes; metric the relative error |I_gpu - I64| / I64 (= that of coef(n) to first
 //!   order; Int(n) < 1/3, so the mixed metric would hide everything), I64 from
 //!   `runtime_fits::reference_integral` (`lobe_integral`, kink-aware for the clamped flog).
+//! - The helpers fb_rt_expm1 (x in [-4, 0.5]) and fb_rt_ln (x in [1e-3, 4]), relative error.
 //! - The fits: regenerated and compared with the block in `runtime.wgsl`, and within `FIT_BOUND`
 //!   of the f64 integral on 400 log-spaced n (CPU only, no GPU needed).
 //!
@@ -67,6 +68,10 @@ fn integral_bound(lobe: &str) -> f64 {
         _ => 6e-7,                  // power4/8/16(-tuned): <= 3.9e-7
     }
 }
+
+/// Relative error bound of fb_rt_expm1 and fb_rt_ln (measured: 2.7e-7 at x = -0.618, past
+/// the series, where exp(x) - 1 is used; 2.1e-7 at x = 1.018).
+const HELPER_BOUND: f64 = 5e-7;
 
 /// Bound on a fit's relative error against the f64 integral (f64 evaluation of the series).
 const FIT_BOUND: f64 = 2e-7;
@@ -225,6 +230,9 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
     let cut_model = calls.len();
     calls.push("1.0 + fb_rt_hermite(n, 0.5, fb_rt_expm1(FB_RT_LN_HALF / n)).xcut".into());
     calls.push("1.0 + fb_rt_three_point(n).xcut".into());
+    let helper_model = calls.len();
+    calls.push("fb_rt_expm1(c)".into());
+    calls.push("fb_rt_ln(c)".into());
     let int_model = calls.len();
     for id in IDS {
         calls.push(format!("{}(n)", wgsl_name(id)));
@@ -257,6 +265,19 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
             rows.push([(int_model + k) as f32, 0.0, n]);
         }
     }
+    // The helpers: expm1 on [-4, 0.5] (the exponents ln(level) / n that occur: ln(0.02) = -3.9),
+    // ln on [1e-3, 4], 2000 points each plus the neighbours of 0, 0.5, -0.5 and 1.
+    let helper_rows = rows.len();
+    let mut xs_e: Vec<f32> = (0..=2000).map(|i| -4.0 + 4.5 * i as f32 / 2000.0).collect();
+    xs_e.extend((1..=30).flat_map(|k| [-(2f32.powi(-k)), 2f32.powi(-k)]));
+    xs_e.extend([-0.5f32, 0.5].iter().flat_map(|x| neighbours(*x)));
+    let mut xs_l: Vec<f32> = (0..=2000)
+        .map(|i| 10f32.powf(-3.0 + 3.6 * i as f32 / 2000.0))
+        .collect();
+    xs_l.extend(neighbours(1.0));
+    xs_l.extend((1..=30).flat_map(|k| [1.0 - 2f32.powi(-k) / 2.0, 1.0 + 2f32.powi(-k)]));
+    rows.extend(xs_e.iter().map(|x| [helper_model as f32, *x, 1.0]));
+    rows.extend(xs_l.iter().map(|x| [helper_model as f32 + 1.0, *x, 1.0]));
     let out = runner.run(dev, queue, &rows);
     let ran = t0.elapsed();
     // The GPU's cut of cubic (k = 0) or cubic3 (k = 1) at the i-th n.
@@ -318,6 +339,36 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
         eprintln!("{id} cut: max {:.1} x 2^-24 off at n = {}", w.0, w.1);
         if w.0.is_nan() || w.0 > CUT_ULPS {
             failures.push(format!("{id} cut: {:.1} x 2^-24 at n = {}", w.0, w.1));
+        }
+    }
+
+    // The helpers, in relative error.
+    let mut i = helper_rows;
+    for (name, xs, f, bound) in [
+        (
+            "fb_rt_expm1",
+            &xs_e,
+            f64::exp_m1 as fn(f64) -> f64,
+            HELPER_BOUND,
+        ),
+        ("fb_rt_ln", &xs_l, f64::ln as fn(f64) -> f64, HELPER_BOUND),
+    ] {
+        let mut w = (0.0f64, 0.0f32);
+        for x in xs.iter() {
+            let want = f(f64::from(*x));
+            let e = if want == 0.0 {
+                f64::from(out[i]).abs()
+            } else {
+                (f64::from(out[i]) - want).abs() / want.abs()
+            };
+            i += 1;
+            if !e.is_finite() || e > w.0 {
+                w = (e, *x);
+            }
+        }
+        eprintln!("{name}: max relative error {:.3e} at x = {}", w.0, w.1);
+        if w.0.is_nan() || w.0 > bound {
+            failures.push(format!("{name}: {:.3e} > {bound:.0e} at x = {}", w.0, w.1));
         }
     }
 
