@@ -15,6 +15,7 @@ pub mod context;
 pub mod export;
 pub mod library;
 pub mod render;
+pub mod runtime_fits;
 pub mod spec;
 
 pub use compute::GpuKernel;

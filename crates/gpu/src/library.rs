@@ -10,11 +10,12 @@ use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
 /// The library's source files, in dependency order.
-pub const FILES: [(&str, &str); 4] = [
+pub const FILES: [(&str, &str); 5] = [
     ("common.wgsl", include_str!("wgsl/common.wgsl")),
     ("lobes.wgsl", include_str!("wgsl/lobes.wgsl")),
     ("microfacet.wgsl", include_str!("wgsl/microfacet.wgsl")),
     ("brdf.wgsl", include_str!("wgsl/brdf.wgsl")),
+    ("runtime.wgsl", include_str!("wgsl/runtime.wgsl")),
 ];
 
 /// One library item.
