@@ -308,12 +308,8 @@ impl Plan {
     pub fn model<T: Real>(&self) -> Model<T> {
         match self {
             Plan::Lobe(l) => Model::Lobe(with_lobe!(l, x => Box::new(Scalar(*x)))),
-            Plan::Distribution(d) => {
-                Model::Distribution(with_dist!(d, x => Box::new(Scalar(*x))))
-            }
-            Plan::Shadowing(g) => {
-                Model::Shadowing(with_shadow!(g, x => Box::new(Scalar(*x))))
-            }
+            Plan::Distribution(d) => Model::Distribution(with_dist!(d, x => Box::new(Scalar(*x)))),
+            Plan::Shadowing(g) => Model::Shadowing(with_shadow!(g, x => Box::new(Scalar(*x)))),
             Plan::Fresnel(f) => Model::Fresnel(with_fresnel!(f, x => Box::new(Scalar(*x)))),
             Plan::Brdf(b) => Model::Brdf(with_brdf!(b, x => Box::new(Scalar(*x)))),
         }

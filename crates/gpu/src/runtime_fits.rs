@@ -14,7 +14,6 @@
 //! the generated block of `runtime.wgsl`; without `--write` it prints it); `tests/runtime.rs`
 //! regenerates and compares, and bounds the fit's error against `lobe_integral` on a dense grid.
 
-use fastbrdf::brdf::phong::lobe_integral;
 use fastbrdf::lobes::flog::seed_coef;
 
 /// The marker lines around the generated block in `runtime.wgsl`.
@@ -137,22 +136,10 @@ fn lit(x: f32) -> String {
     }
 }
 
-/// `Int(n)` in f64: `lobe_integral`, except for `flog-normalized-clamped`, integrated here with
-/// the clamp's kink (`coef flog(c) = 1`, i.e. `c = 2^((1 - 2^(2 (1 - 1/coef))) / n)`) as a
-/// breakpoint: `lobe_integral` does not split there, and its Gauss-Kronrod estimate misses the
-/// kink at some n (8.3e-7 relative at n = 69, against 3e-13 for a 2e6-point midpoint rule).
+/// `Int(n)` in f64 (`fastbrdf::registry::lobe_integral`: adaptive Gauss-Kronrod split at the
+/// lobe's cut and kinks, the clamped flog's kink included).
 pub fn reference_integral(lobe: &str, n: f64) -> Result<f64, fastbrdf::Error> {
-    if lobe != "flog-normalized-clamped" {
-        return lobe_integral(lobe, n);
-    }
-    let l = fastbrdf::brdf::phong::build_lobe::<f64>(lobe, n)?;
-    let coef = seed_coef(n);
-    let mut breaks = vec![l.zero_below()];
-    if coef > 1.0 {
-        breaks.push(((1.0 - (2.0 * (1.0 - 1.0 / coef)).exp2()) / n).exp2());
-    }
-    let lo = l.zero_below();
-    Ok(fastbrdf::quad::integrate(|c| l.eval(c) * c, lo, 1.0, &breaks, 1e-12).0)
+    fastbrdf::registry::lobe_integral(lobe, n)
 }
 
 /// Computes every fit (a few dozen quadratures each).

@@ -117,6 +117,27 @@ impl Instance {
         Ok(if missing { None } else { Some(inst) })
     }
 
+    /// A runtime-parameter instance behind an entry with the model's plain signature
+    /// (`fb_runtime_entry`), its parameters read from the storage array `fb_k`: as in a
+    /// shader whose parameters vary per pixel (uniforms, textures), the compiler cannot fold
+    /// them into the in-shader coefficient computations. For the compute path and the tests.
+    pub fn runtime_entry(mut self) -> Self {
+        let args: String = (0..self.sliders.len())
+            .map(|i| format!(", fb_k[{i}]"))
+            .collect();
+        let kind = self.info.kind;
+        self.wrapper = format!(
+            "{}\nfn fb_runtime_entry({}) -> f32 {{\n    return {}({}{args});\n}}\n",
+            self.wrapper,
+            signature(kind),
+            self.function,
+            arguments(kind)
+        );
+        self.function = "fb_runtime_entry".into();
+        self.coefs = self.sliders.iter().map(|(_, v)| *v as f32).collect();
+        self
+    }
+
     /// A self-contained WGSL module: the library items the function needs, then the function.
     pub fn module_source(&self) -> String {
         let mut s = library::closure_source(&self.wrapper);

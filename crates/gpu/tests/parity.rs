@@ -93,24 +93,6 @@ fn dir_grid() -> [Vec<f32>; 6] {
     cols
 }
 
-/// A symbolic instance (coefficients computed in the shader from `p_<param>` arguments, as
-/// BRDF Explorer exports use them) behind an entry with the model's plain signature.
-fn symbolic_entry(mut sym: Instance) -> Instance {
-    let args: String = sym
-        .sliders
-        .iter()
-        .map(|(_, v)| format!(", {}", fastbrdf_gpu::spec::lit(*v)))
-        .collect();
-    let sig = fastbrdf_gpu::spec::signature(sym.info.kind);
-    let call = fastbrdf_gpu::spec::arguments(sym.info.kind);
-    sym.wrapper = format!(
-        "{}\nfn fb_symbolic_entry({sig}) -> f32 {{\n    return {}({call}{args});\n}}\n",
-        sym.wrapper, sym.function
-    );
-    sym.function = "fb_symbolic_entry".into();
-    sym
-}
-
 /// Relative input perturbation: 8 f32 ulp.
 const DELTA: f32 = 8.0 / 16_777_216.0;
 /// For phong and blinn-phong: 32 ulp. The half vector and the reflected cosine go through
@@ -232,7 +214,7 @@ fn every_model_matches_the_cpu() {
                     "storage" => Instance::with_storage(info.id, &given).unwrap(),
                     "literals" => Instance::new(info.id, &given).unwrap(),
                     _ => match Instance::symbolic(info.id, &given).unwrap() {
-                        Some(sym) => symbolic_entry(sym),
+                        Some(sym) => sym.runtime_entry(),
                         None => continue,
                     },
                 };

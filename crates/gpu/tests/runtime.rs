@@ -13,7 +13,7 @@
 //! - Integrals (`fb_rt_lobe_integral_<lobe>` for every lobe id): n on 300 log-spaced values plus
 //!   the extremes; metric the relative error |I_gpu - I64| / I64 (= that of coef(n) to first
 //!   order; Int(n) < 1/3, so the mixed metric would hide everything), I64 from
-//!   `runtime_fits::reference_integral` (`lobe_integral`, kink-aware for the clamped flog).
+//!   `runtime_fits::reference_integral` (`registry::lobe_integral`).
 //! - The helpers fb_rt_expm1 (x in [-4, 0.5]) and fb_rt_ln (x in [1e-3, 4]), relative error.
 //! - The fits: regenerated and compared with the block in `runtime.wgsl`, and within `FIT_BOUND`
 //!   of the f64 integral on 400 log-spaced n (CPU only, no GPU needed).
@@ -23,7 +23,6 @@
 
 mod common;
 
-use fastbrdf::lobes::IDS;
 use fastbrdf::lobes::cubic::CubicShape;
 use fastbrdf::model::Model;
 use fastbrdf::registry;
@@ -234,7 +233,8 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
     calls.push("fb_rt_expm1(c)".into());
     calls.push("fb_rt_ln(c)".into());
     let int_model = calls.len();
-    for id in IDS {
+    let ids = fastbrdf::registry::ids_of(fastbrdf::Kind::Lobe);
+    for id in &ids {
         calls.push(format!("{}(n)", wgsl_name(id)));
     }
     let runner = Runner::new(dev, &calls);
@@ -260,7 +260,7 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
         rows.push([cut_model as f32, 0.0, n]);
         rows.push([cut_model as f32 + 1.0, 0.0, n]);
     }
-    for k in 0..IDS.len() {
+    for k in 0..ids.len() {
         for &n in &ns {
             rows.push([(int_model + k) as f32, 0.0, n]);
         }
@@ -376,7 +376,7 @@ fn runtime_lobes_and_integrals_match_the_f64_models_on_the_gpu() {
     // (|cut_gpu - cut_cpu| times the jump there, c p(cut)) is reported and taken off: each
     // integral is that of its own side's lobe.
     let base = lobe_rows + 2 * ns.len();
-    for (k, id) in IDS.iter().enumerate() {
+    for (k, id) in ids.iter().enumerate() {
         let cubic = ["cubic", "cubic3"].iter().position(|x| x == id);
         let (mut w, mut raw) = ((0.0f64, 0.0f32), 0.0f64);
         for (i, &n) in ns.iter().enumerate() {

@@ -159,6 +159,16 @@ impl LobeForm for Flog {
     fn zero_below(&self) -> f64 {
         zero_cos(self.n)
     }
+    fn kinks(&self) -> Vec<f64> {
+        // The clamp's kink, where coef flog(c) = 1: c = 2^((1 - 2^(2 (1 - 1/coef))) / n)
+        // (inside the lobe when coef > 1). Without it as a breakpoint the normalisation
+        // integral erred by 8.3e-7 relative at n = 69 (found by the runtime-parameter tests).
+        if self.mode == FlogMode::NormalizedClamped && self.coef > 1.0 {
+            vec![((1.0 - (2.0 * (1.0 - 1.0 / self.coef)).exp2()) / self.n).exp2()]
+        } else {
+            Vec::new()
+        }
+    }
     fn normalised(&self) -> bool {
         self.mode != FlogMode::Plain
     }

@@ -47,10 +47,14 @@ fn fb_rt_expm1(x: f32) -> f32 {
 /// ln(x) for finite x > 0 with a small relative error: x = 2^e f with f in [sqrt(1/2), sqrt(2)),
 /// ln x = (e + fb_log2(f)) ln 2 (fb_log2's series there). Exactly 0 at x = 1.
 fn fb_rt_ln(x: f32) -> f32 {
-    let fe = frexp(x);
-    let low = fe.fract < 0.70710677;
-    let f = select(fe.fract, 2.0 * fe.fract, low);
-    let e = f32(fe.exp) - select(0.0, 1.0, low);
+    // frexp by the bits (x positive and normal here): GLSL before 4.00 has no frexp, and
+    // BRDF Explorer's shaders are GLSL 3.30.
+    let bits = bitcast<u32>(x);
+    let fract = bitcast<f32>((bits & 0x007fffffu) | 0x3f000000u);
+    let exp = i32((bits >> 23u) & 0xffu) - 126;
+    let low = fract < 0.70710677;
+    let f = select(fract, 2.0 * fract, low);
+    let e = f32(exp) - select(0.0, 1.0, low);
     return e * FB_RT_LN2 + fb_log2(f) * FB_RT_LN2;
 }
 
