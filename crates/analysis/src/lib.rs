@@ -6,13 +6,15 @@
 //!   quadrature, and least-squares fits of closed forms for `coef(n)`.
 //! - [`albedo`]: directional albedo against incidence angle, with a white-furnace verdict.
 //! - [`reproduce`]: every numeric claim of the three seed papers, measured.
-//! - [`plot`]: the charts (PNG and SVG).
+//! - [`charts`]: the data of every chart and of the seeds' figures.
+//! - [`plot`]: the charts drawn (PNG and SVG).
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
 
 // Guards written `if !(x > lo)` also catch NaN, on purpose (see the fastbrdf crate).
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod albedo;
+pub mod charts;
 pub mod errors;
 pub mod fit;
 pub mod normalize;
