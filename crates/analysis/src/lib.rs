@@ -5,6 +5,7 @@
 //! - [`normalize`]: `Int(n)` and `coef(n) = 1 / (2 pi Int(n))` of a lobe by adaptive f64
 //!   quadrature, and least-squares fits of closed forms for `coef(n)`.
 //! - [`albedo`]: directional albedo against incidence angle, with a white-furnace verdict.
+//! - [`pareto`]: every lobe's error against its SIMD cost, and the Pareto front.
 //! - [`reproduce`]: every numeric claim of the three seed papers, measured.
 //! - [`charts`]: the data of every chart and of the seeds' figures.
 //! - [`plot`]: the charts drawn (PNG and SVG).
@@ -18,6 +19,7 @@ pub mod charts;
 pub mod errors;
 pub mod fit;
 pub mod normalize;
+pub mod pareto;
 pub mod plot;
 pub mod range;
 pub mod reproduce;
