@@ -7,6 +7,7 @@
 //! - [`albedo`]: directional albedo against incidence angle, with a white-furnace verdict.
 //! - [`pareto`]: every lobe's error against its SIMD cost, and the Pareto front.
 //! - [`reproduce`]: every numeric claim of the three seed papers, measured.
+//! - [`check`]: every documented bound of the registry re-measured.
 //! - [`charts`]: the data of every chart and of the seeds' figures.
 //! - [`plot`]: the charts drawn (PNG and SVG).
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
@@ -16,6 +17,7 @@
 
 pub mod albedo;
 pub mod charts;
+pub mod check;
 pub mod errors;
 pub mod fit;
 pub mod normalize;
