@@ -120,6 +120,14 @@ impl Report {
         }
         Ok(r)
     }
+
+    /// Every speedup of the run as `(name, measured)`, as [`crate::reproduce::run`] takes them.
+    pub fn measured_speedups(&self) -> Vec<(String, f64)> {
+        self.speedups
+            .iter()
+            .map(|s| (s.name.clone(), s.measured))
+            .collect()
+    }
 }
 
 /// The CPU's model name (Linux /proc/cpuinfo), or "unknown".
@@ -697,5 +705,38 @@ mod tests {
         // The instruction set the benchmark picks is always measurable.
         assert!(fma_per_s(Isa::best(), budget).is_some());
         assert!(fma_supported(Isa::Sse2) && fma_supported(Isa::Scalar));
+    }
+
+    #[test]
+    fn measured_speedups_keep_the_run_order() {
+        let kernels = vec![
+            baseline("powf-loop", 4096.0 / 1e8),
+            KernelRow {
+                model: "pow".into(),
+                variant: "simd".into(),
+                batch: 4096,
+                evals_per_s: 4e8,
+                isa: "avx2".into(),
+                fma_fraction: None,
+            },
+        ];
+        let r = Report {
+            cpu: "test".into(),
+            isa: "avx2".into(),
+            threads: 1,
+            fma_per_s: 1e10,
+            speedups: speedups(&kernels, 4096, 1 << 24),
+            kernels,
+            quick: true,
+            gpu: None,
+        };
+        let pairs = r.measured_speedups();
+        assert_eq!(pairs.len(), r.speedups.len());
+        let (name, v) = pairs
+            .iter()
+            .find(|(n, _)| n == "pow.simd.over.powf-loop")
+            .expect("the pow speedup is computed");
+        assert_eq!(name, "pow.simd.over.powf-loop");
+        assert!((v - 4.0).abs() < 1e-12, "{v}");
     }
 }
