@@ -352,6 +352,15 @@ pub fn fit_with(
         .collect()
 }
 
+/// The largest tuned / untuned error over the rows with p >= 8 (where the untuned error is
+/// above 1e-9); 0 when there is none.
+pub fn worst_tuned_gain(rows: &[FitRow]) -> f64 {
+    rows.iter()
+        .filter(|r| r.param >= 8.0 && r.untuned_error > 1e-9)
+        .map(|r| r.error / r.untuned_error)
+        .fold(0.0, f64::max)
+}
+
 /// A closed form for the coefficient: `k(p) = k0(p) R(1/p)` (or `R(1/p)` itself for the
 /// cubic-rational level), `R` a polynomial of degree 4 fitted by least squares to the per-p
 /// optima; with its own error: the largest relative deviation from the optima, and the
@@ -414,5 +423,49 @@ pub fn closed_form(family: Family, metric: Metric, rows: &[FitRow]) -> ClosedFor
         max_coefficient_deviation: dev,
         worst_gain: gain,
         worst_gain_at: at,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(param: f64, error: f64, untuned_error: f64) -> FitRow {
+        FitRow {
+            param,
+            coefficient: 1.0,
+            error,
+            untuned_coefficient: 1.0,
+            untuned_error,
+        }
+    }
+
+    #[test]
+    fn worst_tuned_gain_is_the_largest_ratio_from_n_8() {
+        let rows = [
+            // Below n = 8: ignored, however bad.
+            row(4.0, 0.9, 0.1),
+            row(8.0, 0.02, 0.1),
+            row(16.0, 0.03, 0.1),
+            // An untuned form that is exact: ignored.
+            row(32.0, 0.5, 0.0),
+        ];
+        assert!((worst_tuned_gain(&rows) - 0.3).abs() < 1e-15);
+        assert_eq!(worst_tuned_gain(&rows[..1]), 0.0);
+        assert_eq!(worst_tuned_gain(&[]), 0.0);
+    }
+
+    /// The minimax fit never loses to the untuned coefficient it starts from.
+    #[test]
+    fn tuned_gain_of_a_real_fit_is_at_most_one() {
+        let rows = fit_with(
+            Family::Power16,
+            Metric::MaxAbs,
+            &[8.0, 50.0, 200.0],
+            false,
+            &|| {},
+        );
+        let g = worst_tuned_gain(&rows);
+        assert!(g > 0.0 && g <= 1.0, "{g}");
     }
 }

@@ -5,17 +5,23 @@
 //! - [`normalize`]: `Int(n)` and `coef(n) = 1 / (2 pi Int(n))` of a lobe by adaptive f64
 //!   quadrature, and least-squares fits of closed forms for `coef(n)`.
 //! - [`albedo`]: directional albedo against incidence angle, with a white-furnace verdict.
+//! - [`pareto`]: every lobe's error against its SIMD cost, and the Pareto front.
 //! - [`reproduce`]: every numeric claim of the three seed papers, measured.
-//! - [`plot`]: the charts (PNG and SVG).
+//! - [`check`]: every documented bound of the registry re-measured.
+//! - [`charts`]: the data of every chart and of the seeds' figures.
+//! - [`plot`]: the charts drawn (PNG and SVG).
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
 
 // Guards written `if !(x > lo)` also catch NaN, on purpose (see the fastbrdf crate).
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod albedo;
+pub mod charts;
+pub mod check;
 pub mod errors;
 pub mod fit;
 pub mod normalize;
+pub mod pareto;
 pub mod plot;
 pub mod range;
 pub mod reproduce;

@@ -8,6 +8,13 @@
 /// The most values a range or list may have.
 pub const MAX_VALUES: usize = 1_000_000;
 
+/// A parameter value as text (for `registry::build` and messages): the shortest round-trip
+/// text, in exponent form when that is long (1e308 rather than 309 digits).
+pub fn num(x: f64) -> String {
+    let s = x.to_string();
+    if s.len() > 20 { format!("{x:e}") } else { s }
+}
+
 /// Parses a range or list; `default_step` applies to `LO..HI`. Errors say what is wrong.
 pub fn parse(text: &str, default_step: f64) -> Result<Vec<f64>, String> {
     let t = text.trim();

@@ -120,6 +120,14 @@ impl Report {
         }
         Ok(r)
     }
+
+    /// Every speedup of the run as `(name, measured)`, as [`crate::reproduce::run`] takes them.
+    pub fn measured_speedups(&self) -> Vec<(String, f64)> {
+        self.speedups
+            .iter()
+            .map(|s| (s.name.clone(), s.measured))
+            .collect()
+    }
 }
 
 /// The CPU's model name (Linux /proc/cpuinfo), or "unknown".
@@ -183,18 +191,45 @@ unsafe fn fma_avx2(iters: usize, a: f32, b: f32) -> f32 {
     fma_body(iters, a, b)
 }
 
+/// Whether this CPU has every feature the FMA loop for `isa` is compiled with (the
+/// `#[target_feature]` sets of `fma_avx512` and `fma_avx2`); the SSE2 and scalar loops need
+/// nothing beyond the target's baseline.
+pub fn fma_supported(isa: Isa) -> bool {
+    match isa {
+        #[cfg(target_arch = "x86_64")]
+        Isa::Avx512 => {
+            std::is_x86_feature_detected!("avx512f")
+                && std::is_x86_feature_detected!("avx512vl")
+                && std::is_x86_feature_detected!("fma")
+        }
+        #[cfg(target_arch = "x86_64")]
+        Isa::Avx2Fma => {
+            std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma")
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        Isa::Avx512 | Isa::Avx2Fma => false,
+        Isa::Sse2 | Isa::Scalar => true,
+    }
+}
+
 /// Lane FMAs per second on one core with `isa` (256 independent accumulators, so the FMA
 /// pipes, not their latency, limit it). Without FMA (SSE2) it counts a multiply-add pair
-/// as one.
-pub fn fma_per_s(isa: Isa, budget: Duration) -> f64 {
+/// as one. `None` when this CPU lacks `isa` ([`fma_supported`]): the loop is never run
+/// with instructions the CPU does not have.
+pub fn fma_per_s(isa: Isa, budget: Duration) -> Option<f64> {
+    if !fma_supported(isa) {
+        return None;
+    }
     let iters = 20_000;
     let (a, b) = (black_box(0.999_9f32), black_box(1e-4f32));
     let secs = time(
         || {
             let r = match isa {
-                // SAFETY: only called with an ISA from `Isa::available()`.
+                // SAFETY: `fma_supported(isa)` checked above that the CPU has avx512f,
+                // avx512vl and fma, the features `fma_avx512` is compiled with.
                 #[cfg(target_arch = "x86_64")]
                 Isa::Avx512 => unsafe { fma_avx512(iters, a, b) },
+                // SAFETY: `fma_supported(isa)` checked above that the CPU has avx2 and fma.
                 #[cfg(target_arch = "x86_64")]
                 Isa::Avx2Fma => unsafe { fma_avx2(iters, a, b) },
                 _ => {
@@ -211,7 +246,7 @@ pub fn fma_per_s(isa: Isa, budget: Duration) -> f64 {
         },
         budget,
     );
-    (iters * ACC) as f64 / secs
+    Some((iters * ACC) as f64 / secs)
 }
 
 // ---------- inputs ----------
@@ -337,7 +372,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         Duration::from_millis(150)
     };
     let isa = Isa::best();
-    let fma = fma_per_s(isa, budget * 2);
+    let fma = fma_per_s(isa, budget * 2).expect("Isa::best() is an instruction set this CPU has");
     let small = 4096;
     let small_in = Inputs::new(small);
     let large_in = Inputs::new(opts.large);
@@ -649,4 +684,59 @@ pub fn speedups(k: &[KernelRow], small: usize, large: usize) -> Vec<SpeedupRow> 
         );
     }
     v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `fma_per_s` is safe to call with every instruction set: a positive finite rate for
+    /// those this CPU has, `None` (never an illegal instruction) for the others.
+    #[test]
+    fn fma_per_s_is_safe_for_every_isa() {
+        let budget = Duration::from_millis(1);
+        for isa in [Isa::Avx512, Isa::Avx2Fma, Isa::Sse2, Isa::Scalar] {
+            let rate = fma_per_s(isa, budget);
+            assert_eq!(rate.is_some(), fma_supported(isa), "{isa:?}");
+            if let Some(r) = rate {
+                assert!(r.is_finite() && r > 0.0, "{isa:?}: {r}");
+            }
+        }
+        // The instruction set the benchmark picks is always measurable.
+        assert!(fma_per_s(Isa::best(), budget).is_some());
+        assert!(fma_supported(Isa::Sse2) && fma_supported(Isa::Scalar));
+    }
+
+    #[test]
+    fn measured_speedups_keep_the_run_order() {
+        let kernels = vec![
+            baseline("powf-loop", 4096.0 / 1e8),
+            KernelRow {
+                model: "pow".into(),
+                variant: "simd".into(),
+                batch: 4096,
+                evals_per_s: 4e8,
+                isa: "avx2".into(),
+                fma_fraction: None,
+            },
+        ];
+        let r = Report {
+            cpu: "test".into(),
+            isa: "avx2".into(),
+            threads: 1,
+            fma_per_s: 1e10,
+            speedups: speedups(&kernels, 4096, 1 << 24),
+            kernels,
+            quick: true,
+            gpu: None,
+        };
+        let pairs = r.measured_speedups();
+        assert_eq!(pairs.len(), r.speedups.len());
+        let (name, v) = pairs
+            .iter()
+            .find(|(n, _)| n == "pow.simd.over.powf-loop")
+            .expect("the pow speedup is computed");
+        assert_eq!(name, "pow.simd.over.powf-loop");
+        assert!((v - 4.0).abs() < 1e-12, "{v}");
+    }
 }

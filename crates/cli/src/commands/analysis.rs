@@ -18,12 +18,7 @@ pub fn bar(len: u64, msg: &'static str) -> ProgressBar {
     b
 }
 
-/// A number for messages and parameter strings: shortest round-trip text, in exponent form
-/// when that is long (1e308 rather than 309 digits).
-pub fn num(x: f64) -> String {
-    let s = x.to_string();
-    if s.len() > 20 { format!("{x:e}") } else { s }
-}
+pub use fastbrdf_analysis::range::num;
 
 /// A number for CSV: the shortest round-trip text, or an empty field when it is not finite
 /// (the same "no finite value" that JSON writes as null).

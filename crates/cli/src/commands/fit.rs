@@ -3,11 +3,9 @@
 
 use super::analysis::bar;
 use crate::CliError;
-use fastbrdf::Kind;
-use fastbrdf::batch::{Input, Kernel};
 use fastbrdf_analysis::fit::{self, Family, Metric};
-use fastbrdf_analysis::plot::{Point, save_scatter};
-use fastbrdf_analysis::range;
+use fastbrdf_analysis::plot::save_scatter;
+use fastbrdf_analysis::{pareto, range};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -149,11 +147,7 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
             ratio
         );
     }
-    let worst = rows
-        .iter()
-        .filter(|r| r.param >= 8.0 && r.untuned_error > 1e-9)
-        .map(|r| r.error / r.untuned_error)
-        .fold(0.0, f64::max);
+    let worst = fit::worst_tuned_gain(&rows);
     crate::outln!("\nworst tuned / untuned error over {name} >= 8: {worst:.4}");
     if let Some(c) = closed {
         let what = if family == Family::CubicRational {
@@ -204,118 +198,21 @@ pub struct ParetoArgs {
     bench: Option<PathBuf>,
 }
 
-#[derive(serde::Serialize, Clone)]
-struct ParetoRow {
-    model: &'static str,
-    ops: String,
-    simd_evals_per_s: f64,
-    max_abs_1_1000: f64,
-    max_abs_8_1000: f64,
-    max_rel_epicentre_8_1000: f64,
-    pareto: bool,
-}
-
-fn throughput(id: &str) -> f64 {
-    let x: Vec<f32> = (0..4096).map(|i| (i as f32 + 0.5) / 4096.0).collect();
-    let mut out = vec![0.0f32; 4096];
-    let k = Kernel::new(id, &[("n", "200")]).expect("lobe kernels build");
-    let t = fastbrdf_analysis::speed::time(
-        || k.eval(Input::Cos(&x), &mut out).expect("sizes match"),
-        std::time::Duration::from_millis(60),
-    );
-    4096.0 / t
-}
-
 pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
-    let saved: Option<fastbrdf_analysis::speed::Report> = match &a.bench {
+    let saved = match &a.bench {
         None => None,
         Some(p) => Some(fastbrdf_analysis::speed::Report::load(p)?),
     };
-    let lobes: Vec<&'static fastbrdf::ModelInfo> = fastbrdf::registry::all()
-        .iter()
-        .map(|e| &e.info)
-        .filter(|i| i.kind == Kind::Lobe && i.id != "pow" && !i.id.starts_with("flog-normalized"))
-        .collect();
-    let pb = bar(lobes.len() as u64, "pareto");
-    let mut rows: Vec<ParetoRow> = lobes
-        .iter()
-        .map(|info| {
-            let worst = |lo: f64, metric, zone| {
-                let b = fastbrdf::ErrorBound {
-                    reference: "pow",
-                    metric,
-                    zone,
-                    param: ("n", lo, 1000.0),
-                    bound: 0.0,
-                };
-                fastbrdf::accuracy::worst(info.id, &b)
-                    .map(|w| w.err)
-                    .unwrap_or(f64::NAN)
-            };
-            let o = info.ops;
-            let speed = match &saved {
-                Some(r) => r
-                    .kernels
-                    .iter()
-                    .find(|k| k.model == info.id && k.variant == "simd" && k.batch == 4096)
-                    .map(|k| k.evals_per_s)
-                    .unwrap_or(f64::NAN),
-                None => throughput(info.id),
-            };
-            pb.inc(1);
-            ParetoRow {
-                model: info.id,
-                ops: format!(
-                    "{}/{}/{}/{}/{}",
-                    o.mul, o.add, o.div, o.sqrt, o.transcendental
-                ),
-                simd_evals_per_s: speed,
-                max_abs_1_1000: worst(1.0, fastbrdf::Metric::MaxAbs, fastbrdf::Zone::All),
-                max_abs_8_1000: worst(8.0, fastbrdf::Metric::MaxAbs, fastbrdf::Zone::All),
-                max_rel_epicentre_8_1000: worst(
-                    8.0,
-                    fastbrdf::Metric::MaxRel,
-                    fastbrdf::Zone::Epicentre,
-                ),
-                pareto: false,
-            }
-        })
-        .collect();
+    let pb = bar(pareto::lobes().len() as u64, "pareto");
+    let rows = pareto::rows(saved.as_ref(), &|| pb.inc(1));
     pb.finish_and_clear();
-    // Pareto front on (cost = 1 / throughput, max abs error over n in [8, 1000]).
-    for i in 0..rows.len() {
-        let (ci, ei) = (1.0 / rows[i].simd_evals_per_s, rows[i].max_abs_8_1000);
-        rows[i].pareto = !rows.iter().enumerate().any(|(j, r)| {
-            let (cj, ej) = (1.0 / r.simd_evals_per_s, r.max_abs_8_1000);
-            j != i && cj <= ci && ej <= ei && (cj < ci || ej < ei)
-        });
-    }
-    rows.sort_by(|a, b| b.simd_evals_per_s.total_cmp(&a.simd_evals_per_s));
-    let front: Vec<(f64, f64)> = {
-        let mut f: Vec<(f64, f64)> = rows
-            .iter()
-            .filter(|r| r.pareto)
-            .map(|r| (1e9 / r.simd_evals_per_s, r.max_abs_8_1000))
-            .collect();
-        f.sort_by(|a, b| a.0.total_cmp(&b.0));
-        f
-    };
-    let points: Vec<Point> = rows
-        .iter()
-        .map(|r| Point {
-            label: r.model.into(),
-            x: 1e9 / r.simd_evals_per_s,
-            y: r.max_abs_8_1000,
-            highlight: r.pareto,
-        })
-        .collect();
     if let Some(out) = &a.out {
         let [png, svg] = save_scatter(
             "Lobes: max |error| against cos^n (n = 8..1000) and SIMD cost",
             "ns per evaluation (SIMD, one core, batch 4096)",
             "max absolute error, n = 8..1000",
-            &front,
-            &points,
+            &pareto::front(&rows),
+            &pareto::points(&rows),
             out,
         )
         .map_err(super::plot::save_error)?;

@@ -4,9 +4,9 @@
 use super::analysis::bar;
 use super::eval::parse_params;
 use crate::CliError;
-use fastbrdf::{Model, Zone, registry};
-use fastbrdf_analysis::plot::{self as plots, Chart, Drawn, Series};
-use fastbrdf_analysis::{albedo, errors, normalize, range};
+use fastbrdf::Zone;
+use fastbrdf_analysis::plot::{self as plots, Chart, Drawn};
+use fastbrdf_analysis::{charts, normalize, range};
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -120,212 +120,15 @@ The incident direction is drawn on the side opposite the mirror direction, at th
     },
 }
 
-fn lobe(id: &str, n: f64) -> Result<Box<dyn fastbrdf::Lobe<f64>>, CliError> {
-    let kind = registry::find(id)?.info.kind;
-    if kind != fastbrdf::Kind::Lobe {
-        return Err(CliError::input(format!(
-            "'{id}' is a {}, not a lobe",
-            kind.name()
-        )));
-    }
-    match registry::build::<f64>(id, &[("n", &super::analysis::num(n))])? {
-        Model::Lobe(l) => Ok(l),
-        m => Err(CliError::input(format!(
-            "'{id}' is a {}, not a lobe",
-            m.kind().name()
-        ))),
-    }
-}
-
-/// Angles (degrees) over which a lobe of exponent n is visible: to where c^n ~ 1e-4.
-fn angles(n: f64) -> Vec<f64> {
-    let top = (1.0 - 9.2 / n).max(0.0).acos().to_degrees().min(90.0);
-    (0..=600).map(|i| top * f64::from(i) / 600.0).collect()
-}
-
-fn lobes_chart(models: &[String], n: f64) -> Result<Chart, CliError> {
-    let xs = angles(n);
-    let mut series = vec![];
-    for id in models {
-        let l = lobe(id, n)?;
-        series.push(Series::new(
-            id.clone(),
-            xs.iter()
-                .map(|&d| (d, l.eval(d.to_radians().cos())))
-                .collect(),
-        ));
-    }
-    Ok(Chart {
-        title: format!("Lobes at n = {n}"),
-        x_label: "angle from the peak (degrees)".into(),
-        y_label: "lobe value".into(),
-        series,
-        log_y: false,
-        equal_aspect: false,
-    })
-}
-
-fn max_error_chart(
-    models: &[String],
-    reference: &str,
-    ns: &[f64],
-    rel: bool,
-    zone: Zone,
-    title: &str,
-) -> Result<Chart, CliError> {
-    let pb = bar((ns.len() * models.len()) as u64, "sweeping");
-    let mut series = vec![];
-    for id in models {
-        let spec = errors::Spec {
-            model: id.clone(),
-            reference: reference.into(),
-            param: "n".into(),
-            zone,
-        };
-        let rows = errors::sweep(&spec, ns, &|| pb.inc(1))?;
-        series.push(Series::new(
-            id.clone(),
-            rows.iter()
-                .map(|r| (r.param, if rel { r.max_rel } else { r.max_abs }))
-                .collect(),
-        ));
-    }
-    pb.finish_and_clear();
-    Ok(Chart {
-        title: title.into(),
-        x_label: "n".into(),
-        y_label: if rel {
-            "max relative error".into()
-        } else {
-            "max absolute error".into()
-        },
-        series,
-        log_y: true,
-        equal_aspect: false,
-    })
-}
-
-fn coef_chart(model: &str, ns: &[f64], form: normalize::Form) -> Result<(Chart, Chart), CliError> {
-    form.check_points(ns.len()).map_err(CliError::input)?;
-    let rows = normalize::table(model, ns)?;
-    let f = normalize::fit(form, &rows);
-    let k: Vec<f64> = f.constants.iter().map(|(_, v)| *v).collect();
-    let eval = |n: f64| {
-        if k.len() == 2 {
-            k[0] * (n + k[1])
-        } else {
-            k[0] * (n + k[1]) + k[2] / (k[3] + n)
+/// A chart that cannot be computed: bad input (exit code 2); the incidence angle is named
+/// by its option.
+fn chart_error(e: charts::ChartError) -> CliError {
+    match e {
+        charts::ChartError::IncidenceAngle(t) => {
+            CliError::input(format!("--theta-i {t} is outside [0, 90) degrees"))
         }
-    };
-    let consts: Vec<String> = f
-        .constants
-        .iter()
-        .map(|(n, v)| format!("{n}={v:.4}"))
-        .collect();
-    let coef = Chart {
-        title: format!("coef(n) of {model} and the fit {}", f.form),
-        x_label: "n".into(),
-        y_label: "coef(n) = 1 / (2 pi Int(n))".into(),
-        series: vec![
-            Series::new("integrated", rows.iter().map(|r| (r.n, r.coef)).collect()),
-            Series::new(
-                format!("fit {}", consts.join(" ")),
-                rows.iter().map(|r| (r.n, eval(r.n))).collect(),
-            ),
-        ],
-        log_y: false,
-        equal_aspect: false,
-    };
-    let residual = Chart {
-        title: format!("Energy residual |coef_fit(n) 2 pi Int(n) - 1| of {model}"),
-        x_label: "n".into(),
-        y_label: "|coef_fit 2 pi Int - 1|".into(),
-        series: vec![Series::new(
-            format!("fit {}", f.form),
-            rows.iter()
-                .map(|r| (r.n, (eval(r.n) / r.coef - 1.0).abs()))
-                .collect(),
-        )],
-        log_y: true,
-        equal_aspect: false,
-    };
-    Ok((coef, residual))
-}
-
-fn polar_chart(model: &str, params: &[(String, String)], theta_i: f64) -> Result<Chart, CliError> {
-    let given: Vec<(&str, &str)> = params
-        .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
-        .collect();
-    let b = match registry::build::<f64>(model, &given)? {
-        Model::Brdf(b) => b,
-        m => {
-            return Err(CliError::input(format!(
-                "polar needs a BRDF; '{model}' is a {}",
-                m.kind().name()
-            )));
-        }
-    };
-    if !(0.0..90.0).contains(&theta_i) {
-        return Err(CliError::input(format!(
-            "--theta-i {theta_i} is outside [0, 90) degrees"
-        )));
+        e => CliError::input(e.to_string()),
     }
-    let ti = theta_i.to_radians();
-    // wi in +x; the mirror direction is -x (wo = (-sin ti, 0, cos ti)), drawn at x < 0.
-    let wi = [ti.sin(), 0.0, ti.cos()];
-    let pts: Vec<(f64, f64)> = (0..=1800)
-        .map(|i| {
-            let t = (-90.0 + 180.0 * f64::from(i) / 1800.0).to_radians();
-            let wo = [t.sin(), 0.0, t.cos()];
-            let v = b.eval(wi, wo) * t.cos();
-            (v * t.sin(), v * t.cos())
-        })
-        .collect();
-    let peak = pts
-        .iter()
-        .map(|(x, y)| x.hypot(*y))
-        .fold(0.0, f64::max)
-        .max(1e-12);
-    let p: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    Ok(Chart {
-        title: format!(
-            "{model} {} in the plane of incidence, theta_i = {theta_i} deg",
-            p.join(" ")
-        ),
-        x_label: "f cos theta_o along wo (x)".into(),
-        y_label: "(z)".into(),
-        series: vec![
-            Series::new("f(wi, wo) cos theta_o", pts),
-            Series::new(
-                "incident direction",
-                vec![(0.0, 0.0), (peak * wi[0], peak * wi[2])],
-            ),
-        ],
-        log_y: false,
-        equal_aspect: true,
-    })
-}
-
-fn albedo_chart(model: &str, params: &[(String, String)]) -> Result<Chart, CliError> {
-    let t = albedo::target(model, params, "phong", "energy")?;
-    let angles = range::parse("0..88:2", 1.0).expect("valid range");
-    let rows = albedo::curve(&t, &angles, 1e-6)?;
-    let p: Vec<String> = t.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
-    Ok(Chart {
-        title: format!("Directional albedo of {} {}", t.id, p.join(" ")),
-        x_label: "incidence angle (degrees)".into(),
-        y_label: "albedo".into(),
-        series: vec![
-            Series::new(
-                "albedo",
-                rows.iter().map(|r| (r.theta_deg, r.albedo)).collect(),
-            ),
-            Series::new("1 (white furnace)", vec![(0.0, 1.0), (88.0, 1.0)]),
-        ],
-        log_y: false,
-        equal_aspect: false,
-    })
 }
 
 /// A chart that could not be saved: an output failure (exit code 3).
@@ -381,35 +184,18 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     }
     // Every chart is computed and drawn in memory first; the files are written together.
     let charts: Vec<(PathBuf, Chart)> = match &a.kind {
-        Kind::Lobes { models, n } => vec![(base, lobes_chart(models, finite_n(*n)?)?)],
+        Kind::Lobes { models, n } => vec![(
+            base,
+            charts::lobes(models, finite_n(*n)?).map_err(chart_error)?,
+        )],
         Kind::Error {
             model,
             reference,
             n,
-        } => {
-            let n = &finite_n(*n)?;
-            let (m, r) = (lobe(model, *n)?, lobe(reference, *n)?);
-            let xs = angles(*n);
-            let c = Chart {
-                title: format!("{model} - {reference} at n = {n}"),
-                x_label: "angle from the peak (degrees)".into(),
-                y_label: "signed error".into(),
-                series: vec![Series::new(
-                    format!("{model} - {reference}"),
-                    xs.iter()
-                        .map(|&d| {
-                            (
-                                d,
-                                m.eval(d.to_radians().cos()) - r.eval(d.to_radians().cos()),
-                            )
-                        })
-                        .collect(),
-                )],
-                log_y: false,
-                equal_aspect: false,
-            };
-            vec![(base, c)]
-        }
+        } => vec![(
+            base,
+            charts::signed_error(model, reference, finite_n(*n)?).map_err(chart_error)?,
+        )],
         Kind::MaxError {
             models,
             reference,
@@ -418,29 +204,39 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             zone,
         } => {
             let ns = range::parse(n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?;
-            for id in models.iter().chain([reference]) {
-                for n in [ns[0], ns[ns.len() - 1]] {
-                    lobe(id, n)?;
-                }
-            }
+            charts::check_lobes(
+                models
+                    .iter()
+                    .map(String::as_str)
+                    .chain([reference.as_str()]),
+                &ns,
+            )
+            .map_err(chart_error)?;
             let zone = if zone == "epicentre" {
                 Zone::Epicentre
             } else {
                 Zone::All
             };
             let title = format!("Max {metric} error against {reference} ({zone:?})");
-            vec![(
-                base,
-                max_error_chart(models, reference, &ns, metric == "rel", zone, &title)?,
-            )]
+            let pb = bar((ns.len() * models.len()) as u64, "sweeping");
+            let c = charts::max_error(
+                models,
+                reference,
+                &ns,
+                metric == "rel",
+                zone,
+                &title,
+                &|| pb.inc(1),
+            )
+            .map_err(chart_error)?;
+            pb.finish_and_clear();
+            vec![(base, c)]
         }
         Kind::Coef { model, n, fit } => {
             let ns = range::parse(n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?;
-            for n in [ns[0], ns[ns.len() - 1]] {
-                lobe(model, n)?;
-            }
+            charts::check_lobes([model.as_str()], &ns).map_err(chart_error)?;
             let form = normalize::Form::parse(fit).expect("clap checked the value");
-            let (c, r) = coef_chart(model, &ns, form)?;
+            let (c, r) = charts::coef(model, &ns, form).map_err(chart_error)?;
             let mut rb = base.clone().into_os_string();
             rb.push("-residual");
             vec![(base, c), (PathBuf::from(rb), r)]
@@ -449,10 +245,14 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             model,
             params,
             theta_i,
-        } => vec![(base, polar_chart(model, &parse_params(params)?, *theta_i)?)],
-        Kind::Albedo { model, params } => {
-            vec![(base, albedo_chart(model, &parse_params(params)?)?)]
-        }
+        } => vec![(
+            base,
+            charts::polar(model, &parse_params(params)?, *theta_i).map_err(chart_error)?,
+        )],
+        Kind::Albedo { model, params } => vec![(
+            base,
+            charts::albedo(model, &parse_params(params)?).map_err(chart_error)?,
+        )],
     };
     let items = charts
         .iter()
@@ -464,165 +264,12 @@ pub fn run(a: &Args) -> Result<(), CliError> {
 /// Draws the plots of the seeds' figures and stages them (PNG and SVG) in `set`, in its
 /// subfolder `folder` ("" for its top).
 pub fn stage_seed_figures(set: &mut fastbrdf_io::OutputSet, folder: &str) -> Result<(), CliError> {
-    for (stem, chart) in seed_figures()? {
+    let pb = bar(charts::seed_figure_steps() as u64, "figures");
+    let figures = charts::seed_figures(&|| pb.inc(1)).map_err(chart_error)?;
+    pb.finish_and_clear();
+    for (stem, chart) in figures {
         let name = Path::new(folder).join(stem);
         plots::stage(set, &drawn(&chart)?, &name.to_string_lossy())?;
     }
     Ok(())
-}
-
-/// The charts of the seeds' figures, with their file stems.
-fn seed_figures() -> Result<Vec<(&'static str, Chart)>, CliError> {
-    let mut out = vec![];
-    let ns = range::parse("1..1000", 1.0).expect("valid range");
-    let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
-    out.push((
-        "seed001-fig2-lobes-n20",
-        lobes_chart(&s(&["pow", "flog", "schlick"]), 20.0)?,
-    ));
-    out.push((
-        "seed001-fig3-max-rel-epicentre",
-        max_error_chart(
-            &s(&["flog", "schlick"]),
-            "pow",
-            &ns,
-            true,
-            Zone::Epicentre,
-            "Seed 001 Fig. 3: max relative error in the epicentre",
-        )?,
-    ));
-    out.push((
-        "seed001-fig4-max-abs",
-        max_error_chart(
-            &s(&["flog", "schlick"]),
-            "pow",
-            &ns,
-            false,
-            Zone::All,
-            "Seed 001 Fig. 4: max absolute error",
-        )?,
-    ));
-    let (_, residual) = coef_chart("flog", &ns, normalize::Form::SeedPublished)?;
-    out.push(("seed001-fig9-energy-residual", residual));
-    let n4 = range::parse("4..1000", 1.0).expect("valid range");
-    out.push((
-        "seed003-fig1-cubic-epicentre",
-        max_error_chart(
-            &s(&["cubic", "cubic3", "schlick"]),
-            "pow",
-            &n4,
-            false,
-            Zone::Epicentre,
-            "Seed 003 Fig. 1: max absolute error in the epicentre",
-        )?,
-    ));
-    out.push((
-        "seed003-fig3-lobes-n20",
-        lobes_chart(&s(&["pow", "schlick", "rational", "cubic-rational"]), 20.0)?,
-    ));
-    // Seed 000 Fig. 1-4: Beckmann (Cook-Torrance form) and its one-function forms, m = 0.3.
-    let m = 0.3;
-    let mut series = vec![];
-    let mut rel = vec![];
-    let exact = match registry::build::<f64>("beckmann-ct", &[("alpha", "0.3")])? {
-        Model::Distribution(d) => d,
-        _ => unreachable!(),
-    };
-    for id in [
-        "beckmann-ct",
-        "beckmann-pow",
-        "beckmann-power4",
-        "beckmann-power8",
-        "beckmann-power16",
-    ] {
-        let Model::Distribution(d) = registry::build::<f64>(id, &[("alpha", &m.to_string())])?
-        else {
-            unreachable!()
-        };
-        let pts: Vec<(f64, f64)> = (0..=500)
-            .map(|i| 50.0 * f64::from(i) / 500.0)
-            .map(|deg| (deg, d.eval(deg.to_radians().cos())))
-            .collect();
-        if id != "beckmann-ct" {
-            rel.push(Series::new(
-                id,
-                pts.iter()
-                    .map(|&(deg, v)| (deg, (v / exact.eval(deg.to_radians().cos()) - 1.0).abs()))
-                    .collect(),
-            ));
-        }
-        series.push(Series::new(id, pts));
-    }
-    let chart = |title: &str, y: &str, series: Vec<Series>, log_y| Chart {
-        title: title.into(),
-        x_label: "theta_h (degrees)".into(),
-        y_label: y.into(),
-        series,
-        log_y,
-        equal_aspect: false,
-    };
-    out.push((
-        "seed000-fig1-3-beckmann-forms",
-        chart(
-            "Seed 000 Fig. 1 and 3: D and its one-function forms, m = 0.3",
-            "D",
-            series,
-            false,
-        ),
-    ));
-    out.push((
-        "seed000-fig2-4-relative-error",
-        chart(
-            "Seed 000 Fig. 2 and 4: relative error against beckmann-ct, m = 0.3",
-            "|D / D_exact - 1|",
-            rel,
-            true,
-        ),
-    ));
-    Ok(out)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::polar_chart;
-
-    /// Issue 11: the incident direction was drawn on the mirror side, on top of the lobe. It
-    /// must lie on the opposite side of the normal (x = 0) from the specular peak.
-    #[test]
-    fn polar_incident_direction_is_opposite_the_specular_peak() {
-        for (model, params, theta_i) in [
-            ("cook-torrance", vec![("alpha", "0.2")], 45.0),
-            ("ward", vec![("alpha", "0.3")], 30.0),
-            ("cook-torrance", vec![("alpha", "0.5")], 70.0),
-        ] {
-            let p: Vec<(String, String)> = params
-                .iter()
-                .map(|(k, v)| (k.to_string(), v.to_string()))
-                .collect();
-            let c = polar_chart(model, &p, theta_i).unwrap();
-            let lobe = &c.series[0].points;
-            let peak = lobe
-                .iter()
-                .copied()
-                .max_by(|a, b| a.0.hypot(a.1).total_cmp(&b.0.hypot(b.1)))
-                .unwrap();
-            let incident = c
-                .series
-                .iter()
-                .find(|s| s.name.contains("incident"))
-                .unwrap();
-            let tip = incident.points[1];
-            assert!(
-                peak.0 < 0.0,
-                "{model}: the peak {peak:?} is on the mirror side"
-            );
-            assert!(
-                tip.0 > 0.0 && tip.0 * peak.0 < 0.0,
-                "{model}: incident {tip:?} vs peak {peak:?}"
-            );
-            // The drawn direction is wi itself: its angle from the normal is theta_i.
-            let angle = tip.0.atan2(tip.1).to_degrees();
-            assert!((angle - theta_i).abs() < 1e-9, "{angle}");
-        }
-    }
 }

@@ -34,17 +34,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let pb = bar(22, "reproduce");
     let speedups: Vec<(String, f64)> = match &a.speedups {
         None => vec![],
-        Some(path) => {
-            let b = fastbrdf_analysis::speed::Report::load(path)?;
-            b.speedups
-                .iter()
-                .map(|s| (s.name.clone(), s.measured))
-                .collect::<Vec<_>>()
-                .into_iter()
-                .chain([("source".to_string(), 0.0)])
-                .filter(|(n, _)| n != "source")
-                .collect()
-        }
+        Some(path) => fastbrdf_analysis::speed::Report::load(path)?.measured_speedups(),
     };
     let report = reproduce::run(&speedups, &|| pb.inc(1))?;
     pb.finish_and_clear();
