@@ -10,7 +10,7 @@
 //!   reproducible). The search also fails a model that returns a non-finite or negative
 //!   value in either precision.
 
-use fastbrdf::registry::Entry;
+use fastbrdf::entry::Entry;
 use fastbrdf::{ErrorBound, Metric, Zone, accuracy};
 use rayon::prelude::*;
 use serde::Serialize;

@@ -37,7 +37,7 @@ pub struct Args {
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
-    let entries: Vec<&'static registry::Entry> = match &a.model {
+    let entries: Vec<&'static fastbrdf::entry::Entry> = match &a.model {
         Some(id) => vec![registry::find(id)?],
         None => registry::all().iter().collect(),
     };
