@@ -65,6 +65,45 @@ fn shader_prints_every_language_and_matches_the_library() {
 }
 
 #[test]
+fn shader_runtime_params_takes_the_parameters_as_arguments() {
+    use fastbrdf_gpu::export::{Form, Lang, export_form};
+    for lang in ["wgsl", "glsl", "hlsl", "msl"] {
+        let o = fastbrdf(&[
+            "shader",
+            "--model",
+            "cubic",
+            "--lang",
+            lang,
+            "--runtime-params",
+        ]);
+        assert!(o.status.success(), "{lang}: {}", stderr(&o));
+        let want = export_form("cubic", &[], Lang::parse(lang).unwrap(), Form::Runtime).unwrap();
+        assert_eq!(stdout(&o), want, "{lang}");
+    }
+    let o = fastbrdf(&["shader", "--model", "cubic", "--runtime-params"]);
+    assert!(
+        stdout(&o).contains("fn fb_cubic(c: f32, p_n: f32) -> f32"),
+        "{}",
+        stdout(&o)
+    );
+    // Every model, every file or none.
+    let dir = temp_dir("runtime-all");
+    let o = fastbrdf(&[
+        "shader",
+        "--all",
+        "--runtime-params",
+        "--lang",
+        "glsl",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let n = std::fs::read_dir(&dir).unwrap().count();
+    assert_eq!(n, fastbrdf::registry::all().len());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn shader_writes_files_and_rejects_bad_input_without_writing() {
     let dir = temp_dir("shader");
     let out = dir.join("ct.hlsl");

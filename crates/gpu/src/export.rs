@@ -94,8 +94,30 @@ pub fn exported_name(function: &str, lang: Lang) -> String {
 /// The name of the compute entry point added for naga's GLSL writer.
 const ENTRY: &str = "fb_export_entry";
 
-/// Exports model `id` with parameters `given` in `lang`.
+/// How an export takes the model's parameters.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Form {
+    /// Coefficients computed in f64 for the given parameters, written as literals.
+    #[default]
+    Literals,
+    /// The model's numeric parameters as trailing arguments `p_<name>` (f32), coefficients
+    /// computed in the shader (`--runtime-params`): parameters may vary per pixel.
+    Runtime,
+}
+
+/// Exports model `id` with parameters `given` in `lang`, coefficients as literals.
 pub fn export(id: &str, given: &[(&str, &str)], lang: Lang) -> Result<String, GpuError> {
+    export_form(id, given, lang, Form::Literals)
+}
+
+/// Exports model `id` with parameters `given` in `lang`, in `form` (BRDF Explorer files always
+/// take their parameters from sliders, so both forms are the same file there).
+pub fn export_form(
+    id: &str,
+    given: &[(&str, &str)],
+    lang: Lang,
+    form: Form,
+) -> Result<String, GpuError> {
     let (inst, shaded) = match lang {
         Lang::BrdfExplorer => {
             let inst = Instance::new(id, given)?;
@@ -118,9 +140,20 @@ pub fn export(id: &str, given: &[(&str, &str)], lang: Lang) -> Result<String, Gp
             };
             (inst, Some(shaded))
         }
-        _ => (Instance::new(id, given)?, None),
+        _ => (
+            match form {
+                Form::Literals => Instance::new(id, given)?,
+                Form::Runtime => Instance::with(id, given, Emit::runtime())?,
+            },
+            None,
+        ),
     };
-    let header = header(&inst, id, given, lang, shaded.as_ref());
+    let form = if lang == Lang::BrdfExplorer {
+        Form::Literals
+    } else {
+        form
+    };
+    let header = header(&inst, id, given, lang, form, shaded.as_ref());
     let body = match lang {
         Lang::Wgsl => {
             let src = inst.module_source();
@@ -190,6 +223,7 @@ fn header_text(
     id: &str,
     given: &[(&str, &str)],
     lang: Lang,
+    form: Form,
     shaded: Option<&Instance>,
 ) -> String {
     let info = inst.info;
@@ -204,9 +238,14 @@ fn header_text(
         .iter()
         .map(|(k, v)| format!(" --param {k}={v}"))
         .collect();
+    let flag = if form == Form::Runtime {
+        " --runtime-params"
+    } else {
+        ""
+    };
     let _ = writeln!(
         s,
-        "Made by: fastbrdf shader --model {id}{args} --lang {}",
+        "Made by: fastbrdf shader --model {id}{args} --lang {}{flag}",
         lang.name()
     );
     let _ = writeln!(s);
@@ -257,12 +296,28 @@ fn header_text(
          tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).",
         info.f32_bound
     );
-    if lang != Lang::BrdfExplorer {
+    if form == Form::Runtime {
+        let names: Vec<String> = inst.sliders.iter().map(|(n, _)| format!("p_{n}")).collect();
+        let _ = writeln!(
+            s,
+            "Runtime parameters: {} (f32, after the inputs; the parameters above are only the \
+             defaults of this export). Coefficients are computed in the shader in f32: closed \
+             forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, \
+             normalisation integrals), whose added f32 error fastbrdf measures per model \
+             (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are \
+             not checked in the shader.",
+            if names.is_empty() {
+                "none (the model has no numeric parameter)".to_string()
+            } else {
+                names.join(", ")
+            }
+        );
+    } else if lang != Lang::BrdfExplorer {
         let _ = writeln!(
             s,
             "Coefficients are literals computed in f64 for these parameters; for other values \
-             re-export, or pass them as uniforms (a compiler cannot fold those into \
-             reassociated, less accurate expressions)."
+             re-export, or use --runtime-params (parameters as arguments, coefficients computed \
+             in the shader in f32)."
         );
     }
     let sig = match info.kind {
@@ -275,9 +330,17 @@ fn header_text(
              value without the cosine factor"
         }
     };
+    let extra: String = if form == Form::Runtime {
+        inst.sliders
+            .iter()
+            .map(|(n, _)| format!(", then p_{n}"))
+            .collect()
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         s,
-        "Entry: {}{sig}; returns f32.",
+        "Entry: {}{sig}{extra}; returns f32.",
         exported_name(&inst.function, lang)
     );
     if let Some(b) = shaded {
@@ -325,9 +388,10 @@ fn header(
     id: &str,
     given: &[(&str, &str)],
     lang: Lang,
+    form: Form,
     shaded: Option<&Instance>,
 ) -> String {
-    let text = header_text(inst, id, given, lang, shaded);
+    let text = header_text(inst, id, given, lang, form, shaded);
     let mut out = String::new();
     let prefix = if lang == Lang::BrdfExplorer {
         "# "

@@ -86,7 +86,25 @@ impl Instance {
                 (k.to_string(), v)
             })
             .collect();
-        let shown = shown(&params);
+        let shown = if emit.is_runtime() {
+            let names: Vec<String> = sliders.iter().map(|(n, _)| format!("p_{n}")).collect();
+            let fixed: Vec<(String, String)> = params
+                .iter()
+                .filter(|(k, _)| !sliders.iter().any(|(n, _)| n == k))
+                .cloned()
+                .collect();
+            format!(
+                "runtime parameters {}; fixed: {}",
+                if names.is_empty() {
+                    "none".to_string()
+                } else {
+                    names.join(", ")
+                },
+                shown(&fixed)
+            )
+        } else {
+            shown(&params)
+        };
         let wrapper = format!(
             "/// {id}: {formula}\n/// Source: {source}. Instance: {shown}.\nfn {function}({signature}) -> f32 {{\n{body}}}\n",
             id = e.info.id,

@@ -9,7 +9,7 @@
 
 use fastbrdf::model::Kind;
 use fastbrdf::registry;
-use fastbrdf_gpu::export::{Lang, export, exported_name, validate};
+use fastbrdf_gpu::export::{Form, Lang, export, export_form, exported_name, validate};
 use fastbrdf_gpu::spec::function_name;
 use std::path::PathBuf;
 
@@ -17,12 +17,14 @@ fn golden_dir() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/shaders")
 }
 
-/// A GLSL call of `f` for a model of `kind` (the same arguments as the WGSL entry point).
-fn glsl_call(f: &str, kind: Kind) -> String {
+/// A GLSL call of `f` for a model of `kind` (the same arguments as the WGSL entry point),
+/// with `extra` runtime parameters (each 0.5).
+fn glsl_call(f: &str, kind: Kind, extra: usize) -> String {
+    let extra = ", 0.5".repeat(extra);
     match kind {
-        Kind::Brdf => format!("{f}(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8))"),
-        Kind::Shadowing => format!("{f}(0.8, 0.8, 0.9, 0.9)"),
-        _ => format!("{f}(0.9)"),
+        Kind::Brdf => format!("{f}(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8){extra})"),
+        Kind::Shadowing => format!("{f}(0.8, 0.8, 0.9, 0.9{extra})"),
+        _ => format!("{f}(0.9{extra})"),
     }
 }
 
@@ -48,6 +50,11 @@ fn parse_glsl(functions: &str, call: &str, what: &str) {
 }
 
 fn check_one(id: &str, kind: Kind, lang: Lang, text: &str) {
+    check_form(id, kind, lang, text, 0);
+}
+
+/// As `check_one`, for a function with `extra` runtime parameters after its inputs.
+fn check_form(id: &str, kind: Kind, lang: Lang, text: &str, extra: usize) {
     let what = format!("{id} ({})", lang.name());
     let f = exported_name(&function_name(id), lang);
     assert!(text.contains("Formula: "), "{what}: no header");
@@ -63,7 +70,7 @@ fn check_one(id: &str, kind: Kind, lang: Lang, text: &str) {
         Lang::Glsl => {
             assert!(!text.contains("void main"), "{what}: entry point left in");
             assert!(!text.contains("#version"), "{what}: #version left in");
-            parse_glsl(text, &glsl_call(&f, kind), &what);
+            parse_glsl(text, &glsl_call(&f, kind, extra), &what);
         }
         Lang::Hlsl | Lang::Msl => {
             assert!(text.contains(&format!("float {f}(")), "{what}: no {f}");
@@ -147,7 +154,9 @@ fn every_model_in_every_language_matches_its_golden_file_and_validates() {
     // No stray golden files for models that no longer exist.
     let names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .map(|e| e.unwrap())
+        .filter(|e| e.path().is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
         .collect();
     assert_eq!(
         names.len(),
@@ -357,4 +366,84 @@ fn brdf_explorer_sliders_reach_their_defaults_and_wide_ranges_are_logarithmic() 
         sliders >= 40 && logs >= 30,
         "{sliders} sliders, {logs} logarithmic"
     );
+}
+
+/// The runtime parameters of model `id`'s default export (`p_<name>` arguments, in order).
+fn runtime_params(id: &str) -> Vec<String> {
+    fastbrdf_gpu::spec::Instance::with(id, &[], fastbrdf_gpu::spec::Emit::runtime())
+        .unwrap()
+        .sliders
+        .into_iter()
+        .map(|(n, _)| n)
+        .collect()
+}
+
+#[test]
+fn every_model_exports_with_runtime_parameters_in_every_language() {
+    let bless = std::env::var_os("FASTBRDF_BLESS").is_some();
+    let dir = golden_dir().join("runtime");
+    if bless {
+        std::fs::create_dir_all(&dir).unwrap();
+    }
+    let mut stale = vec![];
+    let mut count = 0;
+    for e in registry::all() {
+        let params = runtime_params(e.info.id);
+        // Every numeric parameter of a lobe or a distribution shapes it: all are arguments.
+        if matches!(e.info.kind, Kind::Lobe | Kind::Distribution) {
+            assert!(!params.is_empty(), "{}: no runtime parameter", e.info.id);
+        }
+        for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl, Lang::Msl] {
+            let text = export_form(e.info.id, &[], lang, Form::Runtime)
+                .unwrap_or_else(|err| panic!("{} ({}): {err}", e.info.id, lang.name()));
+            check_form(e.info.id, e.info.kind, lang, &text, params.len());
+            assert!(
+                text.contains("--runtime-params"),
+                "{}: no flag in the header",
+                e.info.id
+            );
+            for p in &params {
+                assert!(
+                    text.contains(&format!("p_{p}")),
+                    "{} ({}): no argument p_{p}",
+                    e.info.id,
+                    lang.name()
+                );
+            }
+            // No coefficient was baked in: a literal export of other parameters differs, a
+            // runtime export does not.
+            let path = dir.join(format!("{}.{}", e.info.id, lang.extension()));
+            if bless {
+                std::fs::write(&path, &text).unwrap();
+            } else if std::fs::read_to_string(&path).unwrap_or_default() != text {
+                stale.push(path.display().to_string());
+            }
+            count += 1;
+        }
+    }
+    assert_eq!(count, registry::all().len() * 4);
+    let files = std::fs::read_dir(&dir).unwrap().count();
+    assert_eq!(files, count, "stray files in {}", dir.display());
+    assert!(
+        stale.is_empty(),
+        "{} runtime exports differ from their golden files (FASTBRDF_BLESS=1 rewrites them):\n{}",
+        stale.len(),
+        stale.join("\n")
+    );
+}
+
+#[test]
+fn a_runtime_export_does_not_depend_on_the_parameters_it_takes() {
+    // The function body is the same whatever the exported parameter values: they only change
+    // the header's defaults. Compare the code after the header.
+    let code = |n: &str| {
+        let t = export_form("cubic", &[("n", n)], Lang::Wgsl, Form::Runtime).unwrap();
+        t.lines()
+            .skip_while(|l| l.starts_with("//"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    assert_eq!(code("20"), code("700"));
+    let lit = |n: &str| export("cubic", &[("n", n)], Lang::Wgsl).unwrap();
+    assert_ne!(lit("20"), lit("700"));
 }

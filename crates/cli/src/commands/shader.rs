@@ -3,7 +3,7 @@
 
 use crate::CliError;
 use crate::commands::eval::parse_params;
-use fastbrdf_gpu::export::{Lang, export};
+use fastbrdf_gpu::export::{Form, Lang, export_form};
 use std::path::PathBuf;
 
 #[derive(clap::Args)]
@@ -11,12 +11,15 @@ use std::path::PathBuf;
     after_help = "Examples:\n  fastbrdf shader --model cook-torrance --param alpha=0.2 --param f=schlick --lang glsl\n  \
 fastbrdf shader --model flog-normalized --param n=100 --lang hlsl --out flog.hlsl\n  \
 fastbrdf shader --model ward --param alpha_x=0.1 --param alpha_y=0.4 --lang brdf-explorer --out ward.brdf\n  \
-fastbrdf shader --all --lang msl --out shaders/\n\n\
+fastbrdf shader --all --lang msl --out shaders/\n  \
+fastbrdf shader --model cubic --lang glsl --runtime-params   (fb_cubic(c, p_n): n per pixel)\n\n\
 Output: a comment header (formula, source, parameters, documented error bounds, the command),\n\
 then the library functions the model needs and `fb_<id>` (dashes as underscores). Lobes take\n\
 (c), distributions (cos_h), Fresnel terms (cos_vh), shadowing (cos_v, cos_l, cos_h, cos_vh),\n\
 BRDFs (wi, wo) in the local frame with the normal along +z. Coefficients are computed in f64\n\
-for the given parameters and written as literals. --out writes atomically; --all writes every\n\
+for the given parameters and written as literals; with --runtime-params the model's numeric\n\
+parameters become trailing arguments p_<name> (f32) and the coefficients are computed in the\n\
+shader (for parameters that vary per pixel). --out writes atomically; --all writes every\n\
 file or none. Exit codes: 0 ok, 2 bad model or parameter, 3 a file could not be written."
 )]
 pub struct Args {
@@ -35,10 +38,19 @@ pub struct Args {
     /// Every model, with default parameters (needs --out DIR).
     #[arg(long, requires = "out")]
     all: bool,
+    /// Take the model's numeric parameters as trailing function arguments `p_<name>` and
+    /// compute the coefficients in the shader (f32), instead of f64 literals.
+    #[arg(long)]
+    runtime_params: bool,
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
     let lang = Lang::parse(&a.lang).ok_or_else(|| CliError::input("unknown --lang"))?;
+    let form = if a.runtime_params {
+        Form::Runtime
+    } else {
+        Form::Literals
+    };
     if a.all {
         let dir = a.out.as_ref().expect("clap: --all requires --out");
         if !a.params.is_empty() {
@@ -49,7 +61,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         // Build everything first: an error leaves no partial folder behind.
         let mut files = vec![];
         for e in fastbrdf::registry::all() {
-            let text = export(e.info.id, &[], lang)?;
+            let text = export_form(e.info.id, &[], lang, form)?;
             files.push((format!("{}.{}", e.info.id, lang.extension()), text));
         }
         // All or nothing: the files are staged in a hidden folder and moved into place only
@@ -73,7 +85,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .iter()
         .map(|(k, v)| (k.as_str(), v.as_str()))
         .collect();
-    let text = export(id, &given, lang)?;
+    let text = export_form(id, &given, lang, form)?;
     match &a.out {
         Some(path) => fastbrdf_io::write_atomic(path, text.as_bytes())?,
         None => super::write_stdout(text.as_bytes())?,

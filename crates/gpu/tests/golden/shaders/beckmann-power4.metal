@@ -10,7 +10,7 @@
 //   beckmann-power4 vs beckmann-ct: max rel error <= 0.438 over alpha in [0.05, 0.6], epicentre (reference >= half its peak)
 //   beckmann-power4 vs beckmann-ct: max rel error <= 2.37 over alpha in [0.05, 1], epicentre (reference >= half its peak)
 // Precision: f32 on the CPU within 8e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
-// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_beckmann_power4_(cos_h) with cos_h = n.h; returns f32.
 
 // language: metal2.0

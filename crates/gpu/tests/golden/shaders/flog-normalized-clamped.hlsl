@@ -8,7 +8,7 @@
 //   n: specular exponent (range [1, 10000], default 20)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 2.5e-4 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
-// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_flog_normalized_clamped(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
 
 float fb_clamp01_(float c)

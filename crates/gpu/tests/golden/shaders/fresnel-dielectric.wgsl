@@ -7,7 +7,7 @@
 //   eta: relative index of refraction (real part) (range [0.01, 10], default 1.5)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
-// Coefficients are literals computed in f64 for these parameters; for other values re-export, or pass them as uniforms (a compiler cannot fold those into reassociated, less accurate expressions).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_fresnel_dielectric(cos_vh) with cos_vh = v.h; returns f32.
 
 /// fresnel-dielectric: the exact unpolarised Fresnel reflectance of a dielectric of relative

@@ -1,0 +1,27 @@
+// fastbrdf 0.1.0 (distribution): beckmann-ct
+// Made by: fastbrdf shader --model beckmann-ct --lang hlsl --runtime-params
+//
+// Formula: exp(-tan^2 theta_h / m^2) / (4 m^2 cos^4 theta_h)
+// Source: Cook & Torrance 1982; seed 000
+// Note: = beckmann * pi / 4 (integral of D cos theta_h = pi / 4); f32: 1.4e-6 at alpha = 0.01
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 3e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_beckmann_ct(cos_h) with cos_h = n.h, then p_alpha; returns f32.
+
+static const float FB_COS_MIN = 9.536743e-7;
+
+float fb_d_beckmann(float c, float s2_, float inv_alpha2_, float scale)
+{
+    float inv_c2_ = (1.0 / (c * c));
+    return ((scale * exp((-((s2_ * inv_c2_)) * inv_alpha2_))) * (inv_c2_ * inv_c2_));
+}
+
+float fb_beckmann_ct(float cos_h, float p_alpha)
+{
+    float cc = min(cos_h, 1.0);
+    const float _e15 = fb_d_beckmann(cc, ((1.0 - cc) * (1.0 + cc)), (1.0 / (p_alpha * p_alpha)), (0.25 / (p_alpha * p_alpha)));
+    return ((cos_h >= FB_COS_MIN) ? _e15 : 0.0);
+}

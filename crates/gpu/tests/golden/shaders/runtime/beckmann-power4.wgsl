@@ -1,0 +1,38 @@
+// fastbrdf 0.1.0 (distribution): beckmann-power4
+// Made by: fastbrdf shader --model beckmann-power4 --lang wgsl --runtime-params
+//
+// Formula: max(0, 1 + ((2/m^2 - 4)/4)(cos theta_h - 1))^4 / (4 m^2)
+// Source: seed 000 (D4, D8, D16); Lyon 1993
+// Note: f32: 3.7e-6 (power4) at alpha = 0.01
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Documented error bounds (measured by `fastbrdf check`):
+//   beckmann-power4 vs beckmann-ct: max rel error <= 0.438 over alpha in [0.05, 0.6], epicentre (reference >= half its peak)
+//   beckmann-power4 vs beckmann-ct: max rel error <= 2.37 over alpha in [0.05, 1], epicentre (reference >= half its peak)
+// Precision: f32 on the CPU within 8e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_beckmann_power4(cos_h) with cos_h = n.h, then p_alpha; returns f32.
+
+/// Cosines below this give zero in distributions and BRDFs: 2^-20, exact in f32 and f64
+/// (Rust twin: fastbrdf::vec3::COS_MIN).
+const FB_COS_MIN: f32 = 9.5367431640625e-7;
+
+/// x^4, x^8 and x^16 by repeated squaring (twin: ops::pow2k).
+fn fb_pow4(x: f32) -> f32 {
+    let x2 = x * x;
+    return x2 * x2;
+}
+
+/// beckmann-power4/8/16 (seed 000): scale max(1 + s (cos - 1), 0)^g, s = (2 / alpha^2 - 4) / g;
+/// cos - 1 computed as -sin^2 / (1 + cos) (no cancellation).
+fn fb_d_beckmann_power4(c: f32, s2: f32, s: f32, scale: f32) -> f32 {
+    return scale * fb_pow4(max(1.0 + s * (-s2 / (1.0 + c)), 0.0));
+}
+
+/// beckmann-power4: max(0, 1 + ((2/m^2 - 4)/4)(cos theta_h - 1))^4 / (4 m^2)
+/// Source: seed 000 (D4, D8, D16); Lyon 1993. Instance: runtime parameters p_alpha; fixed: no parameters.
+fn fb_beckmann_power4(cos_h: f32, p_alpha: f32) -> f32 {
+    let cc = min(cos_h, 1.0);
+    let d = fb_d_beckmann_power4(cc, (1.0 - cc) * (1.0 + cc), ((2.0 / (p_alpha * p_alpha) - 4.0) / 4.0), (0.25 / (p_alpha * p_alpha)));
+    return select(0.0, d, cos_h >= FB_COS_MIN);
+}

@@ -1,0 +1,84 @@
+// fastbrdf 0.1.0 (brdf): cook-torrance
+// Made by: fastbrdf shader --model cook-torrance --lang glsl --runtime-params
+//
+// Formula: F(wi.h) D(h) G(wi, wo) / (4 cos_i cos_o)
+// Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators)
+// Note: ops exclude D, G, F and the pair set-up; equals Mitsuba 3 roughconductor eval / cos_o; f32: 1e-5 except with f = dielectric/conductor at eta << 1, where F is a near-step at the critical angle and wi.h rounded once to f32 can double it (1.0 at eta = 0.01)
+// Parameters (this export: alpha = 0.3, d = beckmann, denominator = 4, eta = 1.5, f = none, f0 = 0.04, g = smith, k = 0):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   d: microfacet distribution id (one of beckmann, beckmann-ct, beckmann-pow, beckmann-power4, beckmann-power8, beckmann-power16, default beckmann)
+//   g: shadowing-masking term (one of v-cavity, smith, smith-rational, default smith)
+//   f: Fresnel term (one of none, schlick, dielectric, conductor, default none)
+//   f0: reflectance at normal incidence (Schlick) (range [0, 1], default 0.04)
+//   eta: relative index of refraction (real part) (range [0.01, 10], default 1.5)
+//   k: extinction coefficient (imaginary part of the index, conductors) (range [0, 20], default 0)
+//   denominator: 4 cos_i cos_o (microfacet theory), cos_i cos_o (seed 000), pi cos_i cos_o (seed 001) (one of 4, seed-000, seed-001, default 4)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 3e0 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_cook_torrance(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor, then p_alpha; returns f32.
+
+struct FbPair {
+    bool valid;
+    float cos_i;
+    float cos_o;
+    vec3 h;
+    float sin2_h;
+    float cos_ih;
+    vec3 wi;
+    vec3 wo;
+};
+const float FB_COS_MIN = 9.536743e-7;
+const float FB_INV_SQRT_PI = 0.5641896;
+
+
+float fb_erfc(float x) {
+    float t = (1.0 / (1.0 + (0.5 * x)));
+    float p = (-1.2655122 + (t * (1.0000237 + (t * (0.37409195 + (t * (0.09678418 + (t * (-0.18628806 + (t * (0.27886808 + (t * (-1.135204 + (t * (1.4885159 + (t * (-0.82215226 + (t * 0.17087276))))))))))))))))));
+    return (t * exp(((-(x) * x) + p)));
+}
+
+vec3 fb_rescale(vec3 v) {
+    float l = dot(v, v);
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    bool safe = ((l >= 7.888609e-31) && (l <= 1.2676506e30));
+    return ((safe || (m == 0.0)) ? v : (v / vec3(m)));
+}
+
+FbPair fb_pair(vec3 wi_raw, vec3 wo_raw) {
+    vec3 _e2 = fb_rescale(wi_raw);
+    vec3 _e3 = fb_rescale(wo_raw);
+    float li = dot(_e2, _e2);
+    float lo = dot(_e3, _e3);
+    vec3 wi_1 = (_e2 * (1.0 / sqrt(li)));
+    vec3 wo_1 = (_e3 * (1.0 / sqrt(lo)));
+    vec3 s = (wi_1 + wo_1);
+    float len = sqrt(dot(s, s));
+    vec3 h = (s / vec3(len));
+    bool valid = (((((li > 0.0) && (lo > 0.0)) && (wi_1.z >= FB_COS_MIN)) && (wo_1.z >= FB_COS_MIN)) && (len > 0.0));
+    return FbPair(valid, wi_1.z, wo_1.z, h, ((h.x * h.x) + (h.y * h.y)), (0.5 * len), wi_1, wo_1);
+}
+
+float fb_d_beckmann(float c, float s2_, float inv_alpha2_, float scale) {
+    float inv_c2_ = (1.0 / (c * c));
+    return ((scale * exp((-((s2_ * inv_c2_)) * inv_alpha2_))) * (inv_c2_ * inv_c2_));
+}
+
+float fb_g1_smith(float c_1, float alpha) {
+    float sin_ = sqrt(max(((1.0 - c_1) * (1.0 + c_1)), 0.0));
+    float a = (c_1 / (alpha * sin_));
+    float _e18 = fb_erfc(a);
+    float lambda = (0.5 * (((exp((-(a) * a)) * FB_INV_SQRT_PI) / a) - _e18));
+    return ((c_1 >= 1.0) ? 1.0 : (1.0 / (1.0 + lambda)));
+}
+
+float fb_cook_torrance(vec3 wi, vec3 wo, float p_alpha) {
+    FbPair _e3 = fb_pair(wi, wo);
+    float _e13 = fb_d_beckmann(_e3.h.z, _e3.sin2_h, (1.0 / (p_alpha * p_alpha)), (0.31830987 / (p_alpha * p_alpha)));
+    float d = ((_e3.h.z >= FB_COS_MIN) ? _e13 : 0.0);
+    float _e21 = fb_g1_smith(_e3.cos_o, p_alpha);
+    float _e23 = fb_g1_smith(_e3.cos_i, p_alpha);
+    float g = (_e21 * _e23);
+    float v_1 = ((((1.0 * d) * g) * 0.25) / (_e3.cos_i * _e3.cos_o));
+    return (_e3.valid ? v_1 : 0.0);
+}

@@ -1,0 +1,134 @@
+// fastbrdf 0.1.0 (lobe): cubic
+// Made by: fastbrdf shader --model cubic --lang glsl --runtime-params
+//
+// Formula: a c^3 + b c^2 + (1 - a - b) c, Hermite fit of c^n at q = 0.5^(1/n); 0 below its local minimum and where negative
+// Source: seed 003 (Romanyuk, Chan et al., cubic approximation of Phong)
+// Note: q = 0.5^(1/n) exactly (the seed rounds ln 2); evaluated in a Newton form in (c - 1) for f32 accuracy
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   cubic vs pow: max abs error (relative to the peak) <= 0.00552 over n in [4, 1000], epicentre (reference >= half its peak)
+//   cubic vs pow: max abs error (relative to the peak) <= 0.228 over n in [4, 1000], whole domain
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: p_n (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_cubic(c) with c the cosine to the lobe's axis, clamped to [0, 1], then p_n; returns f32.
+
+struct FbRtCubic {
+    float d1_;
+    float d2_;
+    float d3_;
+    float x1_;
+    float x2_;
+    float xcut;
+};
+const float FB_RT_LN_HALF = -0.6931472;
+
+
+float fb_clamp01_(float c) {
+    return min(max(c, 0.0), 1.0);
+}
+
+float fb_lobe_cubic(float c_1, float d1_, float d2_, float d3_, float x1_, float x2_, float cut) {
+    float _e7 = fb_clamp01_(c_1);
+    float y = (1.0 - _e7);
+    float p = (1.0 - (y * (d1_ - ((y + x1_) * (d2_ - ((y + x2_) * d3_))))));
+    return ((_e7 < cut) ? 0.0 : max(p, 0.0));
+}
+
+float fb_rt_expm1_(float x) {
+    float s = (x * (1.0 + (x * (0.5 + (x * (0.16666667 + (x * (0.041666668 + (x * (0.008333334 + (x * (0.0013888889 + (x * (0.0001984127 + (x * (2.4801588e-5 + (x * 2.7557319e-6)))))))))))))))));
+    return ((abs(x) < 0.5) ? s : (exp(x) - 1.0));
+}
+
+FbRtCubic fb_rt_cubic_finish(float d1_1, float d2_1, float d3_1, float x1_1, float x2_1) {
+    bool local = false;
+    bool local_1 = false;
+    bool local_2 = false;
+    bool local_3 = false;
+    bool local_4 = false;
+    bool local_5 = false;
+    bool local_6 = false;
+    bool local_7 = false;
+    float al = ((d1_1 - (d2_1 * x1_1)) + ((d3_1 * x1_1) * x2_1));
+    float be = (d2_1 - (d3_1 * (x1_1 + x2_1)));
+    float a = (3.0 * d3_1);
+    float b = (2.0 * be);
+    float disc = ((b * b) - ((4.0 * a) * al));
+    float q = (-0.5 * (b + (((b >= 0.0) ? 1.0 : -1.0) * sqrt(max(disc, 0.0)))));
+    bool lin = (a == 0.0);
+    float r1_ = (lin ? (-(al) / ((b == 0.0) ? 1.0 : b)) : (q / (lin ? 1.0 : a)));
+    float r2_ = (al / ((q == 0.0) ? 1.0 : q));
+    if ((lin ? (b != 0.0) : (disc >= 0.0))) {
+        local = (r1_ > -1.0);
+    } else {
+        local = false;
+    }
+    bool _e61 = local;
+    if (_e61) {
+        local_1 = (r1_ < x1_1);
+    } else {
+        local_1 = false;
+    }
+    bool _e66 = local_1;
+    if (_e66) {
+        local_2 = ((b + ((2.0 * a) * r1_)) > 0.0);
+    } else {
+        local_2 = false;
+    }
+    bool ok1_ = local_2;
+    if ((disc >= 0.0)) {
+        local_3 = !(lin);
+    } else {
+        local_3 = false;
+    }
+    bool _e83 = local_3;
+    if (_e83) {
+        local_4 = (q != 0.0);
+    } else {
+        local_4 = false;
+    }
+    bool _e89 = local_4;
+    if (_e89) {
+        local_5 = (r2_ > -1.0);
+    } else {
+        local_5 = false;
+    }
+    bool _e95 = local_5;
+    if (_e95) {
+        local_6 = (r2_ < x1_1);
+    } else {
+        local_6 = false;
+    }
+    bool _e100 = local_6;
+    if (_e100) {
+        local_7 = ((b + ((2.0 * a) * r2_)) > 0.0);
+    } else {
+        local_7 = false;
+    }
+    bool ok2_ = local_7;
+    float xcut = max((ok1_ ? r1_ : -1.0), (ok2_ ? r2_ : -1.0));
+    return FbRtCubic(d1_1, d2_1, d3_1, x1_1, x2_1, xcut);
+}
+
+FbRtCubic fb_rt_hermite(float n, float level, float xq) {
+    float q_1 = (1.0 + xq);
+    float s_1 = ((n * level) / q_1);
+    float f0q = ((level - 1.0) / xq);
+    float fqm = (level / q_1);
+    float f0qq = ((s_1 - f0q) / xq);
+    float fqqm = ((s_1 - fqm) / q_1);
+    FbRtCubic _e16 = fb_rt_cubic_finish(f0q, f0qq, (f0qq - fqqm), xq, xq);
+    return _e16;
+}
+
+float fb_rt_cubic(float c_2, float n_1) {
+    float _e5 = fb_rt_expm1_((FB_RT_LN_HALF / n_1));
+    FbRtCubic _e6 = fb_rt_hermite(n_1, 0.5, _e5);
+    float _e15 = fb_lobe_cubic(c_2, _e6.d1_, _e6.d2_, _e6.d3_, _e6.x1_, _e6.x2_, (1.0 + _e6.xcut));
+    return _e15;
+}
+
+float fb_cubic(float c_3, float p_n) {
+    float _e2 = fb_rt_cubic(c_3, p_n);
+    return _e2;
+}

@@ -1,0 +1,61 @@
+// fastbrdf 0.1.0 (lobe): flog-normalized-clamped
+// Made by: fastbrdf shader --model flog-normalized-clamped --lang msl --runtime-params
+//
+// Formula: min(1, max(0, coef(n) flog(c)))
+// Source: seed 001, Fig. 10 (its GLSL snippet)
+// Note: the seed's GLSL clamp to [0, 1]: loses energy for n > ~3; kept only to reproduce the seed; f32: as flog-normalized (1.3e-4 at n = 10000)
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 2.5e-4 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: p_n (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_flog_normalized_clamped(c) with c the cosine to the lobe's axis, clamped to [0, 1], then p_n; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+
+float fb_clamp01_(
+    float c
+) {
+    return metal::min(metal::max(c, 0.0), 1.0);
+}
+
+float fb_log2_(
+    float x
+) {
+    float t = (x - 1.0) / (x + 1.0);
+    float t2_ = t * t;
+    float s = t * (2.0 + (t2_ * (0.6666667 + (t2_ * (0.4 + (t2_ * (0.2857143 + (t2_ * (0.22222222 + (t2_ * (0.18181819 + (t2_ * 0.15384614))))))))))));
+    return (x >= 0.5) ? (s * 1.442695) : metal::log2(x);
+}
+
+float fb_lobe_flog(
+    float c_1,
+    float n,
+    float coef,
+    bool clamp_to_one
+) {
+    float v = {};
+    float _e4 = fb_clamp01_(c_1);
+    float _e7 = fb_log2_(metal::max(_e4, 0.000000000000000000000000000001));
+    float f = 1.0 - (0.5 * metal::log2(1.0 - (n * _e7)));
+    v = metal::max(coef * f, 0.0);
+    if (clamp_to_one) {
+        float _e20 = v;
+        v = metal::min(_e20, 1.0);
+    }
+    float _e23 = v;
+    return (_e4 > 0.0) ? _e23 : 0.0;
+}
+
+float fb_flog_normalized_clamped(
+    float c_2,
+    float p_n
+) {
+    float _e12 = fb_lobe_flog(c_2, p_n, (0.197 * (p_n + 1.24)) + (0.068 / (0.64 + p_n)), true);
+    return _e12;
+}

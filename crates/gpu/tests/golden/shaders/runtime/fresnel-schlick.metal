@@ -1,0 +1,43 @@
+// fastbrdf 0.1.0 (fresnel): fresnel-schlick
+// Made by: fastbrdf shader --model fresnel-schlick --lang msl --runtime-params
+//
+// Formula: f0 + (1 - f0)(1 - cos)^5
+// Source: Schlick 1994
+// Parameters (this export: f0 = 0.04):
+//   f0: reflectance at normal incidence (Schlick) (range [0, 1], default 0.04)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: p_f0 (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_fresnel_schlick(cos_vh) with cos_vh = v.h, then p_f0; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+
+float fb_clamp01_(
+    float c
+) {
+    return metal::min(metal::max(c, 0.0), 1.0);
+}
+
+float fb_f_schlick(
+    float c_1,
+    float f0_
+) {
+    float _e2 = fb_clamp01_(c_1);
+    float m = 1.0 - _e2;
+    float m2_ = m * m;
+    return f0_ + ((1.0 - f0_) * ((m2_ * m2_) * m));
+}
+
+float fb_fresnel_schlick(
+    float cos_vh,
+    float p_f0_
+) {
+    float c_2 = metal::max(cos_vh, 0.0);
+    float _e4 = fb_f_schlick(c_2, p_f0_);
+    return _e4;
+}

@@ -1,0 +1,31 @@
+// fastbrdf 0.1.0 (lobe): ue4-phong-approx
+// Made by: fastbrdf shader --model ue4-phong-approx --lang wgsl --runtime-params
+//
+// Formula: exp2(1.4427 (n + 0.775)(c - 1))
+// Source: Unreal Engine 4 mobile shading (PhongApprox), Karis 2014
+// Parameters (this export: n = 20):
+//   n: specular exponent (range [1, 10000], default 20)
+// Documented error bounds (measured by `fastbrdf check`):
+//   ue4-phong-approx vs pow: max abs error (relative to the peak) <= 0.17 over n in [1, 1000], whole domain
+//   ue4-phong-approx vs pow: max abs error (relative to the peak) <= 0.0097 over n in [16, 1000], whole domain
+//   ue4-phong-approx vs pow: max rel error <= 0.183 over n in [1, 1000], epicentre (reference >= half its peak)
+// Precision: f32 on the CPU within 2e-7 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: p_n (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_ue4_phong_approx(c) with c the cosine to the lobe's axis, clamped to [0, 1], then p_n; returns f32.
+
+/// Clamps a cosine to [0, 1] (twin: ops::clamp01).
+fn fb_clamp01(c: f32) -> f32 {
+    return min(max(c, 0.0), 1.0);
+}
+
+/// sg, sg-tuned, ue4-phong-approx: 2^(k (c - 1)), the spherical Gaussian. sg: k = n / ln 2;
+/// ue4-phong-approx: k = 1.4427 (n + 0.775) (Karis 2013). Cost: 1 mul, 1 add, 1 exp2.
+fn fb_lobe_exp2(c: f32, k: f32) -> f32 {
+    return exp2(k * (fb_clamp01(c) - 1.0));
+}
+
+/// ue4-phong-approx: exp2(1.4427 (n + 0.775)(c - 1))
+/// Source: Unreal Engine 4 mobile shading (PhongApprox), Karis 2014. Instance: runtime parameters p_n; fixed: no parameters.
+fn fb_ue4_phong_approx(c: f32, p_n: f32) -> f32 {
+    return fb_lobe_exp2(c, (1.4427 * (p_n + 0.775)));
+}

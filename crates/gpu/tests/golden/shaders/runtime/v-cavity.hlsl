@@ -1,0 +1,23 @@
+// fastbrdf 0.1.0 (shadowing): v-cavity
+// Made by: fastbrdf shader --model v-cavity --lang hlsl --runtime-params
+//
+// Formula: min(1, 2 NH NV / VH, 2 NH NL / VH)
+// Source: Cook & Torrance 1982 (after Torrance & Sparrow 1967)
+// Note: input columns cos_v, cos_h, cos_vh and optional cos_l (two-sided)
+// Parameters (this export: no parameters):
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: none (the model has no numeric parameter) (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_v_cavity(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+
+float fb_g_v_cavity(float cos_v, float cos_l, float cos_h, float cos_vh)
+{
+    float k = ((2.0 * cos_h) / cos_vh);
+    return min(min(1.0, (k * cos_v)), (k * cos_l));
+}
+
+float fb_v_cavity(float cos_v_1, float cos_l_1, float cos_h_1, float cos_vh_1)
+{
+    const float _e4 = fb_g_v_cavity(cos_v_1, cos_l_1, cos_h_1, cos_vh_1);
+    return (((((cos_v_1 > 0.0) & (cos_l_1 > 0.0)) & (cos_h_1 > 0.0)) & (cos_vh_1 > 0.0)) ? _e4 : 0.0);
+}
