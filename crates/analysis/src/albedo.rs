@@ -33,20 +33,15 @@ pub fn target(id: &str, params: &[(String, String)], as_brdf: &str, norm: &str) 
     let e = registry::find(id)?;
     match e.info.kind {
         fastbrdf::Kind::Brdf => {
-            let get = |k: &str| params.iter().find(|(n, _)| n == k).map(|(_, v)| v.as_str());
-            let claims = match id {
-                "lambert" | "ward" | "ward-pow" | "ward-power16" => true,
-                "cook-torrance" => get("denominator").unwrap_or("4") == "4",
-                "phong" | "blinn-phong" => {
-                    get("norm").unwrap_or("energy") == "energy"
-                        || get("lobe").is_some_and(|l| l.starts_with("flog-normalized"))
-                }
-                _ => false,
-            };
+            let given: Vec<(&str, &str)> = params
+                .iter()
+                .map(|(k, v)| (k.as_str(), v.as_str()))
+                .collect();
             Ok(Target {
                 id: id.into(),
                 params: params.to_vec(),
-                claims_energy: claims,
+                // The model's own metadata (`BrdfForm::claims_energy`): normalised models.
+                claims_energy: registry::plan(id, &given)?.claims_energy(),
             })
         }
         fastbrdf::Kind::Lobe => {
@@ -55,10 +50,12 @@ pub fn target(id: &str, params: &[(String, String)], as_brdf: &str, norm: &str) 
                 ("norm".to_string(), norm.to_string()),
             ];
             p.extend(params.iter().cloned());
+            let given: Vec<(&str, &str)> =
+                p.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
             Ok(Target {
+                claims_energy: registry::plan(as_brdf, &given)?.claims_energy(),
                 id: as_brdf.into(),
                 params: p,
-                claims_energy: norm == "energy" || id.starts_with("flog-normalized"),
             })
         }
         k => Err(fastbrdf::Error::WrongKind {

@@ -59,3 +59,38 @@ impl Kind {
         }
     }
 }
+
+/// How a model of a kind is shaded (the renderers' and BRDF Explorer exports' policy, one
+/// place): as the BRDF it is, or as the BRDF `brdf` with the model as its parameter `param`
+/// (plus fixed `extra` parameters); shadowing and Fresnel terms are not shaded.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    AsIs,
+    Via {
+        brdf: &'static str,
+        param: &'static str,
+        extra: &'static [(&'static str, &'static str)],
+    },
+    Not,
+}
+
+impl Kind {
+    /// The shading policy: a lobe as `blinn-phong` of that lobe with `norm = none` (the
+    /// seeds' pictures), a distribution as `cook-torrance` with that `d`.
+    pub fn shading(self) -> Shading {
+        match self {
+            Kind::Brdf => Shading::AsIs,
+            Kind::Lobe => Shading::Via {
+                brdf: "blinn-phong",
+                param: "lobe",
+                extra: &[("norm", "none")],
+            },
+            Kind::Distribution => Shading::Via {
+                brdf: "cook-torrance",
+                param: "d",
+                extra: &[],
+            },
+            Kind::Shadowing | Kind::Fresnel => Shading::Not,
+        }
+    }
+}

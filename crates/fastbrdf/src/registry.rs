@@ -6,6 +6,7 @@
 use crate::brdf::{cook_torrance, lambert, phong, ward};
 use crate::entry::Entry;
 use crate::error::{Error, Result};
+use crate::kind::Shading;
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
 use crate::model::{Kind, Lobe, Model};
@@ -191,4 +192,29 @@ pub fn lobe_integral(id: &str, n: f64) -> Result<f64> {
         .plan(id, &|name| (name == "n").then_some(n))?
         .lobe(id)?;
     Ok(crate::brdf::phong::lobe_integral(&plan))
+}
+
+/// The BRDF (id and parameters) that shading with model `id` evaluates, by its kind's policy
+/// (`Kind::shading`): BRDFs as they are, a lobe as `blinn-phong` with that lobe and
+/// `norm = none`, a distribution as `cook-torrance` with that `d`; shadowing and Fresnel
+/// terms are an error. Used by both renderers and the BRDF Explorer export.
+pub fn shading_brdf(
+    id: &str,
+    params: &[(String, String)],
+) -> Result<(&'static str, Vec<(String, String)>)> {
+    let e = find(id)?;
+    let mut p: Vec<(String, String)> = params.to_vec();
+    match e.info.kind.shading() {
+        Shading::AsIs => Ok((e.info.id, p)),
+        Shading::Via { brdf, param, extra } => {
+            p.push((param.into(), e.info.id.into()));
+            p.extend(extra.iter().map(|(k, v)| (k.to_string(), v.to_string())));
+            Ok((brdf, p))
+        }
+        Shading::Not => Err(Error::WrongKind {
+            model: id.into(),
+            expected: "a lobe, a distribution or a BRDF (something to shade with)".into(),
+            found: e.info.kind.name().into(),
+        }),
+    }
 }

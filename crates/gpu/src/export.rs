@@ -129,8 +129,10 @@ pub fn export_form(
                 .map(|(a, b)| (a.to_string(), b.to_string()))
                 .collect();
             let (target, p) = match kind {
-                Kind::Lobe | Kind::Distribution => fastbrdf_render::scene::shading_brdf(id, &given)
-                    .map_err(|e| GpuError::Input(e.to_string()))?,
+                Kind::Lobe | Kind::Distribution => {
+                    let (b, p) = fastbrdf::registry::shading_brdf(id, &given)?;
+                    (b.to_string(), p)
+                }
                 _ => (id.to_string(), given),
             };
             let p: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();

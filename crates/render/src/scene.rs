@@ -6,7 +6,7 @@ use crate::error::{RenderError, Result};
 use crate::geometry::{Hit, Plane, Ray, Sphere, TriMesh};
 use crate::texture::Texture;
 use fastbrdf::batch::Kernel;
-use fastbrdf::{Kind, Model, registry};
+use fastbrdf::{Model, registry};
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -202,35 +202,19 @@ impl Specular {
     }
 }
 
-/// The BRDF (id and parameters) that shading with model `id` evaluates: BRDFs as they are,
-/// a lobe as `blinn-phong` with that lobe and `norm = none` (the seeds' pictures), a
-/// distribution as `cook-torrance` with that `d`; shadowing and Fresnel terms are an error.
-/// Used by `Specular::new` and by the GPU crate's BRDF Explorer export.
+/// The BRDF (id and parameters) that shading with model `id` evaluates: the core crate's
+/// policy (`fastbrdf::registry::shading_brdf`), its refusal as this crate's error.
 pub fn shading_brdf(
     id: &str,
     params: &[(String, String)],
 ) -> Result<(String, Vec<(String, String)>)> {
-    let e = registry::find(id)?;
-    let mut p: Vec<(String, String)> = params.to_vec();
-    let brdf = match e.info.kind {
-        Kind::Brdf => e.info.id.to_string(),
-        Kind::Lobe => {
-            p.push(("lobe".into(), id.into()));
-            p.push(("norm".into(), "none".into()));
-            "blinn-phong".into()
-        }
-        Kind::Distribution => {
-            p.push(("d".into(), id.into()));
-            "cook-torrance".into()
-        }
-        k => {
-            return Err(RenderError::Invalid(format!(
-                "'{id}' is a {}, not something to shade with: give a lobe, a distribution or a BRDF",
-                k.name()
-            )));
-        }
-    };
-    Ok((brdf, p))
+    match registry::shading_brdf(id, params) {
+        Ok((brdf, p)) => Ok((brdf.to_string(), p)),
+        Err(fastbrdf::Error::WrongKind { found, .. }) => Err(RenderError::Invalid(format!(
+            "'{id}' is a {found}, not something to shade with: give a lobe, a distribution or a BRDF"
+        ))),
+        Err(e) => Err(e.into()),
+    }
 }
 
 /// A surface material.
