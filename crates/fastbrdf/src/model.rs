@@ -161,19 +161,13 @@ pub trait Brdf<T: Real>: Send + Sync {
         }
     }
     /// Whether `f(wi, wo) = f(wo, wi)` holds (tested on random pairs when it does).
-    fn reciprocal(&self) -> bool {
-        true
-    }
+    fn reciprocal(&self) -> bool;
     /// Values of `reflect(wi) . wo` where the BRDF is discontinuous or has a kink (the lobe's
     /// cut and junctions, for lobe-based BRDFs), so that quadrature can split there.
-    fn mirror_breaks(&self) -> Vec<f64> {
-        Vec::new()
-    }
+    fn mirror_breaks(&self) -> Vec<f64>;
     /// Values of `cos theta_h` where the BRDF is discontinuous or has a kink (the lobe's cut
     /// and junctions, for `blinn-phong`): where an adversarial search starts.
-    fn half_breaks(&self) -> Vec<f64> {
-        Vec::new()
-    }
+    fn half_breaks(&self) -> Vec<f64>;
 }
 
 /// A built model of any kind, in precision `T`.

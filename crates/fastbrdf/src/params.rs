@@ -129,14 +129,7 @@ impl Params {
     ) -> Result<Self> {
         let mut values = BTreeMap::new();
         for (name, text) in given {
-            let spec =
-                specs
-                    .iter()
-                    .find(|s| s.name == *name)
-                    .ok_or_else(|| Error::UnknownParam {
-                        model: model.into(),
-                        param: (*name).into(),
-                    })?;
+            let spec = spec_of(model, specs, name)?;
             if values.contains_key(spec.name) {
                 return Err(Error::InvalidParam {
                     model: model.into(),
@@ -175,14 +168,7 @@ impl Params {
     ) -> Result<Self> {
         let mut p = Self::resolve(model, specs, &[])?;
         for (name, x) in given {
-            let spec =
-                specs
-                    .iter()
-                    .find(|s| s.name == *name)
-                    .ok_or_else(|| Error::UnknownParam {
-                        model: model.into(),
-                        param: (*name).into(),
-                    })?;
+            let spec = spec_of(model, specs, name)?;
             p.values
                 .insert(spec.name, Value::Num(check(model, spec, *x)?));
         }
@@ -226,6 +212,17 @@ impl Params {
     pub fn iter(&self) -> impl Iterator<Item = (&'static str, &Value)> {
         self.values.iter().map(|(k, v)| (*k, v))
     }
+}
+
+/// The spec of parameter `name`, or an error naming the model.
+fn spec_of<'a>(model: &str, specs: &'a [ParamSpec], name: &str) -> Result<&'a ParamSpec> {
+    specs
+        .iter()
+        .find(|s| s.name == name)
+        .ok_or_else(|| Error::UnknownParam {
+            model: model.into(),
+            param: name.into(),
+        })
 }
 
 fn parse(model: &'static str, spec: &ParamSpec, text: &str) -> Result<Value> {

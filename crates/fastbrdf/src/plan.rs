@@ -99,15 +99,15 @@ pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
     fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T;
     /// The WGSL body of `fn fb_<id>(wi: vec3<f32>, wo: vec3<f32>) -> f32`.
     fn wgsl_body(&self, e: &Emit) -> String;
-    /// Whether `f(wi, wo) = f(wo, wi)`.
+    /// Whether `f(wi, wo) = f(wo, wi)` (see [`model::Brdf::reciprocal`]).
     fn reciprocal(&self) -> bool {
         true
     }
-    /// `reflect(wi) . wo` values where it is not smooth.
+    /// See [`model::Brdf::mirror_breaks`].
     fn mirror_breaks(&self) -> Vec<f64> {
         Vec::new()
     }
-    /// `cos theta_h` values where it is not smooth.
+    /// See [`model::Brdf::half_breaks`].
     fn half_breaks(&self) -> Vec<f64> {
         Vec::new()
     }

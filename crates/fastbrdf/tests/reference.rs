@@ -584,3 +584,44 @@ fn lambert_and_lobe_brdfs_match_their_formulas() {
         }
     }
 }
+
+/// Shadowing terms, Fresnel terms and BRDFs with an independent reference formula in this
+/// file (lobes and distributions have theirs in `ref_lobe` / `ref_distribution`, which panic
+/// on an unknown id).
+const REFERENCED: &[&str] = &[
+    "v-cavity",
+    "smith",
+    "smith-rational",
+    "fresnel-none",
+    "fresnel-schlick",
+    "fresnel-dielectric",
+    "fresnel-conductor",
+    "cook-torrance",
+    "ward",
+    "ward-pow",
+    "ward-power16",
+    "lambert",
+    "phong",
+    "blinn-phong",
+];
+
+/// A model added to the registry without an independent f64 reference here fails this test
+/// (rather than being skipped silently by the tests above).
+#[test]
+fn every_registered_model_has_an_independent_reference() {
+    for e in registry::all() {
+        match e.info.kind {
+            fastbrdf::Kind::Lobe => {
+                let _ = ref_lobe(e.info.id, 20.0, 0.9);
+            }
+            fastbrdf::Kind::Distribution => {
+                let _ = ref_distribution(e.info.id, 0.3, 0.9);
+            }
+            _ => assert!(
+                REFERENCED.contains(&e.info.id),
+                "{}: no independent reference formula in tests/reference.rs",
+                e.info.id
+            ),
+        }
+    }
+}
