@@ -13,7 +13,9 @@
 //!
 //! A new variant of an existing family is a new builder (one registry line and an `Entry`);
 //! a new family implements one of the `*Form` traits below and adds one line to its family
-//! list here; the compiler then asks for every method (formula, WGSL call, metadata).
+//! list here; the compiler then asks for every method (formula, WGSL call, metadata) and for
+//! its WGSL twin (`WGSL`: the `.wgsl` file beside its Rust file, which the WGSL library
+//! collects from the family lists: [`crate::wgsl::library_sources`]).
 
 use crate::error::{Error, Result};
 use crate::math::{Exact, Math};
@@ -30,6 +32,10 @@ use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
 
 /// A function of one cosine (a specular lobe).
 pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
+    /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
+    /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
+    /// (the library takes it once). See [`crate::wgsl::library_sources`].
+    const WGSL: &'static str;
     /// The registry id this instance was built as (for WGSL names and messages).
     fn id(&self) -> &'static str;
     /// The value at `c`, already clamped to [0, 1] and not NaN (see [`model::Lobe::eval`]).
@@ -62,6 +68,10 @@ pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
 
 /// A microfacet distribution `D(cos theta_h)`.
 pub trait DistForm: Copy + Debug + Send + Sync + 'static {
+    /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
+    /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
+    /// (the library takes it once). See [`crate::wgsl::library_sources`].
+    const WGSL: &'static str;
     /// `D` at `cos_h` in `[COS_MIN, 1]` with `sin2_h = sin^2 theta_h`.
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T;
     /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
@@ -70,6 +80,10 @@ pub trait DistForm: Copy + Debug + Send + Sync + 'static {
 
 /// A shadowing-masking term.
 pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
+    /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
+    /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
+    /// (the library takes it once). See [`crate::wgsl::library_sources`].
+    const WGSL: &'static str;
     /// Whether its batch kernel vectorises (the exact Smith term calls libm's `erfc`).
     const SIMD: bool = true;
     /// Whether it uses `cos_h` and `cos_vh` (the V-cavity).
@@ -82,6 +96,10 @@ pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
 
 /// A Fresnel term.
 pub trait FresnelForm: Copy + Debug + Send + Sync + 'static {
+    /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
+    /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
+    /// (the library takes it once). See [`crate::wgsl::library_sources`].
+    const WGSL: &'static str;
     /// Reflectance at `cos` (NaN or negative act as 0, above 1 as 1).
     fn f<T: Real, M: Math<T>>(&self, cos: T) -> T;
     /// The WGSL expression on `c` (non-negative).
@@ -90,6 +108,10 @@ pub trait FresnelForm: Copy + Debug + Send + Sync + 'static {
 
 /// A full BRDF of a prepared direction pair.
 pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
+    /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
+    /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
+    /// (the library takes it once). See [`crate::wgsl::library_sources`].
+    const WGSL: &'static str;
     /// Whether its batch kernel vectorises.
     fn simd(&self) -> bool {
         true
@@ -119,14 +141,36 @@ pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
 
 // ---------- the family lists: one line per family ----------
 
-/// Declares a plan enum with one variant per family, the enum's implementation of the family
-/// trait (dispatch), and a `with_*!` macro that matches a plan and runs an expression with the
-/// concrete family (the batch kernels use it to monomorphise).
+/// Adds `src` to `out` unless it is empty or already there (families that share a `.wgsl` file).
+pub(crate) fn push_source(
+    out: &mut Vec<(&'static str, &'static str)>,
+    name: &'static str,
+    src: &'static str,
+) {
+    if !src.is_empty() && !out.iter().any(|(_, s)| *s == src) {
+        out.push((name, src));
+    }
+}
+
+/// Declares a plan enum with one variant per family, a `with_*!` macro that matches a plan and
+/// runs an expression with the concrete family (the batch kernels use it to monomorphise), and
+/// the list's WGSL sources (`wgsl_sources`, from each family's `$form::WGSL`). The enum's
+/// implementation of the family trait (dispatch) is written below.
 macro_rules! families {
-    ($d:tt $plan:ident, $with:ident { $($v:ident($t:ty)),* $(,)? }) => {
+    ($d:tt $plan:ident: $form:ident, $with:ident { $($v:ident($t:ty)),* $(,)? }) => {
         #[derive(Clone, Copy, Debug)]
         pub enum $plan { $($v($t)),* }
         $(impl From<$t> for $plan { fn from(x: $t) -> Self { $plan::$v(x) } })*
+        impl $plan {
+            /// The WGSL sources of this list's families, in list order, each file once (by
+            /// content; families without one are left out), named by the first family that
+            /// gives it (for messages).
+            pub fn wgsl_sources() -> Vec<(&'static str, &'static str)> {
+                let mut out: Vec<(&'static str, &'static str)> = Vec::new();
+                $(push_source(&mut out, stringify!($t), <$t as $form>::WGSL);)*
+                out
+            }
+        }
         #[allow(unused_macros)]
         macro_rules! $with {
             ($d p:expr, $d f:ident => $d body:expr) => {
@@ -138,7 +182,7 @@ macro_rules! families {
     };
 }
 
-families!($ LobePlan, with_lobe {
+families!($ LobePlan: LobeForm, with_lobe {
     Pow(pow::Pow),
     Schlick(schlick::Schlick),
     SchlickModified(schlick::SchlickModified),
@@ -153,7 +197,7 @@ families!($ LobePlan, with_lobe {
     Exp2(sg::Exp2Lobe),
 });
 
-families!($ DistPlan, with_dist {
+families!($ DistPlan: DistForm, with_dist {
     Beckmann(beckmann::Beckmann),
     BeckmannPow(beckmann_pow::BeckmannPow),
     BeckmannPower4(beckmann_pow::BeckmannPower<2>),
@@ -161,20 +205,20 @@ families!($ DistPlan, with_dist {
     BeckmannPower16(beckmann_pow::BeckmannPower<4>),
 });
 
-families!($ ShadowPlan, with_shadow {
+families!($ ShadowPlan: ShadowForm, with_shadow {
     VCavity(shadowing::VCavity),
     Smith(shadowing::Smith),
     SmithRational(shadowing::SmithRational),
 });
 
-families!($ FresnelPlan, with_fresnel {
+families!($ FresnelPlan: FresnelForm, with_fresnel {
     None(fresnel::NoFresnel),
     Schlick(fresnel::Schlick),
     Dielectric(fresnel::Dielectric),
     Conductor(fresnel::Conductor),
 });
 
-families!($ BrdfPlan, with_brdf {
+families!($ BrdfPlan: BrdfForm, with_brdf {
     CookTorrance(cook_torrance::CookTorrance),
     Ward(ward::Ward<0>),
     WardPow(ward::Ward<1>),
@@ -196,6 +240,8 @@ pub enum Plan {
 // ---------- plan enums implement their family trait by dispatch ----------
 
 impl LobeForm for LobePlan {
+    /// A plan's sources are its list's: [`Self::wgsl_sources`].
+    const WGSL: &'static str = "";
     fn id(&self) -> &'static str {
         with_lobe!(self, l => l.id())
     }
@@ -221,6 +267,8 @@ impl LobeForm for LobePlan {
 }
 
 impl DistForm for DistPlan {
+    /// A plan's sources are its list's: [`Self::wgsl_sources`].
+    const WGSL: &'static str = "";
     #[inline]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
         with_dist!(self, d => d.d::<T, M>(cos_h, sin2_h))
@@ -248,6 +296,8 @@ impl ShadowPlan {
 }
 
 impl ShadowForm for ShadowPlan {
+    /// A plan's sources are its list's: [`Self::wgsl_sources`].
+    const WGSL: &'static str = "";
     #[inline]
     fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
         with_shadow!(self, g => g.g::<T, M>(s))
@@ -258,6 +308,8 @@ impl ShadowForm for ShadowPlan {
 }
 
 impl FresnelForm for FresnelPlan {
+    /// A plan's sources are its list's: [`Self::wgsl_sources`].
+    const WGSL: &'static str = "";
     #[inline]
     fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
         with_fresnel!(self, f => f.f::<T, M>(cos))
@@ -268,6 +320,8 @@ impl FresnelForm for FresnelPlan {
 }
 
 impl BrdfForm for BrdfPlan {
+    /// A plan's sources are its list's: [`Self::wgsl_sources`].
+    const WGSL: &'static str = "";
     fn simd(&self) -> bool {
         with_brdf!(self, b => b.simd())
     }

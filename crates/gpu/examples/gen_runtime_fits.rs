@@ -1,4 +1,4 @@
-//! Generates the fitted normalisation integrals of `crates/gpu/src/wgsl/runtime.wgsl`
+//! Generates the fitted normalisation integrals of `crates/fastbrdf/src/runtime.wgsl`
 //! (see `fastbrdf_gpu::runtime_fits`): prints the WGSL block and each fit's maximum relative
 //! error against `reference_integral` (`lobe_integral`, kink-aware for the clamped flog) on 400 log-spaced n; with `--write`, replaces the block in
 //! `runtime.wgsl`.
@@ -30,7 +30,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     if std::env::args().any(|a| a == "--write") {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/wgsl/runtime.wgsl");
+        // The core crate's file (`fastbrdf::wgsl::RUNTIME`), beside this crate.
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../fastbrdf/src/runtime.wgsl");
         let src = std::fs::read_to_string(path)?;
         let new = replace_block(&src, &block).ok_or("runtime.wgsl has no generated block")?;
         std::fs::write(path, new)?;

@@ -1,5 +1,8 @@
-//! The WGSL library (`src/wgsl/*.wgsl`) as items, so that a shader can take just the items it
-//! needs: a module for one model, or an exported function, carries no dead code.
+//! The WGSL library as items, so that a shader can take just the items it needs: a module for
+//! one model, or an exported function, carries no dead code. The sources live in the core crate,
+//! each family's `.wgsl` file beside its Rust file, and come from
+//! `fastbrdf::wgsl::library_sources` (collected from the family lists of `fastbrdf::plan`, in
+//! dependency order): this crate keeps no list of WGSL files.
 //!
 //! An item is a run of `///` doc lines followed by a `const`, `struct` or `fn` declaration
 //! (ending at its `;`, or at a line that is exactly `}`). Items depend on the items whose names
@@ -8,15 +11,6 @@
 
 use std::collections::BTreeSet;
 use std::sync::OnceLock;
-
-/// The library's source files, in dependency order.
-pub const FILES: [(&str, &str); 5] = [
-    ("common.wgsl", include_str!("wgsl/common.wgsl")),
-    ("lobes.wgsl", include_str!("wgsl/lobes.wgsl")),
-    ("microfacet.wgsl", include_str!("wgsl/microfacet.wgsl")),
-    ("brdf.wgsl", include_str!("wgsl/brdf.wgsl")),
-    ("runtime.wgsl", include_str!("wgsl/runtime.wgsl")),
-];
 
 /// One library item.
 #[derive(Clone, Debug)]
@@ -28,10 +22,15 @@ pub struct Item {
     code: String,
 }
 
-/// Every item of the library, in file order.
+/// Every item of the library, in the order of `fastbrdf::wgsl::library_sources`.
 pub fn items() -> &'static [Item] {
     static ITEMS: OnceLock<Vec<Item>> = OnceLock::new();
-    ITEMS.get_or_init(|| FILES.iter().flat_map(|(_, src)| parse(src)).collect())
+    ITEMS.get_or_init(|| {
+        fastbrdf::wgsl::library_sources()
+            .iter()
+            .flat_map(|(_, src)| parse(src))
+            .collect()
+    })
 }
 
 /// The whole library as one WGSL source.
@@ -155,6 +154,21 @@ mod tests {
         let pair = items().iter().find(|i| i.name == "fb_pair").unwrap();
         assert!(pair.text.starts_with("/// Normalises"));
         assert!(pair.text.trim_end().ends_with('}'));
+    }
+
+    #[test]
+    fn every_item_is_defined_once() {
+        // `closure` finds items by name: a second definition (two families' files) would be
+        // dropped silently from every shader that needs the first.
+        let mut seen: std::collections::BTreeMap<String, &str> = Default::default();
+        for (file, src) in fastbrdf::wgsl::library_sources() {
+            for item in parse(src) {
+                if let Some(first) = seen.insert(item.name.clone(), file) {
+                    panic!("{} is defined in {first} and in {file}", item.name);
+                }
+            }
+        }
+        assert_eq!(seen.len(), items().len());
     }
 
     #[test]

@@ -1,6 +1,7 @@
-//! The fitted normalisation integrals of `src/wgsl/runtime.wgsl` (issue 12): the lobes whose
-//! `Int(n) = integral_0^1 lobe(c) c dc` has no elementary closed form (`gauss`, `flog`,
-//! `flog-normalized-clamped` above the `n` where its clamp starts to act).
+//! The fitted normalisation integrals of `crates/fastbrdf/src/runtime.wgsl` (issue 12; the core
+//! crate's `fastbrdf::wgsl::RUNTIME`): the lobes whose `Int(n) = integral_0^1 lobe(c) c dc` has
+//! no elementary closed form (`gauss`, `flog`, `flog-normalized-clamped` above the `n` where its
+//! clamp starts to act).
 //!
 //! Method: `F(n) = n Int(n)` is a smooth function of `x = 1/n` (for `flog`, substituting
 //! `c = 2^(-t/n)` gives `n Int = ln 2 integral_0^3 (1 - log2(1 + t) / 2) 2^(-2t/n) dt`, entire in

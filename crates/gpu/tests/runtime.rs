@@ -1,5 +1,5 @@
-//! The runtime-parameter lobes of `src/wgsl/runtime.wgsl` (issue 12): coefficients computed in
-//! the shader in f32 from `n`, measured on the GPU against the CPU's f64 models.
+//! The runtime-parameter lobes of `crates/fastbrdf/src/runtime.wgsl` (issue 12): coefficients
+//! computed in the shader in f32 from `n`, measured on the GPU against the CPU's f64 models.
 //!
 //! - Lobes (`fb_rt_cubic`, `fb_rt_cubic3`, `fb_rt_rational`, `fb_rt_cubic_rational`,
 //!   `fb_rt_cubic_rational_tuned`): n on 400 log-spaced values in [1, 10000] plus 1, 2, 4, 8,
@@ -438,7 +438,7 @@ fn numbers(block: &str) -> Vec<f64> {
 
 #[test]
 fn generated_fits_are_current_and_within_their_bound() {
-    let src = include_str!("../src/wgsl/runtime.wgsl");
+    let src = fastbrdf::wgsl::RUNTIME;
     let fits = generate().expect("fits");
     let fresh = wgsl_block(&fits);
     let stored = current_block(src).expect("runtime.wgsl has its generated block");

@@ -141,6 +141,8 @@ impl CookTorrance {
 }
 
 impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G, F> {
+    // No .wgsl file: the body is assembled per instance from its D, G and F's functions.
+    const WGSL: &'static str = "";
     fn simd(&self) -> bool {
         G::SIMD
     }

@@ -55,6 +55,8 @@ impl Lambert {
 }
 
 impl BrdfForm for Lambert {
+    // No .wgsl file: the body (a constant) is written per instance by `wgsl_body`.
+    const WGSL: &'static str = "";
     #[inline(always)]
     fn at_pair<T: Real, M: Math<T>>(&self, _p: &Pair<T>) -> T {
         T::c(self.albedo / std::f64::consts::PI)

@@ -157,6 +157,8 @@ impl<L: LobeForm> LobeBrdf<L> {
 }
 
 impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
+    // No .wgsl file: the body is assembled per instance around its lobe's function.
+    const WGSL: &'static str = "";
     #[inline(always)]
     fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
         let cut = p.lobe_cut(self.zero, self.blinn);

@@ -172,6 +172,7 @@ impl Ward<0> {
 }
 
 impl<const FORM: u8> BrdfForm for Ward<FORM> {
+    const WGSL: &'static str = include_str!("ward.wgsl");
     fn claims_energy(&self) -> bool {
         true
     }

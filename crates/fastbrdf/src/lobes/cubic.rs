@@ -240,6 +240,7 @@ impl Cubic {
 }
 
 impl LobeForm for Cubic {
+    const WGSL: &'static str = include_str!("cubic.wgsl");
     fn id(&self) -> &'static str {
         if self.three { "cubic3" } else { "cubic" }
     }

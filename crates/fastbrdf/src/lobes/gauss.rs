@@ -58,6 +58,7 @@ impl Gauss {
 }
 
 impl LobeForm for Gauss {
+    const WGSL: &'static str = include_str!("gauss.wgsl");
     fn id(&self) -> &'static str {
         "gauss"
     }

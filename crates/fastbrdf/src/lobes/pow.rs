@@ -51,6 +51,7 @@ impl Pow {
 }
 
 impl LobeForm for Pow {
+    const WGSL: &'static str = include_str!("pow.wgsl");
     fn id(&self) -> &'static str {
         "pow"
     }

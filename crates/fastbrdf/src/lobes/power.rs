@@ -110,6 +110,7 @@ impl<const K: u32> Power<K> {
 }
 
 impl<const K: u32> LobeForm for Power<K> {
+    const WGSL: &'static str = include_str!("power.wgsl");
     fn id(&self) -> &'static str {
         match (K, self.tuned) {
             (2, false) => "power4",

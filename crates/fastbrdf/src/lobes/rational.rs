@@ -120,6 +120,7 @@ impl Rational {
 }
 
 impl LobeForm for Rational {
+    const WGSL: &'static str = include_str!("rational.wgsl");
     fn id(&self) -> &'static str {
         "rational"
     }
@@ -176,6 +177,7 @@ impl CubicRational {
 }
 
 impl LobeForm for CubicRational {
+    const WGSL: &'static str = include_str!("rational.wgsl");
     fn id(&self) -> &'static str {
         if self.tuned {
             "cubic-rational-tuned"

@@ -88,6 +88,7 @@ impl Schlick {
 }
 
 impl LobeForm for Schlick {
+    const WGSL: &'static str = include_str!("schlick.wgsl");
     fn id(&self) -> &'static str {
         "schlick"
     }
@@ -117,6 +118,7 @@ impl SchlickModified {
 }
 
 impl LobeForm for SchlickModified {
+    const WGSL: &'static str = include_str!("schlick.wgsl");
     fn id(&self) -> &'static str {
         "schlick-modified"
     }

@@ -131,6 +131,7 @@ impl Exp2Lobe {
 }
 
 impl LobeForm for Exp2Lobe {
+    const WGSL: &'static str = include_str!("sg.wgsl");
     fn id(&self) -> &'static str {
         match self.form {
             Exp2Form::Sg => "sg",

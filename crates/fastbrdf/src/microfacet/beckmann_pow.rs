@@ -155,6 +155,7 @@ impl BeckmannPow {
 }
 
 impl DistForm for BeckmannPow {
+    const WGSL: &'static str = include_str!("beckmann_pow.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, _sin2_h: T) -> T {
         T::c(self.scale) * M::pow(cos_h, T::c(self.e))
@@ -193,6 +194,7 @@ impl<const K: u32> BeckmannPower<K> {
 }
 
 impl<const K: u32> DistForm for BeckmannPower<K> {
+    const WGSL: &'static str = include_str!("beckmann_pow.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
         let cos_minus_1 = -sin2_h / (T::one() + cos_h);

@@ -108,6 +108,7 @@ pub const ENTRY_CONDUCTOR: Entry = Entry::new(INFO_CONDUCTOR, |p, _| {
 pub struct NoFresnel;
 
 impl FresnelForm for NoFresnel {
+    const WGSL: &'static str = include_str!("fresnel.wgsl");
     #[inline(always)]
     fn f<T: Real, M: Math<T>>(&self, _cos: T) -> T {
         T::one()
@@ -124,6 +125,7 @@ pub struct Schlick {
 }
 
 impl FresnelForm for Schlick {
+    const WGSL: &'static str = include_str!("fresnel.wgsl");
     #[inline(always)]
     fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
         let one = T::one();
@@ -144,6 +146,7 @@ impl FresnelForm for Schlick {
 pub struct Dielectric(pub Consts);
 
 impl FresnelForm for Dielectric {
+    const WGSL: &'static str = include_str!("fresnel.wgsl");
     #[inline(always)]
     fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
         dielectric(cos, &self.0)
@@ -161,6 +164,7 @@ impl FresnelForm for Dielectric {
 pub struct Conductor(pub Consts);
 
 impl FresnelForm for Conductor {
+    const WGSL: &'static str = include_str!("fresnel.wgsl");
     #[inline(always)]
     fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
         conductor(cos, &self.0)

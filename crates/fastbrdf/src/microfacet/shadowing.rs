@@ -80,6 +80,7 @@ pub const ENTRY_RATIONAL: Entry = Entry::new(INFO_RATIONAL, |p, _| {
 pub struct VCavity;
 
 impl ShadowForm for VCavity {
+    const WGSL: &'static str = include_str!("shadowing.wgsl");
     const HALF_VECTOR: bool = true;
     #[inline(always)]
     fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
@@ -145,6 +146,7 @@ impl Smith {
 }
 
 impl ShadowForm for Smith {
+    const WGSL: &'static str = include_str!("shadowing.wgsl");
     const SIMD: bool = false;
     #[inline(always)]
     fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
@@ -176,6 +178,7 @@ impl SmithRational {
 }
 
 impl ShadowForm for SmithRational {
+    const WGSL: &'static str = include_str!("shadowing.wgsl");
     #[inline(always)]
     fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
         separable(s, |c| {

@@ -40,14 +40,6 @@ struct FbPair {
 constant float FB_COS_MIN = 0.0000009536743;
 constant float FB_INV_SQRT_PI = 0.5641896;
 
-float fb_erfc(
-    float x
-) {
-    float t = 1.0 / (1.0 + (0.5 * x));
-    float p = -1.2655122 + (t * (1.0000237 + (t * (0.37409195 + (t * (0.09678418 + (t * (-0.18628806 + (t * (0.27886808 + (t * (-1.135204 + (t * (1.4885159 + (t * (-0.82215226 + (t * 0.17087276)))))))))))))))));
-    return t * metal::exp((-(x) * x) + p);
-}
-
 metal::float3 fb_rescale(
     metal::float3 v
 ) {
@@ -82,6 +74,14 @@ float fb_d_beckmann(
 ) {
     float inv_c2_ = 1.0 / (c * c);
     return (scale * metal::exp(-((s2_ * inv_c2_)) * inv_alpha2_)) * (inv_c2_ * inv_c2_);
+}
+
+float fb_erfc(
+    float x
+) {
+    float t = 1.0 / (1.0 + (0.5 * x));
+    float p = -1.2655122 + (t * (1.0000237 + (t * (0.37409195 + (t * (0.09678418 + (t * (-0.18628806 + (t * (0.27886808 + (t * (-1.135204 + (t * (1.4885159 + (t * (-0.82215226 + (t * 0.17087276)))))))))))))))));
+    return t * metal::exp((-(x) * x) + p);
 }
 
 float fb_g1_smith(

@@ -32,12 +32,6 @@ const float FB_COS_MIN = 9.536743e-7;
 const float FB_INV_SQRT_PI = 0.5641896;
 
 
-float fb_erfc(float x) {
-    float t = (1.0 / (1.0 + (0.5 * x)));
-    float p = (-1.2655122 + (t * (1.0000237 + (t * (0.37409195 + (t * (0.09678418 + (t * (-0.18628806 + (t * (0.27886808 + (t * (-1.135204 + (t * (1.4885159 + (t * (-0.82215226 + (t * 0.17087276))))))))))))))))));
-    return (t * exp(((-(x) * x) + p)));
-}
-
 vec3 fb_rescale(vec3 v) {
     float l = dot(v, v);
     float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
@@ -62,6 +56,12 @@ FbPair fb_pair(vec3 wi_raw, vec3 wo_raw) {
 float fb_d_beckmann(float c, float s2_, float inv_alpha2_, float scale) {
     float inv_c2_ = (1.0 / (c * c));
     return ((scale * exp((-((s2_ * inv_c2_)) * inv_alpha2_))) * (inv_c2_ * inv_c2_));
+}
+
+float fb_erfc(float x) {
+    float t = (1.0 / (1.0 + (0.5 * x)));
+    float p = (-1.2655122 + (t * (1.0000237 + (t * (0.37409195 + (t * (0.09678418 + (t * (-0.18628806 + (t * (0.27886808 + (t * (-1.135204 + (t * (1.4885159 + (t * (-0.82215226 + (t * 0.17087276))))))))))))))))));
+    return (t * exp(((-(x) * x) + p)));
 }
 
 float fb_g1_smith(float c_1, float alpha) {

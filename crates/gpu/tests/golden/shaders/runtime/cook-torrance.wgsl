@@ -22,19 +22,6 @@
 /// (Rust twin: fastbrdf::vec3::COS_MIN).
 const FB_COS_MIN: f32 = 9.5367431640625e-7;
 
-/// 1 / sqrt(pi), for the Smith term.
-const FB_INV_SQRT_PI: f32 = 0.5641895835477563;
-
-/// erfc(x) for x >= 0, relative error below 1.2e-7 (Numerical Recipes' erfcc, a Chebyshev
-/// fit). WGSL has no erf; the CPU uses libm's erfc.
-fn fb_erfc(x: f32) -> f32 {
-    let t = 1.0 / (1.0 + 0.5 * x);
-    let p = -1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 + t * (-0.18628806
-        + t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * (-0.82215223
-        + t * 0.17087277))))))));
-    return t * exp(-x * x + p);
-}
-
 /// The geometry of a direction pair (twin: ops::pair and fastbrdf::vec3::Pair::new).
 struct FbPair {
     /// Both directions non-zero, above the surface (cos >= FB_COS_MIN), not opposite.
@@ -85,6 +72,19 @@ fn fb_pair(wi_raw: vec3<f32>, wo_raw: vec3<f32>) -> FbPair {
 fn fb_d_beckmann(c: f32, s2: f32, inv_alpha2: f32, scale: f32) -> f32 {
     let inv_c2 = 1.0 / (c * c);
     return scale * exp(-(s2 * inv_c2) * inv_alpha2) * (inv_c2 * inv_c2);
+}
+
+/// 1 / sqrt(pi), for the Smith term.
+const FB_INV_SQRT_PI: f32 = 0.5641895835477563;
+
+/// erfc(x) for x >= 0, relative error below 1.2e-7 (Numerical Recipes' erfcc, a Chebyshev
+/// fit). WGSL has no erf; the CPU uses libm's erfc.
+fn fb_erfc(x: f32) -> f32 {
+    let t = 1.0 / (1.0 + 0.5 * x);
+    let p = -1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 + t * (-0.18628806
+        + t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * (-0.82215223
+        + t * 0.17087277))))))));
+    return t * exp(-x * x + p);
 }
 
 /// smith (Walter et al. 2007, eq. 25-27): G1 = 1 / (1 + Lambda(a)), a = 1 / (alpha tan theta),

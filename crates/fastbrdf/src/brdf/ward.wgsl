@@ -1,7 +1,4 @@
-// fastbrdf WGSL library: full BRDFs of (wi, wo) in the local frame (normal +z), without the
-// cosine factor. Twins: crates/fastbrdf/src/brdf/* and batch/ops.rs. Cook-Torrance, Phong and
-// Blinn-Phong are assembled per model instance (their D, G, F or lobe are parameters): see
-// fastbrdf_gpu::spec.
+// WGSL twin of brdf/ward.rs (see brdf/mod.wgsl).
 
 /// ward (Ward 1992, anisotropic): scale exp(-(hx^2/ax^2 + hy^2/ay^2) / hz^2) / sqrt(ci co),
 /// scale = 1 / (4 pi ax ay).

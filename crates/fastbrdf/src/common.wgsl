@@ -9,9 +9,6 @@
 /// (Rust twin: fastbrdf::vec3::COS_MIN).
 const FB_COS_MIN: f32 = 9.5367431640625e-7;
 
-/// 1 / sqrt(pi), for the Smith term.
-const FB_INV_SQRT_PI: f32 = 0.5641895835477563;
-
 /// Clamps a cosine to [0, 1] (twin: ops::clamp01).
 fn fb_clamp01(c: f32) -> f32 {
     return min(max(c, 0.0), 1.0);
@@ -62,16 +59,6 @@ fn fb_log2(x: f32) -> f32 {
 /// within a few ulp of the exact power where it is not negligible. At x = 1, exactly 1.
 fn fb_powr(x: f32, y: f32) -> f32 {
     return select(0.0, exp2(y * fb_log2(max(x, 1e-30))), x > 0.0);
-}
-
-/// erfc(x) for x >= 0, relative error below 1.2e-7 (Numerical Recipes' erfcc, a Chebyshev
-/// fit). WGSL has no erf; the CPU uses libm's erfc.
-fn fb_erfc(x: f32) -> f32 {
-    let t = 1.0 / (1.0 + 0.5 * x);
-    let p = -1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 + t * (-0.18628806
-        + t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * (-0.82215223
-        + t * 0.17087277))))))));
-    return t * exp(-x * x + p);
 }
 
 /// The geometry of a direction pair (twin: ops::pair and fastbrdf::vec3::Pair::new).
