@@ -88,8 +88,23 @@ pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
     const SIMD: bool = true;
     /// Whether it uses `cos_h` and `cos_vh` (the V-cavity).
     const HALF_VECTOR: bool = false;
-    /// `G`, in [0, 1]; cosines that are NaN or `<= 0` give 0 (see [`model::Shadowing::g`]).
-    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T;
+    /// The two-sided term on a valid pair's cosines (all positive, at most 1; `cos_l` may be
+    /// `+inf` for the one-sided term of `v`): the formula, as Cook-Torrance uses it.
+    fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, cos_h: T, cos_vh: T) -> T;
+    /// `G`, in [0, 1], with the domain rules of a standalone term (see
+    /// [`model::Shadowing::g`]): cosines that are NaN or `<= 0` give 0; without `cos_l`, the
+    /// one-sided masking term of `v`.
+    #[inline(always)]
+    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
+        let z = T::zero();
+        let l = s.cos_l.unwrap_or_else(T::infinity);
+        let half_ok = !Self::HALF_VECTOR || (s.cos_h > z && s.cos_vh > z);
+        if s.cos_v > z && l > z && half_ok {
+            self.g_pair::<T, M>(s.cos_v, l, s.cos_h, s.cos_vh)
+        } else {
+            z
+        }
+    }
     /// The two-sided term's WGSL expression on `cos_v`, `cos_l`, `cos_h`, `cos_vh`.
     fn wgsl(&self, v: &str, l: &str, h: &str, vh: &str, e: &Emit) -> String;
 }
@@ -298,6 +313,10 @@ impl ShadowPlan {
 impl ShadowForm for ShadowPlan {
     /// A plan's sources are its list's: [`Self::wgsl_sources`].
     const WGSL: &'static str = "";
+    #[inline]
+    fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, cos_h: T, cos_vh: T) -> T {
+        with_shadow!(self, g => g.g_pair::<T, M>(cos_v, cos_l, cos_h, cos_vh))
+    }
     #[inline]
     fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
         with_shadow!(self, g => g.g::<T, M>(s))

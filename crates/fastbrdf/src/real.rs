@@ -15,6 +15,42 @@ pub trait Real: Float + FloatConst + Debug + Display + Default + Send + Sync + '
     fn erf(self) -> Self;
     /// The complementary error function, `1 - erf(x)`, accurate for large `x`.
     fn erfc(self) -> Self;
+    /// `x64` in f64, `x32` in f32: a coefficient's precomputed rounding ([`K`]).
+    fn pick(x64: f64, x32: f32) -> Self;
+}
+
+/// A per-parameter coefficient, computed once in f64 with its f32 rounding beside it, so that
+/// neither precision converts it per evaluation (the scalar models and the batch kernels read
+/// `t::<T>()`; the WGSL generator and the analysis read the f64 `x`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct K {
+    pub x: f64,
+    r: f32,
+}
+
+impl K {
+    /// The coefficient `x`.
+    #[inline]
+    pub fn new(x: f64) -> Self {
+        Self { x, r: x as f32 }
+    }
+    /// A coefficient whose f32 value is not the rounding of its f64 value (the low part of a
+    /// two-float sum, which differs per precision).
+    #[inline]
+    pub fn pair(x64: f64, x32: f32) -> Self {
+        Self { x: x64, r: x32 }
+    }
+    /// The coefficient in precision `T` (rounded once, at construction, for f32).
+    #[inline(always)]
+    pub fn t<T: Real>(self) -> T {
+        T::pick(self.x, self.r)
+    }
+}
+
+impl From<K> for f64 {
+    fn from(k: K) -> f64 {
+        k.x
+    }
 }
 
 impl Real for f32 {
@@ -34,6 +70,10 @@ impl Real for f32 {
     fn erfc(self) -> Self {
         libm::erfcf(self)
     }
+    #[inline(always)]
+    fn pick(_x64: f64, x32: f32) -> Self {
+        x32
+    }
 }
 
 impl Real for f64 {
@@ -52,6 +92,10 @@ impl Real for f64 {
     #[inline]
     fn erfc(self) -> Self {
         libm::erfc(self)
+    }
+    #[inline(always)]
+    fn pick(x64: f64, _x32: f32) -> Self {
+        x64
     }
 }
 

@@ -124,7 +124,8 @@ impl Emit {
     }
     /// One coefficient, value `x`, which is the WGSL expression `expr` of the parameters
     /// `params` (written `p_<name>` in `expr`).
-    pub fn kx(&self, x: f64, expr: &str, params: &[&str]) -> String {
+    pub fn kx(&self, x: impl Into<f64>, expr: &str, params: &[&str]) -> String {
+        let x = x.into();
         match self.mode {
             Mode::Literals => lit(x),
             Mode::Storage => self.stored(x),
@@ -138,7 +139,8 @@ impl Emit {
     }
     /// A constant that does not depend on the parameters (stored on our own paths, so that no
     /// compiler folds it).
-    pub fn constant(&self, x: f64) -> String {
+    pub fn constant(&self, x: impl Into<f64>) -> String {
+        let x = x.into();
         if self.mode == Mode::Storage {
             self.stored(x)
         } else {

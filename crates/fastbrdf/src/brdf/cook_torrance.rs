@@ -22,12 +22,12 @@ use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::math::Math;
 use crate::microfacet::fresnel;
-use crate::model::{Kind, ModelInfo, Ops, ShadowInput};
+use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params};
 use crate::plan::{
     BrdfForm, DistForm, DistPlan, FresnelForm, FresnelPlan, Models, Plan, ShadowForm, ShadowPlan,
 };
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::vec3::COS_MIN;
 use crate::vec3::Pair;
 use crate::wgsl::{Emit, PAIR};
@@ -108,7 +108,7 @@ pub struct CookTorrance<D = DistPlan, G = ShadowPlan, F = FresnelPlan> {
     pub g: G,
     pub f: F,
     /// `1/4`, `1` (seed 000) or `1/pi` (seed 001).
-    pub k: f64,
+    pub k: K,
 }
 
 impl CookTorrance {
@@ -135,7 +135,7 @@ impl CookTorrance {
             d: models.plan(d, &nums)?.distribution(d)?,
             g: models.plan(g, &nums)?.shadowing(g)?,
             f: models.plan(&f, &nums)?.fresnel(&f)?,
-            k,
+            k: K::new(k),
         })
     }
 }
@@ -148,7 +148,7 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G,
     }
     fn claims_energy(&self) -> bool {
         // Microfacet theory's denominator; the seeds' are named variants that do not.
-        self.k == 0.25
+        self.k.x == 0.25
     }
     #[inline(always)]
     fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
@@ -158,13 +158,8 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G,
         } else {
             T::zero()
         };
-        let g = self.g.g::<T, M>(&ShadowInput {
-            cos_v: p.cos_o,
-            cos_l: Some(p.cos_i),
-            cos_h: p.cos_h,
-            cos_vh: p.cos_ih,
-        });
-        self.f.f::<T, M>(p.cos_ih) * d * g * T::c(self.k) / (p.cos_i * p.cos_o)
+        let g = self.g.g_pair::<T, M>(p.cos_o, p.cos_i, p.cos_h, p.cos_ih);
+        self.f.f::<T, M>(p.cos_ih) * d * g * self.k.t::<T>() / (p.cos_i * p.cos_o)
     }
     fn wgsl_body(&self, e: &Emit) -> String {
         format!(

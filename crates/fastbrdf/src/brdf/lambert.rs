@@ -9,7 +9,7 @@ use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{ParamKind, ParamSpec};
 use crate::plan::{BrdfForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::vec3::Pair;
 use crate::wgsl::{Emit, PAIR};
 
@@ -42,14 +42,16 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
 /// `albedo / pi`.
 #[derive(Clone, Copy, Debug)]
 pub struct Lambert {
-    albedo: f64,
+    /// `albedo / pi`.
+    value: K,
 }
 
 impl Lambert {
     /// `albedo` in [0, 1].
     pub fn new(albedo: f64) -> Result<Self> {
+        let albedo = crate::params::check("lambert", &ALBEDO, albedo)?;
         Ok(Self {
-            albedo: crate::params::check("lambert", &ALBEDO, albedo)?,
+            value: K::new(albedo / std::f64::consts::PI),
         })
     }
 }
@@ -59,16 +61,12 @@ impl BrdfForm for Lambert {
     const WGSL: &'static str = "";
     #[inline(always)]
     fn at_pair<T: Real, M: Math<T>>(&self, _p: &Pair<T>) -> T {
-        T::c(self.albedo / std::f64::consts::PI)
+        self.value.t::<T>()
     }
     fn wgsl_body(&self, e: &Emit) -> String {
         format!(
             "{PAIR}    return select(0.0, {}, p.valid);\n",
-            e.kx(
-                self.albedo / std::f64::consts::PI,
-                "p_albedo * 0.3183098861837907",
-                &["albedo"]
-            )
+            e.kx(self.value, "p_albedo * 0.3183098861837907", &["albedo"])
         )
     }
     fn claims_energy(&self) -> bool {

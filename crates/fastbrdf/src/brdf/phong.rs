@@ -26,7 +26,7 @@ use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params};
 use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
 use crate::quad;
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::vec3::Pair;
 use crate::wgsl::{Emit, PAIR};
 
@@ -103,7 +103,7 @@ pub struct LobeBrdf<L = LobePlan> {
     /// The lobe's cut, decided on the f64 cosine.
     zero: f64,
     /// `1 / (2 pi Int(n))` when normalised, else 1.
-    coef: f64,
+    coef: K,
     blinn: bool,
     normalized: bool,
 }
@@ -127,7 +127,7 @@ impl LobeBrdf {
         Ok(Self {
             zero: lobe.zero_below(),
             lobe,
-            coef,
+            coef: K::new(coef),
             blinn,
             normalized,
         })
@@ -167,12 +167,12 @@ impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
         let v = if self.blinn {
             let l = self.lobe.at::<T, M>(arg(p.cos_h));
             if self.normalized {
-                T::c(self.coef) * l / (T::c(4.0) * p.cos_ih)
+                self.coef.t::<T>() * l / (T::c(4.0) * p.cos_ih)
             } else {
                 l
             }
         } else {
-            T::c(self.coef) * self.lobe.at::<T, M>(arg(p.cos_r))
+            self.coef.t::<T>() * self.lobe.at::<T, M>(arg(p.cos_r))
         };
         if cut { T::zero() } else { v }
     }

@@ -22,7 +22,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self, ParamKind, ParamSpec, Params};
 use crate::plan::{BrdfForm, Plan};
-use crate::real::{Real, pow2k, sqr};
+use crate::real::{K, Real, pow2k, sqr};
 use crate::vec3::Pair;
 use crate::wgsl::Emit;
 
@@ -133,12 +133,12 @@ pub const ENTRY_POWER16: Entry = Entry::new(INFO_POWER16, |p, _| {
 pub struct Ward<const FORM: u8> {
     /// `alpha_x`/`alpha_y` given (the WGSL parameters' names).
     aniso: bool,
-    inv_ax2: f64,
-    inv_ay2: f64,
+    inv_ax2: K,
+    inv_ay2: K,
     /// `2 / alpha^2` (pow) or `2 / alpha^2 / 16` (power16).
-    e: f64,
+    e: K,
     /// `1 / (4 pi alpha_x alpha_y)`.
-    scale: f64,
+    scale: K,
 }
 
 impl<const FORM: u8> Ward<FORM> {
@@ -152,10 +152,10 @@ impl<const FORM: u8> Ward<FORM> {
         let e = 2.0 / (ax * ax);
         Self {
             aniso,
-            inv_ax2: 1.0 / (ax * ax),
-            inv_ay2: 1.0 / (ay * ay),
-            e: if FORM == 2 { e / 16.0 } else { e },
-            scale: 1.0 / (4.0 * std::f64::consts::PI * ax * ay),
+            inv_ax2: K::new(1.0 / (ax * ax)),
+            inv_ay2: K::new(1.0 / (ay * ay)),
+            e: K::new(if FORM == 2 { e / 16.0 } else { e }),
+            scale: K::new(1.0 / (4.0 * std::f64::consts::PI * ax * ay)),
         }
     }
 }
@@ -180,16 +180,16 @@ impl<const FORM: u8> BrdfForm for Ward<FORM> {
     fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
         let lobe = match FORM {
             0 => {
-                let q = sqr(p.h[0]) * T::c(self.inv_ax2) + sqr(p.h[1]) * T::c(self.inv_ay2);
+                let q = sqr(p.h[0]) * self.inv_ax2.t::<T>() + sqr(p.h[1]) * self.inv_ay2.t::<T>();
                 M::exp(-q / sqr(p.cos_h))
             }
-            1 => M::pow(p.cos_h, T::c(self.e)),
+            1 => M::pow(p.cos_h, self.e.t::<T>()),
             _ => {
                 let cos_minus_1 = -p.sin2_h / (T::one() + p.cos_h);
-                pow2k((T::one() + T::c(self.e) * cos_minus_1).max(T::zero()), 4)
+                pow2k((T::one() + self.e.t::<T>() * cos_minus_1).max(T::zero()), 4)
             }
         };
-        T::c(self.scale) * lobe / (p.cos_i * p.cos_o).sqrt()
+        self.scale.t::<T>() * lobe / (p.cos_i * p.cos_o).sqrt()
     }
     fn wgsl_body(&self, e: &Emit) -> String {
         let (nx, ny) = if self.aniso {

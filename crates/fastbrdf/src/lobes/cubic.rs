@@ -28,7 +28,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -97,6 +97,8 @@ pub const ENTRY3: Entry = Entry::new(INFO3, |p, _| {
 #[derive(Clone, Copy, Debug)]
 pub struct Cubic {
     shape: CubicShape,
+    /// `d1, d2, d3, x1, x2, cut` of the shape.
+    k: [K; 6],
     three: bool,
 }
 
@@ -211,18 +213,20 @@ impl Cubic {
     /// Seed 003's three-point cubic; `n` must be in [1, 10000].
     pub fn three_point(n: f64) -> Result<Self> {
         Ok(Self {
-            shape: CubicShape::three_point(
+            three: true,
+            ..Self::from_shape(CubicShape::three_point(
                 params::check("cubic3", &params::N, n)?,
                 0.5,
                 1.0 / 18.0,
-            ),
-            three: true,
+            ))
         })
     }
 
     /// The cubic of a given shape (the Hermite family; `cubic-rational` uses it).
     pub fn from_shape(shape: CubicShape) -> Self {
+        let s = &shape;
         Self {
+            k: [s.d1, s.d2, s.d3, s.x1, s.x2, s.cut].map(K::new),
             shape,
             three: false,
         }
@@ -246,16 +250,11 @@ impl LobeForm for Cubic {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        let s = &self.shape;
+        let [d1, d2, d3, x1, x2, cut] = self.k.map(|k| k.t::<T>());
         let x = c - T::one();
-        let p = T::one()
-            + x * (T::c(s.d1) + (x - T::c(s.x1)) * (T::c(s.d2) + (x - T::c(s.x2)) * T::c(s.d3)));
+        let p = T::one() + x * (d1 + (x - x1) * (d2 + (x - x2) * d3));
         // The cut is an f32 number, so both precisions cut at the same input.
-        if c < T::c(s.cut) {
-            T::zero()
-        } else {
-            p.max(T::zero())
-        }
+        if c < cut { T::zero() } else { p.max(T::zero()) }
     }
     fn zero_below(&self) -> f64 {
         self.shape.cut

@@ -22,7 +22,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 /// Seed 001's fitted normalisation coefficient (its Fig. 8 formula, as rounded in the paper).
@@ -114,8 +114,8 @@ pub enum FlogMode {
 /// Seed 001's logarithmic lobe.
 #[derive(Clone, Copy, Debug)]
 pub struct Flog {
-    n: f64,
-    coef: f64,
+    n: K,
+    coef: K,
     mode: FlogMode,
 }
 
@@ -128,7 +128,11 @@ impl Flog {
         } else {
             seed_coef(n)
         };
-        Ok(Self { n, coef, mode })
+        Ok(Self {
+            n: K::new(n),
+            coef: K::new(coef),
+            mode,
+        })
     }
 }
 
@@ -148,8 +152,8 @@ impl LobeForm for Flog {
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         // c = 0 gives log2(0) = -inf, then -inf, clipped to 0 below; every c <= 0 is below
         // the zero anyway, and the select keeps 0 there whatever the backend's log2(0) is.
-        let f = T::one() - T::c(0.5) * M::log2(T::one() - T::c(self.n) * M::log2(c));
-        let v = (T::c(self.coef) * f).max(T::zero());
+        let f = T::one() - T::c(0.5) * M::log2(T::one() - self.n.t::<T>() * M::log2(c));
+        let v = (self.coef.t::<T>() * f).max(T::zero());
         let v = if self.mode == FlogMode::NormalizedClamped {
             v.min(T::one())
         } else {
@@ -158,14 +162,14 @@ impl LobeForm for Flog {
         if c > T::zero() { v } else { T::zero() }
     }
     fn zero_below(&self) -> f64 {
-        zero_cos(self.n)
+        zero_cos(self.n.x)
     }
     fn kinks(&self) -> Vec<f64> {
         // The clamp's kink, where coef flog(c) = 1: c = 2^((1 - 2^(2 (1 - 1/coef))) / n)
         // (inside the lobe when coef > 1). Without it as a breakpoint the normalisation
         // integral erred by 8.3e-7 relative at n = 69 (found by the runtime-parameter tests).
-        if self.mode == FlogMode::NormalizedClamped && self.coef > 1.0 {
-            vec![((1.0 - (2.0 * (1.0 - 1.0 / self.coef)).exp2()) / self.n).exp2()]
+        if self.mode == FlogMode::NormalizedClamped && self.coef.x > 1.0 {
+            vec![((1.0 - (2.0 * (1.0 - 1.0 / self.coef.x)).exp2()) / self.n.x).exp2()]
         } else {
             Vec::new()
         }

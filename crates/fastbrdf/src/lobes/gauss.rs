@@ -10,7 +10,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -45,14 +45,14 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Gauss::new(p.num(
 /// The Gaussian lobe.
 #[derive(Clone, Copy, Debug)]
 pub struct Gauss {
-    half_n: f64,
+    half_n: K,
 }
 
 impl Gauss {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            half_n: 0.5 * params::check("gauss", &params::N, n)?,
+            half_n: K::new(0.5 * params::check("gauss", &params::N, n)?),
         })
     }
 }
@@ -65,7 +65,7 @@ impl LobeForm for Gauss {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         let t = M::acos(c);
-        M::exp(-T::c(self.half_n) * (t * t))
+        M::exp(-self.half_n.t::<T>() * (t * t))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!(

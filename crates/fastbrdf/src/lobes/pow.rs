@@ -11,7 +11,7 @@ use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -31,14 +31,14 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, _| Ok(Plan::Lobe(Pow::new(p.num("n
 /// `c^n`.
 #[derive(Clone, Copy, Debug)]
 pub struct Pow {
-    n: f64,
+    n: K,
 }
 
 impl Pow {
     /// A `c^n` lobe; `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            n: params::check("pow", &params::N, n)?,
+            n: K::new(params::check("pow", &params::N, n)?),
         })
     }
 }
@@ -46,7 +46,7 @@ impl Pow {
 impl Pow {
     /// The exponent.
     pub fn n(&self) -> f64 {
-        self.n
+        self.n.x
     }
 }
 
@@ -57,7 +57,7 @@ impl LobeForm for Pow {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        M::pow(c, T::c(self.n))
+        M::pow(c, self.n.t())
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_lobe_pow({c}, {})", e.kx(self.n, "p_n", &["n"]))

@@ -13,7 +13,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::{Real, pow2k};
+use crate::real::{K as Coef, Real, pow2k};
 use crate::wgsl::Emit;
 
 macro_rules! power_info {
@@ -81,7 +81,7 @@ pub const ENTRY16: Entry = Entry::new(INFO16, |p, _| {
 /// `max(0, 1 + s (c - 1))^(2^K)`.
 #[derive(Clone, Copy, Debug)]
 pub struct Power<const K: u32> {
-    s: f64,
+    s: Coef,
     /// `s` from the minimax fit of `lobes::tuned` rather than `n / 2^K`.
     tuned: bool,
 }
@@ -94,7 +94,7 @@ impl<const K: u32> Power<K> {
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("power", &params::N, n)?;
         Ok(Self {
-            s: n / f64::from(Self::G),
+            s: Coef::new(n / f64::from(Self::G)),
             tuned: false,
         })
     }
@@ -103,7 +103,7 @@ impl<const K: u32> Power<K> {
     pub fn tuned(n: f64) -> Result<Self> {
         let n = params::check("power-tuned", &params::N, n)?;
         Ok(Self {
-            s: super::tuned::power_slope(Self::G, n),
+            s: Coef::new(super::tuned::power_slope(Self::G, n)),
             tuned: true,
         })
     }
@@ -123,10 +123,13 @@ impl<const K: u32> LobeForm for Power<K> {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        pow2k((T::one() + T::c(self.s) * (c - T::one())).max(T::zero()), K)
+        pow2k(
+            (T::one() + self.s.t::<T>() * (c - T::one())).max(T::zero()),
+            K,
+        )
     }
     fn zero_below(&self) -> f64 {
-        (1.0 - 1.0 / self.s).max(0.0)
+        (1.0 - 1.0 / self.s.x).max(0.0)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         let g = Self::G;

@@ -18,7 +18,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -85,10 +85,10 @@ pub const ENTRY_CUBIC_RATIONAL: Entry = Entry::new(INFO_CUBIC_RATIONAL, |p, _| {
 /// (bit for bit: the factor 2 is exact).
 #[derive(Clone, Copy, Debug)]
 pub struct Rational {
-    n: f64,
+    n: K,
     /// `q - 1 = level^(1/n) - 1`, with `expm1`.
-    xq: f64,
-    level: f64,
+    xq: K,
+    level: K,
 }
 
 impl Rational {
@@ -101,21 +101,18 @@ impl Rational {
     /// Matched at the level `c^n = level`.
     pub fn at_level(n: f64, level: f64) -> Self {
         Self {
-            n,
-            xq: (level.ln() / n).exp_m1(),
-            level,
+            n: K::new(n),
+            xq: K::new((level.ln() / n).exp_m1()),
+            level: K::new(level),
         }
     }
 
     /// `(peak, g)` of the WGSL twin's fold-proof form `peak c / (1 + g (1 - c))` (see
     /// `fb_lobe_rational`): `d0 = 1 + n xq`, `peak = level / d0`, `g = (n - 1) / d0`.
     pub(crate) fn wgsl_args(&self, e: &Emit) -> String {
-        let d0 = 1.0 + self.n * self.xq;
-        format!(
-            "{}, {}",
-            e.constant(self.level / d0),
-            e.constant((self.n - 1.0) / d0)
-        )
+        let (n, xq, level) = (self.n.x, self.xq.x, self.level.x);
+        let d0 = 1.0 + n * xq;
+        format!("{}, {}", e.constant(level / d0), e.constant((n - 1.0) / d0))
     }
 }
 
@@ -127,7 +124,7 @@ impl LobeForm for Rational {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         let x = c - T::one();
-        T::c(self.level) * c / (T::c(self.n) * (T::c(self.xq) - x) + c)
+        self.level.t::<T>() * c / (self.n.t::<T>() * (self.xq.t::<T>() - x) + c)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         if e.is_runtime() {
@@ -144,7 +141,7 @@ pub struct CubicRational {
     cubic: Cubic,
     rational: Rational,
     /// The junction `level^(1/n)`.
-    q: f64,
+    q: K,
     /// The level from the minimax fit of `lobes::tuned` rather than 0.5.
     tuned: bool,
 }
@@ -170,7 +167,7 @@ impl CubicRational {
         Self {
             cubic: Cubic::from_shape(CubicShape::hermite_at(n, level)),
             rational: Rational::at_level(n, level),
-            q: level.powf(1.0 / n),
+            q: K::new(level.powf(1.0 / n)),
             tuned: false,
         }
     }
@@ -189,10 +186,10 @@ impl LobeForm for CubicRational {
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         let a = self.cubic.at::<T, M>(c);
         let b = self.rational.at::<T, M>(c);
-        if c >= T::c(self.q) { a } else { b }
+        if c >= self.q.t::<T>() { a } else { b }
     }
     fn kinks(&self) -> Vec<f64> {
-        vec![self.q]
+        vec![self.q.x]
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         if e.is_runtime() {

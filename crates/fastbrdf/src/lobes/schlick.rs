@@ -17,7 +17,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -75,14 +75,14 @@ pub const ENTRY_MODIFIED: Entry = Entry::new(INFO_MODIFIED, |p, _| {
 /// Schlick's rational lobe.
 #[derive(Clone, Copy, Debug)]
 pub struct Schlick {
-    n: f64,
+    n: K,
 }
 
 impl Schlick {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            n: params::check("schlick", &params::N, n)?,
+            n: K::new(params::check("schlick", &params::N, n)?),
         })
     }
 }
@@ -95,7 +95,7 @@ impl LobeForm for Schlick {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         // n - n c + c written as n (1 - c) + c: 1 - c is exact for c >= 0.5.
-        c / (T::c(self.n) * (T::one() - c) + c)
+        c / (self.n.t::<T>() * (T::one() - c) + c)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_lobe_schlick({c}, {})", e.kx(self.n, "p_n", &["n"]))
@@ -105,14 +105,14 @@ impl LobeForm for Schlick {
 /// Seed 001's modified Schlick lobe, as printed.
 #[derive(Clone, Copy, Debug)]
 pub struct SchlickModified {
-    n: f64,
+    n: K,
 }
 
 impl SchlickModified {
     /// `n` must be in [1, 10000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
-            n: params::check("schlick-modified", &params::N, n)?,
+            n: K::new(params::check("schlick-modified", &params::N, n)?),
         })
     }
 }
@@ -124,7 +124,7 @@ impl LobeForm for SchlickModified {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        let d = T::c(self.n) * (T::one() - c) + T::c(1.25) * c;
+        let d = self.n.t::<T>() * (T::one() - c) + T::c(1.25) * c;
         T::c(2.0) * c / (T::c(1.25) * (d * d))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {

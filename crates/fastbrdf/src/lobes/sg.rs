@@ -13,7 +13,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -87,7 +87,7 @@ pub const INFO_UE4: ModelInfo = ModelInfo {
 /// `2^(k (c - 1))`, the spherical Gaussian with rate `k`.
 #[derive(Clone, Copy, Debug)]
 pub struct Exp2Lobe {
-    k: f64,
+    k: K,
     form: Exp2Form,
 }
 
@@ -107,7 +107,7 @@ impl Exp2Lobe {
     pub fn sg(n: f64) -> Result<Self> {
         let n = params::check("sg", &params::N, n)?;
         Ok(Self {
-            k: n / std::f64::consts::LN_2,
+            k: K::new(n / std::f64::consts::LN_2),
             form: Exp2Form::Sg,
         })
     }
@@ -116,7 +116,7 @@ impl Exp2Lobe {
     pub fn ue4(n: f64) -> Result<Self> {
         let n = params::check("ue4-phong-approx", &params::N, n)?;
         Ok(Self {
-            k: 1.4427 * (n + 0.775),
+            k: K::new(1.4427 * (n + 0.775)),
             form: Exp2Form::Ue4,
         })
     }
@@ -124,7 +124,7 @@ impl Exp2Lobe {
     pub fn tuned(n: f64) -> Result<Self> {
         let n = params::check("sg-tuned", &params::N, n)?;
         Ok(Self {
-            k: super::tuned::exp2_rate(n),
+            k: K::new(super::tuned::exp2_rate(n)),
             form: Exp2Form::Tuned,
         })
     }
@@ -141,7 +141,7 @@ impl LobeForm for Exp2Lobe {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        M::exp2(T::c(self.k) * (c - T::one()))
+        M::exp2(self.k.t::<T>() * (c - T::one()))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         let expr = match self.form {

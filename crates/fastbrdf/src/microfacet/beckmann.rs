@@ -18,7 +18,7 @@ use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params;
 use crate::plan::{DistForm, Plan};
-use crate::real::Real;
+use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -58,9 +58,9 @@ pub const ENTRY_CT: Entry = Entry::new(INFO_CT, |p, _| {
 #[derive(Clone, Copy, Debug)]
 pub struct Beckmann {
     alpha: f64,
-    inv_alpha2: f64,
+    inv_alpha2: K,
     /// `1 / (pi alpha^2)` (normalised) or `1 / (4 alpha^2)` (Cook-Torrance's).
-    scale: f64,
+    scale: K,
     ct: bool,
 }
 
@@ -70,8 +70,8 @@ impl Beckmann {
         let a = params::check("beckmann", &params::ALPHA, alpha)?;
         Ok(Self {
             alpha: a,
-            inv_alpha2: 1.0 / (a * a),
-            scale: 1.0 / (std::f64::consts::PI * a * a),
+            inv_alpha2: K::new(1.0 / (a * a)),
+            scale: K::new(1.0 / (std::f64::consts::PI * a * a)),
             ct: false,
         })
     }
@@ -81,8 +81,8 @@ impl Beckmann {
         let a = params::check("beckmann-ct", &params::ALPHA, alpha)?;
         Ok(Self {
             alpha: a,
-            inv_alpha2: 1.0 / (a * a),
-            scale: ct_scale(a),
+            inv_alpha2: K::new(1.0 / (a * a)),
+            scale: K::new(ct_scale(a)),
             ct: true,
         })
     }
@@ -105,7 +105,9 @@ impl DistForm for Beckmann {
         let c2 = cos_h * cos_h;
         // One division: exp(-tan^2 / alpha^2) / cos^4 as e * (1/c2)^2.
         let inv_c2 = T::one() / c2;
-        T::c(self.scale) * M::exp(-(sin2_h * inv_c2) * T::c(self.inv_alpha2)) * (inv_c2 * inv_c2)
+        self.scale.t::<T>()
+            * M::exp(-(sin2_h * inv_c2) * self.inv_alpha2.t::<T>())
+            * (inv_c2 * inv_c2)
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let a = self.alpha;

@@ -24,7 +24,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
 use crate::plan::{DistForm, Plan};
-use crate::real::{Real, pow2k};
+use crate::real::{K as Coef, Real, pow2k};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -138,8 +138,8 @@ const EXPONENT_WGSL: &str = "2.0 / (p_alpha * p_alpha) - 4.0";
 #[derive(Clone, Copy, Debug)]
 pub struct BeckmannPow {
     alpha: f64,
-    e: f64,
-    scale: f64,
+    e: Coef,
+    scale: Coef,
 }
 
 impl BeckmannPow {
@@ -148,8 +148,8 @@ impl BeckmannPow {
         let alpha = params::check("beckmann-pow", &params::ALPHA, alpha)?;
         Ok(Self {
             alpha,
-            e: exponent(alpha),
-            scale: ct_scale(alpha),
+            e: Coef::new(exponent(alpha)),
+            scale: Coef::new(ct_scale(alpha)),
         })
     }
 }
@@ -158,13 +158,13 @@ impl DistForm for BeckmannPow {
     const WGSL: &'static str = include_str!("beckmann_pow.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, _sin2_h: T) -> T {
-        T::c(self.scale) * M::pow(cos_h, T::c(self.e))
+        self.scale.t::<T>() * M::pow(cos_h, self.e.t::<T>())
     }
     fn wgsl(&self, c: &str, _s2: &str, e: &Emit) -> String {
         let a = self.alpha;
         format!(
             "fb_d_beckmann_pow({c}, {}, {})",
-            e.kx(exponent(a), EXPONENT_WGSL, &["alpha"]),
+            e.kx(self.e, EXPONENT_WGSL, &["alpha"]),
             ct_scale_wgsl(a, e)
         )
     }
@@ -174,8 +174,8 @@ impl DistForm for BeckmannPow {
 #[derive(Clone, Copy, Debug)]
 pub struct BeckmannPower<const K: u32> {
     alpha: f64,
-    s: f64,
-    scale: f64,
+    s: Coef,
+    scale: Coef,
 }
 
 impl<const K: u32> BeckmannPower<K> {
@@ -187,8 +187,8 @@ impl<const K: u32> BeckmannPower<K> {
         let alpha = params::check("beckmann-power", &params::ALPHA, alpha)?;
         Ok(Self {
             alpha,
-            s: exponent(alpha) / f64::from(Self::G),
-            scale: ct_scale(alpha),
+            s: Coef::new(exponent(alpha) / f64::from(Self::G)),
+            scale: Coef::new(ct_scale(alpha)),
         })
     }
 }
@@ -198,7 +198,7 @@ impl<const K: u32> DistForm for BeckmannPower<K> {
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
         let cos_minus_1 = -sin2_h / (T::one() + cos_h);
-        T::c(self.scale) * pow2k((T::one() + T::c(self.s) * cos_minus_1).max(T::zero()), K)
+        self.scale.t::<T>() * pow2k((T::one() + self.s.t::<T>() * cos_minus_1).max(T::zero()), K)
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let g = Self::G;

@@ -18,7 +18,7 @@ use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{ParamKind, ParamSpec};
 use crate::plan::{FresnelForm, Plan};
-use crate::real::{Real, sqr};
+use crate::real::{K, Real, sqr};
 use crate::wgsl::Emit;
 
 pub const F0: ParamSpec = ParamSpec {
@@ -90,7 +90,12 @@ pub const INFO_CONDUCTOR: ModelInfo = info!(
 
 pub const ENTRY_NONE: Entry = Entry::new(INFO_NONE, |_, _| Ok(Plan::Fresnel(NoFresnel.into())));
 pub const ENTRY_SCHLICK: Entry = Entry::new(INFO_SCHLICK, |p, _| {
-    Ok(Plan::Fresnel(Schlick { f0: p.num("f0") }.into()))
+    Ok(Plan::Fresnel(
+        Schlick {
+            f0: K::new(p.num("f0")),
+        }
+        .into(),
+    ))
 });
 pub const ENTRY_DIELECTRIC: Entry = Entry::new(INFO_DIELECTRIC, |p, _| {
     Ok(Plan::Fresnel(
@@ -121,7 +126,7 @@ impl FresnelForm for NoFresnel {
 /// Schlick's approximation `f0 + (1 - f0)(1 - cos)^5`.
 #[derive(Clone, Copy, Debug)]
 pub struct Schlick {
-    pub f0: f64,
+    pub f0: K,
 }
 
 impl FresnelForm for Schlick {
@@ -131,7 +136,7 @@ impl FresnelForm for Schlick {
         let one = T::one();
         // NaN and negative cosines act as 0 (`max` then `min` maps NaN to 0).
         let c = cos.max(T::zero()).min(one);
-        let f0 = T::c(self.f0);
+        let f0 = self.f0.t::<T>();
         let m = one - c;
         let m2 = m * m;
         f0 + (one - f0) * (m2 * m2 * m)
@@ -186,10 +191,12 @@ impl FresnelForm for Conductor {
 /// the absolute `2^-24` of a rounded `c^2 - p`.
 #[derive(Clone, Copy, Debug)]
 pub struct Consts {
-    pub eta: f64,
-    pub k: f64,
-    /// `sqrt(p)` when `p > 0` (else 0).
-    pub s: f64,
+    pub eta: K,
+    pub k: K,
+    /// `s_hi + s_lo = sqrt(p)` when `p > 0` (else 0): in f64 `s_hi` is `sqrt(p)` and `s_lo`
+    /// 0; in f32 `s_hi` is its rounding and `s_lo` the rest, rounded.
+    pub s_hi: K,
+    pub s_lo: K,
     /// `p > 0`.
     pub edge: bool,
 }
@@ -198,10 +205,12 @@ impl Consts {
     /// The constants for the index `eta + i k` (`k = 0` for dielectrics).
     pub fn new(eta: f64, k: f64) -> Self {
         let p = k * k + (1.0 - eta) * (1.0 + eta);
+        let s = if p > 0.0 { p.sqrt() } else { 0.0 };
         Self {
-            eta,
-            k,
-            s: if p > 0.0 { p.sqrt() } else { 0.0 },
+            eta: K::new(eta),
+            k: K::new(k),
+            s_hi: K::new(s),
+            s_lo: K::pair(0.0, (s - f64::from(s as f32)) as f32),
             edge: p > 0.0,
         }
     }
@@ -211,11 +220,10 @@ impl Consts {
     fn t0<T: Real>(&self, c: T) -> T {
         let one = T::one();
         if self.edge {
-            let s_hi = T::c(self.s);
-            let s_lo = T::c(self.s - s_hi.f64());
+            let (s_hi, s_lo) = (self.s_hi.t::<T>(), self.s_lo.t::<T>());
             ((c - s_hi) - s_lo) * ((c + s_hi) + s_lo)
         } else {
-            let (eta, k) = (T::c(self.eta), T::c(self.k));
+            let (eta, k) = (self.eta.t::<T>(), self.k.t::<T>());
             ((eta - one) * (eta + one) - k * k) + c * c
         }
     }
@@ -248,7 +256,7 @@ fn clamp_lo<T: Real>(c: T) -> T {
 #[inline(always)]
 pub fn dielectric<T: Real>(cos: T, p: &Consts) -> T {
     let one = T::one();
-    let eta = T::c(p.eta);
+    let eta = p.eta.t::<T>();
     let c = clamp_lo(cos);
     let c2 = c * c;
     let e = (eta - one) * (eta + one);
@@ -288,7 +296,7 @@ pub fn conductor<T: Real>(cos: T, p: &Consts) -> T {
     let c2 = c * c;
     let s2 = (one - c) * (one + c);
     let t0 = p.t0(c);
-    let ek = T::c(2.0) * T::c(p.eta) * T::c(p.k);
+    let ek = T::c(2.0) * p.eta.t::<T>() * p.k.t::<T>();
     // a^2 + b^2 = r = |t0 + i ek|; the larger of a^2, b^2 is (r + |t0|) / 2 = |t0| + q and the
     // smaller (r - |t0|) / 2 = q = ek^2 / (2 (r + |t0|)), so that with k = 0 they are exactly
     // |t0| and 0 even where t0^2 underflows.

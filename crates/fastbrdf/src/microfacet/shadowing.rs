@@ -18,10 +18,10 @@
 use crate::entry::Entry;
 use crate::error::Result;
 use crate::math::Math;
-use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, ShadowInput, Zone};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
 use crate::plan::{Plan, ShadowForm};
-use crate::real::{Real, sqr};
+use crate::real::{K, Real, sqr};
 use crate::wgsl::Emit;
 
 pub const INFO_VCAVITY: ModelInfo = ModelInfo {
@@ -80,22 +80,12 @@ pub const ENTRY_RATIONAL: Entry = Entry::new(INFO_RATIONAL, |p, _| {
 pub struct VCavity;
 
 impl ShadowForm for VCavity {
-    const WGSL: &'static str = include_str!("shadowing.wgsl");
     const HALF_VECTOR: bool = true;
+    const WGSL: &'static str = include_str!("shadowing.wgsl");
     #[inline(always)]
-    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
-        let z = T::zero();
-        let k = T::c(2.0) * s.cos_h / s.cos_vh;
-        let g = T::one().min(k * s.cos_v);
-        let (g, l_ok) = match s.cos_l {
-            Some(cos_l) => (g.min(k * cos_l), cos_l > z),
-            None => (g, true),
-        };
-        if s.cos_v > z && s.cos_h > z && s.cos_vh > z && l_ok {
-            g
-        } else {
-            z
-        }
+    fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, cos_h: T, cos_vh: T) -> T {
+        let k = T::c(2.0) * cos_h / cos_vh;
+        T::one().min(k * cos_v).min(k * cos_l)
     }
     fn wgsl(&self, v: &str, l: &str, h: &str, vh: &str, _e: &Emit) -> String {
         format!("fb_g_v_cavity({v}, {l}, {h}, {vh})")
@@ -104,43 +94,33 @@ impl ShadowForm for VCavity {
 
 /// `a = cos / (alpha sin)` of a direction, for the Smith terms (`cos` in (0, 1)).
 #[inline(always)]
-fn smith_a<T: Real>(alpha: f64, cos: T) -> T {
+fn smith_a<T: Real>(alpha: T, cos: T) -> T {
     let sin = ((T::one() - cos) * (T::one() + cos)).max(T::zero()).sqrt();
-    cos / (T::c(alpha) * sin)
+    cos / (alpha * sin)
 }
 
-/// The separable two-sided Smith form `G1(v) G1(l)` (one-sided `G1(v)` without `l`), with
-/// the domain rules: `cos <= 0` or NaN gives 0, `cos >= 1` gives 1.
+/// `G1(v) G1(l)` on positive cosines, each side 1 at `cos >= 1` (normal incidence, and the
+/// one-sided term's `+inf`).
 #[inline(always)]
-fn separable<T: Real>(s: &ShadowInput<T>, g1: impl Fn(T) -> T) -> T {
-    let one_side = |c: T| {
+fn separable<T: Real>(cos_v: T, cos_l: T, g1: impl Fn(T) -> T) -> T {
+    let side = |c: T| {
         let g = g1(c);
-        if c >= T::one() {
-            T::one()
-        } else if c > T::zero() {
-            g
-        } else {
-            T::zero()
-        }
+        if c >= T::one() { T::one() } else { g }
     };
-    let gv = one_side(s.cos_v);
-    match s.cos_l {
-        Some(l) => gv * one_side(l),
-        None => gv,
-    }
+    side(cos_v) * side(cos_l)
 }
 
 /// The exact Smith term for Beckmann.
 #[derive(Clone, Copy, Debug)]
 pub struct Smith {
-    alpha: f64,
+    alpha: K,
 }
 
 impl Smith {
     /// `alpha` in [0.01, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         Ok(Self {
-            alpha: params::check("smith", &params::ALPHA, alpha)?,
+            alpha: K::new(params::check("smith", &params::ALPHA, alpha)?),
         })
     }
 }
@@ -149,9 +129,9 @@ impl ShadowForm for Smith {
     const WGSL: &'static str = include_str!("shadowing.wgsl");
     const SIMD: bool = false;
     #[inline(always)]
-    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
-        separable(s, |c| {
-            let a = smith_a(self.alpha, c);
+    fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
+        separable(cos_v, cos_l, |c| {
+            let a = smith_a(self.alpha.t::<T>(), c);
             let lambda = (-M::erfc(a) + M::exp(-a * a) / (a * T::PI().sqrt())) * T::c(0.5);
             T::one() / (T::one() + lambda)
         })
@@ -165,14 +145,14 @@ impl ShadowForm for Smith {
 /// Walter et al.'s rational fit of the Smith term for Beckmann.
 #[derive(Clone, Copy, Debug)]
 pub struct SmithRational {
-    alpha: f64,
+    alpha: K,
 }
 
 impl SmithRational {
     /// `alpha` in [0.01, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         Ok(Self {
-            alpha: params::check("smith-rational", &params::ALPHA, alpha)?,
+            alpha: K::new(params::check("smith-rational", &params::ALPHA, alpha)?),
         })
     }
 }
@@ -180,9 +160,9 @@ impl SmithRational {
 impl ShadowForm for SmithRational {
     const WGSL: &'static str = include_str!("shadowing.wgsl");
     #[inline(always)]
-    fn g<T: Real, M: Math<T>>(&self, s: &ShadowInput<T>) -> T {
-        separable(s, |c| {
-            let a = smith_a(self.alpha, c);
+    fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
+        separable(cos_v, cos_l, |c| {
+            let a = smith_a(self.alpha.t::<T>(), c);
             let a2 = a * a;
             let g = (T::c(3.535) * a + T::c(2.181) * a2)
                 / (T::one() + T::c(2.276) * a + T::c(2.577) * a2);
