@@ -56,14 +56,9 @@ pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     fn wgsl(&self, c: &str, e: &Emit) -> String;
     /// Runtime mode: the energy normalisation of Phong and Blinn-Phong with this lobe,
     /// `coef(n) = 1 / (2 pi Int(n))`, `Int(n) = integral_0^1 lobe(c) c dc`, as a WGSL
-    /// expression of `p_n` (`fb_rt_lobe_integral_<id>` of `runtime.wgsl` by default).
-    fn wgsl_norm(&self, e: &Emit) -> String {
-        format!(
-            "(1.0 / (6.283185307179586 * fb_rt_lobe_integral_{}({})))",
-            self.id().replace('-', "_"),
-            e.param("n")
-        )
-    }
+    /// expression of `p_n` (usually [`norm_by_integral`]: `runtime.wgsl`'s
+    /// `fb_rt_lobe_integral_<id>`, which a new lobe must add there).
+    fn wgsl_norm(&self, e: &Emit) -> String;
 }
 
 /// A microfacet distribution `D(cos theta_h)`.
@@ -152,6 +147,16 @@ pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
     fn claims_energy(&self) -> bool {
         false
     }
+}
+
+/// `coef(n) = 1 / (2 pi Int(n))` with `Int(n)` from `runtime.wgsl`'s
+/// `fb_rt_lobe_integral_<id>` (the usual [`LobeForm::wgsl_norm`]).
+pub fn norm_by_integral(id: &str, e: &Emit) -> String {
+    format!(
+        "(1.0 / (6.283185307179586 * fb_rt_lobe_integral_{}({})))",
+        id.replace('-', "_"),
+        e.param("n")
+    )
 }
 
 // ---------- the family lists: one line per family ----------

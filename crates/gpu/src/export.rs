@@ -14,7 +14,7 @@
 //! Coefficients are literals, computed in f64 from the parameters; a shader compiler may fold
 //! literals into reassociated expressions (Mesa does, see `spec::Emit`), so a header line says
 //! that passing them as uniforms keeps more precision. BRDF Explorer files instead compute
-//! the coefficients in f32 from sliders (`Instance::symbolic`) where every coefficient has an
+//! the coefficients in f32 from sliders (`Instance::runtime`) where every coefficient has an
 //! expression in the parameters, and keep literals (no sliders) where not. Its sliders are
 //! linear (it has no other kind), so parameters spanning two decades or more (n, alpha, eta)
 //! get a `log10_<name>` slider mapped in the shader; every grid passes through the export's
@@ -26,7 +26,7 @@
 //! back with naga's GLSL front end.
 
 use crate::context::GpuError;
-use crate::spec::{Emit, Instance, shown};
+use crate::spec::{Instance, shown};
 use fastbrdf::model::{Kind, Metric, Zone};
 use fastbrdf::params::ParamKind;
 use std::fmt::Write as _;
@@ -136,16 +136,13 @@ pub fn export_form(
                 _ => (id.to_string(), given),
             };
             let p: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-            let shaded = match Instance::symbolic(&target, &p)? {
-                Some(sym) => sym,
-                None => Instance::with(&target, &p, Emit::literals())?,
-            };
+            let shaded = Instance::runtime(&target, &p)?;
             (inst, Some(shaded))
         }
         _ => (
             match form {
                 Form::Literals => Instance::new(id, given)?,
-                Form::Runtime => Instance::with(id, given, Emit::runtime())?,
+                Form::Runtime => Instance::runtime(id, given)?,
             },
             None,
         ),

@@ -123,16 +123,24 @@ impl Instance {
 
     /// The instance with runtime parameters: coefficients computed in the shader (in f32)
     /// from the model's numeric parameters, which become arguments `p_<name>` after the
-    /// model's inputs. `None` when a coefficient needs a library function the WGSL library
-    /// does not have.
-    pub fn symbolic(id: &str, given: &[(&str, &str)]) -> Result<Option<Self>> {
+    /// model's inputs. Every model has this form; a call of a `fb_rt_*` function that the
+    /// library lacks (a new lobe without its normalisation integral) is an error, so no test
+    /// skips a model silently.
+    pub fn runtime(id: &str, given: &[(&str, &str)]) -> Result<Self> {
         let inst = Self::with(id, given, Emit::runtime())?;
-        let missing = inst
+        let missing: Vec<&str> = inst
             .wrapper
             .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
             .filter(|w| w.starts_with("fb_rt_"))
-            .any(|w| !library::items().iter().any(|i| i.name == w));
-        Ok(if missing { None } else { Some(inst) })
+            .filter(|w| !library::items().iter().any(|i| i.name == *w))
+            .collect();
+        if let Some(w) = missing.first() {
+            return Err(fastbrdf::Error::MissingParam {
+                model: id.into(),
+                param: format!("the WGSL function {w} (runtime form)"),
+            });
+        }
+        Ok(inst)
     }
 
     /// A runtime-parameter instance behind an entry with the model's plain signature

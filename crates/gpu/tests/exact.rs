@@ -80,10 +80,7 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
                 let instance = match form {
                     "storage" => Instance::with_storage(info.id, &given).unwrap(),
                     "literals" => Instance::new(info.id, &given).unwrap(),
-                    _ => match Instance::symbolic(info.id, &given).unwrap() {
-                        Some(sym) => sym.runtime_entry(),
-                        None => continue,
-                    },
+                    _ => Instance::runtime(info.id, &given).unwrap().runtime_entry(),
                 };
                 let rt_norm = instance.wrapper.contains("fb_rt_lobe_integral_");
                 let kernel = GpuKernel::new(d, instance).unwrap();
@@ -165,10 +162,7 @@ fn every_lobe_is_accurate_near_its_peak() {
                 let instance = match form {
                     "storage" => Instance::with_storage(info.id, &given).unwrap(),
                     "literals" => Instance::new(info.id, &given).unwrap(),
-                    _ => match Instance::symbolic(info.id, &given).unwrap() {
-                        Some(sym) => sym.runtime_entry(),
-                        None => continue,
-                    },
+                    _ => Instance::runtime(info.id, &given).unwrap().runtime_entry(),
                 };
                 let kernel = GpuKernel::new(d, instance).unwrap();
                 let mut out = vec![0.0f32; cos.len()];

@@ -370,7 +370,7 @@ fn brdf_explorer_sliders_reach_their_defaults_and_wide_ranges_are_logarithmic() 
 
 /// The runtime parameters of model `id`'s default export (`p_<name>` arguments, in order).
 fn runtime_params(id: &str) -> Vec<String> {
-    fastbrdf_gpu::spec::Instance::with(id, &[], fastbrdf_gpu::spec::Emit::runtime())
+    fastbrdf_gpu::spec::Instance::runtime(id, &[])
         .unwrap()
         .sliders
         .into_iter()

@@ -353,10 +353,9 @@ fn every_lobe_is_exactly_its_peak_at_c_1_under_folding_and_reassociation() {
             // structs) are outside this model: in use their parameters are per-pixel values a
             // compiler cannot fold (`Instance::runtime_entry`); tests/runtime.rs and
             // tests/parity.rs measure them on lavapipe. The closed-form ones are modelled.
-            if let Some(sym) = Instance::symbolic(e.info.id, &given).unwrap() {
-                if !sym.wrapper.contains("fb_rt_") {
-                    forms.push(("symbolic", sym));
-                }
+            let sym = Instance::runtime(e.info.id, &given).unwrap();
+            if !sym.wrapper.contains("fb_rt_") {
+                forms.push(("symbolic", sym));
             }
             for (form, inst) in forms {
                 let got = folded(&inst, 1.0);

@@ -213,10 +213,7 @@ fn every_model_matches_the_cpu() {
                 let instance = match form {
                     "storage" => Instance::with_storage(info.id, &given).unwrap(),
                     "literals" => Instance::new(info.id, &given).unwrap(),
-                    _ => match Instance::symbolic(info.id, &given).unwrap() {
-                        Some(sym) => sym.runtime_entry(),
-                        None => continue,
-                    },
+                    _ => Instance::runtime(info.id, &given).unwrap().runtime_entry(),
                 };
                 let kernel = GpuKernel::new(d, instance).unwrap();
                 let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>);

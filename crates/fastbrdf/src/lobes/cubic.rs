@@ -244,6 +244,9 @@ impl Cubic {
 }
 
 impl LobeForm for Cubic {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("cubic.wgsl");
     fn id(&self) -> &'static str {
         if self.three { "cubic3" } else { "cubic" }

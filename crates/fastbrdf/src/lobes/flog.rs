@@ -140,6 +140,9 @@ impl Flog {
 const FLOG_COEF: &str = "0.197 * (p_n + 1.24) + 0.068 / (0.64 + p_n)";
 
 impl LobeForm for Flog {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("flog.wgsl");
     fn id(&self) -> &'static str {
         match self.mode {

@@ -58,6 +58,9 @@ impl Gauss {
 }
 
 impl LobeForm for Gauss {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("gauss.wgsl");
     fn id(&self) -> &'static str {
         "gauss"

@@ -110,6 +110,9 @@ impl<const K: u32> Power<K> {
 }
 
 impl<const K: u32> LobeForm for Power<K> {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("power.wgsl");
     fn id(&self) -> &'static str {
         match (K, self.tuned) {

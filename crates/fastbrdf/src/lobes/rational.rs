@@ -117,6 +117,9 @@ impl Rational {
 }
 
 impl LobeForm for Rational {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("rational.wgsl");
     fn id(&self) -> &'static str {
         "rational"
@@ -174,6 +177,9 @@ impl CubicRational {
 }
 
 impl LobeForm for CubicRational {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("rational.wgsl");
     fn id(&self) -> &'static str {
         if self.tuned {

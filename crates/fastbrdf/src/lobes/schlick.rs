@@ -88,6 +88,9 @@ impl Schlick {
 }
 
 impl LobeForm for Schlick {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("schlick.wgsl");
     fn id(&self) -> &'static str {
         "schlick"
@@ -118,6 +121,9 @@ impl SchlickModified {
 }
 
 impl LobeForm for SchlickModified {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("schlick.wgsl");
     fn id(&self) -> &'static str {
         "schlick-modified"

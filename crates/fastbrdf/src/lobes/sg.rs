@@ -131,6 +131,9 @@ impl Exp2Lobe {
 }
 
 impl LobeForm for Exp2Lobe {
+    fn wgsl_norm(&self, e: &Emit) -> String {
+        crate::plan::norm_by_integral(self.id(), e)
+    }
     const WGSL: &'static str = include_str!("sg.wgsl");
     fn id(&self) -> &'static str {
         match self.form {
