@@ -1,6 +1,6 @@
 // fastbrdf WGSL library: shared helpers.
 //
-// Every item here has a Rust twin in crates/fastbrdf/src/batch (ops.rs, math.rs) with the same
+// Every item here has a Rust twin in crates/fastbrdf/src (vec3.rs, batch/math.rs) with the same
 // arrangement of operations, so that CPU and GPU agree to the precision of the elementary
 // functions. The GPU twins assume finite inputs: WGSL lets implementations ignore NaN and
 // infinity, so the CPU's NaN-to-zero rules are not reproduced here.

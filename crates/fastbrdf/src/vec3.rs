@@ -26,7 +26,7 @@ pub fn normalize<T: Real>(v: V3<T>) -> Option<V3<T>> {
 const LEN2_LO: f64 = 7.888_609_052_210_118e-31;
 const LEN2_HI: f64 = 1.267_650_600_228_229_4e30;
 
-/// The branch-free core of [`normalize`], shared with the batch kernels (`batch::ops`), so that
+/// The branch-free core of [`normalize`], shared with the batch kernels (`batch`), so that
 /// both round alike: `(unit vector, valid)`. When `|v|^2` lies outside
 /// [`2^-100`, `2^100`] (where it would overflow, underflow or lose bits to subnormals), `v` is
 /// first divided by its largest `|component|`; inside, the arithmetic is the plain

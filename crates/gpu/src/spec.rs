@@ -3,11 +3,12 @@
 //! instance's coefficients, placed as `Emit` says: f32 literals, the storage array `fb_k`, or
 //! expressions of the parameters.
 //!
-//! The coefficients are computed here in f64 exactly as the CPU batch kernels compute them
-//! (`fastbrdf::batch`, `build` and friends): cubic shapes, rational nodes, tuned slopes and
-//! normalisation integrals need f64 and `expm1`, which a shader does not have. The CPU-GPU
-//! parity tests (`tests/parity.rs`) compare every model through these instances, so a
-//! difference between the two mappings fails a test.
+//! The body comes from the model's plan (`fastbrdf::registry::plan`): each family writes the
+//! call of its WGSL twin with the plan's coefficients (computed once, in f64, the same numbers
+//! the CPU's scalar models and batch kernels read), or, in the runtime form, with expressions
+//! of the parameters. This module adds only the kind's domain rules and the signature; it
+//! matches no model id. The CPU-GPU parity tests (`tests/parity.rs`) compare every model in
+//! every form through these instances.
 //!
 //! Signatures of the generated function, by kind:
 //! - lobe: `fn fb_<id>(c: f32) -> f32`

@@ -2,7 +2,7 @@
 // Blinn-Phong, r.v for Phong). Argument clamped to [0, 1]. Each family's WGSL functions are in
 // the .wgsl file beside its Rust file in this folder (pow.wgsl beside pow.rs, ...; the Rust
 // headers give formulas, sources and error bounds), collected through plan.rs's family list
-// (LobeForm::WGSL); batch/ops.rs has this arrangement. This file holds no functions: it is the
+// (LobeForm::WGSL); the Rust formulas (LobeForm::at) have this arrangement. This file holds no functions: it is the
 // header that explains all of them.
 // Precision on the GPU: shader compilers reassociate. Mesa's NIR (lavapipe) recognises
 // `1 + t (c - 1)` as the lerp a + t (b - a) and lowers it to (1 - t) + t c, which cancels when
