@@ -30,7 +30,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     if std::env::args().any(|a| a == "--write") {
-        // The core crate's file (`fastbrdf::wgsl::RUNTIME`), beside this crate.
+        // The core crate's file (`fastbrdf::plan::RUNTIME`), beside this crate.
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../fastbrdf/src/runtime.wgsl");
         let src = std::fs::read_to_string(path)?;
         let new = replace_block(&src, &block).ok_or("runtime.wgsl has no generated block")?;

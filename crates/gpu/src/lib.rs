@@ -1,7 +1,7 @@
 //! fastbrdf on the GPU (wgpu 30, headless).
 //!
 //! - [`library`]: the WGSL twins of every model's core formula (in the core crate, each
-//!   family's `.wgsl` file beside its Rust file: `fastbrdf::wgsl::library_sources`).
+//!   family's `.wgsl` file beside its Rust file: `fastbrdf::plan::library_sources`).
 //! - [`spec`]: a model id and parameters as one WGSL function `fb_<id>`.
 //! - [`context`]: instance, adapter and device set-up; everything else takes `&Device, &Queue`.
 //! - [`compute`]: evaluate any model over a batch (the CPU batch API's inputs).

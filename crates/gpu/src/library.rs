@@ -1,7 +1,7 @@
 //! The WGSL library as items, so that a shader can take just the items it needs: a module for
 //! one model, or an exported function, carries no dead code. The sources live in the core crate,
 //! each family's `.wgsl` file beside its Rust file, and come from
-//! `fastbrdf::wgsl::library_sources` (collected from the family lists of `fastbrdf::plan`, in
+//! `fastbrdf::plan::library_sources` (collected from the family lists of `fastbrdf::plan`, in
 //! dependency order): this crate keeps no list of WGSL files.
 //!
 //! An item is a run of `///` doc lines followed by a `const`, `struct` or `fn` declaration
@@ -22,11 +22,11 @@ pub struct Item {
     code: String,
 }
 
-/// Every item of the library, in the order of `fastbrdf::wgsl::library_sources`.
+/// Every item of the library, in the order of `fastbrdf::plan::library_sources`.
 pub fn items() -> &'static [Item] {
     static ITEMS: OnceLock<Vec<Item>> = OnceLock::new();
     ITEMS.get_or_init(|| {
-        fastbrdf::wgsl::library_sources()
+        fastbrdf::plan::library_sources()
             .iter()
             .flat_map(|(_, src)| parse(src))
             .collect()
@@ -161,7 +161,7 @@ mod tests {
         // `closure` finds items by name: a second definition (two families' files) would be
         // dropped silently from every shader that needs the first.
         let mut seen: std::collections::BTreeMap<String, &str> = Default::default();
-        for (file, src) in fastbrdf::wgsl::library_sources() {
+        for (file, src) in fastbrdf::plan::library_sources() {
             for item in parse(src) {
                 if let Some(first) = seen.insert(item.name.clone(), file) {
                     panic!("{} is defined in {first} and in {file}", item.name);

@@ -1,5 +1,5 @@
 //! The fitted normalisation integrals of `crates/fastbrdf/src/runtime.wgsl` (issue 12; the core
-//! crate's `fastbrdf::wgsl::RUNTIME`): the lobes whose `Int(n) = integral_0^1 lobe(c) c dc` has
+//! crate's `fastbrdf::plan::RUNTIME`): the lobes whose `Int(n) = integral_0^1 lobe(c) c dc` has
 //! no elementary closed form (`gauss`, `flog`, `flog-normalized-clamped` above the `n` where its
 //! clamp starts to act).
 //!

@@ -438,7 +438,7 @@ fn numbers(block: &str) -> Vec<f64> {
 
 #[test]
 fn generated_fits_are_current_and_within_their_bound() {
-    let src = fastbrdf::wgsl::RUNTIME;
+    let src = fastbrdf::plan::RUNTIME;
     let fits = generate().expect("fits");
     let fresh = wgsl_block(&fits);
     let stored = current_block(src).expect("runtime.wgsl has its generated block");

@@ -20,7 +20,8 @@
 //! the exact Smith term calls libm's `erfc` per element: `Kernel::simd()` is false and
 //! `Kernel::isa()` is `Isa::Scalar` for it.
 
-pub mod math;
+/// The vectorisable elementary functions (moved to `crate::math::fast`; kept here by name).
+pub use crate::math::fast as math;
 
 use crate::brdf::cook_torrance::CookTorrance;
 use crate::brdf::phong::LobeBrdf;

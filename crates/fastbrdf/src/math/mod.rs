@@ -2,14 +2,16 @@
 //! generic over `T: Real` and `M: Math<T>`, and instantiated twice:
 //! - [`Exact`]: the precision's own functions (Rust's libm-backed `powf`, `exp`, ...), for the
 //!   scalar models in f32 and f64 (the analysis path and the reference for everything else);
-//! - [`Fast`]: the vectorisable approximations of `batch::math` (at most 2 ulp, no libm calls,
+//! - [`Fast`]: the vectorisable approximations of [`fast`] (at most 2 ulp, no libm calls,
 //!   branch-free), f32 only, for the SIMD batch kernels.
 //!
 //! Everything else in a formula (`+`, `*`, `/`, `sqrt`, `min`, `max`, comparisons) is IEEE
 //! arithmetic, the same in both backends.
 
-use crate::batch::math;
+pub mod fast;
+
 use crate::real::Real;
+use fast as math;
 
 /// The elementary functions a formula may call.
 pub trait Math<T: Real> {
@@ -54,7 +56,7 @@ impl<T: Real> Math<T> for Exact {
     }
 }
 
-/// The batch kernels' vectorisable f32 functions (`batch::math`).
+/// The batch kernels' vectorisable f32 functions ([`fast`]).
 #[derive(Clone, Copy, Debug)]
 pub struct Fast;
 
