@@ -175,7 +175,7 @@ fn every_kernel_matches_its_scalar_model_on_every_isa() {
             };
             let mut reference = vec![0.0f32; len];
             k.eval_with(Isa::Sse2, input, &mut reference).unwrap();
-            for isa in Isa::available() {
+            for &isa in Isa::available() {
                 let mut out = vec![0.0f32; len];
                 k.eval_with(isa, input, &mut out).unwrap();
                 assert!(
@@ -359,4 +359,34 @@ fn tiny_huge_and_subnormal_directions_evaluate_like_unit_ones() {
 
 fn opt<T: Copy>(v: &[T]) -> Vec<Option<T>> {
     v.iter().copied().map(Some).collect()
+}
+
+/// `eval_par` gives `eval`'s bits on both sides of its cut-off: a cheap lobe on a batch that
+/// stays on one thread, and Cook-Torrance (tens of ns per element, so 2^17 elements are
+/// milliseconds of work, far above `PAR_MIN_WORK`) on the pool; odd lengths test the tails.
+#[test]
+fn eval_par_matches_eval_on_both_sides_of_its_cutoff() {
+    for (id, n) in [("power16", 50_001usize), ("cook-torrance", (1 << 17) + 7)] {
+        let k = Kernel::new(id, &[]).unwrap();
+        let mut s = 11u64;
+        let mut next = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 40) as f32 / (1u64 << 24) as f32 * 2.0 - 0.5
+        };
+        let cols: Vec<Vec<f32>> = (0..6).map(|_| (0..n).map(|_| next()).collect()).collect();
+        let input = if id == "cook-torrance" {
+            Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]])
+        } else {
+            Input::Cos(&cols[0])
+        };
+        let (mut a, mut b) = (vec![0.0f32; n], vec![0.0f32; n]);
+        k.eval(input, &mut a).unwrap();
+        k.eval_par(input, &mut b).unwrap();
+        assert!(
+            a.iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()),
+            "{id}: eval_par differs from eval"
+        );
+    }
 }

@@ -36,6 +36,7 @@ use crate::registry;
 use crate::vec3::COS_MIN;
 use rayon::prelude::*;
 use serde::Serialize;
+use std::sync::OnceLock;
 
 /// An instruction set a kernel can run with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -53,8 +54,13 @@ pub enum Isa {
 }
 
 impl Isa {
-    /// The best SIMD instruction set this CPU supports.
+    /// The best SIMD instruction set this CPU supports (detected once, then cached).
     pub fn best() -> Self {
+        static BEST: OnceLock<Isa> = OnceLock::new();
+        *BEST.get_or_init(Self::detect)
+    }
+
+    fn detect() -> Self {
         #[cfg(target_arch = "x86_64")]
         {
             if std::is_x86_feature_detected!("avx512f")
@@ -72,11 +78,12 @@ impl Isa {
         Isa::Sse2
     }
 
-    /// Every SIMD instruction set this CPU supports, best first.
-    pub fn available() -> Vec<Isa> {
-        let all = [Isa::Avx512, Isa::Avx2Fma, Isa::Sse2];
-        let best = all.iter().position(|i| *i == Self::best()).unwrap_or(2);
-        all[best..].to_vec()
+    /// Every SIMD instruction set this CPU supports, best first (no allocation: a slice of a
+    /// constant list, from the cached best).
+    pub fn available() -> &'static [Isa] {
+        const ALL: [Isa; 3] = [Isa::Avx512, Isa::Avx2Fma, Isa::Sse2];
+        let best = ALL.iter().position(|i| *i == Self::best()).unwrap_or(2);
+        &ALL[best..]
     }
 
     /// The name used in reports.
@@ -321,6 +328,11 @@ fn kernel_of(plan: &Plan) -> Option<Box<dyn Imp>> {
     })
 }
 
+/// The least estimated single-thread time of the remaining work for which `Kernel::eval_par`
+/// uses rayon's pool (see `examples/par_cutoff.rs` for the measurement behind it).
+pub const PAR_MIN_WORK: std::time::Duration = std::time::Duration::from_micros(PAR_MIN_WORK_US);
+const PAR_MIN_WORK_US: u64 = 100;
+
 /// A model compiled for batch evaluation.
 pub struct Kernel {
     id: &'static str,
@@ -429,16 +441,33 @@ impl Kernel {
     }
 
     /// Evaluates with the best instruction set, split across rayon's threads in chunks of
-    /// 16384 elements.
+    /// 16384 elements when the work is worth it: the first chunk is timed on this thread, and
+    /// the rest runs on this thread too when it would take less than [`PAR_MIN_WORK`] (waking
+    /// the pool costs more than it saves below that; measured by `examples/par_cutoff.rs`).
+    /// Results are the same either way (element-wise kernels).
     pub fn eval_par(&self, input: Input, out: &mut [f32]) -> Result<()> {
         self.check(&input, out)?;
         const CHUNK: usize = 16384;
         let isa = if self.simd() { Isa::best() } else { Isa::Sse2 };
         let n = input.len();
-        out.par_chunks_mut(CHUNK).enumerate().for_each(|(i, o)| {
-            let lo = i * CHUNK;
-            self.imp.run(isa, input.slice(lo, (lo + o.len()).min(n)), o);
-        });
+        let first = n.min(CHUNK);
+        let t0 = std::time::Instant::now();
+        self.imp.run(isa, input.slice(0, first), &mut out[..first]);
+        let rest = n - first;
+        if rest == 0 {
+            return Ok(());
+        }
+        let per_chunk = t0.elapsed();
+        let estimate = per_chunk.mul_f64(rest as f64 / first as f64);
+        let (input, out) = (input.slice(first, n), &mut out[first..]);
+        if estimate < PAR_MIN_WORK || rayon::current_num_threads() < 2 {
+            self.imp.run(isa, input, out);
+        } else {
+            out.par_chunks_mut(CHUNK).enumerate().for_each(|(i, o)| {
+                let lo = i * CHUNK;
+                self.imp.run(isa, input.slice(lo, lo + o.len()), o);
+            });
+        }
         Ok(())
     }
 }
