@@ -26,7 +26,7 @@ pub use crate::math::fast as math;
 use crate::brdf::cook_torrance::CookTorrance;
 use crate::brdf::phong::LobeBrdf;
 use crate::error::{Error, Result};
-use crate::math::Fast;
+use crate::math::{Fast, FastFma, Math};
 use crate::model::Kind;
 use crate::plan::{
     BrdfForm, BrdfPlan, DistForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist, with_fresnel,
@@ -96,6 +96,12 @@ impl Isa {
         }
     }
 
+    /// Whether its kernels use fused multiply-adds (`math::FastFma`): AVX2+FMA and AVX-512
+    /// give identical bits; SSE2 rounds twice where they fuse.
+    pub fn fma(self) -> bool {
+        matches!(self, Isa::Avx512 | Isa::Avx2Fma)
+    }
+
     /// f32 lanes per vector register.
     pub fn lanes(self) -> usize {
         match self {
@@ -111,12 +117,12 @@ impl Isa {
 
 /// An operation on one cosine.
 pub trait Op1: Send + Sync + 'static {
-    fn f(&self, x: f32) -> f32;
+    fn f<M: Math<f32>>(&self, x: f32) -> f32;
 }
 
 /// An operation on a direction pair (wi, wo), not normalised.
 pub trait Op6: Send + Sync + 'static {
-    fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32;
+    fn f<M: Math<f32>>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32;
 }
 
 /// A lobe with `Lobe::eval`'s rules: clamp to [0, 1], NaN gives 0 (branch-free: `max` then
@@ -124,9 +130,9 @@ pub trait Op6: Send + Sync + 'static {
 struct LobeOp<L>(L);
 impl<L: LobeForm> Op1 for LobeOp<L> {
     #[inline(always)]
-    fn f(&self, c: f32) -> f32 {
+    fn f<M: Math<f32>>(&self, c: f32) -> f32 {
         #[allow(clippy::manual_clamp)]
-        let v = self.0.at::<f32, Fast>(c.max(0.0).min(1.0));
+        let v = self.0.at::<f32, M>(c.max(0.0).min(1.0));
         if c.is_nan() { 0.0 } else { v }
     }
 }
@@ -135,9 +141,9 @@ impl<L: LobeForm> Op1 for LobeOp<L> {
 struct DistOp<D>(D);
 impl<D: DistForm> Op1 for DistOp<D> {
     #[inline(always)]
-    fn f(&self, c: f32) -> f32 {
+    fn f<M: Math<f32>>(&self, c: f32) -> f32 {
         let cc = c.min(1.0);
-        let v = self.0.d::<f32, Fast>(cc, (1.0 - cc) * (1.0 + cc));
+        let v = self.0.d::<f32, M>(cc, (1.0 - cc) * (1.0 + cc));
         if c >= COS_MIN as f32 { v } else { 0.0 }
     }
 }
@@ -146,8 +152,8 @@ impl<D: DistForm> Op1 for DistOp<D> {
 struct FresnelOp<F>(F);
 impl<F: FresnelForm> Op1 for FresnelOp<F> {
     #[inline(always)]
-    fn f(&self, c: f32) -> f32 {
-        self.0.f::<f32, Fast>(c)
+    fn f<M: Math<f32>>(&self, c: f32) -> f32 {
+        self.0.f::<f32, M>(c)
     }
 }
 
@@ -155,22 +161,22 @@ impl<F: FresnelForm> Op1 for FresnelOp<F> {
 struct BrdfOp<B>(B);
 impl<B: BrdfForm> Op6 for BrdfOp<B> {
     #[inline(always)]
-    fn f(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
+    fn f<M: Math<f32>>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
         let (valid, p) = crate::vec3::pair_setup(wi, wo);
-        let v = self.0.at_pair::<f32, Fast>(&p);
+        let v = self.0.at_pair::<f32, M>(&p);
         if valid { v } else { 0.0 }
     }
 }
 
 #[inline(always)]
-fn map1_body<O: Op1>(op: &O, x: &[f32], out: &mut [f32]) {
+fn map1_body<O: Op1, M: Math<f32>>(op: &O, x: &[f32], out: &mut [f32]) {
     for (o, &c) in out.iter_mut().zip(x) {
-        *o = op.f(c);
+        *o = op.f::<M>(c);
     }
 }
 
 #[inline(always)]
-fn map6_body<O: Op6>(op: &O, w: [&[f32]; 6], out: &mut [f32]) {
+fn map6_body<O: Op6, M: Math<f32>>(op: &O, w: [&[f32]; 6], out: &mut [f32]) {
     let n = out.len();
     let (a, b, c, d, e, f) = (
         &w[0][..n],
@@ -181,7 +187,7 @@ fn map6_body<O: Op6>(op: &O, w: [&[f32]; 6], out: &mut [f32]) {
         &w[5][..n],
     );
     for i in 0..n {
-        out[i] = op.f([a[i], b[i], c[i]], [d[i], e[i], f[i]]);
+        out[i] = op.f::<M>([a[i], b[i], c[i]], [d[i], e[i], f[i]]);
     }
 }
 
@@ -190,15 +196,15 @@ macro_rules! isa_variants {
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx512f,avx512vl,avx512dq,avx512bw,avx2,fma")]
         unsafe fn $avx512<O: $bound>(op: &O, x: $input, out: &mut [f32]) {
-            $body(op, x, out)
+            $body::<O, FastFma>(op, x, out)
         }
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2,fma")]
         unsafe fn $avx2<O: $bound>(op: &O, x: $input, out: &mut [f32]) {
-            $body(op, x, out)
+            $body::<O, FastFma>(op, x, out)
         }
         fn $plain<O: $bound>(op: &O, x: $input, out: &mut [f32]) {
-            $body(op, x, out)
+            $body::<O, Fast>(op, x, out)
         }
     };
 }

@@ -180,13 +180,20 @@ impl<const FORM: u8> BrdfForm for Ward<FORM> {
     fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
         let lobe = match FORM {
             0 => {
-                let q = sqr(p.h[0]) * self.inv_ax2.t::<T>() + sqr(p.h[1]) * self.inv_ay2.t::<T>();
+                let q = M::madd(
+                    sqr(p.h[0]),
+                    self.inv_ax2.t::<T>(),
+                    sqr(p.h[1]) * self.inv_ay2.t::<T>(),
+                );
                 M::exp(-q / sqr(p.cos_h))
             }
             1 => M::pow(p.cos_h, self.e.t::<T>()),
             _ => {
                 let cos_minus_1 = -p.sin2_h / (T::one() + p.cos_h);
-                pow2k((T::one() + self.e.t::<T>() * cos_minus_1).max(T::zero()), 4)
+                pow2k(
+                    M::madd(self.e.t::<T>(), cos_minus_1, T::one()).max(T::zero()),
+                    4,
+                )
             }
         };
         self.scale.t::<T>() * lobe / (p.cos_i * p.cos_o).sqrt()

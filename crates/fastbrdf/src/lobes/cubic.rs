@@ -255,7 +255,7 @@ impl LobeForm for Cubic {
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         let [d1, d2, d3, x1, x2, cut] = self.k.map(|k| k.t::<T>());
         let x = c - T::one();
-        let p = T::one() + x * (d1 + (x - x1) * (d2 + (x - x2) * d3));
+        let p = M::madd(x, M::madd(x - x1, M::madd(x - x2, d3, d2), d1), T::one());
         // The cut is an f32 number, so both precisions cut at the same input.
         if c < cut { T::zero() } else { p.max(T::zero()) }
     }

@@ -155,7 +155,11 @@ impl LobeForm for Flog {
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         // c = 0 gives log2(0) = -inf, then -inf, clipped to 0 below; every c <= 0 is below
         // the zero anyway, and the select keeps 0 there whatever the backend's log2(0) is.
-        let f = T::one() - T::c(0.5) * M::log2(T::one() - self.n.t::<T>() * M::log2(c));
+        let f = M::madd(
+            T::c(-0.5),
+            M::log2(M::madd(-self.n.t::<T>(), M::log2(c), T::one())),
+            T::one(),
+        );
         let v = (self.coef.t::<T>() * f).max(T::zero());
         let v = if self.mode == FlogMode::NormalizedClamped {
             v.min(T::one())

@@ -127,7 +127,7 @@ impl<const K: u32> LobeForm for Power<K> {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         pow2k(
-            (T::one() + self.s.t::<T>() * (c - T::one())).max(T::zero()),
+            M::madd(self.s.t::<T>(), c - T::one(), T::one()).max(T::zero()),
             K,
         )
     }

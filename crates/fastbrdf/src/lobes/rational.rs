@@ -127,7 +127,7 @@ impl LobeForm for Rational {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         let x = c - T::one();
-        self.level.t::<T>() * c / (self.n.t::<T>() * (self.xq.t::<T>() - x) + c)
+        self.level.t::<T>() * c / M::madd(self.n.t::<T>(), self.xq.t::<T>() - x, c)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         if e.is_runtime() {

@@ -98,7 +98,7 @@ impl LobeForm for Schlick {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         // n - n c + c written as n (1 - c) + c: 1 - c is exact for c >= 0.5.
-        c / (self.n.t::<T>() * (T::one() - c) + c)
+        c / M::madd(self.n.t::<T>(), T::one() - c, c)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_lobe_schlick({c}, {})", e.kx(self.n, "p_n", &["n"]))
@@ -130,7 +130,7 @@ impl LobeForm for SchlickModified {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        let d = self.n.t::<T>() * (T::one() - c) + T::c(1.25) * c;
+        let d = M::madd(self.n.t::<T>(), T::one() - c, T::c(1.25) * c);
         T::c(2.0) * c / (T::c(1.25) * (d * d))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {

@@ -16,8 +16,55 @@
 //! `floor` is a libm call under plain SSE2.
 
 /// `2^x`.
+/// `a b + c`: fused (one rounding) when `F`, else two roundings. Fused is used only inside
+/// the FMA instruction sets' kernels, where `mul_add` is one instruction; elsewhere it would
+/// call libm's `fmaf`.
+#[inline(always)]
+fn madd<const F: bool>(a: f32, b: f32, c: f32) -> f32 {
+    if F { a.mul_add(b, c) } else { a * b + c }
+}
+
+#[inline(always)]
+fn madd64<const F: bool>(a: f64, b: f64, c: f64) -> f64 {
+    if F { a.mul_add(b, c) } else { a * b + c }
+}
+
+/// The functions with fused multiply-adds in their polynomials (for kernels compiled for
+/// AVX2+FMA and AVX-512; same accuracy bound, tested).
+pub mod fma {
+    #[inline(always)]
+    pub fn exp2(x: f32) -> f32 {
+        super::exp2_g::<true>(x)
+    }
+    #[inline(always)]
+    pub fn exp(x: f32) -> f32 {
+        super::exp_g::<true>(x)
+    }
+    #[inline(always)]
+    pub fn log2(x: f32) -> f32 {
+        super::log2_wide_g::<true>(x) as f32
+    }
+    #[inline(always)]
+    pub fn log2_wide(x: f32) -> f64 {
+        super::log2_wide_g::<true>(x)
+    }
+    #[inline(always)]
+    pub fn pow(x: f32, y: f32) -> f32 {
+        super::exp2_wide::<true>(y as f64 * super::log2_wide_g::<true>(x))
+    }
+    #[inline(always)]
+    pub fn acos(x: f32) -> f32 {
+        super::acos_g::<true>(x)
+    }
+}
+
 #[inline(always)]
 pub fn exp2(x: f32) -> f32 {
+    exp2_g::<false>(x)
+}
+
+#[inline(always)]
+fn exp2_g<const F: bool>(x: f32) -> f32 {
     const MAGIC: f32 = 12_582_912.0; // 1.5 * 2^23: t = MAGIC + k holds k in its low bits
     let xc = x.clamp(-127.0, 128.0);
     let t = xc + MAGIC;
@@ -25,7 +72,7 @@ pub fn exp2(x: f32) -> f32 {
     // No float-to-int conversion (Rust's saturating `as` blocks vectorisation): read k from
     // the bits of t.
     let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
-    let r = scale2(ki, xc - k);
+    let r = scale2::<F>(ki, xc - k);
     let r = if xc <= -127.0 { 0.0 } else { r };
     let r = if x >= 128.0 { f32::INFINITY } else { r };
     if x.is_nan() { x } else { r }
@@ -34,19 +81,19 @@ pub fn exp2(x: f32) -> f32 {
 /// `c0 + c1 x + ... + c7 x^7` by Estrin's scheme: dependency depth 3 instead of Horner's 7,
 /// with the same kind of IEEE operations (so every instruction set gets the same bits).
 #[inline(always)]
-fn estrin7(x: f32, c: &[f32; 8]) -> f32 {
+fn estrin7<const F: bool>(x: f32, c: &[f32; 8]) -> f32 {
     let x2 = x * x;
     let x4 = x2 * x2;
-    let a = c[0] + c[1] * x;
-    let b = c[2] + c[3] * x;
-    let d = c[4] + c[5] * x;
-    let e = c[6] + c[7] * x;
-    (a + x2 * b) + x4 * (d + x2 * e)
+    let a = madd::<F>(c[1], x, c[0]);
+    let b = madd::<F>(c[3], x, c[2]);
+    let d = madd::<F>(c[5], x, c[4]);
+    let e = madd::<F>(c[7], x, c[6]);
+    madd::<F>(x4, madd::<F>(x2, e, d), madd::<F>(x2, b, a))
 }
 
 /// `2^(k + f)` for an integer `k` in [-127, 128] and `f` in [-0.5, 0.5].
 #[inline(always)]
-fn scale2(ki: i32, f: f32) -> f32 {
+fn scale2<const F: bool>(ki: i32, f: f32) -> f32 {
     const C: [f32; 8] = [
         1.0,
         std::f32::consts::LN_2,
@@ -57,20 +104,20 @@ fn scale2(ki: i32, f: f32) -> f32 {
         0.000_154_035_3,
         0.000_015_252_734,
     ];
-    let p = estrin7(f, &C);
+    let p = estrin7::<F>(f, &C);
     f32::from_bits((p.to_bits() as i32).wrapping_add(ki << 23) as u32)
 }
 
 /// `2^a` for an f64 exponent, rounded to f32: the integer part is split off in f64, so the
 /// argument's own rounding does not enter.
 #[inline(always)]
-fn exp2_wide(a: f64) -> f32 {
+fn exp2_wide<const F: bool>(a: f64) -> f32 {
     const MAGIC: f64 = 6_755_399_441_055_744.0; // 1.5 * 2^52
     let ac = a.clamp(-127.0, 128.0);
     let t = ac + MAGIC;
     let k = t - MAGIC;
     let ki = (t.to_bits() as i64).wrapping_sub(MAGIC.to_bits() as i64) as i32;
-    let r = scale2(ki, (ac - k) as f32);
+    let r = scale2::<F>(ki, (ac - k) as f32);
     let r = if ac <= -127.0 { 0.0 } else { r };
     let r = if a >= 128.0 { f32::INFINITY } else { r };
     if a.is_nan() { f32::NAN } else { r }
@@ -81,6 +128,11 @@ fn exp2_wide(a: f64) -> f32 {
 /// Taylor polynomial of degree 7 on |r| <= 0.347 (truncation 5e-9).
 #[inline(always)]
 pub fn exp(x: f32) -> f32 {
+    exp_g::<false>(x)
+}
+
+#[inline(always)]
+fn exp_g<const F: bool>(x: f32) -> f32 {
     const MAGIC: f32 = 12_582_912.0;
     const LN2_HI: f32 = 0.693_359_4; // 0x3f318000
     const LN2_LO: f32 = -2.121_944_4e-4;
@@ -99,7 +151,7 @@ pub fn exp(x: f32) -> f32 {
         1.0 / 720.0,
         1.0 / 5040.0,
     ];
-    let p = estrin7(r, &C);
+    let p = estrin7::<F>(r, &C);
     // 2^k may be 2^-127 or 2^128 at the ends: scale in two halves to stay finite.
     let h = ki >> 1;
     let s1 = f32::from_bits(((h + 127) << 23) as u32);
@@ -113,6 +165,11 @@ pub fn exp(x: f32) -> f32 {
 /// `log2(x)` in f64 for an f32 `x >= 0` (normal or zero; subnormals are treated as zero).
 #[inline(always)]
 pub fn log2_wide(x: f32) -> f64 {
+    log2_wide_g::<false>(x)
+}
+
+#[inline(always)]
+fn log2_wide_g<const F: bool>(x: f32) -> f64 {
     let bits = x.to_bits();
     let e = ((bits >> 23) & 0xff) as i32 - 127;
     let m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000) as f64; // [1, 2)
@@ -125,12 +182,12 @@ pub fn log2_wide(x: f32) -> f64 {
     // Estrin's scheme (depth 3 instead of 7: the loop is latency-bound otherwise).
     let t4 = t2 * t2;
     let t8 = t4 * t4;
-    let p01 = 1.0 + t2 * (1.0 / 3.0);
-    let p23 = 1.0 / 5.0 + t2 * (1.0 / 7.0);
-    let p45 = 1.0 / 9.0 + t2 * (1.0 / 11.0);
-    let p67 = 1.0 / 13.0 + t2 * (1.0 / 15.0);
-    let s = t * ((p01 + t4 * p23) + t8 * (p45 + t4 * p67));
-    let r = e + K * s;
+    let p01 = madd64::<F>(t2, 1.0 / 3.0, 1.0);
+    let p23 = madd64::<F>(t2, 1.0 / 7.0, 1.0 / 5.0);
+    let p45 = madd64::<F>(t2, 1.0 / 11.0, 1.0 / 9.0);
+    let p67 = madd64::<F>(t2, 1.0 / 15.0, 1.0 / 13.0);
+    let s = t * madd64::<F>(t8, madd64::<F>(t4, p67, p45), madd64::<F>(t4, p23, p01));
+    let r = madd64::<F>(K, s, e);
     let r = if x < f32::MIN_POSITIVE {
         f64::NEG_INFINITY
     } else {
@@ -148,13 +205,18 @@ pub fn log2(x: f32) -> f32 {
 /// `x^y` for x in [0, 1] and y > 0 (the lobes' and distributions' use), `0^y = 0`.
 #[inline(always)]
 pub fn pow(x: f32, y: f32) -> f32 {
-    exp2_wide(y as f64 * log2_wide(x))
+    exp2_wide::<false>(y as f64 * log2_wide(x))
 }
 
 /// `acos(x)` for x in [0, 1].
 #[inline(always)]
-#[allow(clippy::approx_constant)]
 pub fn acos(x: f32) -> f32 {
+    acos_g::<false>(x)
+}
+
+#[inline(always)]
+#[allow(clippy::approx_constant)]
+fn acos_g<const F: bool>(x: f32) -> f32 {
     const A: [f32; 8] = [
         1.570_796_3, // A&S's fitted 1.5707963050, one f32 ulp below pi/2 on purpose
         -0.214_598_8,
@@ -165,6 +227,6 @@ pub fn acos(x: f32) -> f32 {
         0.006_670_09,
         -0.001_262_491_1,
     ];
-    let p = estrin7(x, &A);
+    let p = estrin7::<F>(x, &A);
     (1.0 - x).max(0.0).sqrt() * p
 }

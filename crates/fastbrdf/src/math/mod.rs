@@ -23,6 +23,9 @@ pub trait Math<T: Real> {
     /// The complementary error function (no vectorised version: `Fast` calls libm, so a
     /// family that needs it says so with `ShadowForm::SIMD = false`).
     fn erfc(x: T) -> T;
+    /// `a b + c`: two roundings in `Exact` and `Fast` (the scalar models keep their documented
+    /// f32 behaviour; SSE2 has no FMA), one in `FastFma`.
+    fn madd(a: T, b: T, c: T) -> T;
 }
 
 /// The precision's exact functions.
@@ -54,6 +57,10 @@ impl<T: Real> Math<T> for Exact {
     fn erfc(x: T) -> T {
         x.erfc()
     }
+    #[inline(always)]
+    fn madd(a: T, b: T, c: T) -> T {
+        a * b + c
+    }
 }
 
 /// The batch kernels' vectorisable f32 functions ([`fast`]).
@@ -84,5 +91,46 @@ impl Math<f32> for Fast {
     #[inline(always)]
     fn erfc(x: f32) -> f32 {
         libm::erfcf(x)
+    }
+    #[inline(always)]
+    fn madd(a: f32, b: f32, c: f32) -> f32 {
+        a * b + c
+    }
+}
+
+/// `Fast` with fused multiply-adds, in the formulas and in the polynomials of
+/// [`fast::fma`]: for the kernels compiled for AVX2+FMA and AVX-512, where `mul_add` is one
+/// instruction (elsewhere it would call libm's `fmaf`).
+#[derive(Clone, Copy, Debug)]
+pub struct FastFma;
+
+impl Math<f32> for FastFma {
+    #[inline(always)]
+    fn pow(x: f32, y: f32) -> f32 {
+        fast::fma::pow(x, y)
+    }
+    #[inline(always)]
+    fn exp(x: f32) -> f32 {
+        fast::fma::exp(x)
+    }
+    #[inline(always)]
+    fn exp2(x: f32) -> f32 {
+        fast::fma::exp2(x)
+    }
+    #[inline(always)]
+    fn log2(x: f32) -> f32 {
+        fast::fma::log2(x)
+    }
+    #[inline(always)]
+    fn acos(x: f32) -> f32 {
+        fast::fma::acos(x)
+    }
+    #[inline(always)]
+    fn erfc(x: f32) -> f32 {
+        libm::erfcf(x)
+    }
+    #[inline(always)]
+    fn madd(a: f32, b: f32, c: f32) -> f32 {
+        a.mul_add(b, c)
     }
 }

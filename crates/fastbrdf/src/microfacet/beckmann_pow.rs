@@ -198,7 +198,11 @@ impl<const K: u32> DistForm for BeckmannPower<K> {
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
         let cos_minus_1 = -sin2_h / (T::one() + cos_h);
-        self.scale.t::<T>() * pow2k((T::one() + self.s.t::<T>() * cos_minus_1).max(T::zero()), K)
+        self.scale.t::<T>()
+            * pow2k(
+                M::madd(self.s.t::<T>(), cos_minus_1, T::one()).max(T::zero()),
+                K,
+            )
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let g = Self::G;

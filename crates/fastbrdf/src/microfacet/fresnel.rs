@@ -139,7 +139,7 @@ impl FresnelForm for Schlick {
         let f0 = self.f0.t::<T>();
         let m = one - c;
         let m2 = m * m;
-        f0 + (one - f0) * (m2 * m2 * m)
+        M::madd(one - f0, m2 * m2 * m, f0)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_f_schlick({c}, {})", e.kx(self.f0, "p_f0", &["f0"]))
