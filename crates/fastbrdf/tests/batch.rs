@@ -422,12 +422,16 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
     let e2 = worst(
         &|x| fma::exp2(x) as f64,
         &|x| x.exp2(),
-        (0..=200_000).map(|i| -126.0 + 253.0 * i as f32 / 2e5).collect(),
+        (0..=200_000)
+            .map(|i| -126.0 + 253.0 * i as f32 / 2e5)
+            .collect(),
     );
     let e = worst(
         &|x| fma::exp(x) as f64,
         &|x| x.exp(),
-        (0..=200_000).map(|i| -87.0 + 175.0 * i as f32 / 2e5).collect(),
+        (0..=200_000)
+            .map(|i| -87.0 + 175.0 * i as f32 / 2e5)
+            .collect(),
     );
     let ac = worst(
         &|x| fma::acos(x) as f64,
@@ -439,7 +443,10 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
     assert!(ac <= 4.0 * eps, "{ac}");
     let mut x = f32::MIN_POSITIVE;
     while x < 4.0 {
-        assert!((fma::log2_wide(x) - (x as f64).log2()).abs() <= 1e-12, "{x}");
+        assert!(
+            (fma::log2_wide(x) - (x as f64).log2()).abs() <= 1e-12,
+            "{x}"
+        );
         x *= 1.001;
     }
     for y in [1.0f32, 7.0, 200.0, 10000.0] {
@@ -452,4 +459,37 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
             }
         }
     }
+}
+
+/// The denormal policy: kernels run with flush-to-zero, so a value the scalar model gives as a
+/// subnormal number is 0 from the kernel (power16 at n = 20 near its zero at c = 0.2), and the
+/// caller's floating-point state is restored afterwards.
+#[test]
+fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
+    let k = Kernel::new("power16", &[("n", "20")]).unwrap();
+    let Model::Lobe(m) = registry::build::<f32>("power16", &[("n", "20")]).unwrap() else {
+        panic!()
+    };
+    let c = [0.202f32; 37];
+    let scalar = m.eval(c[0]);
+    assert!(scalar > 0.0 && !scalar.is_normal(), "scalar {scalar:e}");
+    #[cfg(target_arch = "x86_64")]
+    let mxcsr = || {
+        let mut v = 0u32;
+        // SAFETY: stmxcsr stores the 32-bit MXCSR into a valid u32.
+        unsafe { std::arch::asm!("stmxcsr [{}]", in(reg) &mut v, options(nostack)) };
+        v
+    };
+    #[cfg(target_arch = "x86_64")]
+    let before = mxcsr();
+    for &isa in Isa::available() {
+        let mut out = [1.0f32; 37];
+        k.eval_with(isa, Input::Cos(&c), &mut out).unwrap();
+        #[cfg(target_arch = "x86_64")]
+        assert!(out.iter().all(|v| *v == 0.0), "{}: {out:?}", isa.name());
+    }
+    #[cfg(target_arch = "x86_64")]
+    assert_eq!(mxcsr(), before, "MXCSR not restored");
+    // The caller's own arithmetic still produces subnormals.
+    assert!(!(std::hint::black_box(1e-30f32) * 1e-10).is_normal());
 }
