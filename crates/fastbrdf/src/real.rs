@@ -105,10 +105,17 @@ pub fn sqr<T: Real>(x: T) -> T {
     x * x
 }
 
-/// `max(x, 0)`, mapping NaN to 0.
+/// `max(x, 0)`, mapping NaN to 0. Written as the select `x > 0 ? x : 0`, which is one
+/// `maxps` on x86 (Rust's `max` must also handle a NaN first operand: three instructions).
 #[inline(always)]
 pub fn pos<T: Real>(x: T) -> T {
     if x > T::zero() { x } else { T::zero() }
+}
+
+/// `min(x, 1)` as the select `x < 1 ? x : 1` (one `minps`; NaN gives 1, as Rust's `min`).
+#[inline(always)]
+pub fn min1<T: Real>(x: T) -> T {
+    if x < T::one() { x } else { T::one() }
 }
 
 /// `x^(2^k)` by `k` squarings.

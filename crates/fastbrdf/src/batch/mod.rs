@@ -131,9 +131,14 @@ struct LobeOp<L>(L);
 impl<L: LobeForm> Op1 for LobeOp<L> {
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
-        #[allow(clippy::manual_clamp)]
-        let v = self.0.at::<f32, M>(c.max(0.0).min(1.0));
-        if c.is_nan() { 0.0 } else { v }
+        // The clamp keeps NaN (`0 > c ? 0 : c` and `1 < x ? 1 : x`: one maxps and one minps
+        // each), every lobe maps a NaN argument to NaN or 0, and the final `v > 0 ? v : 0`
+        // (one maxps; lobes are non-negative) turns that into the rule's 0: the NaN rule costs
+        // no separate compare and blend.
+        let x = if 0.0 > c { 0.0 } else { c };
+        let x = if 1.0 < x { 1.0 } else { x };
+        let v = self.0.at::<f32, M>(x);
+        if v > 0.0 { v } else { 0.0 }
     }
 }
 
@@ -142,7 +147,7 @@ struct DistOp<D>(D);
 impl<D: DistForm> Op1 for DistOp<D> {
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
-        let cc = c.min(1.0);
+        let cc = if c < 1.0 { c } else { 1.0 };
         let v = self.0.d::<f32, M>(cc, (1.0 - cc) * (1.0 + cc));
         if c >= COS_MIN as f32 { v } else { 0.0 }
     }

@@ -26,7 +26,7 @@ use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params};
 use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
 use crate::quad;
-use crate::real::{K, Real};
+use crate::real::{K, Real, min1, pos};
 use crate::vec3::Pair;
 use crate::wgsl::{Emit, PAIR};
 
@@ -163,7 +163,7 @@ impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
     fn at_pair<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
         let cut = p.lobe_cut(self.zero, self.blinn);
         // The lobe's argument is clamped as `Lobe::eval` does (pair cosines lie in [-1, 1]).
-        let arg = |c: T| c.max(T::zero()).min(T::one());
+        let arg = |c: T| min1(pos(c));
         let v = if self.blinn {
             let l = self.lobe.at::<T, M>(arg(p.cos_h));
             if self.normalized {

@@ -22,7 +22,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self, ParamKind, ParamSpec, Params};
 use crate::plan::{BrdfForm, Plan};
-use crate::real::{K, Real, pow2k, sqr};
+use crate::real::{K, Real, pos, pow2k, sqr};
 use crate::vec3::Pair;
 use crate::wgsl::Emit;
 
@@ -190,10 +190,7 @@ impl<const FORM: u8> BrdfForm for Ward<FORM> {
             1 => M::pow(p.cos_h, self.e.t::<T>()),
             _ => {
                 let cos_minus_1 = -p.sin2_h / (T::one() + p.cos_h);
-                pow2k(
-                    M::madd(self.e.t::<T>(), cos_minus_1, T::one()).max(T::zero()),
-                    4,
-                )
+                pow2k(pos(M::madd(self.e.t::<T>(), cos_minus_1, T::one())), 4)
             }
         };
         self.scale.t::<T>() * lobe / (p.cos_i * p.cos_o).sqrt()

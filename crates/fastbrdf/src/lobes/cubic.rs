@@ -28,7 +28,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::{K, Real};
+use crate::real::{K, Real, pos};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -257,7 +257,7 @@ impl LobeForm for Cubic {
         let x = c - T::one();
         let p = M::madd(x, M::madd(x - x1, M::madd(x - x2, d3, d2), d1), T::one());
         // The cut is an f32 number, so both precisions cut at the same input.
-        if c < cut { T::zero() } else { p.max(T::zero()) }
+        if c < cut { T::zero() } else { pos(p) }
     }
     fn zero_below(&self) -> f64 {
         self.shape.cut

@@ -22,7 +22,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::{K, Real};
+use crate::real::{K, Real, min1, pos};
 use crate::wgsl::Emit;
 
 /// Seed 001's fitted normalisation coefficient (its Fig. 8 formula, as rounded in the paper).
@@ -160,9 +160,9 @@ impl LobeForm for Flog {
             M::log2(M::madd(-self.n.t::<T>(), M::log2(c), T::one())),
             T::one(),
         );
-        let v = (self.coef.t::<T>() * f).max(T::zero());
+        let v = pos(self.coef.t::<T>() * f);
         let v = if self.mode == FlogMode::NormalizedClamped {
-            v.min(T::one())
+            min1(v)
         } else {
             v
         };

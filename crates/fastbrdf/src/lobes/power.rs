@@ -13,7 +13,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::{K as Coef, Real, pow2k};
+use crate::real::{K as Coef, Real, pos, pow2k};
 use crate::wgsl::Emit;
 
 macro_rules! power_info {
@@ -126,10 +126,7 @@ impl<const K: u32> LobeForm for Power<K> {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        pow2k(
-            M::madd(self.s.t::<T>(), c - T::one(), T::one()).max(T::zero()),
-            K,
-        )
+        pow2k(pos(M::madd(self.s.t::<T>(), c - T::one(), T::one())), K)
     }
     fn zero_below(&self) -> f64 {
         (1.0 - 1.0 / self.s.x).max(0.0)

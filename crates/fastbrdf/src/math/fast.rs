@@ -228,5 +228,6 @@ fn acos_g<const F: bool>(x: f32) -> f32 {
         -0.001_262_491_1,
     ];
     let p = estrin7::<F>(x, &A);
-    (1.0 - x).max(0.0).sqrt() * p
+    let y = 1.0 - x;
+    (if y > 0.0 { y } else { 0.0 }).sqrt() * p
 }

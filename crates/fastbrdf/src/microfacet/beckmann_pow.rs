@@ -24,7 +24,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
 use crate::plan::{DistForm, Plan};
-use crate::real::{K as Coef, Real, pow2k};
+use crate::real::{K as Coef, Real, pos, pow2k};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -198,11 +198,7 @@ impl<const K: u32> DistForm for BeckmannPower<K> {
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
         let cos_minus_1 = -sin2_h / (T::one() + cos_h);
-        self.scale.t::<T>()
-            * pow2k(
-                M::madd(self.s.t::<T>(), cos_minus_1, T::one()).max(T::zero()),
-                K,
-            )
+        self.scale.t::<T>() * pow2k(pos(M::madd(self.s.t::<T>(), cos_minus_1, T::one())), K)
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let g = Self::G;

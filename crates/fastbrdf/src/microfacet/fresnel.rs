@@ -18,7 +18,7 @@ use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{ParamKind, ParamSpec};
 use crate::plan::{FresnelForm, Plan};
-use crate::real::{K, Real, sqr};
+use crate::real::{K, Real, min1, pos, sqr};
 use crate::wgsl::Emit;
 
 pub const F0: ParamSpec = ParamSpec {
@@ -135,7 +135,7 @@ impl FresnelForm for Schlick {
     fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
         let one = T::one();
         // NaN and negative cosines act as 0 (`max` then `min` maps NaN to 0).
-        let c = cos.max(T::zero()).min(one);
+        let c = min1(pos(cos));
         let f0 = self.f0.t::<T>();
         let m = one - c;
         let m2 = m * m;
@@ -261,7 +261,7 @@ pub fn dielectric<T: Real>(cos: T, p: &Consts) -> T {
     let c2 = c * c;
     let e = (eta - one) * (eta + one);
     let g2 = p.t0(c);
-    let g = g2.max(T::zero()).sqrt();
+    let g = pos(g2).sqrt();
     let eta2 = eta * eta;
     let d_perp = c + g;
     let r_perp = -e / (d_perp * d_perp);
@@ -318,9 +318,5 @@ pub fn conductor<T: Real>(cos: T, p: &Consts) -> T {
     let bc2 = b2 * c2;
     let rp = rs * (sqr(a * c - s2) + bc2) / (sqr(a * c + s2) + bc2);
     let f = (rp + rs) * half;
-    if f.is_finite() {
-        f.max(T::zero()).min(one)
-    } else {
-        one
-    }
+    if f.is_finite() { min1(pos(f)) } else { one }
 }

@@ -21,7 +21,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
 use crate::plan::{Plan, ShadowForm};
-use crate::real::{K, Real, sqr};
+use crate::real::{K, Real, pos, sqr};
 use crate::wgsl::Emit;
 
 pub const INFO_VCAVITY: ModelInfo = ModelInfo {
@@ -95,7 +95,7 @@ impl ShadowForm for VCavity {
 /// `a = cos / (alpha sin)` of a direction, for the Smith terms (`cos` in (0, 1)).
 #[inline(always)]
 fn smith_a<T: Real>(alpha: T, cos: T) -> T {
-    let sin = ((T::one() - cos) * (T::one() + cos)).max(T::zero()).sqrt();
+    let sin = pos((T::one() - cos) * (T::one() + cos)).sqrt();
     cos / (alpha * sin)
 }
 
