@@ -493,3 +493,35 @@ fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
     // The caller's own arithmetic still produces subnormals.
     assert!(!(std::hint::black_box(1e-30f32) * 1e-10).is_normal());
 }
+
+/// The non-positive-argument exponentials (sg, gauss, Beckmann, Ward): the plain and fused
+/// variants keep `exp2`'s and `exp`'s 2-ulp bound on the whole range they serve, give 0 below
+/// it, and 0 or NaN for NaN (the kernels' final max(0, .) makes that 0).
+#[test]
+fn nonpositive_exponentials_keep_the_bounds() {
+    use fastbrdf::math::fast::{self, fma};
+    let eps = f32::EPSILON as f64;
+    for (name, f, g, lo) in [
+        (
+            "exp2_nonpos",
+            fast::exp2_nonpos as fn(f32) -> f32,
+            f64::exp2 as fn(f64) -> f64,
+            -126.0f32,
+        ),
+        ("exp_nonpos", fast::exp_nonpos, f64::exp, -87.0),
+        ("fma::exp2_nonpos", fma::exp2_nonpos, f64::exp2, -126.0),
+        ("fma::exp_nonpos", fma::exp_nonpos, f64::exp, -87.0),
+    ] {
+        let steps = 400_000;
+        let worst = (0..=steps)
+            .map(|i| lo * i as f32 / steps as f32)
+            .map(|x| ((f(x) as f64) - g(x as f64)).abs() / g(x as f64))
+            .fold(0.0, f64::max);
+        println!("{name}: {worst:.2e}");
+        assert!(worst <= 2.0 * eps, "{name}: {worst:.3e}");
+        assert_eq!(f(-200.0), 0.0, "{name}");
+        assert_eq!(f(0.0), 1.0, "{name}");
+        let nan = f(f32::NAN);
+        assert!(nan == 0.0 || nan.is_nan(), "{name}: {nan}");
+    }
+}

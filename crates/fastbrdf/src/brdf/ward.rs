@@ -185,7 +185,7 @@ impl<const FORM: u8> BrdfForm for Ward<FORM> {
                     self.inv_ax2.t::<T>(),
                     sqr(p.h[1]) * self.inv_ay2.t::<T>(),
                 );
-                M::exp(-q / sqr(p.cos_h))
+                M::exp_nonpos(-q / sqr(p.cos_h))
             }
             1 => M::pow(p.cos_h, self.e.t::<T>()),
             _ => {

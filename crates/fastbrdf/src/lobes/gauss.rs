@@ -68,7 +68,7 @@ impl LobeForm for Gauss {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         let t = M::acos(c);
-        M::exp(-self.half_n.t::<T>() * (t * t))
+        M::exp_nonpos(-self.half_n.t::<T>() * (t * t))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!(

@@ -144,7 +144,7 @@ impl LobeForm for Exp2Lobe {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        M::exp2(self.k.t::<T>() * (c - T::one()))
+        M::exp2_nonpos(self.k.t::<T>() * (c - T::one()))
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         let expr = match self.form {

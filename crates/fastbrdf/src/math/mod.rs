@@ -23,6 +23,15 @@ pub trait Math<T: Real> {
     /// The complementary error function (no vectorised version: `Fast` calls libm, so a
     /// family that needs it says so with `ShadowForm::SIMD = false`).
     fn erfc(x: T) -> T;
+    /// `exp2(x)` for `x <= 0` (a NaN gives NaN or 0): the vector backends skip the overflow
+    /// and NaN branches.
+    fn exp2_nonpos(x: T) -> T {
+        Self::exp2(x)
+    }
+    /// `exp(x)` for `x <= 0`, as `exp2_nonpos`.
+    fn exp_nonpos(x: T) -> T {
+        Self::exp(x)
+    }
     /// `a b + c`: two roundings in `Exact` and `Fast` (the scalar models keep their documented
     /// f32 behaviour; SSE2 has no FMA), one in `FastFma`.
     fn madd(a: T, b: T, c: T) -> T;
@@ -96,6 +105,14 @@ impl Math<f32> for Fast {
     fn madd(a: f32, b: f32, c: f32) -> f32 {
         a * b + c
     }
+    #[inline(always)]
+    fn exp2_nonpos(x: f32) -> f32 {
+        math::exp2_nonpos(x)
+    }
+    #[inline(always)]
+    fn exp_nonpos(x: f32) -> f32 {
+        math::exp_nonpos(x)
+    }
 }
 
 /// `Fast` with fused multiply-adds, in the formulas and in the polynomials of
@@ -132,5 +149,13 @@ impl Math<f32> for FastFma {
     #[inline(always)]
     fn madd(a: f32, b: f32, c: f32) -> f32 {
         a.mul_add(b, c)
+    }
+    #[inline(always)]
+    fn exp2_nonpos(x: f32) -> f32 {
+        fast::fma::exp2_nonpos(x)
+    }
+    #[inline(always)]
+    fn exp_nonpos(x: f32) -> f32 {
+        fast::fma::exp_nonpos(x)
     }
 }

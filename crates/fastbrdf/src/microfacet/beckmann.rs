@@ -106,7 +106,7 @@ impl DistForm for Beckmann {
         // One division: exp(-tan^2 / alpha^2) / cos^4 as e * (1/c2)^2.
         let inv_c2 = T::one() / c2;
         self.scale.t::<T>()
-            * M::exp(-(sin2_h * inv_c2) * self.inv_alpha2.t::<T>())
+            * M::exp_nonpos(-(sin2_h * inv_c2) * self.inv_alpha2.t::<T>())
             * (inv_c2 * inv_c2)
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {

@@ -132,7 +132,7 @@ impl ShadowForm for Smith {
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
         separable(cos_v, cos_l, |c| {
             let a = smith_a(self.alpha.t::<T>(), c);
-            let lambda = (-M::erfc(a) + M::exp(-a * a) / (a * T::PI().sqrt())) * T::c(0.5);
+            let lambda = (-M::erfc(a) + M::exp_nonpos(-a * a) / (a * T::PI().sqrt())) * T::c(0.5);
             T::one() / (T::one() + lambda)
         })
     }
