@@ -762,9 +762,11 @@ mod ffi {
 /// as a user would hoist them out of the loop.
 #[derive(Clone, Copy, Debug)]
 enum PeerFn {
-    /// `powf(c, n)`.
+    /// `powf(c, n)`, unclamped: where `c^n` underflows (c < 0.645 at n = 200) libmvec's
+    /// powf falls back to scalar calls, and that is part of the measurement.
     Pow(f32),
-    /// `exp2f(rate (c - 1))`, `rate = n / ln 2`.
+    /// `exp2f(max(-126, rate (c - 1)))`, `rate = n / ln 2` (clamped like Beckmann's exponent,
+    /// so libmvec's underflow fallback is not what is measured).
     Sg(f32),
     /// `max(0, 1 + k (c - 1))^(2^squarings)`, `k = n / g`.
     Power { squarings: u32, k: f32 },
