@@ -206,6 +206,7 @@ mod tests {
             speedups: vec![],
             quick: true,
             gpu: None,
+            peers: vec![],
         };
         let ids: Vec<&str> = lobes().iter().map(|i| i.id).collect();
         assert!(ids.contains(&"schlick") && ids.contains(&"flog"));

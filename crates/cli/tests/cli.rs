@@ -762,6 +762,120 @@ fn bench_json_has_the_documented_shape_and_round_trips() {
     assert_eq!(o.status.code(), Some(2));
 }
 
+/// Issue 13: every run races the batch kernels against their C peers; the "peers" rows have
+/// the shape `bench --help` documents, render from a saved run, and runs saved before them
+/// still load and print as they did. Shapes only: no timing is asserted.
+#[test]
+fn bench_peers_have_the_documented_shape_and_old_runs_still_load() {
+    let o = fastbrdf(
+        &[
+            "bench",
+            "--quick",
+            "--models",
+            "pow,power16,beckmann,ward",
+            "--large",
+            "4096",
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let peers = v["peers"].as_array().expect("a peers array");
+    let models: Vec<&str> = peers.iter().map(|p| p["model"].as_str().unwrap()).collect();
+    assert_eq!(models, ["pow", "power16", "beckmann"], "ward has no C peer");
+    for p in peers {
+        for key in [
+            "model",
+            "params",
+            "batch",
+            "repeats",
+            "rounds",
+            "isa",
+            "kernel_evals_per_s",
+            "peer_evals_per_s",
+            "ratio",
+            "kernel_max_error",
+            "peer_max_error",
+            "peer",
+            "compiler",
+            "flags",
+            "libmvec",
+            "ftz",
+            "daz",
+        ] {
+            assert!(p.get(key).is_some(), "{p} lacks {key}");
+        }
+        for spread in ["kernel_evals_per_s", "peer_evals_per_s", "ratio"] {
+            for stat in ["median", "q1", "q3", "min", "max"] {
+                let x = p[spread][stat].as_f64().unwrap_or(-1.0);
+                assert!(x.is_finite() && x > 0.0, "{spread}.{stat} = {x}");
+            }
+        }
+        assert_eq!(p["batch"], 4096);
+        assert!(p["peer_max_error"].as_f64().unwrap() <= 1e-5, "{p}");
+        assert!(p["kernel_max_error"].as_f64().unwrap() <= 1e-5, "{p}");
+        assert!(p["flags"].as_str().unwrap().starts_with("-O3"));
+        assert!(!p["compiler"].as_str().unwrap().is_empty());
+        assert_eq!(p["ftz"].is_boolean(), cfg!(target_arch = "x86_64"), "{p}");
+        assert_eq!(p["peer"], format!("peer_{}", p["model"].as_str().unwrap()));
+    }
+    assert_eq!(peers[2]["params"], "alpha=0.3");
+    // The saved run renders its peer table (Markdown and text).
+    let d = temp_dir("bench-peers");
+    let path = d.join("run.json");
+    std::fs::write(&path, &o.stdout).unwrap();
+    let f = path.to_str().unwrap();
+    let md = fastbrdf(&["bench", "--from", f, "--markdown"], "");
+    assert!(md.status.success(), "{}", stderr(&md));
+    let md = stdout(&md);
+    assert!(
+        md.contains("| model | kernel | C peer | kernel / C |"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| `power16` n=200 |") && md.contains("FTZ"),
+        "{md}"
+    );
+    let text = stdout(&fastbrdf(&["bench", "--from", f], ""));
+    assert!(
+        text.contains("C peers") && text.contains("beckmann alpha=0.3"),
+        "{text}"
+    );
+    // An impossible peer figure is refused like any other.
+    let mut bad = v.clone();
+    bad["peers"][0]["ratio"]["median"] = serde_json::json!(-1.0);
+    std::fs::write(&path, serde_json::to_string(&bad).unwrap()).unwrap();
+    let o = fastbrdf(&["bench", "--from", f], "");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("peers[0]"), "{}", stderr(&o));
+    std::fs::remove_dir_all(&d).unwrap();
+    // Runs saved before issue 13 have no "peers": they load, print without a peer table, and
+    // re-export with an empty array.
+    let old = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    assert!(!std::fs::read_to_string(old).unwrap().contains("\"peers\""));
+    for flags in [&["--markdown"][..], &[][..]] {
+        let o = fastbrdf(&[&["bench", "--from", old][..], flags].concat(), "");
+        assert!(o.status.success(), "{}", stderr(&o));
+        assert!(!stdout(&o).contains("C peer"), "{flags:?}");
+    }
+    let o = fastbrdf(&["bench", "--from", old, "--json"], "");
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["peers"], serde_json::json!([]));
+    assert!(!v["kernels"].as_array().unwrap().is_empty());
+    // --help documents the shape.
+    let help = stdout(&fastbrdf(&["bench", "--help"], ""));
+    for word in [
+        "\"peers\"",
+        "peer_evals_per_s",
+        "ratio",
+        "ftz",
+        "-march=native",
+    ] {
+        assert!(help.contains(word), "--help lacks {word}");
+    }
+}
+
 #[test]
 fn readme_benchmark_tables_are_the_saved_run() {
     let bench = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");

@@ -12,6 +12,10 @@ use std::path::PathBuf;
     after_help = "Examples:\n  fastbrdf bench --quick\n  fastbrdf bench --json > bench.json\n  \
 fastbrdf bench --from bench.json --markdown\n  fastbrdf bench --models pow,power16,cook-torrance\n  \
 fastbrdf bench --gpu --quick\n\n\
+Every run also races each lobe's (n = 200) and Beckmann's (alpha = 0.3) batch kernel against\n\
+the plain C loop a user would write (powf, exp2f, expf, squarings; compiled with the system C\n\
+compiler at -O3 -march=native -ffast-math), interleaved in the same process on the same\n\
+inputs, with both sides' error against the f64 model and the FTZ/DAZ state (\"C peers\").\n\n\
 --gpu adds, in the same run, each model's evaluations per second on the GPU with the data\n\
 resident (variant `gpu`) and with upload and read-back (`gpu+transfer`), batch min(--large,\n\
 4194304), and GPU speedup rows. The adapter is named in the output; a software adapter\n\
@@ -23,8 +27,15 @@ pub struct Args {
     quick: bool,
     /// Print JSON: {"cpu", "isa", "threads", "fma_per_s", "kernels": [{model, variant, batch,
     /// evals_per_s, isa, fma_fraction}], "speedups": [{name, measured, claimed, how}], "quick",
-    /// and with --gpu "gpu" (the adapter's label)}; GPU rows have variant "gpu" or
-    /// "gpu+transfer" and isa "gpu".
+    /// "peers": [{model, params, batch, repeats, rounds, isa, kernel_evals_per_s,
+    /// peer_evals_per_s, ratio, kernel_max_error, peer_max_error, peer, compiler, flags,
+    /// libmvec, ftz, daz}], and with --gpu "gpu" (the adapter's label)}; GPU rows have variant
+    /// "gpu" or "gpu+transfer" and isa "gpu". Each peers row races the batch kernel against
+    /// the C loop `peer` (crates/analysis/c/peer.c, built with `compiler` at `flags`):
+    /// `kernel_evals_per_s`, `peer_evals_per_s` and `ratio` (kernel over peer, per round) are
+    /// {median, q1, q3, min, max} over `rounds` interleaved rounds of `repeats` calls on `batch`
+    /// cosines; the errors are max |v - v64| / max(1, |v64|) against the f64 model; `ftz`/`daz`
+    /// are the process's MXCSR flags (null off x86-64). Runs saved without "peers" load with none.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown tables that README.md shows.
@@ -394,20 +405,107 @@ fn header(r: &Report) -> String {
 }
 
 fn text(r: &Report) -> String {
-    format!(
+    let mut s = format!(
         "{}\n\nThroughput (evaluations per second, best of repeated rounds)\n{}\nSpeedups (ratios within this run)\n{}",
         header(r),
         table(r, false),
         speed_table(r, false)
-    )
+    );
+    if !r.peers.is_empty() {
+        let _ = write!(s, "\nC peers\n{}", peer_table(r, false));
+    }
+    s
+}
+
+/// The kernels against their C peers (nothing for a run saved without them).
+fn peer_table(r: &Report, md: bool) -> String {
+    let mut s = String::new();
+    let Some(first) = r.peers.first() else {
+        return s;
+    };
+    let state = first.ftz.zip(first.daz);
+    let _ = writeln!(
+        s,
+        "{}C: {}, {}{}. {}.{}",
+        if md { "" } else { "  " },
+        first.compiler,
+        first.flags,
+        if first.libmvec {
+            ", powf/expf/exp2f vectorised by glibc's libmvec"
+        } else {
+            ""
+        },
+        speed::ftz_note(state),
+        if md { "\n" } else { "" }
+    );
+    let _ = writeln!(
+        s,
+        "{}Evaluations per second on {} cosines: median [interquartile range] of interleaved rounds (kernel, C, kernel, C, ...) of repeated calls; kernel / C from the same rounds; max error |v - v64| / max(1, |v64|) against the f64 model.{}",
+        if md { "" } else { "  " },
+        first.batch,
+        if md { "\n" } else { "" }
+    );
+    let iqr = |x: &speed::Spread| format!("{} [{}, {}]", eng(x.median), eng(x.q1), eng(x.q3));
+    let ratio = |x: &speed::Spread| format!("{:.2} [{:.2}, {:.2}]", x.median, x.q1, x.q3);
+    if md {
+        let _ = writeln!(
+            s,
+            "| model | kernel | C peer | kernel / C | kernel max error | C max error | ISA | rounds x calls |\n|---|---|---|---|---|---|---|---|"
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            "  {:<22} {:>26} {:>26} {:>20} {:>9} {:>9}  {:<7} rounds x calls",
+            "model", "kernel", "C peer", "kernel / C", "k err", "C err", "isa"
+        );
+    }
+    for p in &r.peers {
+        let name = format!("{} {}", p.model, p.params);
+        if md {
+            let _ = writeln!(
+                s,
+                "| `{}` {} | {} | {} | {} | {:.1e} | {:.1e} | {} | {} x {} |",
+                p.model,
+                p.params,
+                iqr(&p.kernel_evals_per_s),
+                iqr(&p.peer_evals_per_s),
+                ratio(&p.ratio),
+                p.kernel_max_error,
+                p.peer_max_error,
+                p.isa,
+                p.rounds,
+                p.repeats
+            );
+        } else {
+            let _ = writeln!(
+                s,
+                "  {:<22} {:>26} {:>26} {:>20} {:>9.1e} {:>9.1e}  {:<7} {} x {}",
+                name,
+                iqr(&p.kernel_evals_per_s),
+                iqr(&p.peer_evals_per_s),
+                ratio(&p.ratio),
+                p.kernel_max_error,
+                p.peer_max_error,
+                p.isa,
+                p.rounds,
+                p.repeats
+            );
+        }
+    }
+    s
 }
 
 /// The Markdown README shows.
 pub fn markdown(r: &Report) -> String {
-    format!(
+    let mut s = format!(
         "{}.\n\n{}\n{}",
         header(r),
         table(r, true),
         speed_table(r, true)
-    )
+    );
+    // Runs saved before the C peers (README's docs/bench/bench.json) print as they did.
+    if !r.peers.is_empty() {
+        let _ = write!(s, "\n{}", peer_table(r, true));
+    }
+    s
 }
