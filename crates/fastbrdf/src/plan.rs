@@ -38,8 +38,13 @@ pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     const WGSL: &'static str;
     /// The registry id this instance was built as (for WGSL names and messages).
     fn id(&self) -> &'static str;
-    /// The value at `c`, already clamped to [0, 1] and not NaN (see [`model::Lobe::eval`]).
+    /// The value at `c`, already clamped to [0, 1] (see [`model::Lobe::eval`]); the batch
+    /// kernels also pass NaN through, for which it must give NaN or 0 (the kernel then makes
+    /// it 0, see `NAN_TO_ZERO`).
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T;
+    /// Whether `at(NaN)` is exactly 0 (a `pos`/select inside already applies the NaN rule), so
+    /// the batch kernel needs no final `max(0, v)`.
+    const NAN_TO_ZERO: bool = false;
     /// The largest cosine below which the lobe is identically zero (0 when it has none).
     fn zero_below(&self) -> f64 {
         0.0

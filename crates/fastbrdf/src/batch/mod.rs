@@ -138,7 +138,7 @@ impl<L: LobeForm> Op1 for LobeOp<L> {
         let x = if 0.0 > c { 0.0 } else { c };
         let x = if 1.0 < x { 1.0 } else { x };
         let v = self.0.at::<f32, M>(x);
-        if v > 0.0 { v } else { 0.0 }
+        if L::NAN_TO_ZERO || v > 0.0 { v } else { 0.0 }
     }
 }
 

@@ -140,6 +140,8 @@ impl Flog {
 const FLOG_COEF: &str = "0.197 * (p_n + 1.24) + 0.068 / (0.64 + p_n)";
 
 impl LobeForm for Flog {
+    // NaN: `pos` (power, cubic) or the `c > 0` select (flog) gives 0.
+    const NAN_TO_ZERO: bool = true;
     fn wgsl_norm(&self, e: &Emit) -> String {
         crate::plan::norm_by_integral(self.id(), e)
     }

@@ -110,6 +110,8 @@ impl<const K: u32> Power<K> {
 }
 
 impl<const K: u32> LobeForm for Power<K> {
+    // NaN: `pos` (power, cubic) or the `c > 0` select (flog) gives 0.
+    const NAN_TO_ZERO: bool = true;
     fn wgsl_norm(&self, e: &Emit) -> String {
         crate::plan::norm_by_integral(self.id(), e)
     }
