@@ -88,6 +88,7 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
     let (w, h, n) = (opts.width, opts.height, opts.spp);
     let (x0, y0) = (tx * TILE, ty * TILE);
     let (tw, th) = (TILE.min(w - x0), TILE.min(h - y0));
+    let rays = scene.camera.rays(w, h);
     let mut samples = Vec::with_capacity((tw * th * n * n) as usize);
     for py in 0..th {
         for px in 0..tw {
@@ -95,7 +96,7 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                 for sx in 0..n {
                     let x = (x0 + px) as f32 + (sx as f32 + 0.5) / n as f32;
                     let y = (y0 + py) as f32 + (sy as f32 + 0.5) / n as f32;
-                    let ray = scene.camera.ray(x, y, w, h);
+                    let ray = rays.ray(x, y);
                     let pixel = py * tw + px;
                     samples.push(match scene.intersect(&ray) {
                         None => Sample {
