@@ -98,7 +98,7 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                     let y = (y0 + py) as f32 + (sy as f32 + 0.5) / n as f32;
                     let ray = rays.ray(x, y);
                     let pixel = py * tw + px;
-                    samples.push(match scene.intersect(&ray) {
+                    samples.push(match scene.intersect_shading(&ray) {
                         None => Sample {
                             pixel,
                             object: None,

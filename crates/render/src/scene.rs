@@ -293,13 +293,25 @@ pub struct Scene {
 impl Scene {
     /// The nearest hit along `ray`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        self.nearest(ray, |_| true)
+    }
+
+    /// The nearest hit along `ray` for shading: texture coordinates only on objects whose
+    /// material has a texture (zero elsewhere), since nothing else reads them (the sphere's
+    /// cost an `atan2` and an `asin` per ray).
+    pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
+        self.nearest(ray, |o| o.material.texture.is_some())
+    }
+
+    #[inline]
+    fn nearest(&self, ray: &Ray, uv: impl Fn(&Object) -> bool) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut t_max = f32::INFINITY;
         for (i, o) in self.objects.iter().enumerate() {
             let h = match &o.shape {
-                Shape::Sphere(s) => s.intersect(ray, 1e-4, t_max),
-                Shape::Plane(p) => p.intersect(ray, 1e-4, t_max),
-                Shape::Mesh(m) => m.intersect(ray, 1e-4, t_max),
+                Shape::Sphere(s) => s.hit(ray, 1e-4, t_max, uv(o)),
+                Shape::Plane(p) => p.hit(ray, 1e-4, t_max, uv(o)),
+                Shape::Mesh(m) => m.hit(ray, 1e-4, t_max, uv(o)),
             };
             if let Some((t, n, uv)) = h {
                 t_max = t;
