@@ -7,7 +7,7 @@
 
 use crate::error::Result;
 use crate::film::{Film, check_size};
-use crate::scene::Scene;
+use crate::scene::{Rays, Scene};
 use fastbrdf::batch::Input;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -41,6 +41,21 @@ struct Sample {
     base: Vec3,
 }
 
+/// Per-worker buffers of [`render_tile`], reused from tile to tile (allocating them per tile
+/// made the thread heaps grow and shrink: page faults and `mprotect` calls were 10% of a
+/// render).
+#[derive(Default)]
+struct Scratch {
+    samples: Vec<Sample>,
+    radiance: Vec<Vec3>,
+    /// The samples lit by the current object and light, with the light's radiance scale.
+    idx: Vec<usize>,
+    li: Vec<Vec3>,
+    /// Specular inputs (`wi`, `wo` in the local frame) as structure of arrays.
+    cols: [Vec<f32>; 6],
+    out: Vec<f32>,
+}
+
 /// Renders `scene`; `progress(done, total)` is called after each tile.
 pub fn render(
     scene: &Scene,
@@ -56,40 +71,58 @@ pub fn render(
     }
     let (w, h) = (opts.width, opts.height);
     let tiles_x = w.div_ceil(TILE);
-    let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
-        .flat_map(|ty| (0..tiles_x).map(move |tx| (tx, ty)))
-        .collect();
+    let rays = scene.camera.rays(w, h);
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let total = tiles.len();
-    let results: Vec<(u32, u32, Vec<Vec3>)> = tiles
-        .par_iter()
-        .map(|&(tx, ty)| {
-            let r = render_tile(scene, opts, tx, ty);
-            progress(
-                done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
-                total,
-            );
-            (tx, ty, r)
-        })
-        .collect();
+    let total = (tiles_x * h.div_ceil(TILE)) as usize;
     let mut film = Film::new(w, h);
-    for (tx, ty, px) in results {
-        let (x0, y0) = (tx * TILE, ty * TILE);
-        let tw = TILE.min(w - x0);
-        for (i, c) in px.into_iter().enumerate() {
-            let (x, y) = (x0 + i as u32 % tw, y0 + i as u32 / tw);
-            film.pixels[(y * w + x) as usize] = c;
-        }
-    }
+    // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies its
+    // tiles into the film itself, so assembling the film is parallel too.
+    film.pixels
+        .par_chunks_mut((w * TILE) as usize)
+        .enumerate()
+        .for_each(|(ty, band)| {
+            let tiles: Vec<Vec<Vec3>> = (0..tiles_x)
+                .into_par_iter()
+                .map_init(Scratch::default, |scratch, tx| {
+                    let px = render_tile(scene, opts, &rays, tx, ty as u32, scratch);
+                    progress(
+                        done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
+                        total,
+                    );
+                    px
+                })
+                .collect();
+            for (row, line) in band.chunks_mut(w as usize).enumerate() {
+                for (tx, px) in tiles.iter().enumerate() {
+                    let x0 = tx * TILE as usize;
+                    let tw = (TILE as usize).min(w as usize - x0);
+                    line[x0..x0 + tw].copy_from_slice(&px[row * tw..(row + 1) * tw]);
+                }
+            }
+        });
     Ok(film)
 }
 
-fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
+fn render_tile(
+    scene: &Scene,
+    opts: &Options,
+    rays: &Rays,
+    tx: u32,
+    ty: u32,
+    scratch: &mut Scratch,
+) -> Vec<Vec3> {
     let (w, h, n) = (opts.width, opts.height, opts.spp);
     let (x0, y0) = (tx * TILE, ty * TILE);
     let (tw, th) = (TILE.min(w - x0), TILE.min(h - y0));
-    let rays = scene.camera.rays(w, h);
-    let mut samples = Vec::with_capacity((tw * th * n * n) as usize);
+    let Scratch {
+        samples,
+        radiance,
+        idx,
+        li: lis,
+        cols,
+        out,
+    } = scratch;
+    samples.clear();
     for py in 0..th {
         for px in 0..tw {
             for sy in 0..n {
@@ -138,24 +171,19 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
             }
         }
     }
-    let mut radiance: Vec<Vec3> = samples
-        .iter()
-        .map(|s| {
-            if s.object.is_some() {
-                scene.ambient * s.base
-            } else {
-                scene.background
-            }
-        })
-        .collect();
-    // Specular inputs, reused across objects and lights.
-    let mut idx: Vec<usize> = Vec::with_capacity(samples.len());
-    let mut cols: [Vec<f32>; 6] = Default::default();
-    let mut out: Vec<f32> = Vec::new();
+    radiance.clear();
+    radiance.extend(samples.iter().map(|s| {
+        if s.object.is_some() {
+            scene.ambient * s.base
+        } else {
+            scene.background
+        }
+    }));
     for (oi, obj) in scene.objects.iter().enumerate() {
         let m = &obj.material;
         for light in &scene.lights {
             idx.clear();
+            lis.clear();
             cols.iter_mut().for_each(Vec::clear);
             for (i, s) in samples.iter().enumerate() {
                 if s.object != Some(oi) {
@@ -172,6 +200,7 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                     let wi = [l.dot(t), l.dot(b), cos_i];
                     let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
                     idx.push(i);
+                    lis.push(li);
                     for k in 0..3 {
                         cols[k].push(wi[k]);
                         cols[k + 3].push(wo[k]);
@@ -188,7 +217,7 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                         Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
                     m.specular
                         .kernel
-                        .eval(input, &mut out)
+                        .eval(input, out)
                         .expect("SoA buffers have equal lengths");
                 }
                 Shading::Scalar => {
@@ -200,14 +229,13 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                     }
                 }
             }
-            for (j, &i) in idx.iter().enumerate() {
-                let (_, li) = light.at(samples[i].p);
+            for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
                 radiance[i] += li * (m.ks * out[j] * cols[2][j]);
             }
         }
     }
     let mut px = vec![Vec3::ZERO; (tw * th) as usize];
-    for (s, r) in samples.iter().zip(&radiance) {
+    for (s, r) in samples.iter().zip(radiance.iter()) {
         px[s.pixel as usize] += *r;
     }
     let inv = 1.0 / (n * n) as f32;
