@@ -299,6 +299,7 @@ impl Scene {
     /// The nearest hit along `ray` for shading: texture coordinates only on objects whose
     /// material has a texture (zero elsewhere), since nothing else reads them (the sphere's
     /// cost an `atan2` and an `asin` per ray).
+    #[inline]
     pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
         self.nearest(ray, |o| o.material.texture.is_some())
     }
