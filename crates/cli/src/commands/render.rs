@@ -212,14 +212,20 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
             String::new(),
         )
     };
+    let rendered = t.elapsed().as_secs_f64();
     film.save(&a.out, a.scene.exposure)?;
+    let total = t.elapsed().as_secs_f64();
     eprintln!(
-        "wrote {} ({}x{}, {} samples/pixel, {:.2} s{on})",
+        "wrote {} ({}x{}, {} samples/pixel ({}x{}), {:.3} s: render {:.3} s, encode and write {:.3} s{on})",
         a.out.display(),
         opts.width,
         opts.height,
         opts.spp * opts.spp,
-        t.elapsed().as_secs_f64()
+        opts.spp,
+        opts.spp,
+        total,
+        rendered,
+        total - rendered
     );
     Ok(())
 }
