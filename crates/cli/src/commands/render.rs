@@ -43,7 +43,8 @@ pub struct SceneArgs {
     /// Image size WIDTHxHEIGHT (at most 8192 per side and 2^25 pixels).
     #[arg(long, default_value = "512x512")]
     pub size: String,
-    /// Supersampling: N x N samples per pixel (1..16).
+    /// Supersampling: N samples along each axis of a pixel, N x N per pixel (1..16): the
+    /// default 2 takes 4 samples per pixel, 4 takes 16; 1 is one sample at the centre.
     #[arg(long, default_value_t = 2)]
     pub spp: u32,
     /// Procedural micro-relief SCALE,DEPTH (features per unit, relative height), e.g. 40,0.6
