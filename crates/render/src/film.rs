@@ -5,6 +5,7 @@
 use crate::error::{RenderError, Result};
 use crate::texture::linear_to_srgb;
 use glam::Vec3;
+use rayon::prelude::*;
 use std::path::Path;
 
 /// Largest image side accepted.
@@ -63,22 +64,39 @@ impl Film {
         self.pixels[(y * self.width + x) as usize]
     }
 
-    /// sRGB 8-bit RGB bytes after multiplying by `exposure` and clamping.
+    /// sRGB 8-bit RGB bytes after multiplying by `exposure` and clamping. Rows in parallel;
+    /// a pixel equal to the one before it (the background, flat regions) reuses its bytes
+    /// instead of three `powf` (the same function of the same value: the same bytes).
     pub fn to_srgb8(&self, exposure: f32) -> Vec<u8> {
-        self.pixels
-            .iter()
-            .flat_map(|p| {
-                (*p * exposure)
-                    .to_array()
-                    .map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8)
-            })
-            .collect()
+        let w = self.width as usize;
+        let mut rgb = vec![0u8; self.pixels.len() * 3];
+        rgb.par_chunks_mut(w * 3)
+            .zip(self.pixels.par_chunks(w))
+            .for_each(|(out, row)| {
+                let mut last: Option<(Vec3, [u8; 3])> = None;
+                for (o, p) in out.chunks_exact_mut(3).zip(row) {
+                    let v = *p * exposure;
+                    let bytes = match last {
+                        // `==` on floats: NaN never matches, and -0 and +0 encode alike.
+                        Some((lv, lb)) if lv == v => lb,
+                        _ => {
+                            let b = v
+                                .to_array()
+                                .map(|c| (linear_to_srgb(c) * 255.0 + 0.5) as u8);
+                            last = Some((v, b));
+                            b
+                        }
+                    };
+                    o.copy_from_slice(&bytes);
+                }
+            });
+        rgb
     }
 
     /// Errors if any pixel is NaN or infinite (the last guard before a file is written: no
     /// NaN or inf ever reaches a PNG or EXR). The message names the first such pixel.
     pub fn check_finite(&self) -> Result<()> {
-        if let Some(i) = self.pixels.iter().position(|p| !p.is_finite()) {
+        if let Some(i) = self.pixels.par_iter().position_first(|p| !p.is_finite()) {
             // Counted only on the error path: a finite film is scanned once.
             let bad = self.pixels[i..].iter().filter(|p| !p.is_finite()).count();
             let (x, y) = (i as u32 % self.width, i as u32 / self.width);

@@ -29,8 +29,15 @@ pub struct Sphere {
 }
 
 impl Sphere {
-    /// Nearest intersection with t in (t_min, t_max).
+    /// Nearest intersection with t in (t_min, t_max): (t, normal, uv).
     pub fn intersect(&self, r: &Ray, t_min: f32, t_max: f32) -> Option<(f32, Vec3, Vec2)> {
+        self.hit(r, t_min, t_max, true)
+    }
+
+    /// [`Sphere::intersect`], with the texture coordinates (an `atan2` and an `asin`) computed
+    /// only when `uv` is set (zero otherwise).
+    #[inline]
+    pub fn hit(&self, r: &Ray, t_min: f32, t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
         let oc = r.o - self.center;
         let b = oc.dot(r.d);
         let c = oc.length_squared() - self.radius * self.radius;
@@ -45,10 +52,14 @@ impl Sphere {
         }
         let p = r.o + t * r.d;
         let n = (p - self.center) / self.radius;
-        let uv = Vec2::new(
-            0.5 + n.z.atan2(n.x) / std::f32::consts::TAU,
-            0.5 - n.y.clamp(-1.0, 1.0).asin() / std::f32::consts::PI,
-        );
+        let uv = if uv {
+            Vec2::new(
+                0.5 + n.z.atan2(n.x) / std::f32::consts::TAU,
+                0.5 - n.y.clamp(-1.0, 1.0).asin() / std::f32::consts::PI,
+            )
+        } else {
+            Vec2::ZERO
+        };
         Some((t, n, uv))
     }
 }
@@ -61,8 +72,15 @@ pub struct Plane {
 }
 
 impl Plane {
-    /// Intersection with t in (t_min, t_max).
+    /// Intersection with t in (t_min, t_max): (t, normal, uv).
     pub fn intersect(&self, r: &Ray, t_min: f32, t_max: f32) -> Option<(f32, Vec3, Vec2)> {
+        self.hit(r, t_min, t_max, true)
+    }
+
+    /// [`Plane::intersect`], with the texture coordinates computed only when `uv` is set
+    /// (zero otherwise).
+    #[inline]
+    pub fn hit(&self, r: &Ray, t_min: f32, t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
         let denom = self.normal.dot(r.d);
         if denom.abs() < 1e-8 {
             return None;
@@ -70,6 +88,9 @@ impl Plane {
         let t = (self.point - r.o).dot(self.normal) / denom;
         if !(t > t_min && t < t_max) {
             return None;
+        }
+        if !uv {
+            return Some((t, self.normal, Vec2::ZERO));
         }
         let p = r.o + t * r.d;
         let (tu, tv) = self.normal.any_orthonormal_pair();
@@ -195,7 +216,13 @@ impl TriMesh {
     }
 
     /// Nearest intersection with t in (t_min, t_max): (t, interpolated normal, uv).
-    pub fn intersect(&self, r: &Ray, t_min: f32, mut t_max: f32) -> Option<(f32, Vec3, Vec2)> {
+    pub fn intersect(&self, r: &Ray, t_min: f32, t_max: f32) -> Option<(f32, Vec3, Vec2)> {
+        self.hit(r, t_min, t_max, true)
+    }
+
+    /// [`TriMesh::intersect`], with the texture coordinates interpolated only when `uv` is set
+    /// (zero otherwise).
+    pub fn hit(&self, r: &Ray, t_min: f32, mut t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
         let inv = r.d.recip();
         let mut best: Option<(f32, u32, f32, f32)> = None;
         let mut stack = [0u32; 64];
@@ -236,7 +263,9 @@ impl TriMesh {
         } else {
             n
         };
-        let uv = if self.uvs.is_empty() {
+        let uv = if !uv {
+            Vec2::ZERO
+        } else if self.uvs.is_empty() {
             Vec2::new(u, v)
         } else {
             self.uvs[a as usize] * w + self.uvs[b as usize] * u + self.uvs[c as usize] * v

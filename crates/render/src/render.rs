@@ -7,7 +7,8 @@
 
 use crate::error::Result;
 use crate::film::{Film, check_size};
-use crate::scene::Scene;
+use crate::geometry::Ray;
+use crate::scene::{Rays, Scene};
 use fastbrdf::batch::Input;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -41,6 +42,23 @@ struct Sample {
     base: Vec3,
 }
 
+/// Per-worker buffers of [`render_tile`], reused from tile to tile (allocating them per tile
+/// made the thread heaps grow and shrink: page faults and `mprotect` calls were 10% of a
+/// render).
+#[derive(Default)]
+struct Scratch {
+    /// The tile's primary rays, sample by sample.
+    rays: Vec<Ray>,
+    samples: Vec<Sample>,
+    radiance: Vec<Vec3>,
+    /// The samples lit by the current object and light, with the light's radiance scale.
+    idx: Vec<usize>,
+    li: Vec<Vec3>,
+    /// Specular inputs (`wi`, `wo` in the local frame) as structure of arrays.
+    cols: [Vec<f32>; 6],
+    out: Vec<f32>,
+}
+
 /// Renders `scene`; `progress(done, total)` is called after each tile.
 pub fn render(
     scene: &Scene,
@@ -56,105 +74,129 @@ pub fn render(
     }
     let (w, h) = (opts.width, opts.height);
     let tiles_x = w.div_ceil(TILE);
-    let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
-        .flat_map(|ty| (0..tiles_x).map(move |tx| (tx, ty)))
-        .collect();
+    let rays = scene.camera.rays(w, h);
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let total = tiles.len();
-    let results: Vec<(u32, u32, Vec<Vec3>)> = tiles
-        .par_iter()
-        .map(|&(tx, ty)| {
-            let r = render_tile(scene, opts, tx, ty);
-            progress(
-                done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
-                total,
-            );
-            (tx, ty, r)
-        })
-        .collect();
+    let total = (tiles_x * h.div_ceil(TILE)) as usize;
     let mut film = Film::new(w, h);
-    for (tx, ty, px) in results {
-        let (x0, y0) = (tx * TILE, ty * TILE);
-        let tw = TILE.min(w - x0);
-        for (i, c) in px.into_iter().enumerate() {
-            let (x, y) = (x0 + i as u32 % tw, y0 + i as u32 / tw);
-            film.pixels[(y * w + x) as usize] = c;
-        }
-    }
+    // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies its
+    // tiles into the film itself, so assembling the film is parallel too.
+    film.pixels
+        .par_chunks_mut((w * TILE) as usize)
+        .enumerate()
+        .for_each(|(ty, band)| {
+            let tiles: Vec<Vec<Vec3>> = (0..tiles_x)
+                .into_par_iter()
+                .map_init(Scratch::default, |scratch, tx| {
+                    let px = render_tile(scene, opts, &rays, tx, ty as u32, scratch);
+                    progress(
+                        done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
+                        total,
+                    );
+                    px
+                })
+                .collect();
+            for (row, line) in band.chunks_mut(w as usize).enumerate() {
+                for (tx, px) in tiles.iter().enumerate() {
+                    let x0 = tx * TILE as usize;
+                    let tw = (TILE as usize).min(w as usize - x0);
+                    line[x0..x0 + tw].copy_from_slice(&px[row * tw..(row + 1) * tw]);
+                }
+            }
+        });
     Ok(film)
 }
 
-fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
+fn render_tile(
+    scene: &Scene,
+    opts: &Options,
+    rays: &Rays,
+    tx: u32,
+    ty: u32,
+    scratch: &mut Scratch,
+) -> Vec<Vec3> {
     let (w, h, n) = (opts.width, opts.height, opts.spp);
     let (x0, y0) = (tx * TILE, ty * TILE);
     let (tw, th) = (TILE.min(w - x0), TILE.min(h - y0));
-    let mut samples = Vec::with_capacity((tw * th * n * n) as usize);
+    let Scratch {
+        rays: tile_rays,
+        samples,
+        radiance,
+        idx,
+        li: lis,
+        cols,
+        out,
+    } = scratch;
+    // All the tile's rays first, then hits and samples: a ray (two divisions, a square root
+    // and a division) and an intersection (a square root, a division) form one chain of
+    // long-latency operations; in one long loop body the processor could not overlap the
+    // chains of successive samples (the tile loop was latency-bound), in a short loop it does.
+    // A separate loop for the intersections was slower (the hits go through memory). Same
+    // operations, same values.
+    tile_rays.clear();
     for py in 0..th {
         for px in 0..tw {
             for sy in 0..n {
                 for sx in 0..n {
                     let x = (x0 + px) as f32 + (sx as f32 + 0.5) / n as f32;
                     let y = (y0 + py) as f32 + (sy as f32 + 0.5) / n as f32;
-                    let ray = scene.camera.ray(x, y, w, h);
-                    let pixel = py * tw + px;
-                    samples.push(match scene.intersect(&ray) {
-                        None => Sample {
-                            pixel,
-                            object: None,
-                            p: Vec3::ZERO,
-                            n: Vec3::Z,
-                            v: Vec3::Z,
-                            base: Vec3::ZERO,
-                        },
-                        Some(hit) => {
-                            let m = &scene.objects[hit.object].material;
-                            let v = -ray.d;
-                            // Two-sided shading: face the viewer, then perturb; a perturbed
-                            // normal that turns away from the viewer (at silhouettes) falls
-                            // back to the smooth one rather than flipping.
-                            let smooth = if hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
-                            let nrm = match m.bump {
-                                Some(b) => Some(b.perturb(hit.p, smooth))
-                                    .filter(|n| n.dot(v) > 0.0)
-                                    .unwrap_or(smooth),
-                                None => smooth,
-                            };
-                            let albedo = m
-                                .texture
-                                .as_ref()
-                                .map_or(m.albedo, |t| m.albedo * t.sample(hit.uv));
-                            Sample {
-                                pixel,
-                                object: Some(hit.object),
-                                p: hit.p,
-                                n: nrm,
-                                v,
-                                base: albedo * m.kd,
-                            }
-                        }
-                    });
+                    tile_rays.push(rays.ray(x, y));
                 }
             }
         }
     }
-    let mut radiance: Vec<Vec3> = samples
-        .iter()
-        .map(|s| {
-            if s.object.is_some() {
-                scene.ambient * s.base
-            } else {
-                scene.background
+    samples.clear();
+    for (i, ray) in tile_rays.iter().enumerate() {
+        let pixel = i as u32 / (n * n);
+        samples.push(match scene.intersect_shading(ray) {
+            None => Sample {
+                pixel,
+                object: None,
+                p: Vec3::ZERO,
+                n: Vec3::Z,
+                v: Vec3::Z,
+                base: Vec3::ZERO,
+            },
+            Some(hit) => {
+                let m = &scene.objects[hit.object].material;
+                let v = -ray.d;
+                // Two-sided shading: face the viewer, then perturb; a perturbed
+                // normal that turns away from the viewer (at silhouettes) falls
+                // back to the smooth one rather than flipping.
+                let smooth = if hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
+                let nrm = match m.bump {
+                    Some(b) => Some(b.perturb(hit.p, smooth))
+                        .filter(|n| n.dot(v) > 0.0)
+                        .unwrap_or(smooth),
+                    None => smooth,
+                };
+                let albedo = m
+                    .texture
+                    .as_ref()
+                    .map_or(m.albedo, |t| m.albedo * t.sample(hit.uv));
+                Sample {
+                    pixel,
+                    object: Some(hit.object),
+                    p: hit.p,
+                    n: nrm,
+                    v,
+                    base: albedo * m.kd,
+                }
             }
-        })
-        .collect();
-    // Specular inputs, reused across objects and lights.
-    let mut idx: Vec<usize> = Vec::with_capacity(samples.len());
-    let mut cols: [Vec<f32>; 6] = Default::default();
-    let mut out: Vec<f32> = Vec::new();
+        });
+    }
+    radiance.clear();
+    radiance.extend(samples.iter().map(|s| {
+        if s.object.is_some() {
+            scene.ambient * s.base
+        } else {
+            scene.background
+        }
+    }));
     for (oi, obj) in scene.objects.iter().enumerate() {
         let m = &obj.material;
         for light in &scene.lights {
             idx.clear();
+            lis.clear();
             cols.iter_mut().for_each(Vec::clear);
             for (i, s) in samples.iter().enumerate() {
                 if s.object != Some(oi) {
@@ -171,6 +213,7 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                     let wi = [l.dot(t), l.dot(b), cos_i];
                     let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
                     idx.push(i);
+                    lis.push(li);
                     for k in 0..3 {
                         cols[k].push(wi[k]);
                         cols[k + 3].push(wo[k]);
@@ -187,7 +230,7 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                         Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
                     m.specular
                         .kernel
-                        .eval(input, &mut out)
+                        .eval(input, out)
                         .expect("SoA buffers have equal lengths");
                 }
                 Shading::Scalar => {
@@ -199,14 +242,13 @@ fn render_tile(scene: &Scene, opts: &Options, tx: u32, ty: u32) -> Vec<Vec3> {
                     }
                 }
             }
-            for (j, &i) in idx.iter().enumerate() {
-                let (_, li) = light.at(samples[i].p);
+            for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
                 radiance[i] += li * (m.ks * out[j] * cols[2][j]);
             }
         }
     }
     let mut px = vec![Vec3::ZERO; (tw * th) as usize];
-    for (s, r) in samples.iter().zip(&radiance) {
+    for (s, r) in samples.iter().zip(radiance.iter()) {
         px[s.pixel as usize] += *r;
     }
     let inv = 1.0 / (n * n) as f32;

@@ -30,15 +30,25 @@ impl Camera {
         (f, r, u, (self.fov_y_deg.to_radians() * 0.5).tan())
     }
 
-    /// The ray through image position (x, y) in pixels (y down) of a `w` x `h` image.
+    /// The ray through image position (x, y) in pixels (y down) of a `w` x `h` image. For many
+    /// rays, build [`Camera::rays`] once: the frame costs two normalisations and a `tan`.
     pub fn ray(&self, x: f32, y: f32, w: u32, h: u32) -> Ray {
+        self.rays(w, h).ray(x, y)
+    }
+
+    /// The ray generator of a `w` x `h` image: the frame computed once, the same rays as
+    /// [`Camera::ray`] to the bit (which calls it).
+    pub fn rays(&self, w: u32, h: u32) -> Rays {
         let (f, r, u, th) = self.frame();
-        let aspect = w as f32 / h as f32;
-        let sx = (2.0 * x / w as f32 - 1.0) * th * aspect;
-        let sy = (1.0 - 2.0 * y / h as f32) * th;
-        Ray {
-            o: self.eye,
-            d: (f + sx * r + sy * u).normalize(),
+        Rays {
+            eye: self.eye,
+            f,
+            r,
+            u,
+            th,
+            aspect: w as f32 / h as f32,
+            w: w as f32,
+            h: h as f32,
         }
     }
 
@@ -67,6 +77,35 @@ impl Camera {
             target: c,
             up,
             fov_y_deg,
+        }
+    }
+}
+
+/// A camera's rays for one image size: the frame of [`Camera::frame`] and the image scale,
+/// computed once per render rather than per ray.
+#[derive(Clone, Copy, Debug)]
+pub struct Rays {
+    eye: Vec3,
+    f: Vec3,
+    r: Vec3,
+    u: Vec3,
+    th: f32,
+    aspect: f32,
+    w: f32,
+    h: f32,
+}
+
+impl Rays {
+    /// The ray through image position (x, y) in pixels (y down).
+    #[inline]
+    pub fn ray(&self, x: f32, y: f32) -> Ray {
+        // The same operations in the same order as before the frame was hoisted: the rays (and
+        // so every picture) are unchanged to the bit.
+        let sx = (2.0 * x / self.w - 1.0) * self.th * self.aspect;
+        let sy = (1.0 - 2.0 * y / self.h) * self.th;
+        Ray {
+            o: self.eye,
+            d: (self.f + sx * self.r + sy * self.u).normalize(),
         }
     }
 }
@@ -254,13 +293,26 @@ pub struct Scene {
 impl Scene {
     /// The nearest hit along `ray`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
+        self.nearest(ray, |_| true)
+    }
+
+    /// The nearest hit along `ray` for shading: texture coordinates only on objects whose
+    /// material has a texture (zero elsewhere), since nothing else reads them (the sphere's
+    /// cost an `atan2` and an `asin` per ray).
+    #[inline]
+    pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
+        self.nearest(ray, |o| o.material.texture.is_some())
+    }
+
+    #[inline]
+    fn nearest(&self, ray: &Ray, uv: impl Fn(&Object) -> bool) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut t_max = f32::INFINITY;
         for (i, o) in self.objects.iter().enumerate() {
             let h = match &o.shape {
-                Shape::Sphere(s) => s.intersect(ray, 1e-4, t_max),
-                Shape::Plane(p) => p.intersect(ray, 1e-4, t_max),
-                Shape::Mesh(m) => m.intersect(ray, 1e-4, t_max),
+                Shape::Sphere(s) => s.hit(ray, 1e-4, t_max, uv(o)),
+                Shape::Plane(p) => p.hit(ray, 1e-4, t_max, uv(o)),
+                Shape::Mesh(m) => m.hit(ray, 1e-4, t_max, uv(o)),
             };
             if let Some((t, n, uv)) = h {
                 t_max = t;

@@ -43,7 +43,8 @@ pub struct SceneArgs {
     /// Image size WIDTHxHEIGHT (at most 8192 per side and 2^25 pixels).
     #[arg(long, default_value = "512x512")]
     pub size: String,
-    /// Supersampling: N x N samples per pixel (1..16).
+    /// Supersampling: N samples along each axis of a pixel, N x N per pixel (1..16): the
+    /// default 2 takes 4 samples per pixel, 4 takes 16; 1 is one sample at the centre.
     #[arg(long, default_value_t = 2)]
     pub spp: u32,
     /// Procedural micro-relief SCALE,DEPTH (features per unit, relative height), e.g. 40,0.6
@@ -212,14 +213,20 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
             String::new(),
         )
     };
+    let rendered = t.elapsed().as_secs_f64();
     film.save(&a.out, a.scene.exposure)?;
+    let total = t.elapsed().as_secs_f64();
     eprintln!(
-        "wrote {} ({}x{}, {} samples/pixel, {:.2} s{on})",
+        "wrote {} ({}x{}, {} samples/pixel ({}x{}), {:.3} s: render {:.3} s, encode and write {:.3} s{on})",
         a.out.display(),
         opts.width,
         opts.height,
         opts.spp * opts.spp,
-        t.elapsed().as_secs_f64()
+        opts.spp,
+        opts.spp,
+        total,
+        rendered,
+        total - rendered
     );
     Ok(())
 }
