@@ -59,7 +59,7 @@ pub const INFO: ModelInfo = ModelInfo {
         },
     ],
     f32_bound: 1e-6,
-    note: "q = 0.5^(1/n) exactly (the seed rounds ln 2); evaluated by Horner in (c - 1) with coefficients from the Newton form, for f32 accuracy",
+    note: "q = 0.5^(1/n) exactly (the seed rounds ln 2); for f32 accuracy, evaluated on the CPU by Horner in (c - 1) with coefficients from the Newton form, on the GPU in the Newton form in 1 - c (fold-proof)",
 };
 
 pub const INFO3: ModelInfo = ModelInfo {
@@ -86,7 +86,7 @@ pub const INFO3: ModelInfo = ModelInfo {
         },
     ],
     f32_bound: 1e-6,
-    note: "evaluated by Horner in (c - 1) with coefficients from the Newton form, for f32 accuracy",
+    note: "for f32 accuracy, evaluated on the CPU by Horner in (c - 1) with coefficients from the Newton form, on the GPU in the Newton form in 1 - c (fold-proof)",
 };
 
 pub const ENTRY: Entry = Entry::new(INFO, |p, _| {

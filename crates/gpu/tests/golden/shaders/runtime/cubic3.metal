@@ -3,7 +3,7 @@
 //
 // Formula: a c^3 + b c^2 + c' c through (1, 1), (0.5^(1/n), 0.5), ((1/18)^(1/n), 1/18); 0 below its local minimum and where negative
 // Source: seed 003 (three-point variant, Q = 0.5, G = 1/18)
-// Note: evaluated in a Newton form in (c - 1) for f32 accuracy
+// Note: for f32 accuracy, evaluated on the CPU by Horner in (c - 1) with coefficients from the Newton form, on the GPU in the Newton form in 1 - c (fold-proof)
 // Parameters (this export: n = 20):
 //   n: specular exponent (range [1, 10000], default 20)
 // Documented error bounds (measured by `fastbrdf check`):
