@@ -16,6 +16,23 @@
 //! `floor` is a libm call under plain SSE2.
 
 /// `2^x`.
+/// `1.5 * 2^23`: `t = MAGIC + k` holds the integer `k` in its low bits.
+const MAGIC: f32 = 12_582_912.0;
+/// `ln 2` in two parts (Cody-Waite): `LN2_HI` has trailing zero bits, so `k LN2_HI` is exact.
+const LN2_HI: f32 = 0.693_359_4; // 0x3f318000
+const LN2_LO: f32 = -2.121_944_4e-4;
+/// `exp(r)` on the reduced range: Taylor coefficients to degree 7.
+const EXP_C: [f32; 8] = [
+    1.0,
+    1.0,
+    0.5,
+    1.0 / 6.0,
+    1.0 / 24.0,
+    1.0 / 120.0,
+    1.0 / 720.0,
+    1.0 / 5040.0,
+];
+
 /// `a b + c`: fused (one rounding) when `F`, else two roundings. Fused is used only inside
 /// the FMA instruction sets' kernels, where `mul_add` is one instruction; elsewhere it would
 /// call libm's `fmaf`.
@@ -81,7 +98,6 @@ pub fn exp2_nonpos(x: f32) -> f32 {
 
 #[inline(always)]
 fn exp2_nonpos_g<const F: bool>(x: f32) -> f32 {
-    const MAGIC: f32 = 12_582_912.0;
     let xc = if x > -127.0 { x } else { -127.0 };
     let t = xc + MAGIC;
     let k = t - MAGIC;
@@ -101,32 +117,18 @@ pub fn exp_nonpos(x: f32) -> f32 {
 fn exp_nonpos_g<const F: bool>(x: f32) -> f32 {
     // Cody-Waite as `exp`: k from x log2 e, r = x - k ln 2 in two parts, exp(r) by the
     // polynomial, scaled by 2^k; below -87.3 the result is 0 (flushed anyway).
-    const MAGIC: f32 = 12_582_912.0;
-    const LN2_HI: f32 = 0.693_359_4;
-    const LN2_LO: f32 = -2.121_944_4e-4;
     let xc = if x > -87.3 { x } else { -87.3 };
     let t = madd::<F>(xc, std::f32::consts::LOG2_E, MAGIC);
     let k = t - MAGIC;
     let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
     let r = madd::<F>(-k, LN2_LO, madd::<F>(-k, LN2_HI, xc));
-    const C: [f32; 8] = [
-        1.0,
-        1.0,
-        0.5,
-        1.0 / 6.0,
-        1.0 / 24.0,
-        1.0 / 120.0,
-        1.0 / 720.0,
-        1.0 / 5040.0,
-    ];
-    let p = estrin7::<F>(r, &C);
+    let p = estrin7::<F>(r, &EXP_C);
     let s = f32::from_bits(((ki + 127) << 23) as u32);
     if xc > -87.3 { p * s } else { 0.0 }
 }
 
 #[inline(always)]
 fn exp2_g<const F: bool>(x: f32) -> f32 {
-    const MAGIC: f32 = 12_582_912.0; // 1.5 * 2^23: t = MAGIC + k holds k in its low bits
     let xc = x.clamp(-127.0, 128.0);
     let t = xc + MAGIC;
     let k = t - MAGIC;
@@ -194,25 +196,12 @@ pub fn exp(x: f32) -> f32 {
 
 #[inline(always)]
 fn exp_g<const F: bool>(x: f32) -> f32 {
-    const MAGIC: f32 = 12_582_912.0;
-    const LN2_HI: f32 = 0.693_359_4; // 0x3f318000
-    const LN2_LO: f32 = -2.121_944_4e-4;
     let xc = x.clamp(-88.5, 88.8);
     let t = xc * std::f32::consts::LOG2_E + MAGIC;
     let k = t - MAGIC;
     let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
     let r = (xc - k * LN2_HI) - k * LN2_LO;
-    const C: [f32; 8] = [
-        1.0,
-        1.0,
-        0.5,
-        1.0 / 6.0,
-        1.0 / 24.0,
-        1.0 / 120.0,
-        1.0 / 720.0,
-        1.0 / 5040.0,
-    ];
-    let p = estrin7::<F>(r, &C);
+    let p = estrin7::<F>(r, &EXP_C);
     // 2^k may be 2^-127 or 2^128 at the ends: scale in two halves to stay finite.
     let h = ki >> 1;
     let s1 = f32::from_bits(((h + 127) << 23) as u32);
