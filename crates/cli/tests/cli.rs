@@ -850,9 +850,12 @@ fn bench_peers_have_the_documented_shape_and_old_runs_still_load() {
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("peers[0]"), "{}", stderr(&o));
     std::fs::remove_dir_all(&d).unwrap();
-    // Runs saved before issue 13 have no "peers": they load, print without a peer table, and
-    // re-export with an empty array.
-    let old = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    // Runs saved before issue 13 have no "peers" (the saved GPU run is one): they load, print
+    // without a peer table, and re-export with an empty array.
+    let old = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/bench/bench-gpu.json"
+    );
     assert!(!std::fs::read_to_string(old).unwrap().contains("\"peers\""));
     for flags in [&["--markdown"][..], &[][..]] {
         let o = fastbrdf(&[&["bench", "--from", old][..], flags].concat(), "");

@@ -36,6 +36,9 @@ pub struct Args {
     /// {median, q1, q3, min, max} over `rounds` interleaved rounds of `repeats` calls on `batch`
     /// cosines; the errors are max |v - v64| / max(1, |v64|) against the f64 model; `ftz`/`daz`
     /// are the process's MXCSR flags (null off x86-64). Runs saved without "peers" load with none.
+    /// `fma_fraction` is the share of the measured FMA-pipe peak used by the formula's own
+    /// multiplies and adds (fused pairs count once on FMA instruction sets); null for BRDFs and
+    /// for formulas with a division, square root or transcendental, which it cannot count.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown tables that README.md shows.
