@@ -180,16 +180,26 @@ pub fn cpu_name() -> String {
         .unwrap_or_else(|| "unknown".into())
 }
 
-/// Seconds per call of `f`: the fastest of repeated rounds within `budget`.
+/// Seconds per call of `f`: the fastest of repeated rounds within `budget`, each round timing
+/// enough calls to last at least 20 us.
 pub fn time(mut f: impl FnMut(), budget: Duration) -> f64 {
+    // Each sample times enough calls to last at least MIN_SAMPLE: a 4096-element call of a
+    // cheap kernel takes ~200 ns, and a pair of clock reads 50-120 ns here (issue 13: timing
+    // one call per pair understated the cheap kernels by up to a third).
+    const MIN_SAMPLE: f64 = 20e-6;
+    let t = Instant::now();
     f();
+    let first = t.elapsed().as_secs_f64().max(1e-9);
+    let repeats = ((MIN_SAMPLE / first).ceil() as usize).clamp(1, 1 << 20);
     let start = Instant::now();
     let mut best = f64::INFINITY;
     let mut rounds = 0;
     while rounds < 3 || start.elapsed() < budget {
         let t = Instant::now();
-        f();
-        best = best.min(t.elapsed().as_secs_f64());
+        for _ in 0..repeats {
+            f();
+        }
+        best = best.min(t.elapsed().as_secs_f64() / repeats as f64);
         rounds += 1;
         if rounds >= 10_000 {
             break;
