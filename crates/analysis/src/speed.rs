@@ -183,29 +183,27 @@ pub fn cpu_name() -> String {
 /// Seconds per call of `f`: the fastest of repeated rounds within `budget`, each round timing
 /// enough calls to last at least 20 us.
 pub fn time(mut f: impl FnMut(), budget: Duration) -> f64 {
-    // Each sample times enough calls to last at least MIN_SAMPLE: a 4096-element call of a
-    // cheap kernel takes ~200 ns, and a pair of clock reads 50-120 ns here (issue 13: timing
-    // one call per pair understated the cheap kernels by up to a third).
-    const MIN_SAMPLE: f64 = 20e-6;
-    let t = Instant::now();
-    f();
-    let first = t.elapsed().as_secs_f64().max(1e-9);
-    let repeats = ((MIN_SAMPLE / first).ceil() as usize).clamp(1, 1 << 20);
+    // Each sample times enough calls to last at least 20 us: a 4096-element call of a cheap
+    // kernel takes ~200 ns, and a pair of clock reads 50-120 ns here (issue 13: timing one
+    // call per pair understated the cheap kernels by up to a third).
+    let repeats = repeats_for(20e-6, timed(1, &mut f));
     let start = Instant::now();
     let mut best = f64::INFINITY;
     let mut rounds = 0;
     while rounds < 3 || start.elapsed() < budget {
-        let t = Instant::now();
-        for _ in 0..repeats {
-            f();
-        }
-        best = best.min(t.elapsed().as_secs_f64() / repeats as f64);
+        best = best.min(timed(repeats, &mut f) / repeats as f64);
         rounds += 1;
         if rounds >= 10_000 {
             break;
         }
     }
     best
+}
+
+/// Calls per timed sample so that a sample of calls taking `one` seconds each lasts at least
+/// `target` seconds (1 to 2^20).
+fn repeats_for(target: f64, one: f64) -> usize {
+    ((target / one.max(1e-9)).ceil() as usize).clamp(1, 1 << 20)
 }
 
 // ---------- FMA peak ----------
@@ -1104,8 +1102,7 @@ pub fn peer_rows(
         };
         // Warm up, then size a round: enough calls that the slower side takes `opts.round`.
         let one = timed(8, &mut run_kernel).max(timed(8, &mut run_peer)) / 8.0;
-        let repeats =
-            ((opts.round.as_secs_f64() / one.max(1e-9)).ceil() as usize).clamp(1, 1 << 20);
+        let repeats = repeats_for(opts.round.as_secs_f64(), one);
         let evals = (repeats * cos.len()) as f64;
         let (mut k, mut p, mut ratio) = (vec![], vec![], vec![]);
         for _ in 0..opts.rounds.max(1) {
@@ -1142,8 +1139,6 @@ pub fn peer_rows(
 mod tests {
     use super::*;
 
-    /// `fma_per_s` is safe to call with every instruction set: a positive finite rate for
-    /// those this CPU has, `None` (never an illegal instruction) for the others.
     #[test]
     fn fma_slots_count_only_what_the_registry_can_count() {
         let info = |id: &str| fastbrdf::registry::find(id).unwrap().info;
@@ -1157,6 +1152,8 @@ mod tests {
         assert_eq!(fma_slots(&info("power16"), Isa::Scalar), None);
     }
 
+    /// `fma_per_s` is safe to call with every instruction set: a positive finite rate for
+    /// those this CPU has, `None` (never an illegal instruction) for the others.
     #[test]
     fn fma_per_s_is_safe_for_every_isa() {
         let budget = Duration::from_millis(1);

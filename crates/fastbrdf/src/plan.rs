@@ -328,6 +328,13 @@ impl LobeForm for LobePlan {
     }
 }
 
+impl LobePlan {
+    /// The scalar lobe in precision `T` (the family's formula with the exact backend).
+    pub fn model<T: Real>(&self) -> Box<dyn model::Lobe<T>> {
+        with_lobe!(self, x => Box::new(Scalar(*x)))
+    }
+}
+
 impl DistForm for DistPlan {
     /// A plan's sources are its list's: [`Self::wgsl_sources`].
     const WGSL: &'static str = "";
@@ -427,7 +434,7 @@ impl Plan {
     /// The scalar model in precision `T` (the family's formula with the exact backend).
     pub fn model<T: Real>(&self) -> Model<T> {
         match self {
-            Plan::Lobe(l) => Model::Lobe(with_lobe!(l, x => Box::new(Scalar(*x)))),
+            Plan::Lobe(l) => Model::Lobe(l.model()),
             Plan::Distribution(d) => Model::Distribution(with_dist!(d, x => Box::new(Scalar(*x)))),
             Plan::Shadowing(g) => Model::Shadowing(with_shadow!(g, x => Box::new(Scalar(*x)))),
             Plan::Fresnel(f) => Model::Fresnel(with_fresnel!(f, x => Box::new(Scalar(*x)))),
@@ -554,6 +561,12 @@ pub trait Models {
     /// The plan of model `id`, each of its numeric parameters taken from `nums` (by name)
     /// where it gives one, else its default.
     fn plan(&self, id: &str, nums: &dyn Fn(&str) -> Option<f64>) -> Result<Plan>;
+
+    /// Lobe `id` at exponent `n` (Phong's and Blinn-Phong's `lobe`); an error for another
+    /// kind.
+    fn lobe(&self, id: &str, n: f64) -> Result<LobePlan> {
+        self.plan(id, &|name| (name == "n").then_some(n))?.lobe(id)
+    }
 }
 
 /// A family's builder: parameters (validated) to plan.

@@ -173,25 +173,12 @@ pub fn build_resolved<T: Real>(e: &Entry, p: &Params) -> Result<Model<T>> {
 
 /// Lobe `id` at exponent `n` in precision `T` (Phong's and Blinn-Phong's `lobe`).
 pub fn lobe<T: Real>(id: &str, n: f64) -> Result<Box<dyn Lobe<T>>> {
-    match Registry
-        .plan(id, &|name| (name == "n").then_some(n))?
-        .model()
-    {
-        Model::Lobe(l) => Ok(l),
-        other => Err(Error::WrongKind {
-            model: id.into(),
-            expected: "lobe".into(),
-            found: other.kind().name().into(),
-        }),
-    }
+    Ok(Registry.lobe(id, n)?.model())
 }
 
 /// `Int(n) = integral_0^1 lobe(c) c dc` of lobe `id` (`brdf::phong::lobe_integral`).
 pub fn lobe_integral(id: &str, n: f64) -> Result<f64> {
-    let plan = Registry
-        .plan(id, &|name| (name == "n").then_some(n))?
-        .lobe(id)?;
-    Ok(crate::brdf::phong::lobe_integral(&plan))
+    Ok(crate::brdf::phong::lobe_integral(&Registry.lobe(id, n)?))
 }
 
 /// The BRDF (id and parameters) that shading with model `id` evaluates, by its kind's policy

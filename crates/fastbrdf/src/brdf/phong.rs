@@ -115,9 +115,7 @@ impl LobeBrdf {
         let id = if blinn { "blinn-phong" } else { "phong" };
         let n = params::check(id, &params::N, p.num("n"))?;
         let lobe_id = p.choice("lobe");
-        let lobe = models
-            .plan(lobe_id, &|name| (name == "n").then_some(n))?
-            .lobe(lobe_id)?;
+        let lobe = models.lobe(lobe_id, n)?;
         let normalized = p.choice("norm") == "energy";
         let coef = if normalized {
             1.0 / (2.0 * std::f64::consts::PI * lobe_integral(&lobe))
