@@ -11,11 +11,10 @@
 //!   norm = none) and distributions as `cook-torrance` with that D, as `fastbrdf render` does;
 //!   shadowing and Fresnel terms are plotted as the factor itself (not a BRDF).
 //!
-//! Coefficients are literals, computed in f64 from the parameters; a shader compiler may fold
-//! literals into reassociated expressions (Mesa does, see `spec::Emit`), so a header line says
-//! that passing them as uniforms keeps more precision. BRDF Explorer files instead compute
-//! the coefficients in f32 from sliders (`Instance::runtime`) where every coefficient has an
-//! expression in the parameters, and keep literals (no sliders) where not. Its sliders are
+//! Coefficients are literals computed in f64 from the parameters (`Form::Literals`), or, with
+//! `Form::Runtime` (`--runtime-params`), computed in the shader in f32 from the parameters
+//! passed as arguments (`Instance::runtime`). BRDF Explorer files always take the second form,
+//! the parameters being its sliders. Its sliders are
 //! linear (it has no other kind), so parameters spanning two decades or more (n, alpha, eta)
 //! get a `log10_<name>` slider mapped in the shader; every grid passes through the export's
 //! value exactly (`slider`).
@@ -352,18 +351,10 @@ fn header_text(
                 shown(&b.params)
             );
         }
-        let numeric = b
-            .info
-            .params
-            .iter()
-            .any(|p| matches!(p.kind, ParamKind::Number { .. }));
-        if b.sliders.is_empty() && !numeric {
+        // Every coefficient has a runtime form now, so the sliders are the numeric
+        // parameters the instance uses: none only for models without one.
+        if b.sliders.is_empty() {
             let _ = writeln!(s, "No sliders: the model has no numeric parameters.");
-        } else if b.sliders.is_empty() {
-            let _ = writeln!(
-                s,
-                "No sliders: this model's coefficients need f64 on the CPU; re-export for other values."
-            );
         } else {
             let names: Vec<&str> = b.sliders.iter().map(|(n, _)| n.as_str()).collect();
             let _ = writeln!(
