@@ -37,12 +37,13 @@ pub struct Fit {
     pub coefs: Vec<f32>,
 }
 
-/// Each fit: name, lobe id, n range, degree (chosen as the smallest whose f32-rounded series
-/// meets ~1e-7 relative against `lobe_integral`; see the test).
-pub const SPECS: [(&str, &str, Option<f64>, usize); 3] = [
-    ("gauss", "gauss", None, 20),
-    ("flog", "flog", None, 12),
-    ("flog_clamped", "flog-normalized-clamped", Some(0.0), 16),
+/// Each fit: name, lobe id, whether its n range starts where the clamp acts
+/// (`flog_clamp_n0`, else at 1), degree (chosen as the smallest whose f32-rounded series meets
+/// ~1e-7 relative against `lobe_integral`; see the test).
+pub const SPECS: [(&str, &str, bool, usize); 3] = [
+    ("gauss", "gauss", false, 20),
+    ("flog", "flog", false, 12),
+    ("flog_clamped", "flog-normalized-clamped", true, 16),
 ];
 
 /// The upper end of the n range of every fit (the models' domain).
@@ -148,8 +149,8 @@ pub fn generate() -> Result<Vec<Fit>, fastbrdf::Error> {
     let n0 = flog_clamp_n0();
     SPECS
         .iter()
-        .map(|&(name, lobe, lo, degree)| {
-            let n_lo = lo.map_or(1.0, |_| n0);
+        .map(|&(name, lobe, from_clamp, degree)| {
+            let n_lo = if from_clamp { n0 } else { 1.0 };
             fit(name, lobe, n_lo, degree)
         })
         .collect()
