@@ -101,6 +101,22 @@ fn shader_runtime_params_takes_the_parameters_as_arguments() {
     let n = std::fs::read_dir(&dir).unwrap().count();
     assert_eq!(n, fastbrdf::registry::all().len());
     let _ = std::fs::remove_dir_all(&dir);
+    // Bad input in the runtime form: exit 2, nothing on stdout, no file left behind.
+    let out = temp_dir("runtime-bad").join("x.glsl");
+    for bad in [
+        vec!["--model", "cubic", "--param", "n=nan"],
+        vec!["--model", "cubic", "--param", "n=1e9"],
+        vec!["--model", "no-such-model"],
+        vec!["--model", "cubic", "--param", "alpha=0.3"],
+    ] {
+        let mut args = vec!["shader", "--runtime-params", "--lang", "glsl"];
+        args.extend(bad.iter().copied());
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = fastbrdf(&args);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", stderr(&o));
+        assert!(o.stdout.is_empty(), "{bad:?}");
+        assert!(!out.exists(), "{bad:?}: a file was left");
+    }
 }
 
 #[test]
