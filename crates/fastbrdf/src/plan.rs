@@ -276,6 +276,7 @@ families!($ ShadowPlan: ShadowForm, with_shadow {
 families!($ FresnelPlan: FresnelForm, with_fresnel {
     None(fresnel::NoFresnel),
     Schlick(fresnel::Schlick),
+    SchlickSg(fresnel::SchlickSg),
     Dielectric(fresnel::Dielectric),
     Conductor(fresnel::Conductor),
 });

@@ -53,6 +53,8 @@ pub static REGISTRY: &[Entry] = &[
     // Fresnel.
     fresnel::ENTRY_NONE,
     fresnel::ENTRY_SCHLICK,
+    fresnel::ENTRY_SCHLICK_SG,
+    fresnel::ENTRY_SCHLICK_SG_TUNED,
     fresnel::ENTRY_DIELECTRIC,
     fresnel::ENTRY_CONDUCTOR,
     // Full BRDFs.

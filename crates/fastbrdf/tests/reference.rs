@@ -429,6 +429,41 @@ fn fresnel_matches_complex_fresnel_equations() {
     }
 }
 
+/// Schlick with `f90` (Filament's `F_Schlick(f0, f90, VoH)`) and Karis's spherical-Gaussian
+/// form `f0 + (f90 - f0) 2^((-5.55473 c - 6.98316) c)` (UE4 course notes, 2013), written
+/// here from the published formulas; the tuned form's constants are its documented ones.
+#[test]
+fn schlick_f90_and_spherical_gaussian_schlick_match_their_published_formulas() {
+    let build = |id: &str, f0: f64, f90: f64| {
+        let given = [("f0", f0.to_string()), ("f90", f90.to_string())];
+        let given: Vec<(&str, &str)> = given.iter().map(|(k, v)| (*k, v.as_str())).collect();
+        match registry::build::<f64>(id, &given).unwrap() {
+            Model::Fresnel(f) => f,
+            _ => panic!("{id}"),
+        }
+    };
+    for (f0, f90) in [(0.04, 1.0), (0.0, 1.0), (0.5, 0.8), (1.0, 0.0), (0.9, 0.9)] {
+        let schlick = build("fresnel-schlick", f0, f90);
+        let sg = build("fresnel-schlick-sg", f0, f90);
+        let tuned = build("fresnel-schlick-sg-tuned", f0, f90);
+        for i in 0..=200 {
+            let c = i as f64 / 200.0;
+            let want = f0 + (f90 - f0) * (1.0 - c).powi(5);
+            assert!(
+                (schlick.f(c) - want).abs() < 1e-15,
+                "schlick {f0} {f90} {c}"
+            );
+            let want = f0 + (f90 - f0) * 2f64.powf((-5.55473 * c - 6.98316) * c);
+            assert!((sg.f(c) - want).abs() < 1e-14, "sg {f0} {f90} {c}");
+            let want = f0 + (f90 - f0) * 2f64.powf((-5.551343 * c - 6.996120) * c);
+            assert!((tuned.f(c) - want).abs() < 1e-14, "sg-tuned {f0} {f90} {c}");
+        }
+        // Out of [0, 1] the cosine is clamped, NaN acts as 0.
+        assert_eq!(sg.f(f64::NAN), sg.f(0.0));
+        assert_eq!(sg.f(2.0), sg.f(1.0));
+    }
+}
+
 fn brdf64(id: &str, given: &[(&str, &str)]) -> Box<dyn fastbrdf::Brdf<f64>> {
     match registry::build::<f64>(id, given).unwrap() {
         Model::Brdf(b) => b,
@@ -594,6 +629,8 @@ const REFERENCED: &[&str] = &[
     "smith-rational",
     "fresnel-none",
     "fresnel-schlick",
+    "fresnel-schlick-sg",
+    "fresnel-schlick-sg-tuned",
     "fresnel-dielectric",
     "fresnel-conductor",
     "cook-torrance",

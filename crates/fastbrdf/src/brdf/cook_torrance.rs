@@ -7,8 +7,8 @@
 //! | `alpha` | [0.01, 1] | 0.3 | RMS slope of D and of the Smith terms |
 //! | `d` | a distribution id | `beckmann` | `beckmann`, `beckmann-ct`, `beckmann-pow`, `beckmann-power4/8/16` |
 //! | `g` | `v-cavity`, `smith`, `smith-rational` | `smith` | shadowing-masking |
-//! | `f` | `none`, `schlick`, `dielectric`, `conductor` | `none` | Fresnel at `wi . h` |
-//! | `f0`, `eta`, `k` | see `microfacet::fresnel` | 0.04, 1.5, 0 | Fresnel parameters |
+//! | `f` | a Fresnel id without `fresnel-` | `none` | Fresnel at `wi . h` |
+//! | `f0`, `f90`, `eta`, `k` | see `microfacet::fresnel` | 0.04, 1, 1.5, 0 | Fresnel parameters |
 //! | `denominator` | `4`, `seed-000`, `seed-001` | `4` | `4 cos_i cos_o`, `cos_i cos_o` (seed 000), `pi cos_i cos_o` (seed 001) |
 //!
 //! With the defaults and `f = none` this is exactly Mitsuba 3's `roughconductor` (Beckmann,
@@ -83,6 +83,7 @@ pub const INFO: ModelInfo = ModelInfo {
         G,
         F,
         fresnel::F0,
+        fresnel::F90,
         fresnel::ETA,
         fresnel::K,
         DENOMINATOR,

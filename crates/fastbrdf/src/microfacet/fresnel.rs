@@ -1,8 +1,19 @@
-//! Fresnel terms: `fresnel-none`, `fresnel-schlick`, `fresnel-dielectric`, `fresnel-conductor`
-//! (the `f` choices of `cook-torrance`: `none`, `schlick`, `dielectric`, `conductor`).
+//! Fresnel terms: `fresnel-none`, `fresnel-schlick`, `fresnel-schlick-sg`,
+//! `fresnel-schlick-sg-tuned`, `fresnel-dielectric`, `fresnel-conductor` (the `f` choices of
+//! `cook-torrance`: the id without `fresnel-`).
 //!
 //! - none: `F = 1`.
-//! - schlick: `F = f0 + (1 - f0)(1 - cos)^5` (Schlick 1994). Cost: 4 mul, 2 add.
+//! - schlick: `F = f0 + (f90 - f0)(1 - cos)^5` (Schlick 1994; `f90`, default 1, as Filament's
+//!   `F_Schlick(f0, f90, VoH)`). Cost: 4 mul, 2 add.
+//! - schlick-sg: Schlick's `(1 - cos)^5` replaced by Karis's spherical-Gaussian form
+//!   `2^((-5.55473 cos - 6.98316) cos)` (Karis 2013, "Real Shading in Unreal Engine 4"; Unreal's
+//!   mobile path). Cost: 2 mul, 2 add, 1 exp2 (an exp2 is not cheaper than 3 multiplies on a
+//!   CPU: the form is for GPUs, where exp2 is one instruction). Error against Schlick:
+//!   at most 0.00378 absolute (of the peak; at f0 = 0, cos = 0.055; it scales with `f90 - f0`).
+//! - schlick-sg-tuned: the same form with both constants refitted to minimise the maximum
+//!   error against `(1 - cos)^5`: a = -5.551343, b = -6.996120 (`cargo run --release -p
+//!   fastbrdf-analysis --example fit_fresnel_sg` prints them), at most 0.00341 (10% less than
+//!   Karis's constants; the fit reaches the same optimum from two starting points); same cost.
 //! - dielectric: the exact unpolarised Fresnel reflectance of a dielectric interface with
 //!   relative index `eta` (`eta < 1` gives total internal reflection beyond the critical
 //!   angle), as pbrt's `FrDielectric`. Cost: ~10 mul, 6 add, 3 div, 1 sqrt.
@@ -10,12 +21,13 @@
 //!   real-arithmetic form of pbrt-v3's `FrConductor` (tested against complex arithmetic).
 //!   Cost: ~16 mul, 8 add, 2 div, 3 sqrt.
 //!
-//! Parameters: `f0` in [0, 1] (default 0.04), `eta` in [0.01, 10] (default 1.5), `k` in [0, 20]
-//! (default 0). The cosine is that between the view and the microfacet normal.
+//! Parameters: `f0` in [0, 1] (default 0.04), `f90` in [0, 1] (default 1), `eta` in [0.01, 10]
+//! (default 1.5), `k` in [0, 20] (default 0). The cosine is that between the view and the
+//! microfacet normal.
 
 use crate::entry::Entry;
 use crate::math::Math;
-use crate::model::{Kind, ModelInfo, Ops};
+use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{ParamKind, ParamSpec};
 use crate::plan::{FresnelForm, Plan};
 use crate::real::{K, Real, min1, pos, sqr};
@@ -29,6 +41,15 @@ pub const F0: ParamSpec = ParamSpec {
         default: Some(0.04),
     },
     doc: "reflectance at normal incidence (Schlick)",
+};
+pub const F90: ParamSpec = ParamSpec {
+    name: "f90",
+    kind: ParamKind::Number {
+        min: 0.0,
+        max: 1.0,
+        default: Some(1.0),
+    },
+    doc: "reflectance at grazing incidence (Schlick; 1 is Schlick's own form)",
 };
 pub const ETA: ParamSpec = ParamSpec {
     name: "eta",
@@ -51,6 +72,9 @@ pub const K: ParamSpec = ParamSpec {
 
 macro_rules! info {
     ($id:literal, $params:expr, $formula:literal, $source:literal, $ops:expr) => {
+        info!($id, $params, $formula, $source, $ops, &[])
+    };
+    ($id:literal, $params:expr, $formula:literal, $source:literal, $ops:expr, $bounds:expr) => {
         ModelInfo {
             id: $id,
             kind: Kind::Fresnel,
@@ -58,20 +82,53 @@ macro_rules! info {
             formula: $formula,
             source: $source,
             ops: $ops,
-            bounds: &[],
+            bounds: $bounds,
             f32_bound: 1e-6,
             note: "",
         }
     };
 }
 
+/// The documented maximum of `|F - F_schlick|` over `cos` and `f0` in [0, 1] (`f90 = 1`; the
+/// error scales with `f90 - f0`, so `f0 = 0` is the worst case).
+const fn vs_schlick(bound: f64) -> [ErrorBound; 1] {
+    [ErrorBound {
+        reference: "fresnel-schlick",
+        metric: Metric::MaxAbs,
+        zone: Zone::All,
+        param: ("f0", 0.0, 1.0),
+        bound,
+    }]
+}
+
 pub const INFO_NONE: ModelInfo = info!("fresnel-none", &[], "1", "-", Ops::new(0, 0, 0, 0, 0));
 pub const INFO_SCHLICK: ModelInfo = info!(
     "fresnel-schlick",
-    &[F0],
-    "f0 + (1 - f0)(1 - cos)^5",
-    "Schlick 1994",
+    &[F0, F90],
+    "f0 + (f90 - f0)(1 - cos)^5",
+    "Schlick 1994 (f90: Filament's F_Schlick)",
     Ops::new(4, 2, 0, 0, 0)
+);
+/// Karis's constants (Unreal Engine 4's `F_Schlick` on mobile).
+pub const SG_KARIS: (f64, f64) = (-5.55473, -6.98316);
+/// The same form refitted: `(a, b)` minimising `max |2^((a c + b) c) - (1 - c)^5|` over
+/// `c` in [0, 1] (`fit_fresnel_sg` example).
+pub const SG_TUNED: (f64, f64) = (-5.551343, -6.996120);
+pub const INFO_SCHLICK_SG: ModelInfo = info!(
+    "fresnel-schlick-sg",
+    &[F0, F90],
+    "f0 + (f90 - f0) 2^((-5.55473 cos - 6.98316) cos)",
+    "Karis 2013, Real Shading in Unreal Engine 4 (spherical-Gaussian Schlick)",
+    Ops::new(2, 2, 0, 0, 1),
+    &vs_schlick(0.00378)
+);
+pub const INFO_SCHLICK_SG_TUNED: ModelInfo = info!(
+    "fresnel-schlick-sg-tuned",
+    &[F0, F90],
+    "f0 + (f90 - f0) 2^((a cos + b) cos), a, b minimax against (1 - cos)^5",
+    "this project: Karis's form refitted (fit_fresnel_sg example)",
+    Ops::new(2, 2, 0, 0, 1),
+    &vs_schlick(0.00341)
 );
 pub const INFO_DIELECTRIC: ModelInfo = info!(
     "fresnel-dielectric",
@@ -93,9 +150,16 @@ pub const ENTRY_SCHLICK: Entry = Entry::new(INFO_SCHLICK, |p, _| {
     Ok(Plan::Fresnel(
         Schlick {
             f0: K::new(p.num("f0")),
+            f90: K::new(p.num("f90")),
         }
         .into(),
     ))
+});
+pub const ENTRY_SCHLICK_SG: Entry = Entry::new(INFO_SCHLICK_SG, |p, _| {
+    Ok(Plan::Fresnel(SchlickSg::new(p, SG_KARIS).into()))
+});
+pub const ENTRY_SCHLICK_SG_TUNED: Entry = Entry::new(INFO_SCHLICK_SG_TUNED, |p, _| {
+    Ok(Plan::Fresnel(SchlickSg::new(p, SG_TUNED).into()))
 });
 pub const ENTRY_DIELECTRIC: Entry = Entry::new(INFO_DIELECTRIC, |p, _| {
     Ok(Plan::Fresnel(
@@ -123,10 +187,11 @@ impl FresnelForm for NoFresnel {
     }
 }
 
-/// Schlick's approximation `f0 + (1 - f0)(1 - cos)^5`.
+/// Schlick's approximation `f0 + (f90 - f0)(1 - cos)^5`.
 #[derive(Clone, Copy, Debug)]
 pub struct Schlick {
     pub f0: K,
+    pub f90: K,
 }
 
 impl FresnelForm for Schlick {
@@ -139,10 +204,57 @@ impl FresnelForm for Schlick {
         let f0 = self.f0.t::<T>();
         let m = one - c;
         let m2 = m * m;
-        M::madd(one - f0, m2 * m2 * m, f0)
+        M::madd(self.f90.t::<T>() - f0, m2 * m2 * m, f0)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
-        format!("fb_f_schlick({c}, {})", e.kx(self.f0, "p_f0", &["f0"]))
+        format!(
+            "fb_f_schlick({c}, {}, {})",
+            e.kx(self.f0, "p_f0", &["f0"]),
+            e.kx(self.f90, "p_f90", &["f90"])
+        )
+    }
+}
+
+/// Schlick's form with `(1 - cos)^5` replaced by `2^((a cos + b) cos)` (Karis's constants or
+/// their refit).
+#[derive(Clone, Copy, Debug)]
+pub struct SchlickSg {
+    pub f0: K,
+    pub f90: K,
+    pub a: K,
+    pub b: K,
+}
+
+impl SchlickSg {
+    fn new(p: &crate::params::Params, (a, b): (f64, f64)) -> Self {
+        Self {
+            f0: K::new(p.num("f0")),
+            f90: K::new(p.num("f90")),
+            a: K::new(a),
+            b: K::new(b),
+        }
+    }
+}
+
+impl FresnelForm for SchlickSg {
+    const WGSL: &'static str = include_str!("fresnel.wgsl");
+    #[inline(always)]
+    fn f<T: Real, M: Math<T>>(&self, cos: T) -> T {
+        // NaN and negative cosines act as 0; the exponent is <= 0 on [0, 1].
+        let c = min1(pos(cos));
+        let f0 = self.f0.t::<T>();
+        let x = M::madd(self.a.t::<T>(), c, self.b.t::<T>()) * c;
+        M::madd(self.f90.t::<T>() - f0, M::exp2_nonpos(x), f0)
+    }
+    fn wgsl(&self, c: &str, e: &Emit) -> String {
+        // `a`, `b` are fixed by the id, never runtime parameters.
+        format!(
+            "fb_f_schlick_sg({c}, {}, {}, {}, {})",
+            e.kx(self.f0, "p_f0", &["f0"]),
+            e.kx(self.f90, "p_f90", &["f90"]),
+            e.constant(self.a),
+            e.constant(self.b),
+        )
     }
 }
 

@@ -1,10 +1,17 @@
 // WGSL twin of microfacet/fresnel.rs (see microfacet/mod.wgsl).
 
-/// fresnel-schlick (Schlick 1994): f0 + (1 - f0)(1 - c)^5.
-fn fb_f_schlick(c: f32, f0: f32) -> f32 {
+/// fresnel-schlick (Schlick 1994): f0 + (f90 - f0)(1 - c)^5.
+fn fb_f_schlick(c: f32, f0: f32, f90: f32) -> f32 {
     let m = 1.0 - fb_clamp01(c);
     let m2 = m * m;
-    return f0 + (1.0 - f0) * (m2 * m2 * m);
+    return f0 + (f90 - f0) * (m2 * m2 * m);
+}
+
+/// fresnel-schlick-sg(-tuned) (Karis 2013): f0 + (f90 - f0) 2^((a c + b) c), a, b fixed by
+/// the id (Karis's -5.55473, -6.98316, or their minimax refit).
+fn fb_f_schlick_sg(c_in: f32, f0: f32, f90: f32, a: f32, b: f32) -> f32 {
+    let c = fb_clamp01(c_in);
+    return f0 + (f90 - f0) * exp2((a * c + b) * c);
 }
 
 /// fresnel-dielectric: the exact unpolarised Fresnel reflectance of a dielectric of relative
