@@ -268,7 +268,7 @@ pub fn params_with(
             let (lo, hi) = domain(id, s.param).unwrap_or((f64::NAN, f64::NAN));
             return Err(format!(
                 "material '{}': its {} = {} is outside {id}'s documented domain {} in [{lo}, {hi}] \
-                 (give --param {}=VALUE to override, or choose another material)",
+                 (give {} explicitly to override it, or choose another material)",
                 material.name,
                 s.source.column(),
                 s.value,

@@ -162,7 +162,8 @@ pub fn render_model(
     after_help = "Examples:\n  fastbrdf render --model flog --param n=50 --out flog.png\n  \
 fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
-fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png"
+fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png\n  \
+fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)"
 )]
 pub struct RenderArgs {
     /// Specular model id (a lobe, a distribution or a BRDF).
@@ -171,6 +172,12 @@ pub struct RenderArgs {
     /// A model parameter, NAME=VALUE; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`) whose published fit supplies the model's n,
+    /// alpha and f0 (Ngan et al. 2005); --param values win. Colours are not taken from the fit
+    /// (the renderer's specular weight is one number and its lobes are not normalised as the
+    /// fits are): set --albedo and --weights yourself.
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
     #[command(flatten)]
     scene: SceneArgs,
     /// Output file: .png (8-bit sRGB with an sRGB chunk, --exposure applied) or .exr (linear
@@ -203,7 +210,11 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     check_out(&a.out, &["png", "exr"])?;
     let loaded = setup::load(&spec)?;
     let t = std::time::Instant::now();
-    let params = parse_params(&a.params)?;
+    let params = super::materials::with_material(
+        a.material.as_deref(),
+        &a.model,
+        &parse_params(&a.params)?,
+    )?;
     let (film, on) = if a.gpu {
         let (film, label) = render_model_gpu(&spec, &loaded, &opts, &a.model, &params)?;
         (film, format!(", GPU: {label}"))
@@ -250,7 +261,8 @@ fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf compare --models flog,schlick,cubic-rational --reference pow --param n=100 --out cmp.png\n  \
-fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png"
+fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png\n  \
+fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png"
 )]
 pub struct CompareArgs {
     /// Models to compare (comma-separated ids).
@@ -262,6 +274,11 @@ pub struct CompareArgs {
     /// A parameter, NAME=VALUE, given to every model that takes it; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`): each model and the reference take their n,
+    /// alpha and f0 from its published fit (Ngan et al. 2005; Ward's alpha for ward-*, the
+    /// Beckmann m for the others); --param values win. Colours are not taken from the fit.
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
     #[command(flatten)]
     scene: SceneArgs,
     /// The grid picture (.png).
@@ -429,11 +446,14 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let reference = Entry::new(&a.reference, params_for(&a.reference, &params)?);
+    let own = |id: &str| {
+        super::materials::with_material(a.material.as_deref(), id, &params_for(id, &params)?)
+    };
+    let reference = Entry::new(&a.reference, own(&a.reference)?);
     let models: Vec<Entry> = a
         .models
         .iter()
-        .map(|m| Ok(Entry::new(m, params_for(m, &params)?)))
+        .map(|m| Ok(Entry::new(m, own(m)?)))
         .collect::<Result<_, CliError>>()?;
     let loaded = setup::load(&spec)?;
     let (rgb, gw, gh, metrics) =
