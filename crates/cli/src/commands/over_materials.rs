@@ -216,8 +216,8 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     }
     let _ = writeln!(
         s,
-        "errors at each of the {total} MERL materials' own fitted parameter ({}), zone {}",
-        "Ngan, Matusik and Durand, EGSR 2005", a.zone_text
+        "errors at each of the {total} MERL materials' own fitted parameter (Ngan, Matusik and Durand, EGSR 2005), zone {}",
+        a.zone_text
     );
     let _ = writeln!(
         s,
