@@ -173,6 +173,44 @@ fn material_supplies_the_parameter_and_param_overrides_it() {
         "--json",
     ]));
     assert_eq!(v["rows"][0]["alpha"], 0.3);
+    // eval and albedo too: 0.99^36.8 = 0.6908...
+    let dir = temp_dir("eval");
+    let input = dir.join("in.csv");
+    std::fs::write(&input, "cos\n0.99\n").unwrap();
+    let o = fastbrdf(&[
+        "eval",
+        "--model",
+        "pow",
+        "--material",
+        "gold-paint",
+        "--precision",
+        "f64",
+        "--input",
+        input.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let value: f64 = stdout(&o)
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .nth(1)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!((value - 0.99f64.powf(36.8)).abs() < 1e-12, "{value}");
+    let _ = std::fs::remove_dir_all(&dir);
+    let v = json(&fastbrdf(&[
+        "albedo",
+        "--model",
+        "flog",
+        "--material",
+        "gold-paint",
+        "--angles",
+        "0",
+        "--json",
+    ]));
+    assert_eq!(v["params"]["n"], 36.8);
     // render and compare take it too.
     let dir = temp_dir("render");
     let out = dir.join("gold.png");
@@ -227,7 +265,25 @@ fn unknown_or_out_of_domain_material_is_exit_2_with_nothing_on_stdout() {
         ("specular-violet-phenolic", "phong", "121000"),
         ("gold-paint", "lambert", "takes none"),
     ] {
-        let runs: [Vec<&str>; 4] = [
+        let runs: [Vec<&str>; 6] = [
+            vec![
+                "albedo",
+                "--model",
+                model,
+                "--material",
+                material,
+                "--angles",
+                "0",
+            ],
+            vec![
+                "eval",
+                "--model",
+                model,
+                "--material",
+                material,
+                "--input",
+                "/dev/null",
+            ],
             vec!["shader", "--model", model, "--material", material],
             vec![
                 "render",

@@ -387,7 +387,8 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf albedo --model cook-torrance --param alpha=0.3\n  \
-fastbrdf albedo --model flog-normalized --param n=50 --norm none\n  fastbrdf albedo --model ward --param alpha=1 --angles 0,60,85,89,89.9"
+fastbrdf albedo --model flog-normalized --param n=50 --norm none\n  fastbrdf albedo --model ward --param alpha=1 --angles 0,60,85,89,89.9\n  \
+fastbrdf albedo --model cook-torrance --material gold-paint --param f=schlick"
 )]
 pub struct AlbedoArgs {
     /// A BRDF id, or a lobe id (evaluated as --as phong|blinn-phong).
@@ -396,6 +397,10 @@ pub struct AlbedoArgs {
     /// A parameter, NAME=VALUE; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`) whose published fit supplies the model's n,
+    /// alpha and f0 (Ngan et al. 2005); --param values win.
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
     /// Incidence angles in degrees: LO..HI[:STEP] (step 5) or a list.
     #[arg(long, default_value = "0..85:5")]
     angles: String,
@@ -411,7 +416,11 @@ pub struct AlbedoArgs {
 }
 
 pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
-    let params = parse_params(&a.params)?;
+    let params = super::materials::with_material(
+        a.material.as_deref(),
+        &a.model,
+        &parse_params(&a.params)?,
+    )?;
     let angles =
         range::parse(&a.angles, 5.0).map_err(|e| CliError::input(format!("--angles: {e}")))?;
     if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
