@@ -251,6 +251,22 @@ pub fn supplied(material: &Material, id: &str) -> Vec<Supplied> {
         .collect()
 }
 
+/// The fit whose albedos go with model `id`: Ward's for the Ward BRDFs, Blinn-Phong's for
+/// models that take `n`, Cook-Torrance's for the others that take `alpha` (None otherwise).
+pub fn fit_for<'a>(material: &'a Material, id: &str) -> Option<&'a Albedos> {
+    let e = fastbrdf::registry::find(id).ok()?;
+    let takes = |p: &str| e.info.params.iter().any(|s| s.name == p);
+    if takes("n") {
+        Some(&material.blinn_phong)
+    } else if takes("alpha") && is_ward(e.info.id) {
+        Some(&material.ward)
+    } else if takes("alpha") {
+        Some(&material.cook_torrance)
+    } else {
+        None
+    }
+}
+
 /// `explicit` (NAME=VALUE pairs, which win) followed by the parameters `material` supplies to
 /// model `id` that are not given explicitly. A supplied value outside the model's documented
 /// domain is an error that says so.
@@ -434,5 +450,9 @@ mod tests {
         let e = params_with(find("specular-violet-phenolic").unwrap(), "pow", &[]).unwrap_err();
         assert!(e.contains("outside pow's documented domain n"), "{e}");
         assert!(find("gold-pant").unwrap_err().contains("gold-paint"));
+        assert_eq!(fit_for(m, "flog"), Some(&m.blinn_phong));
+        assert_eq!(fit_for(m, "ward-power16"), Some(&m.ward));
+        assert_eq!(fit_for(m, "beckmann-pow"), Some(&m.cook_torrance));
+        assert_eq!(fit_for(m, "lambert"), None);
     }
 }

@@ -229,6 +229,45 @@ fn material_supplies_the_parameter_and_param_overrides_it() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(out.exists());
+    // The diffuse colour: --albedo defaults to the matching fit's kd (Blinn-Phong's for a lobe)
+    // and the diffuse weight to 1; explicit --albedo and --weights win.
+    let render = |name: &str, extra: &[&str]| {
+        let out = dir.join(name);
+        let mut args = vec!["render", "--model", "pow", "--size", "16x16", "--spp", "1"];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out.to_str().unwrap()]);
+        let o = fastbrdf(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        std::fs::read(out).unwrap()
+    };
+    assert_eq!(
+        render("a.png", &["--material", "gold-paint"]),
+        render(
+            "b.png",
+            &[
+                "--param",
+                "n=36.8",
+                "--albedo",
+                "0.164,0.0796,0.0205",
+                "--weights",
+                "1,0.4"
+            ]
+        )
+    );
+    assert_eq!(
+        render(
+            "c.png",
+            &[
+                "--material",
+                "gold-paint",
+                "--albedo",
+                "0.8,0.8,0.8",
+                "--weights",
+                "0.6,0.4"
+            ]
+        ),
+        render("d.png", &["--param", "n=36.8"])
+    );
     let out = dir.join("cmp.png");
     let v = json(&fastbrdf(&[
         "compare",

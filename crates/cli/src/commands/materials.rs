@@ -126,3 +126,30 @@ pub fn with_material(
     }
     materials::params_with(m, id, explicit).map_err(CliError::input)
 }
+
+/// With a material: the scene's diffuse colour from the fit that goes with model `id` (its kd:
+/// the fits' Lambert term is kd / pi, as the renderer's) unless `--albedo` is given, and the
+/// diffuse weight 1 unless `--weights` is given. The specular weight is left alone: it is one
+/// number here (the fit's ks is RGB) and lobes shade unnormalised.
+pub fn diffuse(
+    spec: &mut fastbrdf_render::setup::SceneSpec,
+    scene: &super::render::SceneArgs,
+    material: Option<&str>,
+    id: &str,
+) -> Result<(), CliError> {
+    let Some(name) = material else {
+        return Ok(());
+    };
+    let m = materials::find(name).map_err(CliError::input)?;
+    let Some(fit) = materials::fit_for(m, id) else {
+        return Ok(());
+    };
+    if scene.albedo.is_none() {
+        let [r, g, b] = fit.kd.map(|x| x as f32);
+        spec.albedo = glam::Vec3::new(r, g, b);
+    }
+    if scene.weights.is_none() {
+        spec.kd = 1.0;
+    }
+    Ok(())
+}
