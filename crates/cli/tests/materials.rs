@@ -173,6 +173,30 @@ fn material_supplies_the_parameter_and_param_overrides_it() {
         "--json",
     ]));
     assert_eq!(v["rows"][0]["alpha"], 0.3);
+    // An explicit --n makes an out-of-domain material's figure irrelevant.
+    let o = fastbrdf(&[
+        "shader",
+        "--model",
+        "pow",
+        "--material",
+        "specular-violet-phenolic",
+        "--param",
+        "n=50",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v = json(&fastbrdf(&[
+        "errors",
+        "--model",
+        "flog",
+        "--reference",
+        "pow",
+        "--material",
+        "specular-violet-phenolic",
+        "--n",
+        "100",
+        "--json",
+    ]));
+    assert_eq!(v["rows"][0]["n"], 100.0);
     // eval and albedo too: 0.99^36.8 = 0.6908...
     let dir = temp_dir("eval");
     let input = dir.join("in.csv");

@@ -185,7 +185,7 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
     };
     spec.validate()?;
     // Reject out-of-range parameter values before the sweep, with the registry's message.
-    if let Some(name) = &a.material {
+    if let (Some(name), None, None) = (&a.material, &a.n, &a.m) {
         // The reference must hold the material's figure too (a clear message, not the registry's).
         super::materials::with_material(Some(name), reference, &[])?;
     }
