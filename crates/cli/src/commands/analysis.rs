@@ -115,9 +115,10 @@ pub struct ErrorsArgs {
     /// [{n or alpha, max_abs, max_abs_at, max_rel, max_rel_at, rms, samples}]}; no finite
     /// value (an infinite relative error) is null. With --over materials: {"over":
     /// "materials", "source", "zone", "metric", "threshold", "materials": 86, "summary":
-    /// [{model, reference, param, column, safe, unsafe, outside_domain}], "rows": [{material,
-    /// model, reference, param, column, value, inside_domain, max_abs, max_abs_at, max_rel,
-    /// max_rel_at, rms, samples, safe}]} (errors and safe null outside the domain).
+    /// [{model, reference, param, column, safe, unsafe, outside_domain, worst, worst_material}],
+    /// "rows": [{material, model, reference, param, column, value, inside_domain, max_abs,
+    /// max_abs_at, max_rel, max_rel_at, rms, samples, safe}]} (errors and safe null outside
+    /// the domain; worst is the largest --metric value measured, with its material).
     #[arg(long, conflicts_with = "csv")]
     json: bool,
     /// Print CSV, one row per parameter value: n or alpha, max_abs, max_abs_at, max_rel,

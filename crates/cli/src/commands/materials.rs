@@ -16,7 +16,8 @@ of the 86 MERL materials (transcribed from bsdfbenchmark/bbm fits/ngan_{blinnpho
 --material NAME gives a model the material's figures by parameter: n from blinn_phong_n;\n\
 alpha of Ward (ward, ward-*) from ward_alpha; alpha of distributions, shadowing and\n\
 cook-torrance from cook_torrance_m (Beckmann m = alpha); f0 from cook_torrance_f0. Explicit\n\
---param values win. The `inside` column names the model families whose current documented\n\
+--param values win. In render and compare it also sets --albedo to the matching fit's kd and\n\
+the diffuse weight to 1 unless given. The `inside` column names the model families whose current documented\n\
 domains hold the material's figures (blinn-phong: n; cook-torrance: m and f0; ward: alpha)."
 )]
 pub struct Args {
