@@ -17,8 +17,9 @@ of the 86 MERL materials (transcribed from bsdfbenchmark/bbm fits/ngan_{blinnpho
 alpha of Ward (ward, ward-*) from ward_alpha; alpha of distributions, shadowing and\n\
 cook-torrance from cook_torrance_m (Beckmann m = alpha); f0 from cook_torrance_f0. Explicit\n\
 --param values win. In render and compare it also sets --albedo to the matching fit's kd and\n\
-the diffuse weight to 1 unless given. The `inside` column names the model families whose current documented\n\
-domains hold the material's figures (blinn-phong: n; cook-torrance: m and f0; ward: alpha)."
+the diffuse weight to 1 unless given. The `inside` column names the model families whose\n\
+current documented domains hold the material's figures (blinn-phong: n; cook-torrance: m and\n\
+f0; ward: alpha)."
 )]
 pub struct Args {
     /// Print JSON: an array of {"name", "blinn_phong": {"n", "kd": [r, g, b], "ks": [r, g, b]},
