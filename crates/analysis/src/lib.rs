@@ -10,6 +10,7 @@
 //! - [`check`]: every documented bound of the registry re-measured.
 //! - [`charts`]: the data of every chart and of the seeds' figures.
 //! - [`plot`]: the charts drawn (PNG and SVG).
+//! - [`materials`]: the 86 MERL materials' published fits (Ngan et al. 2005), embedded.
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
 
 // Guards written `if !(x > lo)` also catch NaN, on purpose (see the fastbrdf crate).
@@ -20,6 +21,7 @@ pub mod charts;
 pub mod check;
 pub mod errors;
 pub mod fit;
+pub mod materials;
 pub mod normalize;
 pub mod pareto;
 pub mod plot;

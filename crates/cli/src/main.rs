@@ -86,7 +86,8 @@ each with a documented and tested error bound.",
     after_help = "Examples:\n  fastbrdf models\n  fastbrdf models --kind lobe --json\n  \
 printf 'cos\\n1\\n0.99\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
 fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  fastbrdf check\n  \
-fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  fastbrdf reproduce --out report/\n\n\
+fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  \
+fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf reproduce --out report/\n\n\
 Exit codes:\n  0  success\n  1  a check failed (`check`), or the GPU itself failed\n  \
 2  bad usage or bad input (unknown model, invalid parameter or range, malformed CSV or mesh,\n     \
 an unreadable or oversized input file); nothing is written\n  \
@@ -128,6 +129,8 @@ enum Command {
     /// The main job on built-in defaults: every lobe on spheres, the seeds' comparisons,
     /// plots and the reproduction table, in a folder with index.html.
     Demo(commands::demo::Args),
+    /// The 86 MERL materials' published fits (Ngan et al. 2005): n, m, f0, Ward alpha, albedos.
+    Materials(commands::materials::Args),
     /// Minimax-tuned coefficients of an approximation family, per n, and their closed form.
     Fit(commands::fit::FitArgs),
     /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot).
@@ -185,6 +188,7 @@ fn main() -> ExitCode {
         Command::Render(a) => commands::render::run_render(&a),
         Command::Compare(a) => commands::render::run_compare(&a),
         Command::Demo(a) => commands::demo::run(&a),
+        Command::Materials(a) => commands::materials::run(&a),
         Command::Fit(a) => commands::fit::run_fit(&a),
         Command::Pareto(a) => commands::fit::run_pareto(&a),
         Command::Shader(a) => commands::shader::run(&a),

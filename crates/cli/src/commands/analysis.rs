@@ -65,56 +65,132 @@ fn parse_zone(z: &str) -> Result<Zone, CliError> {
 #[command(
     after_help = "Examples:\n  fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  \
 fastbrdf errors --model rational --reference pow --n 2..1000 --zone band:0.42,0.5 --csv\n  \
-fastbrdf errors --model beckmann-power16 --reference beckmann-ct --m 0.2,0.4,0.6 --json"
+fastbrdf errors --model beckmann-power16 --reference beckmann-ct --m 0.2,0.4,0.6 --json\n  \
+fastbrdf errors --model flog --reference pow --material gold-paint   (n = the fit's Blinn-Phong n)\n  \
+fastbrdf errors --over materials                         (every approximation, 86 materials)\n  \
+fastbrdf errors --over materials --model ward-pow --threshold 0.05 --json\n\n\
+--over materials measures each approximation against its reference at every MERL material's\n\
+own fitted parameter (Ngan, Matusik and Durand, EGSR 2005; see `fastbrdf materials`): lobes at\n\
+the Blinn-Phong n, Beckmann approximations and smith-rational at the Beckmann m, Ward's at\n\
+Ward's alpha. An approximation is safe for a material when its --metric (default max-abs: the\n\
+max absolute error, divided by the reference's peak for non-lobes) is at most --threshold\n\
+(default 0.01). Materials outside the model's or the reference's documented domain are counted\n\
+as outside, not measured."
 )]
 pub struct ErrorsArgs {
-    /// The approximation.
+    /// The approximation (with --over materials: optional, default every model with a
+    /// documented bound).
     #[arg(long)]
-    model: String,
-    /// The reference model (same kind).
+    model: Option<String>,
+    /// The reference model (same kind; with --over materials: default the reference of the
+    /// model's documented bounds).
     #[arg(long)]
-    reference: String,
+    reference: Option<String>,
     /// Exponents for lobes: LO..HI[:STEP] (step 1) or a list A,B,C.
     #[arg(long, conflicts_with = "m")]
     n: Option<String>,
     /// Slopes (alpha) for microfacet terms and Ward: LO..HI[:STEP] (step 0.01) or a list.
     #[arg(long)]
     m: Option<String>,
+    /// A MERL material (see `fastbrdf materials`): measure at its fitted parameter (n from
+    /// blinn_phong_n; alpha from ward_alpha for ward-*, cook_torrance_m otherwise) when --n or
+    /// --m is not given.
+    #[arg(long, value_name = "NAME", conflicts_with = "over")]
+    material: Option<String>,
+    /// Measure at every material's own parameter instead of a range: `materials` (the 86 MERL
+    /// materials' fits, Ngan et al. 2005).
+    #[arg(long, value_parser = ["materials"], conflicts_with_all = ["n", "m"])]
+    over: Option<String>,
+    /// With --over materials: the largest error (in --metric) for which an approximation counts
+    /// as safe for a material.
+    #[arg(long, default_value_t = 0.01, requires = "over")]
+    threshold: f64,
+    /// With --over materials: the measure compared with --threshold: max-abs, max-rel or rms.
+    #[arg(long, default_value = "max-abs", value_parser = ["max-abs", "max-rel", "rms"], requires = "over")]
+    metric: String,
     /// Where to measure: all, epicentre (reference >= 0.5 of its peak) or band:LO,HI.
     #[arg(long, default_value = "all")]
     zone: String,
     /// Print JSON: {"model", "reference", "param": "n"|"alpha", "zone", "worst": {...}, "rows":
     /// [{n or alpha, max_abs, max_abs_at, max_rel, max_rel_at, rms, samples}]}; no finite
-    /// value (an infinite relative error) is null.
+    /// value (an infinite relative error) is null. With --over materials: {"over":
+    /// "materials", "source", "zone", "metric", "threshold", "materials": 86, "summary":
+    /// [{model, reference, param, column, safe, unsafe, outside_domain, worst, worst_material}],
+    /// "rows": [{material, model, reference, param, column, value, inside_domain, max_abs,
+    /// max_abs_at, max_rel, max_rel_at, rms, samples, safe}]} (errors and safe null outside
+    /// the domain; worst is the largest --metric value measured, with its material).
     #[arg(long, conflicts_with = "csv")]
     json: bool,
     /// Print CSV, one row per parameter value: n or alpha, max_abs, max_abs_at, max_rel,
     /// max_rel_at, rms, samples; no finite value (an infinite relative error) is an empty field.
+    /// With --over materials, one row per material and model: material, model, reference,
+    /// param, column, value, inside_domain, max_abs, max_abs_at, max_rel, max_rel_at, rms,
+    /// samples, safe (empty outside the domain).
     #[arg(long)]
     csv: bool,
 }
 
 pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
-    let (param, text, step) = match (&a.n, &a.m) {
-        (Some(n), None) => ("n", n, 1.0),
-        (None, Some(m)) => ("alpha", m, 0.01),
+    if a.over.is_some() {
+        return super::over_materials::run(&super::over_materials::Args {
+            model: a.model.as_deref(),
+            reference: a.reference.as_deref(),
+            zone: parse_zone(&a.zone)?,
+            zone_text: &a.zone,
+            threshold: a.threshold,
+            metric: &a.metric,
+            json: a.json,
+            csv: a.csv,
+        });
+    }
+    let (Some(model), Some(reference)) = (&a.model, &a.reference) else {
+        return Err(CliError::input(
+            "give --model and --reference (or --over materials)",
+        ));
+    };
+    let from_material;
+    let (param, text, step) = match (&a.n, &a.m, &a.material) {
+        (Some(n), None, _) => ("n", n, 1.0),
+        (None, Some(m), _) => ("alpha", m, 0.01),
+        (None, None, Some(name)) => {
+            let e = fastbrdf::registry::find(model)?;
+            let p = ["n", "alpha"]
+                .into_iter()
+                .find(|p| e.info.params.iter().any(|s| s.name == *p))
+                .ok_or_else(|| {
+                    CliError::input(format!(
+                        "--material {name}: model '{model}' takes neither n nor alpha"
+                    ))
+                })?;
+            let given = super::materials::with_material(Some(name), model, &[])?;
+            from_material = given
+                .into_iter()
+                .find(|(k, _)| k == p)
+                .map(|(_, v)| v)
+                .expect("the material supplies n and alpha");
+            (p, &from_material, 1.0)
+        }
         _ => {
             return Err(CliError::input(
-                "give --n RANGE (lobes) or --m RANGE (microfacet terms, Ward)",
+                "give --n RANGE (lobes) or --m RANGE (microfacet terms, Ward), or --material NAME",
             ));
         }
     };
     let values = range::parse(text, step)
         .map_err(|e| CliError::input(format!("--{}: {e}", if param == "n" { "n" } else { "m" })))?;
     let spec = errors::Spec {
-        model: a.model.clone(),
-        reference: a.reference.clone(),
+        model: model.clone(),
+        reference: reference.clone(),
         param: param.into(),
         zone: parse_zone(&a.zone)?,
     };
     spec.validate()?;
     // Reject out-of-range parameter values before the sweep, with the registry's message.
-    for e in [&a.model, &a.reference] {
+    if let (Some(name), None, None) = (&a.material, &a.n, &a.m) {
+        // The reference must hold the material's figure too (a clear message, not the registry's).
+        super::materials::with_material(Some(name), reference, &[])?;
+    }
+    for e in [model, reference] {
         fastbrdf::registry::build::<f64>(e, &[(param, &num(values[0]))])?;
         fastbrdf::registry::build::<f64>(e, &[(param, &num(values[values.len() - 1]))])?;
     }
@@ -124,7 +200,7 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
     let (wa, wr, wq) = errors::worst(&rows).expect("at least one value");
     if a.json {
         let v = serde_json::json!({
-            "model": a.model, "reference": a.reference, "param": param, "zone": a.zone,
+            "model": model, "reference": reference, "param": param, "zone": a.zone,
             "worst": {"max_abs": wa.max_abs, "max_abs_param": wa.param, "max_abs_at": wa.max_abs_at,
                       "max_rel": wr.max_rel, "max_rel_param": wr.param, "max_rel_at": wr.max_rel_at,
                       "rms": wq.rms, "rms_param": wq.param},
@@ -155,17 +231,20 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
         crate::out!("{s}");
     } else {
         let x = if matches!(
-            fastbrdf::registry::find(&a.model)?.info.kind,
+            fastbrdf::registry::find(model)?.info.kind,
             fastbrdf::Kind::Brdf
         ) {
             "theta"
         } else {
             "cos"
         };
+        let of = a.material.as_ref().map_or_else(String::new, |m| {
+            format!(" (material {m}'s fit, Ngan et al. 2005)")
+        });
         crate::outln!(
-            "{} vs {} over {param} in {} ({} values), zone {}",
-            a.model,
-            a.reference,
+            "{} vs {} over {param} in {}{of} ({} values), zone {}",
+            model,
+            reference,
             text,
             values.len(),
             a.zone
@@ -309,7 +388,8 @@ pub fn normalize(a: &NormalizeArgs) -> Result<(), CliError> {
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf albedo --model cook-torrance --param alpha=0.3\n  \
-fastbrdf albedo --model flog-normalized --param n=50 --norm none\n  fastbrdf albedo --model ward --param alpha=1 --angles 0,60,85,89,89.9"
+fastbrdf albedo --model flog-normalized --param n=50 --norm none\n  fastbrdf albedo --model ward --param alpha=1 --angles 0,60,85,89,89.9\n  \
+fastbrdf albedo --model cook-torrance --material gold-paint --param f=schlick"
 )]
 pub struct AlbedoArgs {
     /// A BRDF id, or a lobe id (evaluated as --as phong|blinn-phong).
@@ -318,6 +398,10 @@ pub struct AlbedoArgs {
     /// A parameter, NAME=VALUE; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`) whose published fit supplies the model's n,
+    /// alpha and f0 (Ngan et al. 2005); --param values win.
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
     /// Incidence angles in degrees: LO..HI[:STEP] (step 5) or a list.
     #[arg(long, default_value = "0..85:5")]
     angles: String,
@@ -333,7 +417,11 @@ pub struct AlbedoArgs {
 }
 
 pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
-    let params = parse_params(&a.params)?;
+    let params = super::materials::with_material(
+        a.material.as_deref(),
+        &a.model,
+        &parse_params(&a.params)?,
+    )?;
     let angles =
         range::parse(&a.angles, 5.0).map_err(|e| CliError::input(format!("--angles: {e}")))?;
     if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {

@@ -20,7 +20,8 @@ const QUOTE: usize = 40;
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  printf 'cos\\n1\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
-fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n\n\
+fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  \
+printf 'cos\\n1\\n0.99\\n' | fastbrdf eval --model pow --material gold-paint   (n = 36.8, the fit's)\n\n\
 Output: CSV, the input columns then `value`. Errors name the file, the line where the record\n\
 starts and the field; exit code 2 for bad input (nothing on stdout), 3 when stdout cannot be\n\
 written."
@@ -32,6 +33,10 @@ pub struct Args {
     /// A parameter, NAME=VALUE; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`) whose published fit supplies the model's n,
+    /// alpha and f0 (Ngan et al. 2005); --param values win.
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
     /// Arithmetic precision.
     #[arg(long, default_value = "f32", value_parser = ["f32", "f64"])]
     precision: String,
@@ -61,7 +66,11 @@ pub fn parse_params(params: &[String]) -> Result<Vec<(String, String)>, CliError
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
-    let params = parse_params(&a.params)?;
+    let params = super::materials::with_material(
+        a.material.as_deref(),
+        &a.model,
+        &parse_params(&a.params)?,
+    )?;
     let given: Vec<(&str, &str)> = params
         .iter()
         .map(|(k, v)| (k.as_str(), v.as_str()))

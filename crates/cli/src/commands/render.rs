@@ -51,17 +51,24 @@ pub struct SceneArgs {
     /// (scale at most 1e4, depth at most 1e3).
     #[arg(long)]
     pub bump: Option<String>,
-    /// Diffuse and specular weights KD,KS (0 to 1e3 each).
-    #[arg(long, default_value = "0.6,0.4")]
-    pub weights: String,
-    /// Linear albedo R,G,B (0 to 1e3 each).
-    #[arg(long, default_value = "0.8,0.8,0.8")]
-    pub albedo: String,
+    /// Diffuse and specular weights KD,KS (0 to 1e3 each) [default: 0.6,0.4; with --material:
+    /// 1,0.4].
+    #[arg(long)]
+    pub weights: Option<String>,
+    /// Linear albedo R,G,B (0 to 1e3 each) [default: 0.8,0.8,0.8; with --material: the
+    /// matching fit's diffuse kd].
+    #[arg(long)]
+    pub albedo: Option<String>,
     /// Exposure multiplier applied before sRGB encoding of PNG pictures (at most 1e6). EXR files
     /// hold the linear radiance, unscaled.
     #[arg(long, default_value_t = 1.0)]
     pub exposure: f32,
 }
+
+/// `--weights` when not given.
+pub const DEFAULT_WEIGHTS: &str = "0.6,0.4";
+/// `--albedo` when not given.
+pub const DEFAULT_ALBEDO: &str = "0.8,0.8,0.8";
 
 /// Largest kd, ks, albedo channel and bump depth: far beyond physical (1) but finite renders.
 pub const MAX_WEIGHT: f32 = 1e3;
@@ -108,9 +115,19 @@ impl SceneArgs {
                 depth: v[1],
             });
         }
-        let w = floats("weights", &self.weights, 2, MAX_WEIGHT)?;
+        let w = floats(
+            "weights",
+            self.weights.as_deref().unwrap_or(DEFAULT_WEIGHTS),
+            2,
+            MAX_WEIGHT,
+        )?;
         (spec.kd, spec.ks) = (w[0], w[1]);
-        let a = floats("albedo", &self.albedo, 3, MAX_WEIGHT)?;
+        let a = floats(
+            "albedo",
+            self.albedo.as_deref().unwrap_or(DEFAULT_ALBEDO),
+            3,
+            MAX_WEIGHT,
+        )?;
         spec.albedo = Vec3::new(a[0], a[1], a[2]);
         if !(self.exposure > 0.0 && self.exposure <= MAX_EXPOSURE) {
             return Err(CliError::input(format!(
@@ -162,7 +179,8 @@ pub fn render_model(
     after_help = "Examples:\n  fastbrdf render --model flog --param n=50 --out flog.png\n  \
 fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
-fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png"
+fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png\n  \
+fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)"
 )]
 pub struct RenderArgs {
     /// Specular model id (a lobe, a distribution or a BRDF).
@@ -171,6 +189,13 @@ pub struct RenderArgs {
     /// A model parameter, NAME=VALUE; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`) whose published fit supplies the model's n,
+    /// alpha and f0 (Ngan et al. 2005); --param values win. It also sets the diffuse colour
+    /// (--albedo: the fit's kd, a Lambert term kd/pi as the renderer's; diffuse weight 1) unless
+    /// --albedo or --weights is given; the specular weight stays KS of --weights (one number,
+    /// and lobes shade unnormalised, so the fit's RGB ks is not used).
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
     #[command(flatten)]
     scene: SceneArgs,
     /// Output file: .png (8-bit sRGB with an sRGB chunk, --exposure applied) or .exr (linear
@@ -199,11 +224,16 @@ fn render_model_gpu(
 }
 
 pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
-    let (spec, opts) = a.scene.spec()?;
+    let (mut spec, opts) = a.scene.spec()?;
+    super::materials::diffuse(&mut spec, &a.scene, a.material.as_deref(), &a.model)?;
     check_out(&a.out, &["png", "exr"])?;
     let loaded = setup::load(&spec)?;
     let t = std::time::Instant::now();
-    let params = parse_params(&a.params)?;
+    let params = super::materials::with_material(
+        a.material.as_deref(),
+        &a.model,
+        &parse_params(&a.params)?,
+    )?;
     let (film, on) = if a.gpu {
         let (film, label) = render_model_gpu(&spec, &loaded, &opts, &a.model, &params)?;
         (film, format!(", GPU: {label}"))
@@ -250,7 +280,8 @@ fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf compare --models flog,schlick,cubic-rational --reference pow --param n=100 --out cmp.png\n  \
-fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png"
+fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png\n  \
+fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png"
 )]
 pub struct CompareArgs {
     /// Models to compare (comma-separated ids).
@@ -262,6 +293,12 @@ pub struct CompareArgs {
     /// A parameter, NAME=VALUE, given to every model that takes it; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`): each model and the reference take their n,
+    /// alpha and f0 from its published fit (Ngan et al. 2005; Ward's alpha for ward-*, the
+    /// Beckmann m for the others); --param values win. The diffuse colour comes from the
+    /// reference's fit, as in `render`.
+    #[arg(long, value_name = "NAME")]
+    material: Option<String>,
     #[command(flatten)]
     scene: SceneArgs,
     /// The grid picture (.png).
@@ -414,7 +451,8 @@ pub fn compare_models(
 }
 
 pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
-    let (spec, opts) = a.scene.spec()?;
+    let (mut spec, opts) = a.scene.spec()?;
+    super::materials::diffuse(&mut spec, &a.scene, a.material.as_deref(), &a.reference)?;
     check_out(&a.out, &["png"])?;
     check_compare(&opts, a.models.len())?;
     let params = parse_params(&a.params)?;
@@ -429,11 +467,14 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
             )));
         }
     }
-    let reference = Entry::new(&a.reference, params_for(&a.reference, &params)?);
+    let own = |id: &str| {
+        super::materials::with_material(a.material.as_deref(), id, &params_for(id, &params)?)
+    };
+    let reference = Entry::new(&a.reference, own(&a.reference)?);
     let models: Vec<Entry> = a
         .models
         .iter()
-        .map(|m| Ok(Entry::new(m, params_for(m, &params)?)))
+        .map(|m| Ok(Entry::new(m, own(m)?)))
         .collect::<Result<_, CliError>>()?;
     let loaded = setup::load(&spec)?;
     let (rgb, gw, gh, metrics) =

@@ -12,6 +12,7 @@ use std::path::PathBuf;
 fastbrdf shader --model flog-normalized --param n=100 --lang hlsl --out flog.hlsl\n  \
 fastbrdf shader --model ward --param alpha_x=0.1 --param alpha_y=0.4 --lang brdf-explorer --out ward.brdf\n  \
 fastbrdf shader --all --lang msl --out shaders/\n  \
+fastbrdf shader --model cook-torrance --material gold-paint --param f=schlick   (alpha, f0 from the fit)\n  \
 fastbrdf shader --model cubic --lang glsl --runtime-params   (fb_cubic(c, p_n): n per pixel)\n\n\
 Output: a comment header (formula, source, parameters, documented error bounds, the command),\n\
 then the library functions the model needs and `fb_<id>` (dashes as underscores). Lobes take\n\
@@ -29,6 +30,10 @@ pub struct Args {
     /// A parameter, NAME=VALUE; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// A MERL material (see `fastbrdf materials`) whose published fit supplies the model's n,
+    /// alpha and f0 (Ngan et al. 2005); --param values win.
+    #[arg(long, value_name = "NAME", conflicts_with = "all")]
+    material: Option<String>,
     /// Output language.
     #[arg(long, default_value = "wgsl", value_parser = ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"])]
     lang: String,
@@ -80,7 +85,8 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         return Ok(());
     }
     let id = a.model.as_deref().expect("clap: --model or --all");
-    let params = parse_params(&a.params)?;
+    let params =
+        super::materials::with_material(a.material.as_deref(), id, &parse_params(&a.params)?)?;
     let given: Vec<(&str, &str)> = params
         .iter()
         .map(|(k, v)| (k.as_str(), v.as_str()))

@@ -1,0 +1,157 @@
+//! `fastbrdf materials`: the 86 MERL materials' published fits (Ngan, Matusik and Durand,
+//! EGSR 2005), and `--material NAME` for the commands that take model parameters.
+
+use crate::CliError;
+use fastbrdf_analysis::materials::{self, Albedos};
+use std::fmt::Write;
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf materials\n  fastbrdf materials --json\n  \
+fastbrdf shader --model flog --material gold-paint            (n = the material's Blinn-Phong n)\n  \
+fastbrdf render --model cook-torrance --material gold-paint --param f=schlick --out gold.png\n  \
+fastbrdf errors --over materials\n\n\
+Source: Ngan, Matusik and Durand, \"Experimental Analysis of BRDF Models\", EGSR 2005, the fits\n\
+of the 86 MERL materials (transcribed from bsdfbenchmark/bbm fits/ngan_{blinnphong,cooktorrance,ward}.fit).\n\
+--material NAME gives a model the material's figures by parameter: n from blinn_phong_n;\n\
+alpha of Ward (ward, ward-*) from ward_alpha; alpha of distributions, shadowing and\n\
+cook-torrance from cook_torrance_m (Beckmann m = alpha); f0 from cook_torrance_f0. Explicit\n\
+--param values win. In render and compare it also sets --albedo to the matching fit's kd and\n\
+the diffuse weight to 1 unless given. The `inside` column names the model families whose\n\
+current documented domains hold the material's figures (blinn-phong: n; cook-torrance: m and\n\
+f0; ward: alpha)."
+)]
+pub struct Args {
+    /// Print JSON: an array of {"name", "blinn_phong": {"n", "kd": [r, g, b], "ks": [r, g, b]},
+    /// "cook_torrance": {"m", "f0", "kd", "ks"}, "ward": {"alpha", "kd", "ks"}, "inside":
+    /// [family, ...]}, numbers as numbers, in the table's order.
+    #[arg(long)]
+    json: bool,
+}
+
+fn albedos_json(a: &Albedos) -> (serde_json::Value, serde_json::Value) {
+    (serde_json::json!(a.kd), serde_json::json!(a.ks))
+}
+
+pub fn run(a: &Args) -> Result<(), CliError> {
+    let all = materials::all();
+    if a.json {
+        let rows: Vec<serde_json::Value> = all
+            .iter()
+            .map(|m| {
+                let (bkd, bks) = albedos_json(&m.blinn_phong);
+                let (ckd, cks) = albedos_json(&m.cook_torrance);
+                let (wkd, wks) = albedos_json(&m.ward);
+                serde_json::json!({
+                    "name": m.name,
+                    "blinn_phong": {"n": m.blinn_phong_n, "kd": bkd, "ks": bks},
+                    "cook_torrance": {"m": m.cook_torrance_m, "f0": m.cook_torrance_f0, "kd": ckd, "ks": cks},
+                    "ward": {"alpha": m.ward_alpha, "kd": wkd, "ks": wks},
+                    "inside": materials::families(m),
+                })
+            })
+            .collect();
+        crate::outln!(
+            "{}",
+            serde_json::to_string_pretty(&rows).expect("serialisable")
+        );
+        return Ok(());
+    }
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{} MERL materials, fits by Ngan, Matusik and Durand (EGSR 2005)",
+        all.len()
+    );
+    let _ = writeln!(
+        s,
+        "{:<26} {:>10} {:>8} {:>8} {:>8}  inside documented domains",
+        "material", "n", "m", "f0", "ward a"
+    );
+    for m in all {
+        let inside = materials::families(m);
+        let _ = writeln!(
+            s,
+            "{:<26} {:>10} {:>8} {:>8} {:>8}  {}",
+            m.name,
+            m.blinn_phong_n,
+            m.cook_torrance_m,
+            m.cook_torrance_f0,
+            m.ward_alpha,
+            if inside.is_empty() {
+                "-".to_string()
+            } else {
+                inside.join(", ")
+            }
+        );
+    }
+    let count = |f: &str| {
+        all.iter()
+            .filter(|m| materials::families(m).contains(&f))
+            .count()
+    };
+    let dom = |id: &str, p: &str| {
+        materials::domain(id, p).map_or_else(String::new, |(lo, hi)| format!("[{lo}, {hi}]"))
+    };
+    let _ = writeln!(
+        s,
+        "inside: blinn-phong {} of {} (n in {}), cook-torrance {} (m in {}, f0 in {}), ward {} (alpha in {})",
+        count("blinn-phong"),
+        all.len(),
+        dom("blinn-phong", "n"),
+        count("cook-torrance"),
+        dom("cook-torrance", "alpha"),
+        dom("cook-torrance", "f0"),
+        count("ward"),
+        dom("ward", "alpha"),
+    );
+    crate::out!("{s}");
+    Ok(())
+}
+
+/// `explicit` parameters, followed by those `material` (when given) supplies to model `id`
+/// and that are not given explicitly. An unknown material or a supplied value outside the
+/// model's documented domain is exit code 2.
+pub fn with_material(
+    material: Option<&str>,
+    id: &str,
+    explicit: &[(String, String)],
+) -> Result<Vec<(String, String)>, CliError> {
+    let Some(name) = material else {
+        return Ok(explicit.to_vec());
+    };
+    let m = materials::find(name).map_err(CliError::input)?;
+    if fastbrdf::registry::find(id).is_ok() && materials::supplied(m, id).is_empty() {
+        return Err(CliError::input(format!(
+            "--material {name}: model '{id}' takes none of the fitted parameters (n, alpha, f0)"
+        )));
+    }
+    materials::params_with(m, id, explicit).map_err(CliError::input)
+}
+
+/// With a material: the scene's diffuse colour from the fit that goes with model `id` (its kd:
+/// the fits' Lambert term is kd / pi, as the renderer's) unless `--albedo` is given, and the
+/// diffuse weight 1 unless `--weights` is given. The specular weight is left alone: it is one
+/// number here (the fit's ks is RGB) and lobes shade unnormalised.
+pub fn diffuse(
+    spec: &mut fastbrdf_render::setup::SceneSpec,
+    scene: &super::render::SceneArgs,
+    material: Option<&str>,
+    id: &str,
+) -> Result<(), CliError> {
+    let Some(name) = material else {
+        return Ok(());
+    };
+    let m = materials::find(name).map_err(CliError::input)?;
+    let Some(fit) = materials::fit_for(m, id) else {
+        return Ok(());
+    };
+    if scene.albedo.is_none() {
+        let [r, g, b] = fit.kd.map(|x| x as f32);
+        spec.albedo = glam::Vec3::new(r, g, b);
+    }
+    if scene.weights.is_none() {
+        spec.kd = 1.0;
+    }
+    Ok(())
+}
