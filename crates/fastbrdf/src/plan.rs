@@ -28,7 +28,9 @@ use std::fmt::Debug;
 
 use crate::brdf::{cook_torrance, lambert, phong, ward};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
-use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
+use crate::microfacet::{
+    beckmann, beckmann_pow, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
+};
 
 /// A function of one cosine (a specular lobe).
 pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
@@ -265,12 +267,21 @@ families!($ DistPlan: DistForm, with_dist {
     BeckmannPower4(beckmann_pow::BeckmannPower<2>),
     BeckmannPower8(beckmann_pow::BeckmannPower<3>),
     BeckmannPower16(beckmann_pow::BeckmannPower<4>),
+    Ggx(ggx::Ggx),
 });
 
 families!($ ShadowPlan: ShadowForm, with_shadow {
     VCavity(shadowing::VCavity),
     Smith(shadowing::Smith),
     SmithRational(shadowing::SmithRational),
+    SmithBeckmannCorrelated(shadowing::SmithBeckmannCorrelated),
+    SmithGgx(smith_ggx::SmithGgx),
+    SmithGgxCorrelated(smith_ggx::SmithGgxCorrelated),
+    SmithGgxCorrelatedFast(smith_ggx::HammonFast),
+    SmithGgxJointApprox(smith_ggx::JointApprox),
+    SchlickGgx(smith_ggx::SchlickGgx),
+    Kelemen(kelemen_neumann::Kelemen),
+    Neumann(kelemen_neumann::Neumann),
 });
 
 families!($ FresnelPlan: FresnelForm, with_fresnel {
