@@ -15,7 +15,7 @@
 //! - `smith-beckmann-correlated`: the height-correlated Smith term for Beckmann,
 //!   `G = 1 / (1 + Lambda(v) + Lambda(l))` with `smith`'s exact `Lambda` (Heitz 2014, eq. 99);
 //!   one-sided (no `cos_l`): `G1`, as `smith`'s (`Lambda = 0` at `cos >= 1`). Not vectorised
-//!   (libm's `erfc`, as `smith`). Cost: 6 mul, 6 add, 5 div, 2 sqrt, 4 transcendental.
+//!   (libm's `erfc`, as `smith`). Cost: 8 mul, 8 add, 5 div, 2 sqrt, 4 transcendental.
 //!
 //! Parameters: `alpha` in [0.01, 1] (default 0.3) for the Smith terms; the V-cavity has none.
 //! Cosines that are NaN or `<= 0` give 0; a cosine of 1 gives G1 = 1.
@@ -77,7 +77,7 @@ pub const INFO_BECKMANN_CORRELATED: ModelInfo = ModelInfo {
     params: &[params::ALPHA],
     formula: "G = 1 / (1 + Lambda(v) + Lambda(l)), Lambda as smith's (Beckmann, exact)",
     source: "Heitz 2014, eq. 99 (height-correlated Smith); Walter et al. 2007 (Beckmann Lambda)",
-    ops: Ops::new(6, 6, 5, 2, 4),
+    ops: Ops::new(8, 8, 5, 2, 4),
     bounds: &[],
     f32_bound: 1e-6,
     note: "one-sided (no cos_l): G1, as smith",

@@ -9,24 +9,25 @@
 //! `G = 0`, never NaN.
 //!
 //! - `smith-ggx`: separable, `G1 = 1 / (1 + Lambda) = 2 / (1 + S)`, `G = G1(v) G1(l)`
-//!   (Walter et al. 2007, eq. 34). Cost per G1: 4 mul, 3 add, 2 div, 1 sqrt.
+//!   (Walter et al. 2007, eq. 34). Cost per G1: 3 mul, 4 add, 2 div, 1 sqrt (two-sided 7 mul,
+//!   8 add, 4 div, 2 sqrt).
 //! - `smith-ggx-correlated`: height-correlated, `G = 1 / (1 + Lambda(v) + Lambda(l)) =
 //!   2 / (S(v) + S(l))` (Heitz 2014, eq. 99); one-sided (no `cos_l`): `G1`, the same formula at
-//!   `cos_l = 1` (`Lambda = 0` there). Cost: 8 mul, 7 add, 3 div, 2 sqrt.
+//!   `cos_l = 1` (`Lambda = 0` there). Cost: 6 mul, 7 add, 3 div, 2 sqrt.
 //! - `smith-ggx-correlated-fast`: Hammon 2017 as in Filament (`V_SmithGGXCorrelated_Fast`):
 //!   `V = 0.5 / mix(2 NL NV, NL + NV, alpha)`, `G = 4 NL NV V = 2 NL NV / (2 NL NV (1 - alpha)
-//!   + alpha (NL + NV))`. Cost: 5 mul, 3 add, 1 div.
+//!   + alpha (NL + NV))`. Cost: 4 mul, 2 add, 1 div.
 //! - `smith-ggx-joint-approx`: Unreal Engine 4's `Vis_SmithJointApprox` (Karis 2014):
 //!   `V = 0.5 / (NL (NV (1 - a) + a) + NV (NL (1 - a) + a))`, `a = alpha`, `G = 4 NL NV V`.
 //!   Expanded, its denominator is `2 NL NV (1 - a) + a (NL + NV)`: it is **the same function
 //!   as Hammon's** (Filament's `mix` form); both ids are kept, each in its published
-//!   arrangement, so they differ only by rounding. Cost: 5 mul, 3 add, 1 div.
+//!   arrangement, so they differ only by rounding. Cost: 6 mul, 3 add, 1 div.
 //! - `schlick-ggx`: Schlick's `G1 = NV / (NV (1 - k) + k)`, separable; parameter `remap`:
 //!   `alpha-half` (default, `k = alpha / 2`, Karis 2013 after Walter's GGX fit) or `ue4`
 //!   (`k = (r + 1)^2 / 8`, `r = sqrt(alpha)` the perceptual roughness: Unreal's remapping
 //!   "for analytic light sources", Karis 2013). Named `remap`, not `k`: `cook-torrance`
 //!   passes its numeric parameters to its parts by name, and its Fresnel `k` would land here.
-//!   Cost per G1: 2 mul, 1 add, 1 div.
+//!   Cost per G1: 1 mul, 1 add, 1 div (two-sided 3 mul, 2 add, 2 div).
 //!
 //! In both fast forms a denominator that underflows (both cosines below about 1e-36 in f32)
 //! is replaced by the smallest normal number, so the value is 0, never NaN. One-sided terms
@@ -63,7 +64,7 @@ pub const INFO_SMITH_GGX: ModelInfo = ModelInfo {
     params: &[params::ALPHA],
     formula: "G1 = 1 / (1 + Lambda), Lambda = (-1 + sqrt(1 + alpha^2 tan^2)) / 2, i.e. G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)); G = G1(v) G1(l)",
     source: "Smith 1967; Walter et al. 2007, eq. 34 (GGX Lambda)",
-    ops: Ops::new(9, 6, 4, 2, 0),
+    ops: Ops::new(7, 8, 4, 2, 0),
     bounds: &[],
     f32_bound: 1e-6,
     note: "two-sided form is separable G1(v) G1(l)",
@@ -75,7 +76,7 @@ pub const INFO_CORRELATED: ModelInfo = ModelInfo {
     params: &[params::ALPHA],
     formula: "G = 1 / (1 + Lambda(v) + Lambda(l)) = 2 / (sqrt(1 + alpha^2 tan^2 v) + sqrt(1 + alpha^2 tan^2 l))",
     source: "Heitz 2014, eq. 99 (height-correlated Smith); GGX Lambda of Walter et al. 2007",
-    ops: Ops::new(8, 7, 3, 2, 0),
+    ops: Ops::new(6, 7, 3, 2, 0),
     bounds: &[],
     f32_bound: 1e-6,
     note: "one-sided (no cos_l): G1",
@@ -87,7 +88,7 @@ pub const INFO_FAST: ModelInfo = ModelInfo {
     params: &[params::ALPHA],
     formula: "G = 4 NL NV V, V = 0.5 / mix(2 NL NV, NL + NV, alpha)",
     source: "Hammon 2017 (GDC, \"PBR Diffuse Lighting for GGX+Smith Microsurfaces\"), as Filament's V_SmithGGXCorrelated_Fast",
-    ops: Ops::new(5, 3, 1, 0, 0),
+    ops: Ops::new(4, 2, 1, 0, 0),
     bounds: &[ErrorBound {
         reference: "smith-ggx-correlated",
         metric: Metric::MaxAbs,
@@ -105,7 +106,7 @@ pub const INFO_JOINT: ModelInfo = ModelInfo {
     params: &[params::ALPHA],
     formula: "G = 4 NL NV V, V = 0.5 / (NL (NV (1 - a) + a) + NV (NL (1 - a) + a)), a = alpha",
     source: "Karis 2014, Unreal Engine 4's Vis_SmithJointApprox",
-    ops: Ops::new(5, 3, 1, 0, 0),
+    ops: Ops::new(6, 3, 1, 0, 0),
     bounds: &[ErrorBound {
         reference: "smith-ggx-correlated",
         metric: Metric::MaxAbs,
@@ -159,7 +160,7 @@ pub const INFO_SCHLICK: ModelInfo = ModelInfo {
     params: &[params::ALPHA, REMAP],
     formula: "G1 = NV / (NV (1 - k) + k), k = alpha / 2 (alpha-half) or (sqrt(alpha) + 1)^2 / 8 (ue4); G = G1(v) G1(l)",
     source: "Schlick 1994; Karis 2013 (k = alpha / 2 for GGX, and Unreal's remapping)",
-    ops: Ops::new(5, 2, 2, 0, 0),
+    ops: Ops::new(3, 2, 2, 0, 0),
     bounds: &[ErrorBound {
         reference: "smith-ggx",
         metric: Metric::MaxAbs,
