@@ -489,17 +489,18 @@ fn issue14_shadowing_terms_match_their_printed_formulas() {
 }
 
 /// `smith-ggx-correlated` is `1 / (1 + Lambda(v) + Lambda(l))` at tabulated points: values
-/// computed outside this project with mpmath at 30 digits from Lambda's printed form.
+/// computed outside this project with mpmath at 30 digits from Lambda's printed form (rounded
+/// to the nearest f64).
 #[test]
 fn smith_ggx_correlated_at_tabulated_points() {
     const TABLE: &[(f64, f64, f64, f64)] = &[
-        (0.01, 0.5, 0.5, 0.99985003374156471),
-        (0.01, 0.01, 0.9, 0.82843523248622398),
-        (0.1, 0.2, 0.7, 0.94395570585383712),
-        (0.3, 0.5, 0.5, 0.88735650941611377),
+        (0.01, 0.5, 0.5, 0.9998500337415647),
+        (0.01, 0.01, 0.9, 0.828435232486224),
+        (0.1, 0.2, 0.7, 0.9439557058538371),
+        (0.3, 0.5, 0.5, 0.8873565094161138),
         (0.3, 0.05, 1.0, 0.28267112623968893),
-        (0.5, 0.9, 0.3, 0.68796107240858102),
-        (0.7072, 0.25, 0.75, 0.48847565168719736),
+        (0.5, 0.9, 0.3, 0.6879610724085811),
+        (0.7072, 0.25, 0.75, 0.48847565168719737),
         (1.0, 0.5, 0.5, 0.5),
         (1.0, 0.1, 0.1, 0.1),
         (1.0, 1.0, 1.0, 1.0),
