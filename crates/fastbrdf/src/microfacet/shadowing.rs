@@ -16,6 +16,7 @@
 //!   `G = 1 / (1 + Lambda(v) + Lambda(l))` with `smith`'s exact `Lambda` (Heitz 2014, eq. 99);
 //!   one-sided (no `cos_l`): `G1`, as `smith`'s (`Lambda = 0` at `cos >= 1`). Not vectorised
 //!   (libm's `erfc`, as `smith`). Cost: 8 mul, 8 add, 5 div, 2 sqrt, 4 transcendental.
+//!   Exact model: no error bound; f32 against f64 1.5e-7 measured (documented 1e-6).
 //!
 //! Parameters: `alpha` in [0.01, 1] (default 0.3) for the Smith terms; the V-cavity has none.
 //! Cosines that are NaN or `<= 0` give 0; a cosine of 1 gives G1 = 1.
