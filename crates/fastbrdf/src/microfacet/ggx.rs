@@ -10,8 +10,8 @@
 //! near `cos = 1` for small alpha (evaluated in f32 it errs by 3.4e-4 relative at
 //! alpha = 0.01 and 1.2e-5 at alpha = 0.1, near the peak). Computed as
 //! `(alpha^2 / pi) / (t t)`, `t = alpha^2 cos^2 + sin^2`; f32 against f64 measured 3.3e-7
-//! (alpha = 0.01, near the peak; documented 1e-6, `tests/precision.rs`), and no term
-//! degrades as alpha shrinks below 0.01.
+//! (`tests/precision.rs`; near the peak at small alpha) and 4.5e-7 (`fastbrdf check --full`),
+//! documented 1e-6; no term degrades as alpha shrinks below 0.01.
 //!
 //! Parameters: `alpha` (params::ALPHA, default 0.3). Below `cos_h = COS_MIN` the value is 0.
 //! Cost: 3 mul, 1 add, 1 div. Exact model: no error bound; the normalisation is tested to 1e-6
