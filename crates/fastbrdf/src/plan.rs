@@ -88,7 +88,7 @@ pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
     const WGSL: &'static str;
     /// Whether its batch kernel vectorises (the exact Smith term calls libm's `erfc`).
     const SIMD: bool = true;
-    /// Whether it uses `cos_h` and `cos_vh` (the V-cavity).
+    /// Whether it uses `cos_h` and `cos_vh` (the V-cavity, Kelemen).
     const HALF_VECTOR: bool = false;
     /// The two-sided term on a valid pair's cosines (all positive, at most 1; `cos_l` may be
     /// `+inf` for the one-sided term of `v`): the formula, as Cook-Torrance uses it.
