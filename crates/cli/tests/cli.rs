@@ -128,7 +128,16 @@ fn eval_answers_for_every_id() {
         let columns: &[&str] = match m["kind"].as_str().unwrap() {
             "lobe" => &["cos"],
             "distribution" => &["cos_h"],
-            "shadowing" if id == "v-cavity" => &["cos_v", "cos_l", "cos_h", "cos_vh"],
+            // The half-vector terms (v-cavity, kelemen) also read cos_h and cos_vh.
+            "shadowing"
+                if fastbrdf::registry::build::<f64>(id, &[])
+                    .unwrap()
+                    .columns()
+                    .0
+                    .contains(&"cos_vh") =>
+            {
+                &["cos_v", "cos_l", "cos_h", "cos_vh"]
+            }
             "shadowing" => &["cos_v", "cos_l"],
             "fresnel" => &["cos_vh"],
             _ => &["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"],

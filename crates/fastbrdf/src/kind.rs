@@ -34,7 +34,7 @@ impl Kind {
 
 impl Kind {
     /// The input columns of a model of this kind (`fastbrdf eval`, batch inputs):
-    /// `(required, optional)`. Shadowing terms that use the half vector (the V-cavity) also
+    /// `(required, optional)`. Shadowing terms that use the half vector (V-cavity, Kelemen) also
     /// need `cos_h` and `cos_vh` (`half_vector`).
     pub fn columns(self, half_vector: bool) -> (&'static [&'static str], &'static [&'static str]) {
         match self {

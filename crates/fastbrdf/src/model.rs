@@ -125,9 +125,9 @@ pub struct ShadowInput<T> {
     pub cos_v: T,
     /// `n.l`; `None` asks for the one-sided (masking) term of `v` alone.
     pub cos_l: Option<T>,
-    /// `n.h` (V-cavity only).
+    /// `n.h` (half-vector terms only: V-cavity, Kelemen).
     pub cos_h: T,
-    /// `v.h = l.h` (V-cavity only).
+    /// `v.h = l.h` (half-vector terms only: V-cavity, Kelemen).
     pub cos_vh: T,
 }
 

@@ -28,7 +28,9 @@ use std::fmt::Debug;
 
 use crate::brdf::{cook_torrance, lambert, phong, ward};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
-use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
+use crate::microfacet::{
+    beckmann, beckmann_pow, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
+};
 
 /// A function of one cosine (a specular lobe).
 pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
@@ -86,7 +88,7 @@ pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
     const WGSL: &'static str;
     /// Whether its batch kernel vectorises (the exact Smith term calls libm's `erfc`).
     const SIMD: bool = true;
-    /// Whether it uses `cos_h` and `cos_vh` (the V-cavity).
+    /// Whether it uses `cos_h` and `cos_vh` (the V-cavity, Kelemen).
     const HALF_VECTOR: bool = false;
     /// The two-sided term on a valid pair's cosines (all positive, at most 1; `cos_l` may be
     /// `+inf` for the one-sided term of `v`): the formula, as Cook-Torrance uses it.
@@ -265,12 +267,21 @@ families!($ DistPlan: DistForm, with_dist {
     BeckmannPower4(beckmann_pow::BeckmannPower<2>),
     BeckmannPower8(beckmann_pow::BeckmannPower<3>),
     BeckmannPower16(beckmann_pow::BeckmannPower<4>),
+    Ggx(ggx::Ggx),
 });
 
 families!($ ShadowPlan: ShadowForm, with_shadow {
     VCavity(shadowing::VCavity),
     Smith(shadowing::Smith),
     SmithRational(shadowing::SmithRational),
+    SmithBeckmannCorrelated(shadowing::SmithBeckmannCorrelated),
+    SmithGgx(smith_ggx::SmithGgx),
+    SmithGgxCorrelated(smith_ggx::SmithGgxCorrelated),
+    SmithGgxCorrelatedFast(smith_ggx::HammonFast),
+    SmithGgxJointApprox(smith_ggx::JointApprox),
+    SchlickGgx(smith_ggx::SchlickGgx),
+    Kelemen(kelemen_neumann::Kelemen),
+    Neumann(kelemen_neumann::Neumann),
 });
 
 families!($ FresnelPlan: FresnelForm, with_fresnel {

@@ -8,7 +8,9 @@ use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::kind::Shading;
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
-use crate::microfacet::{beckmann, beckmann_pow, fresnel, shadowing};
+use crate::microfacet::{
+    beckmann, beckmann_pow, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
+};
 use crate::model::{Kind, Lobe, Model};
 use crate::params::{Options, ParamKind, ParamSpec, Params};
 use crate::plan::{Models, Plan};
@@ -46,10 +48,19 @@ pub static REGISTRY: &[Entry] = &[
     beckmann_pow::ENTRY4,
     beckmann_pow::ENTRY8,
     beckmann_pow::ENTRY16,
+    ggx::ENTRY,
     // Shadowing-masking.
     shadowing::ENTRY_VCAVITY,
     shadowing::ENTRY_SMITH,
     shadowing::ENTRY_RATIONAL,
+    shadowing::ENTRY_BECKMANN_CORRELATED,
+    smith_ggx::ENTRY_SMITH_GGX,
+    smith_ggx::ENTRY_CORRELATED,
+    smith_ggx::ENTRY_FAST,
+    smith_ggx::ENTRY_JOINT,
+    smith_ggx::ENTRY_SCHLICK,
+    kelemen_neumann::ENTRY_KELEMEN,
+    kelemen_neumann::ENTRY_NEUMANN,
     // Fresnel.
     fresnel::ENTRY_NONE,
     fresnel::ENTRY_SCHLICK,

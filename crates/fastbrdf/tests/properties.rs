@@ -209,7 +209,7 @@ fn unknown_ids_and_params_are_errors() {
         Err(fastbrdf::Error::InvalidParam { .. })
     ));
     assert!(matches!(
-        registry::build::<f32>("cook-torrance", &[("d", "ggx")]),
+        registry::build::<f32>("cook-torrance", &[("d", "trowbridge-reitz")]),
         Err(fastbrdf::Error::InvalidParam { .. })
     ));
     assert!(matches!(

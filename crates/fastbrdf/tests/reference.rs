@@ -165,6 +165,11 @@ fn ref_distribution(id: &str, alpha: f64, c: f64) -> f64 {
         "beckmann-power4" => power(4),
         "beckmann-power8" => power(8),
         "beckmann-power16" => power(16),
+        // Walter et al. 2007, eq. 33, as printed (through tan^2 = (1 - c^2) / c^2).
+        "ggx" => {
+            let tan2 = (1.0 - c * c) / (c * c);
+            alpha * alpha / (PI * c.powi(4) * (alpha * alpha + tan2).powi(2))
+        }
         _ => panic!("no reference for distribution {id}"),
     }
 }
@@ -177,6 +182,70 @@ fn smith_g1_exact(alpha: f64, c: f64) -> f64 {
     let lambda = (libm::erf(a) - 1.0) / 2.0 + (-a * a).exp() / (2.0 * a * PI.sqrt());
     1.0 / (1.0 + lambda)
 }
+
+/// Beckmann's Smith Lambda as printed (Walter et al. 2007, eq. 25-27), with erf.
+fn beckmann_lambda(alpha: f64, c: f64) -> f64 {
+    if c >= 1.0 {
+        return 0.0;
+    }
+    let a = c / (alpha * (1.0 - c * c).sqrt());
+    (libm::erf(a) - 1.0) / 2.0 + (-a * a).exp() / (2.0 * a * PI.sqrt())
+}
+
+/// GGX's Smith Lambda as printed (Walter et al. 2007, eq. 34; Heitz 2014, eq. 72), naively:
+/// `(-1 + sqrt(1 + alpha^2 tan^2)) / 2`.
+fn ggx_lambda(alpha: f64, c: f64) -> f64 {
+    let tan2 = (1.0 - c * c) / (c * c);
+    (-1.0 + (1.0 + alpha * alpha * tan2).sqrt()) / 2.0
+}
+
+/// Every new shadowing id's printed formula, two-sided (`l = Some`) or one-sided; `vh` is
+/// `v.h` (Kelemen only).
+fn ref_shadowing(id: &str, alpha: f64, remap: &str, v: f64, l: Option<f64>, vh: f64) -> f64 {
+    let g1_ggx = |c: f64| 1.0 / (1.0 + ggx_lambda(alpha, c));
+    let k = if remap == "ue4" {
+        (alpha.sqrt() + 1.0).powi(2) / 8.0
+    } else {
+        alpha / 2.0
+    };
+    let schlick = |c: f64| c / (c * (1.0 - k) + k);
+    // Filament's V_SmithGGXCorrelated_Fast and Unreal's Vis_SmithJointApprox, as printed,
+    // times 4 NL NV; one-sided at NL = 1.
+    let nl = l.unwrap_or(1.0);
+    let a = alpha;
+    let mix = |x: f64, y: f64, t: f64| x * (1.0 - t) + y * t;
+    match id {
+        "smith-ggx" => g1_ggx(v) * l.map_or(1.0, g1_ggx),
+        "smith-ggx-correlated" => {
+            1.0 / (1.0 + ggx_lambda(alpha, v) + l.map_or(0.0, |l| ggx_lambda(alpha, l)))
+        }
+        "smith-beckmann-correlated" => {
+            1.0 / (1.0 + beckmann_lambda(alpha, v) + l.map_or(0.0, |l| beckmann_lambda(alpha, l)))
+        }
+        "smith-ggx-correlated-fast" => 4.0 * nl * v * (0.5 / mix(2.0 * nl * v, nl + v, a)),
+        "smith-ggx-joint-approx" => {
+            let vis = 0.5 / (nl * (v * (1.0 - a) + a) + v * (nl * (1.0 - a) + a));
+            4.0 * nl * v * vis
+        }
+        "schlick-ggx" => schlick(v) * l.map_or(1.0, schlick),
+        "kelemen" => (nl * v / (vh * vh)).min(1.0),
+        "neumann" => nl * v / nl.max(v),
+        _ => panic!("no reference for shadowing term {id}"),
+    }
+}
+
+/// The shadowing ids `ref_shadowing` covers, with their `remap` choices.
+const NEW_SHADOWING: &[(&str, &str)] = &[
+    ("smith-ggx", ""),
+    ("smith-ggx-correlated", ""),
+    ("smith-beckmann-correlated", ""),
+    ("smith-ggx-correlated-fast", ""),
+    ("smith-ggx-joint-approx", ""),
+    ("schlick-ggx", "alpha-half"),
+    ("schlick-ggx", "ue4"),
+    ("kelemen", ""),
+    ("neumann", ""),
+];
 
 fn smith_g1_rational(alpha: f64, c: f64) -> f64 {
     if c >= 1.0 {
@@ -368,6 +437,115 @@ fn shadowing_matches_its_printed_formulas() {
     }
 }
 
+/// issue 14: the GGX Smith terms, their approximations, the correlated Beckmann term and the
+/// parameterless Kelemen and Neumann terms against their printed formulas, on random direction
+/// pairs (two-sided, with the pair's own half vector) and one-sided.
+#[test]
+fn issue14_shadowing_terms_match_their_printed_formulas() {
+    let mut rng = Rng(14);
+    let pairs: Vec<_> = (0..400)
+        .map(|_| (rng.hemisphere(), rng.hemisphere()))
+        .collect();
+    for &(id, remap) in NEW_SHADOWING {
+        let info = registry::find(id).unwrap().info;
+        let alphas: &[f64] = if info.params.is_empty() {
+            &[0.3]
+        } else {
+            ALPHA_VALUES
+        };
+        for &alpha in alphas {
+            let a = alpha.to_string();
+            let mut given: Vec<(&str, &str)> = vec![];
+            if !info.params.is_empty() {
+                given.push(("alpha", &a));
+            }
+            if !remap.is_empty() {
+                given.push(("remap", remap));
+            }
+            let Model::Shadowing(g) = registry::build::<f64>(id, &given).unwrap() else {
+                panic!()
+            };
+            for &(wi, wo) in &pairs {
+                let h = unit([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]]);
+                let (nv, nl, nh, vh) = (wo[2], wi[2], h[2], dotv(wo, h));
+                for l in [Some(nl), None] {
+                    let got = g.g(&fastbrdf::model::ShadowInput {
+                        cos_v: nv,
+                        cos_l: l,
+                        cos_h: nh,
+                        cos_vh: vh,
+                    });
+                    let want = ref_shadowing(id, alpha, remap, nv, l, vh);
+                    // The naive -1 + sqrt(1 + x) loses ~1e-16 / x relative in Lambda: absolute
+                    // errors stay near 1e-16 since G is in [0, 1].
+                    assert!(
+                        (got - want).abs() <= 1e-12,
+                        "{id} {remap} alpha={alpha} v={nv} l={l:?} vh={vh}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// `smith-ggx-correlated` is `1 / (1 + Lambda(v) + Lambda(l))` at tabulated points: values
+/// computed outside this project with mpmath at 30 digits from Lambda's printed form (rounded
+/// to the nearest f64).
+#[test]
+fn smith_ggx_correlated_at_tabulated_points() {
+    const TABLE: &[(f64, f64, f64, f64)] = &[
+        (0.01, 0.5, 0.5, 0.9998500337415647),
+        (0.01, 0.01, 0.9, 0.828435232486224),
+        (0.1, 0.2, 0.7, 0.9439557058538371),
+        (0.3, 0.5, 0.5, 0.8873565094161138),
+        (0.3, 0.05, 1.0, 0.28267112623968893),
+        (0.5, 0.9, 0.3, 0.6879610724085811),
+        (0.7072, 0.25, 0.75, 0.48847565168719737),
+        (1.0, 0.5, 0.5, 0.5),
+        (1.0, 0.1, 0.1, 0.1),
+        (1.0, 1.0, 1.0, 1.0),
+    ];
+    for &(alpha, v, l, want) in TABLE {
+        for (prec, tol) in [("f64", 1e-15), ("f32", 3e-7)] {
+            let s = fastbrdf::model::ShadowInput {
+                cos_v: v,
+                cos_l: Some(l),
+                cos_h: 1.0,
+                cos_vh: 1.0,
+            };
+            let given = [("alpha", alpha.to_string())];
+            let given = [("alpha", given[0].1.as_str())];
+            let got = if prec == "f64" {
+                let Model::Shadowing(g) =
+                    registry::build::<f64>("smith-ggx-correlated", &given).unwrap()
+                else {
+                    panic!()
+                };
+                g.g(&s)
+            } else {
+                let Model::Shadowing(g) =
+                    registry::build::<f32>("smith-ggx-correlated", &given).unwrap()
+                else {
+                    panic!()
+                };
+                g.g(&fastbrdf::model::ShadowInput {
+                    cos_v: v as f32,
+                    cos_l: Some(l as f32),
+                    cos_h: 1.0,
+                    cos_vh: 1.0,
+                }) as f64
+            };
+            assert!(
+                (got - want).abs() <= tol * want,
+                "{prec} alpha={alpha} v={v} l={l}: {got} vs {want}"
+            );
+            // And the formula of this file agrees with the table.
+            let mine = 1.0 / (1.0 + ggx_lambda(alpha, v) + ggx_lambda(alpha, l));
+            assert!((mine - want).abs() <= 1e-14, "{mine} vs {want}");
+        }
+    }
+}
+
 #[test]
 fn fresnel_matches_complex_fresnel_equations() {
     for (eta, k) in [
@@ -528,6 +706,51 @@ fn cook_torrance_is_fdg_over_4_cos_cos() {
     }
 }
 
+/// issue 14: `cook-torrance` with `d = ggx` and each new shadowing term (with `alpha`, or
+/// none) against `F D G / (4 cos_i cos_o)` from this file's formulas.
+#[test]
+fn cook_torrance_with_ggx_is_fdg_over_4_cos_cos() {
+    let pairs = direction_pairs(200, 14);
+    for &alpha in ALPHA_VALUES {
+        for &(g, remap) in NEW_SHADOWING {
+            if remap == "ue4" {
+                continue; // cook-torrance cannot choose a part's choice: alpha-half only
+            }
+            for f in ["none", "schlick", "conductor"] {
+                let a = alpha.to_string();
+                let ct = brdf64(
+                    "cook-torrance",
+                    &[
+                        ("alpha", &a),
+                        ("d", "ggx"),
+                        ("g", g),
+                        ("f", f),
+                        ("eta", "0.2"),
+                        ("k", "3.9"),
+                    ],
+                );
+                for (wi, wo) in &pairs {
+                    let (wi, wo) = (unit(*wi), unit(*wo));
+                    let h = unit([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]]);
+                    let d = ref_distribution("ggx", alpha, h[2]);
+                    let gv = ref_shadowing(g, alpha, remap, wo[2], Some(wi[2]), dotv(wo, h));
+                    let fv = match f {
+                        "none" => 1.0,
+                        "schlick" => 0.04 + 0.96 * (1.0 - dotv(wi, h)).powi(5),
+                        _ => fresnel_complex(dotv(wi, h), Complex64::new(0.2, 3.9)),
+                    };
+                    let want = fv * d * gv / (4.0 * wi[2] * wo[2]);
+                    let got = ct.eval(wi, wo);
+                    assert!(
+                        (got - want).abs() <= 1e-9 * want.abs() + 1e-300,
+                        "alpha={alpha} g={g} f={f}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn ward_matches_its_printed_formulas() {
     let pairs = direction_pairs(300, 12);
@@ -627,6 +850,15 @@ const REFERENCED: &[&str] = &[
     "v-cavity",
     "smith",
     "smith-rational",
+    // ref_shadowing (NEW_SHADOWING):
+    "smith-beckmann-correlated",
+    "smith-ggx",
+    "smith-ggx-correlated",
+    "smith-ggx-correlated-fast",
+    "smith-ggx-joint-approx",
+    "schlick-ggx",
+    "kelemen",
+    "neumann",
     "fresnel-none",
     "fresnel-schlick",
     "fresnel-schlick-sg",

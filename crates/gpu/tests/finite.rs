@@ -91,16 +91,24 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
             ),
             Kind::Shadowing => (
                 GpuInput::Shadow([&cols4[0], &cols4[1], &cols4[2], &cols4[3]]),
-                (0..cols4[0].len())
-                    .map(|i| {
-                        let [v, l, h, vh] = [0, 1, 2, 3].map(|k| cols4[k][i]);
-                        if info.id == "v-cavity" {
-                            vec![Some(v), Some(h), Some(vh), Some(l)]
-                        } else {
-                            vec![Some(v), Some(l)]
-                        }
-                    })
-                    .collect(),
+                {
+                    let half_vector = registry::build::<f32>(info.id, &[])
+                        .unwrap()
+                        .columns()
+                        .0
+                        .contains(&"cos_vh");
+                    (0..cols4[0].len())
+                        .map(|i| {
+                            let [v, l, h, vh] = [0, 1, 2, 3].map(|k| cols4[k][i]);
+                            // The half-vector terms (v-cavity, kelemen) read cos_h, cos_vh.
+                            if half_vector {
+                                vec![Some(v), Some(h), Some(vh), Some(l)]
+                            } else {
+                                vec![Some(v), Some(l)]
+                            }
+                        })
+                        .collect()
+                },
             ),
             Kind::Brdf => (
                 GpuInput::Dirs([

@@ -5,8 +5,8 @@
 //! | name | range | default | meaning |
 //! |---|---|---|---|
 //! | `alpha` | [0.01, 1] | 0.3 | RMS slope of D and of the Smith terms |
-//! | `d` | a distribution id | `beckmann` | `beckmann`, `beckmann-ct`, `beckmann-pow`, `beckmann-power4/8/16` |
-//! | `g` | `v-cavity`, `smith`, `smith-rational` | `smith` | shadowing-masking |
+//! | `d` | a distribution id | `beckmann` | `beckmann`, `beckmann-ct`, `beckmann-pow`, `beckmann-power4/8/16`, `ggx` |
+//! | `g` | a shadowing id | `smith` | shadowing-masking: `v-cavity`, `smith`, `smith-rational`, `smith-beckmann-correlated`, `smith-ggx(-correlated)`, `smith-ggx-correlated-fast`, `smith-ggx-joint-approx`, `schlick-ggx` (its default `remap`), `kelemen`, `neumann` |
 //! | `f` | a Fresnel id without `fresnel-` | `none` | Fresnel at `wi . h` |
 //! | `f0`, `f90`, `eta`, `k` | see `microfacet::fresnel` | 0.04, 1, 1.5, 0 | Fresnel parameters |
 //! | `denominator` | `4`, `seed-000`, `seed-001` | `4` | `4 cos_i cos_o`, `cos_i cos_o` (seed 000), `pi cos_i cos_o` (seed 001) |

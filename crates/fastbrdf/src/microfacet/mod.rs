@@ -3,4 +3,7 @@
 pub mod beckmann;
 pub mod beckmann_pow;
 pub mod fresnel;
+pub mod ggx;
+pub mod kelemen_neumann;
 pub mod shadowing;
+pub mod smith_ggx;

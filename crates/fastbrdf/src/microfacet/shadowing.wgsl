@@ -28,6 +28,20 @@ fn fb_g1_smith(c: f32, alpha: f32) -> f32 {
     return select(1.0 / (1.0 + lambda), 1.0, c >= 1.0);
 }
 
+/// Beckmann's Smith Lambda (Walter et al. 2007): (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2,
+/// a = 1 / (alpha tan theta); 0 at c >= 1.
+fn fb_lambda_beckmann(c: f32, alpha: f32) -> f32 {
+    let sin = sqrt(max((1.0 - c) * (1.0 + c), 0.0));
+    let a = c / (alpha * sin);
+    let lambda = 0.5 * (exp(-a * a) * FB_INV_SQRT_PI / a - fb_erfc(a));
+    return select(lambda, 0.0, c >= 1.0);
+}
+
+/// smith-beckmann-correlated (Heitz 2014, eq. 99): 1 / (1 + Lambda(v) + Lambda(l)).
+fn fb_g_smith_beckmann_correlated(cos_v: f32, cos_l: f32, alpha: f32) -> f32 {
+    return 1.0 / (1.0 + (fb_lambda_beckmann(cos_v, alpha) + fb_lambda_beckmann(cos_l, alpha)));
+}
+
 /// smith-rational (Walter et al. 2007, eq. 27): G1 = (3.535 a + 2.181 a^2) /
 /// (1 + 2.276 a + 2.577 a^2) for a < 1.6, else 1.
 fn fb_g1_smith_rational(c: f32, alpha: f32) -> f32 {

@@ -1,0 +1,23 @@
+// fastbrdf 0.1.0 (shadowing): kelemen
+// Made by: fastbrdf shader --model kelemen --lang wgsl
+//
+// Formula: G = NL NV / VH^2 (G / (4 NL NV) = 1 / (4 VH^2)), at most 1
+// Source: Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model with Importance Sampling"
+// Note: input columns cos_v, cos_h, cos_vh and optional cos_l (two-sided; cos_h only for the domain rule); no roughness parameter, so no exact twin
+// Parameters (this export: no parameters):
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
+// Entry: fb_kelemen(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+
+/// kelemen (Kelemen & Szirmay-Kalos 2001): min(1, NL NV / VH^2), as (NV / VH) (NL / VH).
+fn fb_g_kelemen(cos_v: f32, cos_l: f32, cos_vh: f32) -> f32 {
+    return min(1.0, (min(cos_v, 1.0) / cos_vh) * (min(cos_l, 1.0) / cos_vh));
+}
+
+/// kelemen: G = NL NV / VH^2 (G / (4 NL NV) = 1 / (4 VH^2)), at most 1
+/// Source: Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model with Importance Sampling". Instance: no parameters.
+fn fb_kelemen(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32 {
+    let g = fb_g_kelemen(cos_v, cos_l, cos_vh);
+    return select(0.0, g, (cos_v > 0.0) & (cos_l > 0.0) & (cos_h > 0.0) & (cos_vh > 0.0));
+}

@@ -1,0 +1,36 @@
+// fastbrdf 0.1.0 (shadowing): kelemen
+// Made by: fastbrdf shader --model kelemen --lang msl --runtime-params
+//
+// Formula: G = NL NV / VH^2 (G / (4 NL NV) = 1 / (4 VH^2)), at most 1
+// Source: Kelemen & Szirmay-Kalos 2001, "A Microfacet Based Coupled Specular-Matte BRDF Model with Importance Sampling"
+// Note: input columns cos_v, cos_h, cos_vh and optional cos_l (two-sided; cos_h only for the domain rule); no roughness parameter, so no exact twin
+// Parameters (this export: no parameters):
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Runtime parameters: none (the model has no numeric parameter) (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
+// Entry: fb_kelemen(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+
+float fb_g_kelemen(
+    float cos_v,
+    float cos_l,
+    float cos_vh
+) {
+    return metal::min(1.0, (metal::min(cos_v, 1.0) / cos_vh) * (metal::min(cos_l, 1.0) / cos_vh));
+}
+
+float fb_kelemen(
+    float cos_v_1,
+    float cos_l_1,
+    float cos_h,
+    float cos_vh_1
+) {
+    float _e4 = fb_g_kelemen(cos_v_1, cos_l_1, cos_vh_1);
+    return ((((cos_v_1 > 0.0) & (cos_l_1 > 0.0)) & (cos_h > 0.0)) & (cos_vh_1 > 0.0)) ? _e4 : 0.0;
+}

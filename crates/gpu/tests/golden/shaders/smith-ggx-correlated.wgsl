@@ -1,0 +1,33 @@
+// fastbrdf 0.1.0 (shadowing): smith-ggx-correlated
+// Made by: fastbrdf shader --model smith-ggx-correlated --lang wgsl
+//
+// Formula: G = 1 / (1 + Lambda(v) + Lambda(l)) = 2 / (sqrt(1 + alpha^2 tan^2 v) + sqrt(1 + alpha^2 tan^2 l))
+// Source: Heitz 2014, eq. 99 (height-correlated Smith); GGX Lambda of Walter et al. 2007
+// Note: one-sided (no cos_l): G1
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
+// Entry: fb_smith_ggx_correlated(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+
+/// sqrt(1 + alpha^2 tan^2) = sqrt(c^2 + alpha^2 (1 - c)(1 + c)) / c, for the GGX Smith terms
+/// (1 + Lambda = (1 + S) / 2; no S - 1 is formed).
+fn fb_ggx_s(c: f32, alpha2: f32) -> f32 {
+    let s2 = (1.0 - c) * (1.0 + c);
+    return sqrt(c * c + alpha2 * s2) / c;
+}
+
+/// smith-ggx-correlated (Heitz 2014, eq. 99): 1 / (1 + Lambda(v) + Lambda(l)) = 2 / (S(v) + S(l)).
+fn fb_g_smith_ggx_correlated(cos_v: f32, cos_l: f32, alpha2: f32) -> f32 {
+    let v = min(cos_v, 1.0);
+    let l = min(cos_l, 1.0);
+    return 2.0 / (fb_ggx_s(v, alpha2) + fb_ggx_s(l, alpha2));
+}
+
+/// smith-ggx-correlated: G = 1 / (1 + Lambda(v) + Lambda(l)) = 2 / (sqrt(1 + alpha^2 tan^2 v) + sqrt(1 + alpha^2 tan^2 l))
+/// Source: Heitz 2014, eq. 99 (height-correlated Smith); GGX Lambda of Walter et al. 2007. Instance: alpha = 0.3.
+fn fb_smith_ggx_correlated(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32 {
+    let g = fb_g_smith_ggx_correlated(cos_v, cos_l, 0.09f);
+    return select(0.0, g, (cos_v > 0.0) & (cos_l > 0.0));
+}

@@ -1,0 +1,47 @@
+// fastbrdf 0.1.0 (shadowing): smith-ggx
+// Made by: fastbrdf shader --model smith-ggx --lang msl
+//
+// Formula: G1 = 1 / (1 + Lambda), Lambda = (-1 + sqrt(1 + alpha^2 tan^2)) / 2, i.e. G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)); G = G1(v) G1(l)
+// Source: Smith 1967; Walter et al. 2007, eq. 34 (GGX Lambda)
+// Note: two-sided form is separable G1(v) G1(l)
+// Parameters (this export: alpha = 0.3):
+//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+// Error bounds: none documented (an exact model or a reference).
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
+// Entry: fb_smith_ggx(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+
+// language: metal2.0
+#include <metal_stdlib>
+#include <simd/simd.h>
+
+using metal::uint;
+
+
+float fb_ggx_s(
+    float c,
+    float alpha2_
+) {
+    float s2_ = (1.0 - c) * (1.0 + c);
+    return metal::sqrt((c * c) + (alpha2_ * s2_)) / c;
+}
+
+float fb_g1_smith_ggx(
+    float c_1,
+    float alpha2_1
+) {
+    float _e2 = fb_ggx_s(c_1, alpha2_1);
+    return (c_1 >= 1.0) ? 1.0 : (2.0 / (1.0 + _e2));
+}
+
+float fb_smith_ggx(
+    float cos_v,
+    float cos_l,
+    float cos_h,
+    float cos_vh
+) {
+    float _e5 = fb_g1_smith_ggx(cos_v, 0.09);
+    float _e7 = fb_g1_smith_ggx(cos_l, 0.09);
+    float g = _e5 * _e7;
+    return ((cos_v > 0.0) & (cos_l > 0.0)) ? g : 0.0;
+}
