@@ -4,11 +4,12 @@
 //! Run: `cargo run --release -p fastbrdf-analysis --example fit_fresnel_sg`.
 //!
 //! The maximum over a 20001-point grid, refined by golden section around the grid's largest
-//! errors (`fastbrdf::accuracy::golden_max`), minimised by Nelder-Mead from Karis's constants
-//! (two parameters, a smooth objective away from its kinks: no crate needed).
+//! errors (`fastbrdf::accuracy::golden_max`), minimised by Nelder-Mead
+//! (`fastbrdf_analysis::simplex`) from Karis's constants and from another start.
 
 use fastbrdf::accuracy::golden_max;
 use fastbrdf::microfacet::fresnel::SG_KARIS;
+use fastbrdf_analysis::simplex::nelder_mead;
 
 fn err_at(a: f64, b: f64, c: f64) -> f64 {
     (((a * c + b) * c).exp2() - (1.0 - c).powi(5)).abs()
@@ -32,44 +33,6 @@ fn max_err(a: f64, b: f64) -> (f64, f64) {
     best
 }
 
-fn nelder_mead(f: impl Fn([f64; 2]) -> f64, start: [f64; 2], step: f64, iters: usize) -> [f64; 2] {
-    let mut s = [
-        start,
-        [start[0] + step, start[1]],
-        [start[0], start[1] + step],
-    ];
-    let mut v = s.map(&f);
-    for _ in 0..iters {
-        let mut idx = [0, 1, 2];
-        idx.sort_by(|&i, &j| v[i].total_cmp(&v[j]));
-        let (b, m, w) = (idx[0], idx[1], idx[2]);
-        let c = [(s[b][0] + s[m][0]) / 2.0, (s[b][1] + s[m][1]) / 2.0];
-        let at = |t: f64| [c[0] + t * (s[w][0] - c[0]), c[1] + t * (s[w][1] - c[1])];
-        let r = at(-1.0);
-        let fr = f(r);
-        if fr < v[b] {
-            let e = at(-2.0);
-            let fe = f(e);
-            (s[w], v[w]) = if fe < fr { (e, fe) } else { (r, fr) };
-        } else if fr < v[m] {
-            (s[w], v[w]) = (r, fr);
-        } else {
-            let k = at(0.5);
-            let fk = f(k);
-            if fk < v[w] {
-                (s[w], v[w]) = (k, fk);
-            } else {
-                for i in [m, w] {
-                    s[i] = [(s[i][0] + s[b][0]) / 2.0, (s[i][1] + s[b][1]) / 2.0];
-                    v[i] = f(s[i]);
-                }
-            }
-        }
-    }
-    let best = (0..3).min_by(|&i, &j| v[i].total_cmp(&v[j])).unwrap();
-    s[best]
-}
-
 fn main() {
     let (ka, kb) = SG_KARIS;
     let (e0, x0) = max_err(ka, kb);
@@ -78,9 +41,10 @@ fn main() {
     );
     // From Karis's constants and from a point away from them: both must agree (a minimax
     // with kinks can stall a simplex; a disagreement would show it).
-    let fit = |mut p: [f64; 2]| {
-        for step in [0.5, 0.05, 0.005, 0.0005] {
-            p = nelder_mead(|q| max_err(q[0], q[1]).0, p, step, 200);
+    let fit = |start: [f64; 2]| {
+        let mut p = start.to_vec();
+        for step in [0.1, 0.01, 0.001, 0.0001] {
+            p = nelder_mead(&|q| max_err(q[0], q[1]).0, &p, step, 200).0;
         }
         p
     };

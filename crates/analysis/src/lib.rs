@@ -27,6 +27,7 @@ pub mod pareto;
 pub mod plot;
 pub mod range;
 pub mod reproduce;
+pub mod simplex;
 pub mod speed;
 
 pub use fastbrdf::{Error, Result};

@@ -42,11 +42,7 @@ fn main() {
                 let t = Instant::now();
                 out.par_chunks_mut(16384).enumerate().for_each(|(i, o)| {
                     let lo = i * 16384;
-                    let part = match input {
-                        Input::Cos(x) => Input::Cos(&x[lo..lo + o.len()]),
-                        Input::Dirs(w) => Input::Dirs(w.map(|s| &s[lo..lo + o.len()])),
-                    };
-                    k.eval(part, o).unwrap();
+                    k.eval(input.slice(lo, lo + o.len()), o).unwrap();
                 });
                 par.push(t.elapsed().as_secs_f64());
             }

@@ -30,13 +30,25 @@ pub struct Worst {
 }
 
 /// A scalar function of `x` for one parameter value.
+///
+/// Split-sum terms (`Kind::Env`) take `alpha` as an input, not a parameter: their curve at
+/// `alpha = value` reads `x` in (0, 1] as the scale at `cos_v = x` and `x` in (1, 2] as the
+/// bias at `cos_v = x - 1`, so that one error bound covers both terms.
 pub struct Curve {
     model: Model<f64>,
+    /// `Kind::Env`: the bias term and the `alpha` input.
+    env: Option<(Model<f64>, f64)>,
 }
 
 impl Curve {
     /// Builds `id` with the parameter `name = value` (other parameters at their defaults).
     pub fn new(id: &str, name: &str, value: f64) -> Result<Self> {
+        if registry::find(id).is_ok_and(|e| e.info.kind == crate::Kind::Env) && name == "alpha" {
+            return Ok(Self {
+                model: registry::build::<f64>(id, &[("term", "scale")])?,
+                env: Some((registry::build::<f64>(id, &[("term", "bias")])?, value)),
+            });
+        }
         let v = value.to_string();
         let given: Vec<(&str, &str)> = if name.is_empty() {
             vec![]
@@ -45,6 +57,7 @@ impl Curve {
         };
         Ok(Self {
             model: registry::build::<f64>(id, &given)?,
+            env: None,
         })
     }
 
@@ -65,6 +78,11 @@ impl Curve {
                 cos_vh: 1.0,
             }),
             Model::Fresnel(f) => f.f(x),
+            Model::Env(scale) => match &self.env {
+                Some((Model::Env(bias), alpha)) if x > 1.0 => bias.e(x - 1.0, *alpha),
+                Some((_, alpha)) => scale.e(x, *alpha),
+                None => scale.e(x, 0.3),
+            },
             Model::Brdf(b) => {
                 let w = [x.sin(), 0.0, x.cos()];
                 b.eval(w, w)
@@ -89,6 +107,11 @@ pub fn samples(model: &Model<f64>, p: f64) -> Vec<f64> {
             xs
         }
         Model::Shadowing(_) | Model::Fresnel(_) => (1..=4000).map(|i| i as f64 / 4000.0).collect(),
+        // Both terms (see `Curve`), denser at grazing where the terms bend.
+        Model::Env(_) => (1..=200)
+            .map(|i| (i as f64 / 200.0).powi(3))
+            .flat_map(|x| [x, 1.0 + x])
+            .collect(),
         Model::Brdf(_) => {
             let top = 89.9f64.to_radians();
             let mut xs: Vec<f64> = (0..=4000)
@@ -364,6 +387,18 @@ pub fn f32_worst(id: &str, given: &[(&str, &str)]) -> Result<(f64, String)> {
                 note(mixed_error(a.f(c32), b.f(c32 as f64)), &|| {
                     format!("cos={c32}")
                 });
+            }
+        }
+        (Model::Env(a), Model::Env(b)) => {
+            for i in 0..=40 {
+                let c32 = (i as f32 / 40.0).powi(2);
+                for j in 0..=20 {
+                    let a32 = 0.005f32 + (1.0 - 0.005) * (j as f32 / 20.0).powi(2);
+                    note(
+                        mixed_error(a.e(c32, a32), b.e(c32 as f64, a32 as f64)),
+                        &|| format!("cos_v={c32} alpha={a32}"),
+                    );
+                }
             }
         }
         (Model::Brdf(a), Model::Brdf(b)) => {
@@ -699,6 +734,16 @@ fn eval_both(
             let (s32, s64) = shadow_inputs(wi, wo, u[4] < 0.5);
             let (v32, v64) = (a.g(&s32), b.g(&s64));
             (judge(v32, v64), format!("{s32:?} f32={v32} f64={v64}"))
+        }
+        (Model::Env(a), Model::Env(b)) => {
+            let c = cos_at(u[0], mode) as f32;
+            let (lo, hi) = crate::params::ALPHA.range();
+            let al = (lo * (hi / lo).powf(u[1])) as f32;
+            let (v32, v64) = (a.e(c, al), b.e(c as f64, al as f64));
+            (
+                judge(v32, v64),
+                format!("cos_v={c} alpha={al} f32={v32} f64={v64}"),
+            )
         }
         (Model::Brdf(a), Model::Brdf(b)) => {
             let (wi, wo) = pair_at(u, mode, target);

@@ -17,6 +17,9 @@ pub enum Kind {
     Fresnel,
     /// A full BRDF of `(wi, wo)` in the local frame, without the cosine factor.
     Brdf,
+    /// A split-sum term of image-based lighting (the scale or bias of `f0` in the directional
+    /// albedo of a specular BRDF): input columns `cos_v` and `alpha`.
+    Env,
 }
 
 impl Kind {
@@ -28,6 +31,7 @@ impl Kind {
             Kind::Shadowing => "shadowing",
             Kind::Fresnel => "fresnel",
             Kind::Brdf => "brdf",
+            Kind::Env => "env",
         }
     }
 }
@@ -44,6 +48,7 @@ impl Kind {
             Kind::Shadowing => (&["cos_v"], &["cos_l"]),
             Kind::Fresnel => (&["cos_vh"], &[]),
             Kind::Brdf => (&["wi_x", "wi_y", "wi_z", "wo_x", "wo_y", "wo_z"], &[]),
+            Kind::Env => (&["cos_v", "alpha"], &[]),
         }
     }
 
@@ -56,6 +61,7 @@ impl Kind {
             Kind::Shadowing => "cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32",
             Kind::Fresnel => "cos_vh: f32",
             Kind::Brdf => "wi: vec3<f32>, wo: vec3<f32>",
+            Kind::Env => "cos_v: f32, alpha: f32",
         }
     }
 }
@@ -90,7 +96,7 @@ impl Kind {
                 param: "d",
                 extra: &[],
             },
-            Kind::Shadowing | Kind::Fresnel => Shading::Not,
+            Kind::Shadowing | Kind::Fresnel | Kind::Env => Shading::Not,
         }
     }
 }

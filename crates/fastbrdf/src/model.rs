@@ -148,6 +148,14 @@ pub trait Fresnel<T: Real>: Send + Sync {
     fn f(&self, cos_vh: T) -> T;
 }
 
+/// A split-sum term of image-based lighting (`Kind::Env`).
+pub trait Env<T: Real>: Send + Sync {
+    /// The term at `cos_v` (the view's cosine) and `alpha` (the distribution's roughness).
+    /// NaN or negative `cos_v` act as 0 and values above 1 as 1; `alpha` is clamped into its
+    /// documented range (NaN acts as its smallest value).
+    fn e(&self, cos_v: T, alpha: T) -> T;
+}
+
 /// A full BRDF of (wi, wo) in the local frame, without the cosine factor.
 pub trait Brdf<T: Real>: Send + Sync {
     /// The value on a prepared geometric pair (unit vectors, both above `COS_MIN`).
@@ -177,6 +185,7 @@ pub enum Model<T: Real> {
     Shadowing(Box<dyn Shadowing<T>>),
     Fresnel(Box<dyn Fresnel<T>>),
     Brdf(Box<dyn Brdf<T>>),
+    Env(Box<dyn Env<T>>),
 }
 
 impl<T: Real> Model<T> {
@@ -188,6 +197,7 @@ impl<T: Real> Model<T> {
             Model::Shadowing(_) => Kind::Shadowing,
             Model::Fresnel(_) => Kind::Fresnel,
             Model::Brdf(_) => Kind::Brdf,
+            Model::Env(_) => Kind::Env,
         }
     }
 
@@ -220,6 +230,7 @@ impl<T: Real> Model<T> {
             }
             Model::Fresnel(f) => f.f(v(0)),
             Model::Brdf(b) => b.eval([v(0), v(1), v(2)], [v(3), v(4), v(5)]),
+            Model::Env(e) => e.e(v(0), v(1)),
         }
     }
 
@@ -236,7 +247,15 @@ impl<T: Real> Model<T> {
                     });
                 }
                 let is_cos = !matches!(self, Model::Brdf(_));
-                if is_cos && !(x >= T::zero() && x <= T::one()) {
+                if let (Model::Env(_), &"alpha") = (self, name) {
+                    let (lo, hi) = crate::params::ALPHA.range();
+                    if !(x >= T::c(lo) && x <= T::c(hi)) {
+                        return Err(Error::Domain {
+                            input: (*name).into(),
+                            reason: format!("{x} is outside the domain [{lo}, {hi}] of alpha"),
+                        });
+                    }
+                } else if is_cos && !(x >= T::zero() && x <= T::one()) {
                     return Err(Error::Domain {
                         input: (*name).into(),
                         reason: format!("{x} is outside the domain [0, 1] of a cosine"),

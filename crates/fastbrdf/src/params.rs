@@ -70,6 +70,13 @@ impl ParamSpec {
             ParamKind::Choice { default, .. } => default.into(),
         }
     }
+    /// `(min, max)` of a numeric parameter (panics for a choice: a programming error).
+    pub const fn range(&self) -> (f64, f64) {
+        match self.kind {
+            ParamKind::Number { min, max, .. } => (min, max),
+            ParamKind::Choice { .. } => panic!("range() of a choice parameter"),
+        }
+    }
     /// The range or the choices as text.
     pub fn range_text(&self) -> String {
         match self.kind {

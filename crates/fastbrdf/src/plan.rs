@@ -29,7 +29,7 @@ use std::fmt::Debug;
 use crate::brdf::{cook_torrance, lambert, phong, ward};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
 use crate::microfacet::{
-    beckmann, beckmann_pow, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
+    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
 };
 
 /// A function of one cosine (a specular lobe).
@@ -123,6 +123,29 @@ pub trait FresnelForm: Copy + Debug + Send + Sync + 'static {
     fn wgsl(&self, c: &str, e: &Emit) -> String;
 }
 
+/// A split-sum term of image-based lighting: a function of the view's cosine and the
+/// roughness `alpha` (both inputs, like an engine's look-up table's axes).
+pub trait EnvForm: Copy + Debug + Send + Sync + 'static {
+    /// The WGSL functions of its twin (see [`FresnelForm::WGSL`]).
+    const WGSL: &'static str;
+    /// Whether its batch kernel vectorises (a quadrature loop does not).
+    const SIMD: bool = true;
+    /// The term at `cos_v` in [0, 1] and `alpha` in the documented range (the callers clamp).
+    fn e<T: Real, M: Math<T>>(&self, cos_v: T, alpha: T) -> T;
+    /// The WGSL expression on `v` and `a` (already clamped).
+    fn wgsl(&self, v: &str, a: &str, e: &Emit) -> String;
+}
+
+/// `cos_v` clamped into [0, 1] (NaN to 0) and `alpha` into the documented range of
+/// `params::ALPHA` (NaN to its minimum): the lenient rule of every `Env` model, applied
+/// before the family's formula (scalar models, batch kernels and WGSL alike).
+#[inline(always)]
+pub fn env_args<T: Real>(cos_v: T, alpha: T) -> (T, T) {
+    let (lo, hi) = crate::params::ALPHA.range();
+    let a = crate::real::pos(alpha - T::c(lo)) + T::c(lo);
+    (crate::real::min1(crate::real::pos(cos_v)), a.min(T::c(hi)))
+}
+
 /// A full BRDF of a prepared direction pair.
 pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
     /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
@@ -199,6 +222,7 @@ pub fn library_sources() -> Vec<(&'static str, &'static str)> {
     add(FresnelPlan::wgsl_sources());
     add(vec![("brdf/mod.wgsl", include_str!("brdf/mod.wgsl"))]);
     add(BrdfPlan::wgsl_sources());
+    add(EnvPlan::wgsl_sources());
     add(vec![("runtime.wgsl", RUNTIME)]);
     out
 }
@@ -301,6 +325,11 @@ families!($ BrdfPlan: BrdfForm, with_brdf {
     LobeBrdf(phong::LobeBrdf),
 });
 
+families!($ EnvPlan: EnvForm, with_env {
+    Dfg(env_brdf::Dfg),
+    Approx(env_brdf::Approx),
+});
+
 /// A model instance of any kind.
 #[derive(Clone, Copy, Debug)]
 pub enum Plan {
@@ -309,6 +338,7 @@ pub enum Plan {
     Shadowing(ShadowPlan),
     Fresnel(FresnelPlan),
     Brdf(BrdfPlan),
+    Env(EnvPlan),
 }
 
 // ---------- plan enums implement their family trait by dispatch ----------
@@ -404,6 +434,28 @@ impl FresnelForm for FresnelPlan {
     }
 }
 
+impl EnvForm for EnvPlan {
+    /// A plan's sources are its list's: [`Self::wgsl_sources`].
+    const WGSL: &'static str = "";
+    #[inline]
+    fn e<T: Real, M: Math<T>>(&self, cos_v: T, alpha: T) -> T {
+        with_env!(self, x => x.e::<T, M>(cos_v, alpha))
+    }
+    fn wgsl(&self, v: &str, a: &str, e: &Emit) -> String {
+        with_env!(self, x => x.wgsl(v, a, e))
+    }
+}
+
+impl EnvPlan {
+    /// Whether its batch kernel vectorises.
+    pub fn simd(&self) -> bool {
+        fn of<E: EnvForm>(_: &E) -> bool {
+            E::SIMD
+        }
+        with_env!(self, x => of(x))
+    }
+}
+
 impl BrdfForm for BrdfPlan {
     /// A plan's sources are its list's: [`Self::wgsl_sources`].
     const WGSL: &'static str = "";
@@ -440,6 +492,7 @@ impl Plan {
             Plan::Shadowing(_) => Kind::Shadowing,
             Plan::Fresnel(_) => Kind::Fresnel,
             Plan::Brdf(_) => Kind::Brdf,
+            Plan::Env(_) => Kind::Env,
         }
     }
 
@@ -451,6 +504,7 @@ impl Plan {
             Plan::Shadowing(g) => Model::Shadowing(with_shadow!(g, x => Box::new(Scalar(*x)))),
             Plan::Fresnel(f) => Model::Fresnel(with_fresnel!(f, x => Box::new(Scalar(*x)))),
             Plan::Brdf(b) => Model::Brdf(with_brdf!(b, x => Box::new(Scalar(*x)))),
+            Plan::Env(e) => Model::Env(with_env!(e, x => Box::new(Scalar(*x)))),
         }
     }
 
@@ -460,7 +514,7 @@ impl Plan {
         match self {
             Plan::Lobe(l) => l.normalised(),
             Plan::Brdf(b) => b.claims_energy(),
-            Plan::Distribution(_) | Plan::Shadowing(_) | Plan::Fresnel(_) => false,
+            Plan::Distribution(_) | Plan::Shadowing(_) | Plan::Fresnel(_) | Plan::Env(_) => false,
         }
     }
 
@@ -551,6 +605,14 @@ impl<T: Real, F: FresnelForm> model::Fresnel<T> for Scalar<F> {
     }
 }
 
+impl<T: Real, E: EnvForm> model::Env<T> for Scalar<E> {
+    #[inline]
+    fn e(&self, cos_v: T, alpha: T) -> T {
+        let (v, a) = env_args(cos_v, alpha);
+        self.0.e::<T, Exact>(v, a)
+    }
+}
+
 impl<T: Real, B: BrdfForm> model::Brdf<T> for Scalar<B> {
     #[inline]
     fn eval_pair(&self, p: &Pair<T>) -> T {
@@ -623,6 +685,9 @@ mod tests {
     fn fresnel_src<F: FresnelForm>(_: &F) -> &'static str {
         F::WGSL
     }
+    fn env_src<E: EnvForm>(_: &E) -> &'static str {
+        E::WGSL
+    }
 
     /// Every model's WGSL call names a function of its own family's `.wgsl` file (or a shared
     /// helper of `common.wgsl`; runtime parameters: of `runtime.wgsl`), and every BRDF body's
@@ -652,6 +717,7 @@ mod tests {
                         (f.wgsl("c", &emit), with_fresnel!(f, x => fresnel_src(&x)))
                     }
                     Plan::Brdf(b) => (b.wgsl_body(&emit), ""),
+                    Plan::Env(x) => (x.wgsl("v", "a", &emit), with_env!(x, y => env_src(&y))),
                 };
                 for name in calls(&code) {
                     let ok = if matches!(plan, Plan::Brdf(_)) {

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::kind::Shading;
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{
-    beckmann, beckmann_pow, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
+    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
 };
 use crate::model::{Kind, Lobe, Model};
 use crate::params::{Options, ParamKind, ParamSpec, Params};
@@ -68,6 +68,9 @@ pub static REGISTRY: &[Entry] = &[
     fresnel::ENTRY_SCHLICK_SG_TUNED,
     fresnel::ENTRY_DIELECTRIC,
     fresnel::ENTRY_CONDUCTOR,
+    env_brdf::ENTRY_DFG,
+    env_brdf::ENTRY_APPROX,
+    env_brdf::ENTRY_APPROX_TUNED,
     // Full BRDFs.
     cook_torrance::ENTRY,
     ward::ENTRY,

@@ -72,6 +72,10 @@ fn eval_in_domain<T: Real>(m: &Model<T>, u: [f64; 6]) -> T {
             cos_vh: c(u[3].max(1e-3)),
         }),
         Model::Fresnel(f) => f.f(c(u[0])),
+        Model::Env(e) => {
+            let (lo, hi) = fastbrdf::params::ALPHA.range();
+            e.e(c(u[0]), c(lo + (hi - lo) * u[1]))
+        }
         Model::Brdf(b) => {
             let dir = |a: f64, b: f64| {
                 let z = 1e-3 + (1.0 - 1e-3) * a;
@@ -116,6 +120,7 @@ proptest! {
                     s.g(&ShadowInput { cos_v: 0.5, cos_l: Some(x), cos_h: 0.9, cos_vh: 0.7 }),
                 ],
                 Model::Fresnel(f) => vec![f.f(x)],
+                Model::Env(e) => vec![e.e(x, 0.3), e.e(0.5, x), e.e(x, x)],
                 Model::Brdf(b) => vec![
                     b.eval([x, v[1], v[2]], [v[0], v[1], 1.0]),
                     b.eval([0.0, 0.0, 0.0], [v[0], v[1], 1.0]),

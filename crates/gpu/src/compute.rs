@@ -25,6 +25,8 @@ pub enum GpuInput<'a> {
     Shadow([&'a [f32]; 4]),
     /// Directions `wi_x, wi_y, wi_z, wo_x, wo_y, wo_z` (BRDFs).
     Dirs([&'a [f32]; 6]),
+    /// Split-sum terms: `cos_v, alpha`.
+    Env([&'a [f32]; 2]),
 }
 
 impl<'a> GpuInput<'a> {
@@ -44,6 +46,7 @@ impl<'a> GpuInput<'a> {
             GpuInput::Cos(x) => GpuInput::Cos(&x[lo..hi]),
             GpuInput::Shadow(c) => GpuInput::Shadow(c.map(|s| &s[lo..hi])),
             GpuInput::Dirs(c) => GpuInput::Dirs(c.map(|s| &s[lo..hi])),
+            GpuInput::Env(c) => GpuInput::Env(c.map(|s| &s[lo..hi])),
         }
     }
 
@@ -52,6 +55,7 @@ impl<'a> GpuInput<'a> {
             GpuInput::Cos(x) => vec![x],
             GpuInput::Shadow(c) => c.to_vec(),
             GpuInput::Dirs(c) => c.to_vec(),
+            GpuInput::Env(c) => c.to_vec(),
         }
     }
 }
@@ -61,6 +65,7 @@ impl<'a> From<fastbrdf::batch::Input<'a>> for GpuInput<'a> {
         match i {
             fastbrdf::batch::Input::Cos(x) => GpuInput::Cos(x),
             fastbrdf::batch::Input::Dirs(w) => GpuInput::Dirs(w),
+            fastbrdf::batch::Input::Env(x) => GpuInput::Env(x),
         }
     }
 }
@@ -69,6 +74,7 @@ impl<'a> From<fastbrdf::batch::Input<'a>> for GpuInput<'a> {
 pub fn columns_of(kind: Kind) -> usize {
     match kind {
         Kind::Lobe | Kind::Distribution | Kind::Fresnel => 1,
+        Kind::Env => 2,
         Kind::Shadowing => 4,
         Kind::Brdf => 6,
     }
@@ -79,6 +85,7 @@ fn entry_point(kind: Kind, function: &str) -> String {
     let col = |k: usize| format!("inp[{k}u * dims.n + i]");
     let call = match kind {
         Kind::Lobe | Kind::Distribution | Kind::Fresnel => format!("{function}({})", col(0)),
+        Kind::Env => format!("{function}({}, {})", col(0), col(1)),
         Kind::Shadowing => format!("{function}({}, {}, {}, {})", col(0), col(1), col(2), col(3)),
         Kind::Brdf => format!(
             "{function}(vec3<f32>({}, {}, {}), vec3<f32>({}, {}, {}))",

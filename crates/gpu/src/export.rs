@@ -323,6 +323,10 @@ fn header_text(
         Kind::Distribution => "(cos_h) with cos_h = n.h",
         Kind::Shadowing => "(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided",
         Kind::Fresnel => "(cos_vh) with cos_vh = v.h",
+        Kind::Env => {
+            "(cos_v, alpha): n.v and the GGX roughness alpha (the look-up table's axes); \
+             specular albedo = f0 scale + bias"
+        }
         Kind::Brdf => {
             "(wi, wo): directions in the local frame (normal +z, need not be unit), \
              value without the cosine factor"
@@ -652,6 +656,21 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
             }
         }
     }
+    // A split-sum term's roughness is an input, not a parameter: one more slider for it.
+    let mut env_alpha = String::new();
+    if target.info.kind == Kind::Env {
+        let (lo, hi) = fastbrdf::params::ALPHA.range();
+        let s = slider("alpha", lo, hi, 0.3);
+        let _ = writeln!(
+            sliders,
+            "float {} {} {} {}",
+            s.uniform,
+            f32_text(s.lo),
+            f32_text(s.hi),
+            s.default_text
+        );
+        env_alpha = s.param;
+    }
     let body = match target.info.kind {
         Kind::Brdf => format!(
             "{params}    vec3 wi = vec3(dot(L, X), dot(L, Y), dot(L, N));\n    vec3 wo = vec3(dot(V, X), dot(V, Y), dot(V, N));\n    return vec3({f}(wi, wo{extra}));"
@@ -664,6 +683,9 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
         Kind::Shadowing => format!(
             "{params}    vec3 H = normalize(L + V);\n    return vec3({f}(dot(N, V), dot(N, L), dot(N, H), dot(V, H){extra}));"
         ),
+        // A split-sum term is a function of the view and the roughness: plotted against the
+        // view angle at the `alpha` slider's value.
+        Kind::Env => format!("{params}    return vec3({f}(dot(N, V), {env_alpha}{extra}));"),
         _ => unreachable!("lobes and distributions are shaded through a BRDF"),
     };
     let functions = glsl_functions(&target.module_source(), &call_of(target), target.info.id)?;

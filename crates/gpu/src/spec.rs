@@ -20,7 +20,7 @@
 use crate::library;
 use fastbrdf::model::{Kind, ModelInfo};
 use fastbrdf::params::Value;
-use fastbrdf::plan::{BrdfForm, DistForm, FresnelForm, LobeForm, Plan, ShadowForm};
+use fastbrdf::plan::{BrdfForm, DistForm, EnvForm, FresnelForm, LobeForm, Plan, ShadowForm};
 use fastbrdf::{Result, registry};
 
 pub use fastbrdf::wgsl::{Emit, lit};
@@ -231,5 +231,16 @@ fn body(e: &Emit, plan: &Plan) -> String {
             )
         }
         Plan::Brdf(b) => b.wgsl_body(e),
+        Plan::Env(x) => {
+            // The scalar model's rule (plan::env_args): cos_v into [0, 1], alpha into its
+            // documented range, NaN to the lower end (WGSL's max/min may pass NaN through).
+            let (lo, hi) = fastbrdf::params::ALPHA.range();
+            format!(
+                "    let v = select(0.0, min(cos_v, 1.0), cos_v > 0.0);\n    let a = select({lo}, min(alpha, {hi}), alpha > {lo});\n    return {};\n",
+                x.wgsl("v", "a", e),
+                lo = fastbrdf::wgsl::lit(lo),
+                hi = fastbrdf::wgsl::lit(hi),
+            )
+        }
     }
 }

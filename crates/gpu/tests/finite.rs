@@ -65,6 +65,14 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
             }
         }
     }
+    // Split-sum terms: every pair of the special values as (cos_v, alpha).
+    let mut cols2: [Vec<f32>; 2] = Default::default();
+    for a in COS {
+        for b in COS {
+            cols2[0].push(a);
+            cols2[1].push(b);
+        }
+    }
     let mut cols4: [Vec<f32>; 4] = Default::default();
     for a in COS {
         for b in COS {
@@ -116,6 +124,12 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
                 ]),
                 (0..cols6[0].len())
                     .map(|i| cols6.iter().map(|c| Some(c[i])).collect())
+                    .collect(),
+            ),
+            Kind::Env => (
+                GpuInput::Env([&cols2[0], &cols2[1]]),
+                (0..cols2[0].len())
+                    .map(|i| vec![Some(cols2[0][i]), Some(cols2[1][i])])
                     .collect(),
             ),
         };

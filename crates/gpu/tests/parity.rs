@@ -57,6 +57,20 @@ fn cos_grid(kind: Kind, n: f64) -> Vec<f32> {
     v
 }
 
+/// `(cos_v, alpha)` for the split-sum terms: grazing to normal views, the whole alpha range.
+fn env_grid() -> [Vec<f32>; 2] {
+    let mut out: [Vec<f32>; 2] = Default::default();
+    for v in [
+        0.0f32, 1e-3, 0.01, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 0.85, 0.95, 0.99, 1.0,
+    ] {
+        for a in [0.005f32, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0] {
+            out[0].push(v);
+            out[1].push(a);
+        }
+    }
+    out
+}
+
 fn shadow_grid() -> [Vec<f32>; 4] {
     let vals: Vec<f32> = [
         0.0, 1e-3, 0.01, 0.05, 0.1, 0.2, 0.35, 0.5, 0.7, 0.85, 0.95, 0.99, 0.999, 1.0,
@@ -220,6 +234,7 @@ fn every_model_matches_the_cpu() {
                 let cos;
                 let sh;
                 let dirs;
+                let env;
                 match info.kind {
                     Kind::Lobe | Kind::Distribution | Kind::Fresnel => {
                         let n: f64 = config
@@ -255,6 +270,13 @@ fn every_model_matches_the_cpu() {
                         inputs = GpuInput::Dirs([
                             &dirs[0], &dirs[1], &dirs[2], &dirs[3], &dirs[4], &dirs[5],
                         ]);
+                    }
+                    Kind::Env => {
+                        env = env_grid();
+                        rows = (0..env[0].len())
+                            .map(|i| vec![Some(env[0][i]), Some(env[1][i])])
+                            .collect();
+                        inputs = GpuInput::Env([&env[0], &env[1]]);
                     }
                 }
                 let mut out = vec![0.0f32; rows.len()];

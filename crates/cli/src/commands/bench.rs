@@ -85,12 +85,7 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
             .map(|(k, v)| (k.as_str(), v.as_str()))
             .collect();
         let kind = fastbrdf::registry::find(id)?.info.kind;
-        let input = if kind == fastbrdf::Kind::Brdf {
-            let d = &inputs.dirs;
-            GpuInput::Dirs([&d[0], &d[1], &d[2], &d[3], &d[4], &d[5]])
-        } else {
-            GpuInput::Cos(&inputs.cos)
-        };
+        let input = GpuInput::from(inputs.input(kind, inputs.cos.len()));
         let m = fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, id, &given, input, budget)?;
         for (variant, v) in [
             ("gpu", m.kernel_evals_per_s),

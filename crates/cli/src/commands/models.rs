@@ -10,7 +10,7 @@ pub struct Args {
     #[arg(long)]
     json: bool,
     /// Only models of this kind.
-    #[arg(long, value_parser = ["lobe", "distribution", "shadowing", "fresnel", "brdf"])]
+    #[arg(long, value_parser = ["lobe", "distribution", "shadowing", "fresnel", "brdf", "env"])]
     kind: Option<String>,
 }
 
@@ -57,6 +57,7 @@ pub fn table(models: &[&fastbrdf::ModelInfo]) -> String {
         Kind::Shadowing,
         Kind::Fresnel,
         Kind::Brdf,
+        Kind::Env,
     ] {
         let rows: Vec<_> = models.iter().filter(|m| m.kind == kind).collect();
         if rows.is_empty() {

@@ -29,8 +29,8 @@ use crate::error::{Error, Result};
 use crate::math::{Fast, FastFma, Math};
 use crate::model::Kind;
 use crate::plan::{
-    BrdfForm, BrdfPlan, DistForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist, with_fresnel,
-    with_lobe, with_shadow,
+    BrdfForm, BrdfPlan, DistForm, EnvForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist,
+    with_env, with_fresnel, with_lobe, with_shadow,
 };
 use crate::registry;
 use crate::vec3::COS_MIN;
@@ -120,6 +120,11 @@ pub trait Op1: Send + Sync + 'static {
     fn f<M: Math<f32>>(&self, x: f32) -> f32;
 }
 
+/// An operation on two inputs (a split-sum term: `cos_v`, `alpha`).
+pub trait Op2: Send + Sync + 'static {
+    fn f<M: Math<f32>>(&self, x: f32, y: f32) -> f32;
+}
+
 /// An operation on a direction pair (wi, wo), not normalised.
 pub trait Op6: Send + Sync + 'static {
     fn f<M: Math<f32>>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32;
@@ -162,6 +167,16 @@ impl<F: FresnelForm> Op1 for FresnelOp<F> {
     }
 }
 
+/// A split-sum term with `Env::e`'s rules (`plan::env_args`).
+struct EnvOp<E>(E);
+impl<E: EnvForm> Op2 for EnvOp<E> {
+    #[inline(always)]
+    fn f<M: Math<f32>>(&self, v: f32, a: f32) -> f32 {
+        let (v, a) = crate::plan::env_args(v, a);
+        self.0.e::<f32, M>(v, a)
+    }
+}
+
 /// A BRDF on the pair set-up of the scalar `Pair::new` (in f64, branch-free).
 struct BrdfOp<B>(B);
 impl<B: BrdfForm> Op6 for BrdfOp<B> {
@@ -177,6 +192,13 @@ impl<B: BrdfForm> Op6 for BrdfOp<B> {
 fn map1_body<O: Op1, M: Math<f32>>(op: &O, x: &[f32], out: &mut [f32]) {
     for (o, &c) in out.iter_mut().zip(x) {
         *o = op.f::<M>(c);
+    }
+}
+
+#[inline(always)]
+fn map2_body<O: Op2, M: Math<f32>>(op: &O, x: [&[f32]; 2], out: &mut [f32]) {
+    for ((o, &a), &b) in out.iter_mut().zip(x[0]).zip(x[1]) {
+        *o = op.f::<M>(a, b);
     }
 }
 
@@ -215,6 +237,14 @@ macro_rules! isa_variants {
 }
 
 isa_variants!(map1_body, map1_avx512, map1_avx2, map1_plain, Op1, &[f32]);
+isa_variants!(
+    map2_body,
+    map2_avx512,
+    map2_avx2,
+    map2_plain,
+    Op2,
+    [&[f32]; 2]
+);
 isa_variants!(
     map6_body,
     map6_avx512,
@@ -278,6 +308,18 @@ fn run1<O: Op1>(isa: Isa, op: &O, x: &[f32], out: &mut [f32]) {
     }
 }
 
+fn run2<O: Op2>(isa: Isa, op: &O, x: [&[f32]; 2], out: &mut [f32]) {
+    let _ftz = FlushToZero::on();
+    match isa {
+        // SAFETY: as in `run1`.
+        #[cfg(target_arch = "x86_64")]
+        Isa::Avx512 => unsafe { map2_avx512(op, x, out) },
+        #[cfg(target_arch = "x86_64")]
+        Isa::Avx2Fma => unsafe { map2_avx2(op, x, out) },
+        _ => map2_plain(op, x, out),
+    }
+}
+
 fn run6<O: Op6>(isa: Isa, op: &O, w: [&[f32]; 6], out: &mut [f32]) {
     let _ftz = FlushToZero::on();
     match isa {
@@ -299,19 +341,26 @@ pub enum Input<'a> {
     Cos(&'a [f32]),
     /// Direction components `wi_x, wi_y, wi_z, wo_x, wo_y, wo_z` (full BRDFs).
     Dirs([&'a [f32]; 6]),
+    /// `cos_v` and `alpha` (split-sum terms, `Kind::Env`).
+    Env([&'a [f32]; 2]),
 }
 
 impl Input<'_> {
-    fn len(&self) -> usize {
+    /// The number of elements (of the first slice).
+    #[allow(clippy::len_without_is_empty)]
+    pub fn len(&self) -> usize {
         match self {
             Input::Cos(x) => x.len(),
             Input::Dirs(w) => w[0].len(),
+            Input::Env(x) => x[0].len(),
         }
     }
-    fn slice(&self, lo: usize, hi: usize) -> Self {
+    /// Elements `lo..hi` of every slice.
+    pub fn slice(&self, lo: usize, hi: usize) -> Self {
         match *self {
             Input::Cos(x) => Input::Cos(&x[lo..hi]),
             Input::Dirs(w) => Input::Dirs(w.map(|s| &s[lo..hi])),
+            Input::Env(x) => Input::Env(x.map(|s| &s[lo..hi])),
         }
     }
 }
@@ -330,6 +379,21 @@ impl<O: Op1> Imp for Map1<O> {
         if let Input::Cos(x) = input {
             run1(isa, &self.0, x, out)
         }
+    }
+}
+
+struct Map2<O> {
+    op: O,
+    simd: bool,
+}
+impl<O: Op2> Imp for Map2<O> {
+    fn run(&self, isa: Isa, input: Input, out: &mut [f32]) {
+        if let Input::Env(x) = input {
+            run2(isa, &self.op, x, out)
+        }
+    }
+    fn simd(&self) -> bool {
+        self.simd
     }
 }
 
@@ -379,6 +443,10 @@ fn kernel_of(plan: &Plan) -> Option<Box<dyn Imp>> {
         Plan::Brdf(BrdfPlan::CookTorrance(ct)) => cook_torrance_kernel(ct),
         Plan::Brdf(BrdfPlan::LobeBrdf(b)) => lobe_brdf_kernel(b),
         Plan::Brdf(b) => with_brdf!(b, x => brdf_kernel(*x)),
+        Plan::Env(e) => {
+            let simd = e.simd();
+            with_env!(e, x => Box::new(Map2 { op: EnvOp(*x), simd }) as Box<dyn Imp>)
+        }
         Plan::Shadowing(_) => return None,
     })
 }
@@ -408,7 +476,7 @@ impl Kernel {
     pub fn from_plan(id: &'static str, plan: &Plan) -> Result<Self> {
         let imp = kernel_of(plan).ok_or_else(|| Error::WrongKind {
             model: id.into(),
-            expected: "lobe, distribution, fresnel or brdf".into(),
+            expected: "lobe, distribution, fresnel, brdf or env".into(),
             found: "shadowing".into(),
         })?;
         Ok(Self {
@@ -446,6 +514,7 @@ impl Kernel {
         let ok_kind = matches!(
             (self.kind, input),
             (Kind::Brdf, Input::Dirs(_))
+                | (Kind::Env, Input::Env(_))
                 | (
                     Kind::Lobe | Kind::Distribution | Kind::Fresnel,
                     Input::Cos(_)
@@ -454,10 +523,10 @@ impl Kernel {
         if !ok_kind {
             return Err(Error::WrongKind {
                 model: self.id.into(),
-                expected: if self.kind == Kind::Brdf {
-                    "six direction slices".into()
-                } else {
-                    "one slice of cosines".into()
+                expected: match self.kind {
+                    Kind::Brdf => "six direction slices".into(),
+                    Kind::Env => "two slices (cos_v, alpha)".into(),
+                    _ => "one slice of cosines".into(),
                 },
                 found: "the other input shape".into(),
             });
@@ -465,6 +534,7 @@ impl Kernel {
         let lens_ok = match input {
             Input::Cos(x) => x.len() == out.len(),
             Input::Dirs(w) => w.iter().all(|s| s.len() == out.len()),
+            Input::Env(x) => x.iter().all(|s| s.len() == out.len()),
         };
         if !lens_ok {
             return Err(Error::Domain {

@@ -2,6 +2,7 @@
 
 pub mod beckmann;
 pub mod beckmann_pow;
+pub mod env_brdf;
 pub mod fresnel;
 pub mod ggx;
 pub mod kelemen_neumann;
