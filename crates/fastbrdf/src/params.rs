@@ -88,7 +88,7 @@ pub const N: ParamSpec = ParamSpec {
     name: "n",
     kind: ParamKind::Number {
         min: 1.0,
-        max: 10000.0,
+        max: 100000.0,
         default: Some(20.0),
     },
     doc: "specular exponent",
@@ -98,7 +98,7 @@ pub const N: ParamSpec = ParamSpec {
 pub const ALPHA: ParamSpec = ParamSpec {
     name: "alpha",
     kind: ParamKind::Number {
-        min: 0.01,
+        min: 0.005,
         max: 1.0,
         default: Some(0.3),
     },

@@ -221,7 +221,7 @@ fn unknown_ids_and_params_are_errors() {
         .unwrap();
     assert_eq!(
         e.to_string(),
-        "model 'beckmann': parameter alpha = 0 is invalid: expected a number in [0.01, 1]"
+        "model 'beckmann': parameter alpha = 0 is invalid: expected a number in [0.005, 1]"
     );
 }
 

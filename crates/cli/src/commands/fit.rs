@@ -41,6 +41,14 @@ pub struct FitArgs {
     json: bool,
 }
 
+/// A numeric parameter's documented range (the one `Params::resolve` enforces).
+fn number_range(spec: &fastbrdf::params::ParamSpec) -> (f64, f64) {
+    match spec.kind {
+        fastbrdf::params::ParamKind::Number { min, max, .. } => (min, max),
+        fastbrdf::params::ParamKind::Choice { .. } => unreachable!("n and alpha are numbers"),
+    }
+}
+
 pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     let family = Family::parse(&a.family).expect("clap checked it");
     let metric = Metric::parse(&a.metric).expect("clap checked it");
@@ -58,8 +66,14 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         )));
     }
     let (text, step, name, lo, hi) = match (&a.n, &a.m, family.is_microfacet()) {
-        (Some(n), None, false) => (n, 1.0, "n", 1.0, 10000.0),
-        (None, Some(m), true) => (m, 0.01, "alpha", 0.01, 1.0),
+        (Some(n), None, false) => {
+            let (lo, hi) = number_range(&fastbrdf::params::N);
+            (n, 1.0, "n", lo, hi)
+        }
+        (None, Some(m), true) => {
+            let (lo, hi) = number_range(&fastbrdf::params::ALPHA);
+            (m, 0.01, "alpha", lo, hi)
+        }
         (_, _, true) => {
             return Err(CliError::input(
                 "the beckmann-power16 family takes --m RANGE",

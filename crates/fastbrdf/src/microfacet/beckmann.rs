@@ -8,7 +8,7 @@
 //!
 //! `tan^2 = sin^2 / cos^2` with `sin^2` from the half vector (BRDFs) or `(1 - c)(1 + c)`
 //! (standalone), avoiding `1 - c^2` cancellation near the peak.
-//! Parameters: `alpha` in [0.01, 1] (default 0.3). Below `cos_h = COS_MIN` the value is 0 (the
+//! Parameters: `alpha` in [0.005, 1] (default 0.3). Below `cos_h = COS_MIN` the value is 0 (the
 //! exact value there is below 1e-300). Exact models: no error bound; `beckmann`'s
 //! normalisation is tested to 1e-6 for alpha in [0.05, 1].
 
@@ -65,7 +65,7 @@ pub struct Beckmann {
 }
 
 impl Beckmann {
-    /// The normalised distribution; `alpha` in [0.01, 1].
+    /// The normalised distribution; `alpha` in [0.005, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         let a = params::check("beckmann", &params::ALPHA, alpha)?;
         Ok(Self {
@@ -76,7 +76,7 @@ impl Beckmann {
         })
     }
 
-    /// Cook and Torrance's normalisation `1 / (4 m^2)`; `alpha` in [0.01, 1].
+    /// Cook and Torrance's normalisation `1 / (4 m^2)`; `alpha` in [0.005, 1].
     pub fn cook_torrance(alpha: f64) -> Result<Self> {
         let a = params::check("beckmann-ct", &params::ALPHA, alpha)?;
         Ok(Self {

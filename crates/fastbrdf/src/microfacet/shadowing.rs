@@ -12,7 +12,7 @@
 //!   Beckmann). Documented error against `smith`: see `INFO_RATIONAL`. Cost per G1: 6 mul,
 //!   3 add, 2 div, 1 sqrt.
 //!
-//! Parameters: `alpha` in [0.01, 1] (default 0.3) for the Smith terms; the V-cavity has none.
+//! Parameters: `alpha` in [0.005, 1] (default 0.3) for the Smith terms; the V-cavity has none.
 //! Cosines that are NaN or `<= 0` give 0; a cosine of 1 gives G1 = 1.
 
 use crate::entry::Entry;
@@ -59,7 +59,7 @@ pub const INFO_RATIONAL: ModelInfo = ModelInfo {
         reference: "smith",
         metric: Metric::MaxRel,
         zone: Zone::All,
-        param: ("alpha", 0.01, 1.0),
+        param: ("alpha", 0.005, 1.0),
         bound: 0.00313,
     }],
     f32_bound: 1e-6,
@@ -117,7 +117,7 @@ pub struct Smith {
 }
 
 impl Smith {
-    /// `alpha` in [0.01, 1].
+    /// `alpha` in [0.005, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         Ok(Self {
             alpha: K::new(params::check("smith", &params::ALPHA, alpha)?),
@@ -149,7 +149,7 @@ pub struct SmithRational {
 }
 
 impl SmithRational {
-    /// `alpha` in [0.01, 1].
+    /// `alpha` in [0.005, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         Ok(Self {
             alpha: K::new(params::check("smith-rational", &params::ALPHA, alpha)?),
