@@ -29,7 +29,7 @@ use crate::wgsl::Emit;
 pub const ALPHA_X: ParamSpec = ParamSpec {
     name: "alpha_x",
     kind: ParamKind::Number {
-        min: 0.005,
+        min: params::ALPHA_MIN,
         max: 1.0,
         default: None,
     },
@@ -38,7 +38,7 @@ pub const ALPHA_X: ParamSpec = ParamSpec {
 pub const ALPHA_Y: ParamSpec = ParamSpec {
     name: "alpha_y",
     kind: ParamKind::Number {
-        min: 0.005,
+        min: params::ALPHA_MIN,
         max: 1.0,
         default: None,
     },
