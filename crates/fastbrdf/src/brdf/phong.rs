@@ -59,7 +59,7 @@ pub const INFO: ModelInfo = ModelInfo {
     ops: Ops::new(3, 2, 0, 0, 0),
     bounds: &[],
     f32_bound: 8e3,
-    note: "ops are the wrapper's, add the lobe's; albedo at normal incidence = 1 with norm = energy; f32: reflect(wi).wo rounded once to f32 moves flog-normalized-clamped near its zero (slope ~3e6 at n = 1e4, ~3e8 at n = 1e5) by up to 0.3 at n = 1e4 and by its whole height 1 above n ~ 3e4, times coef(n): 85 at n = 1e4, 4758 (the peak) at n = 6.2e4 (check --full), up to the peak 7654 at n = 1e5; at most 1.4 for the other lobes (flog-normalized at n = 1e5)",
+    note: "ops are the wrapper's, add the lobe's; albedo at normal incidence = 1 with norm = energy; f32: reflect(wi).wo rounded once to f32 moves flog-normalized-clamped near its zero (slope ~3e6 at n = 1e4, ~3e8 at n = 1e5) by up to 0.3 at n = 1e4 and by its whole height 1 above n ~ 2e4, times coef(n): 85 at n = 1e4, 4758 (the peak) at n = 6.2e4 (check --full), up to the peak 7654 at n = 1e5; at most 1.4 for the other lobes (flog-normalized at n = 1e5)",
 };
 
 pub const INFO_BLINN: ModelInfo = ModelInfo {
@@ -71,7 +71,7 @@ pub const INFO_BLINN: ModelInfo = ModelInfo {
     ops: Ops::new(1, 0, 1, 0, 0),
     bounds: &[],
     f32_bound: 2e3,
-    note: "ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3 at n = 1e4 and by its whole height 1 above n ~ 3e4, times coef(n) / (4 wi.h): 265 at n = 1e4 (check --full), up to the peak 1914 at n = 1e5; 2 for flog-normalized",
+    note: "ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3 at n = 1e4 and by its whole height 1 above n ~ 2e4, times coef(n) / (4 wi.h): 265 at n = 1e4 (check --full), up to the peak 1914 at n = 1e5; 2 for flog-normalized",
 };
 
 pub const ENTRY: Entry = Entry::new(INFO, |p, models| {
