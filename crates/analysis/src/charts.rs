@@ -102,6 +102,7 @@ pub fn lobes(models: &[String], n: f64) -> Result<Chart, ChartError> {
         y_label: "lobe value".into(),
         series,
         log_y: false,
+        log_x: false,
         equal_aspect: false,
     })
 }
@@ -126,6 +127,7 @@ pub fn signed_error(model: &str, reference: &str, n: f64) -> Result<Chart, Chart
                 .collect(),
         )],
         log_y: false,
+        log_x: false,
         equal_aspect: false,
     })
 }
@@ -168,6 +170,10 @@ pub fn max_error(
         },
         series,
         log_y: true,
+        // Sweeps beyond n = 1000 (to the domain's 1e5) on a log axis; the seeds' figures stop
+        // at 1000 and keep their linear axis.
+        log_x: ns.first().is_some_and(|&a| a > 0.0)
+            && ns.iter().copied().fold(0.0, f64::max) > 1000.0,
         equal_aspect: false,
     })
 }
@@ -204,6 +210,7 @@ pub fn coef(model: &str, ns: &[f64], form: normalize::Form) -> Result<(Chart, Ch
             ),
         ],
         log_y: false,
+        log_x: false,
         equal_aspect: false,
     };
     let residual = Chart {
@@ -217,6 +224,7 @@ pub fn coef(model: &str, ns: &[f64], form: normalize::Form) -> Result<(Chart, Ch
                 .collect(),
         )],
         log_y: true,
+        log_x: false,
         equal_aspect: false,
     };
     Ok((coef, residual))
@@ -274,6 +282,7 @@ pub fn polar(model: &str, params: &[(String, String)], theta_i: f64) -> Result<C
             ),
         ],
         log_y: false,
+        log_x: false,
         equal_aspect: true,
     })
 }
@@ -297,6 +306,7 @@ pub fn albedo(model: &str, params: &[(String, String)]) -> Result<Chart, ChartEr
             Series::new("1 (white furnace)", vec![(0.0, 1.0), (88.0, 1.0)]),
         ],
         log_y: false,
+        log_x: false,
         equal_aspect: false,
     })
 }
@@ -445,6 +455,7 @@ pub fn beckmann_forms(m: f64) -> Result<(Chart, Chart), ChartError> {
         y_label: y.into(),
         series,
         log_y,
+        log_x: false,
         equal_aspect: false,
     };
     Ok((

@@ -1,5 +1,5 @@
 //! `fastbrdf pareto`: every lobe's error against `cos^n` beside its SIMD cost, and the Pareto
-//! front on (cost, max absolute error over n in [8, 1000]).
+//! front on (cost, max absolute error over n in [8, 1e5]).
 
 use crate::plot::Point;
 use crate::speed;
@@ -16,9 +16,9 @@ pub struct ParetoRow {
     pub ops: String,
     /// SIMD evaluations per second, one core, batch 4096 (NaN when unknown).
     pub simd_evals_per_s: f64,
-    pub max_abs_1_1000: f64,
-    pub max_abs_8_1000: f64,
-    pub max_rel_epicentre_8_1000: f64,
+    pub max_abs_1_1e5: f64,
+    pub max_abs_8_1e5: f64,
+    pub max_rel_epicentre_8_1e5: f64,
     /// On the Pareto front.
     pub pareto: bool,
 }
@@ -69,7 +69,7 @@ pub fn row(info: &'static ModelInfo, saved: Option<&speed::Report>) -> ParetoRow
             reference: "pow",
             metric,
             zone,
-            param: ("n", lo, 1000.0),
+            param: ("n", lo, fastbrdf::params::N_MAX),
             bound: 0.0,
         };
         fastbrdf::accuracy::worst(info.id, &b)
@@ -87,21 +87,21 @@ pub fn row(info: &'static ModelInfo, saved: Option<&speed::Report>) -> ParetoRow
             Some(r) => saved_throughput(r, info.id),
             None => throughput(info.id),
         },
-        max_abs_1_1000: worst(1.0, Metric::MaxAbs, Zone::All),
-        max_abs_8_1000: worst(8.0, Metric::MaxAbs, Zone::All),
-        max_rel_epicentre_8_1000: worst(8.0, Metric::MaxRel, Zone::Epicentre),
+        max_abs_1_1e5: worst(1.0, Metric::MaxAbs, Zone::All),
+        max_abs_8_1e5: worst(8.0, Metric::MaxAbs, Zone::All),
+        max_rel_epicentre_8_1e5: worst(8.0, Metric::MaxRel, Zone::Epicentre),
         pareto: false,
     }
 }
 
 /// Marks the rows on the Pareto front of (cost = 1 / throughput, max abs error over n in
-/// [8, 1000]): no other row is at least as good on both and better on one. Then sorts the
+/// [8, 1e5]): no other row is at least as good on both and better on one. Then sorts the
 /// rows fastest first.
 pub fn mark_front(rows: &mut [ParetoRow]) {
     for i in 0..rows.len() {
-        let (ci, ei) = (1.0 / rows[i].simd_evals_per_s, rows[i].max_abs_8_1000);
+        let (ci, ei) = (1.0 / rows[i].simd_evals_per_s, rows[i].max_abs_8_1e5);
         rows[i].pareto = !rows.iter().enumerate().any(|(j, r)| {
-            let (cj, ej) = (1.0 / r.simd_evals_per_s, r.max_abs_8_1000);
+            let (cj, ej) = (1.0 / r.simd_evals_per_s, r.max_abs_8_1e5);
             j != i && cj <= ci && ej <= ei && (cj < ci || ej < ei)
         });
     }
@@ -122,25 +122,25 @@ pub fn rows(saved: Option<&speed::Report>, progress: &dyn Fn()) -> Vec<ParetoRow
     rows
 }
 
-/// The front as a line: (ns per evaluation, max abs error over n in [8, 1000]), cheapest first.
+/// The front as a line: (ns per evaluation, max abs error over n in [8, 1e5]), cheapest first.
 pub fn front(rows: &[ParetoRow]) -> Vec<(f64, f64)> {
     let mut f: Vec<(f64, f64)> = rows
         .iter()
         .filter(|r| r.pareto)
-        .map(|r| (r.ns_per_eval(), r.max_abs_8_1000))
+        .map(|r| (r.ns_per_eval(), r.max_abs_8_1e5))
         .collect();
     f.sort_by(|a, b| a.0.total_cmp(&b.0));
     f
 }
 
 /// Every row as a labelled scatter point (ns per evaluation, max abs error over n in
-/// [8, 1000]), the front highlighted.
+/// [8, 1e5]), the front highlighted.
 pub fn points(rows: &[ParetoRow]) -> Vec<Point> {
     rows.iter()
         .map(|r| Point {
             label: r.model.into(),
             x: r.ns_per_eval(),
-            y: r.max_abs_8_1000,
+            y: r.max_abs_8_1e5,
             highlight: r.pareto,
         })
         .collect()
@@ -155,9 +155,9 @@ mod tests {
             model,
             ops: String::new(),
             simd_evals_per_s: evals,
-            max_abs_1_1000: err,
-            max_abs_8_1000: err,
-            max_rel_epicentre_8_1000: err,
+            max_abs_1_1e5: err,
+            max_abs_8_1e5: err,
+            max_rel_epicentre_8_1e5: err,
             pareto: false,
         }
     }
@@ -222,10 +222,10 @@ mod tests {
                 info.ops.mul, info.ops.add, info.ops.div, info.ops.sqrt, info.ops.transcendental
             )
         );
-        // n in [1, 1000] contains [8, 1000]: its maximum is at least as large.
-        assert!(r.max_abs_8_1000 > 0.0 && r.max_abs_8_1000 < 1.0);
-        assert!(r.max_abs_1_1000 >= r.max_abs_8_1000);
-        assert!(r.max_rel_epicentre_8_1000 > 0.0);
+        // n in [1, 1e5] contains [8, 1e5]: its maximum is at least as large.
+        assert!(r.max_abs_8_1e5 > 0.0 && r.max_abs_8_1e5 < 1.0);
+        assert!(r.max_abs_1_1e5 >= r.max_abs_8_1e5);
+        assert!(r.max_rel_epicentre_8_1e5 > 0.0);
         // A lobe the run lacks has an unknown throughput.
         let flog = lobes().into_iter().find(|i| i.id == "flog").unwrap();
         assert!(super::row(flog, Some(&saved)).simd_evals_per_s.is_nan());

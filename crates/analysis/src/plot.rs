@@ -48,6 +48,8 @@ pub struct Chart {
     pub series: Vec<Series>,
     /// Logarithmic y axis (non-positive values are dropped).
     pub log_y: bool,
+    /// Logarithmic x axis (non-positive values are dropped): sweeps over n to 1e5.
+    pub log_x: bool,
     /// Equal scales on both axes (polar lobe plots).
     pub equal_aspect: bool,
 }
@@ -68,7 +70,9 @@ fn bounds(c: &Chart) -> ((f64, f64), (f64, f64)) {
         .series
         .iter()
         .flat_map(|s| s.points.iter())
-        .filter(|(x, y)| x.is_finite() && y.is_finite() && (!c.log_y || *y > 0.0));
+        .filter(|(x, y)| {
+            x.is_finite() && y.is_finite() && (!c.log_y || *y > 0.0) && (!c.log_x || *x > 0.0)
+        });
     let (mut x0, mut x1, mut y0, mut y1) = (
         f64::INFINITY,
         f64::NEG_INFINITY,
@@ -82,7 +86,7 @@ fn bounds(c: &Chart) -> ((f64, f64), (f64, f64)) {
         return ((0.0, 1.0), (if c.log_y { 1e-3 } else { 0.0 }, 1.0));
     }
     if x1 <= x0 {
-        x1 = x0 + 1.0;
+        x1 = if c.log_x { x0 * 10.0 } else { x0 + 1.0 };
     }
     if c.log_y {
         y0 = y0.max(y1 * 1e-12);
@@ -140,7 +144,12 @@ macro_rules! draw_chart {
                 .points
                 .iter()
                 .copied()
-                .filter(|(x, y)| x.is_finite() && y.is_finite() && (!$c.log_y || *y > 0.0))
+                .filter(|(x, y)| {
+                    x.is_finite()
+                        && y.is_finite()
+                        && (!$c.log_y || *y > 0.0)
+                        && (!$c.log_x || *x > 0.0)
+                })
                 .collect();
             chart
                 .draw_series(LineSeries::new(pts, color.stroke_width(3)))
@@ -170,10 +179,11 @@ where
 {
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let ((x0, x1), (y0, y1)) = bounds(c);
-    if c.log_y {
-        draw_chart!(root, c, x0..x1, (y0..y1).log_scale());
-    } else {
-        draw_chart!(root, c, x0..x1, y0..y1);
+    match (c.log_x, c.log_y) {
+        (false, true) => draw_chart!(root, c, x0..x1, (y0..y1).log_scale()),
+        (false, false) => draw_chart!(root, c, x0..x1, y0..y1),
+        (true, true) => draw_chart!(root, c, (x0..x1).log_scale(), (y0..y1).log_scale()),
+        (true, false) => draw_chart!(root, c, (x0..x1).log_scale(), y0..y1),
     }
     root.present().map_err(|e| e.to_string())?;
     Ok(())

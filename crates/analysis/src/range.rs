@@ -1,4 +1,6 @@
-//! Parameter lists: `LO..HI` (step 1 for `n`, 0.01 otherwise), `LO..HI:STEP`, or `A,B,C`.
+//! Parameter lists: `LO..HI` (step 1 for `n`, 0.01 otherwise), `LO..HI:STEP`, `LO..HI:logK`
+//! (K log-spaced values per decade, both ends included: `1..100000:log50` sweeps the whole
+//! exponent domain in 251 values), or `A,B,C`.
 //!
 //! Every list is checked before anything is computed or printed: numbers must be finite, a
 //! range must not be reversed, its step must be positive, finite and large enough to move the
@@ -33,6 +35,11 @@ pub fn parse(text: &str, default_step: f64) -> Result<Vec<f64>, String> {
         }
     };
     if let Some((lo, rest)) = t.split_once("..") {
+        if let Some((hi, per)) = rest.split_once(':') {
+            if let Some(k) = per.trim().strip_prefix("log") {
+                return log_range(text, num(lo)?, num(hi)?, k);
+            }
+        }
         let (hi, step) = match rest.split_once(':') {
             Some((hi, step)) => (num(hi)?, num(step)?),
             None => (num(rest)?, default_step),
@@ -96,9 +103,70 @@ pub fn parse(text: &str, default_step: f64) -> Result<Vec<f64>, String> {
     Ok(v)
 }
 
+/// `LO..HI:logK`: `K` (an integer in 1..=1000) values per decade from `LO` to `HI`
+/// (`0 < LO <= HI`), geometric, both ends exact.
+fn log_range(text: &str, lo: f64, hi: f64, k: &str) -> Result<Vec<f64>, String> {
+    let per: u32 = k
+        .trim()
+        .parse()
+        .ok()
+        .filter(|k| (1..=1000).contains(k))
+        .ok_or_else(|| format!("'{text}': logK needs K, values per decade, in 1..=1000"))?;
+    if !(lo > 0.0) {
+        return Err(format!("'{text}': a log-spaced range needs LO > 0"));
+    }
+    if hi < lo {
+        return Err(format!(
+            "'{text}' is empty: its upper end is below its lower end"
+        ));
+    }
+    let decades = (hi / lo).log10();
+    let count = (decades * per as f64 - 1e-9).ceil().max(0.0);
+    if !(count + 1.0 <= MAX_VALUES as f64) {
+        return Err(format!(
+            "'{text}' has more than {MAX_VALUES} values; at most {MAX_VALUES} are allowed"
+        ));
+    }
+    let count = count as usize;
+    if count == 0 {
+        return Ok(vec![lo]);
+    }
+    let mut v: Vec<f64> = (0..count)
+        .map(|i| lo * (hi / lo).powf(i as f64 / count as f64))
+        .collect();
+    v.push(hi);
+    if v.windows(2).any(|w| !(w[1] > w[0])) {
+        return Err(format!(
+            "'{text}': its values are too close to tell apart in f64"
+        ));
+    }
+    Ok(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::parse;
+
+    #[test]
+    fn log_spaced_ranges() {
+        let v = parse("1..100000:log50", 1.0).unwrap();
+        assert_eq!(v.len(), 251);
+        assert_eq!((v[0], v[250]), (1.0, 100000.0));
+        assert!((v[50] - 10.0).abs() < 1e-12 && (v[200] - 10000.0).abs() < 1e-9);
+        assert!(v.windows(2).all(|w| w[1] > w[0]));
+        assert_eq!(parse("0.005..1:log10", 0.01).unwrap().len(), 25);
+        assert_eq!(parse("3..3:log10", 1.0).unwrap(), vec![3.0]);
+        for bad in [
+            "0..10:log10",
+            "-1..10:log10",
+            "10..1:log10",
+            "1..10:log0",
+            "1..10:logx",
+            "1..10:log1001",
+        ] {
+            assert!(parse(bad, 1.0).is_err(), "{bad}");
+        }
+    }
 
     #[test]
     fn ranges_and_lists() {

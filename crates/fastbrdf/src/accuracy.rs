@@ -252,16 +252,56 @@ pub fn golden_max(f: &impl Fn(f64) -> f64, mut a: f64, mut b: f64, iters: usize)
     if f1 > f2 { (x1, f1) } else { (x2, f2) }
 }
 
-/// The parameter values a bound is checked on: n = lo..=hi in steps of 1 for lobes, alpha
-/// in steps of 0.01 for the rest.
+/// The parameter values a bound is checked on: for lobes n = lo..=hi in steps of 1 up to
+/// [`N_STEP_MAX`], then [`PER_DECADE`] log-spaced values per decade to `hi`; for the rest
+/// alpha log-spaced ([`PER_DECADE`] per decade) below [`ALPHA_STEP_MIN`], then in steps of
+/// 0.01. Ranges inside the stepped part (the seeds' n = 1..1000, alpha = 0.05..0.6) get the
+/// same grid as before the domain was widened (issue 14); the log-spaced tails keep a bound
+/// over n up to 1e5 at about 1.2 times the cost of one over 1..1000.
 pub fn param_values(bound: &ErrorBound) -> Vec<f64> {
     let (name, lo, hi) = bound.param;
-    let step = if name == "n" { 1.0 } else { 0.01 };
-    let count = ((hi - lo) / step).round() as usize;
-    (0..=count)
-        .map(|i| (lo + i as f64 * step).min(hi))
-        .collect()
+    let mut out = vec![];
+    let log_part = |out: &mut Vec<f64>, a: f64, b: f64| {
+        // a, a r, a r^2, ... below b (b itself is left to the caller).
+        let count = ((b / a).log10() * PER_DECADE).ceil().max(1.0) as usize;
+        out.extend((0..count).map(|i| a * (b / a).powf(i as f64 / count as f64)));
+    };
+    if name == "n" {
+        let top = hi.min(N_STEP_MAX);
+        if lo <= top {
+            let count = ((top - lo) / 1.0).round() as usize;
+            out.extend((0..=count).map(|i| (lo + i as f64).min(top)));
+        }
+        if hi > N_STEP_MAX {
+            let a = lo.max(N_STEP_MAX);
+            log_part(&mut out, a, hi);
+            out.retain(|&x| x >= lo);
+            out.push(hi);
+        }
+    } else {
+        // Small positive slopes logarithmically; a range from 0 (Fresnel's f0) linearly.
+        let log = lo > 0.0 && lo < ALPHA_STEP_MIN;
+        if log {
+            log_part(&mut out, lo, hi.min(ALPHA_STEP_MIN));
+        }
+        let a = if log { lo.max(ALPHA_STEP_MIN) } else { lo };
+        if a <= hi {
+            let count = ((hi - a) / 0.01).round() as usize;
+            out.extend((0..=count).map(|i| (a + i as f64 * 0.01).min(hi)));
+        } else {
+            out.push(hi);
+        }
+    }
+    out.dedup();
+    out
 }
+
+/// Above this exponent [`param_values`] steps n logarithmically.
+pub const N_STEP_MAX: f64 = 1000.0;
+/// Below this slope [`param_values`] steps alpha logarithmically.
+pub const ALPHA_STEP_MIN: f64 = 0.05;
+/// Log-spaced parameter values per decade in [`param_values`].
+pub const PER_DECADE: f64 = 100.0;
 
 /// The worst error over the bound's whole parameter range.
 pub fn worst(model_id: &str, bound: &ErrorBound) -> Result<Worst> {
@@ -427,11 +467,13 @@ pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, 
         match name {
             "n" => vec![
                 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0, 16.0, 20.0, 33.0, 50.0, 100.0, 128.0,
-                200.0, 333.0, 500.0, 777.0, 1000.0, 2000.0, 5000.0, 10000.0,
+                200.0, 333.0, 500.0, 777.0, 1000.0, 2000.0, 5000.0, 10000.0, 30000.0, 100000.0,
             ],
             // 0.7072 sits just above 1/sqrt(2), where seed 000's exponent 2/alpha^2 - 4 changes sign.
             "alpha" | "alpha_x" | "alpha_y" => {
-                vec![0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7072, 0.85, 1.0]
+                vec![
+                    0.005, 0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7072, 0.85, 1.0,
+                ]
             }
             "f0" => vec![0.0, 0.04, 0.5, 1.0],
             "eta" => vec![0.01, 0.5, 1.0, 1.33, 1.5, 3.0, 10.0],
@@ -520,8 +562,8 @@ pub struct Found {
 /// of [`domain_configs`] and, for `eta`, 1 (where the Fresnel terms vanish).
 fn special_values(name: &str, min: f64, max: f64) -> Vec<f64> {
     let mut v = match name {
-        "n" => vec![1.0, 2.0, 10.0, 100.0, 1000.0, 5000.0],
-        "alpha" | "alpha_x" | "alpha_y" => vec![0.05, 0.1, 0.5, 0.7072],
+        "n" => vec![1.0, 2.0, 10.0, 100.0, 1000.0, 5000.0, 30000.0],
+        "alpha" | "alpha_x" | "alpha_y" => vec![0.01, 0.05, 0.1, 0.5, 0.7072],
         "eta" => vec![1.0, 0.5, 1.5, 0.99, 1.01],
         "k" => vec![0.5, 3.0],
         _ => vec![0.5 * (min + max)],
@@ -777,6 +819,7 @@ pub fn f32_search(info: &crate::ModelInfo, size: SearchSize) -> Found {
     let dims = match info.kind {
         crate::Kind::Brdf => 4,
         crate::Kind::Shadowing => 5,
+        crate::Kind::Env => 2,
         _ => 1,
     };
     let mut state = size.seed ^ (info.id.len() as u64).wrapping_mul(0x9E37_79B9);

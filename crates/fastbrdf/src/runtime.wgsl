@@ -21,8 +21,8 @@
 //   (crates/gpu/src/runtime_fits.rs; crates/gpu/tests/runtime.rs regenerates it, compares, and
 //   bounds it).
 // Measured on lavapipe against the f64 CPU models (crates/gpu/tests/runtime.rs, which asserts these
-// rounded up), n in [1, 10000]: the lobes' mixed error at most 4.1e-7 (cubic), 2.2e-7 (cubic3),
-// 3.2e-7 (rational), 1.6e-7 (cubic-rational), 1.1e-6 (cubic-rational-tuned near n = 1, where its
+// rounded up), n in [1, 100000]: the lobes' mixed error at most 4.1e-7 (cubic), 2.2e-7 (cubic3),
+// 3.4e-7 (rational), 1.2e-6 (cubic-rational near n = 9e4; 1.6e-7 to n = 1e4), 1.1e-6 (cubic-rational-tuned near n = 1, where its
 // level is clamped to 0.02 and d0 = 1 + n xq cancels); the cubics' cut within 44 x 2^-24 of the
 // CPU's (a flat minimum; equal from n ~ 100 on); Int(n) within 4e-7 relative, except schlick,
 // schlick-modified and rational (1.8e-6, the tail_3 closed form near v = 0.5) and
@@ -147,7 +147,7 @@ fn fb_rt_three_point(n: f32) -> FbRtCubic {
     return fb_rt_cubic_finish(f0r, f0rl, f0rl - frlm, xr, xl);
 }
 
-/// cubic (seed 003) with a runtime n in [1, 10000]: the Hermite cubic at level 0.5, its
+/// cubic (seed 003) with a runtime n in [1, 100000]: the Hermite cubic at level 0.5, its
 /// coefficients and cut computed here in f32 (twin: fastbrdf::lobes::cubic, `cubic`).
 fn fb_rt_cubic(c: f32, n: f32) -> f32 {
     let s = fb_rt_hermite(n, 0.5, fb_rt_expm1(FB_RT_LN_HALF / n));
@@ -432,76 +432,76 @@ fn fb_rt_lobe_integral_sg_tuned(n: f32) -> f32 {
 /// acts above it (generated).
 const FB_RT_FLOG_CLAMP_N0: f32 = 3.7576509;
 
-/// n Int(n) of gauss, n in [1, 10000]: Chebyshev series of degree 20 in
-/// t = 2.0002 / n + -1.0002 (generated; see crates/gpu/src/runtime_fits.rs).
+/// n Int(n) of gauss, n in [1, 100000]: Chebyshev series of degree 20 in
+/// t = 2.00002 / n + -1.00002 (generated; see crates/gpu/src/runtime_fits.rs).
 fn fb_rt_fit_gauss(n: f32) -> f32 {
-    let t = 2.0002 / n + -1.0002;
+    let t = 2.00002 / n + -1.00002;
     let t2 = 2.0 * t;
-    let b20 = -5.1485923e-8;
-    let b19 = 9.156025e-8 + t2 * b20;
-    let b18 = -8.905237e-8 + t2 * b19 - b20;
-    let b17 = -1.1688014e-8 + t2 * b18 - b19;
-    let b16 = 2.585358e-7 + t2 * b17 - b18;
-    let b15 = -5.983451e-7 + t2 * b16 - b17;
-    let b14 = 7.2931425e-7 + t2 * b15 - b16;
-    let b13 = -1.2268849e-8 + t2 * b14 - b15;
-    let b12 = -2.2364782e-6 + t2 * b13 - b14;
-    let b11 = 5.5442274e-6 + t2 * b12 - b13;
-    let b10 = -5.9601175e-6 + t2 * b11 - b12;
-    let b9 = -5.4982293e-6 + t2 * b10 - b11;
-    let b8 = 3.6152407e-5 + t2 * b9 - b10;
-    let b7 = -6.245591e-5 + t2 * b8 - b9;
-    let b6 = -1.7761116e-5 + t2 * b7 - b8;
-    let b5 = 0.00028423633 + t2 * b6 - b7;
-    let b4 = 0.00036039134 + t2 * b5 - b6;
-    let b3 = -0.00995996 + t2 * b4 - b5;
-    let b2 = 0.06590147 + t2 * b3 - b4;
-    let b1 = -0.3107112 + t2 * b2 - b3;
-    return 0.61314386 + t * b1 - b2;
+    let b20 = -5.1605966e-8;
+    let b19 = 9.1867314e-8 + t2 * b20;
+    let b18 = -8.958634e-8 + t2 * b19 - b20;
+    let b17 = -1.1077397e-8 + t2 * b18 - b19;
+    let b16 = 2.5833597e-7 + t2 * b17 - b18;
+    let b15 = -5.9932654e-7 + t2 * b16 - b17;
+    let b14 = 7.320163e-7 + t2 * b15 - b16;
+    let b13 = -1.5898484e-8 + t2 * b14 - b15;
+    let b12 = -2.2352535e-6 + t2 * b13 - b14;
+    let b11 = 5.5509136e-6 + t2 * b12 - b13;
+    let b10 = -5.9776685e-6 + t2 * b11 - b12;
+    let b9 = -5.4797533e-6 + t2 * b10 - b11;
+    let b8 = 3.6164412e-5 + t2 * b9 - b10;
+    let b7 = -6.253333e-5 + t2 * b8 - b9;
+    let b6 = -1.7653887e-5 + t2 * b7 - b8;
+    let b5 = 0.0002842666 + t2 * b6 - b7;
+    let b4 = 0.0003603629 + t2 * b5 - b6;
+    let b3 = -0.0099627515 + t2 * b4 - b5;
+    let b2 = 0.06591882 + t2 * b3 - b4;
+    let b1 = -0.31076837 + t2 * b2 - b3;
+    return 0.6131864 + t * b1 - b2;
 }
 
-/// n Int(n) of flog, n in [1, 10000]: Chebyshev series of degree 12 in
-/// t = 2.0002 / n + -1.0002 (generated; see crates/gpu/src/runtime_fits.rs).
+/// n Int(n) of flog, n in [1, 100000]: Chebyshev series of degree 12 in
+/// t = 2.00002 / n + -1.00002 (generated; see crates/gpu/src/runtime_fits.rs).
 fn fb_rt_fit_flog(n: f32) -> f32 {
-    let t = 2.0002 / n + -1.0002;
+    let t = 2.00002 / n + -1.00002;
     let t2 = 2.0 * t;
-    let b12 = 7.754741e-12;
-    let b11 = -1.0812186e-10 + t2 * b12;
-    let b10 = 1.4005759e-9 + t2 * b11 - b12;
-    let b9 = -1.6846545e-8 + t2 * b10 - b11;
-    let b8 = 1.8715849e-7 + t2 * b9 - b10;
-    let b7 = -1.908842e-6 + t2 * b8 - b9;
-    let b6 = 1.7750577e-5 + t2 * b7 - b8;
-    let b5 = -0.00014934114 + t2 * b6 - b7;
-    let b4 = 0.0011270434 + t2 * b5 - b6;
-    let b3 = -0.00755952 + t2 * b4 - b5;
-    let b2 = 0.04465935 + t2 * b3 - b4;
-    let b1 = -0.23082344 + t2 * b2 - b3;
-    return 0.52241427 + t * b1 - b2;
+    let b12 = 7.764426e-12;
+    let b11 = -1.0824708e-10 + t2 * b12;
+    let b10 = 1.4020693e-9 + t2 * b11 - b12;
+    let b9 = -1.6862954e-8 + t2 * b10 - b11;
+    let b8 = 1.8732338e-7 + t2 * b9 - b10;
+    let b7 = -1.910345e-6 + t2 * b8 - b9;
+    let b6 = 1.7762872e-5 + t2 * b7 - b8;
+    let b5 = -0.00014943026 + t2 * b6 - b7;
+    let b4 = 0.0011276056 + t2 * b5 - b6;
+    let b3 = -0.00756253 + t2 * b4 - b5;
+    let b2 = 0.04467244 + t2 * b3 - b4;
+    let b1 = -0.23086534 + t2 * b2 - b3;
+    return 0.52244556 + t * b1 - b2;
 }
 
-/// n Int(n) of flog-normalized-clamped, n in [3.7576509, 10000]: Chebyshev series of degree 16 in
-/// t = 7.518127 / n + -1.0007519 (generated; see crates/gpu/src/runtime_fits.rs).
+/// n Int(n) of flog-normalized-clamped, n in [3.7576509, 100000]: Chebyshev series of degree 16 in
+/// t = 7.515584 / n + -1.0000751 (generated; see crates/gpu/src/runtime_fits.rs).
 fn fb_rt_fit_flog_clamped(n: f32) -> f32 {
-    let t = 7.518127 / n + -1.0007519;
+    let t = 7.515584 / n + -1.0000751;
     let t2 = 2.0 * t;
-    let b16 = 1.13084576e-10;
-    let b15 = -5.5125576e-10 + t2 * b16;
-    let b14 = 2.5617168e-9 + t2 * b15 - b16;
-    let b13 = -1.1814221e-8 + t2 * b14 - b15;
-    let b12 = 5.4159226e-8 + t2 * b13 - b14;
-    let b11 = -2.4676933e-7 + t2 * b12 - b13;
-    let b10 = 1.1173507e-6 + t2 * b11 - b12;
-    let b9 = -5.0268636e-6 + t2 * b10 - b11;
-    let b8 = 2.2467155e-5 + t2 * b9 - b10;
-    let b7 = -9.974594e-5 + t2 * b8 - b9;
-    let b6 = 0.00043990868 + t2 * b7 - b8;
-    let b5 = -0.0019282546 + t2 * b6 - b7;
-    let b4 = 0.008411256 + t2 * b5 - b6;
-    let b3 = -0.036601968 + t2 * b4 - b5;
-    let b2 = 0.15850253 + t2 * b3 - b4;
-    let b1 = -0.7016331 + t2 * b2 - b3;
-    return 1.1703887 + t * b1 - b2;
+    let b16 = 1.1405262e-10;
+    let b15 = -5.557216e-10 + t2 * b16;
+    let b14 = 2.5811837e-9 + t2 * b15 - b16;
+    let b13 = -1.18980035e-8 + t2 * b14 - b15;
+    let b12 = 5.4515706e-8 + t2 * b13 - b14;
+    let b11 = -2.4826736e-7 + t2 * b12 - b13;
+    let b10 = 1.1235597e-6 + t2 * b11 - b12;
+    let b9 = -5.052205e-6 + t2 * b10 - b11;
+    let b8 = 2.2568773e-5 + t2 * b9 - b10;
+    let b7 = -0.000100145146 + t2 * b8 - b9;
+    let b6 = 0.0004414389 + t2 * b7 - b8;
+    let b5 = -0.0019339452 + t2 * b6 - b7;
+    let b4 = 0.008431607 + t2 * b5 - b6;
+    let b3 = -0.03667089 + t2 * b4 - b5;
+    let b2 = 0.15871593 + t2 * b3 - b4;
+    let b1 = -0.70219123 + t2 * b2 - b3;
+    return 1.1707865 + t * b1 - b2;
 }
 
 // END GENERATED

@@ -106,7 +106,7 @@ fn two_sided_shadowing_bounds_hold() {
         .collect();
     for &(id, remap, reference, two_sided, bound) in TWO_SIDED_BOUNDS {
         let mut worst = 0.0f64;
-        for alpha in [0.01, 0.0125, 0.02, 0.05, 0.1, 0.3, 0.6, 1.0] {
+        for alpha in [0.005, 0.0075, 0.01, 0.0125, 0.02, 0.05, 0.1, 0.3, 0.6, 1.0] {
             let a = alpha.to_string();
             let mut given = vec![("alpha", a.as_str())];
             if !remap.is_empty() {

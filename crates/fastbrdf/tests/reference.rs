@@ -1,7 +1,7 @@
 //! Every model against an independent f64 evaluation of its printed formula (written here
 //! from ../shared/MODELS.md and the seeds, naively: monomial cubics with the seed's closed-form
 //! coefficients, complex arithmetic for Fresnel, Simpson's rule for normalisation), on grids
-//! covering the whole domain (n in [1, 1000] and beyond, alpha in [0.01, 1]) with the edges.
+//! covering the whole domain (n in [1, 1000] and beyond, alpha in [0.005, 1]) with the edges.
 
 mod common;
 

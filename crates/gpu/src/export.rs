@@ -184,7 +184,8 @@ pub fn call_of(inst: &Instance) -> String {
             format!("{f}(vec3<f32>(0.0, 0.6, 0.8), vec3<f32>(0.0, -0.6, 0.8){extra})")
         }
         Kind::Shadowing => format!("{f}(0.8, 0.8, 0.9, 0.9{extra})"),
-        _ => format!("{f}(0.9{extra})"),
+        Kind::Env => format!("{f}(0.9, 0.3{extra})"),
+        Kind::Lobe | Kind::Distribution | Kind::Fresnel => format!("{f}(0.9{extra})"),
     }
 }
 
@@ -357,7 +358,12 @@ fn header_text(
         }
         // Every coefficient has a runtime form now, so the sliders are the numeric
         // parameters the instance uses: none only for models without one.
-        if b.sliders.is_empty() {
+        if info.kind == Kind::Env {
+            let _ = writeln!(
+                s,
+                "Slider: alpha, the roughness input (BRDF Explorer plots the term against the view angle at that alpha; the model has no numeric parameters)."
+            );
+        } else if b.sliders.is_empty() {
             let _ = writeln!(s, "No sliders: the model has no numeric parameters.");
         } else {
             let names: Vec<&str> = b.sliders.iter().map(|(n, _)| n.as_str()).collect();
@@ -657,7 +663,6 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
         }
     }
     // A split-sum term's roughness is an input, not a parameter: one more slider for it.
-    let mut env_alpha = String::new();
     if target.info.kind == Kind::Env {
         let (lo, hi) = fastbrdf::params::ALPHA.range();
         let s = slider("alpha", lo, hi, 0.3);
@@ -669,7 +674,7 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
             f32_text(s.hi),
             s.default_text
         );
-        env_alpha = s.param;
+        let _ = writeln!(params, "    float p_alpha = {};", s.param);
     }
     let body = match target.info.kind {
         Kind::Brdf => format!(
@@ -685,7 +690,7 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
         ),
         // A split-sum term is a function of the view and the roughness: plotted against the
         // view angle at the `alpha` slider's value.
-        Kind::Env => format!("{params}    return vec3({f}(dot(N, V), {env_alpha}{extra}));"),
+        Kind::Env => format!("{params}    return vec3({f}(dot(N, V), p_alpha{extra}));"),
         _ => unreachable!("lobes and distributions are shaded through a BRDF"),
     };
     let functions = glsl_functions(&target.module_source(), &call_of(target), target.info.id)?;

@@ -47,7 +47,7 @@ pub const SPECS: [(&str, &str, bool, usize); 3] = [
 ];
 
 /// The upper end of the n range of every fit (the models' domain).
-pub const N_MAX: f64 = 10000.0;
+pub const N_MAX: f64 = fastbrdf::params::N_MAX;
 
 /// The n above which seed 001's `coef(n) = 0.197 (n + 1.24) + 0.068 / (0.64 + n)` exceeds 1, so
 /// that `flog-normalized-clamped`'s clamp acts (below it, the lobe is `flog-normalized`): the

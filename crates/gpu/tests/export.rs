@@ -8,7 +8,7 @@
 //! (review the diff: the files are what users paste).
 
 use fastbrdf::model::Kind;
-use fastbrdf::registry;
+use fastbrdf::{params, registry};
 use fastbrdf_gpu::export::{Form, Lang, export, export_form, exported_name, validate};
 use fastbrdf_gpu::spec::function_name;
 use std::path::PathBuf;
@@ -24,7 +24,8 @@ fn glsl_call(f: &str, kind: Kind, extra: usize) -> String {
     match kind {
         Kind::Brdf => format!("{f}(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8){extra})"),
         Kind::Shadowing => format!("{f}(0.8, 0.8, 0.9, 0.9{extra})"),
-        _ => format!("{f}(0.9{extra})"),
+        Kind::Env => format!("{f}(0.9, 0.3{extra})"),
+        Kind::Lobe | Kind::Distribution | Kind::Fresnel => format!("{f}(0.9{extra})"),
     }
 }
 
@@ -298,9 +299,12 @@ fn brdf_explorer_sliders_reach_their_defaults_and_wide_ranges_are_logarithmic() 
                 .strip_prefix("log10_")
                 .or_else(|| uniform.strip_suffix("_slider"))
                 .unwrap_or(uniform);
+            // A split-sum term's alpha is an input with ALPHA's range (its own slider).
+            let env_alpha = (info.kind == Kind::Env && name == "alpha").then_some(&params::ALPHA);
             let spec = specs
                 .iter()
                 .find(|p| p.name == name)
+                .or(env_alpha)
                 .unwrap_or_else(|| panic!("{what}: slider {uniform} of no parameter"));
             let ParamKind::Number { min, max, .. } = spec.kind else {
                 panic!("{what}: {name} is not numeric")

@@ -86,10 +86,12 @@ pub struct ErrorsArgs {
     /// model's documented bounds).
     #[arg(long)]
     reference: Option<String>,
-    /// Exponents for lobes: LO..HI[:STEP] (step 1) or a list A,B,C.
+    /// Exponents for lobes: LO..HI[:STEP] (step 1), LO..HI:logK (K log-spaced values per
+    /// decade; the whole domain: 1..100000:log50) or a list A,B,C.
     #[arg(long, conflicts_with = "m")]
     n: Option<String>,
-    /// Slopes (alpha) for microfacet terms and Ward: LO..HI[:STEP] (step 0.01) or a list.
+    /// Slopes (alpha) for microfacet terms and Ward: LO..HI[:STEP] (step 0.01), LO..HI:logK
+    /// (the whole domain: 0.005..1:log20) or a list.
     #[arg(long)]
     m: Option<String>,
     /// A MERL material (see `fastbrdf materials`): measure at its fitted parameter (n from

@@ -147,7 +147,7 @@ pub fn evaluate<T: Real + std::str::FromStr>(
                 format!(", optionally {}", opt.join(","))
             };
             CliError::input(format!(
-                "{source}: line {hline}: missing column '{name}' (a {} needs columns {}{optional})",
+                "{source}: line {hline}: missing column '{name}' (a {} model needs columns {}{optional})",
                 model.kind().name(),
                 req.join(",")
             ))

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  fastbrdf fit --family power16 --reference pow --n 1..1000:3\n  \
+    after_help = "Examples:\n  fastbrdf fit --family power16 --reference pow --n 1..1e5:3\n  \
 fastbrdf fit --family exp2 --reference pow --n 8,16,100 --metric max-rel-epicentre\n  \
 fastbrdf fit --family beckmann-power16 --reference beckmann-ct --m 0.05..0.6:0.05 --json"
 )]
@@ -41,6 +41,14 @@ pub struct FitArgs {
     json: bool,
 }
 
+/// A numeric parameter's documented range (the one `Params::resolve` enforces).
+fn number_range(spec: &fastbrdf::params::ParamSpec) -> (f64, f64) {
+    match spec.kind {
+        fastbrdf::params::ParamKind::Number { min, max, .. } => (min, max),
+        fastbrdf::params::ParamKind::Choice { .. } => unreachable!("n and alpha are numbers"),
+    }
+}
+
 pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     let family = Family::parse(&a.family).expect("clap checked it");
     let metric = Metric::parse(&a.metric).expect("clap checked it");
@@ -58,8 +66,14 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         )));
     }
     let (text, step, name, lo, hi) = match (&a.n, &a.m, family.is_microfacet()) {
-        (Some(n), None, false) => (n, 1.0, "n", 1.0, 10000.0),
-        (None, Some(m), true) => (m, 0.01, "alpha", 0.01, 1.0),
+        (Some(n), None, false) => {
+            let (lo, hi) = number_range(&fastbrdf::params::N);
+            (n, 1.0, "n", lo, hi)
+        }
+        (None, Some(m), true) => {
+            let (lo, hi) = number_range(&fastbrdf::params::ALPHA);
+            (m, 0.01, "alpha", lo, hi)
+        }
         (_, _, true) => {
             return Err(CliError::input(
                 "the beckmann-power16 family takes --m RANGE",
@@ -183,8 +197,8 @@ neither) is written only with --out; nothing is written to disk otherwise. A mod
 error or throughput is unknown has null in JSON."
 )]
 pub struct ParetoArgs {
-    /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1000, max_abs_8_1000,
-    /// max_rel_epicentre_8_1000, pareto}]}.
+    /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1e5, max_abs_8_1e5,
+    /// max_rel_epicentre_8_1e5, pareto}]}.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown table README shows.
@@ -208,9 +222,9 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
     pb.finish_and_clear();
     if let Some(out) = &a.out {
         let [png, svg] = save_scatter(
-            "Lobes: max |error| against cos^n (n = 8..1000) and SIMD cost",
+            "Lobes: max |error| against cos^n (n = 8..1e5) and SIMD cost",
             "ns per evaluation (SIMD, one core, batch 4096)",
-            "max absolute error, n = 8..1000",
+            "max absolute error, n = 8..1e5",
             &pareto::front(&rows),
             &pareto::points(&rows),
             out,
@@ -226,7 +240,7 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
         );
     } else if a.markdown {
         crate::outln!(
-            "| model | ops m/a/d/s/t | SIMD evals/s | max abs, n 1..1000 | max abs, n 8..1000 | max rel epicentre, n 8..1000 | Pareto |\n|---|---|---|---|---|---|---|"
+            "| model | ops m/a/d/s/t | SIMD evals/s | max abs, n 1..1e5 | max abs, n 8..1e5 | max rel epicentre, n 8..1e5 | Pareto |\n|---|---|---|---|---|---|---|"
         );
         for r in &rows {
             crate::outln!(
@@ -234,9 +248,9 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
                 r.model,
                 r.ops,
                 r.simd_evals_per_s / 1e9,
-                r.max_abs_1_1000,
-                r.max_abs_8_1000,
-                r.max_rel_epicentre_8_1000,
+                r.max_abs_1_1e5,
+                r.max_abs_8_1e5,
+                r.max_rel_epicentre_8_1e5,
                 if r.pareto { "yes" } else { "" }
             );
         }
@@ -246,8 +260,8 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
             "lobe",
             "ops m/a/d/s/t",
             "SIMD eval/s",
-            "abs n1-1000",
-            "abs n8-1000",
+            "abs n1-1e5",
+            "abs n8-1e5",
             "rel epi 8+"
         );
         for r in &rows {
@@ -256,9 +270,9 @@ pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
                 r.model,
                 r.ops,
                 r.simd_evals_per_s / 1e9,
-                r.max_abs_1_1000,
-                r.max_abs_8_1000,
-                r.max_rel_epicentre_8_1000,
+                r.max_abs_1_1e5,
+                r.max_abs_8_1e5,
+                r.max_rel_epicentre_8_1e5,
                 if r.pareto { "*" } else { "" }
             );
         }

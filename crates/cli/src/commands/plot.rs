@@ -66,8 +66,10 @@ enum Kind {
         /// The reference lobe id.
         #[arg(long, default_value = "pow")]
         reference: String,
-        /// Exponents: LO..HI[:STEP] (step 1) or a list A,B,C; at most 1000000 values.
-        #[arg(long, default_value = "1..1000")]
+        /// Exponents: LO..HI[:STEP] (step 1), LO..HI:logK (K log-spaced values per decade) or
+        /// a list A,B,C; at most 1000000 values. The default is the whole domain; beyond
+        /// n = 1000 the n axis is logarithmic.
+        #[arg(long, default_value = "1..100000:log50")]
         n: String,
         /// abs: max |f - ref|; rel: max |f - ref| / ref.
         #[arg(long, default_value = "abs", value_parser = ["abs", "rel"])]

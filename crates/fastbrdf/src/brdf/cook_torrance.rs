@@ -4,7 +4,7 @@
 //!
 //! | name | range | default | meaning |
 //! |---|---|---|---|
-//! | `alpha` | [0.01, 1] | 0.3 | RMS slope of D and of the Smith terms |
+//! | `alpha` | [0.005, 1] | 0.3 | RMS slope of D and of the Smith terms |
 //! | `d` | a distribution id | `beckmann` | `beckmann`, `beckmann-ct`, `beckmann-pow`, `beckmann-power4/8/16`, `ggx` |
 //! | `g` | a shadowing id | `smith` | shadowing-masking: `v-cavity`, `smith`, `smith-rational`, `smith-beckmann-correlated`, `smith-ggx(-correlated)`, `smith-ggx-correlated-fast`, `smith-ggx-joint-approx`, `schlick-ggx` (its default `remap`), `kelemen`, `neumann` |
 //! | `f` | a Fresnel id without `fresnel-` | `none` | Fresnel at `wi . h` |

@@ -15,7 +15,7 @@
 //!   `f = D / (4 wi . h)`, whose albedo is at most 1. With `norm = none` it is the classic
 //!   unnormalised `lobe(n . h)`.
 //!
-//! Parameters: `lobe` (a lobe id, default `pow`), `n` in [1, 10000] (default 20), `norm`
+//! Parameters: `lobe` (a lobe id, default `pow`), `n` in [1, 100000] (default 20), `norm`
 //! (`energy` or `none`, default `energy`). Cost: the lobe's, plus 3 mul, 2 add (phong) or
 //! 1 mul, 1 div (blinn-phong, energy). Reciprocal.
 
@@ -58,8 +58,8 @@ pub const INFO: ModelInfo = ModelInfo {
     source: "Phong 1975; Lewis 1994 and Lafortune 1994 (normalisation); seed 001 (coef by Int(n))",
     ops: Ops::new(3, 2, 0, 0, 0),
     bounds: &[],
-    f32_bound: 200.0,
-    note: "ops are the wrapper's, add the lobe's; albedo at normal incidence = 1 with norm = energy; f32: reflect(wi).wo rounded once to f32 moves flog-normalized-clamped near its zero (slope ~3e6 at n = 10000) by up to 0.3, times coef(n): 85 at n = 10000 (check --full); below 0.2 for the other lobes",
+    f32_bound: 8e3,
+    note: "ops are the wrapper's, add the lobe's; albedo at normal incidence = 1 with norm = energy; f32: reflect(wi).wo rounded once to f32 moves flog-normalized-clamped near its zero (slope ~3e6 at n = 1e4, ~3e8 at n = 1e5) by up to 0.3 at n = 1e4 and by its whole height 1 above n ~ 2e4, times coef(n): 85 at n = 1e4, 4758 (the peak) at n = 6.2e4 (check --full), up to the peak 7654 at n = 1e5; at most 1.4 for the other lobes (flog-normalized at n = 1e5)",
 };
 
 pub const INFO_BLINN: ModelInfo = ModelInfo {
@@ -70,8 +70,8 @@ pub const INFO_BLINN: ModelInfo = ModelInfo {
     source: "Blinn 1977; Torrance & Sparrow 1967 (microfacet form); seed 001 (coef by Int(n))",
     ops: Ops::new(1, 0, 1, 0, 0),
     bounds: &[],
-    f32_bound: 600.0,
-    note: "ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3, times coef(n) / (4 wi.h): 265 at n = 10000 (check --full); 2 for flog-normalized",
+    f32_bound: 2e3,
+    note: "ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3 at n = 1e4 and by its whole height 1 above n ~ 2e4, times coef(n) / (4 wi.h): 265 at n = 1e4 (check --full), up to the peak 1914 at n = 1e5; 2 for flog-normalized",
 };
 
 pub const ENTRY: Entry = Entry::new(INFO, |p, models| {

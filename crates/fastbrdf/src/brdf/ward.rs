@@ -9,7 +9,7 @@
 //! - `ward-power16`: by `max(0, 1 + (2/alpha^2/16)(cos theta_h - 1))^16` (seed 000, g = 16).
 //!   Cost: 6 mul, 2 add, 2 div, 1 sqrt.
 //!
-//! Parameters: `alpha` in [0.01, 1] (default 0.3); `ward` also `alpha_x`, `alpha_y` (both or
+//! Parameters: `alpha` in [0.005, 1] (default 0.3); `ward` also `alpha_x`, `alpha_y` (both or
 //! neither; when given they replace `alpha`). Source: Ward 1992; seed 000. Reciprocal.
 //! Ward's normalisation is approximate: the albedo is below 1 up to 85 degrees of incidence
 //! for every alpha, but the `1 / sqrt(cos_i)` factor makes it exceed 1 very near grazing
@@ -29,7 +29,7 @@ use crate::wgsl::Emit;
 pub const ALPHA_X: ParamSpec = ParamSpec {
     name: "alpha_x",
     kind: ParamKind::Number {
-        min: 0.01,
+        min: params::ALPHA_MIN,
         max: 1.0,
         default: None,
     },
@@ -38,7 +38,7 @@ pub const ALPHA_X: ParamSpec = ParamSpec {
 pub const ALPHA_Y: ParamSpec = ParamSpec {
     name: "alpha_y",
     kind: ParamKind::Number {
-        min: 0.01,
+        min: params::ALPHA_MIN,
         max: 1.0,
         default: None,
     },
@@ -79,9 +79,23 @@ pub const INFO_POW: ModelInfo = ModelInfo {
             param: ("alpha", 0.05, 1.0),
             bound: 0.396,
         },
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.005, 0.6),
+            bound: 0.108,
+        },
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.005, 1.0),
+            bound: 0.396,
+        },
     ],
-    f32_bound: 1.5e-3,
-    note: "isotropic only; f32: cos_h^(2/alpha^2) of a cosine rounded to f32 has a relative error up to (2/alpha^2) 2^-25 (6e-4 at alpha = 0.01)",
+    f32_bound: 2.5e-3,
+    note: "isotropic only; f32: cos_h^(2/alpha^2) of a cosine rounded to f32 has a relative error up to (2/alpha^2) 2^-25 (6e-4 at alpha = 0.01, 2.4e-3 at alpha = 0.005)",
 };
 
 pub const INFO_POWER16: ModelInfo = ModelInfo {
@@ -104,6 +118,20 @@ pub const INFO_POWER16: ModelInfo = ModelInfo {
             metric: Metric::MaxRel,
             zone: Zone::Epicentre,
             param: ("alpha", 0.05, 1.0),
+            bound: 0.549,
+        },
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.005, 0.6),
+            bound: 0.142,
+        },
+        ErrorBound {
+            reference: "ward",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("alpha", 0.005, 1.0),
             bound: 0.549,
         },
     ],
@@ -142,7 +170,7 @@ pub struct Ward<const FORM: u8> {
 }
 
 impl<const FORM: u8> Ward<FORM> {
-    /// Isotropic Ward of this form; `alpha` in [0.01, 1].
+    /// Isotropic Ward of this form; `alpha` in [0.005, 1].
     pub fn isotropic(alpha: f64) -> Result<Self> {
         let a = params::check("ward", &params::ALPHA, alpha)?;
         Ok(Self::with(a, a, false))
@@ -161,7 +189,7 @@ impl<const FORM: u8> Ward<FORM> {
 }
 
 impl Ward<0> {
-    /// Anisotropic exact Ward; both slopes in [0.01, 1].
+    /// Anisotropic exact Ward; both slopes in [0.005, 1].
     pub fn anisotropic(alpha_x: f64, alpha_y: f64) -> Result<Self> {
         Ok(Self::with(
             params::check("ward", &ALPHA_X, alpha_x)?,

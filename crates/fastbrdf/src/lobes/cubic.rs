@@ -23,7 +23,7 @@
 //! `tests/precision.rs` proves the f32 bound over the whole domain. The WGSL twin keeps the
 //! Newton form in `y = 1 - c` (fold-proof, see `lobes/mod.wgsl`).
 //!
-//! Parameters: `n` in [1, 10000] (default 20). Cost: 3 mul, 4 add (constants precomputed); the
+//! Parameters: `n` in [1, 100000] (default 20). Cost: 3 mul, 4 add (constants precomputed); the
 //! seed's monomial form is 5 mul, 2 add. Error bounds: see `INFO`.
 
 use crate::entry::Entry;
@@ -53,9 +53,23 @@ pub const INFO: ModelInfo = ModelInfo {
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxAbs,
+            zone: Zone::Epicentre,
+            param: ("n", 4.0, 100000.0),
+            bound: 0.00555,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
             zone: Zone::All,
             param: ("n", 4.0, 1000.0),
             bound: 0.228,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 4.0, 100000.0),
+            bound: 0.23,
         },
     ],
     f32_bound: 1e-6,
@@ -80,9 +94,23 @@ pub const INFO3: ModelInfo = ModelInfo {
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxAbs,
+            zone: Zone::Epicentre,
+            param: ("n", 4.0, 100000.0),
+            bound: 0.0217,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
             zone: Zone::All,
             param: ("n", 4.0, 1000.0),
             bound: 0.108,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 4.0, 100000.0),
+            bound: 0.109,
         },
     ],
     f32_bound: 1e-6,
@@ -205,7 +233,7 @@ fn quadratic_roots(a: f64, b: f64, c: f64) -> Vec<f64> {
 }
 
 impl Cubic {
-    /// Seed 003's Hermite cubic; `n` must be in [1, 10000].
+    /// Seed 003's Hermite cubic; `n` must be in [1, 100000].
     pub fn hermite(n: f64) -> Result<Self> {
         Ok(Self::from_shape(CubicShape::hermite(params::check(
             "cubic",
@@ -214,7 +242,7 @@ impl Cubic {
         )?)))
     }
 
-    /// Seed 003's three-point cubic; `n` must be in [1, 10000].
+    /// Seed 003's three-point cubic; `n` must be in [1, 100000].
     pub fn three_point(n: f64) -> Result<Self> {
         Ok(Self {
             three: true,

@@ -1,6 +1,6 @@
 //! `gauss`: the Gaussian lobe of seed 001, `exp(-n theta^2 / 2)` with `theta = acos(c)`.
 //!
-//! Parameters: `n` in [1, 10000] (default 20). Source: seed 001 (its reference [10]).
+//! Parameters: `n` in [1, 100000] (default 20). Source: seed 001 (its reference [10]).
 //! Cost: 2 mul, 1 acos, 1 exp. For small angles `cos^n theta ~ exp(-n theta^2 / 2)`, so it
 //! matches `pow` near the peak and has a lighter tail. Error bounds against `pow`: see `INFO`.
 
@@ -25,14 +25,14 @@ pub const INFO: ModelInfo = ModelInfo {
             reference: "pow",
             metric: Metric::MaxAbs,
             zone: Zone::All,
-            param: ("n", 1.0, 1000.0),
+            param: ("n", 1.0, 100000.0),
             bound: 0.292,
         },
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxRel,
             zone: Zone::Epicentre,
-            param: ("n", 1.0, 1000.0),
+            param: ("n", 1.0, 100000.0),
             bound: 0.156,
         },
     ],
@@ -49,7 +49,7 @@ pub struct Gauss {
 }
 
 impl Gauss {
-    /// `n` must be in [1, 10000].
+    /// `n` must be in [1, 100000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
             half_n: K::new(0.5 * params::check("gauss", &params::N, n)?),

@@ -3,7 +3,7 @@
 //!
 //! Conventions shared by every lobe (see `Lobe::eval`): the cosine is clamped to [0, 1]
 //! (../shared/MODELS.md), so `c < 0` gives the value at 0 (non-zero for `sg`, `gauss` and the
-//! power forms with `n < g`) and `c > 1` the value at 1; NaN gives 0. `n` is in [1, 10000]; error bounds are documented for n in [1, 1000].
+//! power forms with `n < g`) and `c > 1` the value at 1; NaN gives 0. `n` is in [1, 100000]; error bounds are documented for n in [1, 100000] (and the seeds' narrower ranges).
 
 pub mod cubic;
 pub mod flog;

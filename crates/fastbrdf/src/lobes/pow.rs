@@ -1,6 +1,6 @@
 //! `pow`: the Phong / Blinn-Phong lobe, the reference of every lobe.
 //!
-//! Formula: `c^n`. Parameters: `n` in [1, 10000] (default 20).
+//! Formula: `c^n`. Parameters: `n` in [1, 100000] (default 20).
 //! Source: Phong 1975, Blinn 1977; all three seeds.
 //! Cost: one `pow` (exp2 and log2 inside). Error: exact (it is the reference).
 //! Energy: `Int(n) = integral_0^1 c^n c dc = 1 / (n + 2)`, so `coef(n) = (n + 2) / (2 pi)`.
@@ -35,7 +35,7 @@ pub struct Pow {
 }
 
 impl Pow {
-    /// A `c^n` lobe; `n` must be in [1, 10000].
+    /// A `c^n` lobe; `n` must be in [1, 100000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
             n: K::new(params::check("pow", &params::N, n)?),

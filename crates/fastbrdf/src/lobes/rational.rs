@@ -9,7 +9,7 @@
 //!   the seed's epicentre + fall-off design. Continuous with a continuous slope at `q`.
 //!   Cost: the cubic or the rational, plus one compare.
 //!
-//! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
+//! Parameters: `n` in [1, 100000] (default 20). Error bounds against `pow`: see `INFO`.
 
 use super::cubic::{Cubic, CubicShape};
 use crate::entry::Entry;
@@ -39,6 +39,13 @@ pub const INFO: ModelInfo = ModelInfo {
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxRel,
+            zone: Zone::Band { lo: 0.42, hi: 0.5 },
+            param: ("n", 2.0, 100000.0),
+            bound: 0.0138,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxRel,
             zone: Zone::Band { lo: 0.37, hi: 0.42 },
             param: ("n", 2.0, 1000.0),
             bound: 0.0386,
@@ -46,8 +53,22 @@ pub const INFO: ModelInfo = ModelInfo {
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxRel,
+            zone: Zone::Band { lo: 0.37, hi: 0.42 },
+            param: ("n", 2.0, 100000.0),
+            bound: 0.0387,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxRel,
             zone: Zone::Band { lo: 0.27, hi: 0.37 },
             param: ("n", 2.0, 1000.0),
+            bound: 0.146,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxRel,
+            zone: Zone::Band { lo: 0.27, hi: 0.37 },
+            param: ("n", 2.0, 100000.0),
             bound: 0.146,
         },
     ],
@@ -66,7 +87,7 @@ pub const INFO_CUBIC_RATIONAL: ModelInfo = ModelInfo {
         reference: "pow",
         metric: Metric::MaxAbs,
         zone: Zone::All,
-        param: ("n", 2.0, 1000.0),
+        param: ("n", 2.0, 100000.0),
         bound: 0.102,
     }],
     f32_bound: 1e-6,
@@ -92,7 +113,7 @@ pub struct Rational {
 }
 
 impl Rational {
-    /// `n` must be in [1, 10000].
+    /// `n` must be in [1, 100000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("rational", &params::N, n)?;
         Ok(Self::at_level(n, 0.5))
@@ -150,13 +171,13 @@ pub struct CubicRational {
 }
 
 impl CubicRational {
-    /// `n` must be in [1, 10000].
+    /// `n` must be in [1, 100000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("cubic-rational", &params::N, n)?;
         Ok(Self::at_level(n, 0.5))
     }
 
-    /// The tuned lobe (junction level `tuned::cubic_rational_level`); `n` in [1, 10000].
+    /// The tuned lobe (junction level `tuned::cubic_rational_level`); `n` in [1, 100000].
     pub fn tuned(n: f64) -> Result<Self> {
         let n = params::check("cubic-rational-tuned", &params::N, n)?;
         Ok(Self {

@@ -9,7 +9,7 @@
 //!   we implement it as printed and let the error sweeps show its behaviour.
 //!   Cost: 4 mul, 2 add, 1 div.
 //!
-//! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
+//! Parameters: `n` in [1, 100000] (default 20). Error bounds against `pow`: see `INFO`.
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -37,9 +37,23 @@ pub const INFO: ModelInfo = ModelInfo {
         },
         ErrorBound {
             reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 1.0, 100000.0),
+            bound: 0.204,
+        },
+        ErrorBound {
+            reference: "pow",
             metric: Metric::MaxRel,
             zone: Zone::Epicentre,
             param: ("n", 1.0, 1000.0),
+            bound: 0.182,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxRel,
+            zone: Zone::Epicentre,
+            param: ("n", 1.0, 100000.0),
             bound: 0.182,
         },
     ],
@@ -54,13 +68,22 @@ pub const INFO_MODIFIED: ModelInfo = ModelInfo {
     formula: "2 c / (1.25 (n - n c + 1.25 c)^2)",
     source: "seed 001, its reference [15] (Romanyuk et al.)",
     ops: Ops::new(4, 2, 1, 0, 0),
-    bounds: &[ErrorBound {
-        reference: "pow",
-        metric: Metric::MaxAbs,
-        zone: Zone::All,
-        param: ("n", 1.0, 1000.0),
-        bound: 0.133,
-    }],
+    bounds: &[
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 1.0, 1000.0),
+            bound: 0.133,
+        },
+        ErrorBound {
+            reference: "pow",
+            metric: Metric::MaxAbs,
+            zone: Zone::All,
+            param: ("n", 1.0, 100000.0),
+            bound: 0.133,
+        },
+    ],
     f32_bound: 4e-7,
     note: "implemented as printed in seed 001; its value at c = 1 is 1.024, not 1",
 };
@@ -79,7 +102,7 @@ pub struct Schlick {
 }
 
 impl Schlick {
-    /// `n` must be in [1, 10000].
+    /// `n` must be in [1, 100000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
             n: K::new(params::check("schlick", &params::N, n)?),
@@ -112,7 +135,7 @@ pub struct SchlickModified {
 }
 
 impl SchlickModified {
-    /// `n` must be in [1, 10000].
+    /// `n` must be in [1, 100000].
     pub fn new(n: f64) -> Result<Self> {
         Ok(Self {
             n: K::new(params::check("schlick-modified", &params::N, n)?),

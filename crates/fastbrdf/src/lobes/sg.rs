@@ -5,7 +5,7 @@
 //! - `ue4-phong-approx`: `exp2(1.4427 (n + 0.775)(c - 1))`, Unreal Engine 4's mobile
 //!   approximation (`PhongApprox`). Cost: 1 mul, 1 add, 1 exp2.
 //!
-//! Parameters: `n` in [1, 10000] (default 20). Error bounds against `pow`: see `INFO`.
+//! Parameters: `n` in [1, 100000] (default 20). Error bounds against `pow`: see `INFO`.
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -28,21 +28,21 @@ pub const INFO: ModelInfo = ModelInfo {
             reference: "pow",
             metric: Metric::MaxAbs,
             zone: Zone::All,
-            param: ("n", 1.0, 1000.0),
+            param: ("n", 1.0, 100000.0),
             bound: 0.368,
         },
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxAbs,
             zone: Zone::All,
-            param: ("n", 16.0, 1000.0),
+            param: ("n", 16.0, 100000.0),
             bound: 0.0173,
         },
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxRel,
             zone: Zone::Epicentre,
-            param: ("n", 1.0, 1000.0),
+            param: ("n", 1.0, 100000.0),
             bound: 0.214,
         },
     ],
@@ -62,21 +62,21 @@ pub const INFO_UE4: ModelInfo = ModelInfo {
             reference: "pow",
             metric: Metric::MaxAbs,
             zone: Zone::All,
-            param: ("n", 1.0, 1000.0),
+            param: ("n", 1.0, 100000.0),
             bound: 0.17,
         },
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxAbs,
             zone: Zone::All,
-            param: ("n", 16.0, 1000.0),
+            param: ("n", 16.0, 100000.0),
             bound: 0.0097,
         },
         ErrorBound {
             reference: "pow",
             metric: Metric::MaxRel,
             zone: Zone::Epicentre,
-            param: ("n", 1.0, 1000.0),
+            param: ("n", 1.0, 100000.0),
             bound: 0.183,
         },
     ],
@@ -103,7 +103,7 @@ pub enum Exp2Form {
 }
 
 impl Exp2Lobe {
-    /// The spherical Gaussian matched to `c^n` at the peak; `n` in [1, 10000].
+    /// The spherical Gaussian matched to `c^n` at the peak; `n` in [1, 100000].
     pub fn sg(n: f64) -> Result<Self> {
         let n = params::check("sg", &params::N, n)?;
         Ok(Self {
@@ -111,7 +111,7 @@ impl Exp2Lobe {
             form: Exp2Form::Sg,
         })
     }
-    /// Unreal Engine 4's rate; `n` in [1, 10000].
+    /// Unreal Engine 4's rate; `n` in [1, 100000].
     #[allow(clippy::approx_constant)]
     pub fn ue4(n: f64) -> Result<Self> {
         let n = params::check("ue4-phong-approx", &params::N, n)?;
@@ -120,7 +120,7 @@ impl Exp2Lobe {
             form: Exp2Form::Ue4,
         })
     }
-    /// The tuned rate; `n` in [1, 10000].
+    /// The tuned rate; `n` in [1, 100000].
     pub fn tuned(n: f64) -> Result<Self> {
         let n = params::check("sg-tuned", &params::N, n)?;
         Ok(Self {

@@ -20,15 +20,16 @@ fn fb_env_cos(x: f32) -> f32 {
 }
 
 /// One u node of env-brdf's rule: the phi integral over the live range (see env_brdf.rs).
-fn fb_env_ring(u: f32, wu: f32, full: bool, mu: f32, alpha: f32, sv: f32, mlv: f32, bias: bool) -> f32 {
+/// u and w = 1 - u both given, each without cancellation (see env_brdf.rs).
+fn fb_env_ring(u: f32, w: f32, wu: f32, full: bool, mu: f32, alpha: f32, sv: f32, mlv: f32, bias: bool) -> f32 {
     let a2 = alpha * alpha;
-    let d = 1.0 - u + a2 * u;
-    let ch = sqrt((1.0 - u) / d);
+    let d = w + a2 * u;
+    let ch = sqrt(w / d);
     let sh = alpha * sqrt(u / d);
     var pm = 3.14159265;
     if (!full) {
         let qd = 2.0 * ch * sh * sv;
-        var q = mu * ((a2 * u - (1.0 - u)) / d);
+        var q = mu * ((a2 * u - w) / d);
         q = select(1.0, q / qd, qd > 0.0);
         q = min(max(q, -1.0), 1.0);
         pm = acos(q);
@@ -44,8 +45,8 @@ fn fb_env_ring(u: f32, wu: f32, full: bool, mu: f32, alpha: f32, sv: f32, mlv: f
             let g_over_mu = 1.0 / (mu * (1.0 + ll) + mlv);
             let m = max(1.0 - vh, 0.0);
             let f5 = m * m * m * m * m;
-            let w = select(1.0 - f5, f5, bias);
-            acc += FB_GL24_W[i] * w * vh * g_over_mu / ch;
+            let wf = select(1.0 - f5, f5, bias);
+            acc += FB_GL24_W[i] * wf * vh * g_over_mu / ch;
         }
     }
     return acc * pm * 0.5 * wu;
@@ -59,15 +60,21 @@ fn fb_env_dfg(cos_v: f32, alpha: f32, bias: bool) -> f32 {
     let sv = sqrt(max((1.0 - mu) * (1.0 + mu), 0.0));
     let mlv = a2 * sv * sv / (2.0 * (sqrt(mu * mu + a2 * sv * sv) + mu));
     let t1 = mu / (1.0 + sv);
-    let u1 = t1 * t1 / (a2 + t1 * t1);
-    let u2 = 1.0 / (1.0 + a2 * t1 * t1);
+    let t12 = t1 * t1;
+    let u1 = t12 / (a2 + t12);
+    let w1 = a2 / (a2 + t12);
+    let u2 = 1.0 / (1.0 + a2 * t12);
+    let w2 = a2 * t12 / (1.0 + a2 * t12);
+    let du = w1 - w2;
     var sum = 0.0;
     for (var i = 0; i < 12; i++) {
         for (var sgn = -1.0; sgn <= 1.0; sgn += 2.0) {
             let t = 0.5 * (sgn * FB_GL24_X[i] + 1.0);
+            let tc = 0.5 * (1.0 - sgn * FB_GL24_X[i]);
             let wt = 0.5 * FB_GL24_W[i];
-            sum += fb_env_ring(u1 * t, u1 * wt, true, mu, alpha, sv, mlv, bias);
-            sum += fb_env_ring(u2 - (u2 - u1) * t * t, (u2 - u1) * 2.0 * t * wt, false, mu, alpha, sv, mlv, bias);
+            sum += fb_env_ring(u1 * t, w1 + u1 * tc, u1 * wt, true, mu, alpha, sv, mlv, bias);
+            let tt = du * t * t;
+            sum += fb_env_ring(u2 - tt, w2 + tt, du * 2.0 * t * wt, false, mu, alpha, sv, mlv, bias);
         }
     }
     return max(sum * 0.31830988, 0.0);

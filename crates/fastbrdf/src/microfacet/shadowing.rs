@@ -18,7 +18,7 @@
 //!   (libm's `erfc`, as `smith`). Cost: 8 mul, 8 add, 5 div, 2 sqrt, 4 transcendental.
 //!   Exact model: no error bound; f32 against f64 1.5e-7 measured (documented 1e-6).
 //!
-//! Parameters: `alpha` in [0.01, 1] (default 0.3) for the Smith terms; the V-cavity has none.
+//! Parameters: `alpha` in [0.005, 1] (default 0.3) for the Smith terms; the V-cavity has none.
 //! Cosines that are NaN or `<= 0` give 0; a cosine of 1 gives G1 = 1.
 
 use crate::entry::Entry;
@@ -65,7 +65,7 @@ pub const INFO_RATIONAL: ModelInfo = ModelInfo {
         reference: "smith",
         metric: Metric::MaxRel,
         zone: Zone::All,
-        param: ("alpha", 0.01, 1.0),
+        param: ("alpha", 0.005, 1.0),
         bound: 0.00313,
     }],
     f32_bound: 1e-6,
@@ -140,7 +140,7 @@ pub struct Smith {
 }
 
 impl Smith {
-    /// `alpha` in [0.01, 1].
+    /// `alpha` in [0.005, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         Ok(Self {
             alpha: K::new(params::check("smith", &params::ALPHA, alpha)?),
@@ -178,7 +178,7 @@ pub struct SmithBeckmannCorrelated {
 }
 
 impl SmithBeckmannCorrelated {
-    /// `alpha` in [0.01, 1].
+    /// `alpha` in [0.005, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         Ok(Self {
             alpha: K::new(params::check(
@@ -217,7 +217,7 @@ pub struct SmithRational {
 }
 
 impl SmithRational {
-    /// `alpha` in [0.01, 1].
+    /// `alpha` in [0.005, 1].
     pub fn new(alpha: f64) -> Result<Self> {
         Ok(Self {
             alpha: K::new(params::check("smith-rational", &params::ALPHA, alpha)?),

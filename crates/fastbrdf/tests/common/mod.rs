@@ -4,14 +4,16 @@
 
 use fastbrdf::model::ModelInfo;
 
-/// Exponents covering [1, 10000], edges included.
+/// Exponents covering [1, 100000], edges included.
 pub const N_VALUES: &[f64] = &[
     1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 7.5, 10.0, 16.0, 20.0, 33.0, 50.0, 100.0, 128.0, 200.0, 333.0,
-    500.0, 777.0, 1000.0, 2000.0, 5000.0, 10000.0,
+    500.0, 777.0, 1000.0, 2000.0, 5000.0, 10000.0, 30000.0, 100000.0,
 ];
-/// Slopes covering [0.01, 1], edges included; 0.7072 sits just above 1/sqrt(2), where the
+/// Slopes covering [0.005, 1], edges included; 0.7072 sits just above 1/sqrt(2), where the
 /// exponent 2/alpha^2 - 4 of seed 000's forms changes sign.
-pub const ALPHA_VALUES: &[f64] = &[0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7072, 0.85, 1.0];
+pub const ALPHA_VALUES: &[f64] = &[
+    0.005, 0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7072, 0.85, 1.0,
+];
 
 /// Parameter sets covering a model's domain (the library's generator, shared with
 /// `fastbrdf check`).

@@ -3,13 +3,13 @@
 //
 // Formula: coef(n) lobe(n . h) / (4 wi . h) (energy) or lobe(n . h) (none)
 // Source: Blinn 1977; Torrance & Sparrow 1967 (microfacet form); seed 001 (coef by Int(n))
-// Note: ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3, times coef(n) / (4 wi.h): 265 at n = 10000 (check --full); 2 for flog-normalized
+// Note: ops are the wrapper's, add the lobe's; albedo <= 1 with norm = energy; f32: cos_h rounded once to f32 moves flog-normalized-clamped near its zero by up to 0.3 at n = 1e4 and by its whole height 1 above n ~ 2e4, times coef(n) / (4 wi.h): 265 at n = 1e4 (check --full), up to the peak 1914 at n = 1e5; 2 for flog-normalized
 // Parameters (this export: lobe = pow, n = 20, norm = energy):
 //   lobe: lobe id (one of pow, schlick, schlick-modified, gauss, flog, flog-normalized, flog-normalized-clamped, cubic, cubic3, rational, cubic-rational, power4, power8, power16, sg, ue4-phong-approx, power4-tuned, power8-tuned, power16-tuned, sg-tuned, cubic-rational-tuned, default pow)
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 //   norm: energy: coef(n) = 1 / (2 pi Int(n)); none: the bare lobe (one of energy, none, default energy)
 // Error bounds: none documented (an exact model or a reference).
-// Precision: f32 on the CPU within 6e2 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Precision: f32 on the CPU within 2e3 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_blinn_phong(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns f32.
 

@@ -5,10 +5,10 @@
 // Source: fastbrdf: minimax-tuned coefficient (lobes/tuned.rs)
 // Note: coefficient from a closed form fitted to per-n minimax optima
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Documented error bounds (measured by `fastbrdf check`):
-//   cubic-rational-tuned vs pow: max abs error (relative to the peak) <= 0.283 over n in [1, 1000], whole domain
-//   cubic-rational-tuned vs pow: max abs error (relative to the peak) <= 0.0414 over n in [8, 1000], whole domain
+//   cubic-rational-tuned vs pow: max abs error (relative to the peak) <= 0.283 over n in [1, 100000], whole domain
+//   cubic-rational-tuned vs pow: max abs error (relative to the peak) <= 0.0415 over n in [8, 100000], whole domain
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_cubic_rational_tuned(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.

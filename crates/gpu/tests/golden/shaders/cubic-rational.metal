@@ -5,9 +5,9 @@
 // Source: seed 003 (epicentre + fall-off design)
 // Note: cost is the cubic branch; the rational branch is 2 mul, 3 add, 1 div
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Documented error bounds (measured by `fastbrdf check`):
-//   cubic-rational vs pow: max abs error (relative to the peak) <= 0.102 over n in [2, 1000], whole domain
+//   cubic-rational vs pow: max abs error (relative to the peak) <= 0.102 over n in [2, 100000], whole domain
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_cubic_rational(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.

@@ -3,11 +3,11 @@
 //
 // Formula: coef(n) flog(c), coef(n) = 0.197 (n + 1.24) + 0.068 / (0.64 + n)
 // Source: seed 001, section III (coef fitted with TuringBot)
-// Note: no clamp: a normalised lobe exceeds 1 near the peak for n > ~3; f32: coef(n) ~ 2000 times the rounding of flog near its zero (1.5e-4 at n = 10000)
+// Note: no clamp: a normalised lobe exceeds 1 near the peak for n > ~3; f32: coef(n) (~0.2 n) times the rounding of flog near its zero, where the value is ~1 and the peak coef(n): 1.5e-4 at n = 10000, 1.55e-3 at n = 1e5 (8e-8 of the peak)
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Error bounds: none documented (an exact model or a reference).
-// Precision: f32 on the CPU within 3e-4 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Precision: f32 on the CPU within 2e-3 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_flog_normalized(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.
 

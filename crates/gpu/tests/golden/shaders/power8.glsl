@@ -4,12 +4,12 @@
 // Formula: max(0, 1 + (n/8)(c - 1))^8
 // Source: Lyon 1993, 'Phong shading reformulation for hardware renderer simplification'; seed 000
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Documented error bounds (measured by `fastbrdf check`):
-//   power8 vs pow: max abs error (relative to the peak) <= 0.344 over n in [1, 1000], whole domain
-//   power8 vs pow: max rel error <= 0.194 over n in [1, 1000], epicentre (reference >= half its peak)
-//   power8 vs pow: max abs error (relative to the peak) <= 0.0351 over n in [16, 1000], whole domain
-//   power8 vs pow: max rel error <= 0.0312 over n in [16, 1000], epicentre (reference >= half its peak)
+//   power8 vs pow: max abs error (relative to the peak) <= 0.344 over n in [1, 100000], whole domain
+//   power8 vs pow: max rel error <= 0.194 over n in [1, 100000], epicentre (reference >= half its peak)
+//   power8 vs pow: max abs error (relative to the peak) <= 0.0354 over n in [16, 100000], whole domain
+//   power8 vs pow: max rel error <= 0.0314 over n in [16, 100000], epicentre (reference >= half its peak)
 // Precision: f32 on the CPU within 5e-7 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_power8_(c) with c the cosine to the lobe's axis, clamped to [0, 1]; returns f32.

@@ -3,11 +3,11 @@
 //
 // Formula: G = 4 NL NV V, V = 0.5 / (NL (NV (1 - a) + a) + NV (NL (1 - a) + a)), a = alpha
 // Source: Karis 2014, Unreal Engine 4's Vis_SmithJointApprox
-// Note: algebraically identical to smith-ggx-correlated-fast (Hammon/Filament), differs by rounding only; two-sided max abs error against smith-ggx-correlated 0.229
+// Note: algebraically identical to smith-ggx-correlated-fast (Hammon/Filament), differs by rounding only; two-sided max abs error against smith-ggx-correlated 0.231
 // Parameters (this export: alpha = 0.3):
-//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 // Documented error bounds (measured by `fastbrdf check`):
-//   smith-ggx-joint-approx vs smith-ggx-correlated: max abs error (relative to the peak) <= 0.161 over alpha in [0.01, 1], whole domain
+//   smith-ggx-joint-approx vs smith-ggx-correlated: max abs error (relative to the peak) <= 0.162 over alpha in [0.005, 1], whole domain
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_smith_ggx_joint_approx(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.

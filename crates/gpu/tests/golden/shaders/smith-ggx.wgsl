@@ -5,7 +5,7 @@
 // Source: Smith 1967; Walter et al. 2007, eq. 34 (GGX Lambda)
 // Note: two-sided form is separable G1(v) G1(l)
 // Parameters (this export: alpha = 0.3):
-//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).

@@ -5,9 +5,9 @@
 // Source: Ward 1992, 'Measuring and modeling anisotropic reflection'
 // Note: albedo <= 1 up to 85 degrees; exceeds 1 within ~0.5 degree of grazing (1.50 at 89.9 degrees, alpha = 1)
 // Parameters (this export: alpha = 0.3):
-//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
-//   alpha_x: anisotropic slope along x (with alpha_y; replaces alpha) (range [0.01, 1], default -)
-//   alpha_y: anisotropic slope along y (with alpha_x; replaces alpha) (range [0.01, 1], default -)
+//   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
+//   alpha_x: anisotropic slope along x (with alpha_y; replaces alpha) (range [0.005, 1], default -)
+//   alpha_y: anisotropic slope along y (with alpha_x; replaces alpha) (range [0.005, 1], default -)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 1e-5 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).

@@ -5,7 +5,7 @@
 // Source: Cook & Torrance 1982; seed 000
 // Note: = beckmann * pi / 4 (integral of D cos theta_h = pi / 4); f32: 1.4e-6 at alpha = 0.01
 // Parameters (this export: alpha = 0.3):
-//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 3e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.

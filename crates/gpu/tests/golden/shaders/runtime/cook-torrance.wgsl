@@ -5,7 +5,7 @@
 // Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators)
 // Note: ops exclude D, G, F and the pair set-up; equals Mitsuba 3 roughconductor eval / cos_o; f32: 1e-5 except with f = dielectric/conductor at eta << 1, where F is a near-step at the critical angle and wi.h rounded once to f32 can double it (1.0 at eta = 0.01)
 // Parameters (this export: alpha = 0.3, d = beckmann, denominator = 4, eta = 1.5, f = none, f0 = 0.04, f90 = 1, g = smith, k = 0):
-//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 //   d: microfacet distribution id (one of beckmann, beckmann-ct, beckmann-pow, beckmann-power4, beckmann-power8, beckmann-power16, ggx, default beckmann)
 //   g: shadowing-masking term (one of v-cavity, smith, smith-rational, smith-beckmann-correlated, smith-ggx, smith-ggx-correlated, smith-ggx-correlated-fast, smith-ggx-joint-approx, schlick-ggx, kelemen, neumann, default smith)
 //   f: Fresnel term (one of none, schlick, schlick-sg, schlick-sg-tuned, dielectric, conductor, default none)

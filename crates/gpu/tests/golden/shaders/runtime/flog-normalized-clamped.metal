@@ -5,7 +5,7 @@
 // Source: seed 001, Fig. 10 (its GLSL snippet)
 // Note: the seed's GLSL clamp to [0, 1]: loses energy for n > ~3; kept only to reproduce the seed; f32: as flog-normalized (1.3e-4 at n = 10000)
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 2.5e-4 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_n (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.

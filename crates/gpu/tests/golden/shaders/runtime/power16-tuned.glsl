@@ -5,10 +5,10 @@
 // Source: fastbrdf: minimax-tuned coefficient (lobes/tuned.rs)
 // Note: coefficient from a closed form fitted to per-n minimax optima
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Documented error bounds (measured by `fastbrdf check`):
-//   power16-tuned vs pow: max abs error (relative to the peak) <= 0.138 over n in [1, 1000], whole domain
-//   power16-tuned vs pow: max abs error (relative to the peak) <= 0.0082 over n in [8, 1000], whole domain
+//   power16-tuned vs pow: max abs error (relative to the peak) <= 0.138 over n in [1, 100000], whole domain
+//   power16-tuned vs pow: max abs error (relative to the peak) <= 0.0082 over n in [8, 100000], whole domain
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_n (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_power16_tuned(c) with c the cosine to the lobe's axis, clamped to [0, 1], then p_n; returns f32.

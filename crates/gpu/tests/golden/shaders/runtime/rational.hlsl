@@ -5,11 +5,14 @@
 // Source: seed 003 (fall-off zone approximation g)
 // Note: denominator evaluated as 2n(q - c) + 2c for f32 accuracy
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Documented error bounds (measured by `fastbrdf check`):
 //   rational vs pow: max rel error <= 0.0138 over n in [2, 1000], where 0.42 < reference / peak < 0.5
+//   rational vs pow: max rel error <= 0.0138 over n in [2, 100000], where 0.42 < reference / peak < 0.5
 //   rational vs pow: max rel error <= 0.0386 over n in [2, 1000], where 0.37 < reference / peak < 0.42
+//   rational vs pow: max rel error <= 0.0387 over n in [2, 100000], where 0.37 < reference / peak < 0.42
 //   rational vs pow: max rel error <= 0.146 over n in [2, 1000], where 0.27 < reference / peak < 0.37
+//   rational vs pow: max rel error <= 0.146 over n in [2, 100000], where 0.27 < reference / peak < 0.37
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_n (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_rational(c) with c the cosine to the lobe's axis, clamped to [0, 1], then p_n; returns f32.

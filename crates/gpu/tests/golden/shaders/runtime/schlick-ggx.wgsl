@@ -3,12 +3,12 @@
 //
 // Formula: G1 = NV / (NV (1 - k) + k), k = alpha / 2 (alpha-half) or (sqrt(alpha) + 1)^2 / 8 (ue4); G = G1(v) G1(l)
 // Source: Schlick 1994; Karis 2013 (k = alpha / 2 for GGX, and Unreal's remapping)
-// Note: bound for remap = alpha-half (two-sided 0.259); ue4 (a hotter k, by design) errs against smith-ggx by up to 0.826 one-sided, 0.925 two-sided
+// Note: bound for remap = alpha-half (two-sided 0.261); ue4 (a hotter k, by design) errs against smith-ggx by up to 0.882 one-sided, 0.958 two-sided
 // Parameters (this export: alpha = 0.3, remap = alpha-half):
-//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 //   remap: Schlick's k: alpha / 2, or Unreal's (sqrt(alpha) + 1)^2 / 8 (one of alpha-half, ue4, default alpha-half)
 // Documented error bounds (measured by `fastbrdf check`):
-//   schlick-ggx vs smith-ggx: max abs error (relative to the peak) <= 0.161 over alpha in [0.01, 1], whole domain
+//   schlick-ggx vs smith-ggx: max abs error (relative to the peak) <= 0.162 over alpha in [0.005, 1], whole domain
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_schlick_ggx(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided, then p_alpha; returns f32.

@@ -4,11 +4,11 @@
 // Formula: exp2((n / ln 2)(c - 1))
 // Source: Lagarde 2012, 'Spherical Gaussian approximation for Blinn-Phong, Phong and Fresnel'
 // Parameters (this export: n = 20):
-//   n: specular exponent (range [1, 10000], default 20)
+//   n: specular exponent (range [1, 100000], default 20)
 // Documented error bounds (measured by `fastbrdf check`):
-//   sg vs pow: max abs error (relative to the peak) <= 0.368 over n in [1, 1000], whole domain
-//   sg vs pow: max abs error (relative to the peak) <= 0.0173 over n in [16, 1000], whole domain
-//   sg vs pow: max rel error <= 0.214 over n in [1, 1000], epicentre (reference >= half its peak)
+//   sg vs pow: max abs error (relative to the peak) <= 0.368 over n in [1, 100000], whole domain
+//   sg vs pow: max abs error (relative to the peak) <= 0.0173 over n in [16, 100000], whole domain
+//   sg vs pow: max rel error <= 0.214 over n in [1, 100000], epicentre (reference >= half its peak)
 // Precision: f32 on the CPU within 2e-7 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_n (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_sg(c) with c the cosine to the lobe's axis, clamped to [0, 1], then p_n; returns f32.

@@ -4,9 +4,9 @@
 // Formula: G1 = (3.535 a + 2.181 a^2) / (1 + 2.276 a + 2.577 a^2) for a < 1.6, else 1
 // Source: Walter et al. 2007, eq. 27 (used by Mitsuba 3 for Beckmann)
 // Parameters (this export: alpha = 0.3):
-//   alpha: RMS microfacet slope m (range [0.01, 1], default 0.3)
+//   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 // Documented error bounds (measured by `fastbrdf check`):
-//   smith-rational vs smith: max rel error <= 0.00313 over alpha in [0.01, 1], whole domain
+//   smith-rational vs smith: max rel error <= 0.00313 over alpha in [0.005, 1], whole domain
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_smith_rational(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided, then p_alpha; returns f32.
