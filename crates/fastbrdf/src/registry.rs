@@ -57,6 +57,7 @@ pub static REGISTRY: &[Entry] = &[
     smith_ggx::ENTRY_SMITH_GGX,
     smith_ggx::ENTRY_CORRELATED,
     smith_ggx::ENTRY_FAST,
+    smith_ggx::ENTRY_FAST_TUNED,
     smith_ggx::ENTRY_JOINT,
     smith_ggx::ENTRY_SCHLICK,
     kelemen_neumann::ENTRY_KELEMEN,

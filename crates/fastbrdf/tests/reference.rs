@@ -223,6 +223,11 @@ fn ref_shadowing(id: &str, alpha: f64, remap: &str, v: f64, l: Option<f64>, vh: 
             1.0 / (1.0 + beckmann_lambda(alpha, v) + l.map_or(0.0, |l| beckmann_lambda(alpha, l)))
         }
         "smith-ggx-correlated-fast" => 4.0 * nl * v * (0.5 / mix(2.0 * nl * v, nl + v, a)),
+        "smith-ggx-correlated-fast-tuned" => {
+            // Hammon's form at k = alpha (0.529334 + 0.505461 alpha - 0.035766 alpha^2).
+            let k = a * (0.529334 + 0.505461 * a - 0.035766 * a * a);
+            4.0 * nl * v * (0.5 / mix(2.0 * nl * v, nl + v, k))
+        }
         "smith-ggx-joint-approx" => {
             let vis = 0.5 / (nl * (v * (1.0 - a) + a) + v * (nl * (1.0 - a) + a));
             4.0 * nl * v * vis
@@ -240,6 +245,7 @@ const NEW_SHADOWING: &[(&str, &str)] = &[
     ("smith-ggx-correlated", ""),
     ("smith-beckmann-correlated", ""),
     ("smith-ggx-correlated-fast", ""),
+    ("smith-ggx-correlated-fast-tuned", ""),
     ("smith-ggx-joint-approx", ""),
     ("schlick-ggx", "alpha-half"),
     ("schlick-ggx", "ue4"),
@@ -960,6 +966,7 @@ const REFERENCED: &[&str] = &[
     "smith-ggx",
     "smith-ggx-correlated",
     "smith-ggx-correlated-fast",
+    "smith-ggx-correlated-fast-tuned",
     "smith-ggx-joint-approx",
     "schlick-ggx",
     "kelemen",

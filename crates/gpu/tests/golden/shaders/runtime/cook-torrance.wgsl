@@ -7,7 +7,7 @@
 // Parameters (this export: alpha = 0.3, d = beckmann, denominator = 4, eta = 1.5, f = none, f0 = 0.04, f90 = 1, g = smith, k = 0):
 //   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 //   d: microfacet distribution id (one of beckmann, beckmann-ct, beckmann-pow, beckmann-power4, beckmann-power8, beckmann-power16, ggx, default beckmann)
-//   g: shadowing-masking term (one of v-cavity, smith, smith-rational, smith-beckmann-correlated, smith-ggx, smith-ggx-correlated, smith-ggx-correlated-fast, smith-ggx-joint-approx, schlick-ggx, kelemen, neumann, default smith)
+//   g: shadowing-masking term (one of v-cavity, smith, smith-rational, smith-beckmann-correlated, smith-ggx, smith-ggx-correlated, smith-ggx-correlated-fast, smith-ggx-correlated-fast-tuned, smith-ggx-joint-approx, schlick-ggx, kelemen, neumann, default smith)
 //   f: Fresnel term (one of none, schlick, schlick-sg, schlick-sg-tuned, dielectric, conductor, default none)
 //   f0: reflectance at normal incidence (Schlick) (range [0, 1], default 0.04)
 //   f90: reflectance at grazing incidence (Schlick; 1 is Schlick's own form) (range [0, 1], default 1)
