@@ -137,6 +137,9 @@ enum Command {
     Pareto(commands::fit::ParetoArgs),
     /// One model as a shader function: WGSL, GLSL, HLSL, MSL, or a BRDF Explorer .brdf file.
     Shader(commands::shader::Args),
+    /// The split-sum "DFG" look-up table (scale, bias) of GGX for image-based lighting, as EXR,
+    /// PNG or CSV.
+    Lut(commands::lut::Args),
 }
 
 /// A file-size limit (`ulimit -f`) must make a write fail with EFBIG, which the atomic writers
@@ -192,6 +195,7 @@ fn main() -> ExitCode {
         Command::Fit(a) => commands::fit::run_fit(&a),
         Command::Pareto(a) => commands::fit::run_pareto(&a),
         Command::Shader(a) => commands::shader::run(&a),
+        Command::Lut(a) => commands::lut::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
