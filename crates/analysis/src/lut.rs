@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use std::io::{self, Write};
 
 /// The largest table side (`--size`): 4096 x 4096 is 2^24 texels, 128 MiB of f32 for the two
-/// terms (and about 25 minutes of `env-brdf` on 16 cores at ~50 us per value).
+/// terms (and about 10 CPU-minutes of `env-brdf`, at ~20 us per value and two per texel).
 pub const MAX_SIZE: usize = 4096;
 
 /// What the table's y axis indexes.

@@ -87,7 +87,8 @@ each with a documented and tested error bound.",
 printf 'cos\\n1\\n0.99\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
 fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  fastbrdf check\n  \
 fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  \
-fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf reproduce --out report/\n\n\
+fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf reproduce --out report/\n  \
+fastbrdf lut --out dfg.exr\n\n\
 Exit codes:\n  0  success\n  1  a check failed (`check`), or the GPU itself failed\n  \
 2  bad usage or bad input (unknown model, invalid parameter or range, malformed CSV or mesh,\n     \
 an unreadable or oversized input file); nothing is written\n  \
