@@ -76,8 +76,9 @@ fn eval(model: &str, term: &str, pts: &[(f32, f32)]) -> Vec<f32> {
         .collect()
 }
 
-/// The batch kernel and `eval`'s scalar model may round differently in the last bits.
-const TOL: f32 = 4e-6;
+/// The batch kernel (fast math) and `eval`'s scalar model may round differently in the last
+/// bits (2e-7 measured for env-brdf at N = 16).
+const TOL: f32 = 1e-6;
 
 fn check_against_eval(model: &str, rows: &[[f32; 5]]) {
     let pts: Vec<(f32, f32)> = rows.iter().map(|r| (r[0], r[2])).collect();
