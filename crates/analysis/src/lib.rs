@@ -11,6 +11,7 @@
 //! - [`charts`]: the data of every chart and of the seeds' figures.
 //! - [`plot`]: the charts drawn (PNG and SVG).
 //! - [`materials`]: the 86 MERL materials' published fits (Ngan et al. 2005), embedded.
+//! - [`lut`]: the split-sum "DFG" look-up table of an env model (CSV, EXR, PNG).
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
 
 // Guards written `if !(x > lo)` also catch NaN, on purpose (see the fastbrdf crate).
@@ -21,6 +22,7 @@ pub mod charts;
 pub mod check;
 pub mod errors;
 pub mod fit;
+pub mod lut;
 pub mod materials;
 pub mod normalize;
 pub mod pareto;

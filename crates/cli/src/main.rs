@@ -87,7 +87,8 @@ each with a documented and tested error bound.",
 printf 'cos\\n1\\n0.99\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
 fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  fastbrdf check\n  \
 fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  \
-fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf reproduce --out report/\n\n\
+fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf reproduce --out report/\n  \
+fastbrdf lut --out dfg.exr\n\n\
 Exit codes:\n  0  success\n  1  a check failed (`check`), or the GPU itself failed\n  \
 2  bad usage or bad input (unknown model, invalid parameter or range, malformed CSV or mesh,\n     \
 an unreadable or oversized input file); nothing is written\n  \
@@ -137,6 +138,9 @@ enum Command {
     Pareto(commands::fit::ParetoArgs),
     /// One model as a shader function: WGSL, GLSL, HLSL, MSL, or a BRDF Explorer .brdf file.
     Shader(commands::shader::Args),
+    /// The split-sum "DFG" look-up table (scale, bias) of GGX for image-based lighting, as EXR,
+    /// PNG or CSV.
+    Lut(commands::lut::Args),
 }
 
 /// A file-size limit (`ulimit -f`) must make a write fail with EFBIG, which the atomic writers
@@ -192,6 +196,7 @@ fn main() -> ExitCode {
         Command::Fit(a) => commands::fit::run_fit(&a),
         Command::Pareto(a) => commands::fit::run_pareto(&a),
         Command::Shader(a) => commands::shader::run(&a),
+        Command::Lut(a) => commands::lut::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
