@@ -80,15 +80,12 @@ fn main() {
     }
     for col in 0..3 {
         let piv = m[col][col];
-        for j in col..4 {
-            m[col][j] /= piv;
-        }
-        for i in 0..3 {
+        m[col].iter_mut().for_each(|x| *x /= piv);
+        let pivot_row = m[col];
+        for (i, row) in m.iter_mut().enumerate() {
             if i != col {
-                let f = m[i][col];
-                for j in col..4 {
-                    m[i][j] -= f * m[col][j];
-                }
+                let f = row[col];
+                row.iter_mut().zip(pivot_row).for_each(|(x, p)| *x -= f * p);
             }
         }
     }
