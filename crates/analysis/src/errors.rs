@@ -45,11 +45,10 @@ pub struct Spec {
 
 impl Spec {
     fn bound(&self, metric: Metric) -> ErrorBound {
-        // ErrorBound wants 'static names: the registry's own strings.
-        let name = fastbrdf::registry::find(&self.model)
-            .ok()
-            .and_then(|e| e.info.params.iter().find(|p| p.name == self.param))
-            .map(|p| p.name)
+        // ErrorBound wants 'static names (validate() has checked the name).
+        let name = ["n", "alpha", "f0"]
+            .into_iter()
+            .find(|n| *n == self.param)
             .unwrap_or("n");
         let reference = fastbrdf::registry::find(&self.reference)
             .map(|e| e.info.id)
@@ -75,7 +74,9 @@ impl Spec {
             });
         }
         for e in [m, r] {
-            if !e.info.params.iter().any(|p| p.name == self.param) {
+            // A split-sum term's alpha is an input (its curves read it as one: accuracy::Curve).
+            let env_alpha = e.info.kind == fastbrdf::Kind::Env && self.param == "alpha";
+            if !env_alpha && !e.info.params.iter().any(|p| p.name == self.param) {
                 return Err(fastbrdf::Error::UnknownParam {
                     model: e.info.id.into(),
                     param: self.param.clone(),

@@ -205,9 +205,13 @@ pub fn find(name: &str) -> std::result::Result<&'static Material, String> {
     })
 }
 
-/// The documented range `[min, max]` of numeric parameter `param` of model `id`.
+/// The documented range `[min, max]` of numeric parameter `param` of model `id` (a split-sum
+/// term's `alpha` is an input with `params::ALPHA`'s range).
 pub fn domain(id: &str, param: &str) -> Option<(f64, f64)> {
     let e = fastbrdf::registry::find(id).ok()?;
+    if e.info.kind == fastbrdf::Kind::Env && param == "alpha" {
+        return Some(fastbrdf::params::ALPHA.range());
+    }
     e.info
         .params
         .iter()

@@ -158,7 +158,7 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
             let e = fastbrdf::registry::find(model)?;
             let p = ["n", "alpha"]
                 .into_iter()
-                .find(|p| e.info.params.iter().any(|s| s.name == *p))
+                .find(|p| takes(e, p))
                 .ok_or_else(|| {
                     CliError::input(format!(
                         "--material {name}: model '{model}' takes neither n nor alpha"
@@ -193,6 +193,16 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
         super::materials::with_material(Some(name), reference, &[])?;
     }
     for e in [model, reference] {
+        if fastbrdf::registry::find(e)?.info.kind == fastbrdf::Kind::Env {
+            // alpha is an input of split-sum terms: its domain is params::ALPHA's.
+            let (lo, hi) = fastbrdf::params::ALPHA.range();
+            if let Some(v) = values.iter().find(|v| !(**v >= lo && **v <= hi)) {
+                return Err(CliError::input(format!(
+                    "--m: {v} is outside the domain [{lo}, {hi}] of {e}'s alpha input"
+                )));
+            }
+            continue;
+        }
         fastbrdf::registry::build::<f64>(e, &[(param, &num(values[0]))])?;
         fastbrdf::registry::build::<f64>(e, &[(param, &num(values[values.len() - 1]))])?;
     }
@@ -485,4 +495,11 @@ pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
     };
     crate::outln!("{verdict}");
     Ok(())
+}
+
+/// Whether model `e` takes `param` as a parameter, or (a split-sum term's `alpha`) as an input
+/// that `errors` sweeps like one.
+pub fn takes(e: &fastbrdf::entry::Entry, param: &str) -> bool {
+    e.info.params.iter().any(|s| s.name == param)
+        || (e.info.kind == fastbrdf::Kind::Env && param == "alpha")
 }

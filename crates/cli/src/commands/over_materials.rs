@@ -44,7 +44,7 @@ fn pairs(a: &Args) -> Result<Vec<Pair>, CliError> {
     };
     let param = ["n", "alpha"]
         .into_iter()
-        .find(|p| e.info.params.iter().any(|s| s.name == *p))
+        .find(|p| super::analysis::takes(e, p))
         .ok_or_else(|| {
             CliError::input(format!(
                 "--over materials: model '{model}' takes neither n nor alpha"
@@ -57,13 +57,7 @@ fn pairs(a: &Args) -> Result<Vec<Pair>, CliError> {
         zone: a.zone,
     };
     spec.validate()?;
-    let param = e
-        .info
-        .params
-        .iter()
-        .find(|p| p.name == param)
-        .expect("found above")
-        .name;
+    let param = if param == "n" { "n" } else { "alpha" };
     Ok(vec![Pair {
         model: e.info.id,
         reference,
@@ -230,9 +224,29 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             _ => "max absolute error, divided by the reference's peak for non-lobes",
         }
     );
+    // Columns as wide as their longest entry (ids run to 31 characters).
+    let wm = summary
+        .iter()
+        .map(|x| x.pair.model.len())
+        .max()
+        .unwrap_or(0)
+        .max(5);
+    let wr = summary
+        .iter()
+        .map(|x| x.pair.reference.len())
+        .max()
+        .unwrap_or(0)
+        .max(9);
+    let figure = |x: &Summary| format!("{} ({})", x.pair.param, x.column);
+    let wf = summary
+        .iter()
+        .map(|x| figure(x).len())
+        .max()
+        .unwrap_or(0)
+        .max(14);
     let _ = writeln!(
         s,
-        "\n  {:<22} {:<12} {:<22} {:>5} {:>7} {:>8}  worst {} (material)",
+        "\n  {:<wm$} {:<wr$} {:<wf$} {:>5} {:>7} {:>8}  worst {} (material)",
         "model", "reference", "param (figure)", "safe", "unsafe", "outside", a.metric
     );
     for x in &summary {
@@ -241,10 +255,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             .map_or_else(|| "-".into(), |(v, m)| format!("{v:.3e} ({m})"));
         let _ = writeln!(
             s,
-            "  {:<22} {:<12} {:<22} {:>5} {:>7} {:>8}  {worst}",
+            "  {:<wm$} {:<wr$} {:<wf$} {:>5} {:>7} {:>8}  {worst}",
             x.pair.model,
             x.pair.reference,
-            format!("{} ({})", x.pair.param, x.column),
+            figure(x),
             x.safe,
             x.unsafe_,
             x.outside
