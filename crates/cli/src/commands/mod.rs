@@ -9,6 +9,7 @@ pub mod fit;
 pub mod materials;
 pub mod models;
 pub mod over_materials;
+pub mod pareto_brdf;
 pub mod plot;
 pub mod render;
 pub mod reproduce;
