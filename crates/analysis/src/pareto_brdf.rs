@@ -290,6 +290,8 @@ fn weights(grid: Grid) -> Vec<f64> {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct BrdfError {
     pub max_rel_peak: f64,
+    /// Where the maximum is: `theta_i`, `theta_o` and `phi_o - phi_i` in degrees.
+    pub max_at_deg: [f64; 3],
     pub rms_rel: f64,
     pub rms_abs: f64,
 }
@@ -324,15 +326,25 @@ impl Reference {
     /// The errors of `config` against this reference (module documentation).
     pub fn error(&self, config: &Config) -> fastbrdf::Result<BrdfError> {
         let v = cosine_weighted(config, self.alpha, self.grid)?;
-        let (mut max, mut sq) = (0.0f64, 0.0f64);
-        for ((a, b), w) in v.iter().zip(&self.values).zip(&self.weights) {
+        let (mut max, mut at, mut sq) = (0.0f64, 0usize, 0.0f64);
+        for (i, ((a, b), w)) in v.iter().zip(&self.values).zip(&self.weights).enumerate() {
             let d = a - b;
-            max = max.max(d.abs());
+            if d.abs() > max {
+                (max, at) = (d.abs(), i);
+            }
             sq += w * d * d;
         }
+        let (nt, np) = (self.grid.theta, self.grid.phi.max(2) & !1);
+        let theta = |k: usize| (k as f64 + 0.5) * 90.0 / nt as f64;
+        let max_at_deg = [
+            theta(at / (nt * np)),
+            theta(at / np % nt),
+            (at % np) as f64 * 360.0 / np as f64,
+        ];
         let total: f64 = self.weights.iter().sum();
         Ok(BrdfError {
             max_rel_peak: max / self.peak,
+            max_at_deg,
             rms_rel: (sq / self.norm2).sqrt(),
             rms_abs: (sq / total).sqrt(),
         })
@@ -478,6 +490,8 @@ pub struct Row {
     /// `ns_per_eval` over the reference's, measured in the same run.
     pub cost_ratio: f64,
     pub max_rel_peak: f64,
+    /// Where the maximum is: `theta_i`, `theta_o` and `phi_o - phi_i` in degrees.
+    pub max_at_deg: [f64; 3],
     pub rms_rel: f64,
     pub rms_abs: f64,
     /// Mean FLIP of the sphere render against the reference's.
@@ -582,6 +596,7 @@ pub fn run(o: &Options, progress: &dyn Fn()) -> Result<Vec<Row>, String> {
                 ns_per_eval: t * 1e9,
                 cost_ratio: t / ref_ns,
                 max_rel_peak: e.max_rel_peak,
+                max_at_deg: e.max_at_deg,
                 rms_rel: e.rms_rel,
                 rms_abs: e.rms_abs,
                 flip_sphere: flips.first().copied(),
@@ -627,6 +642,7 @@ mod tests {
             e,
             BrdfError {
                 max_rel_peak: 0.0,
+                max_at_deg: [90.0 / 32.0, 90.0 / 32.0, 0.0],
                 rms_rel: 0.0,
                 rms_abs: 0.0
             }
@@ -705,6 +721,7 @@ mod tests {
             ns_per_eval: ns,
             cost_ratio: 1.0,
             max_rel_peak: 1.0 - rms,
+            max_at_deg: [0.0; 3],
             rms_rel: rms,
             rms_abs: rms,
             flip_sphere: None,

@@ -202,7 +202,8 @@ the reference's; max |g - g_ref| / max g_ref and the relative L2 error (rms_rel)
 g = f cos_i cos_o over pairs of hemisphere directions (f64); mean FLIP of a sphere render (and\n\
 of --mesh) against the reference's. JSON: {reference, reference_label, alphas, grid, size, spp,\n\
 mesh, front_on, rows: [{label, d, g, f, denominator, params, alpha, reference, simd,\n\
-ns_per_eval, cost_ratio, max_rel_peak, rms_rel, rms_abs, flip_sphere, flip_mesh, pareto}]}."
+ns_per_eval, cost_ratio, max_rel_peak, max_at_deg: [theta_i, theta_o, phi], rms_rel, rms_abs,\n\
+flip_sphere, flip_mesh, pareto}]}."
 )]
 pub struct ParetoArgs {
     /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1e5, max_abs_8_1e5,

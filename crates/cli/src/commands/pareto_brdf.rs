@@ -231,7 +231,7 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
             o.front_on.name()
         );
         crate::outln!(
-            "{:>5} {:<17} {:<33} {:<26} {:>8} {:>6} {:>9} {:>9} {:>8} {:>8}",
+            "{:>5} {:<17} {:<33} {:<26} {:>8} {:>6} {:>9} {:>14} {:>9} {:>8} {:>8}",
             "alpha",
             "D",
             "G",
@@ -239,13 +239,14 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
             "ns/eval",
             "x ref",
             "max/peak",
+            "at ti/to/phi",
             "rms rel",
             "FLIP sph",
             "FLIP msh"
         );
         for r in &rows {
             crate::outln!(
-                "{:>5} {:<17} {:<33} {:<26} {:>8.2} {:>6.2} {:>9.4} {:>9.4} {:>8} {:>8} {}",
+                "{:>5} {:<17} {:<33} {:<26} {:>8.2} {:>6.2} {:>9.4} {:>14} {:>9.4} {:>8} {:>8} {}",
                 range::num(r.alpha),
                 r.d,
                 format!("{}{}", r.g, if r.simd { "" } else { " (erfc)" }),
@@ -253,6 +254,14 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
                 r.ns_per_eval,
                 r.cost_ratio,
                 r.max_rel_peak,
+                if r.max_rel_peak > 0.0 {
+                    format!(
+                        "{:.0}/{:.0}/{:.0}",
+                        r.max_at_deg[0], r.max_at_deg[1], r.max_at_deg[2]
+                    )
+                } else {
+                    "-".into()
+                },
                 r.rms_rel,
                 opt(r.flip_sphere, 4),
                 opt(r.flip_mesh, 4),
