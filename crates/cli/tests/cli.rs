@@ -1347,6 +1347,8 @@ fn pareto_brdf_quick_json_has_every_field_and_a_front() {
             "cannot be used with",
         ),
         (vec!["pareto", "--alpha", "0.3"], "--brdf"),
+        (vec!["pareto", "--brdf", "--grid", "48x95"], "phi even"),
+        (vec!["pareto", "--brdf", "--grid", "48"], "THETAxPHI"),
     ] {
         let r = fastbrdf(&args, "");
         assert_eq!(r.status.code(), Some(2), "{args:?}");

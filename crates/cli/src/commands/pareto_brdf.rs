@@ -47,6 +47,10 @@ pub struct BrdfArgs {
     /// (flip_sphere).
     #[arg(long, default_value = "rms", value_parser = ["rms", "max", "flip"], requires = "brdf")]
     pub front_on: String,
+    /// With --brdf: the BRDF-space grid, THETAxPHI (midpoints per hemisphere angle x relative
+    /// azimuths, even): 48x96 by default, 16x32 with --quick.
+    #[arg(long, value_name = "THETAxPHI", requires = "brdf")]
+    pub grid: Option<String>,
     /// With --brdf: take the costs from this saved `pareto --brdf --json` output instead of
     /// measuring them (what README's table does, so that a test can keep it current).
     #[arg(long, value_name = "PARETO.json", requires = "brdf")]
@@ -69,6 +73,25 @@ fn f_col(r: &Row) -> String {
         }
     }
     s
+}
+
+/// `48x96`: theta midpoints (2 to 512) and even azimuth counts (2 to 1024).
+fn parse_grid(text: &str) -> Result<Grid, CliError> {
+    let bad = || {
+        CliError::input(format!(
+            "--grid {}: expected THETAxPHI, theta 2 to 512, phi even, 2 to 1024",
+            fastbrdf_io::shorten(text, 40)
+        ))
+    };
+    let (t, p) = text.split_once('x').ok_or_else(bad)?;
+    let (theta, phi): (usize, usize) = (
+        t.trim().parse().map_err(|_| bad())?,
+        p.trim().parse().map_err(|_| bad())?,
+    );
+    if !(2..=512).contains(&theta) || !(2..=1024).contains(&phi) || phi % 2 != 0 {
+        return Err(bad());
+    }
+    Ok(Grid { theta, phi })
 }
 
 pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Result<(), CliError> {
@@ -115,7 +138,11 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
         reference,
         configs: pb::configurations(a.all),
         alphas,
-        grid: if a.quick { Grid::QUICK } else { Grid::DEFAULT },
+        grid: match &a.grid {
+            Some(g) => parse_grid(g)?,
+            None if a.quick => Grid::QUICK,
+            None => Grid::DEFAULT,
+        },
         budget: Duration::from_millis(if a.quick { 5 } else { 60 }),
         images,
         front_on: FrontOn::parse(&a.front_on).expect("clap checked it"),
