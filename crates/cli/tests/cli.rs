@@ -1349,6 +1349,23 @@ fn pareto_brdf_quick_json_has_every_field_and_a_front() {
         (vec!["pareto", "--alpha", "0.3"], "--brdf"),
         (vec!["pareto", "--brdf", "--grid", "48x95"], "phi even"),
         (vec!["pareto", "--brdf", "--grid", "48"], "THETAxPHI"),
+        (
+            vec!["pareto", "--brdf", "--costs", "/dev/null"],
+            "--costs /dev/null",
+        ),
+        (
+            vec![
+                "pareto",
+                "--brdf",
+                "--all",
+                "--costs",
+                concat!(
+                    env!("CARGO_MANIFEST_DIR"),
+                    "/../../docs/bench/pareto-brdf.json"
+                ),
+            ],
+            "the saved costs lack",
+        ),
     ] {
         let r = fastbrdf(&args, "");
         assert_eq!(r.status.code(), Some(2), "{args:?}");
