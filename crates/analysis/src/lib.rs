@@ -6,6 +6,8 @@
 //!   quadrature, and least-squares fits of closed forms for `coef(n)`.
 //! - [`albedo`]: directional albedo against incidence angle, with a white-furnace verdict.
 //! - [`pareto`]: every lobe's error against its SIMD cost, and the Pareto front.
+//! - [`pareto_brdf`]: full Cook-Torrance configurations against an exact one: SIMD cost, BRDF-
+//!   and image-space error (FLIP), the Pareto front.
 //! - [`reproduce`]: every numeric claim of the three seed papers, measured.
 //! - [`check`]: every documented bound of the registry re-measured.
 //! - [`charts`]: the data of every chart and of the seeds' figures.
@@ -26,6 +28,7 @@ pub mod lut;
 pub mod materials;
 pub mod normalize;
 pub mod pareto;
+pub mod pareto_brdf;
 pub mod plot;
 pub mod range;
 pub mod reproduce;

@@ -134,7 +134,8 @@ enum Command {
     Materials(commands::materials::Args),
     /// Minimax-tuned coefficients of an approximation family, per n, and their closed form.
     Fit(commands::fit::FitArgs),
-    /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot).
+    /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot);
+    /// --brdf: every Cook-Torrance configuration against an exact one (BRDF and image error).
     Pareto(commands::fit::ParetoArgs),
     /// One model as a shader function: WGSL, GLSL, HLSL, MSL, or a BRDF Explorer .brdf file.
     Shader(commands::shader::Args),

@@ -1267,6 +1267,146 @@ fn fit_and_pareto_commands() {
     );
 }
 
+/// Issue 14: `pareto --brdf`, every Cook-Torrance configuration against an exact one. The quick
+/// form runs in a few seconds; speed is measured, never asserted.
+#[test]
+fn pareto_brdf_quick_json_has_every_field_and_a_front() {
+    let r = fastbrdf(&["pareto", "--brdf", "--quick", "--json"], "");
+    assert!(r.status.success(), "{}", stderr(&r));
+    let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
+    assert_eq!(
+        v["reference_label"],
+        "ggx / smith-ggx-correlated / dielectric eta=1.5"
+    );
+    assert_eq!(v["alphas"], serde_json::json!([0.3]));
+    assert_eq!(v["size"], 32);
+    let rows = v["rows"].as_array().unwrap();
+    assert!(rows.len() >= 30, "{}", rows.len());
+    for row in rows {
+        for k in [
+            "alpha",
+            "ns_per_eval",
+            "cost_ratio",
+            "max_rel_peak",
+            "rms_rel",
+            "rms_abs",
+            "flip_sphere",
+        ] {
+            assert!(row[k].as_f64().is_some_and(|x| x >= 0.0), "{k}: {row}");
+        }
+        for k in ["label", "d", "g", "f", "denominator"] {
+            assert!(row[k].is_string(), "{k}: {row}");
+        }
+        assert!(
+            row["flip_mesh"].is_null() && row["pareto"].is_boolean() && row["simd"].is_boolean()
+        );
+    }
+    let reference: Vec<_> = rows.iter().filter(|r| r["reference"] == true).collect();
+    assert_eq!(reference.len(), 1);
+    for k in ["max_rel_peak", "rms_rel", "rms_abs", "flip_sphere"] {
+        assert_eq!(reference[0][k], 0.0, "{k}");
+    }
+    assert_eq!(reference[0]["cost_ratio"], 1.0);
+    // The reference has zero error, so it is on the front (nothing is both cheaper and exact).
+    assert_eq!(reference[0]["pareto"], true);
+    assert!(rows.iter().filter(|r| r["pareto"] == true).count() >= 2);
+    // Two alphas: one group each, the front per group; text and Markdown name the columns.
+    let r = fastbrdf(
+        &[
+            "pareto",
+            "--brdf",
+            "--quick",
+            "--size",
+            "0",
+            "--alpha",
+            "0.1,0.6",
+            "--markdown",
+        ],
+        "",
+    );
+    assert!(r.status.success(), "{}", stderr(&r));
+    let md = stdout(&r);
+    assert!(
+        md.starts_with("| alpha | D | G | F | ns/eval | x ref |"),
+        "{md}"
+    );
+    assert!(md.contains("| 0.1 | `ggx` | `smith-ggx-correlated` | `dielectric eta=1.5` |"));
+    assert!(md.contains("| 0.6 | `beckmann-power16` |"));
+    for (args, expected) in [
+        (vec!["pareto", "--brdf", "--alpha", "2"], "outside"),
+        (
+            vec!["pareto", "--brdf", "--reference", "alpha=0.2"],
+            "--reference",
+        ),
+        (
+            vec!["pareto", "--brdf", "--reference", "d=nope"],
+            "--reference",
+        ),
+        (
+            vec!["pareto", "--brdf", "--bench", "x.json"],
+            "cannot be used with",
+        ),
+        (vec!["pareto", "--alpha", "0.3"], "--brdf"),
+        (vec!["pareto", "--brdf", "--grid", "48x95"], "phi even"),
+        (vec!["pareto", "--brdf", "--grid", "48"], "THETAxPHI"),
+        (
+            vec!["pareto", "--brdf", "--costs", "/dev/null"],
+            "--costs /dev/null",
+        ),
+        (
+            vec![
+                "pareto",
+                "--brdf",
+                "--all",
+                "--costs",
+                concat!(
+                    env!("CARGO_MANIFEST_DIR"),
+                    "/../../docs/bench/pareto-brdf.json"
+                ),
+            ],
+            "the saved costs lack",
+        ),
+    ] {
+        let r = fastbrdf(&args, "");
+        assert_eq!(r.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&r).contains(expected), "{args:?}: {}", stderr(&r));
+        assert!(r.stdout.is_empty());
+    }
+}
+
+/// README's BRDF table is `fastbrdf pareto --brdf --costs docs/bench/pareto-brdf.json --mesh
+/// ../shared/data/canonical_face_model.obj --markdown`: the errors recomputed, the costs from
+/// the saved run (the release build's `--json`).
+#[test]
+fn readme_pareto_brdf_table_is_current() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
+    let r = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
+        .current_dir(root)
+        .args([
+            "pareto",
+            "--brdf",
+            "--costs",
+            "docs/bench/pareto-brdf.json",
+            "--mesh",
+            "../shared/data/canonical_face_model.obj",
+            "--markdown",
+        ])
+        .output()
+        .unwrap();
+    assert!(r.status.success(), "{}", stderr(&r));
+    let md = stdout(&r);
+    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let open = "<!-- pareto-brdf:begin -->\n";
+    let start = readme.find(open).expect("README has the pareto-brdf block") + open.len();
+    let end = readme
+        .find("<!-- pareto-brdf:end -->")
+        .expect("README closes the pareto-brdf block");
+    assert!(
+        readme[start..end] == md,
+        "README's BRDF Pareto table is stale: paste `fastbrdf pareto --brdf --costs docs/bench/pareto-brdf.json --mesh ../shared/data/canonical_face_model.obj --markdown`"
+    );
+}
+
 /// Runs the binary through bash (for `ulimit -f` and redirections); `script` uses `$B` for it.
 fn bash(script: &str, dir: &std::path::Path) -> Output {
     Command::new("bash")

@@ -191,10 +191,19 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
 /// differs from `pow` by design and the energy tests cover them).
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown --out fastbrdf-out/pareto\n\n\
+    after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown --out fastbrdf-out/pareto\n  \
+fastbrdf pareto --brdf --mesh face.obj\n  fastbrdf pareto --brdf --alpha 0.1,0.3,0.6 --reference d=beckmann,g=smith,f=dielectric,eta=1.5 --json\n\n\
 Output: a table on stdout (text, --json or --markdown). The plot (PNG and SVG, written both or\n\
 neither) is written only with --out; nothing is written to disk otherwise. A model whose\n\
-error or throughput is unknown has null in JSON."
+error or throughput is unknown has null in JSON.\n\n\
+--brdf: cook-torrance configurations (D x G x F) against --reference at each --alpha: ns per\n\
+evaluation of the batch kernel (4096 direction pairs, one core, measured now) and its ratio to\n\
+the reference's; max |g - g_ref| / max g_ref and the relative L2 error (rms_rel) of\n\
+g = f cos_i cos_o over pairs of hemisphere directions (f64); mean FLIP of a sphere render (and\n\
+of --mesh) against the reference's. JSON: {reference, reference_label, alphas, grid, size, spp,\n\
+mesh, front_on, rows: [{label, d, g, f, denominator, params, alpha, reference, simd,\n\
+ns_per_eval, cost_ratio, max_rel_peak, max_at_deg: [theta_i, theta_o, phi], rms_rel, rms_abs,\n\
+flip_sphere, flip_mesh, pareto}]}."
 )]
 pub struct ParetoArgs {
     /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1e5, max_abs_8_1e5,
@@ -208,11 +217,16 @@ pub struct ParetoArgs {
     #[arg(long, value_name = "PATH")]
     out: Option<PathBuf>,
     /// Use this saved `fastbrdf bench --json` run for the SIMD throughput instead of measuring.
-    #[arg(long, value_name = "BENCH.json")]
+    #[arg(long, value_name = "BENCH.json", conflicts_with = "brdf")]
     bench: Option<PathBuf>,
+    #[command(flatten)]
+    brdf: super::pareto_brdf::BrdfArgs,
 }
 
 pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
+    if a.brdf.brdf {
+        return super::pareto_brdf::run(&a.brdf, a.json, a.markdown, a.out.as_deref());
+    }
     let saved = match &a.bench {
         None => None,
         Some(p) => Some(fastbrdf_analysis::speed::Report::load(p)?),

@@ -10,6 +10,7 @@ pub mod lut;
 pub mod materials;
 pub mod models;
 pub mod over_materials;
+pub mod pareto_brdf;
 pub mod plot;
 pub mod render;
 pub mod reproduce;
