@@ -1,29 +1,11 @@
 //! The `fastbrdf` binary end to end: models, eval for every id, and clear errors with exit
 //! code 2 and nothing on stdout for bad input.
 
+mod common;
+
+use common::{fastbrdf, stderr, stdout, temp_dir};
 use std::io::Write;
 use std::process::{Command, Output, Stdio};
-
-fn fastbrdf(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the binary runs");
-    // The binary may exit before reading stdin (argument errors): a broken pipe is fine.
-    let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
-    child.wait_with_output().unwrap()
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).unwrap()
-}
 
 #[test]
 fn models_lists_every_id_in_table_and_json() {
@@ -907,13 +889,6 @@ fn readme_benchmark_tables_are_the_saved_run() {
         readme[start..end] == md,
         "README's benchmark tables are stale: paste `fastbrdf bench --from docs/bench/bench.json --markdown`"
     );
-}
-
-fn temp_dir(tag: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("fastbrdf-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 #[test]

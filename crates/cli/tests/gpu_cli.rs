@@ -1,28 +1,13 @@
 //! The GPU-related commands end to end: `fastbrdf shader` (no GPU needed) and
 //! `fastbrdf bench --gpu` (needs an adapter: skipped without one, a failure when `CI` is set).
 
-use std::process::{Command, Output};
+mod common;
+
+use common::{stderr, stdout, temp_dir};
+use std::process::Output;
 
 fn fastbrdf(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
-        .args(args)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).unwrap()
-}
-
-fn temp_dir(tag: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("fastbrdf-gpu-cli-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::fastbrdf(args, "")
 }
 
 fn have_gpu() -> bool {

@@ -5,34 +5,18 @@
 //! m = 0.214, f0 = 0.409, Ward alpha = 0.234); the out-of-domain case uses
 //! `specular-violet-phenolic` (n = 121,000), which stays outside a domain widened to n <= 1e5.
 
-use std::process::{Command, Output, Stdio};
+mod common;
+
+use common::{stderr, stdout, temp_dir};
+use std::process::Output;
 
 fn fastbrdf(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
-        .args(args)
-        .stdin(Stdio::null())
-        .output()
-        .expect("the binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8(o.stdout.clone()).unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8(o.stderr.clone()).unwrap()
+    common::fastbrdf(args, "")
 }
 
 fn json(o: &Output) -> serde_json::Value {
     assert!(o.status.success(), "{}", stderr(o));
     serde_json::from_slice(&o.stdout).expect("JSON on stdout")
-}
-
-fn temp_dir(tag: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("fastbrdf-materials-{tag}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn rgb(v: &serde_json::Value) -> bool {
