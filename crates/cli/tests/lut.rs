@@ -6,8 +6,8 @@
 mod common;
 
 use common::{fastbrdf, listing, temp_dir};
-use std::process::Command;
 use std::path::Path;
+use std::process::Command;
 
 /// Runs `fastbrdf lut` with `args`; asserts success and an empty stdout.
 fn lut(args: &[&str]) {

@@ -629,6 +629,19 @@ pub fn slider(name: &str, min: f64, max: f64, value: f64) -> Slider {
     }
 }
 
+impl Slider {
+    /// Its line in BRDF Explorer's parameter block: `float <uniform> <lo> <hi> <default>`.
+    fn declaration(&self) -> String {
+        format!(
+            "float {} {} {} {}",
+            self.uniform,
+            f32_text(self.lo),
+            f32_text(self.hi),
+            self.default_text
+        )
+    }
+}
+
 /// The `.brdf` file of `target` (the BRDF, Fresnel or shadowing instance BRDF Explorer
 /// evaluates): `header`, a slider per parameter its coefficients are computed from (see
 /// `slider`), the GLSL functions and `BRDF(L, V, N, X, Y)`.
@@ -646,14 +659,7 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
             .expect("sliders are parameters");
         if let ParamKind::Number { min, max, .. } = spec.kind {
             let s = slider(name, min, max, *value);
-            let _ = writeln!(
-                sliders,
-                "float {} {} {} {}",
-                s.uniform,
-                f32_text(s.lo),
-                f32_text(s.hi),
-                s.default_text
-            );
+            let _ = writeln!(sliders, "{}", s.declaration());
             if s.param == *name {
                 let _ = write!(extra, ", {name}");
             } else {
@@ -666,14 +672,7 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
     if target.info.kind == Kind::Env {
         let (lo, hi) = fastbrdf::params::ALPHA.range();
         let s = slider("alpha", lo, hi, 0.3);
-        let _ = writeln!(
-            sliders,
-            "float {} {} {} {}",
-            s.uniform,
-            f32_text(s.lo),
-            f32_text(s.hi),
-            s.default_text
-        );
+        let _ = writeln!(sliders, "{}", s.declaration());
         let _ = writeln!(params, "    float p_alpha = {};", s.param);
     }
     let body = match target.info.kind {
