@@ -240,9 +240,9 @@ fn albedo_from_wo(b: &dyn fastbrdf::Brdf<f64>, wo: [f64; 3]) -> f64 {
 }
 
 /// The furnace grid of the energy compensation (issue 14): alpha over [0.005, 1], cos over
-/// [0.05, 1] (the promise's range, `microfacet::ms`).
+/// [0.01, 1] (the promise's range, `microfacet::ms`).
 const MS_ALPHAS: [f64; 9] = [0.005, 0.01, 0.03, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0];
-const MS_COS: [f64; 7] = [0.05, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0];
+const MS_COS: [f64; 9] = [0.01, 0.02, 0.05, 0.1, 0.2, 0.35, 0.5, 0.75, 1.0];
 
 fn ggx_ms(alpha: f64, ms: &str) -> Box<dyn fastbrdf::Brdf<f64>> {
     brdf(

@@ -505,7 +505,7 @@ fn albedo_ms_compare(
         );
     }
     crate::outln!(
-        "max |albedo - 1|: none {:.2e}, kulla-conty {:.2e}, filament {:.2e} (with f = none the compensated ones promise {} for alpha >= 0.005, cos >= 0.05)",
+        "max |albedo - 1|: none {:.2e}, kulla-conty {:.2e}, filament {:.2e} (with f = none the compensated ones promise {} for alpha >= 0.005, cos >= 0.01)",
         dev(&curves[0]),
         dev(&curves[1]),
         dev(&curves[2]),
