@@ -249,10 +249,12 @@ pub fn wgsl_source() -> &'static str {
              \x20   let mj = fb_ms_split(sqrt(min(max(mu, 0.0), 1.0)) * {mscale}, {nm});\n\
              \x20   let i = i32(ri.x);\n\
              \x20   let j = i32(mj.x);\n\
-             \x20   let a0 = FB_MS_LOSS[i * {nm} + j];\n\
-             \x20   let l0 = a0 + (FB_MS_LOSS[i * {nm} + j + 1] - a0) * mj.y;\n\
-             \x20   let a1 = FB_MS_LOSS[(i + 1) * {nm} + j];\n\
-             \x20   let l1 = a1 + (FB_MS_LOSS[(i + 1) * {nm} + j + 1] - a1) * mj.y;\n\
+             \x20   // One local copy: a compiler may spill a constant array once per dynamic access.\n\
+             \x20   var tab = FB_MS_LOSS;\n\
+             \x20   let a0 = tab[i * {nm} + j];\n\
+             \x20   let l0 = a0 + (tab[i * {nm} + j + 1] - a0) * mj.y;\n\
+             \x20   let a1 = tab[(i + 1) * {nm} + j];\n\
+             \x20   let l1 = a1 + (tab[(i + 1) * {nm} + j + 1] - a1) * mj.y;\n\
              \x20   return l0 + (l1 - l0) * ri.y;\n\
              }}\n\n\
              /// 1 - E_avg(alpha) (as ms::avg_loss).\n\
