@@ -3,6 +3,11 @@
 //! around the mirror direction, split at the lobe's cut), with its error estimate; and the
 //! white-furnace verdict (albedo <= 1) for models that claim to conserve energy.
 //!
+//! A non-reciprocal BRDF (`cook-torrance` with `ms = filament`, whose compensation uses the view
+//! direction `wo` only) is integrated the other way, over `wi` at a fixed `wo` (`Target::view`):
+//! the albedo its method defines. Energy-compensated models (`ms`) aim at 1 and may read above
+//! it by their documented table error (`Target::furnace_tol`).
+//!
 //! Lobes are evaluated as BRDFs: `phong` (default: the lobe of `reflect(wi) . wo`, the geometry
 //! of the seeds' normalisation) or `blinn-phong`, normalised (`norm = energy`) or not.
 
@@ -24,6 +29,10 @@ pub struct Target {
     pub params: Vec<(String, String)>,
     /// Whether the model claims energy conservation (albedo <= 1).
     pub claims_energy: bool,
+    /// How far above 1 its albedo may read (`Plan::furnace_tol`).
+    pub furnace_tol: f64,
+    /// Integrate over `wi` at a fixed `wo` (the angle is the view's): non-reciprocal BRDFs.
+    pub view: bool,
 }
 
 /// Builds the BRDF target for any model id: full BRDFs as they are, lobes wrapped as `as_brdf`
@@ -37,11 +46,14 @@ pub fn target(id: &str, params: &[(String, String)], as_brdf: &str, norm: &str) 
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
+            let plan = registry::plan(id, &given)?;
             Ok(Target {
                 id: id.into(),
                 params: params.to_vec(),
                 // The model's own metadata (`BrdfForm::claims_energy`): normalised models.
-                claims_energy: registry::plan(id, &given)?.claims_energy(),
+                claims_energy: plan.claims_energy(),
+                furnace_tol: plan.furnace_tol(),
+                view: !plan.reciprocal(),
             })
         }
         fastbrdf::Kind::Lobe => {
@@ -52,8 +64,11 @@ pub fn target(id: &str, params: &[(String, String)], as_brdf: &str, norm: &str) 
             p.extend(params.iter().cloned());
             let given: Vec<(&str, &str)> =
                 p.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+            let plan = registry::plan(as_brdf, &given)?;
             Ok(Target {
-                claims_energy: registry::plan(as_brdf, &given)?.claims_energy(),
+                claims_energy: plan.claims_energy(),
+                furnace_tol: plan.furnace_tol(),
+                view: !plan.reciprocal(),
                 id: as_brdf.into(),
                 params: p,
             })
@@ -80,13 +95,14 @@ pub fn curve(t: &Target, angles_deg: &[f64], rel_tol: f64) -> Result<Vec<AlbedoR
         .iter()
         .map(|&deg| {
             let th = deg.to_radians();
-            let wi = [th.sin(), 0.0, th.cos()];
-            let (albedo, error) = fastbrdf::quad::albedo(
-                |wo| b.eval(wi, wo),
-                [-wi[0], -wi[1], wi[2]],
-                &b.mirror_breaks(),
-                rel_tol,
-            );
+            let w = [th.sin(), 0.0, th.cos()];
+            let mirror = [-w[0], -w[1], w[2]];
+            let breaks = b.mirror_breaks();
+            let (albedo, error) = if t.view {
+                fastbrdf::quad::albedo(|wi| b.eval(wi, w), mirror, &breaks, rel_tol)
+            } else {
+                fastbrdf::quad::albedo(|wo| b.eval(w, wo), mirror, &breaks, rel_tol)
+            };
             AlbedoRow {
                 theta_deg: deg,
                 albedo,

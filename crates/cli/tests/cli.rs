@@ -532,6 +532,87 @@ fn normalize_and_albedo_report() {
     assert_eq!(v["conserves"], true);
 }
 
+/// `albedo --ms-compare` (issue 14): the furnace before and after energy compensation; a
+/// compensated model's own furnace passes within its table error; a gated `ms` with another D
+/// is exit 2 naming the requirement; `--ms-compare` is only for cook-torrance.
+#[test]
+fn albedo_shows_the_furnace_before_and_after_energy_compensation() {
+    let o = fastbrdf(
+        &[
+            "albedo",
+            "--model",
+            "cook-torrance",
+            "--param",
+            "alpha=1",
+            "--angles",
+            "0,60",
+            "--ms-compare",
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let dev = |ms: &str| v["ms"][ms]["max_dev"].as_f64().unwrap();
+    assert!(dev("none") > 0.6, "{v}");
+    assert!(dev("kulla-conty") < 0.01 && dev("filament") < 0.01, "{v}");
+    let o = fastbrdf(
+        &[
+            "albedo",
+            "--model",
+            "cook-torrance",
+            "--param",
+            "alpha=0.5",
+            "--angles",
+            "0,80",
+            "--ms-compare",
+        ],
+        "",
+    );
+    assert!(stdout(&o).contains("kulla-conty"), "{}", stdout(&o));
+    let o = fastbrdf(
+        &[
+            "albedo",
+            "--model",
+            "cook-torrance",
+            "--param",
+            "alpha=1",
+            "--param",
+            "d=ggx",
+            "--param",
+            "g=smith-ggx-correlated",
+            "--param",
+            "ms=filament",
+            "--angles",
+            "0,70",
+        ],
+        "",
+    );
+    assert!(
+        stdout(&o).contains("white furnace: passes") && stdout(&o).contains("seen from wo"),
+        "{}",
+        stdout(&o)
+    );
+    let o = fastbrdf(
+        &[
+            "albedo",
+            "--model",
+            "cook-torrance",
+            "--param",
+            "ms=kulla-conty",
+        ],
+        "",
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("g = smith-ggx-correlated"),
+        "{}",
+        stderr(&o)
+    );
+    let o = fastbrdf(&["albedo", "--model", "ward", "--ms-compare"], "");
+    assert_eq!(o.status.code(), Some(2));
+}
+
 #[test]
 fn plots_are_written_as_png_and_svg() {
     let dir = std::env::temp_dir().join(format!("fastbrdf-plot-test-{}", std::process::id()));

@@ -1017,15 +1017,24 @@ pub fn worst_search(model_id: &str, bound: &ErrorBound, size: SearchSize) -> Res
 fn choice_sets(info: &crate::ModelInfo) -> Vec<Vec<(String, String)>> {
     let mut sets: Vec<Vec<(String, String)>> = vec![vec![]];
     for p in info.params {
-        if let crate::params::ParamKind::Choice { options, .. } = p.kind {
+        if let crate::params::ParamKind::Choice { options, default } = p.kind {
             sets = sets
                 .iter()
                 .flat_map(|set| {
-                    options.names().iter().map(move |o| {
-                        let mut s = set.clone();
-                        s.push((p.name.to_string(), o.to_string()));
-                        s
-                    })
+                    options
+                        .names()
+                        .iter()
+                        // Gated options only where their requirements hold (`Options::Gated`).
+                        .filter(|o| {
+                            options.allows(o, default, |n| {
+                                set.iter().find(|(k, _)| k == n).map(|(_, v)| v.clone())
+                            })
+                        })
+                        .map(move |o| {
+                            let mut s = set.clone();
+                            s.push((p.name.to_string(), o.to_string()));
+                            s
+                        })
                 })
                 .collect();
         }

@@ -32,14 +32,38 @@ pub enum Options {
     /// registry replaces it by the list of its ids of that kind (`registry::all`), so that a
     /// new model is a choice without a second list to keep.
     Models { kind: Kind, prefix: &'static str },
+    /// A fixed list whose options other than the parameter's default need other choice
+    /// parameters at given values (`cook-torrance`'s `ms` needs `d = ggx` and
+    /// `g = smith-ggx-correlated`): `Params::resolve` refuses the rest with an error naming
+    /// them, and `accuracy`'s configuration lists leave them out. The required parameters
+    /// come before this one in the model's list.
+    Gated {
+        list: &'static [&'static str],
+        requires: &'static [(&'static str, &'static str)],
+    },
 }
 
 impl Options {
     /// The names (empty for an unresolved `Models`: only the registry's copies are resolved).
     pub fn names(&self) -> &'static [&'static str] {
         match *self {
-            Options::List(l) => l,
+            Options::List(l) | Options::Gated { list: l, .. } => l,
             Options::Models { .. } => &[],
+        }
+    }
+    /// Whether option `name` (of a parameter whose default is `default`) is allowed beside the
+    /// other choices `other(param)` (see [`Options::Gated`]).
+    pub fn allows(
+        &self,
+        name: &str,
+        default: &str,
+        other: impl Fn(&str) -> Option<String>,
+    ) -> bool {
+        match *self {
+            Options::Gated { requires, .. } if name != default => requires
+                .iter()
+                .all(|(p, v)| other(p).as_deref() == Some(*v)),
+            _ => true,
         }
     }
 }
@@ -169,7 +193,38 @@ impl Params {
                 ParamKind::Number { default: None, .. } => {}
             }
         }
-        Ok(Self { model, values })
+        let p = Self { model, values };
+        for spec in specs {
+            if let ParamKind::Choice {
+                options: options @ Options::Gated { requires, .. },
+                default,
+            } = spec.kind
+            {
+                let v = p.choice(spec.name);
+                if !options.allows(v, default, |n| match p.values.get(n) {
+                    Some(Value::Text(t)) => Some(t.clone()),
+                    _ => None,
+                }) {
+                    let need: Vec<String> =
+                        requires.iter().map(|(n, x)| format!("{n} = {x}")).collect();
+                    let given: Vec<String> = requires
+                        .iter()
+                        .map(|(n, _)| format!("{n} = {}", p.choice(n)))
+                        .collect();
+                    return Err(Error::InvalidParam {
+                        model: model.into(),
+                        param: spec.name.into(),
+                        value: v.into(),
+                        expected: format!(
+                            "{default} unless {} (given {})",
+                            need.join(" and "),
+                            given.join(", ")
+                        ),
+                    });
+                }
+            }
+        }
+        Ok(p)
     }
 
     /// Validates numeric parameters given as numbers (a composite model's parts: Phong's

@@ -29,7 +29,7 @@ use std::fmt::Debug;
 use crate::brdf::{cook_torrance, lambert, phong, ward};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
 use crate::microfacet::{
-    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
+    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, ms, shadowing, smith_ggx,
 };
 
 /// A function of one cosine (a specular lobe).
@@ -177,6 +177,11 @@ pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
     fn claims_energy(&self) -> bool {
         false
     }
+    /// How far above 1 its albedo may read where it claims energy (0: never above 1; an
+    /// energy-compensated BRDF aims at 1 and carries its table's error, `microfacet::ms`).
+    fn furnace_tol(&self) -> f64 {
+        0.0
+    }
 }
 
 /// `coef(n) = 1 / (2 pi Int(n))` with `Int(n)` from `runtime.wgsl`'s
@@ -223,6 +228,8 @@ pub fn library_sources() -> Vec<(&'static str, &'static str)> {
     add(vec![("brdf/mod.wgsl", include_str!("brdf/mod.wgsl"))]);
     add(BrdfPlan::wgsl_sources());
     add(EnvPlan::wgsl_sources());
+    // Generated from its table (`microfacet::ms::wgsl_source`), so not a family's `WGSL`.
+    add(vec![("microfacet/ms.wgsl", ms::wgsl_source())]);
     add(vec![("runtime.wgsl", RUNTIME)]);
     out
 }
@@ -481,6 +488,9 @@ impl BrdfForm for BrdfPlan {
     fn claims_energy(&self) -> bool {
         with_brdf!(self, b => b.claims_energy())
     }
+    fn furnace_tol(&self) -> f64 {
+        with_brdf!(self, b => b.furnace_tol())
+    }
 }
 
 impl Plan {
@@ -505,6 +515,23 @@ impl Plan {
             Plan::Fresnel(f) => Model::Fresnel(with_fresnel!(f, x => Box::new(Scalar(*x)))),
             Plan::Brdf(b) => Model::Brdf(with_brdf!(b, x => Box::new(Scalar(*x)))),
             Plan::Env(e) => Model::Env(with_env!(e, x => Box::new(Scalar(*x)))),
+        }
+    }
+
+    /// How far above 1 the albedo of a model that claims energy may read
+    /// ([`BrdfForm::furnace_tol`]; 0 for every other kind).
+    pub fn furnace_tol(&self) -> f64 {
+        match self {
+            Plan::Brdf(b) => b.furnace_tol(),
+            _ => 0.0,
+        }
+    }
+
+    /// Whether `f(wi, wo) = f(wo, wi)` (true for every kind but a non-reciprocal BRDF).
+    pub fn reciprocal(&self) -> bool {
+        match self {
+            Plan::Brdf(b) => b.reciprocal(),
+            _ => true,
         }
     }
 

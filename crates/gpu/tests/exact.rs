@@ -13,7 +13,6 @@
 
 mod common;
 
-use fastbrdf::accuracy::domain_configs;
 use fastbrdf::model::Kind;
 use fastbrdf::registry;
 use fastbrdf_gpu::GpuKernel;
@@ -69,7 +68,7 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
             }
             Kind::Fresnel | Kind::Shadowing | Kind::Env => continue,
         };
-        for config in domain_configs(info, true) {
+        for config in common::gpu_configs(info) {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
@@ -139,7 +138,7 @@ fn every_lobe_is_accurate_near_its_peak() {
     let report = std::env::var_os("FASTBRDF_PARITY_REPORT").is_some();
     for e in registry::all().iter().filter(|e| e.info.kind == Kind::Lobe) {
         let info = &e.info;
-        for config in domain_configs(info, true) {
+        for config in common::gpu_configs(info) {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))

@@ -8,7 +8,6 @@
 
 mod common;
 
-use fastbrdf::accuracy::domain_configs;
 use fastbrdf::model::Kind;
 use fastbrdf::registry;
 use fastbrdf_gpu::GpuKernel;
@@ -133,7 +132,7 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
                     .collect(),
             ),
         };
-        for config in domain_configs(info, true) {
+        for config in common::gpu_configs(info) {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
@@ -204,7 +203,7 @@ fn brdf_twins_are_scale_invariant_in_their_directions() {
     let unit = scales.iter().position(|&s| s == 1.0).unwrap();
     let mut failures = vec![];
     for e in registry::all().iter().filter(|e| e.info.kind == Kind::Brdf) {
-        for config in domain_configs(&e.info, true) {
+        for config in common::gpu_configs(&e.info) {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))

@@ -34,7 +34,7 @@
 
 mod common;
 
-use fastbrdf::accuracy::{direction_pairs, domain_configs, mixed_error};
+use fastbrdf::accuracy::{direction_pairs, mixed_error};
 use fastbrdf::model::Kind;
 use fastbrdf::registry;
 use fastbrdf_gpu::GpuKernel;
@@ -213,7 +213,7 @@ fn every_model_matches_the_cpu() {
     let mut failures = vec![];
     for e in registry::all() {
         let info = &e.info;
-        for config in domain_configs(info, true) {
+        for config in common::gpu_configs(info) {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))

@@ -6,5 +6,6 @@ pub mod env_brdf;
 pub mod fresnel;
 pub mod ggx;
 pub mod kelemen_neumann;
+pub mod ms;
 pub mod shadowing;
 pub mod smith_ggx;

@@ -23,3 +23,29 @@ pub fn gpu() -> Option<&'static Gpu> {
     })
     .as_ref()
 }
+
+/// The parameter sets the GPU tests run: `fastbrdf::accuracy::domain_configs` (light), except
+/// that cook-torrance's energy compensation (`ms` other than `none`) is kept in one
+/// configuration per method (the first, with `f = none`): its shader carries a 32 x 32 table
+/// that lavapipe's LLVM takes about 30 s to compile, per shader. The CPU tests run every
+/// configuration; the compensated WGSL reads the same table with the same arithmetic as the
+/// CPU (`fastbrdf::microfacet::ms`), so one configuration per method checks the twin.
+pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
+    let get = |c: &[(String, String)], k: &str| {
+        c.iter()
+            .find(|(n, _)| n == k)
+            .map(|(_, v)| v.clone())
+            .unwrap_or_default()
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    fastbrdf::accuracy::domain_configs(info, true)
+        .into_iter()
+        .filter(|c| {
+            let ms = get(c, "ms");
+            if ms.is_empty() || ms == "none" {
+                return true;
+            }
+            get(c, "f") == "none" && seen.insert(ms)
+        })
+        .collect()
+}
