@@ -51,6 +51,8 @@ fn bound_text(b: &fastbrdf::ErrorBound) -> String {
 /// A plain-text table, one block per kind.
 pub fn table(models: &[&fastbrdf::ModelInfo]) -> String {
     let mut out = String::new();
+    // The id column fits the longest id (31 characters today), in every block alike.
+    let w = models.iter().map(|m| m.id.len()).max().unwrap_or(0).max(24);
     for kind in [
         Kind::Lobe,
         Kind::Distribution,
@@ -66,7 +68,7 @@ pub fn table(models: &[&fastbrdf::ModelInfo]) -> String {
         let _ = writeln!(out, "{}", kind.name().to_uppercase());
         let _ = writeln!(
             out,
-            "  {:<24} {:<34} {:<14} {:<8} error bound vs reference",
+            "  {:<w$} {:<34} {:<14} {:<8} error bound vs reference",
             "id", "parameters (default)", "ops m/a/d/s/t", "f32"
         );
         for m in rows {
@@ -93,11 +95,11 @@ pub fn table(models: &[&fastbrdf::ModelInfo]) -> String {
             let first = bounds.first().cloned().unwrap_or_else(|| "-".into());
             let _ = writeln!(
                 out,
-                "  {:<24} {:<34} {:<14} {:<8.0e} {}",
+                "  {:<w$} {:<34} {:<14} {:<8.0e} {}",
                 m.id, params_text, ops, m.f32_bound, first
             );
             for b in bounds.iter().skip(1) {
-                let _ = writeln!(out, "  {:<24} {:<34} {:<14} {:<8} {}", "", "", "", "", b);
+                let _ = writeln!(out, "  {:<w$} {:<34} {:<14} {:<8} {}", "", "", "", "", b);
             }
         }
         out.push('\n');
