@@ -173,79 +173,96 @@ fn cos_0_pi<T: Real, M: Math<T>>(x: T) -> T {
     y * p
 }
 
+/// The directional albedo of GGX with the height-correlated Smith term and F = 1: `scale +
+/// bias` in one pass of the rule (the energy-compensation table's `E`), `cos_v` in [0, 1],
+/// `alpha` in the documented range.
+pub fn albedo<T: Real, M: Math<T>>(cos_v: T, alpha: T) -> T {
+    integral::<T, M>(cos_v, alpha, |_| T::one())
+}
+
+/// The rule of `env-brdf` with the Fresnel weight `weight((1 - v.h)^5)`: `1 - f5` for the scale,
+/// `f5` for the bias, 1 for the F = 1 albedo.
+fn integral<T: Real, M: Math<T>>(cos_v: T, alpha: T, weight: impl Fn(T) -> T) -> T {
+    let one = T::one();
+    let mu = if cos_v > T::c(MU_MIN) {
+        cos_v
+    } else {
+        T::c(MU_MIN)
+    };
+    let a2 = alpha * alpha;
+    let sv = pos((one - mu) * (one + mu)).sqrt();
+    // mu Lambda(v) without the 0 * inf of grazing: a^2 sv^2 / (2 (sqrt(mu^2 + a^2 sv^2) + mu)).
+    let mlv = a2 * sv * sv / (T::c(2.0) * ((mu * mu + a2 * sv * sv).sqrt() + mu));
+    // The horizon's ends in u: tan theta_h1 = mu / (1 + sv), tan theta_h2 = (1 + sv) / mu.
+    // u and w = 1 - u are both carried, each computed without cancellation (u reaches
+    // 1 - 1e-7 at small alpha and grazing, where 1 - u in f32 would keep no bits).
+    let t1 = mu / (one + sv);
+    let t12 = t1 * t1;
+    let (u1, w1) = (t12 / (a2 + t12), a2 / (a2 + t12));
+    let (u2, w2) = (one / (one + a2 * t12), a2 * t12 / (one + a2 * t12));
+    let mut sum = T::zero();
+    // One u node of weight wu: the phi integral over its live range.
+    let ring = |u: T, w: T, wu: T, full: bool| -> T {
+        let d = w + a2 * u;
+        let ch = (w / d).sqrt();
+        let sh = alpha * (u / d).sqrt();
+        let pm = if full {
+            T::PI()
+        } else {
+            // cos(phi_max) = mu (1 - 2 ch^2) / (2 ch sh sv), 1 - 2 ch^2 = (a^2 u - w) / d.
+            let qd = T::c(2.0) * ch * sh * sv;
+            let q = mu * ((a2 * u - w) / d);
+            let q = if qd > T::zero() { q / qd } else { one };
+            let q = min1(q.max(-one));
+            let ac = M::acos(q.abs());
+            if q >= T::zero() { ac } else { T::PI() - ac }
+        };
+        let mut acc = T::zero();
+        for &(x, w) in &GL24 {
+            for s in [-x, x] {
+                let phi = pm * T::c(0.5 * (s + 1.0));
+                let vh = sv * sh * cos_0_pi::<T, M>(phi) + mu * ch;
+                let cl = T::c(2.0) * vh * ch - mu;
+                let cl = if cl > T::c(CL_MIN) { cl } else { T::c(CL_MIN) };
+                let tl2 = (one - cl) * (one + cl) / (cl * cl);
+                let ll = a2 * tl2 / (T::c(2.0) * ((one + a2 * tl2).sqrt() + one));
+                let g_over_mu = one / (mu * (one + ll) + mlv);
+                let f5 = {
+                    let m = pos(one - vh);
+                    let m2 = m * m;
+                    m2 * m2 * m
+                };
+                acc = acc + T::c(w) * weight(f5) * vh * g_over_mu / ch;
+            }
+        }
+        acc * pm * T::c(0.5) * wu
+    };
+    // u2 - u1 = w1 - w2, computed from the w's (both small where the u's are near 1).
+    let du = w1 - w2;
+    for &(x, w) in &GL24 {
+        for s in [-x, x] {
+            let (t, t_c) = (T::c(0.5 * (s + 1.0)), T::c(0.5 * (1.0 - s)));
+            let wt = T::c(0.5 * w);
+            // Piece 1: u = u1 t, w = 1 - u1 t = w1 + u1 (1 - t).
+            sum = sum + ring(u1 * t, w1 + u1 * t_c, u1 * wt, true);
+            // Piece 2: u = u2 - (u2 - u1) t^2, w = w2 + (u2 - u1) t^2.
+            let tt = du * t * t;
+            sum = sum + ring(u2 - tt, w2 + tt, du * T::c(2.0) * t * wt, false);
+        }
+    }
+    pos(sum * T::c(std::f64::consts::FRAC_1_PI))
+}
+
 impl EnvForm for Dfg {
     const WGSL: &'static str = include_str!("env_brdf.wgsl");
     const SIMD: bool = false;
     fn e<T: Real, M: Math<T>>(&self, cos_v: T, alpha: T) -> T {
-        let one = T::one();
-        let mu = if cos_v > T::c(MU_MIN) {
-            cos_v
-        } else {
-            T::c(MU_MIN)
-        };
-        let a2 = alpha * alpha;
-        let sv = pos((one - mu) * (one + mu)).sqrt();
-        // mu Lambda(v) without the 0 * inf of grazing: a^2 sv^2 / (2 (sqrt(mu^2 + a^2 sv^2) + mu)).
-        let mlv = a2 * sv * sv / (T::c(2.0) * ((mu * mu + a2 * sv * sv).sqrt() + mu));
-        // The horizon's ends in u: tan theta_h1 = mu / (1 + sv), tan theta_h2 = (1 + sv) / mu.
-        // u and w = 1 - u are both carried, each computed without cancellation (u reaches
-        // 1 - 1e-7 at small alpha and grazing, where 1 - u in f32 would keep no bits).
-        let t1 = mu / (one + sv);
-        let t12 = t1 * t1;
-        let (u1, w1) = (t12 / (a2 + t12), a2 / (a2 + t12));
-        let (u2, w2) = (one / (one + a2 * t12), a2 * t12 / (one + a2 * t12));
-        let mut sum = T::zero();
-        // One u node of weight wu: the phi integral over its live range.
-        let ring = |u: T, w: T, wu: T, full: bool| -> T {
-            let d = w + a2 * u;
-            let ch = (w / d).sqrt();
-            let sh = alpha * (u / d).sqrt();
-            let pm = if full {
-                T::PI()
-            } else {
-                // cos(phi_max) = mu (1 - 2 ch^2) / (2 ch sh sv), 1 - 2 ch^2 = (a^2 u - w) / d.
-                let qd = T::c(2.0) * ch * sh * sv;
-                let q = mu * ((a2 * u - w) / d);
-                let q = if qd > T::zero() { q / qd } else { one };
-                let q = min1(q.max(-one));
-                let ac = M::acos(q.abs());
-                if q >= T::zero() { ac } else { T::PI() - ac }
-            };
-            let mut acc = T::zero();
-            for &(x, w) in &GL24 {
-                for s in [-x, x] {
-                    let phi = pm * T::c(0.5 * (s + 1.0));
-                    let vh = sv * sh * cos_0_pi::<T, M>(phi) + mu * ch;
-                    let cl = T::c(2.0) * vh * ch - mu;
-                    let cl = if cl > T::c(CL_MIN) { cl } else { T::c(CL_MIN) };
-                    let tl2 = (one - cl) * (one + cl) / (cl * cl);
-                    let ll = a2 * tl2 / (T::c(2.0) * ((one + a2 * tl2).sqrt() + one));
-                    let g_over_mu = one / (mu * (one + ll) + mlv);
-                    let f5 = {
-                        let m = pos(one - vh);
-                        let m2 = m * m;
-                        m2 * m2 * m
-                    };
-                    let weight = if self.bias { f5 } else { one - f5 };
-                    acc = acc + T::c(w) * weight * vh * g_over_mu / ch;
-                }
-            }
-            acc * pm * T::c(0.5) * wu
-        };
-        // u2 - u1 = w1 - w2, computed from the w's (both small where the u's are near 1).
-        let du = w1 - w2;
-        for &(x, w) in &GL24 {
-            for s in [-x, x] {
-                let (t, t_c) = (T::c(0.5 * (s + 1.0)), T::c(0.5 * (1.0 - s)));
-                let wt = T::c(0.5 * w);
-                // Piece 1: u = u1 t, w = 1 - u1 t = w1 + u1 (1 - t).
-                sum = sum + ring(u1 * t, w1 + u1 * t_c, u1 * wt, true);
-                // Piece 2: u = u2 - (u2 - u1) t^2, w = w2 + (u2 - u1) t^2.
-                let tt = du * t * t;
-                sum = sum + ring(u2 - tt, w2 + tt, du * T::c(2.0) * t * wt, false);
-            }
-        }
-        pos(sum * T::c(std::f64::consts::FRAC_1_PI))
+        let bias = self.bias;
+        integral::<T, M>(
+            cos_v,
+            alpha,
+            move |f5| if bias { f5 } else { T::one() - f5 },
+        )
     }
     fn wgsl(&self, v: &str, a: &str, _e: &Emit) -> String {
         format!(

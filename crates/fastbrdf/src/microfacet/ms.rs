@@ -27,8 +27,8 @@
 //! `ms` other than `none` with any other `d` or `g` is refused at construction
 //! (`params::Options::Gated`).
 //!
-//! Design: a table, built once per process (`OnceLock`, about 2.4 million integrand
-//! evaluations of `env_brdf::Dfg`, tens of milliseconds) and shared by every target: the
+//! Design: a table, built once per process (`OnceLock`, about 1.2 million integrand
+//! evaluations of `env_brdf::albedo`, tens of milliseconds) and shared by every target: the
 //! loss `1 - E` on a 32 x 32 grid, uniform in `sqrt(mu)` (dense at grazing, where `E` falls
 //! fastest) and in the perceptual roughness `r = sqrt(alpha)` over `params::ALPHA`'s range,
 //! stored as f32 numbers (so f32 and f64 read the same table), bilinear in `(sqrt(mu), r)`;
@@ -57,9 +57,8 @@
 //! do not vectorise (`Kernel::simd()` says so).
 
 use crate::math::Math;
-use crate::microfacet::env_brdf::Dfg;
+use crate::microfacet::env_brdf;
 use crate::params::ALPHA;
-use crate::plan::EnvForm;
 use crate::real::{K, Real};
 use std::sync::OnceLock;
 
@@ -106,10 +105,9 @@ fn r_min() -> f64 {
     ALPHA.range().0.sqrt()
 }
 
-/// `E(mu, alpha) = scale + bias` by `env-brdf`'s quadrature (f64).
+/// `E(mu, alpha) = scale + bias` by `env-brdf`'s quadrature (f64), in one pass.
 pub fn e_quadrature(mu: f64, alpha: f64) -> f64 {
-    use crate::math::Exact;
-    Dfg { bias: false }.e::<f64, Exact>(mu, alpha) + Dfg { bias: true }.e::<f64, Exact>(mu, alpha)
+    env_brdf::albedo::<f64, crate::math::Exact>(mu, alpha)
 }
 
 /// The shared table (built on first use).
