@@ -74,9 +74,7 @@ impl Spec {
             });
         }
         for e in [m, r] {
-            // A split-sum term's alpha is an input (its curves read it as one: accuracy::Curve).
-            let env_alpha = e.info.kind == fastbrdf::Kind::Env && self.param == "alpha";
-            if !env_alpha && !e.info.params.iter().any(|p| p.name == self.param) {
+            if e.info.sweep_range(&self.param).is_none() {
                 return Err(fastbrdf::Error::UnknownParam {
                     model: e.info.id.into(),
                     param: self.param.clone(),

@@ -208,18 +208,7 @@ pub fn find(name: &str) -> std::result::Result<&'static Material, String> {
 /// The documented range `[min, max]` of numeric parameter `param` of model `id` (a split-sum
 /// term's `alpha` is an input with `params::ALPHA`'s range).
 pub fn domain(id: &str, param: &str) -> Option<(f64, f64)> {
-    let e = fastbrdf::registry::find(id).ok()?;
-    if e.info.kind == fastbrdf::Kind::Env && param == "alpha" {
-        return Some(fastbrdf::params::ALPHA.range());
-    }
-    e.info
-        .params
-        .iter()
-        .find(|p| p.name == param)
-        .and_then(|p| match p.kind {
-            ParamKind::Number { min, max, .. } => Some((min, max)),
-            ParamKind::Choice { .. } => None,
-        })
+    fastbrdf::registry::find(id).ok()?.info.sweep_range(param)
 }
 
 /// Whether `x` lies in the documented range of `param` of model `id`.

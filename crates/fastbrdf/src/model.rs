@@ -87,6 +87,24 @@ pub struct ModelInfo {
     pub note: &'static str,
 }
 
+impl ModelInfo {
+    /// The documented range of `name` when error sweeps may walk it: a numeric parameter, or
+    /// the `alpha` input of a split-sum term (`Kind::Env`, whose curves read it as one:
+    /// `accuracy::Curve`). `None` for anything else.
+    pub fn sweep_range(&self, name: &str) -> Option<(f64, f64)> {
+        if self.kind == Kind::Env && name == "alpha" {
+            return Some(crate::params::ALPHA.range());
+        }
+        self.params
+            .iter()
+            .find(|p| p.name == name)
+            .and_then(|p| match p.kind {
+                crate::params::ParamKind::Number { min, max, .. } => Some((min, max)),
+                crate::params::ParamKind::Choice { .. } => None,
+            })
+    }
+}
+
 /// A function of one cosine.
 pub trait Lobe<T: Real>: Send + Sync {
     /// The value at cosine `c`, clamped to [0, 1] first (../shared/MODELS.md): `c < 0` gives

@@ -605,9 +605,8 @@ pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Whether model `e` takes `param` as a parameter, or (a split-sum term's `alpha`) as an input
-/// that `errors` sweeps like one.
+/// Whether `errors` can sweep `param` of model `e` (a numeric parameter, or a split-sum
+/// term's `alpha` input).
 pub fn takes(e: &fastbrdf::entry::Entry, param: &str) -> bool {
-    e.info.params.iter().any(|s| s.name == param)
-        || (e.info.kind == fastbrdf::Kind::Env && param == "alpha")
+    e.info.sweep_range(param).is_some()
 }
