@@ -346,6 +346,15 @@ fn header_text(
         "Entry: {}{sig}{extra}; returns f32.",
         exported_name(&inst.function, lang)
     );
+    if info.kind == Kind::Shadowing && lang != Lang::BrdfExplorer {
+        let _ = writeln!(
+            s,
+            "V form: {}, the same arguments, returns V = G / (4 cos_v cos_l), the visibility \
+             term engines multiply by D and F with no further denominator (Filament's \
+             V_SmithGGXCorrelated, Unreal's Vis_*).",
+            exported_name(&crate::spec::v_function_name(&inst.function), lang)
+        );
+    }
     if let Some(b) = shaded {
         if b.info.id != info.id {
             let _ = writeln!(

@@ -13,7 +13,9 @@
 //! Signatures of the generated function, by kind:
 //! - lobe: `fn fb_<id>(c: f32) -> f32`
 //! - distribution: `fn fb_<id>(cos_h: f32) -> f32`
-//! - shadowing: `fn fb_<id>(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32` (two-sided)
+//! - shadowing: `fn fb_<id>(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32` (two-sided
+//!   `G`), and beside it `fn fb_<id>_v(...)`, the same arguments, the engines' `V = G / (4 cos_v
+//!   cos_l)` ([`v_form`])
 //! - Fresnel: `fn fb_<id>(cos_vh: f32) -> f32`
 //! - BRDF: `fn fb_<id>(wi: vec3<f32>, wo: vec3<f32>) -> f32` (local frame, normal +z, no cosine)
 
@@ -106,12 +108,15 @@ impl Instance {
         } else {
             shown(&params)
         };
-        let wrapper = format!(
+        let mut wrapper = format!(
             "/// {id}: {formula}\n/// Source: {source}. Instance: {shown}.\nfn {function}({signature}) -> f32 {{\n{body}}}\n",
             id = e.info.id,
             formula = e.info.formula,
             source = e.info.source,
         );
+        if e.info.kind == Kind::Shadowing {
+            wrapper.push_str(&v_form(&function, &signature));
+        }
         Ok(Self {
             info: &e.info,
             params,
@@ -172,6 +177,29 @@ impl Instance {
         s.push_str(&self.wrapper);
         s
     }
+}
+
+/// The name of a shadowing instance's V-form companion of `function` (see [`v_form`]).
+pub fn v_function_name(function: &str) -> String {
+    format!("{function}_v")
+}
+
+/// The V form of a shadowing instance `function` (the engines' convention: Filament's
+/// `V_SmithGGXCorrelated`, Unreal's `Vis_*`): `V = G / (4 cos_v cos_l)`, to be multiplied by
+/// `D` and `F` with no further denominator. fastbrdf's terms return `G` so that they compose
+/// with `cook-torrance`'s denominator; this is the conversion, emitted beside `G` in every
+/// export. The denominator is kept at or above the smallest normal f32: with `G <= 1` the
+/// result stays finite (at most 8.5e37) for every input, and is 0 wherever `G` is.
+fn v_form(function: &str, signature: &str) -> String {
+    let args = signature
+        .split(", ")
+        .map(|a| a.split(':').next().unwrap_or(a))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let v = v_function_name(function);
+    format!(
+        "\n/// V form of {function}: V = G / (4 cos_v cos_l), as engines write the visibility term\n/// (multiply by D and F only; 0 wherever G is 0).\nfn {v}({signature}) -> f32 {{\n    let g = {function}({args});\n    return select(0.0, g / max(4.0 * cos_v * cos_l, 1.1754943508222875e-38), g > 0.0);\n}}\n"
+    )
 }
 
 /// The inputs of a kind's `fb_<id>`, as WGSL parameters (`Kind::wgsl_signature`).

@@ -375,3 +375,77 @@ fn every_model_matches_the_cpu() {
         failures.join("\n")
     );
 }
+
+/// Every shadowing instance carries its V form (`fb_<id>_v`, exported beside `G`): on the GPU
+/// it equals the f64 CPU model's `G / (4 cos_v cos_l)`, within 1e-5 relative (the G parity
+/// above plus the few roundings of the division), is finite on the whole grid (cosines down
+/// to 0) and is 0 wherever G is.
+#[test]
+fn every_shadowing_v_form_is_g_over_four_cosines() {
+    let Some(gpu) = common::gpu() else { return };
+    let (d, q) = (&gpu.device, &gpu.queue);
+    let sh = shadow_grid();
+    let mut checked = 0;
+    let mut failures = vec![];
+    for e in registry::all()
+        .iter()
+        .filter(|e| e.info.kind == Kind::Shadowing)
+    {
+        let info = &e.info;
+        for config in common::gpu_configs(info) {
+            let given: Vec<(&str, &str)> = config
+                .iter()
+                .map(|(k, v)| (k.as_str(), v.as_str()))
+                .collect();
+            let exact = registry::build::<f64>(info.id, &given).unwrap();
+            let mut inst = Instance::with_storage(info.id, &given).unwrap();
+            inst.function = fastbrdf_gpu::spec::v_function_name(&inst.function);
+            let kernel = GpuKernel::new(d, inst).unwrap();
+            let mut out = vec![0.0f32; sh[0].len()];
+            kernel
+                .eval(
+                    d,
+                    q,
+                    GpuInput::Shadow([&sh[0], &sh[1], &sh[2], &sh[3]]),
+                    &mut out,
+                )
+                .unwrap();
+            let half = exact.columns().0.contains(&"cos_vh");
+            let mut worst = (0.0f64, 0usize);
+            for (i, &got) in out.iter().enumerate() {
+                let (v, l, h, vh) = (sh[0][i], sh[1][i], sh[2][i], sh[3][i]);
+                let row: Vec<Option<f64>> = if half {
+                    [v, h, vh, l].map(|x| Some(x as f64)).to_vec()
+                } else {
+                    vec![Some(v as f64), Some(l as f64)]
+                };
+                let g = exact.eval_row(&row);
+                let want = if g > 0.0 {
+                    g / (4.0 * v as f64 * l as f64)
+                } else {
+                    0.0
+                };
+                assert!(
+                    got.is_finite(),
+                    "{} {config:?}: V not finite at row {i}",
+                    info.id
+                );
+                let err = (got as f64 - want).abs() / want.abs().max(1e-30);
+                let err = if want == 0.0 { got.abs() as f64 } else { err };
+                if err > worst.0 {
+                    worst = (err, i);
+                }
+            }
+            checked += 1;
+            if worst.0 > 1e-5 {
+                let i = worst.1;
+                failures.push(format!(
+                    "{} {config:?}: relative error {:.3e} at (cos_v, cos_l, cos_h, cos_vh) = ({}, {}, {}, {})",
+                    info.id, worst.0, sh[0][i], sh[1][i], sh[2][i], sh[3][i]
+                ));
+            }
+        }
+    }
+    assert!(checked >= 10, "only {checked} shadowing configurations");
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -11,6 +11,7 @@
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_smith_ggx_correlated_fast(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+// V form: fb_smith_ggx_correlated_fast_v, the same arguments, returns V = G / (4 cos_v cos_l), the visibility term engines multiply by D and F with no further denominator (Filament's V_SmithGGXCorrelated, Unreal's Vis_*).
 
 /// The smallest normal f32, for the fast forms' underflowed denominators (0, not NaN).
 const FB_F32_MIN_NORMAL: f32 = 1.1754943508222875e-38;
@@ -30,4 +31,11 @@ fn fb_g_smith_ggx_correlated_fast(cos_v: f32, cos_l: f32, alpha: f32, om: f32) -
 fn fb_smith_ggx_correlated_fast(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32 {
     let g = fb_g_smith_ggx_correlated_fast(cos_v, cos_l, 0.3f, 0.7f);
     return select(0.0, g, (cos_v > 0.0) & (cos_l > 0.0));
+}
+
+/// V form of fb_smith_ggx_correlated_fast: V = G / (4 cos_v cos_l), as engines write the visibility term
+/// (multiply by D and F only; 0 wherever G is 0).
+fn fb_smith_ggx_correlated_fast_v(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32 {
+    let g = fb_smith_ggx_correlated_fast(cos_v, cos_l, cos_h, cos_vh);
+    return select(0.0, g / max(4.0 * cos_v * cos_l, 1.1754943508222875e-38), g > 0.0);
 }

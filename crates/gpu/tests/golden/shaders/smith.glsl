@@ -10,6 +10,7 @@
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_smith(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+// V form: fb_smith_v, the same arguments, returns V = G / (4 cos_v cos_l), the visibility term engines multiply by D and F with no further denominator (Filament's V_SmithGGXCorrelated, Unreal's Vis_*).
 
 const float FB_INV_SQRT_PI = 0.5641896;
 
@@ -33,4 +34,9 @@ float fb_smith(float cos_v, float cos_l, float cos_h, float cos_vh) {
     float _e7 = fb_g1_smith(cos_l, 0.3);
     float g = (_e5 * _e7);
     return (((cos_v > 0.0) && (cos_l > 0.0)) ? g : 0.0);
+}
+
+float fb_smith_v(float cos_v_1, float cos_l_1, float cos_h_1, float cos_vh_1) {
+    float _e4 = fb_smith(cos_v_1, cos_l_1, cos_h_1, cos_vh_1);
+    return ((_e4 > 0.0) ? (_e4 / max(((4.0 * cos_v_1) * cos_l_1), 1.1754944e-38)) : 0.0);
 }

@@ -10,6 +10,7 @@
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_smith(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided, then p_alpha; returns f32.
+// V form: fb_smith_v, the same arguments, returns V = G / (4 cos_v cos_l), the visibility term engines multiply by D and F with no further denominator (Filament's V_SmithGGXCorrelated, Unreal's Vis_*).
 
 // language: metal2.0
 #include <metal_stdlib>
@@ -49,4 +50,15 @@ float fb_smith(
     float _e6 = fb_g1_smith(cos_l, p_alpha);
     float g = _e5 * _e6;
     return ((cos_v > 0.0) & (cos_l > 0.0)) ? g : 0.0;
+}
+
+float fb_smith_v(
+    float cos_v_1,
+    float cos_l_1,
+    float cos_h_1,
+    float cos_vh_1,
+    float p_alpha_1
+) {
+    float _e5 = fb_smith(cos_v_1, cos_l_1, cos_h_1, cos_vh_1, p_alpha_1);
+    return (_e5 > 0.0) ? (_e5 / metal::max((4.0 * cos_v_1) * cos_l_1, 0.000000000000000000000000000000000000011754944)) : 0.0;
 }

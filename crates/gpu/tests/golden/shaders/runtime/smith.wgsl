@@ -10,6 +10,7 @@
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: p_alpha (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_smith(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided, then p_alpha; returns f32.
+// V form: fb_smith_v, the same arguments, returns V = G / (4 cos_v cos_l), the visibility term engines multiply by D and F with no further denominator (Filament's V_SmithGGXCorrelated, Unreal's Vis_*).
 
 /// 1 / sqrt(pi), for the Smith term.
 const FB_INV_SQRT_PI: f32 = 0.5641895835477563;
@@ -38,4 +39,11 @@ fn fb_g1_smith(c: f32, alpha: f32) -> f32 {
 fn fb_smith(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32, p_alpha: f32) -> f32 {
     let g = fb_g1_smith(cos_v, (p_alpha)) * fb_g1_smith(cos_l, (p_alpha));
     return select(0.0, g, (cos_v > 0.0) & (cos_l > 0.0));
+}
+
+/// V form of fb_smith: V = G / (4 cos_v cos_l), as engines write the visibility term
+/// (multiply by D and F only; 0 wherever G is 0).
+fn fb_smith_v(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32, p_alpha: f32) -> f32 {
+    let g = fb_smith(cos_v, cos_l, cos_h, cos_vh, p_alpha);
+    return select(0.0, g / max(4.0 * cos_v * cos_l, 1.1754943508222875e-38), g > 0.0);
 }

@@ -9,6 +9,7 @@
 // Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Runtime parameters: none (the model has no numeric parameter) (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_v_cavity(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
+// V form: fb_v_cavity_v, the same arguments, returns V = G / (4 cos_v cos_l), the visibility term engines multiply by D and F with no further denominator (Filament's V_SmithGGXCorrelated, Unreal's Vis_*).
 
 // language: metal2.0
 #include <metal_stdlib>
@@ -35,4 +36,14 @@ float fb_v_cavity(
 ) {
     float _e4 = fb_g_v_cavity(cos_v_1, cos_l_1, cos_h_1, cos_vh_1);
     return ((((cos_v_1 > 0.0) & (cos_l_1 > 0.0)) & (cos_h_1 > 0.0)) & (cos_vh_1 > 0.0)) ? _e4 : 0.0;
+}
+
+float fb_v_cavity_v(
+    float cos_v_2,
+    float cos_l_2,
+    float cos_h_2,
+    float cos_vh_2
+) {
+    float _e4 = fb_v_cavity(cos_v_2, cos_l_2, cos_h_2, cos_vh_2);
+    return (_e4 > 0.0) ? (_e4 / metal::max((4.0 * cos_v_2) * cos_l_2, 0.000000000000000000000000000000000000011754944)) : 0.0;
 }
