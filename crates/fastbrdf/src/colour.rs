@@ -232,9 +232,16 @@ mod tests {
 
     #[test]
     fn a_triple_goes_one_number_per_channel() {
-        let given = p(&[("alpha", "0.2"), ("eta", "0.1, 0.2,0.3"), ("f", "conductor")]);
+        let given = p(&[
+            ("alpha", "0.2"),
+            ("eta", "0.1, 0.2,0.3"),
+            ("f", "conductor"),
+        ]);
         let [r, g, b] = channels("cook-torrance", &given).unwrap().unwrap();
-        assert_eq!(r, p(&[("alpha", "0.2"), ("eta", "0.1"), ("f", "conductor")]));
+        assert_eq!(
+            r,
+            p(&[("alpha", "0.2"), ("eta", "0.1"), ("f", "conductor")])
+        );
         assert_eq!(g[1].1, "0.2");
         assert_eq!(b[1].1, "0.3");
     }
@@ -247,7 +254,10 @@ mod tests {
                 .to_string()
         };
         let two = msg("1,2");
-        assert!(two.contains("parameter eta") && two.contains("2 given"), "{two}");
+        assert!(
+            two.contains("parameter eta") && two.contains("2 given"),
+            "{two}"
+        );
         let text = msg("1,x,2");
         assert!(text.contains("eta (channel G, 550 nm)"), "{text}");
         let range = msg("1,2,11");
@@ -276,7 +286,12 @@ mod tests {
             let [r, g, b] = channels("cook-torrance", &m.params()).unwrap().unwrap();
             for (c, list) in [r, g, b].iter().enumerate() {
                 let get = |n: &str| -> f64 {
-                    list.iter().find(|(a, _)| a == n).unwrap().1.parse().unwrap()
+                    list.iter()
+                        .find(|(a, _)| a == n)
+                        .unwrap()
+                        .1
+                        .parse()
+                        .unwrap()
                 };
                 assert_eq!(get("eta"), m.eta[c]);
                 assert_eq!(get("k"), m.k[c]);
