@@ -222,3 +222,40 @@ fn bad_channels_and_metals_are_exit_2_naming_the_parameter() {
         stderr(&r)
     );
 }
+
+#[test]
+fn shader_with_a_metal_exports_the_vector_function() {
+    let o = fastbrdf(&[
+        "shader",
+        "--model",
+        "cook-torrance",
+        "--param",
+        "d=ggx",
+        "--metal",
+        "gold",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("fn fb_cook_torrance_rgb(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32>"));
+    assert!(
+        text.contains("fb_f_conductor(p.cos_ih, 0.18299f, 3.4242f)"),
+        "{text}"
+    );
+    for bad in [
+        vec!["--model", "ggx", "--metal", "gold"],
+        vec![
+            "--model",
+            "cook-torrance",
+            "--metal",
+            "gold",
+            "--runtime-params",
+        ],
+        vec!["--model", "cook-torrance", "--param", "eta=1,2"],
+    ] {
+        let mut args = vec!["shader"];
+        args.extend(bad.iter());
+        let r = fastbrdf(&args);
+        assert_eq!(r.status.code(), Some(2), "{bad:?}: {}", stderr(&r));
+        assert!(r.stdout.is_empty(), "{bad:?}");
+    }
+}
