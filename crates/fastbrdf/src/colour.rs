@@ -32,6 +32,9 @@ use crate::microfacet::fresnel::{Consts, conductor};
 use crate::params::{ParamKind, Params};
 use crate::registry;
 
+/// A parameter list as text pairs (`name`, `value`).
+pub type ParamList = Vec<(String, String)>;
+
 /// The channel names, in order.
 pub const CHANNELS: [&str; 3] = ["R", "G", "B"];
 /// The wavelength of each channel, nm.
@@ -145,15 +148,12 @@ impl Metal {
 /// parameter and the channel: two or four numbers, text, a choice given per channel, or a
 /// channel out of its parameter's range. Parameters that `id` does not take are an error,
 /// as they are for a grey model.
-pub fn channels(
-    id: &str,
-    params: &[(String, String)],
-) -> Result<Option<[Vec<(String, String)>; 3]>> {
+pub fn channels(id: &str, params: &[(String, String)]) -> Result<Option<[ParamList; 3]>> {
     if !params.iter().any(|(_, v)| v.contains(',')) {
         return Ok(None);
     }
     let e = registry::find(id)?;
-    let mut out: [Vec<(String, String)>; 3] = Default::default();
+    let mut out: [ParamList; 3] = Default::default();
     let mut split: Vec<&str> = vec![];
     for (name, value) in params {
         if !value.contains(',') {

@@ -41,14 +41,12 @@ fn the_table_is_the_cited_one() {
 fn f0_is_the_closed_form_per_channel() {
     for m in METALS {
         let f0 = m.f0();
-        for c in 0..3 {
-            let (n, k) = (m.eta[c], m.k[c]);
+        for (c, ((&f, &n), &k)) in f0.iter().zip(&m.eta).zip(&m.k).enumerate() {
             let exact = ((n - 1.0).powi(2) + k * k) / ((n + 1.0).powi(2) + k * k);
             assert!(
-                (f0[c] - exact).abs() < 1e-12,
-                "{} channel {c}: {} vs {exact}",
-                m.id,
-                f0[c]
+                (f - exact).abs() < 1e-12,
+                "{} channel {c}: {f} vs {exact}",
+                m.id
             );
         }
     }
