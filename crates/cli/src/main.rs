@@ -132,6 +132,8 @@ enum Command {
     Demo(commands::demo::Args),
     /// The 86 MERL materials' published fits (Ngan et al. 2005): n, m, f0, Ward alpha, albedos.
     Materials(commands::materials::Args),
+    /// The named metals: complex index eta + i k per R, G, B channel, F0, sources (--metal).
+    Metals(commands::metals::Args),
     /// Minimax-tuned coefficients of an approximation family, per n, and their closed form.
     Fit(commands::fit::FitArgs),
     /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot);
@@ -194,6 +196,7 @@ fn main() -> ExitCode {
         Command::Compare(a) => commands::render::run_compare(&a),
         Command::Demo(a) => commands::demo::run(&a),
         Command::Materials(a) => commands::materials::run(&a),
+        Command::Metals(a) => commands::metals::run(&a),
         Command::Fit(a) => commands::fit::run_fit(&a),
         Command::Pareto(a) => commands::fit::run_pareto(&a),
         Command::Shader(a) => commands::shader::run(&a),

@@ -21,6 +21,8 @@ pub enum Error {
     MissingParam { model: String, param: String },
     /// An input (cosine or direction) outside the model's documented domain.
     Domain { input: String, reason: String },
+    /// No named metal (`colour::METALS`) has this name.
+    UnknownMetal(String),
     /// A model of one kind was used where another kind is needed.
     WrongKind {
         model: String,
@@ -68,6 +70,14 @@ impl fmt::Display for Error {
                 write!(f, "model '{model}': parameter {param} is required here")
             }
             Error::Domain { input, reason } => write!(f, "input {input}: {reason}"),
+            Error::UnknownMetal(name) => {
+                let name = echo(name);
+                write!(
+                    f,
+                    "unknown metal '{name}': expected one of {} (run `fastbrdf metals` for their constants)",
+                    crate::colour::metal_names()
+                )
+            }
             Error::WrongKind {
                 model,
                 expected,

@@ -30,6 +30,7 @@
 pub mod accuracy;
 pub mod batch;
 pub mod brdf;
+pub mod colour;
 pub mod entry;
 pub mod error;
 pub mod kind;

@@ -136,6 +136,12 @@ pub fn render(
     };
     for (i, obj) in scene.objects.iter().enumerate() {
         let spec = &obj.material.specular;
+        if spec.is_coloured() {
+            return Err(GpuError::Input(format!(
+                "coloured specular ({}: a parameter given as R,G,B, e.g. --metal) is CPU-only for now: drop --gpu",
+                spec.id
+            )));
+        }
         let given: Vec<(&str, &str)> = spec
             .brdf
             .1

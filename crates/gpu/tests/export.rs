@@ -451,3 +451,102 @@ fn a_runtime_export_does_not_depend_on_the_parameters_it_takes() {
     let lit = |n: &str| export("cubic", &[("n", n)], Lang::Wgsl).unwrap();
     assert_ne!(lit("20"), lit("700"));
 }
+
+/// A coloured model (issue 14): gold Cook-Torrance (GGX) in every language against the golden
+/// files in `tests/golden/shaders/colour/`, validated like the grey ones; each channel
+/// function is the grey export of that channel's parameters, renamed; the runtime form is
+/// refused.
+#[test]
+fn a_coloured_model_exports_three_channels_and_a_vector() {
+    let bless = std::env::var_os("FASTBRDF_BLESS").is_some();
+    let dir = golden_dir().join("colour");
+    if bless {
+        std::fs::create_dir_all(&dir).unwrap();
+    }
+    let gold = fastbrdf::colour::metal("gold").unwrap();
+    let three = |v: [f64; 3]| format!("{},{},{}", v[0], v[1], v[2]);
+    let (eta, k) = (three(gold.eta), three(gold.k));
+    let given = [
+        ("d", "ggx"),
+        ("alpha", "0.2"),
+        ("f", "conductor"),
+        ("eta", eta.as_str()),
+        ("k", k.as_str()),
+    ];
+    let call = "fb_cook_torrance_rgb(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8)).x";
+    let mut stale = vec![];
+    for lang in Lang::ALL {
+        let what = format!("gold cook-torrance ({})", lang.name());
+        let text = export("cook-torrance", &given, lang).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert!(text.contains("Colour: per-channel parameters"), "{what}");
+        match lang {
+            Lang::Wgsl => {
+                validate(&text, &what).unwrap();
+                for c in ["r", "g", "b"] {
+                    assert!(
+                        text.contains(&format!("fn fb_cook_torrance_{c}(")),
+                        "{what}"
+                    );
+                }
+                assert!(text.contains("-> vec3<f32>"), "{what}");
+            }
+            Lang::Glsl => parse_glsl(&text, call, &what),
+            Lang::Hlsl => assert!(text.contains("float3 fb_cook_torrance_rgb("), "{what}"),
+            Lang::Msl => assert!(
+                text.contains("metal::float3 fb_cook_torrance_rgb("),
+                "{what}"
+            ),
+            Lang::BrdfExplorer => {
+                let body = text
+                    .split("::begin shader\n")
+                    .nth(1)
+                    .and_then(|s| s.split("::end shader").next())
+                    .unwrap();
+                assert!(
+                    body.contains("return fb_cook_torrance_rgb(wi, wo);"),
+                    "{what}"
+                );
+                parse_glsl(
+                    body,
+                    "BRDF(vec3(0.0, 0.6, 0.8), vec3(0.0, -0.6, 0.8), vec3(0.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0), vec3(0.0, 1.0, 0.0)).x",
+                    &what,
+                );
+            }
+        }
+        let path = dir.join(format!("cook-torrance-gold.{}", lang.extension()));
+        if bless {
+            std::fs::write(&path, &text).unwrap();
+        } else if std::fs::read_to_string(&path).unwrap_or_default() != text {
+            stale.push(path.display().to_string());
+        }
+    }
+    assert!(
+        stale.is_empty(),
+        "coloured exports differ from their golden files (FASTBRDF_BLESS=1 rewrites them):\n{}",
+        stale.join("\n")
+    );
+    // Each channel is the grey export of its parameters.
+    let wgsl = export("cook-torrance", &given, Lang::Wgsl).unwrap();
+    for (c, name) in ["r", "g", "b"].iter().enumerate() {
+        let (e, kk) = (gold.eta[c].to_string(), gold.k[c].to_string());
+        let grey = export(
+            "cook-torrance",
+            &[
+                ("d", "ggx"),
+                ("alpha", "0.2"),
+                ("f", "conductor"),
+                ("eta", &e),
+                ("k", &kk),
+            ],
+            Lang::Wgsl,
+        )
+        .unwrap();
+        let start = grey.find("fn fb_cook_torrance(").unwrap();
+        let body = &grey[start..];
+        let body = &body[..body.find("\n}\n").unwrap()];
+        let renamed = body.replacen("fb_cook_torrance(", &format!("fb_cook_torrance_{name}("), 1);
+        assert!(wgsl.contains(&renamed), "channel {name}: {renamed}");
+    }
+    let err = export_form("cook-torrance", &given, Lang::Glsl, Form::Runtime).unwrap_err();
+    assert!(err.to_string().contains("--runtime-params"), "{err}");
+}

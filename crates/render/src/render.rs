@@ -4,6 +4,8 @@
 //! go into structure-of-arrays buffers and one `Kernel::eval` call; `Shading::Scalar` calls
 //! the scalar model per sample instead (kept to measure what the batch path buys:
 //! `cargo bench -p fastbrdf-render`).
+//! A coloured specular model (`Specular::channels`: three, R, G, B) costs three evaluations,
+//! each channel weighting its colour channel; a grey one costs one, as before.
 
 use crate::error::Result;
 use crate::film::{Film, check_size};
@@ -56,7 +58,8 @@ struct Scratch {
     li: Vec<Vec3>,
     /// Specular inputs (`wi`, `wo` in the local frame) as structure of arrays.
     cols: [Vec<f32>; 6],
-    out: Vec<f32>,
+    /// The specular values per channel (only the first for a grey model).
+    out: [Vec<f32>; 3],
 }
 
 /// Renders `scene`; `progress(done, total)` is called after each tile.
@@ -223,27 +226,43 @@ fn render_tile(
             if idx.is_empty() {
                 continue;
             }
-            out.resize(idx.len(), 0.0);
-            match opts.shading {
-                Shading::Batch => {
-                    let input =
-                        Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
-                    m.specular
-                        .kernel
-                        .eval(input, out)
-                        .expect("SoA buffers have equal lengths");
-                }
-                Shading::Scalar => {
-                    for (j, o) in out.iter_mut().enumerate() {
-                        *o = m.specular.scalar.eval(
-                            [cols[0][j], cols[1][j], cols[2][j]],
-                            [cols[3][j], cols[4][j], cols[5][j]],
-                        );
+            let chans = &m.specular.channels;
+            for (ch, out) in chans.iter().zip(out.iter_mut()) {
+                out.resize(idx.len(), 0.0);
+                match opts.shading {
+                    Shading::Batch => {
+                        let input = Input::Dirs([
+                            &cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5],
+                        ]);
+                        ch.kernel
+                            .eval(input, out)
+                            .expect("SoA buffers have equal lengths");
+                    }
+                    Shading::Scalar => {
+                        for (j, o) in out.iter_mut().enumerate() {
+                            *o = ch.scalar.eval(
+                                [cols[0][j], cols[1][j], cols[2][j]],
+                                [cols[3][j], cols[4][j], cols[5][j]],
+                            );
+                        }
                     }
                 }
             }
-            for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
-                radiance[i] += li * (m.ks * out[j] * cols[2][j]);
+            if chans.len() == 3 {
+                // Coloured: each channel's value weights its own colour channel, with the
+                // grey path's operations in its order, so that channel c of a coloured
+                // render equals channel c of the grey render of that channel's model.
+                let [r, g, b] = &*out;
+                for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
+                    let (ks, cos) = (m.ks, cols[2][j]);
+                    radiance[i] +=
+                        li * Vec3::new(ks * r[j] * cos, ks * g[j] * cos, ks * b[j] * cos);
+                }
+            } else {
+                let out = &out[0];
+                for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
+                    radiance[i] += li * (m.ks * out[j] * cols[2][j]);
+                }
             }
         }
     }

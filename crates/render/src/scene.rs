@@ -213,13 +213,41 @@ impl Light {
     }
 }
 
-/// The specular model of a material: a registry id turned into a BRDF, in batch and scalar form.
-pub struct Specular {
-    pub id: String,
-    /// The BRDF actually evaluated (id and parameters).
-    pub brdf: (String, Vec<(String, String)>),
+/// One channel of a specular model: a BRDF in batch and scalar form.
+pub struct Channel {
+    /// The channel's parameters (all grey: `fastbrdf::colour::channels`).
+    pub params: Vec<(String, String)>,
     pub kernel: Kernel,
     pub scalar: Box<dyn fastbrdf::Brdf<f32>>,
+}
+
+impl Channel {
+    fn new(brdf: &str, params: Vec<(String, String)>) -> Result<Self> {
+        let given: Vec<(&str, &str)> = params
+            .iter()
+            .map(|(a, b)| (a.as_str(), b.as_str()))
+            .collect();
+        let kernel = Kernel::new(brdf, &given)?;
+        let Model::Brdf(scalar) = registry::build::<f32>(brdf, &given)? else {
+            unreachable!("brdf ids build BRDFs")
+        };
+        Ok(Self {
+            params,
+            kernel,
+            scalar,
+        })
+    }
+}
+
+/// The specular model of a material: a registry id turned into a BRDF, in batch and scalar
+/// form; grey (one channel, weighting R, G and B alike) or coloured (three: R, G, B), when a
+/// parameter is given as `R,G,B` (`fastbrdf::colour::channels`).
+pub struct Specular {
+    pub id: String,
+    /// The BRDF actually evaluated (id and parameters, per-channel values as `R,G,B` text).
+    pub brdf: (String, Vec<(String, String)>),
+    /// One channel (grey) or three (R, G, B).
+    pub channels: Vec<Channel>,
 }
 
 impl Specular {
@@ -227,17 +255,23 @@ impl Specular {
     /// distributions the `d` of `cook-torrance` (alpha passed on), BRDFs stay as they are.
     pub fn new(id: &str, params: &[(String, String)]) -> Result<Self> {
         let (brdf, p) = shading_brdf(id, params)?;
-        let given: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-        let kernel = Kernel::new(&brdf, &given)?;
-        let Model::Brdf(scalar) = registry::build::<f32>(&brdf, &given)? else {
-            unreachable!("brdf ids build BRDFs")
+        let channels = match fastbrdf::colour::channels(&brdf, &p)? {
+            None => vec![Channel::new(&brdf, p.clone())?],
+            Some(lists) => lists
+                .into_iter()
+                .map(|l| Channel::new(&brdf, l))
+                .collect::<Result<_>>()?,
         };
         Ok(Self {
             id: id.into(),
             brdf: (brdf, p),
-            kernel,
-            scalar,
+            channels,
         })
+    }
+
+    /// Whether the model is coloured (three channels).
+    pub fn is_coloured(&self) -> bool {
+        self.channels.len() == 3
     }
 }
 

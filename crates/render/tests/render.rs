@@ -272,3 +272,54 @@ fn golden_images() {
         );
     }
 }
+
+/// A coloured model (per-channel parameters, issue 14): channel c of the picture is exactly
+/// channel c of the grey picture of channel c's model, in batch and scalar shading, with a
+/// coloured light and diffuse term (so a mixed-up channel or weight shows); and a grey model
+/// is one channel.
+#[test]
+fn a_coloured_render_is_three_grey_renders() {
+    let mut spec = SceneSpec::new();
+    spec.albedo = Vec3::new(0.7, 0.5, 0.3);
+    spec.lights = vec![Light {
+        kind: LightKind::Directional {
+            to_light: Vec3::new(0.4, 0.5, 1.0).normalize(),
+        },
+        color: Vec3::new(1.0, 0.8, 0.6),
+        intensity: 2.0,
+    }];
+    let gold = fastbrdf::colour::metal("gold").unwrap();
+    let base = [("d", "ggx"), ("alpha", "0.2"), ("f", "conductor")];
+    let (eta, k) = (
+        format!("{},{},{}", gold.eta[0], gold.eta[1], gold.eta[2]),
+        format!("{},{},{}", gold.k[0], gold.k[1], gold.k[2]),
+    );
+    for shading in [Shading::Batch, Shading::Scalar] {
+        let o = Options {
+            shading,
+            ..opts(48, 40, 2)
+        };
+        let mut coloured = base.to_vec();
+        coloured.extend([("eta", eta.as_str()), ("k", k.as_str())]);
+        let (rgb, _) = shoot(&spec, "cook-torrance", &coloured, o);
+        for c in 0..3 {
+            let (e, kk) = (gold.eta[c].to_string(), gold.k[c].to_string());
+            let mut grey = base.to_vec();
+            grey.extend([("eta", e.as_str()), ("k", kk.as_str())]);
+            let (one, _) = shoot(&spec, "cook-torrance", &grey, o);
+            let mut lit = 0;
+            for (a, b) in rgb.pixels.iter().zip(&one.pixels) {
+                assert_eq!(a[c].to_bits(), b[c].to_bits(), "{shading:?} channel {c}");
+                lit += usize::from(a[c] > 0.1);
+            }
+            assert!(lit > 100, "{shading:?} channel {c}: the sphere is lit");
+        }
+    }
+    let grey = Specular::new("cook-torrance", &[("alpha".into(), "0.2".into())]).unwrap();
+    assert!(!grey.is_coloured() && grey.channels.len() == 1);
+    let err = Specular::new("cook-torrance", &[("eta".into(), "1,2".into())])
+        .err()
+        .expect("two numbers are refused")
+        .to_string();
+    assert!(err.contains("eta") && err.contains("2 given"), "{err}");
+}

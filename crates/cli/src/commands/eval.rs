@@ -21,8 +21,10 @@ const QUOTE: usize = 40;
 #[command(
     after_help = "Examples:\n  printf 'cos\\n1\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
 fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  \
-printf 'cos\\n1\\n0.99\\n' | fastbrdf eval --model pow --material gold-paint   (n = 36.8, the fit's)\n\n\
-Output: CSV, the input columns then `value`. Errors name the file, the line where the record\n\
+printf 'cos\\n1\\n0.99\\n' | fastbrdf eval --model pow --material gold-paint   (n = 36.8, the fit's)\n  \
+printf 'cos_vh\\n1\\n0.5\\n' | fastbrdf eval --model fresnel-conductor --metal gold   (value_r,value_g,value_b)\n\n\
+Output: CSV, the input columns then `value` (a coloured model, --metal or a parameter given\n\
+as R,G,B: `value_r,value_g,value_b`). Errors name the file, the line where the record\n\
 starts and the field; exit code 2 for bad input (nothing on stdout), 3 when stdout cannot be\n\
 written."
 )]
@@ -37,6 +39,10 @@ pub struct Args {
     /// alpha and f0 (Ngan et al. 2005); --param values win.
     #[arg(long, value_name = "NAME")]
     material: Option<String>,
+    /// A named metal (see `fastbrdf metals`): f = conductor, eta and k per R, G, B channel;
+    /// the output then has value_r, value_g, value_b instead of value.
+    #[arg(long, value_name = "NAME")]
+    metal: Option<String>,
     /// Arithmetic precision.
     #[arg(long, default_value = "f32", value_parser = ["f32", "f64"])]
     precision: String,
@@ -71,9 +77,15 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         &a.model,
         &parse_params(&a.params)?,
     )?;
-    let given: Vec<(&str, &str)> = params
+    let params = super::metals::with_metal(a.metal.as_deref(), &a.model, &params, false)?;
+    // A coloured model (a parameter given as R,G,B) is three channel models.
+    let lists = match fastbrdf::colour::channels(&a.model, &params)? {
+        None => vec![params],
+        Some(three) => three.to_vec(),
+    };
+    let givens: Vec<Vec<(&str, &str)>> = lists
         .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
+        .map(|l| l.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect())
         .collect();
     let limit = a.max_input_mib.checked_mul(1 << 20).ok_or_else(|| {
         CliError::input(format!("--max-input-mib {}: too large", a.max_input_mib))
@@ -101,20 +113,39 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         }
     };
     let text = fastbrdf_io::utf8_text(bytes, Path::new(&source))?;
+    fn build<T: Real>(id: &str, givens: &[Vec<(&str, &str)>]) -> Result<Vec<Model<T>>, CliError> {
+        Ok(givens
+            .iter()
+            .map(|g| registry::build::<T>(id, g))
+            .collect::<Result<_, _>>()?)
+    }
     let out = if a.precision == "f64" {
-        evaluate(registry::build::<f64>(&a.model, &given)?, &text, &source)?
+        evaluate(build::<f64>(&a.model, &givens)?, &text, &source)?
     } else {
-        evaluate(registry::build::<f32>(&a.model, &given)?, &text, &source)?
+        evaluate(build::<f32>(&a.model, &givens)?, &text, &source)?
     };
     super::write_stdout(out.as_bytes())
 }
 
-/// Evaluates every row of `text` (CSV with a header); returns the whole output CSV.
+/// The output columns of one model (grey) or three (the R, G, B channels of a coloured one).
+fn value_columns(channels: usize) -> &'static [&'static str] {
+    if channels == 3 {
+        &["value_r", "value_g", "value_b"]
+    } else {
+        &["value"]
+    }
+}
+
+/// Evaluates every row of `text` (CSV with a header) with one model (column `value`) or the
+/// three channel models of a coloured one (`value_r`, `value_g`, `value_b`); returns the whole
+/// output CSV.
 pub fn evaluate<T: Real + std::str::FromStr>(
-    model: Model<T>,
+    models: Vec<Model<T>>,
     text: &str,
     source: &str,
 ) -> Result<String, CliError> {
+    let model = &models[0];
+    let values = value_columns(models.len());
     let mut reader = csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)
@@ -124,9 +155,9 @@ pub fn evaluate<T: Real + std::str::FromStr>(
         .map_err(|e| csv_error(source, text, &e))?
         .clone();
     let hline = headers.position().map_or(1, |p| line_of(text, p));
-    if headers.iter().any(|h| h == "value") {
+    if let Some(v) = values.iter().find(|v| headers.iter().any(|h| h == **v)) {
         return Err(CliError::input(format!(
-            "{source}: line {hline}: the input already has a 'value' column"
+            "{source}: line {hline}: the input already has a '{v}' column"
         )));
     }
     let (req, opt) = model.columns();
@@ -159,7 +190,7 @@ pub fn evaluate<T: Real + std::str::FromStr>(
     }
     let mut writer = csv::Writer::from_writer(Vec::new());
     let mut header_out: Vec<&str> = headers.iter().collect();
-    header_out.push("value");
+    header_out.extend(values);
     writer.write_record(&header_out).expect("writing to memory");
     let all_names: Vec<&str> = req.iter().chain(opt.iter()).copied().collect();
     let mut lines = Lines::new(text);
@@ -186,22 +217,24 @@ pub fn evaluate<T: Real + std::str::FromStr>(
             };
             input.push(v);
         }
-        let value = model.try_eval_row(&input).map_err(|e| {
-            // Name the field of an out-of-domain input (a direction: its first component).
-            let field = match &e {
-                fastbrdf::Error::Domain { input, .. } => headers
-                    .iter()
-                    .position(|h| h == input || h == format!("{input}_x"))
-                    .map(|i| format!(", field {} ('{}')", i + 1, &headers[i])),
-                _ => None,
-            };
-            CliError::input(format!(
-                "{source}: line {line}{}: {e}",
-                field.unwrap_or_default()
-            ))
-        })?;
         let mut out: Vec<String> = record.iter().map(str::to_string).collect();
-        out.push(value.to_string());
+        for model in &models {
+            let value = model.try_eval_row(&input).map_err(|e| {
+                // Name the field of an out-of-domain input (a direction: its first component).
+                let field = match &e {
+                    fastbrdf::Error::Domain { input, .. } => headers
+                        .iter()
+                        .position(|h| h == input || h == format!("{input}_x"))
+                        .map(|i| format!(", field {} ('{}')", i + 1, &headers[i])),
+                    _ => None,
+                };
+                CliError::input(format!(
+                    "{source}: line {line}{}: {e}",
+                    field.unwrap_or_default()
+                ))
+            })?;
+            out.push(value.to_string());
+        }
         writer.write_record(&out).expect("writing to memory");
     }
     let bytes = writer.into_inner().expect("writing to memory");

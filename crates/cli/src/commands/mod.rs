@@ -8,6 +8,7 @@ pub mod eval;
 pub mod fit;
 pub mod lut;
 pub mod materials;
+pub mod metals;
 pub mod models;
 pub mod over_materials;
 pub mod pareto_brdf;

@@ -52,7 +52,7 @@ pub struct SceneArgs {
     #[arg(long)]
     pub bump: Option<String>,
     /// Diffuse and specular weights KD,KS (0 to 1e3 each) [default: 0.6,0.4; with --material:
-    /// 1,0.4].
+    /// 1,0.4; with --metal: 0,1, a metal has no diffuse term].
     #[arg(long)]
     pub weights: Option<String>,
     /// Linear albedo R,G,B (0 to 1e3 each) [default: 0.8,0.8,0.8; with --material: the
@@ -180,7 +180,8 @@ pub fn render_model(
 fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
 fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png\n  \
-fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)"
+fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)\n  \
+fastbrdf render --model cook-torrance --param d=ggx --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)"
 )]
 pub struct RenderArgs {
     /// Specular model id (a lobe, a distribution or a BRDF).
@@ -196,6 +197,11 @@ pub struct RenderArgs {
     /// and lobes shade unnormalised, so the fit's RGB ks is not used).
     #[arg(long, value_name = "NAME")]
     material: Option<String>,
+    /// A named metal (see `fastbrdf metals`: gold, silver, copper, aluminium, chromium,
+    /// iron): f = conductor, eta and k per R, G, B channel, so the specular term is coloured
+    /// (three channel models); --param values win.
+    #[arg(long, value_name = "NAME")]
+    metal: Option<String>,
     #[command(flatten)]
     scene: SceneArgs,
     /// Output file: .png (8-bit sRGB with an sRGB chunk, --exposure applied) or .exr (linear
@@ -204,6 +210,7 @@ pub struct RenderArgs {
     out: PathBuf,
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
+    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now.
     #[arg(long)]
     gpu: bool,
 }
@@ -217,6 +224,12 @@ fn render_model_gpu(
     params: &[(String, String)],
 ) -> Result<(Film, String), CliError> {
     let specular = Arc::new(Specular::new(id, params)?);
+    if specular.is_coloured() {
+        // Before an adapter is looked for: the answer does not depend on the machine.
+        return Err(CliError::input(format!(
+            "--gpu: coloured specular ({id} with a parameter given as R,G,B, e.g. by --metal) is CPU-only for now: drop --gpu"
+        )));
+    }
     let scene = setup::scene(spec, loaded, specular);
     let gpu = fastbrdf_gpu::Gpu::new()?;
     let film = fastbrdf_gpu::render::render(&gpu.device, &gpu.queue, &scene, opts)?;
@@ -226,6 +239,7 @@ fn render_model_gpu(
 pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let (mut spec, opts) = a.scene.spec()?;
     super::materials::diffuse(&mut spec, &a.scene, a.material.as_deref(), &a.model)?;
+    super::metals::weights(&mut spec, &a.scene, a.metal.as_deref());
     check_out(&a.out, &["png", "exr"])?;
     let loaded = setup::load(&spec)?;
     let t = std::time::Instant::now();
@@ -234,6 +248,7 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
         &a.model,
         &parse_params(&a.params)?,
     )?;
+    let params = super::metals::with_metal(a.metal.as_deref(), &a.model, &params, true)?;
     let (film, on) = if a.gpu {
         let (film, label) = render_model_gpu(&spec, &loaded, &opts, &a.model, &params)?;
         (film, format!(", GPU: {label}"))
@@ -281,7 +296,8 @@ fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
 #[command(
     after_help = "Examples:\n  fastbrdf compare --models flog,schlick,cubic-rational --reference pow --param n=100 --out cmp.png\n  \
 fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png\n  \
-fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png"
+fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png\n  \
+fastbrdf compare --models ggx,beckmann-power16 --reference cook-torrance --param alpha=0.2 --metal gold --out au.png"
 )]
 pub struct CompareArgs {
     /// Models to compare (comma-separated ids).
@@ -299,6 +315,12 @@ pub struct CompareArgs {
     /// reference's fit, as in `render`.
     #[arg(long, value_name = "NAME")]
     material: Option<String>,
+    /// A named metal (see `fastbrdf metals`) for the reference and every model: f =
+    /// conductor, eta and k per R, G, B channel (coloured pictures). Every compared model must
+    /// take f, eta and k (cook-torrance, or a distribution shaded as cook-torrance): a model
+    /// that cannot be gold would be compared grey against gold, so it is an error.
+    #[arg(long, value_name = "NAME")]
+    metal: Option<String>,
     #[command(flatten)]
     scene: SceneArgs,
     /// The grid picture (.png).
@@ -453,6 +475,7 @@ pub fn compare_models(
 pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     let (mut spec, opts) = a.scene.spec()?;
     super::materials::diffuse(&mut spec, &a.scene, a.material.as_deref(), &a.reference)?;
+    super::metals::weights(&mut spec, &a.scene, a.metal.as_deref());
     check_out(&a.out, &["png"])?;
     check_compare(&opts, a.models.len())?;
     let params = parse_params(&a.params)?;
@@ -468,7 +491,9 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
         }
     }
     let own = |id: &str| {
-        super::materials::with_material(a.material.as_deref(), id, &params_for(id, &params)?)
+        let p =
+            super::materials::with_material(a.material.as_deref(), id, &params_for(id, &params)?)?;
+        super::metals::with_metal(a.metal.as_deref(), id, &p, true)
     };
     let reference = Entry::new(&a.reference, own(&a.reference)?);
     let models: Vec<Entry> = a

@@ -13,7 +13,8 @@ fastbrdf shader --model flog-normalized --param n=100 --lang hlsl --out flog.hls
 fastbrdf shader --model ward --param alpha_x=0.1 --param alpha_y=0.4 --lang brdf-explorer --out ward.brdf\n  \
 fastbrdf shader --all --lang msl --out shaders/\n  \
 fastbrdf shader --model cook-torrance --material gold-paint --param f=schlick   (alpha, f0 from the fit)\n  \
-fastbrdf shader --model cubic --lang glsl --runtime-params   (fb_cubic(c, p_n): n per pixel)\n\n\
+fastbrdf shader --model cubic --lang glsl --runtime-params   (fb_cubic(c, p_n): n per pixel)\n  \
+fastbrdf shader --model cook-torrance --param d=ggx --metal gold   (fb_cook_torrance_rgb(wi, wo) -> vec3)\n\n\
 Output: a comment header (formula, source, parameters, documented error bounds, the command),\n\
 then the library functions the model needs and `fb_<id>` (dashes as underscores). Lobes take\n\
 (c), distributions (cos_h), Fresnel terms (cos_vh), shadowing (cos_v, cos_l, cos_h, cos_vh),\n\
@@ -34,6 +35,11 @@ pub struct Args {
     /// alpha and f0 (Ngan et al. 2005); --param values win.
     #[arg(long, value_name = "NAME", conflicts_with = "all")]
     material: Option<String>,
+    /// A named metal (see `fastbrdf metals`): f = conductor, eta and k per R, G, B channel.
+    /// A coloured model (this, or any parameter given as R,G,B) exports three channel
+    /// functions fb_<id>_r/_g/_b and fb_<id>_rgb returning vec3 (literal coefficients only).
+    #[arg(long, value_name = "NAME", conflicts_with = "all")]
+    metal: Option<String>,
     /// Output language.
     #[arg(long, default_value = "wgsl", value_parser = ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"])]
     lang: String,
@@ -87,6 +93,8 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let id = a.model.as_deref().expect("clap: --model or --all");
     let params =
         super::materials::with_material(a.material.as_deref(), id, &parse_params(&a.params)?)?;
+    let params =
+        super::metals::with_metal(a.metal.as_deref(), id, &params, a.lang == "brdf-explorer")?;
     let given: Vec<(&str, &str)> = params
         .iter()
         .map(|(k, v)| (k.as_str(), v.as_str()))
