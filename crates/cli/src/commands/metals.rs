@@ -19,7 +19,7 @@ given as R,G,B the same way (--param f0=0.95,0.64,0.54). --param values win over
 A model without the conductor Fresnel term's parameters (eta, k: cook-torrance, the\n\
 distributions, which shade as cook-torrance, and fresnel-conductor) is an error with --metal.\n\n\
 Sources: refractiveindex.info's \"3D: selected data for 3D artists\" values at 650/550/450 nm\n\
-as tabulated by Chaos Group (\"Understanding metalness\"); originally Johnson & Christy 1972\n\
+as tabulated by Chaos Group (\"Understanding metalness\"); attributed to Johnson & Christy 1972\n\
 (Au, Ag, Cu), Rakic 1995 (Al), Johnson & Christy 1974 (Cr, Fe). F0 is the conductor Fresnel\n\
 term at normal incidence, ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2)."
 )]
