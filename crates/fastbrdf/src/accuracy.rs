@@ -484,7 +484,7 @@ pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, 
     let choice_sets = choice_sets(info);
     let mut numeric: Vec<(&str, Vec<f64>, bool)> = vec![];
     for p in info.params {
-        if let ParamKind::Number { min, max, default } = p.kind {
+        if let ParamKind::Number { min, max, default, .. } = p.kind {
             numeric.push((p.name, values(p.name, min, max), default.is_none()))
         }
     }
@@ -812,7 +812,7 @@ pub fn f32_search(info: &crate::ModelInfo, size: SearchSize) -> Found {
     let choice_sets = choice_sets(info);
     let mut numeric: Vec<(&str, f64, f64, bool)> = vec![];
     for p in info.params {
-        if let ParamKind::Number { min, max, default } = p.kind {
+        if let ParamKind::Number { min, max, default, .. } = p.kind {
             numeric.push((p.name, min, max, default.is_none()))
         }
     }

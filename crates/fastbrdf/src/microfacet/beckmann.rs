@@ -102,6 +102,7 @@ pub(crate) fn ct_scale_wgsl(alpha: f64, e: &Emit) -> String {
 }
 
 impl DistForm for Beckmann {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("beckmann.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {

@@ -67,6 +67,7 @@ impl Ggx {
 }
 
 impl DistForm for Ggx {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("ggx.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
