@@ -99,7 +99,13 @@ impl Emit {
     /// and mark `params` used instead of `name`. `cook-torrance` builds its anisotropic parts
     /// at `alpha = sqrt(alpha_x alpha_y)` so, and their runtime form reads
     /// `sqrt(p_alpha_x * p_alpha_y)` where an isotropic part reads `p_alpha`.
-    pub fn with_alias<R>(&self, name: &str, expr: &str, params: &[&str], f: impl FnOnce() -> R) -> R {
+    pub fn with_alias<R>(
+        &self,
+        name: &str,
+        expr: &str,
+        params: &[&str],
+        f: impl FnOnce() -> R,
+    ) -> R {
         self.aliases.borrow_mut().push(Alias {
             name: name.into(),
             expr: expr.into(),

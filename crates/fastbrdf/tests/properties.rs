@@ -35,7 +35,8 @@ fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, Strin
             }
         })
         .collect();
-    // Optional parameters (Ward's alpha_x, alpha_y) are given together or not at all.
+    // Optional parameters (alpha_x, alpha_y) are given together or not at all, and only where
+    // their `requires` hold (cook-torrance's need d, g and ms with an anisotropic form).
     let optional: Vec<&str> = info
         .params
         .iter()
@@ -51,17 +52,34 @@ fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, Strin
                 .collect();
             // A gated choice (`Options::Gated`: cook-torrance's `ms`) falls back to its default
             // where its requirements do not hold (they are refused, tested in energy.rs).
-            v.iter()
-                .filter(|(k, val)| {
-                    info.params.iter().all(|p| match p.kind {
-                        ParamKind::Choice { options, default } if p.name == k => {
-                            options.allows(val, default, |n| {
-                                v.iter().find(|(k2, _)| k2 == n).map(|(_, x)| x.clone())
-                            })
-                        }
-                        _ => true,
+            let v: Vec<(String, String)> =
+                v.iter()
+                    .filter(|(k, val)| {
+                        info.params.iter().all(|p| match p.kind {
+                            ParamKind::Choice { options, default } if p.name == k => options
+                                .allows(val, default, |n| {
+                                    v.iter().find(|(k2, _)| k2 == n).map(|(_, x)| x.clone())
+                                }),
+                            _ => true,
+                        })
                     })
-                })
+                    .cloned()
+                    .collect();
+            // So are gated optional numbers (`requires`: cook-torrance's alpha_x, alpha_y), on
+            // the choices left (a choice not given is its default).
+            let choice = |n: &str| {
+                v.iter()
+                    .find(|(k, _)| k == n)
+                    .map(|(_, x)| x.clone())
+                    .or_else(|| {
+                        info.params
+                            .iter()
+                            .find(|p| p.name == n)
+                            .map(|p| p.default_text())
+                    })
+            };
+            v.iter()
+                .filter(|(k, _)| info.params.iter().all(|p| p.name != k || p.allowed(choice)))
                 .cloned()
                 .collect()
         })

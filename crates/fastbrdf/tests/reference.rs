@@ -899,17 +899,31 @@ fn anisotropic_cook_torrance_at_equal_slopes_is_isotropic() {
             for &g in fastbrdf::brdf::cook_torrance::ANISO_G {
                 let s = a.to_string();
                 let base = [("d", d), ("g", g), ("f", "schlick")];
-                let iso: Vec<(&str, &str)> = base.iter().copied().chain([("alpha", s.as_str())]).collect();
+                let iso: Vec<(&str, &str)> = base
+                    .iter()
+                    .copied()
+                    .chain([("alpha", s.as_str())])
+                    .collect();
                 let aniso: Vec<(&str, &str)> = base
                     .iter()
                     .copied()
-                    .chain([("alpha_x", s.as_str()), ("alpha_y", s.as_str()), ("alpha", "0.9")])
+                    .chain([
+                        ("alpha_x", s.as_str()),
+                        ("alpha_y", s.as_str()),
+                        ("alpha", "0.9"),
+                    ])
                     .collect();
-                let (i64m, a64m) = (brdf64("cook-torrance", &iso), brdf64("cook-torrance", &aniso));
-                let b32 = |given: &[(&str, &str)]| match registry::build::<f32>("cook-torrance", given).unwrap() {
-                    Model::Brdf(b) => b,
-                    _ => panic!(),
-                };
+                let (i64m, a64m) = (
+                    brdf64("cook-torrance", &iso),
+                    brdf64("cook-torrance", &aniso),
+                );
+                let b32 =
+                    |given: &[(&str, &str)]| match registry::build::<f32>("cook-torrance", given)
+                        .unwrap()
+                    {
+                        Model::Brdf(b) => b,
+                        _ => panic!(),
+                    };
                 let (i32m, a32m) = (b32(&iso), b32(&aniso));
                 for (wi, wo) in &pairs {
                     let (x, y) = (i64m.eval(*wi, *wo), a64m.eval(*wi, *wo));
