@@ -208,12 +208,83 @@ fn outside(got: f32, lo: f32, hi: f32) -> f64 {
 #[test]
 fn every_model_matches_the_cpu() {
     let Some(gpu) = common::gpu() else { return };
-    let (d, q) = (&gpu.device, &gpu.queue);
     let mut report = vec![];
     let mut failures = vec![];
     for e in registry::all() {
-        let info = &e.info;
-        for config in common::gpu_configs(info) {
+        check(
+            gpu,
+            &e.info,
+            &common::gpu_configs(&e.info),
+            &mut report,
+            &mut failures,
+        );
+    }
+    finish(&report, &failures);
+}
+
+/// issue 14: anisotropic `cook-torrance` (`alpha_x`, `alpha_y`) in every form, every allowed
+/// D, the exact and approximated Smith terms, slopes to their extremes (the registry-wide test
+/// above runs them too, among thousands of configurations; this one runs alone:
+/// `cargo test -p fastbrdf-gpu --test parity -- anisotropic`).
+#[test]
+fn anisotropic_cook_torrance_matches_the_cpu() {
+    let Some(gpu) = common::gpu() else { return };
+    let info = &registry::find("cook-torrance").unwrap().info;
+    let mut configs = vec![];
+    for d in ["ggx", "beckmann", "beckmann-ct"] {
+        for g in [
+            "smith",
+            "smith-ggx-correlated",
+            "smith-ggx-correlated-fast-tuned",
+            "schlick-ggx",
+        ] {
+            for (ax, ay) in [("0.005", "1"), ("0.5", "0.02"), ("0.3", "0.1")] {
+                configs.push(
+                    [
+                        ("d", d),
+                        ("g", g),
+                        ("f", "schlick"),
+                        ("alpha_x", ax),
+                        ("alpha_y", ay),
+                    ]
+                    .map(|(k, v)| (k.to_string(), v.to_string()))
+                    .to_vec(),
+                );
+            }
+        }
+    }
+    let (mut report, mut failures) = (vec![], vec![]);
+    check(gpu, info, &configs, &mut report, &mut failures);
+    finish(&report, &failures);
+}
+
+fn finish(report: &[String], failures: &[String]) {
+    if std::env::var_os("FASTBRDF_PARITY_REPORT").is_some() {
+        for l in report {
+            eprintln!("{l}");
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} configurations out of tolerance:\n{}",
+        failures.len(),
+        report.len(),
+        failures.join("\n")
+    );
+}
+
+/// GPU against the CPU's f32 model for `info` at each configuration, in every form: a line
+/// per configuration and form into `report`, the ones out of tolerance also into `failures`.
+fn check(
+    gpu: &fastbrdf_gpu::Gpu,
+    info: &'static fastbrdf::ModelInfo,
+    configs: &[Vec<(String, String)>],
+    report: &mut Vec<String>,
+    failures: &mut Vec<String>,
+) {
+    let (d, q) = (&gpu.device, &gpu.queue);
+    {
+        for config in configs.iter().cloned() {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
@@ -362,16 +433,4 @@ fn every_model_matches_the_cpu() {
             }
         }
     }
-    if std::env::var_os("FASTBRDF_PARITY_REPORT").is_some() {
-        for l in &report {
-            eprintln!("{l}");
-        }
-    }
-    assert!(
-        failures.is_empty(),
-        "{} of {} configurations out of tolerance:\n{}",
-        failures.len(),
-        report.len(),
-        failures.join("\n")
-    );
 }
