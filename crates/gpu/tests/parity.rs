@@ -211,10 +211,12 @@ fn every_model_matches_the_cpu() {
     let mut report = vec![];
     let mut failures = vec![];
     for e in registry::all() {
+        let configs = common::gpu_configs(&e.info);
         check(
             gpu,
             &e.info,
-            &common::gpu_configs(&e.info),
+            &configs,
+            e.info.f32_bound,
             &mut report,
             &mut failures,
         );
@@ -254,9 +256,21 @@ fn anisotropic_cook_torrance_matches_the_cpu() {
         }
     }
     let (mut report, mut failures) = (vec![], vec![]);
-    check(gpu, info, &configs, &mut report, &mut failures);
+    // Held to the anisotropic forms' own GPU bound (f = schlick), not the model's f32 bound
+    // 3.0 (set by Fresnel's near-step at eta << 1). The GPU's pair set-up is f32 (the CPU's is
+    // f64, rounded once): normalising rounds each component by up to an ulp (6e-8), and
+    // wi + wo cancels for back-to-back pairs near grazing; the stretch weights h_x^2 by
+    // alpha_y / alpha_x (200 at 0.005 / 1), so a cancelled h_x reaches D: 1.3e-3 measured
+    // (isotropic, the larger component dominates sin^2 theta_h and hides it; the CPU's f32
+    // model stays within 1.4e-6 of f64).
+    let bound = ANISO_GPU;
+    check(gpu, info, &configs, bound, &mut report, &mut failures);
     finish(&report, &failures);
 }
+
+/// The GPU's bound for anisotropic `cook-torrance` against f64 (mixed metric), slopes in
+/// [0.005, 1]: see `anisotropic_cook_torrance_matches_the_cpu`.
+const ANISO_GPU: f64 = 2e-3;
 
 fn finish(report: &[String], failures: &[String]) {
     if std::env::var_os("FASTBRDF_PARITY_REPORT").is_some() {
@@ -275,10 +289,13 @@ fn finish(report: &[String], failures: &[String]) {
 
 /// GPU against the CPU's f32 model for `info` at each configuration, in every form: a line
 /// per configuration and form into `report`, the ones out of tolerance also into `failures`.
+/// A row out of the perturbed range still passes when the GPU is within `f32_bound` (or twice
+/// the CPU's f32 error) of f64.
 fn check(
     gpu: &fastbrdf_gpu::Gpu,
     info: &'static fastbrdf::ModelInfo,
     configs: &[Vec<(String, String)>],
+    f32_bound: f64,
     report: &mut Vec<String>,
     failures: &mut Vec<String>,
 ) {
@@ -401,7 +418,7 @@ fn check(
                         let v64 = exact.eval_row(&row64);
                         let cpu_err = mixed_error(want, v64);
                         let gpu_err = mixed_error(out[i], v64);
-                        if gpu_err <= f64::max(2.0 * cpu_err, info.f32_bound) {
+                        if gpu_err <= f64::max(2.0 * cpu_err, f32_bound) {
                             err = 0.0;
                         }
                     }
