@@ -301,7 +301,7 @@ fn check(
 ) {
     let (d, q) = (&gpu.device, &gpu.queue);
     {
-        for config in configs.iter().cloned() {
+        for config in configs {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
@@ -371,7 +371,7 @@ fn check(
                 kernel.eval(d, q, inputs, &mut out).unwrap();
                 let mut worst = (0.0f64, 0usize);
                 let mut plain = 0.0f64;
-                let geometry = LobeGeometry::new(info.id, &config);
+                let geometry = LobeGeometry::new(info.id, config);
                 let n: f64 = config
                     .iter()
                     .find(|(k, _)| k == "n")
