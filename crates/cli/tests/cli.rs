@@ -2005,3 +2005,64 @@ fn saved_runs_with_impossible_figures_are_refused() {
     assert!(fastbrdf(&["bench", "--from", saved], "").status.success());
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// issue 14: `eval` of anisotropic `cook-torrance` (`alpha_x`, `alpha_y`) differs along x
+/// and y; one slope alone, or a D, G or `ms` without an anisotropic form, is exit 2 naming
+/// the requirement, with nothing on stdout.
+#[test]
+fn anisotropic_cook_torrance_evaluates_and_refuses_what_it_cannot_stretch() {
+    let input = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\n0.3,0,0.954,-0.2,0,0.98\n0,0.3,0.954,0,-0.2,0.98\n";
+    let o = fastbrdf(
+        &[
+            "eval",
+            "--model",
+            "cook-torrance",
+            "--param",
+            "d=ggx",
+            "--param",
+            "g=smith-ggx-correlated",
+            "--param",
+            "alpha_x=0.05",
+            "--param",
+            "alpha_y=0.4",
+        ],
+        input,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let vals: Vec<f64> = stdout(&o)
+        .lines()
+        .filter_map(|l| l.rsplit(',').next()?.trim().parse().ok())
+        .collect();
+    assert_eq!(vals.len(), 2, "{}", stdout(&o));
+    assert!(vals[0] < 0.5 * vals[1], "{vals:?}");
+    for (extra, want) in [
+        (&["alpha_x=0.1"][..], "alpha_y"),
+        (
+            &["alpha_x=0.1", "alpha_y=0.2", "d=beckmann-pow"][..],
+            "d in {beckmann, beckmann-ct, ggx}",
+        ),
+        (
+            &["alpha_x=0.1", "alpha_y=0.2", "g=kelemen"][..],
+            "given d = beckmann, g = kelemen",
+        ),
+        (
+            &[
+                "alpha_x=0.1",
+                "alpha_y=0.2",
+                "d=ggx",
+                "g=smith-ggx-correlated",
+                "ms=kulla-conty",
+            ][..],
+            "ms in {none}",
+        ),
+    ] {
+        let mut args = vec!["eval", "--model", "cook-torrance"];
+        for p in extra {
+            args.extend(["--param", p]);
+        }
+        let o = fastbrdf(&args, input);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {}", stderr(&o));
+        assert!(stdout(&o).is_empty(), "{extra:?}");
+        assert!(stderr(&o).contains(want), "{extra:?}: {}", stderr(&o));
+    }
+}

@@ -459,7 +459,11 @@ pub fn f32_worst(id: &str, given: &[(&str, &str)]) -> Result<(f64, String)> {
 /// Parameter sets covering a model's documented domain: every combination of its choice
 /// parameters, crossed with "rows" that walk each numeric parameter through representative
 /// values including the range's edges (cycling, so that every value of every parameter
-/// appears). Optional parameters (Ward's `alpha_x`, `alpha_y`) are given on odd rows only.
+/// appears). Optional parameters (`alpha_x`, `alpha_y` of Ward and Cook-Torrance) are given
+/// on odd rows only, where their `requires` hold ([`crate::params::ParamSpec::allowed`]), both
+/// at the same value (the anisotropic code paths at equal slopes; truly anisotropic slopes
+/// have their own tests: `tests/reference.rs`, `tests/precision.rs`, `tests/batch.rs`, the
+/// GPU crate's `tests/parity.rs`).
 /// `light` keeps about four numeric rows (for the BRDFs, whose choice products are large).
 pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, String)>> {
     use crate::params::ParamKind;
@@ -482,10 +486,13 @@ pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, 
         }
     }
     let choice_sets = choice_sets(info);
-    let mut numeric: Vec<(&str, Vec<f64>, bool)> = vec![];
+    let mut numeric: Vec<(&crate::params::ParamSpec, Vec<f64>, bool)> = vec![];
     for p in info.params {
-        if let ParamKind::Number { min, max, default } = p.kind {
-            numeric.push((p.name, values(p.name, min, max), default.is_none()))
+        if let ParamKind::Number {
+            min, max, default, ..
+        } = p.kind
+        {
+            numeric.push((p, values(p.name, min, max), default.is_none()))
         }
     }
     let rows = numeric.iter().map(|(_, v, _)| v.len()).max().unwrap_or(1);
@@ -498,8 +505,10 @@ pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, 
     for set in &choice_sets {
         for &r in &rows {
             let mut s = set.clone();
-            for (name, vals, optional) in &numeric {
-                if *optional && r % 2 == 0 {
+            for (spec, vals, optional) in &numeric {
+                let name = spec.name;
+                let choice = |n: &str| set.iter().find(|(k, _)| k == n).map(|(_, v)| v.clone());
+                if *optional && (r % 2 == 0 || !spec.allowed(choice)) {
                     continue;
                 }
                 s.push((
@@ -812,7 +821,10 @@ pub fn f32_search(info: &crate::ModelInfo, size: SearchSize) -> Found {
     let choice_sets = choice_sets(info);
     let mut numeric: Vec<(&str, f64, f64, bool)> = vec![];
     for p in info.params {
-        if let ParamKind::Number { min, max, default } = p.kind {
+        if let ParamKind::Number {
+            min, max, default, ..
+        } = p.kind
+        {
             numeric.push((p.name, min, max, default.is_none()))
         }
     }

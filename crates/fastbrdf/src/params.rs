@@ -11,10 +11,17 @@ use std::collections::BTreeMap;
 #[serde(tag = "type", rename_all = "lowercase")]
 pub enum ParamKind {
     /// A real number in `[min, max]`. `default: None` means "optional" (see the doc line).
+    /// `requires`: choice parameters that must hold one of the listed values when this one is
+    /// given (`cook-torrance`'s `alpha_x`, `alpha_y` need a distribution and a shadowing term
+    /// with an anisotropic form): `Params::resolve` refuses the rest naming them, and
+    /// `accuracy`'s configuration lists give it only where they hold ([`ParamSpec::allowed`]).
+    /// The required parameters come before this one in the model's list.
     Number {
         min: f64,
         max: f64,
         default: Option<f64>,
+        #[serde(skip_serializing_if = "<[_]>::is_empty")]
+        requires: Requires,
     },
     /// One of a set of names.
     Choice {
@@ -22,6 +29,9 @@ pub enum ParamKind {
         default: &'static str,
     },
 }
+
+/// Choice parameters and the values one of which each must hold (see [`ParamKind::Number`]).
+pub type Requires = &'static [(&'static str, &'static [&'static str])];
 
 /// The names a choice parameter takes.
 #[derive(Clone, Copy, Debug)]
@@ -101,6 +111,17 @@ impl ParamSpec {
             ParamKind::Choice { .. } => panic!("range() of a choice parameter"),
         }
     }
+    /// Whether this parameter may be given beside the choices `other(param)`: a numeric
+    /// parameter's `requires` hold (always true for a choice; gated choices are checked per
+    /// option by [`Options::allows`]).
+    pub fn allowed(&self, other: impl Fn(&str) -> Option<String>) -> bool {
+        match self.kind {
+            ParamKind::Number { requires, .. } => requires
+                .iter()
+                .all(|(p, vals)| other(p).is_some_and(|v| vals.contains(&v.as_str()))),
+            ParamKind::Choice { .. } => true,
+        }
+    }
     /// The range or the choices as text.
     pub fn range_text(&self) -> String {
         match self.kind {
@@ -127,6 +148,7 @@ pub const N: ParamSpec = ParamSpec {
         min: 1.0,
         max: N_MAX,
         default: Some(20.0),
+        requires: &[],
     },
     doc: "specular exponent",
 };
@@ -138,9 +160,52 @@ pub const ALPHA: ParamSpec = ParamSpec {
         min: ALPHA_MIN,
         max: 1.0,
         default: Some(0.3),
+        requires: &[],
     },
     doc: "RMS microfacet slope m",
 };
+
+/// The slope along x of an anisotropic microfacet surface (`ward`; `cook-torrance` gates its
+/// copy: [`ParamKind::Number`]'s `requires`). Optional: given with [`ALPHA_Y`], it replaces
+/// `alpha` ([`slope_params`]).
+pub const ALPHA_X: ParamSpec = ParamSpec {
+    name: "alpha_x",
+    kind: ParamKind::Number {
+        min: ALPHA_MIN,
+        max: 1.0,
+        default: None,
+        requires: &[],
+    },
+    doc: "anisotropic slope along x (with alpha_y; replaces alpha)",
+};
+/// The slope along y (see [`ALPHA_X`]).
+pub const ALPHA_Y: ParamSpec = ParamSpec {
+    name: "alpha_y",
+    kind: ParamKind::Number {
+        min: ALPHA_MIN,
+        max: 1.0,
+        default: None,
+        requires: &[],
+    },
+    doc: "anisotropic slope along y (with alpha_x; replaces alpha)",
+};
+
+/// The names of the parameters that hold the slopes along x and y of an anisotropic model
+/// (`ward`, `cook-torrance`): `alpha_x`, `alpha_y` when both are given, else `alpha` twice;
+/// one without the other is an error naming the missing one. Shared by the scalar models, the
+/// batch kernels and the GPU twins (all build from the plan this chooses).
+pub fn slope_params(p: &Params) -> Result<(&'static str, &'static str)> {
+    let missing = |param: &str| Error::MissingParam {
+        model: p.model().into(),
+        param: param.into(),
+    };
+    match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
+        (Some(_), Some(_)) => Ok(("alpha_x", "alpha_y")),
+        (None, None) => Ok(("alpha", "alpha")),
+        (Some(_), None) => Err(missing("alpha_y")),
+        (None, Some(_)) => Err(missing("alpha_x")),
+    }
+}
 
 /// A parameter value.
 #[derive(Clone, Debug, PartialEq)]
@@ -194,6 +259,35 @@ impl Params {
             }
         }
         let p = Self { model, values };
+        for spec in specs {
+            let ParamKind::Number { requires, .. } = spec.kind else {
+                continue;
+            };
+            let choice = |n: &str| match p.values.get(n) {
+                Some(Value::Text(t)) => Some(t.clone()),
+                _ => None,
+            };
+            if p.values.contains_key(spec.name) && !spec.allowed(choice) {
+                let need: Vec<String> = requires
+                    .iter()
+                    .map(|(n, vals)| format!("{n} in {{{}}}", vals.join(", ")))
+                    .collect();
+                let given: Vec<String> = requires
+                    .iter()
+                    .map(|(n, _)| format!("{n} = {}", p.choice(n)))
+                    .collect();
+                return Err(Error::InvalidParam {
+                    model: model.into(),
+                    param: spec.name.into(),
+                    value: p.num(spec.name).to_string(),
+                    expected: format!(
+                        "no value unless {} (given {})",
+                        need.join(" and "),
+                        given.join(", ")
+                    ),
+                });
+            }
+        }
         for spec in specs {
             if let ParamKind::Choice {
                 options: options @ Options::Gated { requires, .. },

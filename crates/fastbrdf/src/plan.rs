@@ -74,6 +74,12 @@ pub trait DistForm: Copy + Debug + Send + Sync + 'static {
     /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
     /// (the library takes it once). See [`library_sources`].
     const WGSL: &'static str;
+    /// Whether `D` depends on the half vector only through `alpha^2 cos^2 theta_h + sin^2
+    /// theta_h`-shaped slopes `tan^2 theta_h / alpha^2` (GGX, Beckmann): then its anisotropic
+    /// form at `alpha_x`, `alpha_y` is this `d` at `alpha = sqrt(alpha_x alpha_y)` with
+    /// `sin2_h` replaced by `h_x^2 alpha_y / alpha_x + h_y^2 alpha_x / alpha_y`
+    /// (`cook-torrance`'s `alpha_x`, `alpha_y`; see `brdf::cook_torrance`).
+    const ANISO: bool = false;
     /// `D` at `cos_h` in `[COS_MIN, 1]` with `sin2_h = sin^2 theta_h`.
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T;
     /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
@@ -90,6 +96,12 @@ pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
     const SIMD: bool = true;
     /// Whether it uses `cos_h` and `cos_vh` (the V-cavity, Kelemen).
     const HALF_VECTOR: bool = false;
+    /// Whether it is a Smith term (exact or approximated) that depends on a direction only
+    /// through `alpha^2 tan^2 theta`: then its anisotropic form is `g_pair` at
+    /// `alpha = sqrt(alpha_x alpha_y)` on the stretched cosines
+    /// `w_z / sqrt(w_z^2 + w_x^2 alpha_x / alpha_y + w_y^2 alpha_y / alpha_x)` (Heitz 2014,
+    /// sec. 5; `cook-torrance`'s `alpha_x`, `alpha_y`).
+    const ANISO: bool = false;
     /// The two-sided term on a valid pair's cosines (all positive, at most 1; `cos_l` may be
     /// `+inf` for the one-sided term of `v`): the formula, as Cook-Torrance uses it.
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, cos_h: T, cos_vh: T) -> T;
@@ -396,7 +408,24 @@ impl DistForm for DistPlan {
     }
 }
 
+impl DistPlan {
+    /// [`DistForm::ANISO`] of the family.
+    pub fn aniso(&self) -> bool {
+        fn of<D: DistForm>(_: &D) -> bool {
+            D::ANISO
+        }
+        with_dist!(self, d => of(d))
+    }
+}
+
 impl ShadowPlan {
+    /// [`ShadowForm::ANISO`] of the family.
+    pub fn aniso(&self) -> bool {
+        fn of<G: ShadowForm>(_: &G) -> bool {
+            G::ANISO
+        }
+        with_shadow!(self, g => of(g))
+    }
     /// Whether the term uses `cos_h` and `cos_vh`.
     pub fn needs_half_vector(&self) -> bool {
         fn of<G: ShadowForm>(_: &G) -> bool {

@@ -33,6 +33,16 @@ pub struct Emit {
     values: RefCell<Vec<f32>>,
     /// Runtime mode: the parameters the expressions use.
     used: RefCell<BTreeSet<String>>,
+    /// Runtime mode: parameters written as an expression of others ([`Emit::with_alias`]).
+    aliases: RefCell<Vec<Alias>>,
+}
+
+/// `p_<name>` stands for `expr`, an expression of the parameters `params`.
+#[derive(Debug)]
+struct Alias {
+    name: String,
+    expr: String,
+    params: Vec<String>,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -74,10 +84,46 @@ impl Emit {
     pub fn used(&self) -> BTreeSet<String> {
         self.used.borrow().clone()
     }
-    /// Parameter `name` as a runtime argument, `p_<name>` (marks it used).
+    /// Parameter `name` as a runtime argument, `p_<name>` (marks it used), or its alias's
+    /// expression.
     pub fn param(&self, name: &str) -> String {
+        if let Some(expr) = self.alias_of(name) {
+            return expr;
+        }
         self.used.borrow_mut().insert(name.to_string());
         format!("p_{name}")
+    }
+    /// Runs `f` with parameter `name` standing for the WGSL expression `expr` of the
+    /// parameters `params` (runtime mode; the coefficients of the other modes are values
+    /// already): inside `f`, [`Emit::param`] and [`Emit::kx`] write `(expr)` for `p_<name>`
+    /// and mark `params` used instead of `name`. `cook-torrance` builds its anisotropic parts
+    /// at `alpha = sqrt(alpha_x alpha_y)` so, and their runtime form reads
+    /// `sqrt(p_alpha_x * p_alpha_y)` where an isotropic part reads `p_alpha`.
+    pub fn with_alias<R>(
+        &self,
+        name: &str,
+        expr: &str,
+        params: &[&str],
+        f: impl FnOnce() -> R,
+    ) -> R {
+        self.aliases.borrow_mut().push(Alias {
+            name: name.into(),
+            expr: expr.into(),
+            params: params.iter().map(|p| p.to_string()).collect(),
+        });
+        let r = f();
+        self.aliases.borrow_mut().pop();
+        r
+    }
+    /// The alias of `name` as `(expr)`, marking its parameters used.
+    fn alias_of(&self, name: &str) -> Option<String> {
+        let aliases = self.aliases.borrow();
+        let a = aliases.iter().rev().find(|a| a.name == name)?;
+        let mut used = self.used.borrow_mut();
+        for p in &a.params {
+            used.insert(p.clone());
+        }
+        Some(format!("({})", a.expr))
     }
     fn stored(&self, x: f64) -> String {
         let mut v = self.values.borrow_mut();
@@ -92,8 +138,14 @@ impl Emit {
             Mode::Literals => lit(x),
             Mode::Storage => self.stored(x),
             Mode::Runtime => {
+                let mut expr = expr.to_string();
                 for p in params {
-                    self.param(p);
+                    match self.alias_of(p) {
+                        Some(a) => expr = replace_ident(&expr, &format!("p_{p}"), &a),
+                        None => {
+                            self.param(p);
+                        }
+                    }
                 }
                 format!("({expr})")
             }
@@ -109,6 +161,23 @@ impl Emit {
             lit(x)
         }
     }
+}
+
+/// `text` with every whole identifier `ident` replaced by `by` (`p_alpha`, not `p_alpha_x`).
+fn replace_ident(text: &str, ident: &str, by: &str) -> String {
+    let is_id = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(i) = rest.find(ident) {
+        let before = rest[..i].chars().next_back();
+        let after = rest[i + ident.len()..].chars().next();
+        let whole = !before.is_some_and(is_id) && !after.is_some_and(is_id);
+        out.push_str(&rest[..i]);
+        out.push_str(if whole { by } else { ident });
+        rest = &rest[i + ident.len()..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// The pair set-up every BRDF body starts with (`fb_pair` in `common.wgsl`, the twin of

@@ -216,3 +216,50 @@ fn adversarial_search_keeps_every_documented_f32_bound() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// issue 14: anisotropic `cook-torrance` (`alpha_x`, `alpha_y`; the stretch computed in the
+/// pair's precision) tracks f64 as the isotropic model does away from Fresnel's near-step:
+/// every allowed D and G, `f = none` and `schlick`, slopes at their extremes (f32 numbers, fed
+/// to both precisions). Documented in `cook_torrance.rs`'s `INFO.note`
+/// (`ANISO_F32`, measured with `--nocapture`).
+#[test]
+fn anisotropic_cook_torrance_f32_tracks_f64() {
+    let slopes = [
+        ("0.005", "1"),
+        ("1", "0.005"),
+        ("0.02", "0.5"),
+        ("0.1", "0.30000001192092896"),
+        ("0.5", "0.009999999776482582"),
+    ];
+    let mut worst = (0.0, String::new());
+    for &d in fastbrdf::brdf::cook_torrance::ANISO_D {
+        for &g in fastbrdf::brdf::cook_torrance::ANISO_G {
+            for f in ["none", "schlick"] {
+                for (ax, ay) in slopes {
+                    let given = [
+                        ("d", d),
+                        ("g", g),
+                        ("f", f),
+                        ("alpha_x", ax),
+                        ("alpha_y", ay),
+                    ];
+                    let (err, at) = accuracy::f32_worst("cook-torrance", &given).unwrap();
+                    assert!(err.is_finite(), "{given:?} {at}");
+                    if err > worst.0 {
+                        worst = (err, format!("{given:?} {at}"));
+                    }
+                }
+            }
+        }
+    }
+    println!(
+        "anisotropic cook-torrance f32-vs-f64 measured {:.3e} at {}",
+        worst.0, worst.1
+    );
+    assert!(
+        worst.0 <= fastbrdf::brdf::cook_torrance::ANISO_F32,
+        "{:.3e} at {}",
+        worst.0,
+        worst.1
+    );
+}

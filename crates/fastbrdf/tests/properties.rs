@@ -35,7 +35,8 @@ fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, Strin
             }
         })
         .collect();
-    // Optional parameters (Ward's alpha_x, alpha_y) are given together or not at all.
+    // Optional parameters (alpha_x, alpha_y) are given together or not at all, and only where
+    // their `requires` hold (cook-torrance's need d, g and ms with an anisotropic form).
     let optional: Vec<&str> = info
         .params
         .iter()
@@ -51,17 +52,34 @@ fn params_strategy(info: &'static ModelInfo) -> BoxedStrategy<Vec<(String, Strin
                 .collect();
             // A gated choice (`Options::Gated`: cook-torrance's `ms`) falls back to its default
             // where its requirements do not hold (they are refused, tested in energy.rs).
-            v.iter()
-                .filter(|(k, val)| {
-                    info.params.iter().all(|p| match p.kind {
-                        ParamKind::Choice { options, default } if p.name == k => {
-                            options.allows(val, default, |n| {
-                                v.iter().find(|(k2, _)| k2 == n).map(|(_, x)| x.clone())
-                            })
-                        }
-                        _ => true,
+            let v: Vec<(String, String)> =
+                v.iter()
+                    .filter(|(k, val)| {
+                        info.params.iter().all(|p| match p.kind {
+                            ParamKind::Choice { options, default } if p.name == k => options
+                                .allows(val, default, |n| {
+                                    v.iter().find(|(k2, _)| k2 == n).map(|(_, x)| x.clone())
+                                }),
+                            _ => true,
+                        })
                     })
-                })
+                    .cloned()
+                    .collect();
+            // So are gated optional numbers (`requires`: cook-torrance's alpha_x, alpha_y), on
+            // the choices left (a choice not given is its default).
+            let choice = |n: &str| {
+                v.iter()
+                    .find(|(k, _)| k == n)
+                    .map(|(_, x)| x.clone())
+                    .or_else(|| {
+                        info.params
+                            .iter()
+                            .find(|p| p.name == n)
+                            .map(|p| p.default_text())
+                    })
+            };
+            v.iter()
+                .filter(|(k, _)| info.params.iter().all(|p| p.name != k || p.allowed(choice)))
                 .cloned()
                 .collect()
         })
@@ -346,4 +364,42 @@ fn strict_evaluation_rejects_out_of_domain_rows() {
             .to_string()
             .contains("below the horizon")
     );
+}
+
+/// issue 14: anisotropic `cook-torrance` with differing slopes (the configuration lists give
+/// equal ones) is reciprocal to the last bit in both precisions (the stretched cosines enter
+/// G symmetrically) and finite and non-negative.
+#[test]
+fn anisotropic_cook_torrance_is_reciprocal_and_finite() {
+    let pairs = direction_pairs(200, 22);
+    for &d in fastbrdf::brdf::cook_torrance::ANISO_D {
+        for &g in fastbrdf::brdf::cook_torrance::ANISO_G {
+            for (ax, ay) in [("0.005", "1"), ("1", "0.005"), ("0.02", "0.5")] {
+                let given = [
+                    ("d", d),
+                    ("g", g),
+                    ("f", "schlick"),
+                    ("alpha_x", ax),
+                    ("alpha_y", ay),
+                ];
+                let Model::Brdf(b) = registry::build::<f64>("cook-torrance", &given).unwrap()
+                else {
+                    panic!()
+                };
+                let Model::Brdf(b32) = registry::build::<f32>("cook-torrance", &given).unwrap()
+                else {
+                    panic!()
+                };
+                for (wi, wo) in &pairs {
+                    let (a, r) = (b.eval(*wi, *wo), b.eval(*wo, *wi));
+                    assert!(a.is_finite() && a >= 0.0, "{given:?}: {a}");
+                    assert_eq!(a.to_bits(), r.to_bits(), "{given:?}: {a} vs {r}");
+                    let (i32, o32) = (wi.map(|x| x as f32), wo.map(|x| x as f32));
+                    let (a, r) = (b32.eval(i32, o32), b32.eval(o32, i32));
+                    assert!(a.is_finite() && a >= 0.0, "{given:?}: {a}");
+                    assert_eq!(a.to_bits(), r.to_bits(), "{given:?} f32: {a} vs {r}");
+                }
+            }
+        }
+    }
 }

@@ -757,6 +757,192 @@ fn cook_torrance_with_ggx_is_fdg_over_4_cos_cos() {
     }
 }
 
+/// Anisotropic slope pairs for the anisotropic Cook-Torrance tests: extremes both ways.
+const ANISO_SLOPES: &[(f64, f64)] = &[
+    (0.005, 1.0),
+    (1.0, 0.005),
+    (0.02, 0.5),
+    (0.3, 0.1),
+    (0.7072, 0.05),
+    (0.2, 0.2),
+];
+
+/// The projected slope `alpha_w` of direction `w` on an anisotropic surface (Heitz 2014,
+/// eq. 80), from the azimuth: `sqrt(cos^2 phi alpha_x^2 + sin^2 phi alpha_y^2)`; and
+/// `tan^2 theta`.
+fn projected_alpha(w: [f64; 3], ax: f64, ay: f64) -> (f64, f64) {
+    let r2 = w[0] * w[0] + w[1] * w[1];
+    if r2 == 0.0 {
+        return (ax, 0.0);
+    }
+    let phi = w[1].atan2(w[0]);
+    let aw = (phi.cos().powi(2) * ax * ax + phi.sin().powi(2) * ay * ay).sqrt();
+    (aw, r2 / (w[2] * w[2]))
+}
+
+/// Anisotropic D of GGX (Heitz 2014, eq. 85) and Beckmann (eq. 84) as printed, in `h`'s
+/// slopes; `beckmann-ct` is `beckmann` times pi / 4.
+fn ref_aniso_d(d: &str, h: [f64; 3], ax: f64, ay: f64) -> f64 {
+    let q = h[0] * h[0] / (ax * ax) + h[1] * h[1] / (ay * ay);
+    match d {
+        "ggx" => 1.0 / (PI * ax * ay * (q + h[2] * h[2]).powi(2)),
+        "beckmann" => (-q / (h[2] * h[2])).exp() / (PI * ax * ay * h[2].powi(4)),
+        "beckmann-ct" => PI / 4.0 * ref_aniso_d("beckmann", h, ax, ay),
+        _ => panic!("no anisotropic reference for {d}"),
+    }
+}
+
+/// Anisotropic Smith G of `v`, `l` (Heitz 2014, sec. 5): the exact terms are the isotropic
+/// Lambdas at the projected slope (`projected_alpha`, through the azimuth); the
+/// approximations are their isotropic formulas at `alpha = sqrt(ax ay)` on the cosine that
+/// gives the same `alpha^2 tan^2` (the anisotropic extension the model documents).
+fn ref_aniso_g(g: &str, v: [f64; 3], l: [f64; 3], ax: f64, ay: f64) -> f64 {
+    let lambda_ggx = |w: [f64; 3]| {
+        let (aw, t2) = projected_alpha(w, ax, ay);
+        (-1.0 + (1.0 + aw * aw * t2).sqrt()) / 2.0
+    };
+    let a_of = |w: [f64; 3]| {
+        let (aw, t2) = projected_alpha(w, ax, ay);
+        1.0 / (aw * t2.sqrt())
+    };
+    let lambda_beckmann = |w: [f64; 3]| {
+        let a = a_of(w);
+        if a.is_infinite() {
+            return 0.0;
+        }
+        (libm::erf(a) - 1.0) / 2.0 + (-a * a).exp() / (2.0 * a * PI.sqrt())
+    };
+    let rational = |w: [f64; 3]| {
+        let a = a_of(w);
+        if a >= 1.6 {
+            1.0
+        } else {
+            (3.535 * a + 2.181 * a * a) / (1.0 + 2.276 * a + 2.577 * a * a)
+        }
+    };
+    let alpha = (ax * ay).sqrt();
+    let cos_eff = |w: [f64; 3]| {
+        let (aw, t2) = projected_alpha(w, ax, ay);
+        1.0 / (1.0 + aw * aw * t2 / (alpha * alpha)).sqrt()
+    };
+    match g {
+        "smith" => 1.0 / ((1.0 + lambda_beckmann(v)) * (1.0 + lambda_beckmann(l))),
+        "smith-beckmann-correlated" => 1.0 / (1.0 + lambda_beckmann(v) + lambda_beckmann(l)),
+        "smith-ggx" => 1.0 / ((1.0 + lambda_ggx(v)) * (1.0 + lambda_ggx(l))),
+        "smith-ggx-correlated" => 1.0 / (1.0 + lambda_ggx(v) + lambda_ggx(l)),
+        "smith-rational" => rational(v) * rational(l),
+        _ => ref_shadowing(g, alpha, "alpha-half", cos_eff(v), Some(cos_eff(l)), 0.0),
+    }
+}
+
+/// issue 14: anisotropic `cook-torrance` (`alpha_x`, `alpha_y`) with every allowed D and G
+/// against `F D G / (4 cos_i cos_o)` from the textbook anisotropic D and Smith Lambda
+/// (projected slope from the azimuth, not the model's stretch), slopes to their extremes.
+#[test]
+fn anisotropic_cook_torrance_matches_its_textbook_form() {
+    let pairs = direction_pairs(200, 15);
+    let ds = fastbrdf::brdf::cook_torrance::ANISO_D;
+    let gs = fastbrdf::brdf::cook_torrance::ANISO_G;
+    let mut nonzero = 0;
+    for &(ax, ay) in ANISO_SLOPES {
+        for &d in ds {
+            for &g in gs {
+                let (sx, sy) = (ax.to_string(), ay.to_string());
+                let ct = brdf64(
+                    "cook-torrance",
+                    &[
+                        ("alpha_x", &sx),
+                        ("alpha_y", &sy),
+                        ("d", d),
+                        ("g", g),
+                        ("f", "schlick"),
+                    ],
+                );
+                // Mirror-ish pairs too, where narrow lobes are not 0.
+                let mut all = pairs.clone();
+                for (wi, _) in &pairs {
+                    let wi = unit(*wi);
+                    all.push((wi, [-wi[0] * 0.999, -wi[1], wi[2]]));
+                }
+                for (wi, wo) in &all {
+                    let (wi, wo) = (unit(*wi), unit(*wo));
+                    if wi[2] < 1e-3 || wo[2] < 1e-3 {
+                        continue;
+                    }
+                    let h = unit([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]]);
+                    let fv = 0.04 + 0.96 * (1.0 - dotv(wi, h)).powi(5);
+                    let want = fv * ref_aniso_d(d, h, ax, ay) * ref_aniso_g(g, wo, wi, ax, ay)
+                        / (4.0 * wi[2] * wo[2]);
+                    let got = ct.eval(wi, wo);
+                    if want > 1e-200 {
+                        nonzero += 1;
+                    }
+                    // Beckmann's exponent reaches ~700: its rounding is 1e-16 of that.
+                    assert!(
+                        (got - want).abs() <= 1e-10 * want.abs() + 1e-300,
+                        "ax={ax} ay={ay} d={d} g={g} wi={wi:?} wo={wo:?}: {got} vs {want}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(nonzero > 10_000, "too few non-zero values: {nonzero}");
+}
+
+/// issue 14: `alpha_x = alpha_y = a` is the isotropic model at `alpha = a` for every allowed
+/// D and G, to rounding (f64 and f32; the stretched arguments are recomputed, not copied).
+#[test]
+fn anisotropic_cook_torrance_at_equal_slopes_is_isotropic() {
+    let pairs = direction_pairs(300, 16);
+    for &a in ALPHA_VALUES {
+        for &d in fastbrdf::brdf::cook_torrance::ANISO_D {
+            for &g in fastbrdf::brdf::cook_torrance::ANISO_G {
+                let s = a.to_string();
+                let base = [("d", d), ("g", g), ("f", "schlick")];
+                let iso: Vec<(&str, &str)> = base
+                    .iter()
+                    .copied()
+                    .chain([("alpha", s.as_str())])
+                    .collect();
+                let aniso: Vec<(&str, &str)> = base
+                    .iter()
+                    .copied()
+                    .chain([
+                        ("alpha_x", s.as_str()),
+                        ("alpha_y", s.as_str()),
+                        ("alpha", "0.9"),
+                    ])
+                    .collect();
+                let (i64m, a64m) = (
+                    brdf64("cook-torrance", &iso),
+                    brdf64("cook-torrance", &aniso),
+                );
+                let b32 =
+                    |given: &[(&str, &str)]| match registry::build::<f32>("cook-torrance", given)
+                        .unwrap()
+                    {
+                        Model::Brdf(b) => b,
+                        _ => panic!(),
+                    };
+                let (i32m, a32m) = (b32(&iso), b32(&aniso));
+                for (wi, wo) in &pairs {
+                    let (x, y) = (i64m.eval(*wi, *wo), a64m.eval(*wi, *wo));
+                    assert!(
+                        (x - y).abs() <= 1e-11 * x.abs() + 1e-300,
+                        "f64 a={a} d={d} g={g}: iso {x} aniso {y}"
+                    );
+                    let (wi, wo) = (wi.map(|c| c as f32), wo.map(|c| c as f32));
+                    let (x, y) = (i32m.eval(wi, wo), a32m.eval(wi, wo));
+                    assert!(
+                        (x - y).abs() <= 1e-4 * x.abs() + 1e-30,
+                        "f32 a={a} d={d} g={g}: iso {x} aniso {y}"
+                    );
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn ward_matches_its_printed_formulas() {
     let pairs = direction_pairs(300, 12);

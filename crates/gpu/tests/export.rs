@@ -253,6 +253,15 @@ fn brdf_explorer_sliders_reach_their_defaults_and_wide_ranges_are_logarithmic() 
             vec![("f", "schlick"), ("f0", "0.0437"), ("alpha", "0.0123")],
         ),
         ("ward", vec![("alpha_x", "0.1"), ("alpha_y", "0.4")]),
+        (
+            "cook-torrance",
+            vec![
+                ("d", "ggx"),
+                ("g", "smith-ggx-correlated"),
+                ("alpha_x", "0.05"),
+                ("alpha_y", "0.4"),
+            ],
+        ),
         ("fresnel-dielectric", vec![("eta", "1.0001")]),
         ("fresnel-conductor", vec![("eta", "0.2"), ("k", "3.3")]),
         ("lambert", vec![("albedo", "0.7")]),
@@ -549,4 +558,45 @@ fn a_coloured_model_exports_three_channels_and_a_vector() {
     }
     let err = export_form("cook-torrance", &given, Lang::Glsl, Form::Runtime).unwrap_err();
     assert!(err.to_string().contains("--runtime-params"), "{err}");
+}
+
+/// issue 14: anisotropic `cook-torrance` exports in every language and form; its runtime form
+/// takes `p_alpha_x`, `p_alpha_y` (its parts read `sqrt(p_alpha_x * p_alpha_y)` where an
+/// isotropic one reads `p_alpha`), not `p_alpha`, and the literal form calls the stretch.
+#[test]
+fn anisotropic_cook_torrance_exports_with_both_slopes() {
+    for (d, g) in [("ggx", "smith-ggx-correlated"), ("beckmann", "smith")] {
+        let given = [("d", d), ("g", g), ("alpha_x", "0.05"), ("alpha_y", "0.4")];
+        let params = fastbrdf_gpu::spec::Instance::runtime("cook-torrance", &given)
+            .unwrap()
+            .sliders
+            .into_iter()
+            .map(|(n, _)| n)
+            .collect::<Vec<_>>();
+        assert_eq!(params, ["alpha_x", "alpha_y"], "{d} {g}");
+        for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl, Lang::Msl] {
+            let text = export("cook-torrance", &given, lang).unwrap();
+            check_one("cook-torrance", Kind::Brdf, lang, &text);
+            let rt = export_form("cook-torrance", &given, lang, Form::Runtime).unwrap();
+            check_form("cook-torrance", Kind::Brdf, lang, &rt, 2);
+            assert!(
+                rt.contains("p_alpha_x") && rt.contains("p_alpha_y"),
+                "{d} {g}"
+            );
+            let code: String = rt
+                .lines()
+                .filter(|l| !l.starts_with("//"))
+                .collect::<Vec<_>>()
+                .join("\n");
+            assert!(
+                !code.contains("p_alpha)")
+                    && !code.contains("p_alpha,")
+                    && !code.contains("p_alpha *"),
+                "{d} {g} {}: {code}",
+                lang.name()
+            );
+        }
+        let wgsl = export("cook-torrance", &given, Lang::Wgsl).unwrap();
+        assert!(wgsl.contains("fb_aniso_cos(") && wgsl.contains("fb_aniso_sin2("));
+    }
 }

@@ -198,11 +198,21 @@ fn sphere_scenes_match_the_cpu() {
         });
         scene(&spec, "flog", &[("n", "50")])
     };
-    let cases: [(&str, &dyn Fn() -> Scene); 4] = [
+    // Anisotropic GGX (issue 14: cook-torrance's alpha_x, alpha_y), in the frame both
+    // renderers build from the normal.
+    let brushed = || {
+        scene(
+            &SceneSpec::new(),
+            "cook-torrance",
+            &[("d", "ggx"), ("alpha_x", "0.05"), ("alpha_y", "0.4")],
+        )
+    };
+    let cases: [(&str, &dyn Fn() -> Scene); 5] = [
         ("pow n=200", &default),
         ("beckmann alpha=0.3, floor, two lights", &floor),
         ("ward 0.15/0.45, texture", &textured),
         ("flog n=50, bump 40,0.6", &bumpy),
+        ("cook-torrance ggx 0.05/0.4", &brushed),
     ];
     for (label, make) in cases {
         if check(label, make, &o).is_none() {

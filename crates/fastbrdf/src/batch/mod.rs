@@ -423,7 +423,7 @@ pub fn brdf_kernel<B: BrdfForm>(b: B) -> Box<dyn Imp> {
 /// Cook-Torrance with its D, G and F as concrete families: one kernel per combination.
 pub fn cook_torrance_kernel(ct: &CookTorrance) -> Box<dyn Imp> {
     with_dist!(&ct.d, d => with_shadow!(&ct.g, g => with_fresnel!(&ct.f, f => brdf_kernel(
-        CookTorrance { d: *d, g: *g, f: *f, k: ct.k, ms: ct.ms }
+        CookTorrance { d: *d, g: *g, f: *f, k: ct.k, ms: ct.ms, aniso: ct.aniso }
     ))))
 }
 

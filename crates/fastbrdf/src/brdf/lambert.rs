@@ -19,6 +19,7 @@ pub const ALBEDO: ParamSpec = ParamSpec {
         min: 0.0,
         max: 1.0,
         default: Some(1.0),
+        requires: &[],
     },
     doc: "directional-hemispherical reflectance",
 };

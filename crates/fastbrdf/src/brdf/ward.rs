@@ -17,38 +17,19 @@
 //! exponential factor (the rest is identical): see the `INFO` bounds.
 
 use crate::entry::Entry;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
-use crate::params::{self, ParamKind, ParamSpec, Params};
+use crate::params;
 use crate::plan::{BrdfForm, Plan};
 use crate::real::{K, Real, pos, pow2k, sqr};
 use crate::vec3::Pair;
 use crate::wgsl::Emit;
 
-pub const ALPHA_X: ParamSpec = ParamSpec {
-    name: "alpha_x",
-    kind: ParamKind::Number {
-        min: params::ALPHA_MIN,
-        max: 1.0,
-        default: None,
-    },
-    doc: "anisotropic slope along x (with alpha_y; replaces alpha)",
-};
-pub const ALPHA_Y: ParamSpec = ParamSpec {
-    name: "alpha_y",
-    kind: ParamKind::Number {
-        min: params::ALPHA_MIN,
-        max: 1.0,
-        default: None,
-    },
-    doc: "anisotropic slope along y (with alpha_x; replaces alpha)",
-};
-
 pub const INFO: ModelInfo = ModelInfo {
     id: "ward",
     kind: Kind::Brdf,
-    params: &[params::ALPHA, ALPHA_X, ALPHA_Y],
+    params: &[params::ALPHA, params::ALPHA_X, params::ALPHA_Y],
     formula: "exp(-(h_x^2/ax^2 + h_y^2/ay^2)/h_z^2) / (4 pi ax ay sqrt(cos_i cos_o))",
     source: "Ward 1992, 'Measuring and modeling anisotropic reflection'",
     ops: Ops::new(6, 1, 2, 1, 1),
@@ -141,7 +122,7 @@ pub const INFO_POWER16: ModelInfo = ModelInfo {
 
 pub const ENTRY: Entry = Entry::new(INFO, |p, _| {
     Ok(Plan::Brdf(
-        match slope_params(p)? {
+        match params::slope_params(p)? {
             ("alpha", _) => Ward::<0>::isotropic(p.num("alpha"))?,
             (x, y) => Ward::<0>::anisotropic(p.num(x), p.num(y))?,
         }
@@ -192,8 +173,8 @@ impl Ward<0> {
     /// Anisotropic exact Ward; both slopes in [0.005, 1].
     pub fn anisotropic(alpha_x: f64, alpha_y: f64) -> Result<Self> {
         Ok(Self::with(
-            params::check("ward", &ALPHA_X, alpha_x)?,
-            params::check("ward", &ALPHA_Y, alpha_y)?,
+            params::check("ward", &params::ALPHA_X, alpha_x)?,
+            params::check("ward", &params::ALPHA_Y, alpha_y)?,
             true,
         ))
     }
@@ -249,23 +230,5 @@ impl<const FORM: u8> BrdfForm for Ward<FORM> {
                 e.kx(self.e, &format!("0.125 / (p_{nx} * p_{nx})"), &[nx])
             ),
         }
-    }
-}
-
-/// The names of the parameters that hold Ward's slopes along x and y: `alpha_x`, `alpha_y`
-/// when both are given, else `alpha` twice; one without the other is an error. Shared by the
-/// scalar model, the batch kernel and the GPU twin.
-pub fn slope_params(p: &Params) -> Result<(&'static str, &'static str)> {
-    match (p.opt_num("alpha_x"), p.opt_num("alpha_y")) {
-        (Some(_), Some(_)) => Ok(("alpha_x", "alpha_y")),
-        (None, None) => Ok(("alpha", "alpha")),
-        (Some(_), None) => Err(Error::MissingParam {
-            model: "ward".into(),
-            param: "alpha_y".into(),
-        }),
-        (None, Some(_)) => Err(Error::MissingParam {
-            model: "ward".into(),
-            param: "alpha_x".into(),
-        }),
     }
 }

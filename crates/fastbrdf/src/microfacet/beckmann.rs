@@ -14,6 +14,12 @@
 //! smallest MERL fit) `1/alpha^2 = 4e4` and the peak `1/(pi alpha^2) = 1.3e4` are well inside
 //! f32; in f32 the exponential underflows to 0 about 2.7 degrees off the peak, where the exact
 //! value is below 2e-38 of the peak (mixed error 1e-6, relative error 1).
+//!
+//! Anisotropic Beckmann (`alpha_x`, `alpha_y`) needs the half vector's azimuth, which the
+//! distribution kind (inputs `cos_h`, `sin^2 h`) does not have: it is `cook-torrance`'s
+//! `alpha_x`, `alpha_y` with `d = beckmann` (or `beckmann-ct`), this formula at
+//! `alpha = sqrt(alpha_x alpha_y)` on a stretched `sin^2` (`brdf::cook_torrance`,
+//! `DistForm::ANISO`).
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -33,7 +39,7 @@ pub const INFO: ModelInfo = ModelInfo {
     ops: Ops::new(4, 0, 2, 0, 1),
     bounds: &[],
     f32_bound: 3e-6,
-    note: "integral of D cos theta_h over the hemisphere = 1; f32: 1.4e-6 at alpha = 0.01",
+    note: "integral of D cos theta_h over the hemisphere = 1; f32: 1.4e-6 at alpha = 0.01; anisotropic: cook-torrance's alpha_x, alpha_y",
 };
 
 pub const INFO_CT: ModelInfo = ModelInfo {
@@ -102,6 +108,7 @@ pub(crate) fn ct_scale_wgsl(alpha: f64, e: &Emit) -> String {
 }
 
 impl DistForm for Beckmann {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("beckmann.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {

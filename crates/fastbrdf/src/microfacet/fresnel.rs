@@ -39,6 +39,7 @@ pub const F0: ParamSpec = ParamSpec {
         min: 0.0,
         max: 1.0,
         default: Some(0.04),
+        requires: &[],
     },
     doc: "reflectance at normal incidence (Schlick)",
 };
@@ -48,6 +49,7 @@ pub const F90: ParamSpec = ParamSpec {
         min: 0.0,
         max: 1.0,
         default: Some(1.0),
+        requires: &[],
     },
     doc: "reflectance at grazing incidence (Schlick; 1 is Schlick's own form)",
 };
@@ -57,6 +59,7 @@ pub const ETA: ParamSpec = ParamSpec {
         min: 0.01,
         max: 10.0,
         default: Some(1.5),
+        requires: &[],
     },
     doc: "relative index of refraction (real part)",
 };
@@ -66,6 +69,7 @@ pub const K: ParamSpec = ParamSpec {
         min: 0.0,
         max: 20.0,
         default: Some(0.0),
+        requires: &[],
     },
     doc: "extinction coefficient (imaginary part of the index, conductors)",
 };

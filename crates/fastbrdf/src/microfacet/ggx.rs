@@ -1,4 +1,5 @@
-//! `ggx`: the GGX (Trowbridge-Reitz) microfacet distribution, isotropic.
+//! `ggx`: the GGX (Trowbridge-Reitz) microfacet distribution, isotropic (anisotropic inside
+//! `cook-torrance`, see below).
 //!
 //! `D = alpha^2 / (pi cos^4 theta_h (alpha^2 + tan^2 theta_h)^2)`, normalised so that the
 //! integral of `D cos theta_h` over the hemisphere is 1 (Trowbridge & Reitz 1975; Walter et al.
@@ -15,8 +16,11 @@
 //!
 //! Parameters: `alpha` (params::ALPHA, default 0.3). Below `cos_h = COS_MIN` the value is 0.
 //! Cost: 3 mul, 1 add, 1 div. Exact model: no error bound; the normalisation is tested to 1e-6
-//! (tests/energy.rs). Anisotropic `alpha_x, alpha_y` would need the half vector's azimuth
-//! (the distribution kind takes only `cos_h`, `sin^2 h`).
+//! (tests/energy.rs). Anisotropic GGX (`alpha_x`, `alpha_y`) needs the half vector's azimuth,
+//! which the distribution kind (inputs `cos_h`, `sin^2 h`) does not have: it is
+//! `cook-torrance`'s `alpha_x`, `alpha_y` with `d = ggx`, this formula at
+//! `alpha = sqrt(alpha_x alpha_y)` on a stretched `sin^2` (`brdf::cook_torrance`,
+//! `DistForm::ANISO`).
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -36,7 +40,7 @@ pub const INFO: ModelInfo = ModelInfo {
     ops: Ops::new(3, 1, 1, 0, 0),
     bounds: &[],
     f32_bound: F32_BOUND,
-    note: "integral of D cos theta_h over the hemisphere = 1; no cancellation at small alpha (alpha^2 cos^2 + sin^2)",
+    note: "integral of D cos theta_h over the hemisphere = 1; no cancellation at small alpha (alpha^2 cos^2 + sin^2); anisotropic: cook-torrance's alpha_x, alpha_y",
 };
 
 /// Measured by `tests/precision.rs`; see the module header.
@@ -67,6 +71,7 @@ impl Ggx {
 }
 
 impl DistForm for Ggx {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("ggx.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {

@@ -149,6 +149,7 @@ impl Smith {
 }
 
 impl ShadowForm for Smith {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("shadowing.wgsl");
     const SIMD: bool = false;
     #[inline(always)]
@@ -191,6 +192,7 @@ impl SmithBeckmannCorrelated {
 }
 
 impl ShadowForm for SmithBeckmannCorrelated {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("shadowing.wgsl");
     const SIMD: bool = false;
     #[inline(always)]
@@ -226,6 +228,7 @@ impl SmithRational {
 }
 
 impl ShadowForm for SmithRational {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("shadowing.wgsl");
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {

@@ -263,6 +263,7 @@ impl SmithGgx {
 }
 
 impl ShadowForm for SmithGgx {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("smith_ggx.wgsl");
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
@@ -280,6 +281,7 @@ impl ShadowForm for SmithGgx {
 pub struct SmithGgxCorrelated(SmithGgx);
 
 impl ShadowForm for SmithGgxCorrelated {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("smith_ggx.wgsl");
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
@@ -346,6 +348,7 @@ fn ratio_safe<T: Real>(num: T, den: T) -> T {
 }
 
 impl ShadowForm for HammonFast {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("smith_ggx.wgsl");
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
@@ -366,6 +369,7 @@ impl ShadowForm for HammonFast {
 pub struct JointApprox(HammonFast);
 
 impl ShadowForm for JointApprox {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("smith_ggx.wgsl");
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
@@ -414,6 +418,7 @@ impl SchlickGgx {
 }
 
 impl ShadowForm for SchlickGgx {
+    const ANISO: bool = true;
     const WGSL: &'static str = include_str!("smith_ggx.wgsl");
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {

@@ -3,7 +3,7 @@
 //
 // Formula: F(wi.h) D(h) G(wi, wo) / (4 cos_i cos_o) [+ Kulla-Conty's f_ms | x Filament's 1 + F(1) (1 / E(cos_o) - 1)]
 // Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators)
-// Note: ops exclude D, G, F and the pair set-up; equals Mitsuba 3 roughconductor eval / cos_o; f32: 1e-5 except with f = dielectric/conductor at eta << 1, where F is a near-step at the critical angle and wi.h rounded once to f32 can double it (1.0 at eta = 0.01)
+// Note: ops exclude D, G, F and the pair set-up; equals Mitsuba 3 roughconductor eval / cos_o; f32: 1e-5 except with f = dielectric/conductor at eta << 1, where F is a near-step at the critical angle and wi.h rounded once to f32 can double it (1.0 at eta = 0.01); anisotropic (alpha_x, alpha_y, d = beckmann(-ct)/ggx, a Smith g): f32 1.4e-6 measured with f = none/schlick (1e-5 documented)
 // Parameters (this export: alpha = 0.3, d = beckmann, denominator = 4, eta = 1.5, f = none, f0 = 0.04, f90 = 1, g = smith, k = 0, ms = none):
 //   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 //   d: microfacet distribution id (one of beckmann, beckmann-ct, beckmann-pow, beckmann-power4, beckmann-power8, beckmann-power16, ggx, default beckmann)
@@ -15,6 +15,8 @@
 //   k: extinction coefficient (imaginary part of the index, conductors) (range [0, 20], default 0)
 //   denominator: 4 cos_i cos_o (microfacet theory), cos_i cos_o (seed 000), pi cos_i cos_o (seed 001) (one of 4, seed-000, seed-001, default 4)
 //   ms: energy compensation for multiple scattering: none, kulla-conty (Kulla and Conty 2017), filament (Filament's, view direction wo only; not reciprocal); needs d = ggx, g = smith-ggx-correlated (one of none, kulla-conty, filament, default none)
+//   alpha_x: anisotropic slope along x (with alpha_y; replaces alpha); needs d = beckmann(-ct) or ggx, a Smith g, ms = none (range [0.005, 1], default -)
+//   alpha_y: anisotropic slope along y (with alpha_x; replaces alpha); needs d = beckmann(-ct) or ggx, a Smith g, ms = none (range [0.005, 1], default -)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 3e0 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).

@@ -3,7 +3,7 @@
 //
 // Formula: alpha^2 / (pi cos^4 theta_h (alpha^2 + tan^2 theta_h)^2) = alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2)
 // Source: Trowbridge & Reitz 1975; Walter et al. 2007, eq. 33 (GGX)
-// Note: integral of D cos theta_h over the hemisphere = 1; no cancellation at small alpha (alpha^2 cos^2 + sin^2)
+// Note: integral of D cos theta_h over the hemisphere = 1; no cancellation at small alpha (alpha^2 cos^2 + sin^2); anisotropic: cook-torrance's alpha_x, alpha_y
 // Parameters (this export: alpha = 0.3):
 //   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 // Error bounds: none documented (an exact model or a reference).

@@ -3,7 +3,7 @@
 //
 // Formula: exp(-tan^2 theta_h / alpha^2) / (pi alpha^2 cos^4 theta_h)
 // Source: Beckmann & Spizzichino 1963; Walter et al. 2007 (normalisation of Mitsuba 3, pbrt)
-// Note: integral of D cos theta_h over the hemisphere = 1; f32: 1.4e-6 at alpha = 0.01
+// Note: integral of D cos theta_h over the hemisphere = 1; f32: 1.4e-6 at alpha = 0.01; anisotropic: cook-torrance's alpha_x, alpha_y
 // Parameters (this export: alpha = 0.3):
 //   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 // Error bounds: none documented (an exact model or a reference).
