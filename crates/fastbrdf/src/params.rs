@@ -259,63 +259,60 @@ impl Params {
             }
         }
         let p = Self { model, values };
-        for spec in specs {
-            let ParamKind::Number { requires, .. } = spec.kind else {
-                continue;
+        let choice = |n: &str| match p.values.get(n) {
+            Some(Value::Text(t)) => Some(t.clone()),
+            _ => None,
+        };
+        // A parameter that needs other choices (a gated choice's non-default value, an
+        // optional number such as cook-torrance's alpha_x): refused naming what it needs and
+        // what was given.
+        let refuse = |spec: &ParamSpec, value: String, need: Vec<String>, names: Vec<&str>| {
+            let given: Vec<String> = names
+                .iter()
+                .map(|n| format!("{n} = {}", p.choice(n)))
+                .collect();
+            let unless = match spec.kind {
+                ParamKind::Choice { default, .. } => default.to_string(),
+                ParamKind::Number { .. } => "no value".to_string(),
             };
-            let choice = |n: &str| match p.values.get(n) {
-                Some(Value::Text(t)) => Some(t.clone()),
-                _ => None,
-            };
-            if p.values.contains_key(spec.name) && !spec.allowed(choice) {
-                let need: Vec<String> = requires
-                    .iter()
-                    .map(|(n, vals)| format!("{n} in {{{}}}", vals.join(", ")))
-                    .collect();
-                let given: Vec<String> = requires
-                    .iter()
-                    .map(|(n, _)| format!("{n} = {}", p.choice(n)))
-                    .collect();
-                return Err(Error::InvalidParam {
-                    model: model.into(),
-                    param: spec.name.into(),
-                    value: p.num(spec.name).to_string(),
-                    expected: format!(
-                        "no value unless {} (given {})",
-                        need.join(" and "),
-                        given.join(", ")
-                    ),
-                });
-            }
-        }
+            Err(Error::InvalidParam {
+                model: model.into(),
+                param: spec.name.into(),
+                value,
+                expected: format!(
+                    "{unless} unless {} (given {})",
+                    need.join(" and "),
+                    given.join(", ")
+                ),
+            })
+        };
         for spec in specs {
-            if let ParamKind::Choice {
-                options: options @ Options::Gated { requires, .. },
-                default,
-            } = spec.kind
-            {
-                let v = p.choice(spec.name);
-                if !options.allows(v, default, |n| match p.values.get(n) {
-                    Some(Value::Text(t)) => Some(t.clone()),
-                    _ => None,
-                }) {
-                    let need: Vec<String> =
-                        requires.iter().map(|(n, x)| format!("{n} = {x}")).collect();
-                    let given: Vec<String> = requires
-                        .iter()
-                        .map(|(n, _)| format!("{n} = {}", p.choice(n)))
-                        .collect();
-                    return Err(Error::InvalidParam {
-                        model: model.into(),
-                        param: spec.name.into(),
-                        value: v.into(),
-                        expected: format!(
-                            "{default} unless {} (given {})",
-                            need.join(" and "),
-                            given.join(", ")
-                        ),
-                    });
+            match spec.kind {
+                ParamKind::Number { requires, .. }
+                    if p.values.contains_key(spec.name) && !spec.allowed(choice) =>
+                {
+                    return refuse(
+                        spec,
+                        p.num(spec.name).to_string(),
+                        requires
+                            .iter()
+                            .map(|(n, vals)| format!("{n} in {{{}}}", vals.join(", ")))
+                            .collect(),
+                        requires.iter().map(|(n, _)| *n).collect(),
+                    );
                 }
+                ParamKind::Choice {
+                    options: options @ Options::Gated { requires, .. },
+                    default,
+                } if !options.allows(p.choice(spec.name), default, choice) => {
+                    return refuse(
+                        spec,
+                        p.choice(spec.name).into(),
+                        requires.iter().map(|(n, x)| format!("{n} = {x}")).collect(),
+                        requires.iter().map(|(n, _)| *n).collect(),
+                    );
+                }
+                _ => {}
             }
         }
         Ok(p)
