@@ -268,6 +268,34 @@ fn anisotropic_cook_torrance_matches_the_cpu() {
     finish(&report, &failures);
 }
 
+/// Anisotropic `ward` at strongly differing slopes (the registry-wide test gives it equal
+/// ones): the same f32 pair set-up on the GPU, weighted by the same stretch (`h_x^2 /
+/// alpha_x^2`), so the same bound as anisotropic Cook-Torrance; at 1e-5 it failed (3.4e-5 at
+/// slopes 1/0.1, 1.1e-4 at 0.7072/0.01).
+#[test]
+fn anisotropic_ward_matches_the_cpu() {
+    let Some(gpu) = common::gpu() else { return };
+    let info = &registry::find("ward").unwrap().info;
+    let configs: Vec<Vec<(String, String)>> = [
+        ("0.005", "1"),
+        ("1", "0.005"),
+        ("1", "0.1"),
+        ("0.7072", "0.01"),
+        ("0.05", "0.3"),
+    ]
+    .iter()
+    .map(|(ax, ay)| {
+        vec![
+            ("alpha_x".to_string(), ax.to_string()),
+            ("alpha_y".to_string(), ay.to_string()),
+        ]
+    })
+    .collect();
+    let (mut report, mut failures) = (vec![], vec![]);
+    check(gpu, info, &configs, ANISO_GPU, &mut report, &mut failures);
+    finish(&report, &failures);
+}
+
 /// The GPU's bound for anisotropic `cook-torrance` against f64 (mixed metric), slopes in
 /// [0.005, 1]: see `anisotropic_cook_torrance_matches_the_cpu`.
 const ANISO_GPU: f64 = 2e-3;
