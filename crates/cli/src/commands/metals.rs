@@ -9,9 +9,9 @@ use std::fmt::Write;
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf metals\n  fastbrdf metals --json\n  \
-fastbrdf render --model cook-torrance --param d=ggx --param alpha=0.2 --metal gold --out gold.png\n  \
+fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlated --param alpha=0.2 --metal gold --out gold.png\n  \
 fastbrdf compare --models ggx,beckmann --reference cook-torrance --param alpha=0.2 --metal copper --out cu.png\n  \
-fastbrdf shader --model cook-torrance --param d=ggx --metal gold --lang glsl\n  \
+fastbrdf shader --model cook-torrance --param d=ggx --param g=smith-ggx-correlated --metal gold --lang glsl\n  \
 fastbrdf render --model cook-torrance --param f=conductor --param eta=0.2,0.4,1.4 --param k=3.4,2.3,1.8 --out au.png\n\n\
 --metal NAME gives a model f = conductor, eta = R,G,B and k = R,G,B (650, 550, 450 nm), which\n\
 makes it coloured: three channel models, one per colour channel. Any numeric parameter may be\n\

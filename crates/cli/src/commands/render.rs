@@ -181,7 +181,7 @@ fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
 fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png\n  \
 fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)\n  \
-fastbrdf render --model cook-torrance --param d=ggx --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)"
+fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlated --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)"
 )]
 pub struct RenderArgs {
     /// Specular model id (a lobe, a distribution or a BRDF).
