@@ -39,7 +39,10 @@ struct Sample {
     /// Object index, or none for background.
     object: Option<usize>,
     p: Vec3,
+    /// The shading normal (bump-perturbed), facing the viewer.
     n: Vec3,
+    /// The surface normal before the bump, facing the viewer: shadow rays leave along it.
+    g: Vec3,
     v: Vec3,
     base: Vec3,
 }
@@ -156,6 +159,7 @@ fn render_tile(
                 object: None,
                 p: Vec3::ZERO,
                 n: Vec3::Z,
+                g: Vec3::Z,
                 v: Vec3::Z,
                 base: Vec3::ZERO,
             },
@@ -181,6 +185,7 @@ fn render_tile(
                     object: Some(hit.object),
                     p: hit.p,
                     n: nrm,
+                    g: smooth,
                     v,
                     base: albedo * m.kd,
                 }
@@ -205,9 +210,17 @@ fn render_tile(
                 if s.object != Some(oi) {
                     continue;
                 }
-                let (l, li) = light.at(s.p);
+                let (l, li, dist) = light.towards(s.p);
                 let cos_i = s.n.dot(l);
                 if cos_i <= 0.0 {
+                    continue;
+                }
+                // The shadow ray leaves along the unbumped normal. Where only the bumped
+                // normal faces the light (the band beyond a bumpy object's terminator), the
+                // ray would start inside the object and always hit it, a hard black line (the
+                // "shadow terminator problem" of shading normals): no shadow ray there, the
+                // light reaches as without shadows.
+                if scene.shadows && s.g.dot(l) > 0.0 && scene.shadowed(s.p, s.g, l, dist) {
                     continue;
                 }
                 radiance[i] += li * s.base * (cos_i / std::f32::consts::PI);

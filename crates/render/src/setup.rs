@@ -25,15 +25,18 @@ pub struct SceneSpec {
     pub kd: f32,
     pub ks: f32,
     pub albedo: Vec3,
+    /// Shadow rays (see [`crate::scene::Scene::shadows`]); on in [`SceneSpec::new`].
+    pub shadows: bool,
 }
 
 impl SceneSpec {
-    /// The defaults: kd 0.6, ks 0.4, albedo 0.8 grey.
+    /// The defaults: kd 0.6, ks 0.4, albedo 0.8 grey, shadows on.
     pub fn new() -> Self {
         Self {
             kd: 0.6,
             ks: 0.4,
             albedo: Vec3::splat(0.8),
+            shadows: true,
             ..Default::default()
         }
     }
@@ -135,5 +138,6 @@ pub fn scene(spec: &SceneSpec, loaded: &Loaded, specular: Arc<Specular>) -> Scen
         ambient: Vec3::splat(0.04),
         background: Vec3::splat(0.015),
         objects,
+        shadows: spec.shadows,
     }
 }

@@ -63,6 +63,21 @@ pub struct SceneArgs {
     /// hold the linear radiance, unscaled.
     #[arg(long, default_value_t = 1.0)]
     pub exposure: f32,
+    /// Shadow rays for the lights: on (a light blocked by an object adds nothing) or off (every
+    /// light reaches every surface facing it: the pictures before shadows). The GPU renderer
+    /// (--gpu) renders without shadows: it has no scene traversal yet.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub shadows: OnOff,
+    /// A ground plane under the object (grey, diffuse), to catch its shadow.
+    #[arg(long)]
+    pub floor: bool,
+}
+
+/// A switch given as `on` or `off`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OnOff {
+    On,
+    Off,
 }
 
 /// `--weights` when not given.
@@ -97,6 +112,8 @@ impl SceneArgs {
         let (width, height) = parse_size(&self.size)?;
         let mut spec = SceneSpec::new();
         spec.mesh = self.mesh.clone();
+        spec.shadows = self.shadows == OnOff::On;
+        spec.floor = self.floor;
         spec.texture = self.texture.clone();
         spec.lights = self
             .lights
@@ -179,7 +196,8 @@ pub fn render_model(
     after_help = "Examples:\n  fastbrdf render --model flog --param n=50 --out flog.png\n  \
 fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
-fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png\n  \
+fastbrdf render --gpu --model flog --param n=50 --shadows off --out flog-gpu.png\n  \
+fastbrdf render --model ward --param alpha=0.2 --floor --light point:2,3,3:1,1,1:20 --out shadow.png\n  \
 fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)\n  \
 fastbrdf render --model cook-torrance --param d=ggx --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)"
 )]
@@ -210,7 +228,9 @@ pub struct RenderArgs {
     out: PathBuf,
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
-    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now.
+    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now. Without
+    /// shadows (a note says so unless --shadows off): the GPU picture matches the CPU's with
+    /// --shadows off.
     #[arg(long)]
     gpu: bool,
 }
@@ -229,6 +249,11 @@ fn render_model_gpu(
         return Err(CliError::input(format!(
             "--gpu: coloured specular ({id} with a parameter given as R,G,B, e.g. by --metal) is CPU-only for now: drop --gpu"
         )));
+    }
+    if spec.shadows {
+        eprintln!(
+            "note: --gpu renders without shadows (the GPU renderer has no scene traversal yet); --shadows off gives the CPU picture it matches"
+        );
     }
     let scene = setup::scene(spec, loaded, specular);
     let gpu = fastbrdf_gpu::Gpu::new()?;
