@@ -341,6 +341,8 @@ pub struct Scene {
     /// Off, every light reaches every point facing it (the renderer before issue 15, and the
     /// GPU renderer, which has no scene traversal).
     pub shadows: bool,
+    /// Image-based lighting (a latitude-longitude map), CPU renderer only.
+    pub environment: Option<crate::env::Environment>,
 }
 
 impl Scene {
