@@ -356,7 +356,7 @@ impl Rng {
     }
 
     /// A uniform number in [0, 1).
-    pub fn next(&mut self) -> f32 {
+    pub fn uniform(&mut self) -> f32 {
         self.0 = pcg(self.0);
         (self.0 >> 8) as f32 * (1.0 / 16_777_216.0)
     }
@@ -405,7 +405,7 @@ mod tests {
         assert!((sum - 1.0).abs() < 0.02, "{sum}");
         let mut rng = Rng::new(7, 0);
         for _ in 0..1000 {
-            let (d, l, p) = map.sample(rng.next(), rng.next());
+            let (d, l, p) = map.sample(rng.uniform(), rng.uniform());
             if p > 0.0 {
                 assert!((map.pdf(d) - p).abs() <= 1e-3 * p, "{} vs {p}", map.pdf(d));
                 assert_eq!(map.radiance(d), l);
@@ -423,8 +423,8 @@ mod tests {
             let n = 200_000;
             let mut sum = 0.0f64;
             for _ in 0..n {
-                let xa = rng.next();
-                let xb = rng.next().sqrt();
+                let xa = rng.uniform();
+                let xb = rng.uniform().sqrt();
                 let (pa_a, pb_a) = (1.0, 2.0 * xa);
                 let (pa_b, pb_b) = (1.0, 2.0 * xb);
                 assert!((h(pa_a, pb_a) + h(pb_a, pa_a) - 1.0).abs() < 1e-6);

@@ -408,7 +408,7 @@ fn env_pass(
                 .wrapping_mul(nn)
                 .wrapping_add(i as u32 % nn);
             let mut rng = Rng::new(id, at.pass);
-            let (u1, u2, u3, u4) = (rng.next(), rng.next(), rng.next(), rng.next());
+            let (u1, u2, u3, u4) = (rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
             // The map's direction: diffuse (MIS with the cosine strategy) and specular.
             let (l, le, pdf_l) = map.sample(u1, u2);
             let cos_i = s.n.dot(l);
