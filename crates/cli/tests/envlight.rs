@@ -125,6 +125,30 @@ fn bad_environment_maps_exit_2_naming_the_file_and_write_nothing() {
         "",
     );
     refused(&o, &square, &cmp, "2:1");
+    // The comparison's work cap counts environment samples.
+    let o = fastbrdf(
+        &[
+            "compare",
+            "--models",
+            "flog",
+            "--reference",
+            "pow",
+            "--size",
+            "1024x1024",
+            "--spp",
+            "16",
+            "--env",
+            "sky",
+            "--env-samples",
+            "64",
+            "--out",
+            cmp.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("environment samples"), "{}", stderr(&o));
+    assert!(!cmp.exists());
     let o = fastbrdf(
         &[
             "render",

@@ -538,6 +538,26 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     super::metals::weights(&mut spec, &a.scene, a.metal.as_deref());
     check_out(&a.out, &["png"])?;
     check_compare(&opts, a.models.len())?;
+    if spec.env.is_some() {
+        // Each environment sample is a pass over every primary sample: the work cap counts them.
+        let samples = (a.models.len() as u64 + 1)
+            * u64::from(opts.width)
+            * u64::from(opts.height)
+            * u64::from(opts.spp).pow(2)
+            * u64::from(spec.env_samples);
+        let cap = fastbrdf_render::compare::MAX_COMPARE_SAMPLES;
+        if samples > cap {
+            return Err(CliError::input(format!(
+                "the comparison would trace {samples} environment samples ({} renders of {}x{} at {}x{} samples per pixel, {} environment samples each): at most {cap}; use a smaller --size, --spp, --env-samples or fewer models",
+                a.models.len() + 1,
+                opts.width,
+                opts.height,
+                opts.spp,
+                opts.spp,
+                spec.env_samples
+            )));
+        }
+    }
     let params = parse_params(&a.params)?;
     for (k, _) in &params {
         let mut used = false;
