@@ -270,13 +270,21 @@ impl EnvMap {
 
     /// The solid-angle density of [`EnvMap::sample`] at unit direction `d`.
     pub fn pdf(&self, d: Vec3) -> f32 {
+        self.lookup(d).1
+    }
+
+    /// The radiance from unit direction `d` and [`EnvMap::sample`]'s density there, from one
+    /// map position (one `atan2` and one `acos`).
+    pub fn lookup(&self, d: Vec3) -> (Vec3, f32) {
         let (u, v) = dir_to_uv(d);
-        let st = (v * PI).sin();
+        let i = self.texel(u, v);
+        // sin theta = sqrt(1 - y^2), without a sin of the acos.
+        let st = (1.0 - d.y * d.y).max(0.0).sqrt();
         if st <= 0.0 {
-            return 0.0;
+            return (self.texels[i], 0.0);
         }
-        let m = self.mass[self.texel(u, v)] * (self.width * self.height) as f32;
-        m / (2.0 * PI * PI * st)
+        let m = self.mass[i] * (self.width * self.height) as f32;
+        (self.texels[i], m / (2.0 * PI * PI * st))
     }
 
     /// A direction drawn from the map's distribution by two uniform numbers in [0, 1):

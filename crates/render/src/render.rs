@@ -431,9 +431,8 @@ fn env_pass(
                 let l = cosine_sample(s.n, u3, u4);
                 let cos_i = s.n.dot(l);
                 if cos_i > 0.0 {
-                    let le = map.radiance(l);
+                    let (le, pdf_l) = map.lookup(l);
                     if le != Vec3::ZERO && visible(scene, s, l) {
-                        let pdf_l = map.pdf(l);
                         radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
                     }
                 }
