@@ -95,8 +95,11 @@ struct GpuObject {
     corners: Option<(wgpu::Buffer, u32)>,
 }
 
-/// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` (within
-/// the tolerances of `tests/render.rs`), as a linear `Film`.
+/// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` with
+/// `scene.shadows` off (within the tolerances of `tests/render.rs`), as a linear `Film`.
+///
+/// No shadows: `scene.shadows` is ignored, because shadow rays need the whole scene (spheres,
+/// planes, the mesh's BVH) in the fragment shader, which this rasteriser does not have yet.
 ///
 /// `opts.shading` is ignored (the GPU evaluates the model per sample). Errors: sizes outside
 /// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh or texture larger

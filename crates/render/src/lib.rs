@@ -9,12 +9,15 @@
 //! measures RMSE, PSNR and FLIP (NVIDIA's metric, through the `nv-flip` crate).
 //!
 //! Shading: `kd * albedo * lambert + ks * specular`, per light, times `cos theta_i`, plus an
-//! ambient term `ambient * kd * albedo`. The specular model is any registry id: full BRDFs as
+//! ambient term `ambient * kd * albedo`. Shadow rays per light (`Scene::shadows`). With an
+//! environment map ([`env`]): no ambient term; per primary hit and progressive pass, one
+//! map-sampled and one cosine-sampled direction, combined by MIS (see `env`). The specular model is any registry id: full BRDFs as
 //! they are, lobes as the lobe of `n . h` (`blinn-phong` with `norm = none`, the seeds'
 //! pictures), distributions inside `cook-torrance` with that `d`.
 
 pub mod bump;
 pub mod compare;
+pub mod env;
 pub mod error;
 pub mod film;
 pub mod geometry;

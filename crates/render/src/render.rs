@@ -39,7 +39,10 @@ struct Sample {
     /// Object index, or none for background.
     object: Option<usize>,
     p: Vec3,
+    /// The shading normal (bump-perturbed), facing the viewer.
     n: Vec3,
+    /// The surface normal before the bump, facing the viewer: shadow rays leave along it.
+    g: Vec3,
     v: Vec3,
     base: Vec3,
 }
@@ -79,33 +82,47 @@ pub fn render(
     let tiles_x = w.div_ceil(TILE);
     let rays = scene.camera.rays(w, h);
     let done = std::sync::atomic::AtomicUsize::new(0);
-    let total = (tiles_x * h.div_ceil(TILE)) as usize;
+    // Progressive: with an environment, one pass per environment sample, each adding its
+    // share to the film (pass 0 also holds the direct light and the background); the
+    // progress counts tiles over all passes.
+    let passes = scene.environment.as_ref().map_or(1, |e| e.samples.max(1));
+    let total = (tiles_x * h.div_ceil(TILE) * passes) as usize;
     let mut film = Film::new(w, h);
-    // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies its
-    // tiles into the film itself, so assembling the film is parallel too.
-    film.pixels
-        .par_chunks_mut((w * TILE) as usize)
-        .enumerate()
-        .for_each(|(ty, band)| {
-            let tiles: Vec<Vec<Vec3>> = (0..tiles_x)
-                .into_par_iter()
-                .map_init(Scratch::default, |scratch, tx| {
-                    let px = render_tile(scene, opts, &rays, tx, ty as u32, scratch);
-                    progress(
-                        done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
-                        total,
-                    );
-                    px
-                })
-                .collect();
-            for (row, line) in band.chunks_mut(w as usize).enumerate() {
-                for (tx, px) in tiles.iter().enumerate() {
-                    let x0 = tx * TILE as usize;
-                    let tw = (TILE as usize).min(w as usize - x0);
-                    line[x0..x0 + tw].copy_from_slice(&px[row * tw..(row + 1) * tw]);
+    for pass in 0..passes {
+        // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies
+        // its tiles into the film itself, so assembling the film is parallel too.
+        film.pixels
+            .par_chunks_mut((w * TILE) as usize)
+            .enumerate()
+            .for_each(|(ty, band)| {
+                let tiles: Vec<Vec<Vec3>> = (0..tiles_x)
+                    .into_par_iter()
+                    .map_init(Scratch::default, |scratch, tx| {
+                        let px = render_tile(scene, opts, &rays, tx, ty as u32, pass, scratch);
+                        progress(
+                            done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
+                            total,
+                        );
+                        px
+                    })
+                    .collect();
+                for (row, line) in band.chunks_mut(w as usize).enumerate() {
+                    for (tx, px) in tiles.iter().enumerate() {
+                        let x0 = tx * TILE as usize;
+                        let tw = (TILE as usize).min(w as usize - x0);
+                        let src = &px[row * tw..(row + 1) * tw];
+                        if pass == 0 {
+                            line[x0..x0 + tw].copy_from_slice(src);
+                        } else {
+                            line[x0..x0 + tw]
+                                .iter_mut()
+                                .zip(src)
+                                .for_each(|(d, s)| *d += *s);
+                        }
+                    }
                 }
-            }
-        });
+            });
+    }
     Ok(film)
 }
 
@@ -115,6 +132,7 @@ fn render_tile(
     rays: &Rays,
     tx: u32,
     ty: u32,
+    pass: u32,
     scratch: &mut Scratch,
 ) -> Vec<Vec3> {
     let (w, h, n) = (opts.width, opts.height, opts.spp);
@@ -156,7 +174,8 @@ fn render_tile(
                 object: None,
                 p: Vec3::ZERO,
                 n: Vec3::Z,
-                v: Vec3::Z,
+                g: Vec3::Z,
+                v: -ray.d,
                 base: Vec3::ZERO,
             },
             Some(hit) => {
@@ -181,6 +200,7 @@ fn render_tile(
                     object: Some(hit.object),
                     p: hit.p,
                     n: nrm,
+                    g: smooth,
                     v,
                     base: albedo * m.kd,
                 }
@@ -188,13 +208,52 @@ fn render_tile(
         });
     }
     radiance.clear();
-    radiance.extend(samples.iter().map(|s| {
-        if s.object.is_some() {
-            scene.ambient * s.base
-        } else {
-            scene.background
-        }
-    }));
+    if pass > 0 {
+        radiance.resize(samples.len(), Vec3::ZERO);
+    } else {
+        let env = scene.environment.as_ref().map(|e| &e.map);
+        radiance.extend(samples.iter().map(|s| match (s.object, env) {
+            (Some(_), _) => scene.ambient * s.base,
+            (None, Some(map)) => map.radiance(-s.v),
+            (None, None) => scene.background,
+        }));
+        direct(scene, opts, samples, radiance, idx, lis, cols, out);
+    }
+    if let Some(env) = &scene.environment {
+        let at = Tile {
+            x0,
+            y0,
+            tw,
+            w,
+            n,
+            pass,
+        };
+        env_pass(
+            scene, env, opts, &at, samples, radiance, idx, lis, cols, out,
+        );
+    }
+    let mut px = vec![Vec3::ZERO; (tw * th) as usize];
+    for (s, r) in samples.iter().zip(radiance.iter()) {
+        px[s.pixel as usize] += *r;
+    }
+    let inv = 1.0 / (n * n) as f32;
+    px.iter_mut().for_each(|p| *p *= inv);
+    px
+}
+
+/// The direct light: per object and light, the diffuse term and the specular term through one
+/// batch kernel call (shadow rays when `scene.shadows`).
+#[allow(clippy::too_many_arguments)]
+fn direct(
+    scene: &Scene,
+    opts: &Options,
+    samples: &[Sample],
+    radiance: &mut [Vec3],
+    idx: &mut Vec<usize>,
+    lis: &mut Vec<Vec3>,
+    cols: &mut [Vec<f32>; 6],
+    out: &mut [Vec<f32>; 3],
+) {
     for (oi, obj) in scene.objects.iter().enumerate() {
         let m = &obj.material;
         for light in &scene.lights {
@@ -205,9 +264,17 @@ fn render_tile(
                 if s.object != Some(oi) {
                     continue;
                 }
-                let (l, li) = light.at(s.p);
+                let (l, li, dist) = light.towards(s.p);
                 let cos_i = s.n.dot(l);
                 if cos_i <= 0.0 {
+                    continue;
+                }
+                // The shadow ray leaves along the unbumped normal. Where only the bumped
+                // normal faces the light (the band beyond a bumpy object's terminator), the
+                // ray would start inside the object and always hit it, a hard black line (the
+                // "shadow terminator problem" of shading normals): no shadow ray there, the
+                // light reaches as without shadows.
+                if scene.shadows && s.g.dot(l) > 0.0 && scene.shadowed(s.p, s.g, l, dist) {
                     continue;
                 }
                 radiance[i] += li * s.base * (cos_i / std::f32::consts::PI);
@@ -226,51 +293,153 @@ fn render_tile(
             if idx.is_empty() {
                 continue;
             }
-            let chans = &m.specular.channels;
-            for (ch, out) in chans.iter().zip(out.iter_mut()) {
-                out.resize(idx.len(), 0.0);
-                match opts.shading {
-                    Shading::Batch => {
-                        let input = Input::Dirs([
-                            &cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5],
-                        ]);
-                        ch.kernel
-                            .eval(input, out)
-                            .expect("SoA buffers have equal lengths");
-                    }
-                    Shading::Scalar => {
-                        for (j, o) in out.iter_mut().enumerate() {
-                            *o = ch.scalar.eval(
-                                [cols[0][j], cols[1][j], cols[2][j]],
-                                [cols[3][j], cols[4][j], cols[5][j]],
-                            );
-                        }
-                    }
-                }
+            add_specular(m, opts.shading, idx, lis, cols, out, radiance);
+        }
+    }
+}
+
+/// Adds `lis[j] * ks * f(wi, wo) * cos` to `radiance[idx[j]]`, the specular values `f` of
+/// material `m` evaluated for the local directions in `cols` (one batch kernel call per
+/// channel, or the scalar model).
+fn add_specular(
+    m: &crate::scene::Material,
+    shading: Shading,
+    idx: &[usize],
+    lis: &[Vec3],
+    cols: &[Vec<f32>; 6],
+    out: &mut [Vec<f32>; 3],
+    radiance: &mut [Vec3],
+) {
+    let chans = &m.specular.channels;
+    for (ch, out) in chans.iter().zip(out.iter_mut()) {
+        out.resize(idx.len(), 0.0);
+        match shading {
+            Shading::Batch => {
+                let input =
+                    Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
+                ch.kernel
+                    .eval(input, out)
+                    .expect("SoA buffers have equal lengths");
             }
-            if chans.len() == 3 {
-                // Coloured: each channel's value weights its own colour channel, with the
-                // grey path's operations in its order, so that channel c of a coloured
-                // render equals channel c of the grey render of that channel's model.
-                let [r, g, b] = &*out;
-                for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
-                    let (ks, cos) = (m.ks, cols[2][j]);
-                    radiance[i] +=
-                        li * Vec3::new(ks * r[j] * cos, ks * g[j] * cos, ks * b[j] * cos);
-                }
-            } else {
-                let out = &out[0];
-                for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
-                    radiance[i] += li * (m.ks * out[j] * cols[2][j]);
+            Shading::Scalar => {
+                for (j, o) in out.iter_mut().enumerate() {
+                    *o = ch.scalar.eval(
+                        [cols[0][j], cols[1][j], cols[2][j]],
+                        [cols[3][j], cols[4][j], cols[5][j]],
+                    );
                 }
             }
         }
     }
-    let mut px = vec![Vec3::ZERO; (tw * th) as usize];
-    for (s, r) in samples.iter().zip(radiance.iter()) {
-        px[s.pixel as usize] += *r;
+    if chans.len() == 3 {
+        // Coloured: each channel's value weights its own colour channel, with the
+        // grey path's operations in its order, so that channel c of a coloured
+        // render equals channel c of the grey render of that channel's model.
+        let [r, g, b] = &*out;
+        for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
+            let (ks, cos) = (m.ks, cols[2][j]);
+            radiance[i] += li * Vec3::new(ks * r[j] * cos, ks * g[j] * cos, ks * b[j] * cos);
+        }
+    } else {
+        let out = &out[0];
+        for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
+            radiance[i] += li * (m.ks * out[j] * cols[2][j]);
+        }
     }
-    let inv = 1.0 / (n * n) as f32;
-    px.iter_mut().for_each(|p| *p *= inv);
-    px
+}
+
+/// Where a tile lies, for the environment's sample seeds.
+struct Tile {
+    x0: u32,
+    y0: u32,
+    tw: u32,
+    w: u32,
+    n: u32,
+    pass: u32,
+}
+
+/// Whether light from `l` reaches sample `s` (see the shadow rule in [`direct`]).
+fn visible(scene: &Scene, s: &Sample, l: Vec3) -> bool {
+    !scene.shadows || s.g.dot(l) <= 0.0 || !scene.shadowed(s.p, s.g, l, f32::INFINITY)
+}
+
+/// One progressive pass of the environment light: per primary hit, one direction drawn from
+/// the map (`EnvMap::sample`) and one cosine-weighted about the shading normal, each times
+/// `1 / samples`. The diffuse term combines both by the balance heuristic, so each
+/// contribution is `L kd albedo cos / pi / (pdf_map + cos / pi)`. The specular term takes the
+/// map's direction alone, weighted by `env::specular_light_weight` (1 until the models can be
+/// sampled), its values through the batch kernels as for direct light.
+///
+/// MIS with BRDF sampling plugs in here: with `sample`/`pdf` on the models, draw a third
+/// direction from the BRDF per hit, push it into the same SoA columns with the weight
+/// `power_heuristic(brdf_pdf, map.pdf(l)) / brdf_pdf` and radiance `map.radiance(l)`, and
+/// pass `Some(brdf_pdf)` for the map's direction to `specular_light_weight`.
+/// Seeds: `env::Rng::new(sample id, pass)`, the sample id being
+/// `(pixel y * width + pixel x) * N^2 + subsample`: deterministic, whatever the threads.
+#[allow(clippy::too_many_arguments)]
+fn env_pass(
+    scene: &Scene,
+    env: &crate::env::Environment,
+    opts: &Options,
+    at: &Tile,
+    samples: &[Sample],
+    radiance: &mut [Vec3],
+    idx: &mut Vec<usize>,
+    lis: &mut Vec<Vec3>,
+    cols: &mut [Vec<f32>; 6],
+    out: &mut [Vec<f32>; 3],
+) {
+    use crate::env::{Rng, cosine_sample, specular_light_weight};
+    use std::f32::consts::PI;
+    let map = &env.map;
+    let inv = 1.0 / env.samples as f32;
+    let nn = at.n * at.n;
+    for (oi, obj) in scene.objects.iter().enumerate() {
+        let m = &obj.material;
+        idx.clear();
+        lis.clear();
+        cols.iter_mut().for_each(Vec::clear);
+        for (i, s) in samples.iter().enumerate() {
+            if s.object != Some(oi) {
+                continue;
+            }
+            let (px, py) = (at.x0 + s.pixel % at.tw, at.y0 + s.pixel / at.tw);
+            let id = (py.wrapping_mul(at.w).wrapping_add(px))
+                .wrapping_mul(nn)
+                .wrapping_add(i as u32 % nn);
+            let mut rng = Rng::new(id, at.pass);
+            let (u1, u2, u3, u4) = (rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
+            // The map's direction: diffuse (MIS with the cosine strategy) and specular.
+            let (l, le, pdf_l) = map.sample(u1, u2);
+            let cos_i = s.n.dot(l);
+            if pdf_l > 0.0 && cos_i > 0.0 && le != Vec3::ZERO && visible(scene, s, l) {
+                radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
+                if m.ks > 0.0 {
+                    let (t, b) = s.n.any_orthonormal_pair();
+                    let wi = [l.dot(t), l.dot(b), cos_i];
+                    let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
+                    idx.push(i);
+                    lis.push(le * (specular_light_weight(pdf_l, None) / pdf_l * inv));
+                    for k in 0..3 {
+                        cols[k].push(wi[k]);
+                        cols[k + 3].push(wo[k]);
+                    }
+                }
+            }
+            // The cosine-weighted direction: diffuse only.
+            if s.base != Vec3::ZERO {
+                let l = cosine_sample(s.n, u3, u4);
+                let cos_i = s.n.dot(l);
+                if cos_i > 0.0 {
+                    let (le, pdf_l) = map.lookup(l);
+                    if le != Vec3::ZERO && visible(scene, s, l) {
+                        radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
+                    }
+                }
+            }
+        }
+        if !idx.is_empty() {
+            add_specular(m, opts.shading, idx, lis, cols, out, radiance);
+        }
+    }
 }

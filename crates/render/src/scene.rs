@@ -10,6 +10,10 @@ use fastbrdf::{Model, registry};
 use glam::Vec3;
 use std::sync::Arc;
 
+/// The relative offset of a shadow ray's origin from the surface (times 1 + the largest
+/// coordinate of the point).
+pub const SHADOW_EPS: f32 = 1e-4;
+
 /// A pinhole camera.
 #[derive(Clone, Copy, Debug)]
 pub struct Camera {
@@ -202,12 +206,22 @@ impl Light {
 
     /// (unit direction to the light, radiance scale) seen from `p`.
     pub fn at(&self, p: Vec3) -> (Vec3, Vec3) {
+        let (l, li, _) = self.towards(p);
+        (l, li)
+    }
+
+    /// (unit direction to the light, radiance scale, distance to the light: infinite for a
+    /// directional light) seen from `p`.
+    pub fn towards(&self, p: Vec3) -> (Vec3, Vec3, f32) {
         match self.kind {
-            LightKind::Directional { to_light } => (to_light, self.color * self.intensity),
+            LightKind::Directional { to_light } => {
+                (to_light, self.color * self.intensity, f32::INFINITY)
+            }
             LightKind::Point { position } => {
                 let d = position - p;
                 let d2 = d.length_squared().max(1e-12);
-                (d / d2.sqrt(), self.color * (self.intensity / d2))
+                let dist = d2.sqrt();
+                (d / dist, self.color * (self.intensity / d2), dist)
             }
         }
     }
@@ -322,6 +336,13 @@ pub struct Scene {
     pub ambient: Vec3,
     pub background: Vec3,
     pub objects: Vec<Object>,
+    /// Shadow rays for the point and directional lights (and the environment's samples): a
+    /// light blocked by any object between the shading point and the light adds nothing.
+    /// Off, every light reaches every point facing it (the renderer before issue 15, and the
+    /// GPU renderer, which has no scene traversal).
+    pub shadows: bool,
+    /// Image-based lighting (a latitude-longitude map), CPU renderer only.
+    pub environment: Option<crate::env::Environment>,
 }
 
 impl Scene {
@@ -336,6 +357,27 @@ impl Scene {
     #[inline]
     pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
         self.nearest(ray, |o| o.material.texture.is_some())
+    }
+
+    /// Whether anything lies along `ray` strictly between `t_min` and `t_max` (a shadow ray:
+    /// any hit ends the search).
+    pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        self.objects.iter().any(|o| match &o.shape {
+            Shape::Sphere(s) => s.hit(ray, t_min, t_max, false).is_some(),
+            Shape::Plane(p) => p.hit(ray, t_min, t_max, false).is_some(),
+            Shape::Mesh(m) => m.hit(ray, t_min, t_max, false).is_some(),
+        })
+    }
+
+    /// Whether light from direction `l` (unit) is blocked at `p` (on a surface with the
+    /// normal `n`, facing `l`), up to `dist` along `l` (infinity for directional light).
+    /// The origin moves off the surface along `n` by a distance proportional to `p`'s
+    /// magnitude (f32 rounding of the hit point grows with it), so a surface does not shadow
+    /// itself (acne); a point light's ray stops just short of the light.
+    pub fn shadowed(&self, p: Vec3, n: Vec3, l: Vec3, dist: f32) -> bool {
+        let eps = SHADOW_EPS * (1.0 + p.abs().max_element());
+        let o = p + n * eps;
+        self.occluded(&Ray { o, d: l }, eps, dist * (1.0 - 1e-5) - eps)
     }
 
     #[inline]

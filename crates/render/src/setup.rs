@@ -2,6 +2,7 @@
 //! `fastbrdf render`, `compare` and `demo`.
 
 use crate::bump::Bump;
+use crate::env::{EnvMap, Environment};
 use crate::error::Result;
 use crate::geometry::{Plane, Sphere};
 use crate::mesh::load_obj;
@@ -25,15 +26,24 @@ pub struct SceneSpec {
     pub kd: f32,
     pub ks: f32,
     pub albedo: Vec3,
+    /// Shadow rays (see [`crate::scene::Scene::shadows`]); on in [`SceneSpec::new`].
+    pub shadows: bool,
+    /// An environment light: `sky`, `white` or a file (`crate::env::EnvMap::from_spec`).
+    /// With one, no ambient term, and no default key light when `lights` is empty.
+    pub env: Option<String>,
+    /// Environment samples per primary hit (progressive passes); 16 in [`SceneSpec::new`].
+    pub env_samples: u32,
 }
 
 impl SceneSpec {
-    /// The defaults: kd 0.6, ks 0.4, albedo 0.8 grey.
+    /// The defaults: kd 0.6, ks 0.4, albedo 0.8 grey, shadows on.
     pub fn new() -> Self {
         Self {
             kd: 0.6,
             ks: 0.4,
             albedo: Vec3::splat(0.8),
+            shadows: true,
+            env_samples: 16,
             ..Default::default()
         }
     }
@@ -43,9 +53,10 @@ impl SceneSpec {
 pub struct Loaded {
     mesh: Option<Arc<crate::geometry::TriMesh>>,
     texture: Option<Arc<Texture>>,
+    env: Option<Arc<EnvMap>>,
 }
 
-/// Loads the mesh and texture once.
+/// Loads the mesh, texture and environment map once.
 pub fn load(spec: &SceneSpec) -> Result<Loaded> {
     Ok(Loaded {
         mesh: spec
@@ -58,6 +69,12 @@ pub fn load(spec: &SceneSpec) -> Result<Loaded> {
             .texture
             .as_deref()
             .map(Texture::load)
+            .transpose()?
+            .map(Arc::new),
+        env: spec
+            .env
+            .as_deref()
+            .map(EnvMap::from_spec)
             .transpose()?
             .map(Arc::new),
     })
@@ -118,7 +135,7 @@ pub fn scene(spec: &SceneSpec, loaded: &Loaded, specular: Arc<Specular>) -> Scen
             },
         });
     }
-    let lights = if spec.lights.is_empty() {
+    let lights = if spec.lights.is_empty() && loaded.env.is_none() {
         vec![Light {
             kind: LightKind::Directional {
                 to_light: Vec3::new(-0.45, 0.55, 0.7).normalize(),
@@ -132,8 +149,18 @@ pub fn scene(spec: &SceneSpec, loaded: &Loaded, specular: Arc<Specular>) -> Scen
     Scene {
         camera,
         lights,
-        ambient: Vec3::splat(0.04),
+        // The environment is the ambient light when there is one.
+        ambient: if loaded.env.is_some() {
+            Vec3::ZERO
+        } else {
+            Vec3::splat(0.04)
+        },
         background: Vec3::splat(0.015),
         objects,
+        shadows: spec.shadows,
+        environment: loaded.env.clone().map(|map| Environment {
+            map,
+            samples: spec.env_samples.max(1),
+        }),
     }
 }

@@ -213,6 +213,8 @@ fn golden_images() {
     bumpy.albedo = Vec3::new(0.8, 0.5, 0.4);
     let mut floor = SceneSpec::new();
     floor.floor = true;
+    // Checked in before shadows: the golden keeps the unshadowed picture (--shadows off).
+    floor.shadows = false;
     floor.lights = vec![Light {
         kind: LightKind::Point {
             position: Vec3::new(2.0, 3.0, 3.0),

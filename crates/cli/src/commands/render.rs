@@ -63,6 +63,34 @@ pub struct SceneArgs {
     /// hold the linear radiance, unscaled.
     #[arg(long, default_value_t = 1.0)]
     pub exposure: f32,
+    /// Shadow rays for the lights: on (a light blocked by an object adds nothing) or off (every
+    /// light reaches every surface facing it: the pictures before shadows). The GPU renderer
+    /// (--gpu) renders without shadows: it has no scene traversal yet.
+    #[arg(long, value_enum, default_value_t = OnOff::On)]
+    pub shadows: OnOff,
+    /// A ground plane under the object (grey, diffuse), to catch its shadow.
+    #[arg(long)]
+    pub floor: bool,
+    /// Environment light: `sky` (built in: a sky gradient and a sun disc where the default key
+    /// light is, no file needed), `white` (radiance 1 everywhere: the furnace) or a
+    /// latitude-longitude HDR map FILE (Radiance .hdr or OpenEXR, 2:1, at most 8192x4096, 512
+    /// MiB, finite non-negative texels; +y up, the centre column behind the subject).
+    /// Importance-sampled; it replaces the ambient term and, unless --light is given, the
+    /// default key light. CPU only.
+    #[arg(long, value_name = "FILE|sky|white")]
+    pub env: Option<String>,
+    /// Environment samples per primary ray (each one map-sampled and one cosine-sampled
+    /// direction, combined by multiple importance sampling), taken as progressive passes
+    /// (1..4096); times N x N of --spp per pixel.
+    #[arg(long, default_value_t = 16)]
+    pub env_samples: u32,
+}
+
+/// A switch given as `on` or `off`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OnOff {
+    On,
+    Off,
 }
 
 /// `--weights` when not given.
@@ -97,6 +125,17 @@ impl SceneArgs {
         let (width, height) = parse_size(&self.size)?;
         let mut spec = SceneSpec::new();
         spec.mesh = self.mesh.clone();
+        spec.shadows = self.shadows == OnOff::On;
+        spec.floor = self.floor;
+        spec.env = self.env.clone();
+        if !(1..=fastbrdf_render::env::MAX_ENV_SAMPLES).contains(&self.env_samples) {
+            return Err(CliError::input(format!(
+                "--env-samples {}: must be 1 to {}",
+                self.env_samples,
+                fastbrdf_render::env::MAX_ENV_SAMPLES
+            )));
+        }
+        spec.env_samples = self.env_samples;
         spec.texture = self.texture.clone();
         spec.lights = self
             .lights
@@ -179,7 +218,11 @@ pub fn render_model(
     after_help = "Examples:\n  fastbrdf render --model flog --param n=50 --out flog.png\n  \
 fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
-fastbrdf render --gpu --model flog --param n=50 --out flog-gpu.png\n  \
+fastbrdf render --gpu --model flog --param n=50 --shadows off --out flog-gpu.png\n  \
+fastbrdf render --model ward --param alpha=0.2 --floor --light point:2,3,3:1,1,1:20 --out shadow.png\n  \
+fastbrdf render --model cook-torrance --param alpha=0.3 --env sky --floor --out sky.png   (built-in sky, 16 samples)\n  \
+fastbrdf render --model ward --param alpha=0.2 --env studio.hdr --env-samples 64 --out studio.exr\n  \
+fastbrdf render --model pow --env white --weights 1,0 --albedo 1,1,1 --out furnace.exr   (uniform 1: the furnace)\n  \
 fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)\n  \
 fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlated --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)"
 )]
@@ -210,7 +253,9 @@ pub struct RenderArgs {
     out: PathBuf,
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
-    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now.
+    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now. Without
+    /// shadows (a note says so unless --shadows off): the GPU picture matches the CPU's with
+    /// --shadows off.
     #[arg(long)]
     gpu: bool,
 }
@@ -229,6 +274,16 @@ fn render_model_gpu(
         return Err(CliError::input(format!(
             "--gpu: coloured specular ({id} with a parameter given as R,G,B, e.g. by --metal) is CPU-only for now: drop --gpu"
         )));
+    }
+    if spec.env.is_some() {
+        return Err(CliError::input(
+            "--gpu: environment lighting (--env) is CPU-only: drop --gpu (the GPU renderer is a rasteriser without rays to sample the map with)".to_string(),
+        ));
+    }
+    if spec.shadows {
+        eprintln!(
+            "note: --gpu renders without shadows (the GPU renderer has no scene traversal yet); --shadows off gives the CPU picture it matches"
+        );
     }
     let scene = setup::scene(spec, loaded, specular);
     let gpu = fastbrdf_gpu::Gpu::new()?;
@@ -261,8 +316,12 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let rendered = t.elapsed().as_secs_f64();
     film.save(&a.out, a.scene.exposure)?;
     let total = t.elapsed().as_secs_f64();
+    let env = match &spec.env {
+        Some(e) => format!(", environment {e} x {} samples", spec.env_samples),
+        None => String::new(),
+    };
     eprintln!(
-        "wrote {} ({}x{}, {} samples/pixel ({}x{}), {:.3} s: render {:.3} s, encode and write {:.3} s{on})",
+        "wrote {} ({}x{}, {} samples/pixel ({}x{}{env}), {:.3} s: render {:.3} s, encode and write {:.3} s{on})",
         a.out.display(),
         opts.width,
         opts.height,
@@ -297,7 +356,8 @@ fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
     after_help = "Examples:\n  fastbrdf compare --models flog,schlick,cubic-rational --reference pow --param n=100 --out cmp.png\n  \
 fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png\n  \
 fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png\n  \
-fastbrdf compare --models ggx,beckmann-power16 --reference cook-torrance --param alpha=0.2 --metal gold --out au.png"
+fastbrdf compare --models ggx,beckmann-power16 --reference cook-torrance --param alpha=0.2 --metal gold --out au.png\n  \
+fastbrdf compare --models flog,schlick --reference pow --param n=100 --env sky --out cmp-sky.png"
 )]
 pub struct CompareArgs {
     /// Models to compare (comma-separated ids).
@@ -478,6 +538,26 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     super::metals::weights(&mut spec, &a.scene, a.metal.as_deref());
     check_out(&a.out, &["png"])?;
     check_compare(&opts, a.models.len())?;
+    if spec.env.is_some() {
+        // Each environment sample is a pass over every primary sample: the work cap counts them.
+        let samples = (a.models.len() as u64 + 1)
+            * u64::from(opts.width)
+            * u64::from(opts.height)
+            * u64::from(opts.spp).pow(2)
+            * u64::from(spec.env_samples);
+        let cap = fastbrdf_render::compare::MAX_COMPARE_SAMPLES;
+        if samples > cap {
+            return Err(CliError::input(format!(
+                "the comparison would trace {samples} environment samples ({} renders of {}x{} at {}x{} samples per pixel, {} environment samples each): at most {cap}; use a smaller --size, --spp, --env-samples or fewer models",
+                a.models.len() + 1,
+                opts.width,
+                opts.height,
+                opts.spp,
+                opts.spp,
+                spec.env_samples
+            )));
+        }
+    }
     let params = parse_params(&a.params)?;
     for (k, _) in &params {
         let mut used = false;

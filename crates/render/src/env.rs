@@ -1,0 +1,485 @@
+//! Environment light: a latitude-longitude map of radiance (Radiance `.hdr` or OpenEXR, 2:1),
+//! a built-in procedural sky or a constant white map, importance-sampled by a piecewise-
+//! constant 2D distribution (rows by their sin theta-weighted luminance, then columns).
+//!
+//! Directions: y up. A direction `d` maps to `u = atan2(d.x, -d.z) / 2 pi + 1/2` (columns, left
+//! to right) and `v = acos(d.y) / pi` (rows, top = straight up): the map's centre column lies
+//! along -z, behind the default camera's subject. Radiance is constant over a texel (nearest
+//! lookup), the same function the sampling distribution is built from, so a sampled texel's
+//! contribution has no lookup bias.
+//!
+//! Multiple importance sampling: [`balance_heuristic`] and [`power_heuristic`] weight two
+//! strategies; the renderer combines the map's samples with cosine-weighted hemisphere
+//! samples for the diffuse term. The specular term uses the map's samples alone, weighted by
+//! [`specular_light_weight`]: the place where BRDF sampling plugs in.
+
+use crate::error::{RenderError, Result};
+use glam::Vec3;
+use std::f32::consts::PI;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Largest environment map file read: 512 MiB.
+pub const MAX_ENV_BYTES: u64 = 512 << 20;
+/// Largest environment map width (the height is half of it): 8192 x 4096.
+pub const MAX_ENV_WIDTH: u32 = 8192;
+/// Largest `--env-samples`.
+pub const MAX_ENV_SAMPLES: u32 = 4096;
+
+/// The built-in sky's sun: the direction towards it (the default key light's) and its
+/// angular radius in degrees.
+pub const SUN_DIR: [f32; 3] = [-0.45, 0.55, 0.7];
+pub const SUN_RADIUS_DEG: f32 = 2.0;
+/// The sun disc's irradiance at normal incidence (the default key light's intensity).
+pub const SUN_IRRADIANCE: f32 = 3.0;
+
+/// An environment light for a scene: the map and the samples per primary hit.
+#[derive(Clone, Debug)]
+pub struct Environment {
+    pub map: Arc<EnvMap>,
+    /// Light samples per primary hit (each a map sample and a cosine sample), taken in as
+    /// many progressive passes.
+    pub samples: u32,
+}
+
+/// A latitude-longitude radiance map with its sampling distribution.
+#[derive(Clone, Debug)]
+pub struct EnvMap {
+    pub width: u32,
+    pub height: u32,
+    texels: Vec<Vec3>,
+    /// Cumulative distribution over rows (height + 1 entries, 0 to 1).
+    marginal: Vec<f32>,
+    /// Per row, the cumulative distribution over its columns (width + 1 entries each).
+    conditional: Vec<f32>,
+    /// Per texel, its probability mass (sums to 1).
+    mass: Vec<f32>,
+}
+
+fn lum(c: Vec3) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// The map position (u, v) in [0, 1]^2 of unit direction `d`.
+pub fn dir_to_uv(d: Vec3) -> (f32, f32) {
+    let u = d.x.atan2(-d.z) / (2.0 * PI) + 0.5;
+    let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+    (u, v)
+}
+
+/// The unit direction at map position (u, v), and sin theta.
+pub fn uv_to_dir(u: f32, v: f32) -> (Vec3, f32) {
+    let (phi, theta) = ((u - 0.5) * 2.0 * PI, v * PI);
+    let (st, ct) = theta.sin_cos();
+    let (sp, cp) = phi.sin_cos();
+    (Vec3::new(st * sp, ct, -st * cp), st)
+}
+
+/// The index in `cdf` (n + 1 entries from 0 to 1) of the bin holding `u`, and where in it.
+fn sample_cdf(cdf: &[f32], u: f32) -> (usize, f32) {
+    let n = cdf.len() - 1;
+    let u = u.clamp(0.0, 1.0 - f32::EPSILON) * cdf[n];
+    let i = (cdf.partition_point(|&c| c <= u).max(1) - 1).min(n - 1);
+    let width = cdf[i + 1] - cdf[i];
+    let frac = if width > 0.0 {
+        ((u - cdf[i]) / width).clamp(0.0, 1.0 - f32::EPSILON)
+    } else {
+        0.5
+    };
+    (i, frac)
+}
+
+impl EnvMap {
+    /// A map from linear texels (row-major, top row = straight up). Errors name the problem:
+    /// not 2:1, too large, a NaN, infinite or negative texel.
+    pub fn from_texels(
+        width: u32,
+        height: u32,
+        texels: Vec<Vec3>,
+    ) -> std::result::Result<Self, String> {
+        check_env_size(width, height)?;
+        assert_eq!(texels.len(), (width * height) as usize, "texel count");
+        if let Some(i) = texels
+            .iter()
+            .position(|t| !t.is_finite() || t.min_element() < 0.0)
+        {
+            let t = texels[i];
+            let what = if t.is_nan() {
+                "NaN"
+            } else if !t.is_finite() {
+                "infinite"
+            } else {
+                "negative"
+            };
+            return Err(format!(
+                "texel ({}, {}) is {what} ({}, {}, {}): an environment map holds finite, non-negative radiance",
+                i as u32 % width,
+                i as u32 / width,
+                t.x,
+                t.y,
+                t.z
+            ));
+        }
+        let (w, h) = (width as usize, height as usize);
+        // Weights: luminance times sin theta at the row's centre (a texel's solid angle); a
+        // black map falls back to sin theta alone, so sampling stays defined.
+        let black = texels.iter().all(|t| lum(*t) <= 0.0);
+        let mut weights = vec![0.0f64; w * h];
+        for r in 0..h {
+            let st = (PI * (r as f32 + 0.5) / h as f32).sin() as f64;
+            for c in 0..w {
+                let l = if black {
+                    1.0
+                } else {
+                    lum(texels[r * w + c]) as f64
+                };
+                weights[r * w + c] = l * st;
+            }
+        }
+        let total: f64 = weights.iter().sum();
+        let mut marginal = Vec::with_capacity(h + 1);
+        let mut conditional = Vec::with_capacity(h * (w + 1));
+        let mut acc = 0.0f64;
+        marginal.push(0.0);
+        for r in 0..h {
+            let row = &weights[r * w..(r + 1) * w];
+            let sum: f64 = row.iter().sum();
+            let mut a = 0.0f64;
+            conditional.push(0.0);
+            for &x in row {
+                a += x;
+                conditional.push(if sum > 0.0 { (a / sum) as f32 } else { 0.0 });
+            }
+            acc += sum;
+            marginal.push((acc / total) as f32);
+        }
+        let mass = weights.iter().map(|x| (x / total) as f32).collect();
+        Ok(Self {
+            width,
+            height,
+            texels,
+            marginal,
+            conditional,
+            mass,
+        })
+    }
+
+    /// A constant map of radiance `c` (the furnace: `c` = 1).
+    pub fn constant(c: Vec3) -> Self {
+        Self::from_texels(16, 8, vec![c; 128]).expect("a valid constant map")
+    }
+
+    /// The built-in sky, 1024 x 512, evaluated at texel centres. Above the horizon (y >= 0)
+    /// `mix(horizon, zenith, sqrt(y))` with horizon (0.85, 0.9, 1.0) and zenith
+    /// (0.2, 0.35, 0.75); below it a ground of (0.2, 0.18, 0.16); plus a sun disc towards
+    /// [`SUN_DIR`] of angular radius [`SUN_RADIUS_DEG`] and radiance (1, 0.95, 0.85) x
+    /// [`SUN_IRRADIANCE`] / (its solid angle 2 pi (1 - cos radius)).
+    pub fn sky() -> Self {
+        let (w, h) = (1024u32, 512u32);
+        let sun = Vec3::from(SUN_DIR).normalize();
+        let cos_r = SUN_RADIUS_DEG.to_radians().cos();
+        let sun_l = Vec3::new(1.0, 0.95, 0.85) * (SUN_IRRADIANCE / (2.0 * PI * (1.0 - cos_r)));
+        let (horizon, zenith) = (Vec3::new(0.85, 0.9, 1.0), Vec3::new(0.2, 0.35, 0.75));
+        let ground = Vec3::new(0.2, 0.18, 0.16);
+        let mut texels = Vec::with_capacity((w * h) as usize);
+        for r in 0..h {
+            for c in 0..w {
+                let (d, _) = uv_to_dir((c as f32 + 0.5) / w as f32, (r as f32 + 0.5) / h as f32);
+                let mut l = if d.y >= 0.0 {
+                    horizon.lerp(zenith, d.y.sqrt())
+                } else {
+                    ground
+                };
+                if d.dot(sun) >= cos_r {
+                    l += sun_l;
+                }
+                texels.push(l);
+            }
+        }
+        Self::from_texels(w, h, texels).expect("a valid sky")
+    }
+
+    /// `sky`, `white` (a constant map of 1) or a file (Radiance `.hdr` or OpenEXR).
+    pub fn from_spec(spec: &str) -> Result<Self> {
+        match spec {
+            "sky" => Ok(Self::sky()),
+            "white" => Ok(Self::constant(Vec3::ONE)),
+            _ => Self::load(Path::new(spec)),
+        }
+    }
+
+    /// Loads a Radiance `.hdr` or OpenEXR map: read once (at most [`MAX_ENV_BYTES`]), its
+    /// declared size checked (2:1, at most [`MAX_ENV_WIDTH`] wide) before anything is
+    /// decoded, every texel finite and non-negative.
+    pub fn load(path: &Path) -> Result<Self> {
+        let file = path.display().to_string();
+        let bad = |m: String| RenderError::Input {
+            file: file.clone(),
+            line: None,
+            message: m,
+        };
+        let f = std::fs::File::open(path)
+            .map_err(|e| bad(format!("cannot read the environment map: {e}")))?;
+        let bytes = fastbrdf_io::read_reader_bounded(f, path, MAX_ENV_BYTES, "an environment map")?;
+        let reader = || {
+            image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
+                .with_guessed_format()
+                .map_err(|e| bad(format!("cannot read the environment map: {e}")))
+        };
+        match reader()?.format() {
+            Some(image::ImageFormat::Hdr | image::ImageFormat::OpenExr) => {}
+            other => {
+                let found = other.map_or("not an image format this reads".to_string(), |f| {
+                    format!("{f:?}")
+                });
+                return Err(bad(format!(
+                    "not an HDR environment map (a Radiance .hdr or OpenEXR file is needed; found {found})"
+                )));
+            }
+        }
+        let (w, h) = reader()?
+            .into_dimensions()
+            .map_err(|e| bad(format!("cannot read the environment map: {e}")))?;
+        check_env_size(w, h).map_err(bad)?;
+        let mut r = reader()?;
+        let mut limits = image::Limits::default();
+        limits.max_image_width = Some(MAX_ENV_WIDTH);
+        limits.max_image_height = Some(MAX_ENV_WIDTH / 2);
+        limits.max_alloc = Some(u64::from(MAX_ENV_WIDTH) * u64::from(MAX_ENV_WIDTH / 2) * 16);
+        r.limits(limits);
+        let img = r
+            .decode()
+            .map_err(|e| bad(format!("cannot read the environment map: {e}")))?
+            .to_rgb32f();
+        let (w, h) = img.dimensions();
+        let texels = img.pixels().map(|p| Vec3::new(p[0], p[1], p[2])).collect();
+        Self::from_texels(w, h, texels).map_err(bad)
+    }
+
+    fn texel(&self, u: f32, v: f32) -> usize {
+        let c = ((u * self.width as f32) as usize).min(self.width as usize - 1);
+        let r = ((v * self.height as f32) as usize).min(self.height as usize - 1);
+        r * self.width as usize + c
+    }
+
+    /// The radiance arriving from unit direction `d`.
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        let (u, v) = dir_to_uv(d);
+        self.texels[self.texel(u, v)]
+    }
+
+    /// The solid-angle density of [`EnvMap::sample`] at unit direction `d`.
+    pub fn pdf(&self, d: Vec3) -> f32 {
+        self.lookup(d).1
+    }
+
+    /// The radiance from unit direction `d` and [`EnvMap::sample`]'s density there, from one
+    /// map position (one `atan2` and one `acos`).
+    pub fn lookup(&self, d: Vec3) -> (Vec3, f32) {
+        let (u, v) = dir_to_uv(d);
+        let i = self.texel(u, v);
+        // sin theta = sqrt(1 - y^2), without a sin of the acos.
+        let st = (1.0 - d.y * d.y).max(0.0).sqrt();
+        if st <= 0.0 {
+            return (self.texels[i], 0.0);
+        }
+        let m = self.mass[i] * (self.width * self.height) as f32;
+        (self.texels[i], m / (2.0 * PI * PI * st))
+    }
+
+    /// A direction drawn from the map's distribution by two uniform numbers in [0, 1):
+    /// (unit direction, radiance, solid-angle density); density 0 at the poles (skip it).
+    pub fn sample(&self, u1: f32, u2: f32) -> (Vec3, Vec3, f32) {
+        let (r, fr) = sample_cdf(&self.marginal, u1);
+        let w = self.width as usize;
+        let (c, fc) = sample_cdf(&self.conditional[r * (w + 1)..(r + 1) * (w + 1)], u2);
+        let u = (c as f32 + fc) / self.width as f32;
+        let v = (r as f32 + fr) / self.height as f32;
+        let (d, st) = uv_to_dir(u, v);
+        let i = r * w + c;
+        if st <= 0.0 {
+            return (d, self.texels[i], 0.0);
+        }
+        let pdf = self.mass[i] * (self.width * self.height) as f32 / (2.0 * PI * PI * st);
+        (d, self.texels[i], pdf)
+    }
+}
+
+/// Checks an environment map's declared size: 2:1, at most [`MAX_ENV_WIDTH`] wide.
+pub fn check_env_size(w: u32, h: u32) -> std::result::Result<(), String> {
+    if w == 0 || h == 0 {
+        return Err(format!("the environment map is empty ({w}x{h})"));
+    }
+    if w > MAX_ENV_WIDTH || h > MAX_ENV_WIDTH / 2 {
+        return Err(format!(
+            "the environment map declares {w}x{h} pixels: at most {MAX_ENV_WIDTH}x{} are accepted (nothing was decoded)",
+            MAX_ENV_WIDTH / 2
+        ));
+    }
+    if w != 2 * h {
+        return Err(format!(
+            "the environment map is {w}x{h}: a latitude-longitude map is twice as wide as high (2:1)"
+        ));
+    }
+    Ok(())
+}
+
+/// The balance heuristic: the weight of strategy a's sample, `pa / (pa + pb)`.
+pub fn balance_heuristic(pa: f32, pb: f32) -> f32 {
+    if pa + pb > 0.0 { pa / (pa + pb) } else { 0.0 }
+}
+
+/// The power heuristic (exponent 2): `pa^2 / (pa^2 + pb^2)`.
+pub fn power_heuristic(pa: f32, pb: f32) -> f32 {
+    let (a, b) = (pa * pa, pb * pb);
+    if a + b > 0.0 { a / (a + b) } else { 0.0 }
+}
+
+/// The MIS weight of a map sample for the specular term, whose density is `pdf_light`.
+///
+/// MIS PLUGS IN HERE: while the BRDF models cannot be sampled, `brdf_pdf` is `None` and the
+/// map's samples carry the whole specular estimate (weight 1). With `sample`/`pdf` on the
+/// models, pass `Some(brdf.pdf(wi, wo))` here (power heuristic), and add in the renderer's
+/// environment pass a second, BRDF-sampled direction weighted by
+/// `power_heuristic(brdf_pdf, map.pdf(l))` (see `render.rs`, `env_pass`).
+pub fn specular_light_weight(pdf_light: f32, brdf_pdf: Option<f32>) -> f32 {
+    brdf_pdf.map_or(1.0, |b| power_heuristic(pdf_light, b))
+}
+
+/// A small deterministic generator (PCG hash, 24-bit uniforms).
+#[derive(Clone, Copy, Debug)]
+pub struct Rng(u32);
+
+/// The PCG hash of `x` (Jarzynski and Olano 2020).
+pub fn pcg(x: u32) -> u32 {
+    let s = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let w = ((s >> ((s >> 28) + 4)) ^ s).wrapping_mul(277_803_737);
+    (w >> 22) ^ w
+}
+
+impl Rng {
+    /// The generator of sample `id` in pass `pass`.
+    pub fn new(id: u32, pass: u32) -> Self {
+        Self(pcg(id ^ pcg(pass.wrapping_add(0x9e37_79b9))))
+    }
+
+    /// A uniform number in [0, 1).
+    pub fn uniform(&mut self) -> f32 {
+        self.0 = pcg(self.0);
+        (self.0 >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+}
+
+/// A cosine-weighted direction about unit normal `n` (density `cos / pi`).
+pub fn cosine_sample(n: Vec3, u1: f32, u2: f32) -> Vec3 {
+    let (t, b) = n.any_orthonormal_pair();
+    let r = u1.sqrt();
+    let (s, c) = (2.0 * PI * u2).sin_cos();
+    (t * (r * c) + b * (r * s) + n * (1.0 - u1).max(0.0).sqrt()).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn directions_and_map_positions_invert() {
+        for &(u, v) in &[(0.1f32, 0.2f32), (0.5, 0.5), (0.9, 0.8), (0.3, 0.05)] {
+            let (d, _) = uv_to_dir(u, v);
+            let (u2, v2) = dir_to_uv(d);
+            assert!((u - u2).abs() < 1e-5 && (v - v2).abs() < 1e-5, "{u},{v}");
+        }
+        assert!((uv_to_dir(0.5, 0.5).0 - Vec3::NEG_Z).length() < 1e-6);
+        assert!((uv_to_dir(0.5, 0.0).0 - Vec3::Y).length() < 1e-6);
+    }
+
+    /// The density integrates to 1 over the sphere and matches what `sample` returns.
+    #[test]
+    fn the_sampling_density_is_normalised_and_consistent() {
+        let map = EnvMap::sky();
+        let n = 400;
+        let mut sum = 0.0f64;
+        for i in 0..n {
+            for j in 0..2 * n {
+                let (u, v) = (
+                    (j as f32 + 0.5) / (2 * n) as f32,
+                    (i as f32 + 0.5) / n as f32,
+                );
+                let (d, st) = uv_to_dir(u, v);
+                let dw = (2.0 * PI / (2 * n) as f32) * (PI / n as f32) * st;
+                sum += (map.pdf(d) * dw) as f64;
+            }
+        }
+        assert!((sum - 1.0).abs() < 0.02, "{sum}");
+        let mut rng = Rng::new(7, 0);
+        for _ in 0..1000 {
+            let (d, l, p) = map.sample(rng.uniform(), rng.uniform());
+            if p > 0.0 {
+                assert!((map.pdf(d) - p).abs() <= 1e-3 * p, "{} vs {p}", map.pdf(d));
+                assert_eq!(map.radiance(d), l);
+            }
+        }
+    }
+
+    /// Toy MIS: integral of x^2 over [0, 1] (1/3) from a uniform strategy and a linear one
+    /// (density 2x), one sample of each per estimate, by the balance and power heuristics:
+    /// the weights sum to 1 and the estimate is unbiased.
+    #[test]
+    fn mis_heuristics_combine_two_strategies_without_bias() {
+        for h in [balance_heuristic, power_heuristic] {
+            let mut rng = Rng::new(1, 2);
+            let n = 200_000;
+            let mut sum = 0.0f64;
+            for _ in 0..n {
+                let xa = rng.uniform();
+                let xb = rng.uniform().sqrt();
+                let (pa_a, pb_a) = (1.0, 2.0 * xa);
+                let (pa_b, pb_b) = (1.0, 2.0 * xb);
+                assert!((h(pa_a, pb_a) + h(pb_a, pa_a) - 1.0).abs() < 1e-6);
+                let fa = xa * xa * h(pa_a, pb_a) / pa_a;
+                let fb = if pb_b > 0.0 {
+                    xb * xb * h(pb_b, pa_b) / pb_b
+                } else {
+                    0.0
+                };
+                sum += (fa + fb) as f64;
+            }
+            let est = sum / n as f64;
+            assert!((est - 1.0 / 3.0).abs() < 3e-3, "{est}");
+        }
+        assert_eq!(specular_light_weight(2.0, None), 1.0);
+        assert!((specular_light_weight(1.0, Some(1.0)) - 0.5).abs() < 1e-7);
+    }
+
+    #[test]
+    fn bad_maps_are_refused() {
+        assert!(
+            EnvMap::from_texels(4, 4, vec![Vec3::ONE; 16])
+                .unwrap_err()
+                .contains("2:1")
+        );
+        let mut t = vec![Vec3::ONE; 8];
+        t[5] = Vec3::new(0.0, f32::NAN, 0.0);
+        assert!(
+            EnvMap::from_texels(4, 2, t.clone())
+                .unwrap_err()
+                .contains("NaN")
+        );
+        t[5] = Vec3::new(-1.0, 0.0, 0.0);
+        assert!(
+            EnvMap::from_texels(4, 2, t.clone())
+                .unwrap_err()
+                .contains("negative")
+        );
+        t[5] = Vec3::new(f32::INFINITY, 0.0, 0.0);
+        assert!(
+            EnvMap::from_texels(4, 2, t)
+                .unwrap_err()
+                .contains("infinite")
+        );
+        assert!(check_env_size(16384, 8192).unwrap_err().contains("at most"));
+        // A black map still samples (sin theta alone).
+        let m = EnvMap::from_texels(4, 2, vec![Vec3::ZERO; 8]).unwrap();
+        assert!(m.sample(0.3, 0.6).2 > 0.0);
+    }
+}

@@ -1,0 +1,147 @@
+//! Environment light (issue 15): the image-space furnace (a white environment and a Lambert
+//! albedo-1 material render a uniform image of 1 within the Monte Carlo bound below), the
+//! built-in sky (deterministic, lit where the sun is, shadows on the floor), the progress
+//! counted over every pass.
+
+use fastbrdf_render::film::Film;
+use fastbrdf_render::render::{Options, Shading, render};
+use fastbrdf_render::scene::Specular;
+use fastbrdf_render::setup::{self, SceneSpec};
+use glam::Vec3;
+use std::sync::Arc;
+
+fn shoot(spec: &SceneSpec, id: &str, params: &[(&str, &str)], size: u32, spp: u32) -> Film {
+    let params: Vec<(String, String)> = params
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect();
+    let loaded = setup::load(spec).unwrap();
+    let scene = setup::scene(spec, &loaded, Arc::new(Specular::new(id, &params).unwrap()));
+    let o = Options {
+        width: size,
+        height: size,
+        spp,
+        shading: Shading::Batch,
+    };
+    render(&scene, &o, &|_, _| {}).unwrap()
+}
+
+/// The furnace: environment 1 everywhere, kd 1, albedo 1, ks 0 (Lambert of albedo exactly 1),
+/// so every pixel's radiance is 1. Per primary hit and pass the estimate is the sum of two
+/// balance-heuristic terms `cos / pi / (pdf_map + cos / pi)`, each in [0, 1]: X in [0, 2],
+/// mean 1, variance at most (2 - 0)^2 / 4 = 1 (Popoviciu). A pixel averages M = N^2 x S such
+/// estimates (N = 2, S = 16: M = 64), so its standard deviation is at most 1 / sqrt(M) =
+/// 0.125; the RMS deviation over the sphere's pixels must stay under that bound, the image
+/// mean within 5 / sqrt(all estimates) of 1, and every pixel within Hoeffding's bound at
+/// probability 1e-9 per pixel: sqrt(2 ln(2e9) / M) = 0.82. The background (the map itself) is
+/// exactly 1. Fixed seeds: the numbers are the same every run.
+#[test]
+fn a_white_environment_and_an_albedo_1_lambert_render_a_uniform_image() {
+    let mut spec = SceneSpec::new();
+    spec.env = Some("white".into());
+    spec.env_samples = 16;
+    (spec.kd, spec.ks, spec.albedo) = (1.0, 0.0, Vec3::ONE);
+    let (size, n) = (64u32, 2u32);
+    let film = shoot(&spec, "pow", &[("n", "50")], size, n);
+    let m = (n * n * spec.env_samples) as f32;
+    let pixels = &film.pixels;
+    let sphere: Vec<f32> = pixels
+        .iter()
+        .filter(|p| **p != Vec3::ONE)
+        .map(|p| {
+            assert!(p.x == p.y && p.y == p.z, "grey: {p:?}");
+            p.x
+        })
+        .collect();
+    assert!(
+        sphere.len() > 500,
+        "the sphere covers {} pixels",
+        sphere.len()
+    );
+    let count = sphere.len() as f32;
+    let mean = sphere.iter().sum::<f32>() / count;
+    let rms = (sphere.iter().map(|x| (x - 1.0).powi(2)).sum::<f32>() / count).sqrt();
+    let worst = sphere
+        .iter()
+        .map(|x| (x - 1.0).abs())
+        .fold(0.0f32, f32::max);
+    let hoeffding = (2.0 * (2e9f32).ln() / m).sqrt();
+    eprintln!(
+        "furnace: mean {mean}, RMS {rms}, worst {worst} (bounds {}, {}, {hoeffding})",
+        5.0 / (count * m).sqrt(),
+        1.0 / m.sqrt()
+    );
+    assert!(
+        (mean - 1.0).abs() <= 5.0 / (count * m).sqrt(),
+        "mean {mean}"
+    );
+    assert!(rms <= 1.0 / m.sqrt(), "RMS {rms}");
+    assert!(worst <= hoeffding, "worst {worst}");
+}
+
+#[test]
+fn the_sky_lights_the_sun_side_and_casts_shadows_deterministically() {
+    let mut spec = SceneSpec::new();
+    spec.env = Some("sky".into());
+    spec.env_samples = 8;
+    spec.floor = true;
+    let size = 64;
+    let a = shoot(&spec, "ward", &[("alpha", "0.2")], size, 1);
+    let b = shoot(&spec, "ward", &[("alpha", "0.2")], size, 1);
+    assert_eq!(a.pixels, b.pixels, "deterministic");
+    assert!(
+        a.pixels
+            .iter()
+            .all(|p| p.is_finite() && p.min_element() >= 0.0)
+    );
+    let lum = |x: u32, y: u32| {
+        let p = a.pixels[(y * size + x) as usize];
+        0.2126 * p.x + 0.7152 * p.y + 0.0722 * p.z
+    };
+    // The sun is up-left, in front: the sphere's upper left is brighter than its lower right.
+    assert!(
+        lum(24, 24) > 2.0 * lum(40, 40),
+        "{} vs {}",
+        lum(24, 24),
+        lum(40, 40)
+    );
+    // Shadows: with them off, the floor beside the sphere (lower right, away from the sun) is
+    // brighter.
+    spec.shadows = false;
+    let c = shoot(&spec, "ward", &[("alpha", "0.2")], size, 1);
+    let (x, y) = (44u32, 56u32);
+    let (on, off) = (
+        a.pixels[(y * size + x) as usize],
+        c.pixels[(y * size + x) as usize],
+    );
+    assert!(
+        off.x > on.x * 1.2,
+        "shadowed floor {on:?}, unshadowed {off:?}"
+    );
+}
+
+#[test]
+fn progress_counts_every_pass() {
+    let mut spec = SceneSpec::new();
+    spec.env = Some("sky".into());
+    spec.env_samples = 3;
+    let loaded = setup::load(&spec).unwrap();
+    let scene = setup::scene(
+        &spec,
+        &loaded,
+        Arc::new(Specular::new("pow", &[("n".into(), "20".into())]).unwrap()),
+    );
+    let o = Options {
+        width: 40,
+        height: 20,
+        spp: 1,
+        shading: Shading::Batch,
+    };
+    let seen = std::sync::Mutex::new(vec![]);
+    render(&scene, &o, &|d, t| seen.lock().unwrap().push((d, t))).unwrap();
+    let seen = seen.into_inner().unwrap();
+    // 3 x 2 tiles, 3 passes.
+    assert_eq!(seen.len(), 18);
+    assert!(seen.iter().all(|&(_, t)| t == 18));
+    assert_eq!(seen.iter().map(|&(d, _)| d).max(), Some(18));
+}

@@ -1,0 +1,143 @@
+//! Shadow rays (issue 15): a sphere above a plane under a directional light darkens the plane
+//! beneath it to the ambient term only, leaves the rest lit; a point light's shadow ray stops
+//! at the light; a lit sphere does not shadow itself (no acne): with shadows on it renders as
+//! with shadows off.
+
+use fastbrdf_render::film::Film;
+use fastbrdf_render::render::{Options, Shading, render};
+use fastbrdf_render::scene::{Light, LightKind, Scene, Specular};
+use fastbrdf_render::setup::{self, SceneSpec};
+use glam::Vec3;
+use std::sync::Arc;
+
+fn scene(spec: &SceneSpec) -> Scene {
+    let loaded = setup::load(spec).unwrap();
+    let params = vec![("alpha".to_string(), "0.2".to_string())];
+    setup::scene(
+        spec,
+        &loaded,
+        Arc::new(Specular::new("ward", &params).unwrap()),
+    )
+}
+
+fn shoot(scene: &Scene, size: u32) -> Film {
+    let o = Options {
+        width: size,
+        height: size,
+        spp: 1,
+        shading: Shading::Batch,
+    };
+    render(scene, &o, &|_, _| {}).unwrap()
+}
+
+fn dir(x: f32, y: f32, z: f32, i: f32) -> Light {
+    Light {
+        kind: LightKind::Directional {
+            to_light: Vec3::new(x, y, z).normalize(),
+        },
+        color: Vec3::ONE,
+        intensity: i,
+    }
+}
+
+/// The pixel whose centre ray hits the floor (object 1) nearest to world point `p`.
+fn floor_pixel(scene: &Scene, p: Vec3, size: u32) -> usize {
+    let (x, y) = scene.camera.project(p, size, size);
+    let (x, y) = (x.floor() as u32, y.floor() as u32);
+    let hit = scene
+        .intersect(&scene.camera.ray(x as f32 + 0.5, y as f32 + 0.5, size, size))
+        .expect("the floor is hit");
+    assert_eq!(hit.object, 1, "pixel {x},{y} sees the floor");
+    assert!((hit.p - p).length() < 0.2, "{:?} near {p:?}", hit.p);
+    (y * size + x) as usize
+}
+
+#[test]
+fn a_sphere_shadows_the_floor_beneath_it() {
+    let mut spec = SceneSpec::new();
+    spec.floor = true;
+    spec.lights = vec![dir(0.0, 1.0, 0.0, 3.0)];
+    let size = 128;
+    let on = scene(&spec);
+    spec.shadows = false;
+    let off = scene(&spec);
+    let (f_on, f_off) = (shoot(&on, size), shoot(&off, size));
+    // Beneath the sphere (x^2 + z^2 < 1 on the plane y = -1): only the ambient term.
+    let under = floor_pixel(&on, Vec3::new(0.0, -1.0, 0.8), size);
+    // The floor material: kd 0.8, albedo 0.5, no specular; ambient 0.04.
+    let ambient = 0.04 * 0.8 * 0.5;
+    let got = f_on.pixels[under];
+    assert!(
+        (got - Vec3::splat(ambient)).abs().max_element() < 1e-6,
+        "shadowed floor {got:?}, ambient {ambient}"
+    );
+    let lit_off = f_off.pixels[under];
+    assert!(lit_off.x > 10.0 * ambient, "unshadowed {lit_off:?}");
+    // Away from the sphere the floor is lit, identically with shadows on or off.
+    let away = floor_pixel(&on, Vec3::new(1.1, -1.0, -0.8), size);
+    let lit = f_on.pixels[away];
+    let want = ambient + 3.0 * 0.8 * 0.5 / std::f32::consts::PI;
+    assert!(
+        (lit - Vec3::splat(want)).abs().max_element() < 1e-4,
+        "lit floor {lit:?}, want {want}"
+    );
+    assert_eq!(lit, f_off.pixels[away]);
+    // The sphere itself (top, facing the light) is lit.
+    assert_eq!(
+        f_on.pixels[(size / 2 * size + size / 2) as usize],
+        f_off.pixels[(size / 2 * size + size / 2) as usize]
+    );
+}
+
+#[test]
+fn a_point_lights_shadow_ray_stops_at_the_light() {
+    let s = scene(&SceneSpec::new());
+    // From (-3, 0, 0) towards +x: the unit sphere at the origin lies beyond x = -1.
+    let (p, n, l) = (Vec3::new(-3.0, 0.0, 0.0), Vec3::X, Vec3::X);
+    assert!(
+        !s.shadowed(p, n, l, 1.5),
+        "light at x = -1.5, before the sphere"
+    );
+    assert!(
+        s.shadowed(p, n, l, 5.0),
+        "light at x = 2, behind the sphere"
+    );
+    assert!(s.shadowed(p, n, l, f32::INFINITY), "directional");
+    assert!(!s.shadowed(p, n, -l, f32::INFINITY), "away from the sphere");
+}
+
+#[test]
+fn a_lit_sphere_does_not_shadow_itself() {
+    // Lights from many directions, grazing ones included, and a near point light: shadow
+    // rays from a convex object's lit side must miss it (no acne), so the pictures match.
+    let mut lights = vec![
+        dir(-0.45, 0.55, 0.7, 3.0),
+        dir(1.0, 0.0, 0.01, 2.0),
+        dir(0.0, -1.0, 0.2, 1.0),
+        dir(0.3, 0.2, -1.0, 1.0),
+    ];
+    lights.push(Light {
+        kind: LightKind::Point {
+            position: Vec3::new(1.2, 0.4, 1.1),
+        },
+        color: Vec3::ONE,
+        intensity: 2.0,
+    });
+    for light in lights {
+        let mut spec = SceneSpec::new();
+        spec.lights = vec![light];
+        let on = shoot(&scene(&spec), 96);
+        spec.shadows = false;
+        let off = shoot(&scene(&spec), 96);
+        let worst = on
+            .pixels
+            .iter()
+            .zip(&off.pixels)
+            .map(|(a, b)| (*a - *b).abs().max_element())
+            .fold(0.0f32, f32::max);
+        assert!(
+            worst == 0.0,
+            "{light:?}: shadows changed a pixel by {worst}"
+        );
+    }
+}
