@@ -62,6 +62,9 @@ impl LobeForm for Pow {
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_lobe_pow({c}, {})", e.kx(self.n, "p_n", &["n"]))
     }
+    fn cos_dist(&self) -> Option<crate::sample::CosDist> {
+        Some(crate::sample::CosDist::Pow { m: self.n.x })
+    }
     fn wgsl_norm(&self, e: &Emit) -> String {
         // Int(n) = 1 / (n + 2): coef(n) = (n + 2) / (2 pi).
         format!("({} + 2.0) * 0.15915494309189535", e.param("n"))

@@ -133,6 +133,12 @@ impl<const K: u32> LobeForm for Power<K> {
     fn zero_below(&self) -> f64 {
         (1.0 - 1.0 / self.s.x).max(0.0)
     }
+    fn cos_dist(&self) -> Option<crate::sample::CosDist> {
+        Some(crate::sample::CosDist::PowerG {
+            s: self.s.x,
+            g: f64::from(Self::G),
+        })
+    }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         let g = Self::G;
         let expr = if self.tuned {

@@ -146,6 +146,11 @@ impl LobeForm for Exp2Lobe {
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         M::exp2_nonpos(self.k.t::<T>() * (c - T::one()))
     }
+    fn cos_dist(&self) -> Option<crate::sample::CosDist> {
+        Some(crate::sample::CosDist::Exp {
+            r: self.k.x * std::f64::consts::LN_2,
+        })
+    }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         let expr = match self.form {
             Exp2Form::Sg => "p_n * 1.4426950408889634".to_string(),

@@ -27,8 +27,9 @@ use crate::error::Result;
 use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params;
-use crate::plan::{DistForm, Plan};
+use crate::plan::{DistForm, DistSampler, Plan};
 use crate::real::{K, Real};
+use crate::sample::{Micro, MicroKind};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -72,6 +73,18 @@ impl Ggx {
 
 impl DistForm for Ggx {
     const ANISO: bool = true;
+    fn sampler(&self) -> DistSampler {
+        let a = self.alpha2.x.sqrt();
+        DistSampler {
+            micro: Micro {
+                kind: MicroKind::Ggx,
+                ax: a,
+                ay: a,
+            },
+            exact: true,
+            closed: None,
+        }
+    }
     const WGSL: &'static str = include_str!("ggx.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
