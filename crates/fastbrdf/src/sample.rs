@@ -203,9 +203,11 @@ impl CosDist {
 
     /// The density of `c` on [0, 1] (0 outside).
     pub fn pdf<T: Real>(&self, c: T) -> T {
-        if !(c >= T::zero() && c <= T::one()) {
+        // A unit-vector dot product may round above 1.
+        if !(c >= T::zero() && c <= T::c(1.0 + 1e-6)) {
             return T::zero();
         }
+        let c = c.min(T::one());
         match *self {
             CosDist::Pow { m } => T::c(m + 1.0) * c.powf(T::c(m)),
             CosDist::PowerG { s, g } => {

@@ -170,6 +170,24 @@ impl<L: LobeForm> LobeBrdf<L> {
             _ => None,
         }
     }
+
+    /// Phong with a lobe that is not 0 at `c = 0` is `lobe(0)` on the whole back half
+    /// (`c < 0`: the lobe's argument is clamped), which a density on [0, 1] never reaches:
+    /// strategy `s` then draws `c` uniform on [-1, 0) with this probability (`lobe`: the exact
+    /// share `pdf_c(0) / (1 + pdf_c(0))`; `twin`: the share it would have next to `c^n`).
+    fn back(&self, d: &CosDist, s: Strategy) -> f64 {
+        let l0 = self.lobe.at::<f64, Exact>(0.0);
+        if self.blinn || !(l0 > 0.0) {
+            return 0.0;
+        }
+        match s {
+            Strategy::Lobe => {
+                let p0: f64 = d.pdf(0.0);
+                p0 / (1.0 + p0)
+            }
+            _ => l0 / (l0 + 1.0 / (self.n + 1.0)),
+        }
+    }
 }
 
 impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
@@ -241,7 +259,14 @@ impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
             let z = [T::zero(), T::zero(), T::one()];
             sample::reflect_about(wo, d.sample_dir(z, u))
         } else {
-            Some(d.sample_dir(reflect(wo), u))
+            let w0 = T::c(self.back(&d, s));
+            let u0 = sample::unit_interval(u[0]);
+            let c = if u0 < w0 {
+                -(u0 / w0)
+            } else {
+                d.sample((u0 - w0) / (T::one() - w0))
+            };
+            Some(sample::about(reflect(wo), c, sample::unit_interval(u[1])))
         }
     }
     fn pdf_wi<T: Real>(&self, wo: V3<T>, wi: V3<T>, s: Strategy) -> T {
@@ -258,7 +283,14 @@ impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
                 None => T::zero(),
             }
         } else {
-            d.pdf_dir(reflect(wo), wi)
+            let w0 = T::c(self.back(&d, s));
+            let c = crate::vec3::dot(reflect(wo), wi);
+            let pc = if c < T::zero() {
+                w0
+            } else {
+                (T::one() - w0) * d.pdf(c)
+            };
+            pc / T::c(std::f64::consts::TAU)
         }
     }
 }
