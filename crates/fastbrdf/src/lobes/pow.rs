@@ -4,6 +4,7 @@
 //! Source: Phong 1975, Blinn 1977; all three seeds.
 //! Cost: one `pow` (exp2 and log2 inside). Error: exact (it is the reference).
 //! Energy: `Int(n) = integral_0^1 c^n c dc = 1 / (n + 2)`, so `coef(n) = (n + 2) / (2 pi)`.
+//! Sampling (`phong`/`blinn-phong`'s `lobe`): `c = u^(1/(n+1))`, density `(n+1) c^n` (`sample::CosDist::Pow`); the twin every other lobe samples.
 
 use crate::entry::Entry;
 use crate::error::Result;

@@ -6,6 +6,7 @@
 //!   approximation (`PhongApprox`). Cost: 1 mul, 1 add, 1 exp2.
 //!
 //! Parameters: `n` in [1, 100000] (default 20). Error bounds against `pow`: see `INFO`.
+//! Sampling (`lobe`): `c = 1 + ln(e^-r + u (1 - e^-r)) / r` with `r = k ln 2` (`sample::CosDist::Exp`), every rate here.
 
 use crate::entry::Entry;
 use crate::error::Result;

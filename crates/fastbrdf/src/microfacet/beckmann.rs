@@ -20,6 +20,7 @@
 //! `alpha_x`, `alpha_y` with `d = beckmann` (or `beckmann-ct`), this formula at
 //! `alpha = sqrt(alpha_x alpha_y)` on a stretched `sin^2` (`brdf::cook_torrance`,
 //! `DistForm::ANISO`).
+//! Sampling (in `cook-torrance`): `D cos` (`tan^2 = -alpha^2 ln(1 - u)`) and visible normals (Heitz & d'Eon 2014), `sample::Micro`.
 
 use crate::entry::Entry;
 use crate::error::Result;

@@ -16,6 +16,7 @@
 //! Parameters: `alpha` (= m) in [0.005, 1] (default 0.3). Source: seed 000 (Romanyuk et al.).
 //! Cost: `beckmann-pow` 1 mul and 1 pow; power forms 2 mul, 2 add, 1 div and k squarings.
 //! Error bounds against `beckmann-ct`: see the `INFO` constants.
+//! Sampling (in `cook-torrance`): `beckmann-pow` inverts `D cos ~ cos^(2/m^2 - 3)` in closed form (m < 1); the power forms (and `twin`) sample Beckmann's `D cos` at the same alpha and weight by f/pdf.
 
 use super::beckmann::{ct_scale, ct_scale_wgsl};
 use crate::entry::Entry;

@@ -21,6 +21,7 @@
 //! `cook-torrance`'s `alpha_x`, `alpha_y` with `d = ggx`, this formula at
 //! `alpha = sqrt(alpha_x alpha_y)` on a stretched `sin^2` (`brdf::cook_torrance`,
 //! `DistForm::ANISO`).
+//! Sampling (in `cook-torrance`): `D cos` (`tan^2 = alpha^2 u / (1 - u)`) and visible normals (Heitz 2018), `sample::Micro`.
 
 use crate::entry::Entry;
 use crate::error::Result;
