@@ -509,6 +509,14 @@ mod tests {
     use super::*;
 
     #[test]
+    fn strategy_names_round_trip() {
+        for s in Strategy::ALL {
+            assert_eq!(Strategy::parse(s.name()), Some(s));
+        }
+        assert_eq!(Strategy::parse("fast"), None);
+    }
+
+    #[test]
     fn erfinv_inverts_erf() {
         for x in [-0.999999, -0.9, -0.3, 0.0, 0.1, 0.5, 0.99, 0.9999999] {
             let y = erfinv(x);

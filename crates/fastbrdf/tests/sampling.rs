@@ -325,6 +325,15 @@ fn sample_and_pdf_agree_in_both_precisions() {
                         c.name(),
                         x.pdf
                     );
+                    // pdf() normalises the (unit) wi again: an f32 rounding, times the lobe's
+                    // slope (n <= 1000 here; steepest near a power-g cut).
+                    let p32 = b32.pdf(wo32, x.wi, s);
+                    assert!(
+                        (x.pdf - p32).abs() <= 2e-3 * p32,
+                        "{} [{s}] {theta} f32: {} vs pdf {p32}",
+                        c.name(),
+                        x.pdf
+                    );
                     assert!(x.weight.is_finite() && x.weight >= 0.0);
                 }
             }
