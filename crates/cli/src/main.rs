@@ -88,7 +88,9 @@ printf 'cos\\n1\\n0.99\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
 fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  fastbrdf check\n  \
 fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  \
 fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf reproduce --out report/\n  \
-fastbrdf lut --out dfg.exr\n\n\
+fastbrdf lut --out dfg.exr\n  \
+printf 'wo_x,wo_y,wo_z,u1,u2\\n0,0,1,0.3,0.7\\n' | fastbrdf sample --model cook-torrance --param d=ggx\n  \
+fastbrdf chi2 --model phong --param n=100 --theta-i 60\n\n\
 Exit codes:\n  0  success\n  1  a check failed (`check`), or the GPU itself failed\n  \
 2  bad usage or bad input (unknown model, invalid parameter or range, malformed CSV or mesh,\n     \
 an unreadable or oversized input file); nothing is written\n  \
@@ -109,6 +111,10 @@ enum Command {
     Models(commands::models::Args),
     /// Evaluate one model on CSV rows (stdin or --input) and write CSV with a `value` column.
     Eval(commands::eval::Args),
+    /// Importance-sample a BRDF on CSV rows (wo, u): wi, weight = f cos / pdf, pdf.
+    Sample(commands::sample::SampleArgs),
+    /// Chi-square goodness of fit of a BRDF's sampling against its pdf, with a picture.
+    Chi2(commands::sample::Chi2Args),
     /// Re-measure every documented bound on this machine (error vs reference, f32 vs f64).
     Check(commands::check::Args),
     /// Max absolute, max relative and RMS error of a model against a reference, per n or m.
@@ -185,6 +191,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Models(a) => commands::models::run(&a),
         Command::Eval(a) => commands::eval::run(&a),
+        Command::Sample(a) => commands::sample::run_sample(&a),
+        Command::Chi2(a) => commands::sample::run_chi2(&a),
         Command::Check(a) => commands::check::run(&a),
         Command::Errors(a) => commands::analysis::errors(&a),
         Command::Normalize(a) => commands::analysis::normalize(&a),

@@ -30,6 +30,7 @@
 pub mod accuracy;
 pub mod batch;
 pub mod brdf;
+pub mod chi2;
 pub mod colour;
 pub mod entry;
 pub mod error;
@@ -43,6 +44,7 @@ pub mod plan;
 pub mod quad;
 pub mod real;
 pub mod registry;
+pub mod sample;
 pub mod vec3;
 pub mod wgsl;
 

@@ -4,6 +4,7 @@
 use crate::error::{Error, Result};
 use crate::params::ParamSpec;
 use crate::real::Real;
+use crate::sample::{Sample, Strategy};
 use crate::vec3::{Pair, V3};
 use serde::Serialize;
 
@@ -194,6 +195,28 @@ pub trait Brdf<T: Real>: Send + Sync {
     /// Values of `cos theta_h` where the BRDF is discontinuous or has a kink (the lobe's cut
     /// and junctions, for `blinn-phong`): where an adversarial search starts.
     fn half_breaks(&self) -> Vec<f64>;
+    /// The sampling strategies it supports, its default (`auto`) first (`crate::sample`).
+    fn strategies(&self) -> Vec<Strategy>;
+    /// `s` with `auto` replaced by the default, or an error naming the valid ones.
+    fn resolve(&self, s: Strategy) -> std::result::Result<Strategy, String> {
+        let all = self.strategies();
+        match s {
+            Strategy::Auto => Ok(all[0]),
+            s if all.contains(&s) => Ok(s),
+            s => Err(format!(
+                "strategy {s} does not apply to this model; valid: auto, {}",
+                all.iter().map(|x| x.name()).collect::<Vec<_>>().join(", ")
+            )),
+        }
+    }
+    /// Draws `wi` given `wo` and `u` in [0, 1)^2 by strategy `s`: `None` when `wo` is out of
+    /// the domain, `s` does not apply ([`Self::resolve`]), or the draw falls below the horizon
+    /// or has density 0 (the strategy's missing mass). The weight is `f(wi, wo) cos_i / pdf`
+    /// with this model's own evaluation.
+    fn sample(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<Sample<T>>;
+    /// The solid-angle density of [`Self::sample`]'s `wi` given `wo` (0 out of the domain or
+    /// for a strategy that does not apply).
+    fn pdf(&self, wo: V3<T>, wi: V3<T>, s: Strategy) -> T;
 }
 
 /// A built model of any kind, in precision `T`.

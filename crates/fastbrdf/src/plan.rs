@@ -22,7 +22,8 @@ use crate::math::{Exact, Math};
 use crate::model::{self, Kind, Model, ShadowInput};
 use crate::params::Params;
 use crate::real::Real;
-use crate::vec3::{COS_MIN, Pair};
+use crate::sample::{CosDist, Strategy};
+use crate::vec3::{COS_MIN, Pair, V3};
 use crate::wgsl::Emit;
 use std::fmt::Debug;
 
@@ -61,6 +62,12 @@ pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     }
     /// The WGSL call of the lobe's twin on the expression `c`.
     fn wgsl(&self, c: &str, e: &Emit) -> String;
+    /// The density proportional to the lobe on `c` in [0, 1], where it inverts in closed
+    /// form (`pow`, the power-g forms, the spherical Gaussians): Phong's and Blinn-Phong's
+    /// `lobe` strategy. `None`: they sample the exact twin `pow` at the same `n` (`twin`).
+    fn cos_dist(&self) -> Option<CosDist> {
+        None
+    }
     /// Runtime mode: the energy normalisation of Phong and Blinn-Phong with this lobe,
     /// `coef(n) = 1 / (2 pi Int(n))`, `Int(n) = integral_0^1 lobe(c) c dc`, as a WGSL
     /// expression of `p_n` (usually [`norm_by_integral`]: `runtime.wgsl`'s
@@ -84,6 +91,21 @@ pub trait DistForm: Copy + Debug + Send + Sync + 'static {
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T;
     /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String;
+    /// How `cook-torrance` samples half vectors for this D (see [`DistSampler`]).
+    fn sampler(&self) -> DistSampler;
+}
+
+/// How a distribution's half vectors are sampled inside `cook-torrance`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DistSampler {
+    /// The exact distribution at the family's (isotropic) `alpha`: `D cos` and visible-normal
+    /// sampling of this D itself when `exact`, else of its exact twin (`twin`).
+    pub micro: crate::sample::Micro,
+    /// Whether `micro` has this D's shape (up to a constant factor).
+    pub exact: bool,
+    /// `D cos theta_h` normalised, inverted in closed form, for a non-exact D where one
+    /// exists (`beckmann-pow`: `cos^(2/m^2 - 3)`, for m < 1).
+    pub closed: Option<CosDist>,
 }
 
 /// A shadowing-masking term.
@@ -189,6 +211,13 @@ pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
     fn claims_energy(&self) -> bool {
         false
     }
+    /// The sampling strategies it supports (`crate::sample`), its default first.
+    fn strategies(&self) -> Vec<Strategy>;
+    /// A direction `wi` (any length, any side) drawn by strategy `s` (one of
+    /// [`Self::strategies`]) given the unit `wo` above the horizon, or `None` (no sample).
+    fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>>;
+    /// The solid-angle density of [`Self::sample_wi`] at the unit `wi` given the unit `wo`.
+    fn pdf_wi<T: Real>(&self, wo: V3<T>, wi: V3<T>, s: Strategy) -> T;
     /// How far above 1 its albedo may read where it claims energy (0: never above 1; an
     /// energy-compensated BRDF aims at 1 and carries its table's error, `microfacet::ms`).
     fn furnace_tol(&self) -> f64 {
@@ -387,6 +416,9 @@ impl LobeForm for LobePlan {
     fn wgsl_norm(&self, e: &Emit) -> String {
         with_lobe!(self, l => l.wgsl_norm(e))
     }
+    fn cos_dist(&self) -> Option<CosDist> {
+        with_lobe!(self, l => l.cos_dist())
+    }
 }
 
 impl LobePlan {
@@ -405,6 +437,9 @@ impl DistForm for DistPlan {
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         with_dist!(self, d => d.wgsl(c, s2, e))
+    }
+    fn sampler(&self) -> DistSampler {
+        with_dist!(self, d => d.sampler())
     }
 }
 
@@ -519,6 +554,15 @@ impl BrdfForm for BrdfPlan {
     }
     fn furnace_tol(&self) -> f64 {
         with_brdf!(self, b => b.furnace_tol())
+    }
+    fn strategies(&self) -> Vec<Strategy> {
+        with_brdf!(self, b => b.strategies())
+    }
+    fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>> {
+        with_brdf!(self, b => b.sample_wi(wo, u, s))
+    }
+    fn pdf_wi<T: Real>(&self, wo: V3<T>, wi: V3<T>, s: Strategy) -> T {
+        with_brdf!(self, b => b.pdf_wi(wo, wi, s))
     }
 }
 
@@ -682,6 +726,49 @@ impl<T: Real, B: BrdfForm> model::Brdf<T> for Scalar<B> {
     }
     fn half_breaks(&self) -> Vec<f64> {
         self.0.half_breaks()
+    }
+    fn strategies(&self) -> Vec<Strategy> {
+        self.0.strategies()
+    }
+    fn sample(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<crate::sample::Sample<T>> {
+        let s = model::Brdf::<T>::resolve(self, s).ok()?;
+        if !crate::vec3::above_cos_min(wo) {
+            return None;
+        }
+        let wo = crate::vec3::normalize(wo)?;
+        let wi = crate::vec3::normalize(self.0.sample_wi::<T>(wo, u, s)?)?;
+        if !crate::vec3::above_cos_min(wi) {
+            return None;
+        }
+        let pdf = self.0.pdf_wi(wo, wi, s);
+        if !(pdf > T::zero() && pdf.is_finite()) {
+            return None;
+        }
+        let f = model::Brdf::eval(self, wi, wo);
+        Some(crate::sample::Sample {
+            wi,
+            weight: f * wi[2] / pdf,
+            pdf,
+        })
+    }
+    fn pdf(&self, wo: V3<T>, wi: V3<T>, s: Strategy) -> T {
+        let Ok(s) = model::Brdf::<T>::resolve(self, s) else {
+            return T::zero();
+        };
+        if !(crate::vec3::above_cos_min(wo) && crate::vec3::above_cos_min(wi)) {
+            return T::zero();
+        }
+        match (crate::vec3::normalize(wo), crate::vec3::normalize(wi)) {
+            (Some(wo), Some(wi)) => {
+                let p = self.0.pdf_wi(wo, wi, s);
+                if p > T::zero() && p.is_finite() {
+                    p
+                } else {
+                    T::zero()
+                }
+            }
+            _ => T::zero(),
+        }
     }
 }
 

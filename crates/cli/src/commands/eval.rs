@@ -87,12 +87,35 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .iter()
         .map(|l| l.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect())
         .collect();
-    let limit = a.max_input_mib.checked_mul(1 << 20).ok_or_else(|| {
-        CliError::input(format!("--max-input-mib {}: too large", a.max_input_mib))
-    })?;
-    let (bytes, source) = match &a.input {
+    let (text, source) = read_input(a.input.as_deref(), a.max_input_mib, "eval")?;
+    fn build<T: Real>(id: &str, givens: &[Vec<(&str, &str)>]) -> Result<Vec<Model<T>>, CliError> {
+        Ok(givens
+            .iter()
+            .map(|g| registry::build::<T>(id, g))
+            .collect::<Result<_, _>>()?)
+    }
+    let out = if a.precision == "f64" {
+        evaluate(build::<f64>(&a.model, &givens)?, &text, &source)?
+    } else {
+        evaluate(build::<f32>(&a.model, &givens)?, &text, &source)?
+    };
+    super::write_stdout(out.as_bytes())
+}
+
+/// The CSV input of `command` (`--input FILE` or stdin), read once and at most `max_mib` MiB,
+/// as UTF-8 text, with its name for messages.
+pub(crate) fn read_input(
+    input: Option<&Path>,
+    max_mib: u64,
+    command: &str,
+) -> Result<(String, String), CliError> {
+    let what = format!("{command} input (see --max-input-mib)");
+    let limit = max_mib
+        .checked_mul(1 << 20)
+        .ok_or_else(|| CliError::input(format!("--max-input-mib {max_mib}: too large")))?;
+    let (bytes, source) = match input {
         Some(path) => (
-            fastbrdf_io::read_bounded(path, limit, "eval input (see --max-input-mib)")?,
+            fastbrdf_io::read_bounded(path, limit, &what)?,
             path.display().to_string(),
         ),
         None => {
@@ -106,25 +129,14 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                     std::io::stdin().lock(),
                     Path::new("<stdin>"),
                     limit,
-                    "eval input (see --max-input-mib)",
+                    &what,
                 )?,
                 "<stdin>".to_string(),
             )
         }
     };
     let text = fastbrdf_io::utf8_text(bytes, Path::new(&source))?;
-    fn build<T: Real>(id: &str, givens: &[Vec<(&str, &str)>]) -> Result<Vec<Model<T>>, CliError> {
-        Ok(givens
-            .iter()
-            .map(|g| registry::build::<T>(id, g))
-            .collect::<Result<_, _>>()?)
-    }
-    let out = if a.precision == "f64" {
-        evaluate(build::<f64>(&a.model, &givens)?, &text, &source)?
-    } else {
-        evaluate(build::<f32>(&a.model, &givens)?, &text, &source)?
-    };
-    super::write_stdout(out.as_bytes())
+    Ok((text, source))
 }
 
 /// The output columns of one model (grey) or three (the R, G, B channels of a coloured one).
@@ -242,7 +254,7 @@ pub fn evaluate<T: Real + std::str::FromStr>(
 }
 
 /// A CSV reading error, naming the line where the record starts.
-fn csv_error(source: &str, text: &str, e: &csv::Error) -> CliError {
+pub(crate) fn csv_error(source: &str, text: &str, e: &csv::Error) -> CliError {
     let line = e.position().map(|p| line_of(text, p));
     let at = line.map_or_else(String::new, |l| format!("line {l}: "));
     let what = match e.kind() {
@@ -259,14 +271,14 @@ fn csv_error(source: &str, text: &str, e: &csv::Error) -> CliError {
 /// Line numbers of byte offsets, computed incrementally: records come in order, so the input is
 /// scanned once in all (a line count from the start for every record made `eval` quadratic in
 /// its input). A line ends at "\n", "\r\n" or a lone "\r", the csv crate's terminators.
-struct Lines<'a> {
+pub(crate) struct Lines<'a> {
     bytes: &'a [u8],
     at: usize,
     line: u64,
 }
 
 impl<'a> Lines<'a> {
-    fn new(text: &'a str) -> Self {
+    pub(crate) fn new(text: &'a str) -> Self {
         Self {
             bytes: text.as_bytes(),
             at: 0,
@@ -277,7 +289,7 @@ impl<'a> Lines<'a> {
     /// The line where a record starts. The csv crate's own line count is one short for a
     /// record that follows blank lines (its position points at the skipped line break), so the
     /// line is computed from the byte offset, past any line breaks.
-    fn of(&mut self, p: &csv::Position) -> u64 {
+    pub(crate) fn of(&mut self, p: &csv::Position) -> u64 {
         let b = self.bytes;
         let mut target = usize::try_from(p.byte()).unwrap_or(usize::MAX).min(b.len());
         while target < b.len() && matches!(b[target], b'\n' | b'\r') {
@@ -299,7 +311,7 @@ impl<'a> Lines<'a> {
 }
 
 /// The line where a record starts (one-off; see [`Lines`]).
-fn line_of(text: &str, p: &csv::Position) -> u64 {
+pub(crate) fn line_of(text: &str, p: &csv::Position) -> u64 {
     Lines::new(text).of(p)
 }
 

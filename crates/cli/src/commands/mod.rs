@@ -15,6 +15,7 @@ pub mod pareto_brdf;
 pub mod plot;
 pub mod render;
 pub mod reproduce;
+pub mod sample;
 pub mod shader;
 
 use crate::CliError;

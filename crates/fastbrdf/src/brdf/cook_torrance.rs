@@ -58,6 +58,12 @@
 //! pair set-up: 2 normalisations of wi, wo and one of h), plus the compensation's (see
 //! `microfacet::ms`). Reciprocal, except with `ms = filament` (its factor depends on `wo` only).
 //!
+//! Sampling (issue 15): the half vector, then `wi = reflect(wo, h)`, `pdf = p_h / (4 wo.h)`.
+//! Exact D (`beckmann`, `beckmann-ct`, `ggx`, anisotropic too): `vndf` (default; GGX Heitz
+//! 2018, Beckmann Heitz & d'Eon 2014) or `d-cos`; `beckmann-pow` (m < 1): `d-cos` in closed
+//! form (`cos^(2/m^2 - 3)`) or `twin`; the power forms: `twin` (Beckmann's `D cos` at the same
+//! alpha); all `cosine`. `ms` and F only change the weight (`DistForm::sampler`).
+//!
 //! With `ms = kulla-conty` (or `filament`, seen from `wo`) and `f = none` the white furnace
 //! reads 1 within 1% (0.4% measured) for `alpha` in [0.005, 1] and `cos >= 0.01` (`tests/energy.rs`);
 //! `fastbrdf albedo --model cook-torrance --param alpha=1 --ms-compare` (d = ggx and
@@ -75,6 +81,7 @@ use crate::plan::{
     BrdfForm, DistForm, DistPlan, FresnelForm, FresnelPlan, Models, Plan, ShadowForm, ShadowPlan,
 };
 use crate::real::{K, Real};
+use crate::sample::{self, Micro, Strategy};
 use crate::vec3::COS_MIN;
 use crate::vec3::{Pair, V3};
 use crate::wgsl::{Emit, PAIR};
@@ -329,6 +336,50 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G,
     // The body is assembled per instance from its D, G and F's functions; the file holds the
     // anisotropic stretch.
     const WGSL: &'static str = include_str!("cook_torrance.wgsl");
+    fn strategies(&self) -> Vec<Strategy> {
+        let s = self.d.sampler();
+        if s.exact {
+            vec![Strategy::Vndf, Strategy::DCos, Strategy::Cosine]
+        } else if s.closed.is_some() {
+            vec![Strategy::DCos, Strategy::Twin, Strategy::Cosine]
+        } else {
+            vec![Strategy::Twin, Strategy::Cosine]
+        }
+    }
+    fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>> {
+        let ds = self.d.sampler();
+        let micro = self.micro();
+        let h = match s {
+            Strategy::Cosine => return Some(sample::cosine(u)),
+            Strategy::Vndf if ds.exact => micro.sample_vndf(wo, u),
+            Strategy::DCos if ds.exact => micro.sample_dcos(u),
+            Strategy::DCos => ds.closed?.sample_dir([T::zero(), T::zero(), T::one()], u),
+            Strategy::Twin if !ds.exact => micro.sample_dcos(u),
+            _ => return None,
+        };
+        sample::reflect_about(wo, h)
+    }
+    fn pdf_wi<T: Real>(&self, wo: V3<T>, wi: V3<T>, s: Strategy) -> T {
+        if s == Strategy::Cosine {
+            return sample::cosine_pdf(wi);
+        }
+        let Some((h, c)) = sample::half(wo, wi) else {
+            return T::zero();
+        };
+        let ds = self.d.sampler();
+        let micro = self.micro();
+        let ph = match s {
+            Strategy::Vndf if ds.exact => micro.pdf_vndf(wo, h),
+            Strategy::DCos if ds.exact => micro.pdf_dcos(h),
+            Strategy::DCos => match ds.closed {
+                Some(d) => d.pdf_dir([T::zero(), T::zero(), T::one()], h),
+                None => T::zero(),
+            },
+            Strategy::Twin if !ds.exact => micro.pdf_dcos(h),
+            _ => T::zero(),
+        };
+        ph / (T::c(4.0) * c)
+    }
     fn simd(&self) -> bool {
         // The compensation's table reads are gathers.
         G::SIMD && self.ms == Ms::None
@@ -390,6 +441,20 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G,
 }
 
 impl<D: DistForm, G: ShadowForm, F: FresnelForm> CookTorrance<D, G, F> {
+    /// The exact distribution sampling draws from (D's own or its twin), at the slopes
+    /// `alpha sqrt(alpha_x / alpha_y)`, `alpha sqrt(alpha_y / alpha_x)` when anisotropic.
+    fn micro(&self) -> Micro {
+        let m = self.d.sampler().micro;
+        match &self.aniso {
+            None => m,
+            Some(a) => Micro {
+                ax: m.ax * a.x_over_y.x.sqrt(),
+                ay: m.ay * a.y_over_x.x.sqrt(),
+                ..m
+            },
+        }
+    }
+
     /// The body: `wgsl_body`'s, with the anisotropic stretch when `aniso` is set.
     fn wgsl_iso(&self, e: &Emit) -> String {
         let (stretch, s2, v, l) = match &self.aniso {

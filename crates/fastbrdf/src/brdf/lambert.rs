@@ -2,6 +2,7 @@
 //!
 //! Parameters: `albedo` in [0, 1] (default 1). Source: Lambert 1760. Cost: nothing per
 //! evaluation (a constant). Albedo equals `albedo` at every incidence (energy conserving).
+//! Sampling: cosine-weighted (`cosine`), so every weight is exactly `albedo`.
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -10,7 +11,8 @@ use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{ParamKind, ParamSpec};
 use crate::plan::{BrdfForm, Plan};
 use crate::real::{K, Real};
-use crate::vec3::Pair;
+use crate::sample::{self, Strategy};
+use crate::vec3::{Pair, V3};
 use crate::wgsl::{Emit, PAIR};
 
 pub const ALBEDO: ParamSpec = ParamSpec {
@@ -72,5 +74,14 @@ impl BrdfForm for Lambert {
     }
     fn claims_energy(&self) -> bool {
         true
+    }
+    fn strategies(&self) -> Vec<Strategy> {
+        vec![Strategy::Cosine]
+    }
+    fn sample_wi<T: Real>(&self, _wo: V3<T>, u: [T; 2], _s: Strategy) -> Option<V3<T>> {
+        Some(sample::cosine(u))
+    }
+    fn pdf_wi<T: Real>(&self, _wo: V3<T>, wi: V3<T>, _s: Strategy) -> T {
+        sample::cosine_pdf(wi)
     }
 }

@@ -18,6 +18,10 @@
 //! Parameters: `lobe` (a lobe id, default `pow`), `n` in [1, 100000] (default 20), `norm`
 //! (`energy` or `none`, default `energy`). Cost: the lobe's, plus 3 mul, 2 add (phong) or
 //! 1 mul, 1 div (blinn-phong, energy). Reciprocal.
+//! Sampling: `lobe` (the lobe's own density inverted in closed form, `LobeForm::cos_dist`:
+//! `pow`, power-g forms, spherical Gaussians; around the mirror of `wo` for Phong, the half
+//! vector about the normal for Blinn-Phong), `twin` (`pow` at the same `n`; the default for
+//! the other lobes), `cosine`.
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -27,7 +31,8 @@ use crate::params::{self, Options, ParamKind, ParamSpec, Params};
 use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
 use crate::quad;
 use crate::real::{K, Real, min1, pos};
-use crate::vec3::Pair;
+use crate::sample::{self, CosDist, Strategy};
+use crate::vec3::{Pair, V3, reflect};
 use crate::wgsl::{Emit, PAIR};
 
 pub const LOBE: ParamSpec = ParamSpec {
@@ -106,6 +111,8 @@ pub struct LobeBrdf<L = LobePlan> {
     coef: K,
     blinn: bool,
     normalized: bool,
+    /// The exponent (the twin `pow`'s, for sampling).
+    n: f64,
 }
 
 impl LobeBrdf {
@@ -128,6 +135,7 @@ impl LobeBrdf {
             coef: K::new(coef),
             blinn,
             normalized,
+            n,
         })
     }
 
@@ -139,6 +147,7 @@ impl LobeBrdf {
             coef: self.coef,
             blinn: self.blinn,
             normalized: self.normalized,
+            n: self.n,
         }
     }
 }
@@ -151,6 +160,33 @@ impl<L: LobeForm> LobeBrdf<L> {
         let mut b = self.lobe.kinks();
         b.push(self.lobe.zero_below());
         b
+    }
+
+    /// The cosine density strategy `s` draws from.
+    fn dist(&self, s: Strategy) -> Option<CosDist> {
+        match s {
+            Strategy::Lobe => self.lobe.cos_dist(),
+            Strategy::Twin => Some(CosDist::Pow { m: self.n }),
+            _ => None,
+        }
+    }
+
+    /// Phong with a lobe that is not 0 at `c = 0` is `lobe(0)` on the whole back half
+    /// (`c < 0`: the lobe's argument is clamped), which a density on [0, 1] never reaches:
+    /// strategy `s` then draws `c` uniform on [-1, 0) with this probability (`lobe`: the exact
+    /// share `pdf_c(0) / (1 + pdf_c(0))`; `twin`: the share it would have next to `c^n`).
+    fn back(&self, d: &CosDist, s: Strategy) -> f64 {
+        let l0 = self.lobe.at::<f64, Exact>(0.0);
+        if self.blinn || !(l0 > 0.0) {
+            return 0.0;
+        }
+        match s {
+            Strategy::Lobe => {
+                let p0: f64 = d.pdf(0.0);
+                p0 / (1.0 + p0)
+            }
+            _ => l0 / (l0 + 1.0 / (self.n + 1.0)),
+        }
     }
 }
 
@@ -206,5 +242,55 @@ impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
     }
     fn claims_energy(&self) -> bool {
         self.normalized || self.lobe.normalised()
+    }
+    fn strategies(&self) -> Vec<Strategy> {
+        if self.lobe.cos_dist().is_some() {
+            vec![Strategy::Lobe, Strategy::Twin, Strategy::Cosine]
+        } else {
+            vec![Strategy::Twin, Strategy::Cosine]
+        }
+    }
+    fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>> {
+        if s == Strategy::Cosine {
+            return Some(sample::cosine(u));
+        }
+        let d = self.dist(s)?;
+        if self.blinn {
+            let z = [T::zero(), T::zero(), T::one()];
+            sample::reflect_about(wo, d.sample_dir(z, u))
+        } else {
+            let w0 = T::c(self.back(&d, s));
+            let u0 = sample::unit_interval(u[0]);
+            let c = if u0 < w0 {
+                -(u0 / w0)
+            } else {
+                d.sample((u0 - w0) / (T::one() - w0))
+            };
+            Some(sample::about(reflect(wo), c, sample::unit_interval(u[1])))
+        }
+    }
+    fn pdf_wi<T: Real>(&self, wo: V3<T>, wi: V3<T>, s: Strategy) -> T {
+        if s == Strategy::Cosine {
+            return sample::cosine_pdf(wi);
+        }
+        let Some(d) = self.dist(s) else {
+            return T::zero();
+        };
+        if self.blinn {
+            let z = [T::zero(), T::zero(), T::one()];
+            match sample::half(wo, wi) {
+                Some((h, c)) => d.pdf_dir(z, h) / (T::c(4.0) * c),
+                None => T::zero(),
+            }
+        } else {
+            let w0 = T::c(self.back(&d, s));
+            let c = crate::vec3::dot(reflect(wo), wi);
+            let pc = if c < T::zero() {
+                w0
+            } else {
+                (T::one() - w0) * d.pdf(c)
+            };
+            pc / T::c(std::f64::consts::TAU)
+        }
     }
 }

@@ -25,6 +25,7 @@
 //!
 //! Parameters: `n` in [1, 100000] (default 20). Cost: 3 mul, 4 add (constants precomputed); the
 //! seed's monomial form is 5 mul, 2 add. Error bounds: see `INFO`.
+//! Sampling: no closed-form inverse used; `phong`/`blinn-phong` sample the twin `pow` at the same n (`twin`) and weight by f/pdf.
 
 use crate::entry::Entry;
 use crate::error::Result;

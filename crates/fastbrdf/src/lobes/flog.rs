@@ -15,6 +15,7 @@
 //!
 //! Parameters: `n` in [1, 100000] (default 20). Source: seed 001 (Romanyuk et al., ACIT 2023).
 //! Error bounds against `pow`: see the `INFO` constants.
+//! Sampling: no closed-form inverse used; `phong`/`blinn-phong` sample the twin `pow` at the same n (`twin`) and weight by f/pdf.
 
 use crate::entry::Entry;
 use crate::error::Result;

@@ -4,6 +4,7 @@
 //! Source: Phong 1975, Blinn 1977; all three seeds.
 //! Cost: one `pow` (exp2 and log2 inside). Error: exact (it is the reference).
 //! Energy: `Int(n) = integral_0^1 c^n c dc = 1 / (n + 2)`, so `coef(n) = (n + 2) / (2 pi)`.
+//! Sampling (`phong`/`blinn-phong`'s `lobe`): `c = u^(1/(n+1))`, density `(n+1) c^n` (`sample::CosDist::Pow`); the twin every other lobe samples.
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -61,6 +62,9 @@ impl LobeForm for Pow {
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_lobe_pow({c}, {})", e.kx(self.n, "p_n", &["n"]))
+    }
+    fn cos_dist(&self) -> Option<crate::sample::CosDist> {
+        Some(crate::sample::CosDist::Pow { m: self.n.x })
     }
     fn wgsl_norm(&self, e: &Emit) -> String {
         // Int(n) = 1 / (n + 2): coef(n) = (n + 2) / (2 pi).

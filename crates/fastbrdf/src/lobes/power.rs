@@ -6,6 +6,7 @@
 //! and zero below `c = 1 - g/n`.
 //! Parameters: `n` in [1, 100000] (default 20). Cost: 1 mul, 1 add (constants precomputed) and
 //! `k` squarings (k = 2, 3, 4). Error bounds against `pow`: see the `INFO` constants.
+//! Sampling (`lobe`): the closed-form CDF of `(1 + s (c - 1))^g` (`sample::CosDist::PowerG`), tuned forms too.
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -132,6 +133,12 @@ impl<const K: u32> LobeForm for Power<K> {
     }
     fn zero_below(&self) -> f64 {
         (1.0 - 1.0 / self.s.x).max(0.0)
+    }
+    fn cos_dist(&self) -> Option<crate::sample::CosDist> {
+        Some(crate::sample::CosDist::PowerG {
+            s: self.s.x,
+            g: f64::from(Self::G),
+        })
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         let g = Self::G;

@@ -10,6 +10,7 @@
 //!   Cost: the cubic or the rational, plus one compare.
 //!
 //! Parameters: `n` in [1, 100000] (default 20). Error bounds against `pow`: see `INFO`.
+//! Sampling: no closed-form inverse used; `phong`/`blinn-phong` sample the twin `pow` at the same n (`twin`) and weight by f/pdf.
 
 use super::cubic::{Cubic, CubicShape};
 use crate::entry::Entry;

@@ -10,6 +10,7 @@
 //!   Cost: 4 mul, 2 add, 1 div.
 //!
 //! Parameters: `n` in [1, 100000] (default 20). Error bounds against `pow`: see `INFO`.
+//! Sampling: no closed-form inverse used; `phong`/`blinn-phong` sample the twin `pow` at the same n (`twin`) and weight by f/pdf.
 
 use crate::entry::Entry;
 use crate::error::Result;

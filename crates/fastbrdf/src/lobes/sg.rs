@@ -6,6 +6,7 @@
 //!   approximation (`PhongApprox`). Cost: 1 mul, 1 add, 1 exp2.
 //!
 //! Parameters: `n` in [1, 100000] (default 20). Error bounds against `pow`: see `INFO`.
+//! Sampling (`lobe`): `c = 1 + ln(e^-r + u (1 - e^-r)) / r` with `r = k ln 2` (`sample::CosDist::Exp`), every rate here.
 
 use crate::entry::Entry;
 use crate::error::Result;
@@ -145,6 +146,11 @@ impl LobeForm for Exp2Lobe {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         M::exp2_nonpos(self.k.t::<T>() * (c - T::one()))
+    }
+    fn cos_dist(&self) -> Option<crate::sample::CosDist> {
+        Some(crate::sample::CosDist::Exp {
+            r: self.k.x * std::f64::consts::LN_2,
+        })
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         let expr = match self.form {

@@ -27,6 +27,7 @@
 //! `Q` and slope `n Q / q` at `q` is `Q c / (n (q - c) + c)` (`a = n q / Q`, `b = (n - 1) / Q`;
 //! at `Q = 0.5` this is seed 003's `c / (2n 0.5^(1/n) - (2n - 2) c)`). Above it, the Hermite cubic
 //! through (0, 0), (1, 1) matched in value and slope at `q` (`CubicShape::hermite_at`).
+//! Sampling: as the untuned family (power and sg forms in closed form, cubic-rational by the twin `pow`).
 
 use super::cubic::CubicShape;
 

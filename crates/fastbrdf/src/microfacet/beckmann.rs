@@ -20,14 +20,16 @@
 //! `alpha_x`, `alpha_y` with `d = beckmann` (or `beckmann-ct`), this formula at
 //! `alpha = sqrt(alpha_x alpha_y)` on a stretched `sin^2` (`brdf::cook_torrance`,
 //! `DistForm::ANISO`).
+//! Sampling (in `cook-torrance`): `D cos` (`tan^2 = -alpha^2 ln(1 - u)`) and visible normals (Heitz & d'Eon 2014), `sample::Micro`.
 
 use crate::entry::Entry;
 use crate::error::Result;
 use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params;
-use crate::plan::{DistForm, Plan};
+use crate::plan::{DistForm, DistSampler, Plan};
 use crate::real::{K, Real};
+use crate::sample::{Micro, MicroKind};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -109,6 +111,17 @@ pub(crate) fn ct_scale_wgsl(alpha: f64, e: &Emit) -> String {
 
 impl DistForm for Beckmann {
     const ANISO: bool = true;
+    fn sampler(&self) -> DistSampler {
+        DistSampler {
+            micro: Micro {
+                kind: MicroKind::Beckmann,
+                ax: self.alpha,
+                ay: self.alpha,
+            },
+            exact: true,
+            closed: None,
+        }
+    }
     const WGSL: &'static str = include_str!("beckmann.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {

@@ -16,6 +16,7 @@
 //! Parameters: `alpha` (= m) in [0.005, 1] (default 0.3). Source: seed 000 (Romanyuk et al.).
 //! Cost: `beckmann-pow` 1 mul and 1 pow; power forms 2 mul, 2 add, 1 div and k squarings.
 //! Error bounds against `beckmann-ct`: see the `INFO` constants.
+//! Sampling (in `cook-torrance`): `beckmann-pow` inverts `D cos ~ cos^(2/m^2 - 3)` in closed form (m < 1); the power forms (and `twin`) sample Beckmann's `D cos` at the same alpha and weight by f/pdf.
 
 use super::beckmann::{ct_scale, ct_scale_wgsl};
 use crate::entry::Entry;
@@ -23,8 +24,9 @@ use crate::error::Result;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
-use crate::plan::{DistForm, Plan};
+use crate::plan::{DistForm, DistSampler, Plan};
 use crate::real::{K as Coef, Real, pos, pow2k};
+use crate::sample::{CosDist, Micro, MicroKind};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -188,7 +190,26 @@ impl BeckmannPow {
     }
 }
 
+/// The exact twin of the seed's forms: Beckmann at the same `alpha`, sampled by `D cos`.
+fn twin(alpha: f64, closed: Option<CosDist>) -> DistSampler {
+    DistSampler {
+        micro: Micro {
+            kind: MicroKind::Beckmann,
+            ax: alpha,
+            ay: alpha,
+        },
+        exact: false,
+        closed,
+    }
+}
+
 impl DistForm for BeckmannPow {
+    /// `D cos = cos^(2/m^2 - 3) / (4 m^2)` inverts in closed form where it is integrable
+    /// (`2/m^2 - 3 > -1`: m < 1); at m = 1 only the twin.
+    fn sampler(&self) -> DistSampler {
+        let m = exponent(self.alpha) + 1.0;
+        twin(self.alpha, (m > -1.0 + 1e-9).then_some(CosDist::Pow { m }))
+    }
     const WGSL: &'static str = include_str!("beckmann_pow.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, _sin2_h: T) -> T {
@@ -228,6 +249,10 @@ impl<const K: u32> BeckmannPower<K> {
 }
 
 impl<const K: u32> DistForm for BeckmannPower<K> {
+    /// `D cos` (a power-g form times `cos`) has no closed-form inverse: the twin.
+    fn sampler(&self) -> DistSampler {
+        twin(self.alpha, None)
+    }
     const WGSL: &'static str = include_str!("beckmann_pow.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {

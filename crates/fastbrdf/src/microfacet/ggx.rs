@@ -21,14 +21,16 @@
 //! `cook-torrance`'s `alpha_x`, `alpha_y` with `d = ggx`, this formula at
 //! `alpha = sqrt(alpha_x alpha_y)` on a stretched `sin^2` (`brdf::cook_torrance`,
 //! `DistForm::ANISO`).
+//! Sampling (in `cook-torrance`): `D cos` (`tan^2 = alpha^2 u / (1 - u)`) and visible normals (Heitz 2018), `sample::Micro`.
 
 use crate::entry::Entry;
 use crate::error::Result;
 use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params;
-use crate::plan::{DistForm, Plan};
+use crate::plan::{DistForm, DistSampler, Plan};
 use crate::real::{K, Real};
+use crate::sample::{Micro, MicroKind};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -72,6 +74,18 @@ impl Ggx {
 
 impl DistForm for Ggx {
     const ANISO: bool = true;
+    fn sampler(&self) -> DistSampler {
+        let a = self.alpha2.x.sqrt();
+        DistSampler {
+            micro: Micro {
+                kind: MicroKind::Ggx,
+                ax: a,
+                ay: a,
+            },
+            exact: true,
+            closed: None,
+        }
+    }
     const WGSL: &'static str = include_str!("ggx.wgsl");
     #[inline(always)]
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {

@@ -1,0 +1,432 @@
+//! `fastbrdf sample` (importance sampling of a BRDF on CSV rows) and `fastbrdf chi2` (its
+//! chi-square goodness-of-fit test), issue 15. The library samples (`fastbrdf::sample`) and
+//! tests (`fastbrdf::chi2`); this module parses, prints and draws.
+
+use super::eval::{Lines, csv_error, line_of, parse_params, read_input};
+use crate::CliError;
+use fastbrdf::chi2::{self, Config, Outcome};
+use fastbrdf::sample::Strategy;
+use fastbrdf::{Brdf, Model, Real, registry};
+use fastbrdf_io::shorten;
+
+const QUOTE: usize = 40;
+
+const STRATEGY_HELP: &str = "Strategies: auto (the model's default), cosine (every BRDF), lobe \
+(closed-form lobe: phong/blinn-phong with pow, power*, sg*; ward-pow; the default there), \
+d-cos (half vector from D cos: cook-torrance with beckmann(-ct), ggx, beckmann-pow; ward), \
+vndf (visible normals: cook-torrance with beckmann(-ct) or ggx; the default there), twin (the \
+exact twin's sampling weighted by f/pdf: other lobes, beckmann-power*, ward-pow, ward-power16). \
+An invalid combination is an error naming the valid ones.";
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  printf 'wo_x,wo_y,wo_z,u1,u2\\n0.5,0,0.866,0.3,0.7\\n' | fastbrdf sample --model cook-torrance --param d=ggx --param alpha=0.2\n  \
+fastbrdf sample --model phong --param n=100 --strategy lobe --precision f64 --input rows.csv\n  \
+printf 'wo_x,wo_y,wo_z,wi_x,wi_y,wi_z\\n0,0,1,0,0,1\\n' | fastbrdf sample --model lambert --pdf\n\n\
+Input: CSV with a header and columns wo_x,wo_y,wo_z,u1,u2 (u in [0, 1)); with --pdf,\n\
+wo_x,wo_y,wo_z,wi_x,wi_y,wi_z. Other columns are passed through. Output: the input columns\n\
+then wi_x,wi_y,wi_z,weight,pdf (weight = f(wi, wo) cos theta_i / pdf); a row that yields no\n\
+sample (the draw fell below the horizon or has density 0: the strategy's missing mass) gives\n\
+0,0,0,0,0. With --pdf: the input columns then pdf. Local frame: normal +z, wo and wi point\n\
+away from the surface. Errors name the file, the line and the field; exit code 2 for bad\n\
+input (nothing on stdout), 3 when stdout cannot be written.\n\n\
+Strategies: auto (the model's default), cosine (every BRDF), lobe, d-cos, vndf, twin (see\n\
+README's \"Sampling\"); an invalid combination is an error naming the valid ones."
+)]
+pub struct SampleArgs {
+    /// Model id: a full BRDF (see `fastbrdf models --kind brdf`).
+    #[arg(long)]
+    model: String,
+    /// A parameter, NAME=VALUE; repeat for several.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// Sampling strategy: auto, cosine, lobe, d-cos, vndf, twin.
+    #[arg(long, default_value = "auto", help = STRATEGY_HELP)]
+    strategy: String,
+    /// Arithmetic precision.
+    #[arg(long, default_value = "f32", value_parser = ["f32", "f64"])]
+    precision: String,
+    /// Evaluate the pdf of given (wo, wi) rows instead of sampling.
+    #[arg(long)]
+    pdf: bool,
+    /// Read CSV from this file instead of stdin.
+    #[arg(long)]
+    input: Option<std::path::PathBuf>,
+    /// The most input read, in MiB (the input is refused beyond it, before any output).
+    #[arg(long, default_value_t = 256, value_name = "MIB")]
+    max_input_mib: u64,
+}
+
+/// The BRDF `id` with `params` in precision `T`, and the strategy resolved for it.
+fn brdf<T: Real>(
+    id: &str,
+    params: &[(String, String)],
+    strategy: &str,
+) -> Result<(Box<dyn Brdf<T>>, Strategy), CliError> {
+    let given: Vec<(&str, &str)> = params
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.as_str()))
+        .collect();
+    let b = match registry::build::<T>(id, &given)? {
+        Model::Brdf(b) => b,
+        m => {
+            return Err(CliError::input(format!(
+                "{id} is a {} model: only full BRDFs sample (a lobe through phong or blinn-phong's lobe=, a distribution through cook-torrance's d=)",
+                m.kind().name()
+            )));
+        }
+    };
+    let s = Strategy::parse(strategy).ok_or_else(|| {
+        CliError::input(format!(
+            "--strategy '{}': expected one of {}",
+            shorten(strategy, QUOTE),
+            Strategy::ALL.map(|s| s.name()).join(", ")
+        ))
+    })?;
+    let s = b
+        .resolve(s)
+        .map_err(|e| CliError::input(format!("{id}: {e}")))?;
+    Ok((b, s))
+}
+
+pub fn run_sample(a: &SampleArgs) -> Result<(), CliError> {
+    let params = parse_params(&a.params)?;
+    if fastbrdf::colour::channels(&a.model, &params)?.is_some() {
+        return Err(CliError::input(
+            "sample: a coloured parameter (R,G,B) is three models; sample one channel at a time",
+        ));
+    }
+    let (text, source) = read_input(a.input.as_deref(), a.max_input_mib, "sample")?;
+    let out = if a.precision == "f64" {
+        let (b, s) = brdf::<f64>(&a.model, &params, &a.strategy)?;
+        rows(b.as_ref(), s, a.pdf, &text, &source)?
+    } else {
+        let (b, s) = brdf::<f32>(&a.model, &params, &a.strategy)?;
+        rows(b.as_ref(), s, a.pdf, &text, &source)?
+    };
+    super::write_stdout(out.as_bytes())
+}
+
+/// Samples (or evaluates the pdf of) every row; the whole output CSV.
+fn rows<T: Real + std::str::FromStr>(
+    b: &dyn Brdf<T>,
+    s: Strategy,
+    pdf_mode: bool,
+    text: &str,
+    source: &str,
+) -> Result<String, CliError> {
+    let (inputs, outputs): (&[&str], &[&str]) = if pdf_mode {
+        (&["wo_x", "wo_y", "wo_z", "wi_x", "wi_y", "wi_z"], &["pdf"])
+    } else {
+        (
+            &["wo_x", "wo_y", "wo_z", "u1", "u2"],
+            &["wi_x", "wi_y", "wi_z", "weight", "pdf"],
+        )
+    };
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let headers = reader
+        .headers()
+        .map_err(|e| csv_error(source, text, &e))?
+        .clone();
+    let hline = headers.position().map_or(1, |p| line_of(text, p));
+    if let Some(v) = outputs.iter().find(|v| headers.iter().any(|h| h == **v)) {
+        return Err(CliError::input(format!(
+            "{source}: line {hline}: the input already has a '{v}' column"
+        )));
+    }
+    let mut index = Vec::new();
+    for name in inputs {
+        let found: Vec<usize> = headers
+            .iter()
+            .enumerate()
+            .filter(|(_, h)| h == name)
+            .map(|(i, _)| i)
+            .collect();
+        match found[..] {
+            [i] => index.push(i),
+            [] => {
+                return Err(CliError::input(format!(
+                    "{source}: line {hline}: missing column '{name}' (sample needs columns {})",
+                    inputs.join(",")
+                )));
+            }
+            _ => {
+                return Err(CliError::input(format!(
+                    "{source}: line {hline}: column '{name}' appears more than once"
+                )));
+            }
+        }
+    }
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    let mut header_out: Vec<&str> = headers.iter().collect();
+    header_out.extend(outputs);
+    writer.write_record(&header_out).expect("writing to memory");
+    let mut lines = Lines::new(text);
+    for record in reader.records() {
+        let record = record.map_err(|e| csv_error(source, text, &e))?;
+        let line = record.position().map_or(0, |p| lines.of(p));
+        let field_err = |k: usize, why: String| {
+            CliError::input(format!(
+                "{source}: line {line}, field {} ('{}'): {why}",
+                index[k] + 1,
+                inputs[k]
+            ))
+        };
+        let mut x: Vec<T> = Vec::with_capacity(index.len());
+        for (k, &i) in index.iter().enumerate() {
+            let field = record.get(i).unwrap_or("");
+            let v: T = field.parse().map_err(|_| {
+                field_err(k, format!("'{}' is not a number", shorten(field, QUOTE)))
+            })?;
+            if !v.is_finite() {
+                return Err(field_err(k, format!("{v} is not a finite number")));
+            }
+            x.push(v);
+        }
+        let direction = |k: usize, name: &str| -> Result<[T; 3], CliError> {
+            let w = [x[k], x[k + 1], x[k + 2]];
+            if fastbrdf::vec3::normalize(w).is_none() {
+                return Err(field_err(k, format!("{name} is a zero-length vector")));
+            }
+            if !fastbrdf::vec3::above_cos_min(w) {
+                return Err(field_err(
+                    k,
+                    format!(
+                        "{name} is below the horizon or grazing (cos theta < {}): the local frame's normal is +z and both directions point away from the surface",
+                        fastbrdf::vec3::COS_MIN
+                    ),
+                ));
+            }
+            Ok(w)
+        };
+        let wo = direction(0, "wo")?;
+        let mut out: Vec<String> = record.iter().map(str::to_string).collect();
+        if pdf_mode {
+            let wi = direction(3, "wi")?;
+            out.push(b.pdf(wo, wi, s).to_string());
+        } else {
+            for k in [3, 4] {
+                if !(x[k] >= T::zero() && x[k] < T::one()) {
+                    return Err(field_err(k, format!("{} is outside [0, 1)", x[k])));
+                }
+            }
+            match b.sample(wo, [x[3], x[4]], s) {
+                Some(r) => {
+                    out.extend(r.wi.iter().map(|v| v.to_string()));
+                    out.push(r.weight.to_string());
+                    out.push(r.pdf.to_string());
+                }
+                None => out.extend(std::iter::repeat_n("0".to_string(), 5)),
+            }
+        }
+        writer.write_record(&out).expect("writing to memory");
+    }
+    let bytes = writer.into_inner().expect("writing to memory");
+    Ok(String::from_utf8(bytes).expect("CSV of UTF-8 input is UTF-8"))
+}
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf chi2 --model cook-torrance --param d=ggx --param alpha=0.1 --theta-i 60\n  \
+fastbrdf chi2 --model phong --param n=1000 --strategy twin --json\n  \
+fastbrdf chi2 --model ward --param alpha_x=0.1 --param alpha_y=0.4 --full --out ward.png\n\n\
+Draws --samples directions for wo at --theta-i (azimuth 0), histograms them on --res x 2 --res\n\
+bins of the upper hemisphere (theta, phi), integrates the pdf over every bin for the expected\n\
+counts, pools bins expecting fewer than 5 (Mitsuba's rule; the draws with no sample are one\n\
+more cell against the pdf's missing mass) and prints the p-value. Passes when p > 0.01.\n\
+--full: Mitsuba's sizes (101 x 202 bins, 1e6 samples). Exit code 1 when the test fails, 2 for\n\
+bad usage, 3 when an output cannot be written."
+)]
+pub struct Chi2Args {
+    /// Model id: a full BRDF.
+    #[arg(long)]
+    model: String,
+    /// A parameter, NAME=VALUE; repeat for several.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    params: Vec<String>,
+    /// Angle of wo from the normal, in degrees, in [0, 90).
+    #[arg(long, default_value_t = 45.0, value_name = "DEG")]
+    theta_i: f64,
+    /// Sampling strategy: auto, cosine, lobe, d-cos, vndf, twin.
+    #[arg(long, default_value = "auto", help = STRATEGY_HELP)]
+    strategy: String,
+    /// Number of samples (default 100000; 1000000 with --full).
+    #[arg(long)]
+    samples: Option<usize>,
+    /// Bins in theta (phi gets twice as many; default 10; 101 with --full).
+    #[arg(long)]
+    res: Option<usize>,
+    /// Random seed.
+    #[arg(long, default_value_t = 7)]
+    seed: u64,
+    /// Mitsuba's sizes: 101 x 202 bins, 1e6 samples.
+    #[arg(long)]
+    full: bool,
+    /// Sample in this precision (the pdf is evaluated in f64).
+    #[arg(long, default_value = "f64", value_parser = ["f32", "f64"])]
+    precision: String,
+    /// Print the numbers as JSON.
+    #[arg(long)]
+    json: bool,
+    /// Write a PNG: observed and expected histograms side by side, and their difference.
+    #[arg(long, value_name = "PNG")]
+    out: Option<std::path::PathBuf>,
+}
+
+pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
+    let params = parse_params(&a.params)?;
+    if !(a.theta_i >= 0.0 && a.theta_i < 90.0) {
+        return Err(CliError::input(format!(
+            "--theta-i {}: expected degrees in [0, 90)",
+            a.theta_i
+        )));
+    }
+    let mut cfg = if a.full { Config::full() } else { Config::ci() };
+    if let Some(n) = a.samples {
+        if n == 0 || n > 100_000_000 {
+            return Err(CliError::input(format!(
+                "--samples {n}: expected 1 to 100000000"
+            )));
+        }
+        cfg.samples = n;
+    }
+    if let Some(r) = a.res {
+        if !(1..=1000).contains(&r) {
+            return Err(CliError::input(format!("--res {r}: expected 1 to 1000")));
+        }
+        cfg.res_theta = r;
+        cfg.res_phi = 2 * r;
+    }
+    cfg.seed = a.seed;
+    let (b64, s) = brdf::<f64>(&a.model, &params, &a.strategy)?;
+    let t = a.theta_i.to_radians();
+    let wo = [t.sin(), 0.0, t.cos()];
+    let out = if a.precision == "f32" {
+        let (b32, _) = brdf::<f32>(&a.model, &params, &a.strategy)?;
+        let wo32 = wo.map(|x| x as f32);
+        chi2::run(
+            |u| {
+                b32.sample(wo32, [u[0] as f32, u[1] as f32], s)
+                    .map(|x| x.wi.map(f64::from))
+            },
+            |wi| b64.pdf(wo32.map(f64::from), wi, s),
+            &cfg,
+            1,
+        )
+    } else {
+        chi2::run(
+            |u| b64.sample(wo, u, s).map(|x| x.wi),
+            |wi| b64.pdf(wo, wi, s),
+            &cfg,
+            1,
+        )
+    };
+    if let Some(path) = &a.out {
+        fastbrdf_io::write_atomic(path, &picture(&out)?)?;
+    }
+    let report = if a.json {
+        let mut v = serde_json::to_value(&out).expect("numbers serialise");
+        v["model"] = a.model.clone().into();
+        v["strategy"] = s.name().into();
+        v["theta_i"] = a.theta_i.into();
+        v["params"] = params
+            .iter()
+            .map(|(k, v)| (k.clone(), serde_json::Value::from(v.clone())))
+            .collect::<serde_json::Map<_, _>>()
+            .into();
+        format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON"))
+    } else {
+        format!(
+            "{} [{}] theta_i = {} deg, {} samples, {} x {} bins ({} pooled)\n\
+             chi2 = {:.2}, dof = {}, p = {:.4e}: {} at {}\n\
+             pdf integral {:.6}; no sample {} (expected {:.1}){}\n",
+            a.model,
+            s.name(),
+            a.theta_i,
+            out.samples,
+            out.res_theta,
+            out.res_phi,
+            out.pooled,
+            out.chi2,
+            out.dof,
+            out.p_value,
+            if out.passed { "PASS" } else { "FAIL" },
+            out.threshold,
+            out.pdf_integral,
+            out.missing_observed,
+            out.missing_expected,
+            if out.impossible {
+                "; draws fell where the pdf is 0"
+            } else {
+                ""
+            }
+        )
+    };
+    super::write_stdout(report.as_bytes())?;
+    if out.passed {
+        Ok(())
+    } else {
+        Err(CliError {
+            code: crate::EXIT_CHECK_FAILED,
+            message: format!("chi-square test failed: p = {:.3e}", out.p_value),
+        })
+    }
+}
+
+/// Observed | expected | difference (red: more observed, blue: fewer, scaled by the
+/// expected count's standard deviation, saturating at 4), theta down, phi across, each bin a
+/// block of pixels.
+fn picture(o: &Outcome) -> Result<Vec<u8>, CliError> {
+    let (rt, rp) = (o.res_theta, o.res_phi);
+    let scale = (600 / rp).clamp(1, 16);
+    let gap = 8;
+    let (pw, ph) = (rp * scale, rt * scale);
+    let (w, h) = (3 * pw + 2 * gap, ph);
+    let mut rgb = vec![255u8; w * h * 3];
+    let max = o
+        .observed
+        .iter()
+        .chain(o.expected.iter())
+        .fold(0.0f64, |m, v| m.max(*v))
+        .max(1e-300);
+    let heat = |v: f64| -> [u8; 3] {
+        // A dark-to-bright ramp (black, purple, orange, yellow).
+        let t = (v / max).clamp(0.0, 1.0).sqrt();
+        let r = (255.0 * (1.5 * t).min(1.0)) as u8;
+        let g = (255.0 * (2.0 * t - 1.0).clamp(0.0, 1.0)) as u8;
+        let b = (255.0 * (0.6 - (t - 0.3).abs() * 2.0).clamp(0.0, 0.6)) as u8;
+        [r, g, b]
+    };
+    for i in 0..rt {
+        for j in 0..rp {
+            let k = i * rp + j;
+            let (ob, ex) = (o.observed[k], o.expected[k]);
+            let d = ((ob - ex) / ex.max(1.0).sqrt() / 4.0).clamp(-1.0, 1.0);
+            let diff = if d >= 0.0 {
+                [255, (255.0 * (1.0 - d)) as u8, (255.0 * (1.0 - d)) as u8]
+            } else {
+                [(255.0 * (1.0 + d)) as u8, (255.0 * (1.0 + d)) as u8, 255]
+            };
+            for (panel, c) in [(0, heat(ob)), (1, heat(ex)), (2, diff)] {
+                let x0 = panel * (pw + gap) + j * scale;
+                for y in i * scale..(i + 1) * scale {
+                    for x in x0..x0 + scale {
+                        let p = (y * w + x) * 3;
+                        rgb[p..p + 3].copy_from_slice(&c);
+                    }
+                }
+            }
+        }
+    }
+    let mut png = Vec::new();
+    {
+        use image::ImageEncoder;
+        image::codecs::png::PngEncoder::new(&mut png)
+            .write_image(&rgb, w as u32, h as u32, image::ExtendedColorType::Rgb8)
+            .map_err(|e| CliError::io(format!("PNG encoding: {e}")))?;
+    }
+    Ok(png)
+}
