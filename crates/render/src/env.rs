@@ -10,8 +10,9 @@
 //!
 //! Multiple importance sampling: [`balance_heuristic`] and [`power_heuristic`] weight two
 //! strategies; the renderer combines the map's samples with cosine-weighted hemisphere
-//! samples for the diffuse term. The specular term uses the map's samples alone, weighted by
-//! [`specular_light_weight`]: the place where BRDF sampling plugs in.
+//! samples for the diffuse term (balance heuristic), and the map's samples with the specular
+//! BRDF's own (`fastbrdf::Brdf::sample`) for the specular term (power heuristic,
+//! [`specular_light_weight`] for the map's side).
 
 use crate::error::{RenderError, Result};
 use glam::Vec3;
@@ -329,19 +330,26 @@ pub fn balance_heuristic(pa: f32, pb: f32) -> f32 {
     if pa + pb > 0.0 { pa / (pa + pb) } else { 0.0 }
 }
 
-/// The power heuristic (exponent 2): `pa^2 / (pa^2 + pb^2)`.
+/// The power heuristic (exponent 2): `pa^2 / (pa^2 + pb^2)`, formed from the ratio of the
+/// smaller density to the larger so that narrow lobes' large densities cannot overflow f32.
 pub fn power_heuristic(pa: f32, pb: f32) -> f32 {
-    let (a, b) = (pa * pa, pb * pb);
-    if a + b > 0.0 { a / (a + b) } else { 0.0 }
+    if pa + pb > 0.0 {
+        if pa >= pb {
+            let r = pb / pa;
+            1.0 / (1.0 + r * r)
+        } else {
+            let r = pa / pb;
+            r * r / (1.0 + r * r)
+        }
+    } else {
+        0.0
+    }
 }
 
-/// The MIS weight of a map sample for the specular term, whose density is `pdf_light`.
-///
-/// MIS PLUGS IN HERE: while the BRDF models cannot be sampled, `brdf_pdf` is `None` and the
-/// map's samples carry the whole specular estimate (weight 1). With `sample`/`pdf` on the
-/// models, pass `Some(brdf.pdf(wi, wo))` here (power heuristic), and add in the renderer's
-/// environment pass a second, BRDF-sampled direction weighted by
-/// `power_heuristic(brdf_pdf, map.pdf(l))` (see `render.rs`, `env_pass`).
+/// The MIS weight of a map sample for the specular term, whose density is `pdf_light`:
+/// `power_heuristic(pdf_light, brdf_pdf)` against the BRDF's own sample of the same pass (the
+/// renderer's environment pass, `render.rs`), or 1 when no BRDF density is given (a map-only
+/// estimate).
 pub fn specular_light_weight(pdf_light: f32, brdf_pdf: Option<f32>) -> f32 {
     brdf_pdf.map_or(1.0, |b| power_heuristic(pdf_light, b))
 }
@@ -447,6 +455,11 @@ mod tests {
             let est = sum / n as f64;
             assert!((est - 1.0 / 3.0).abs() < 3e-3, "{est}");
         }
+        // Narrow lobes' densities: no overflow (squares of 1e20 and 1e30 are infinite in f32).
+        assert_eq!(power_heuristic(1e30, 1e20), 1.0);
+        assert!(power_heuristic(1e20, 1e30) < 1e-19);
+        assert!((power_heuristic(3e25, 3e25) - 0.5).abs() < 1e-7);
+        assert_eq!(power_heuristic(0.0, 0.0), 0.0);
         assert_eq!(specular_light_weight(2.0, None), 1.0);
         assert!((specular_light_weight(1.0, Some(1.0)) - 0.5).abs() < 1e-7);
     }

@@ -11,7 +11,8 @@
 //! Shading: `kd * albedo * lambert + ks * specular`, per light, times `cos theta_i`, plus an
 //! ambient term `ambient * kd * albedo`. Shadow rays per light (`Scene::shadows`). With an
 //! environment map ([`env`]): no ambient term; per primary hit and progressive pass, one
-//! map-sampled and one cosine-sampled direction, combined by MIS (see `env`). The specular model is any registry id: full BRDFs as
+//! map-sampled, one cosine-sampled and one BRDF-sampled direction, combined by MIS (see
+//! `env` and `render::env_pass`). The specular model is any registry id: full BRDFs as
 //! they are, lobes as the lobe of `n . h` (`blinn-phong` with `norm = none`, the seeds'
 //! pictures), distributions inside `cook-torrance` with that `d`.
 

@@ -364,16 +364,16 @@ fn visible(scene: &Scene, s: &Sample, l: Vec3) -> bool {
 }
 
 /// One progressive pass of the environment light: per primary hit, one direction drawn from
-/// the map (`EnvMap::sample`) and one cosine-weighted about the shading normal, each times
-/// `1 / samples`. The diffuse term combines both by the balance heuristic, so each
-/// contribution is `L kd albedo cos / pi / (pdf_map + cos / pi)`. The specular term takes the
-/// map's direction alone, weighted by `env::specular_light_weight` (1 until the models can be
-/// sampled), its values through the batch kernels as for direct light.
-///
-/// MIS with BRDF sampling plugs in here: with `sample`/`pdf` on the models, draw a third
-/// direction from the BRDF per hit, push it into the same SoA columns with the weight
-/// `power_heuristic(brdf_pdf, map.pdf(l)) / brdf_pdf` and radiance `map.radiance(l)`, and
-/// pass `Some(brdf_pdf)` for the map's direction to `specular_light_weight`.
+/// the map (`EnvMap::sample`), one cosine-weighted about the shading normal and, where the
+/// material has a specular term, one drawn from the specular BRDF (`Brdf::sample`, its
+/// default strategy: VNDF for GGX and Beckmann, the closed-form lobe or its twin for
+/// Phong-like models), each times `1 / samples`. The diffuse term combines the map and cosine
+/// directions by the balance heuristic, so each contribution is
+/// `L kd albedo cos / pi / (pdf_map + cos / pi)`. The specular term combines the map and BRDF
+/// directions by the power heuristic (Veach 1997): the map's direction weighted by
+/// `power(pdf_map, pdf_brdf) / pdf_map`, the BRDF's by `power(pdf_brdf, pdf_map) / pdf_brdf`,
+/// both evaluated through the batch kernels as for direct light. The BRDF's density does not
+/// depend on the Fresnel term, so a coloured model samples and weighs with its first channel.
 /// Seeds: `env::Rng::new(sample id, pass)`, the sample id being
 /// `(pixel y * width + pixel x) * N^2 + subsample`: deterministic, whatever the threads.
 #[allow(clippy::too_many_arguments)]
@@ -389,7 +389,8 @@ fn env_pass(
     cols: &mut [Vec<f32>; 6],
     out: &mut [Vec<f32>; 3],
 ) {
-    use crate::env::{Rng, cosine_sample, specular_light_weight};
+    use crate::env::{Rng, cosine_sample, power_heuristic, specular_light_weight};
+    use fastbrdf::sample::Strategy;
     use std::f32::consts::PI;
     let map = &env.map;
     let inv = 1.0 / env.samples as f32;
@@ -418,11 +419,32 @@ fn env_pass(
                     let (t, b) = s.n.any_orthonormal_pair();
                     let wi = [l.dot(t), l.dot(b), cos_i];
                     let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
+                    let pdf_b = m.specular.channels[0].scalar.pdf(wo, wi, Strategy::Auto);
                     idx.push(i);
-                    lis.push(le * (specular_light_weight(pdf_l, None) / pdf_l * inv));
+                    lis.push(le * (specular_light_weight(pdf_l, Some(pdf_b)) / pdf_l * inv));
                     for k in 0..3 {
                         cols[k].push(wi[k]);
                         cols[k + 3].push(wo[k]);
+                    }
+                }
+            }
+            // The BRDF's direction: specular only (MIS with the map's direction).
+            if m.ks > 0.0 {
+                let (u5, u6) = (rng.uniform(), rng.uniform());
+                let (t, b) = s.n.any_orthonormal_pair();
+                let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
+                let brdf = &m.specular.channels[0].scalar;
+                if let Some(smp) = brdf.sample(wo, [u5, u6], Strategy::Auto) {
+                    let wi = smp.wi;
+                    let l = t * wi[0] + b * wi[1] + s.n * wi[2];
+                    let (le, pdf_l) = map.lookup(l);
+                    if smp.pdf > 0.0 && le != Vec3::ZERO && visible(scene, s, l) {
+                        idx.push(i);
+                        lis.push(le * (power_heuristic(smp.pdf, pdf_l) / smp.pdf * inv));
+                        for k in 0..3 {
+                            cols[k].push(wi[k]);
+                            cols[k + 3].push(wo[k]);
+                        }
                     }
                 }
             }
