@@ -61,7 +61,7 @@ use crate::context::{GpuError, validated};
 use crate::spec::Instance;
 use fastbrdf_render::film::{Film, check_size};
 use fastbrdf_render::render::Options;
-use fastbrdf_render::scene::{LightKind, Object, Scene, Shape};
+use fastbrdf_render::scene::{LightKind, Object, SHADOW_EPS, Scene, Shape};
 use fastbrdf_render::texture::Texture;
 use glam::{DVec3, Vec2, Vec3};
 use std::collections::HashMap;
@@ -161,6 +161,7 @@ pub fn render(
         )?);
     }
     let lights = lights_buffer(device, scene);
+    let occluders = Occluders::new(device, &limits, scene)?;
 
     let (tw_max, th_max) = (w.min(tile_px) * n, h.min(tile_px) * n);
     let target = |format, label| {
@@ -220,6 +221,18 @@ pub fn render(
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: lights.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: occluders.objects.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: occluders.nodes.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: occluders.triangles.as_entire_binding(),
                     },
                 ],
             });
@@ -361,6 +374,9 @@ impl Layouts {
             entries: &[
                 entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT, uniform),
                 entry(1, fragment, storage),
+                entry(2, fragment, storage),
+                entry(3, fragment, storage),
+                entry(4, fragment, storage),
             ],
         });
         let object = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -509,6 +525,15 @@ fn frame_data(scene: &Scene, opts: &Options, tile: &Tile) -> Vec<u32> {
     out.extend(row(clip_y, 0.0));
     out.extend(row(fd, -NEAR));
     out.extend(row(fd, 0.0));
+    out.extend(
+        [
+            if scene.shadows { 1.0 } else { 0.0 },
+            SHADOW_EPS,
+            1.0 - 1e-5,
+            f32::MAX,
+        ]
+        .map(f32::to_bits),
+    );
     out
 }
 
@@ -539,6 +564,100 @@ fn lights_buffer(device: &wgpu::Device, scene: &Scene) -> wgpu::Buffer {
         contents: bytemuck::cast_slice(&data),
         usage: wgpu::BufferUsages::STORAGE,
     })
+}
+
+/// The scene's objects for the shadow rays (`struct Occluder`, `BvhNode` and `sh_tris` in
+/// the shader): every object in scene order; every mesh's BVH nodes, rebased into one array
+/// (inner nodes' children by the mesh's first node, leaves' triangles by its first
+/// triangle); every mesh's triangle corners in its BVH's leaf order, so a leaf's triangles
+/// are consecutive. With shadows off, only the (small) object records go up.
+struct Occluders {
+    objects: wgpu::Buffer,
+    nodes: wgpu::Buffer,
+    triangles: wgpu::Buffer,
+}
+
+impl Occluders {
+    fn new(device: &wgpu::Device, limits: &wgpu::Limits, scene: &Scene) -> Result<Self, GpuError> {
+        let mut objects: Vec<[u32; 12]> = Vec::with_capacity(scene.objects.len());
+        let mut nodes: Vec<[u32; 8]> = Vec::new();
+        let mut triangles: Vec<f32> = Vec::new();
+        let bits = |v: [f32; 4]| v.map(f32::to_bits);
+        for obj in &scene.objects {
+            let (a, b, kind) = match &obj.shape {
+                Shape::Sphere(s) => (
+                    [s.center.x, s.center.y, s.center.z, s.radius],
+                    [0.0; 4],
+                    [0, 0, 0, 0],
+                ),
+                Shape::Plane(p) => (
+                    [p.point.x, p.point.y, p.point.z, 0.0],
+                    [p.normal.x, p.normal.y, p.normal.z, 0.0],
+                    [1, 0, 0, 0],
+                ),
+                Shape::Mesh(m) if scene.shadows && !m.triangles.is_empty() => {
+                    let (tree, order) = m.bvh();
+                    let root = u32::try_from(nodes.len()).map_err(|_| too_many())?;
+                    let first = u32::try_from(triangles.len() / 9).map_err(|_| too_many())?;
+                    for node in tree {
+                        let start = if node.count > 0 {
+                            node.start.checked_add(first)
+                        } else {
+                            node.start.checked_add(root)
+                        }
+                        .ok_or_else(too_many)?;
+                        let (lo, hi) = (node.lo, node.hi);
+                        nodes.push([
+                            lo.x.to_bits(),
+                            lo.y.to_bits(),
+                            lo.z.to_bits(),
+                            start,
+                            hi.x.to_bits(),
+                            hi.y.to_bits(),
+                            hi.z.to_bits(),
+                            node.count,
+                        ]);
+                    }
+                    check_binding(limits, nodes.len() * 32, "the meshes' BVH nodes")?;
+                    check_binding(
+                        limits,
+                        (triangles.len() + 9 * order.len()) * 4,
+                        "the meshes' triangles for the shadow rays",
+                    )?;
+                    triangles.reserve(9 * order.len());
+                    for &t in order {
+                        let tri = m.triangles.get(t as usize).ok_or_else(too_many)?;
+                        for &i in tri {
+                            let p = m.positions.get(i as usize).ok_or_else(|| {
+                                GpuError::Input(format!(
+                                    "a triangle vertex index {i} is out of range ({} vertices)",
+                                    m.positions.len()
+                                ))
+                            })?;
+                            triangles.extend(p.to_array());
+                        }
+                    }
+                    ([0.0; 4], [0.0; 4], [2, root, 0, 0])
+                }
+                // No shadow rays, or no triangles: nothing to hit.
+                Shape::Mesh(_) => ([0.0; 4], [0.0; 4], [3, 0, 0, 0]),
+            };
+            let mut rec = [0u32; 12];
+            rec[..4].copy_from_slice(&bits(a));
+            rec[4..8].copy_from_slice(&bits(b));
+            rec[8..].copy_from_slice(&kind);
+            objects.push(rec);
+        }
+        Ok(Self {
+            objects: storage(device, "fastbrdf render occluders", &objects),
+            nodes: storage(device, "fastbrdf render bvh nodes", &nodes),
+            triangles: storage(device, "fastbrdf render shadow triangles", &triangles),
+        })
+    }
+}
+
+fn too_many() -> GpuError {
+    GpuError::Input("the meshes have too many triangles for the GPU's shadow rays".into())
 }
 
 /// A storage buffer of `data`, or of one zero when `data` is empty.
