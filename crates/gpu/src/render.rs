@@ -36,14 +36,32 @@
 //!   sphere uvs with `atan2`/`asin` written out (WGSL's built-ins are too loose: lavapipe's
 //!   moved texels by 6e-4), ambient, and per light `li base cos/pi + li ks brdf(wi, wo) cos`
 //!   in the local frame of glam's `any_orthonormal_pair`, accumulated in the CPU's order.
+//! - Shadows (`scene.shadows`, the CPU's rule and arithmetic): every object goes up once
+//!   more, for the shadow rays (`Occluders`): spheres and planes as records, each mesh as its
+//!   CPU BVH (`TriMesh::bvh`, nodes flattened into one array with rebased indices) and its
+//!   triangles' corners in the BVH's leaf order. Per light the fragment shader casts the CPU's
+//!   shadow ray (`Scene::shadowed`: origin offset along the unbumped normal by
+//!   `SHADOW_EPS (1 + max |p|)`, no ray where only the bumped normal faces the light, a point
+//!   light's ray stopping short of it) and tests it like `Scene::occluded`: the sphere's and
+//!   plane's formulas, and for meshes the CPU's slab test, 64-entry stack (children skipped
+//!   when full, as on the CPU) and Moller-Trumbore test, ending at the first hit. Before its
+//!   first hit the CPU's nearest-hit traversal culls the same nodes with the same `t_max`, so
+//!   any-hit gives the same answer; glam's NaN behaviour of `min`/`max` in the slab test (an
+//!   axis-parallel ray, e.g. a light straight above) is written out. The f32 constants
+//!   (`SHADOW_EPS`, `1 - 1e-5`, `f32::MAX` standing for the infinite reach of a directional
+//!   light: the same decisions under `t < t_max`) come from the CPU in the frame uniform, so no
+//!   WGSL literal rounds differently. Memory: 36 bytes per triangle and 32 per node, checked
+//!   against the device's storage binding limit like the other mesh buffers (128 MiB by
+//!   default: about 3.5 million triangles); a larger mesh is refused with the sizes and the
+//!   hint `--shadows off` (no such buffers then).
 //! - Large images are cut into tiles of at most 2048 x 2048 samples (and at most the device's
 //!   largest texture side), whole pixels each, so the image size is only limited by
 //!   `film::check_size`, like the CPU's.
 //!
 //! # Why rasterise
 //!
-//! Primary visibility is what rasterisers do; a compute-shader ray tracer would need a BVH on
-//! the GPU for the same pictures. With the ray-triangle test in the fragment shader the
+//! Primary visibility is what rasterisers do; only the shadow rays need the scene's BVH on the
+//! GPU. With the ray-triangle test in the fragment shader the
 //! rasteriser adds no interpolation error of its own: it only chooses the triangle. The
 //! shading is where models differ, and that is one fragment per sample.
 //!
@@ -53,7 +71,9 @@
 //! operations. GPU and CPU renders may still differ by what WGSL lets a GPU do differently
 //! (fused multiply-adds; division and `sqrt` within a few ulp), by the model functions' own
 //! differences (`tests/parity.rs`), and, on mesh silhouettes, where a sample lies within
-//! rounding of an edge (measured on lavapipe: about 1 sample in 300,000 of a face render).
+//! rounding of an edge (measured on lavapipe: about 1 sample in 300,000 of a face render),
+//! and likewise where a shadow ray passes within rounding of an occluder's edge (a shadow's
+//! edge: lit on one side, in shadow on the other).
 //! `tests/render.rs` holds GPU renders of the sphere and the face mesh to their CPU renders
 //! within stated tolerances: 8-bit on any adapter, and 1e-4 linear on software adapters.
 
@@ -95,15 +115,14 @@ struct GpuObject {
     corners: Option<(wgpu::Buffer, u32)>,
 }
 
-/// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` with
-/// `scene.shadows` off (within the tolerances of `tests/render.rs`), as a linear `Film`.
+/// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` (within
+/// the tolerances of `tests/render.rs`), shadow rays included when `scene.shadows`, as a
+/// linear `Film`.
 ///
-/// No shadows: `scene.shadows` is ignored, because shadow rays need the whole scene (spheres,
-/// planes, the mesh's BVH) in the fragment shader, which this rasteriser does not have yet.
-///
-/// `opts.shading` is ignored (the GPU evaluates the model per sample). Errors: sizes outside
-/// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh or texture larger
-/// than the device's limits, a model that is not a BRDF instance, and GPU failures.
+/// `opts.shading` is ignored (the GPU evaluates the model per sample); `scene.environment`
+/// is not rendered (the CLI refuses `--env` with `--gpu`). Errors: sizes outside
+/// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
+/// corners, or with shadows its BVH and triangles) or texture larger than the device's limits, a model that is not a BRDF instance, and GPU failures.
 pub fn render(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -618,11 +637,15 @@ impl Occluders {
                             node.count,
                         ]);
                     }
-                    check_binding(limits, nodes.len() * 32, "the meshes' BVH nodes")?;
+                    check_binding(
+                        limits,
+                        nodes.len() * 32,
+                        "the meshes' BVH nodes for the shadow rays (--shadows off needs none)",
+                    )?;
                     check_binding(
                         limits,
                         (triangles.len() + 9 * order.len()) * 4,
-                        "the meshes' triangles for the shadow rays",
+                        "the meshes' triangles for the shadow rays (--shadows off needs none)",
                     )?;
                     triangles.reserve(9 * order.len());
                     for &t in order {
