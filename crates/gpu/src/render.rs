@@ -671,6 +671,10 @@ impl Occluders {
             rec[8..].copy_from_slice(&kind);
             objects.push(rec);
         }
+        if objects.is_empty() {
+            // No objects: one record that hits nothing (a zeroed one would be a sphere).
+            objects.push([0, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0]);
+        }
         Ok(Self {
             objects: storage(device, "fastbrdf render occluders", &objects),
             nodes: storage(device, "fastbrdf render bvh nodes", &nodes),

@@ -405,6 +405,74 @@ fn the_floor_under_the_sphere_is_shadowed_on_both() {
     );
 }
 
+/// Two meshes: their BVHs share one node array on the GPU (indices rebased), so the second
+/// mesh's shadow on the first and the first's on the floor test the rebasing.
+#[test]
+fn two_meshes_shadow_each_other() {
+    use fastbrdf_render::geometry::TriMesh;
+    use fastbrdf_render::scene::{Material, Object, Shape};
+    let make = || {
+        let mut spec = SceneSpec::new();
+        spec.mesh = Some(face());
+        spec.floor = true;
+        spec.lights = vec![
+            Light {
+                kind: LightKind::Directional {
+                    to_light: Vec3::new(-0.7, 0.6, 0.4).normalize(),
+                },
+                color: Vec3::ONE,
+                intensity: 2.0,
+            },
+            Light::parse("point:-20,15,10:1,1,1:900").unwrap(),
+        ];
+        let mut s = scene(&spec, "cook-torrance", &[("alpha", "0.3")]);
+        let Shape::Mesh(m) = &s.objects[0].shape else {
+            panic!("a mesh")
+        };
+        let (lo, hi) = m.bounds();
+        // A smaller copy in front of the face and to the light's side.
+        let shift = Vec3::new(
+            -0.35 * (hi.x - lo.x),
+            0.1 * (hi.y - lo.y),
+            0.3 * (hi.z - lo.z),
+        );
+        let c = 0.5 * (lo + hi);
+        let copy = TriMesh::new(
+            m.positions
+                .iter()
+                .map(|p| c + (*p - c) * 0.5 + shift)
+                .collect(),
+            m.normals.clone(),
+            m.uvs.clone(),
+            m.triangles.clone(),
+        );
+        let material = Material {
+            kd: 0.6,
+            ks: 0.4,
+            albedo: Vec3::new(0.9, 0.6, 0.5),
+            texture: None,
+            bump: None,
+            specular: s.objects[0].material.specular.clone(),
+        };
+        s.objects.push(Object {
+            shape: Shape::Mesh(Arc::new(copy)),
+            material,
+        });
+        s
+    };
+    let o = opts(128, 128, 2);
+    let Some(film) = check("two faces over the floor", &make, &o) else {
+        return;
+    };
+    let mut off = make();
+    off.shadows = false;
+    let gpu = common::gpu().unwrap();
+    let unshadowed = gpu_render(&gpu.device, &gpu.queue, &off, &o).unwrap();
+    let d = Diff::of(&unshadowed, &film);
+    eprintln!("two faces: shadows on against off: {d}");
+    assert!(d.over2 > 2.0, "shadows change too little: {d}");
+}
+
 #[test]
 fn bad_inputs_are_clear_errors() {
     let Some(gpu) = common::gpu() else { return };
