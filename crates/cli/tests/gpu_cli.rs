@@ -218,7 +218,7 @@ fn render_gpu_matches_the_cpu_render_and_rejects_bad_input() {
     let dir = temp_dir("render");
     let (cpu, gpu) = (dir.join("cpu.png"), dir.join("gpu.png"));
     let args = [
-        "--model", "flog", "--param", "n=50", "--size", "64x48", "--spp", "2",
+        "--model", "flog", "--param", "n=50", "--size", "64x48", "--spp", "2", "--floor",
     ];
     let o = fastbrdf(&[&["render"], &args[..], &["--out", cpu.to_str().unwrap()]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
@@ -236,6 +236,8 @@ fn render_gpu_matches_the_cpu_render_and_rejects_bad_input() {
         "the adapter is named: {}",
         stderr(&o)
     );
+    // Shadows on both (the default, the floor catching the sphere's): no note any more.
+    assert!(!stderr(&o).contains("shadows"), "{}", stderr(&o));
     let a = image::open(&cpu).unwrap().to_rgb8();
     let b = image::open(&gpu).unwrap().to_rgb8();
     assert_eq!(a.dimensions(), (64, 48));

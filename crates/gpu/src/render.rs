@@ -36,14 +36,32 @@
 //!   sphere uvs with `atan2`/`asin` written out (WGSL's built-ins are too loose: lavapipe's
 //!   moved texels by 6e-4), ambient, and per light `li base cos/pi + li ks brdf(wi, wo) cos`
 //!   in the local frame of glam's `any_orthonormal_pair`, accumulated in the CPU's order.
+//! - Shadows (`scene.shadows`, the CPU's rule and arithmetic): every object goes up once
+//!   more, for the shadow rays (`Occluders`): spheres and planes as records, each mesh as its
+//!   CPU BVH (`TriMesh::bvh`, nodes flattened into one array with rebased indices) and its
+//!   triangles' corners in the BVH's leaf order. Per light the fragment shader casts the CPU's
+//!   shadow ray (`Scene::shadowed`: origin offset along the unbumped normal by
+//!   `SHADOW_EPS (1 + max |p|)`, no ray where only the bumped normal faces the light, a point
+//!   light's ray stopping short of it) and tests it like `Scene::occluded`: the sphere's and
+//!   plane's formulas, and for meshes the CPU's slab test, 64-entry stack (children skipped
+//!   when full, as on the CPU) and Moller-Trumbore test, ending at the first hit. Before its
+//!   first hit the CPU's nearest-hit traversal culls the same nodes with the same `t_max`, so
+//!   any-hit gives the same answer; glam's NaN behaviour of `min`/`max` in the slab test (an
+//!   axis-parallel ray, e.g. a light straight above) is written out. The f32 constants
+//!   (`SHADOW_EPS`, `1 - 1e-5`, `f32::MAX` standing for the infinite reach of a directional
+//!   light: the same decisions under `t < t_max`) come from the CPU in the frame uniform, so no
+//!   WGSL literal rounds differently. Memory: 36 bytes per triangle and 32 per node, checked
+//!   against the device's storage binding limit like the other mesh buffers (128 MiB by
+//!   default: about 3.5 million triangles); a larger mesh is refused with the sizes and the
+//!   hint `--shadows off` (no such buffers then).
 //! - Large images are cut into tiles of at most 2048 x 2048 samples (and at most the device's
 //!   largest texture side), whole pixels each, so the image size is only limited by
 //!   `film::check_size`, like the CPU's.
 //!
 //! # Why rasterise
 //!
-//! Primary visibility is what rasterisers do; a compute-shader ray tracer would need a BVH on
-//! the GPU for the same pictures. With the ray-triangle test in the fragment shader the
+//! Primary visibility is what rasterisers do; only the shadow rays need the scene's BVH on the
+//! GPU. With the ray-triangle test in the fragment shader the
 //! rasteriser adds no interpolation error of its own: it only chooses the triangle. The
 //! shading is where models differ, and that is one fragment per sample.
 //!
@@ -53,7 +71,9 @@
 //! operations. GPU and CPU renders may still differ by what WGSL lets a GPU do differently
 //! (fused multiply-adds; division and `sqrt` within a few ulp), by the model functions' own
 //! differences (`tests/parity.rs`), and, on mesh silhouettes, where a sample lies within
-//! rounding of an edge (measured on lavapipe: about 1 sample in 300,000 of a face render).
+//! rounding of an edge (measured on lavapipe: about 1 sample in 300,000 of a face render),
+//! and likewise where a shadow ray passes within rounding of an occluder's edge (a shadow's
+//! edge: lit on one side, in shadow on the other).
 //! `tests/render.rs` holds GPU renders of the sphere and the face mesh to their CPU renders
 //! within stated tolerances: 8-bit on any adapter, and 1e-4 linear on software adapters.
 
@@ -61,7 +81,7 @@ use crate::context::{GpuError, validated};
 use crate::spec::Instance;
 use fastbrdf_render::film::{Film, check_size};
 use fastbrdf_render::render::Options;
-use fastbrdf_render::scene::{LightKind, Object, Scene, Shape};
+use fastbrdf_render::scene::{LightKind, Object, SHADOW_EPS, Scene, Shape};
 use fastbrdf_render::texture::Texture;
 use glam::{DVec3, Vec2, Vec3};
 use std::collections::HashMap;
@@ -95,15 +115,14 @@ struct GpuObject {
     corners: Option<(wgpu::Buffer, u32)>,
 }
 
-/// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` with
-/// `scene.shadows` off (within the tolerances of `tests/render.rs`), as a linear `Film`.
+/// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` (within
+/// the tolerances of `tests/render.rs`), shadow rays included when `scene.shadows`, as a
+/// linear `Film`.
 ///
-/// No shadows: `scene.shadows` is ignored, because shadow rays need the whole scene (spheres,
-/// planes, the mesh's BVH) in the fragment shader, which this rasteriser does not have yet.
-///
-/// `opts.shading` is ignored (the GPU evaluates the model per sample). Errors: sizes outside
-/// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh or texture larger
-/// than the device's limits, a model that is not a BRDF instance, and GPU failures.
+/// `opts.shading` is ignored (the GPU evaluates the model per sample); `scene.environment`
+/// is not rendered (the CLI refuses `--env` with `--gpu`). Errors: sizes outside
+/// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
+/// corners, or with shadows its BVH and triangles) or texture larger than the device's limits, a model that is not a BRDF instance, and GPU failures.
 pub fn render(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -161,6 +180,7 @@ pub fn render(
         )?);
     }
     let lights = lights_buffer(device, scene);
+    let occluders = Occluders::new(device, &limits, scene)?;
 
     let (tw_max, th_max) = (w.min(tile_px) * n, h.min(tile_px) * n);
     let target = |format, label| {
@@ -220,6 +240,18 @@ pub fn render(
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: lights.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: occluders.objects.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: occluders.nodes.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: occluders.triangles.as_entire_binding(),
                     },
                 ],
             });
@@ -361,6 +393,9 @@ impl Layouts {
             entries: &[
                 entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT, uniform),
                 entry(1, fragment, storage),
+                entry(2, fragment, storage),
+                entry(3, fragment, storage),
+                entry(4, fragment, storage),
             ],
         });
         let object = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -509,6 +544,15 @@ fn frame_data(scene: &Scene, opts: &Options, tile: &Tile) -> Vec<u32> {
     out.extend(row(clip_y, 0.0));
     out.extend(row(fd, -NEAR));
     out.extend(row(fd, 0.0));
+    out.extend(
+        [
+            if scene.shadows { 1.0 } else { 0.0 },
+            SHADOW_EPS,
+            1.0 - 1e-5,
+            f32::MAX,
+        ]
+        .map(f32::to_bits),
+    );
     out
 }
 
@@ -539,6 +583,108 @@ fn lights_buffer(device: &wgpu::Device, scene: &Scene) -> wgpu::Buffer {
         contents: bytemuck::cast_slice(&data),
         usage: wgpu::BufferUsages::STORAGE,
     })
+}
+
+/// The scene's objects for the shadow rays (`struct Occluder`, `BvhNode` and `sh_tris` in
+/// the shader): every object in scene order; every mesh's BVH nodes, rebased into one array
+/// (inner nodes' children by the mesh's first node, leaves' triangles by its first
+/// triangle); every mesh's triangle corners in its BVH's leaf order, so a leaf's triangles
+/// are consecutive. With shadows off, only the (small) object records go up.
+struct Occluders {
+    objects: wgpu::Buffer,
+    nodes: wgpu::Buffer,
+    triangles: wgpu::Buffer,
+}
+
+impl Occluders {
+    fn new(device: &wgpu::Device, limits: &wgpu::Limits, scene: &Scene) -> Result<Self, GpuError> {
+        let mut objects: Vec<[u32; 12]> = Vec::with_capacity(scene.objects.len());
+        let mut nodes: Vec<[u32; 8]> = Vec::new();
+        let mut triangles: Vec<f32> = Vec::new();
+        let bits = |v: [f32; 4]| v.map(f32::to_bits);
+        for obj in &scene.objects {
+            let (a, b, kind) = match &obj.shape {
+                Shape::Sphere(s) => (
+                    [s.center.x, s.center.y, s.center.z, s.radius],
+                    [0.0; 4],
+                    [0, 0, 0, 0],
+                ),
+                Shape::Plane(p) => (
+                    [p.point.x, p.point.y, p.point.z, 0.0],
+                    [p.normal.x, p.normal.y, p.normal.z, 0.0],
+                    [1, 0, 0, 0],
+                ),
+                Shape::Mesh(m) if scene.shadows && !m.triangles.is_empty() => {
+                    let (tree, order) = m.bvh();
+                    let root = u32::try_from(nodes.len()).map_err(|_| too_many())?;
+                    let first = u32::try_from(triangles.len() / 9).map_err(|_| too_many())?;
+                    for node in tree {
+                        let start = if node.count > 0 {
+                            node.start.checked_add(first)
+                        } else {
+                            node.start.checked_add(root)
+                        }
+                        .ok_or_else(too_many)?;
+                        let (lo, hi) = (node.lo, node.hi);
+                        nodes.push([
+                            lo.x.to_bits(),
+                            lo.y.to_bits(),
+                            lo.z.to_bits(),
+                            start,
+                            hi.x.to_bits(),
+                            hi.y.to_bits(),
+                            hi.z.to_bits(),
+                            node.count,
+                        ]);
+                    }
+                    check_binding(
+                        limits,
+                        nodes.len() * 32,
+                        "the meshes' BVH nodes for the shadow rays (--shadows off needs none)",
+                    )?;
+                    check_binding(
+                        limits,
+                        (triangles.len() + 9 * order.len()) * 4,
+                        "the meshes' triangles for the shadow rays (--shadows off needs none)",
+                    )?;
+                    triangles.reserve(9 * order.len());
+                    for &t in order {
+                        let tri = m.triangles.get(t as usize).ok_or_else(too_many)?;
+                        for &i in tri {
+                            let p = m.positions.get(i as usize).ok_or_else(|| {
+                                GpuError::Input(format!(
+                                    "a triangle vertex index {i} is out of range ({} vertices)",
+                                    m.positions.len()
+                                ))
+                            })?;
+                            triangles.extend(p.to_array());
+                        }
+                    }
+                    ([0.0; 4], [0.0; 4], [2, root, 0, 0])
+                }
+                // No shadow rays, or no triangles: nothing to hit.
+                Shape::Mesh(_) => ([0.0; 4], [0.0; 4], [3, 0, 0, 0]),
+            };
+            let mut rec = [0u32; 12];
+            rec[..4].copy_from_slice(&bits(a));
+            rec[4..8].copy_from_slice(&bits(b));
+            rec[8..].copy_from_slice(&kind);
+            objects.push(rec);
+        }
+        if objects.is_empty() {
+            // No objects: one record that hits nothing (a zeroed one would be a sphere).
+            objects.push([0, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0]);
+        }
+        Ok(Self {
+            objects: storage(device, "fastbrdf render occluders", &objects),
+            nodes: storage(device, "fastbrdf render bvh nodes", &nodes),
+            triangles: storage(device, "fastbrdf render shadow triangles", &triangles),
+        })
+    }
+}
+
+fn too_many() -> GpuError {
+    GpuError::Input("the meshes have too many triangles for the GPU's shadow rays".into())
 }
 
 /// A storage buffer of `data`, or of one zero when `data` is empty.

@@ -113,13 +113,14 @@ pub struct TriMesh {
     order: Vec<u32>,
 }
 
+/// A BVH node (public for the GPU renderer, which uploads the tree for its shadow rays).
 #[derive(Clone, Copy, Debug)]
-struct Node {
-    lo: Vec3,
-    hi: Vec3,
+pub struct Node {
+    pub lo: Vec3,
+    pub hi: Vec3,
     /// Leaf: first triangle in `order` and count; inner: left child index (right = left + 1).
-    start: u32,
-    count: u32,
+    pub start: u32,
+    pub count: u32,
 }
 
 impl TriMesh {
@@ -208,6 +209,12 @@ impl TriMesh {
         };
         self.build(left, start, mid);
         self.build(left + 1, mid, end);
+    }
+
+    /// The BVH's nodes (the root first; see [`Node`]) and the triangle order its leaves index
+    /// into, as [`TriMesh::hit`] traverses them (the GPU renderer's shadow rays use them too).
+    pub fn bvh(&self) -> (&[Node], &[u32]) {
+        (&self.nodes, &self.order)
     }
 
     /// Axis-aligned bounds of the mesh.

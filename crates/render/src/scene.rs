@@ -338,8 +338,8 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// Shadow rays for the point and directional lights (and the environment's samples): a
     /// light blocked by any object between the shading point and the light adds nothing.
-    /// Off, every light reaches every point facing it (the renderer before issue 15, and the
-    /// GPU renderer, which has no scene traversal).
+    /// Off, every light reaches every point facing it (the renderer before issue 15). The GPU
+    /// renderer (`fastbrdf_gpu::render`) casts the same shadow rays.
     pub shadows: bool,
     /// Image-based lighting (a latitude-longitude map), CPU renderer only.
     pub environment: Option<crate::env::Environment>,

@@ -65,7 +65,7 @@ pub struct SceneArgs {
     pub exposure: f32,
     /// Shadow rays for the lights: on (a light blocked by an object adds nothing) or off (every
     /// light reaches every surface facing it: the pictures before shadows). The GPU renderer
-    /// (--gpu) renders without shadows: it has no scene traversal yet.
+    /// (--gpu) casts the same shadow rays.
     #[arg(long, value_enum, default_value_t = OnOff::On)]
     pub shadows: OnOff,
     /// A ground plane under the object (grey, diffuse), to catch its shadow.
@@ -218,7 +218,7 @@ pub fn render_model(
     after_help = "Examples:\n  fastbrdf render --model flog --param n=50 --out flog.png\n  \
 fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
-fastbrdf render --gpu --model flog --param n=50 --shadows off --out flog-gpu.png\n  \
+fastbrdf render --gpu --model flog --param n=50 --floor --out flog-gpu.png\n  \
 fastbrdf render --model ward --param alpha=0.2 --floor --light point:2,3,3:1,1,1:20 --out shadow.png\n  \
 fastbrdf render --model cook-torrance --param alpha=0.3 --env sky --floor --out sky.png   (built-in sky, 16 samples)\n  \
 fastbrdf render --model ward --param alpha=0.2 --env studio.hdr --env-samples 64 --out studio.exr\n  \
@@ -253,9 +253,8 @@ pub struct RenderArgs {
     out: PathBuf,
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
-    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now. Without
-    /// shadows (a note says so unless --shadows off): the GPU picture matches the CPU's with
-    /// --shadows off.
+    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now, and so is
+    /// --env. Shadows as on the CPU (--shadows on|off).
     #[arg(long)]
     gpu: bool,
 }
@@ -279,11 +278,6 @@ fn render_model_gpu(
         return Err(CliError::input(
             "--gpu: environment lighting (--env) is CPU-only: drop --gpu (the GPU renderer is a rasteriser without rays to sample the map with)".to_string(),
         ));
-    }
-    if spec.shadows {
-        eprintln!(
-            "note: --gpu renders without shadows (the GPU renderer has no scene traversal yet); --shadows off gives the CPU picture it matches"
-        );
     }
     let scene = setup::scene(spec, loaded, specular);
     let gpu = fastbrdf_gpu::Gpu::new()?;

@@ -30,6 +30,9 @@ struct Frame {
     clip_y: vec4<f32>,
     clip_z: vec4<f32>,
     clip_w: vec4<f32>,
+    /// Shadow rays: on (1) or off (0), SHADOW_EPS, 1 - 1e-5 and f32::MAX (the CPU's f32
+    /// values, so that no WGSL literal rounds differently).
+    shadow: vec4<f32>,
 }
 
 /// A light (twin: scene::Light). kind_pos.w: 0 directional (xyz: unit direction to the
@@ -61,6 +64,30 @@ struct Object {
 
 @group(0) @binding(0) var<uniform> frame: Frame;
 @group(0) @binding(1) var<storage, read> lights: array<Light>;
+
+/// An occluder for the shadow rays (twin: scene::Shape). kind.x: 0 sphere (a: centre,
+/// radius), 1 plane (a: point, b: normal), 2 mesh (kind.y: its root in `sh_nodes`).
+struct Occluder {
+    a: vec4<f32>,
+    b: vec4<f32>,
+    kind: vec4<u32>,
+}
+
+/// A BVH node (twin: geometry::Node): leaf (count > 0): first triangle in `sh_tris` and
+/// count; inner: left child index in `sh_nodes` (right = left + 1).
+struct BvhNode {
+    lo: vec3<f32>,
+    start: u32,
+    hi: vec3<f32>,
+    count: u32,
+}
+
+/// Every object of the scene, in scene order.
+@group(0) @binding(2) var<storage, read> sh_objects: array<Occluder>;
+/// Every mesh's BVH, one after the other (indices rebased).
+@group(0) @binding(3) var<storage, read> sh_nodes: array<BvhNode>;
+/// Every mesh's triangles in its BVH's leaf order: 9 floats each (corners a, b, c).
+@group(0) @binding(4) var<storage, read> sh_tris: array<f32>;
 
 @group(1) @binding(0) var<uniform> object: Object;
 /// Linear albedo texels (rgb), read with textureLoad: the bilinear filter is texture.rs's.
@@ -409,6 +436,164 @@ fn rd_perturb(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return rd_normalize_or(n - dt * f.t - db * f.b, n);
 }
 
+// ---- shadow rays (twins: Scene::shadowed, Scene::occluded, the shapes' hit) -------------
+
+/// glam's Vec3::min per component: `if a < b { a } else { b }` (NaN-exact).
+fn rd_gmin(a: f32, b: f32) -> f32 {
+    return select(b, a, a < b);
+}
+
+/// glam's Vec3::max per component: `if a > b { a } else { b }` (NaN-exact).
+fn rd_gmax(a: f32, b: f32) -> f32 {
+    return select(b, a, a > b);
+}
+
+/// Rust's f32::max: the other operand when one is NaN.
+fn rd_fmax(a: f32, b: f32) -> f32 {
+    if a != a {
+        return b;
+    }
+    if b != b {
+        return a;
+    }
+    return max(a, b);
+}
+
+/// Rust's f32::min: the other operand when one is NaN.
+fn rd_fmin(a: f32, b: f32) -> f32 {
+    if a != a {
+        return b;
+    }
+    if b != b {
+        return a;
+    }
+    return min(a, b);
+}
+
+/// Sphere::hit with t in (t_min, t_max).
+fn rd_occ_sphere(r: RdRay, center: vec3<f32>, radius: f32, t_min: f32, t_max: f32) -> bool {
+    let oc = r.o - center;
+    let b = rd_dot(oc, r.d);
+    let c = rd_dot(oc, oc) - radius * radius;
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return false;
+    }
+    let s = sqrt(disc);
+    let t = select(-b + s, -b - s, -b - s > t_min);
+    return t > t_min && t < t_max;
+}
+
+/// Plane::hit with t in (t_min, t_max).
+fn rd_occ_plane(r: RdRay, point: vec3<f32>, normal: vec3<f32>, t_min: f32, t_max: f32) -> bool {
+    let denom = rd_dot(normal, r.d);
+    if abs(denom) < 1e-8 {
+        return false;
+    }
+    let t = rd_dot(point - r.o, normal) / denom;
+    return t > t_min && t < t_max;
+}
+
+fn rd_sh_corner(tri: u32, k: u32) -> vec3<f32> {
+    let i = 9u * tri + 3u * k;
+    return vec3<f32>(sh_tris[i], sh_tris[i + 1u], sh_tris[i + 2u]);
+}
+
+/// TriMesh::hit_triangle (Moller-Trumbore, the CPU's inclusive tests in its order).
+fn rd_occ_triangle(r: RdRay, tri: u32, t_min: f32, t_max: f32) -> bool {
+    let a = rd_sh_corner(tri, 0u);
+    let b = rd_sh_corner(tri, 1u);
+    let c = rd_sh_corner(tri, 2u);
+    let e1 = b - a;
+    let e2 = c - a;
+    let p = rd_cross(r.d, e2);
+    let det = rd_dot(e1, p);
+    if abs(det) < 1e-12 {
+        return false;
+    }
+    let inv = 1.0 / det;
+    let s = r.o - a;
+    let u = rd_dot(s, p) * inv;
+    if !(u >= 0.0 && u <= 1.0) {
+        return false;
+    }
+    let q = rd_cross(s, e1);
+    let v = rd_dot(r.d, q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return false;
+    }
+    let t = rd_dot(e2, q) * inv;
+    return t > t_min && t < t_max;
+}
+
+/// TriMesh::hit as an any-hit test: the same slab test and stack (64 entries, children
+/// skipped when full, as on the CPU), ending at the first triangle hit. Until a hit, the
+/// CPU's traversal visits and culls the same nodes with the same `t_max`, so the two agree.
+fn rd_occ_mesh(r: RdRay, root: u32, t_min: f32, t_max: f32) -> bool {
+    let inv = vec3<f32>(1.0 / r.d.x, 1.0 / r.d.y, 1.0 / r.d.z);
+    var stack: array<u32, 64>;
+    stack[0] = root;
+    var sp = 1u;
+    while sp > 0u {
+        sp -= 1u;
+        let node = sh_nodes[stack[sp]];
+        let t0 = (node.lo - r.o) * inv;
+        let t1 = (node.hi - r.o) * inv;
+        let near = vec3<f32>(rd_gmin(t0.x, t1.x), rd_gmin(t0.y, t1.y), rd_gmin(t0.z, t1.z));
+        let far = vec3<f32>(rd_gmax(t0.x, t1.x), rd_gmax(t0.y, t1.y), rd_gmax(t0.z, t1.z));
+        let tn = rd_fmax(rd_gmax(near.x, rd_gmax(near.y, near.z)), t_min);
+        let tf = rd_fmin(rd_gmin(far.x, rd_gmin(far.y, far.z)), t_max);
+        if tn > tf {
+            continue;
+        }
+        if node.count > 0u {
+            for (var k = 0u; k < node.count; k++) {
+                if rd_occ_triangle(r, node.start + k, t_min, t_max) {
+                    return true;
+                }
+            }
+        } else if sp + 2u <= 64u {
+            stack[sp] = node.start;
+            stack[sp + 1u] = node.start + 1u;
+            sp += 2u;
+        }
+    }
+    return false;
+}
+
+/// Scene::occluded: whether any object lies along `r` strictly between t_min and t_max.
+fn rd_occluded(r: RdRay, t_min: f32, t_max: f32) -> bool {
+    for (var i = 0u; i < arrayLength(&sh_objects); i++) {
+        let o = sh_objects[i];
+        var hit = false;
+        if o.kind.x == 0u {
+            hit = rd_occ_sphere(r, o.a.xyz, o.a.w, t_min, t_max);
+        } else if o.kind.x == 1u {
+            hit = rd_occ_plane(r, o.a.xyz, o.b.xyz, t_min, t_max);
+        } else if o.kind.x == 2u {
+            hit = rd_occ_mesh(r, o.kind.y, t_min, t_max);
+        }
+        if hit {
+            return true;
+        }
+    }
+    return false;
+}
+
+/// Scene::shadowed: light from `l` blocked at `p` (normal `n`, facing `l`) up to `dist`
+/// along `l` (`directional`: no limit; f32::MAX stands for the CPU's infinity, the same
+/// decisions for the strict `t < t_max` and the slab test).
+fn rd_shadowed(p: vec3<f32>, n: vec3<f32>, l: vec3<f32>, dist: f32, directional: bool) -> bool {
+    let ap = abs(p);
+    let eps = frame.shadow.y * (1.0 + max(ap.x, max(ap.y, ap.z)));
+    let o = p + n * eps;
+    var t_max = frame.shadow.w;
+    if !directional {
+        t_max = dist * frame.shadow.z - eps;
+    }
+    return rd_occluded(RdRay(o, l), eps, t_max);
+}
+
 // ---- shading (twin: render_tile) ------------------------------------------------------------
 
 /// Light::at: (unit direction to the light, radiance scale).
@@ -430,6 +615,8 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
     if rd_dot(hit.n, v) < 0.0 {
         n = -hit.n;
     }
+    // The unbumped normal: shadow rays leave along it.
+    let g = n;
     if object.flags.z != 0u {
         let pn = rd_perturb(p, n);
         if rd_dot(pn, v) > 0.0 {
@@ -450,6 +637,19 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
         let cos_i = rd_dot(n, l);
         if cos_i <= 0.0 {
             continue;
+        }
+        // The CPU's shadow rule (render.rs, `direct`): no shadow ray where only the bumped
+        // normal faces the light.
+        if frame.shadow.x != 0.0 && rd_dot(g, l) > 0.0 {
+            let directional = lights[i].kind_pos.w == 0.0;
+            var dist = 0.0;
+            if !directional {
+                let d = lights[i].kind_pos.xyz - p;
+                dist = sqrt(max(rd_dot(d, d), 1e-12));
+            }
+            if rd_shadowed(p, g, l, dist, directional) {
+                continue;
+            }
         }
         radiance += li * base * (cos_i / RD_PI);
         if ks > 0.0 {
