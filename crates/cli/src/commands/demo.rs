@@ -253,7 +253,11 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         ],
     )?;
     // The same comparisons on the face under the sky.
-    let (face_name, face_file) = match &a.mesh {
+    let user_mesh = a
+        .mesh
+        .as_deref()
+        .filter(|m| !setup::is_builtin(m, setup::BUILTIN_MESH));
+    let (face_name, face_file) = match user_mesh {
         Some(m) => (format!("the given mesh {}", m.display()), "mesh"),
         None => ("MediaPipe's canonical face".to_string(), "face"),
     };
