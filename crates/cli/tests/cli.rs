@@ -1187,6 +1187,8 @@ fn demo_writes_every_picture_and_an_index() {
         "seed003-cubic-rational.png",
         "seed000-cook-torrance-skin.png",
         "seed000-ward-skin.png",
+        "seed000-cook-torrance-face.png",
+        "seed000-ward-face.png",
         "tuned-vs-untuned.png",
         "plots/seed001-fig3-max-rel-epicentre.png",
         "plots/seed000-fig2-4-relative-error.png",
@@ -1198,6 +1200,25 @@ fn demo_writes_every_picture_and_an_index() {
         );
     }
     assert!(html.contains("log.abs_err_max") && html.contains("<th>FLIP</th>"));
+    // The face sections: captioned, each with its metrics table (a row per compared form).
+    for (file, rows) in [
+        ("seed000-cook-torrance-face.png", ["D16", "one-pow D"]),
+        ("seed000-ward-face.png", ["ward-power16", "ward-pow"]),
+    ] {
+        let at = html.find(&format!("src=\"{file}\"")).unwrap();
+        let figure = &html[at..at + html[at..].find("</figure>").unwrap()];
+        assert!(
+            figure.contains("canonical face") && figure.contains("built-in sky"),
+            "{figure}"
+        );
+        assert!(figure.contains("<th>FLIP</th>"), "{file}: no metrics");
+        for r in rows {
+            assert!(
+                figure.contains(&format!("<tr><td>{r}")),
+                "{file}: no row {r}"
+            );
+        }
+    }
     std::fs::remove_dir_all(&d).unwrap();
 }
 

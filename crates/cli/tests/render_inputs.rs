@@ -480,3 +480,68 @@ fn demo_checks_the_mesh_before_writing_and_writes_all_or_nothing() {
     assert!(!out.exists(), "nothing written");
     assert_eq!(files(&d), ["bad.obj"]);
 }
+
+#[test]
+fn builtin_face_and_skin_by_name_and_files_of_those_names_by_path() {
+    let d = dir("builtin");
+    // A file named `face` in the working directory: `face` is still the built-in (with a note),
+    // `./face` reads the file.
+    std::fs::write(d.join("face"), "v 0 0 0\nf 1 2 3\n").unwrap();
+    let in_dir = |args: &[&str]| {
+        Command::new(BIN)
+            .current_dir(&*d)
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let o = in_dir(&[
+        "render",
+        "--model",
+        "ward",
+        "--param",
+        "alpha=0.35",
+        "--mesh",
+        "face",
+        "--texture",
+        "skin",
+        "--env",
+        "sky",
+        "--env-samples",
+        "2",
+        "--size",
+        "48x48",
+        "--spp",
+        "1",
+        "--out",
+        "face.png",
+    ]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(
+        err(&o).contains("note: --mesh face is the embedded face") && err(&o).contains("./face"),
+        "{}",
+        err(&o)
+    );
+    let png = image::open(d.join("face.png")).unwrap().to_rgb8();
+    let c = png.get_pixel(24, 24);
+    assert!(c[0] > c[2] && c[0] > 40, "skin at the centre: {c:?}");
+    let o = in_dir(&[
+        "render", "--model", "ward", "--mesh", "./face", "--size", "48x48", "--out", "f2.png",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", err(&o));
+    assert!(err(&o).contains("face:2"), "{}", err(&o));
+    // `./skin` is a file too: none here.
+    let o = in_dir(&[
+        "render",
+        "--model",
+        "ward",
+        "--texture",
+        "./skin",
+        "--size",
+        "48x48",
+        "--out",
+        "f3.png",
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", err(&o));
+    assert!(err(&o).contains("./skin"), "{}", err(&o));
+    assert_eq!(files(&d), ["face", "face.png"]);
+}

@@ -26,6 +26,15 @@ use glam::{Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::Path;
 
+/// MediaPipe's canonical face mesh (468 vertices, 898 triangles, texture coordinates, no
+/// normals), embedded unmodified; Apache-2.0, see `data/NOTICE.md` beside the crate's sources.
+pub const FACE_OBJ: &str = include_str!("../data/canonical_face_model.obj");
+
+/// The embedded face ([`FACE_OBJ`]) as a mesh, normals computed (`--mesh face`).
+pub fn face() -> TriMesh {
+    parse_obj(Path::new("<built-in face>"), FACE_OBJ).expect("the embedded face mesh parses")
+}
+
 /// Largest OBJ file read: 256 MiB (the face mesh is 40 KiB; 256 MiB is millions of faces).
 pub const MAX_OBJ_BYTES: u64 = 256 << 20;
 

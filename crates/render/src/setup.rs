@@ -9,14 +9,17 @@ use crate::mesh::load_obj;
 use crate::scene::{Camera, Light, LightKind, Material, Object, Scene, Shape, Specular};
 use crate::texture::Texture;
 use glam::Vec3;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// Scene options (everything except the specular model).
 #[derive(Clone, Debug, Default)]
 pub struct SceneSpec {
-    /// An OBJ mesh instead of the built-in sphere.
+    /// An OBJ mesh instead of the built-in sphere; exactly `face` ([`BUILTIN_MESH`]) is the
+    /// embedded face ([`crate::mesh::face`]), `./face` a file of that name.
     pub mesh: Option<PathBuf>,
+    /// An albedo texture file; exactly `skin` ([`BUILTIN_TEXTURE`]) is the procedural skin
+    /// ([`crate::texture::skin`]), `./skin` a file of that name.
     pub texture: Option<PathBuf>,
     /// Lights; none means the default key light.
     pub lights: Vec<Light>,
@@ -49,6 +52,38 @@ impl SceneSpec {
     }
 }
 
+/// The `--mesh` value that names the embedded face rather than a file.
+pub const BUILTIN_MESH: &str = "face";
+/// The `--texture` value that names the procedural skin rather than a file.
+pub const BUILTIN_TEXTURE: &str = "skin";
+
+/// Whether `path` is exactly the built-in name `name` (`./face` is a file, `face` is not).
+pub fn is_builtin(path: &Path, name: &str) -> bool {
+    path.as_os_str() == name
+}
+
+/// Notes for the user when a built-in name is also a file in the working directory: the
+/// built-in wins, `./NAME` reads the file.
+pub fn builtin_notes(spec: &SceneSpec) -> Vec<String> {
+    let mut notes = Vec::new();
+    for (opt, path, name, what) in [
+        ("--mesh", &spec.mesh, BUILTIN_MESH, "the embedded face"),
+        (
+            "--texture",
+            &spec.texture,
+            BUILTIN_TEXTURE,
+            "the procedural skin",
+        ),
+    ] {
+        if path.as_deref().is_some_and(|p| is_builtin(p, name)) && Path::new(name).exists() {
+            notes.push(format!(
+                "note: {opt} {name} is {what}, not the file {name} here: write {opt} ./{name} to read the file"
+            ));
+        }
+    }
+    notes
+}
+
 /// Loaded resources shared by several renders (mesh, texture).
 pub struct Loaded {
     mesh: Option<Arc<crate::geometry::TriMesh>>,
@@ -56,19 +91,31 @@ pub struct Loaded {
     env: Option<Arc<EnvMap>>,
 }
 
-/// Loads the mesh, texture and environment map once.
+/// Loads the mesh, texture and environment map once (the built-in face and skin by name).
 pub fn load(spec: &SceneSpec) -> Result<Loaded> {
     Ok(Loaded {
         mesh: spec
             .mesh
             .as_deref()
-            .map(load_obj)
+            .map(|p| {
+                if is_builtin(p, BUILTIN_MESH) {
+                    Ok(crate::mesh::face())
+                } else {
+                    load_obj(p)
+                }
+            })
             .transpose()?
             .map(Arc::new),
         texture: spec
             .texture
             .as_deref()
-            .map(Texture::load)
+            .map(|p| {
+                if is_builtin(p, BUILTIN_TEXTURE) {
+                    Ok(crate::texture::skin())
+                } else {
+                    Texture::load(p)
+                }
+            })
             .transpose()?
             .map(Arc::new),
         env: spec

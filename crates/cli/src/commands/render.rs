@@ -28,11 +28,13 @@ impl From<RenderError> for CliError {
 #[derive(clap::Args, Clone, Debug)]
 pub struct SceneArgs {
     /// An OBJ mesh to render instead of the built-in sphere (normals computed when absent;
-    /// at most 256 MiB, read once, so pipes work; materials are not read).
+    /// at most 256 MiB, read once, so pipes work; materials are not read). `face`: the
+    /// embedded MediaPipe canonical face (Apache-2.0); a file named face: `./face`.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
     /// An albedo texture (PNG or JPEG, sRGB), mapped by the mesh's texture coordinates (at most
-    /// 256 MiB, 16384 pixels per side and 2^25 pixels).
+    /// 256 MiB, 16384 pixels per side and 2^25 pixels); it multiplies --albedo. `skin`: the
+    /// built-in procedural skin (1024x1024, pores, colour variation); a file named skin: `./skin`.
     #[arg(long)]
     pub texture: Option<PathBuf>,
     /// A light: dir:X,Y,Z[:R,G,B[:INTENSITY]] (direction towards the light) or
@@ -180,6 +182,9 @@ impl SceneArgs {
                 self.spp
             )));
         }
+        for note in setup::builtin_notes(&spec) {
+            eprintln!("{note}");
+        }
         Ok((
             spec,
             Options {
@@ -218,6 +223,7 @@ pub fn render_model(
     after_help = "Examples:\n  fastbrdf render --model flog --param n=50 --out flog.png\n  \
 fastbrdf render --model ward --param alpha=0.3 --bump 40,0.6 --size 1024x1024 --out ward.exr\n  \
 fastbrdf render --model cook-torrance --param alpha=0.35 --mesh face.obj --texture skin.jpg --light dir:0,0,1 --out face.png\n  \
+fastbrdf render --model ward --param alpha=0.35 --mesh face --texture skin --albedo 1,1,1 --env sky --out face.png   (built-in face and skin)\n  \
 fastbrdf render --gpu --model flog --param n=50 --floor --out flog-gpu.png\n  \
 fastbrdf render --model ward --param alpha=0.2 --floor --light point:2,3,3:1,1,1:20 --out shadow.png\n  \
 fastbrdf render --model cook-torrance --param alpha=0.3 --env sky --floor --out sky.png   (built-in sky, 16 samples)\n  \
