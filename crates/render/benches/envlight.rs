@@ -3,8 +3,9 @@
 //! seed 000's Cook-Torrance (alpha 0.3, V-cavity, Schlick): the built-in sky with one
 //! environment sample per primary ray (a map-sampled and a cosine-sampled direction, their
 //! shadow rays and the batch BRDF evaluation) against the default key light with its shadow
-//! ray; on the face mesh (`../shared/data/canonical_face_model.obj`, skipped when absent) and
-//! on the sphere; all threads and one.
+//! ray; on the embedded face mesh (`--mesh face`: MediaPipe's canonical face) and on the
+//! sphere; all threads and one. Each environment sample is three directions (the map's, a
+//! cosine one and the BRDF's own, combined by MIS) with their shadow rays.
 //! Run: `cargo bench -p fastbrdf-render --bench envlight`; the ratio is env / direct of the
 //! same row.
 
@@ -18,18 +19,10 @@ fn main() {
     divan::main();
 }
 
-fn face() -> Option<PathBuf> {
-    let p = PathBuf::from(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/canonical_face_model.obj"
-    ));
-    p.exists().then_some(p)
-}
-
-fn scene(subject: &str, env: bool) -> Option<Scene> {
+fn scene(subject: &str, env: bool) -> Scene {
     let mut spec = SceneSpec::new();
     if subject == "face" {
-        spec.mesh = Some(face()?);
+        spec.mesh = Some(PathBuf::from(setup::BUILTIN_MESH));
     }
     if env {
         spec.env = Some("sky".into());
@@ -40,18 +33,15 @@ fn scene(subject: &str, env: bool) -> Option<Scene> {
         .iter()
         .map(|(a, b)| (a.to_string(), b.to_string()))
         .collect();
-    Some(setup::scene(
+    setup::scene(
         &spec,
         &loaded,
         Arc::new(Specular::new("cook-torrance", &params).unwrap()),
-    ))
+    )
 }
 
 fn run(bencher: divan::Bencher, subject: &str, env: bool, threads: usize) {
-    let Some(s) = scene(subject, env) else {
-        eprintln!("{subject}: the face mesh is absent, skipped");
-        return;
-    };
+    let s = scene(subject, env);
     let opts = Options {
         width: 512,
         height: 512,
