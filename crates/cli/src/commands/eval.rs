@@ -158,20 +158,7 @@ pub fn evaluate<T: Real + std::str::FromStr>(
 ) -> Result<String, CliError> {
     let model = &models[0];
     let values = value_columns(models.len());
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let headers = reader
-        .headers()
-        .map_err(|e| csv_error(source, text, &e))?
-        .clone();
-    let hline = headers.position().map_or(1, |p| line_of(text, p));
-    if let Some(v) = values.iter().find(|v| headers.iter().any(|h| h == **v)) {
-        return Err(CliError::input(format!(
-            "{source}: line {hline}: the input already has a '{v}' column"
-        )));
-    }
+    let (mut reader, headers, hline) = csv_headers(text, source, values)?;
     let (req, opt) = model.columns();
     // An input column named twice is ambiguous: refuse it rather than pick one.
     for name in req.iter().chain(opt.iter()) {
@@ -313,6 +300,31 @@ impl<'a> Lines<'a> {
 /// The line where a record starts (one-off; see [`Lines`]).
 pub(crate) fn line_of(text: &str, p: &csv::Position) -> u64 {
     Lines::new(text).of(p)
+}
+
+/// A CSV reader over `text` (headers, fields trimmed), its header row and that row's line;
+/// an input that already has one of the `outputs` columns is refused (the output would
+/// carry it twice). Shared by `eval` and `sample`.
+pub(crate) fn csv_headers<'a>(
+    text: &'a str,
+    source: &str,
+    outputs: &[&str],
+) -> Result<(csv::Reader<&'a [u8]>, csv::StringRecord, u64), CliError> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let headers = reader
+        .headers()
+        .map_err(|e| csv_error(source, text, &e))?
+        .clone();
+    let hline = headers.position().map_or(1, |p| line_of(text, p));
+    if let Some(v) = outputs.iter().find(|v| headers.iter().any(|h| h == **v)) {
+        return Err(CliError::input(format!(
+            "{source}: line {hline}: the input already has a '{v}' column"
+        )));
+    }
+    Ok((reader, headers, hline))
 }
 
 #[cfg(test)]

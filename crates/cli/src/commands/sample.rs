@@ -2,7 +2,7 @@
 //! chi-square goodness-of-fit test), issue 15. The library samples (`fastbrdf::sample`) and
 //! tests (`fastbrdf::chi2`); this module parses, prints and draws.
 
-use super::eval::{Lines, csv_error, line_of, parse_params, read_input};
+use super::eval::{Lines, csv_error, parse_params, read_input};
 use crate::CliError;
 use fastbrdf::chi2::{self, Config, Outcome};
 use fastbrdf::sample::Strategy;
@@ -123,20 +123,7 @@ fn rows<T: Real + std::str::FromStr>(
             &["wi_x", "wi_y", "wi_z", "weight", "pdf"],
         )
     };
-    let mut reader = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let headers = reader
-        .headers()
-        .map_err(|e| csv_error(source, text, &e))?
-        .clone();
-    let hline = headers.position().map_or(1, |p| line_of(text, p));
-    if let Some(v) = outputs.iter().find(|v| headers.iter().any(|h| h == **v)) {
-        return Err(CliError::input(format!(
-            "{source}: line {hline}: the input already has a '{v}' column"
-        )));
-    }
+    let (mut reader, headers, hline) = super::eval::csv_headers(text, source, outputs)?;
     let mut index = Vec::new();
     for name in inputs {
         let found: Vec<usize> = headers
