@@ -365,14 +365,11 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
 
 /// Observed | expected | difference (red: more observed, blue: fewer, scaled by the
 /// expected count's standard deviation, saturating at 4), theta down, phi across, each bin a
-/// block of pixels.
+/// block of pixels, each panel labelled (the renderer's labelled grid, `compare::grid`).
 fn picture(o: &Outcome) -> Result<Vec<u8>, CliError> {
     let (rt, rp) = (o.res_theta, o.res_phi);
     let scale = (600 / rp).clamp(1, 16);
-    let gap = 8;
     let (pw, ph) = (rp * scale, rt * scale);
-    let (w, h) = (3 * pw + 2 * gap, ph);
-    let mut rgb = vec![255u8; w * h * 3];
     let max = o
         .observed
         .iter()
@@ -387,6 +384,7 @@ fn picture(o: &Outcome) -> Result<Vec<u8>, CliError> {
         let b = (255.0 * (0.6 - (t - 0.3).abs() * 2.0).clamp(0.0, 0.6)) as u8;
         [r, g, b]
     };
+    let mut panels = vec![vec![0u8; pw * ph * 3]; 3];
     for i in 0..rt {
         for j in 0..rp {
             let k = i * rp + j;
@@ -397,22 +395,32 @@ fn picture(o: &Outcome) -> Result<Vec<u8>, CliError> {
             } else {
                 [(255.0 * (1.0 + d)) as u8, (255.0 * (1.0 + d)) as u8, 255]
             };
-            for (panel, c) in [(0, heat(ob)), (1, heat(ex)), (2, diff)] {
-                let x0 = panel * (pw + gap) + j * scale;
+            for (panel, c) in panels.iter_mut().zip([heat(ob), heat(ex), diff]) {
                 for y in i * scale..(i + 1) * scale {
-                    for x in x0..x0 + scale {
-                        let p = (y * w + x) * 3;
-                        rgb[p..p + 3].copy_from_slice(&c);
+                    for x in j * scale..(j + 1) * scale {
+                        let p = (y * pw + x) * 3;
+                        panel[p..p + 3].copy_from_slice(&c);
                     }
                 }
             }
         }
     }
+    let labels = ["observed", "expected", "difference (red +, blue -)"];
+    let cells: Vec<fastbrdf_render::compare::Cell> = labels
+        .iter()
+        .zip(panels)
+        .map(|(l, rgb)| fastbrdf_render::compare::Cell {
+            label: l.to_string(),
+            rgb,
+        })
+        .collect();
+    let (rgb, w, h) = fastbrdf_render::compare::grid(&[cells], pw as u32, ph as u32, None)
+        .map_err(|e| CliError::io(format!("chi-square picture: {e}")))?;
     let mut png = Vec::new();
     {
         use image::ImageEncoder;
         image::codecs::png::PngEncoder::new(&mut png)
-            .write_image(&rgb, w as u32, h as u32, image::ExtendedColorType::Rgb8)
+            .write_image(&rgb, w, h, image::ExtendedColorType::Rgb8)
             .map_err(|e| CliError::io(format!("PNG encoding: {e}")))?;
     }
     Ok(png)
