@@ -37,6 +37,7 @@ pub mod error;
 pub mod kind;
 pub mod lobes;
 pub mod math;
+pub mod measured;
 pub mod microfacet;
 pub mod model;
 pub mod params;

@@ -8,6 +8,7 @@ pub mod eval;
 pub mod fit;
 pub mod lut;
 pub mod materials;
+pub mod measured;
 pub mod metals;
 pub mod models;
 pub mod over_materials;
