@@ -327,6 +327,34 @@ pub(crate) fn csv_headers<'a>(
     Ok((reader, headers, hline))
 }
 
+/// The index of each of `names` in `headers`, each present exactly once; otherwise an error
+/// naming the column and, for a missing one, what `needs` them (`sample`, `a measured BRDF`).
+/// Shared by `sample` and `measured eval`.
+pub(crate) fn required_columns(
+    headers: &csv::StringRecord,
+    names: &[&str],
+    source: &str,
+    hline: u64,
+    needs: &str,
+) -> Result<Vec<usize>, CliError> {
+    names
+        .iter()
+        .map(|name| {
+            let mut found = headers.iter().enumerate().filter(|(_, h)| h == name);
+            match (found.next(), found.next()) {
+                (Some((i, _)), None) => Ok(i),
+                (None, _) => Err(CliError::input(format!(
+                    "{source}: line {hline}: missing column '{name}' ({needs} needs columns {})",
+                    names.join(",")
+                ))),
+                _ => Err(CliError::input(format!(
+                    "{source}: line {hline}: column '{name}' appears more than once"
+                ))),
+            }
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::Lines;

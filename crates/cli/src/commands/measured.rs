@@ -7,7 +7,7 @@
 //! columns then `value_r,value_g,value_b`. A malformed MERL file or CSV is exit code 2 naming
 //! the file (and the CSV's line and field), with nothing on stdout.
 
-use super::eval::{Lines, csv_error, csv_headers, read_input};
+use super::eval::{Lines, csv_error, csv_headers, read_input, required_columns};
 use crate::{CliError, outln};
 use fastbrdf::measured::{self, CHANNELS, MeasuredBrdf};
 use fastbrdf_io::shorten;
@@ -143,30 +143,7 @@ fn eval(a: &EvalArgs) -> Result<(), CliError> {
     let b = MeasuredBrdf::read(&a.file)?;
     let (text, source) = read_input(a.input.as_deref(), a.max_input_mib, "measured eval")?;
     let (mut reader, headers, hline) = csv_headers(&text, &source, &VALUES)?;
-    let mut index = [0usize; 6];
-    for (k, name) in COLUMNS.iter().enumerate() {
-        let found: Vec<usize> = headers
-            .iter()
-            .enumerate()
-            .filter(|(_, h)| h == name)
-            .map(|(i, _)| i)
-            .collect();
-        match found[..] {
-            [i] => index[k] = i,
-            [] => {
-                return Err(CliError::input(format!(
-                    "{source}: line {hline}: missing column '{name}' (a measured BRDF needs \
-                     columns {})",
-                    COLUMNS.join(",")
-                )));
-            }
-            _ => {
-                return Err(CliError::input(format!(
-                    "{source}: line {hline}: column '{name}' appears more than once"
-                )));
-            }
-        }
-    }
+    let index = required_columns(&headers, &COLUMNS, &source, hline, "a measured BRDF")?;
     let mut writer = csv::Writer::from_writer(Vec::new());
     let mut header_out: Vec<&str> = headers.iter().collect();
     header_out.extend(VALUES);

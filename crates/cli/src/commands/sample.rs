@@ -124,29 +124,7 @@ fn rows<T: Real + std::str::FromStr>(
         )
     };
     let (mut reader, headers, hline) = super::eval::csv_headers(text, source, outputs)?;
-    let mut index = Vec::new();
-    for name in inputs {
-        let found: Vec<usize> = headers
-            .iter()
-            .enumerate()
-            .filter(|(_, h)| h == name)
-            .map(|(i, _)| i)
-            .collect();
-        match found[..] {
-            [i] => index.push(i),
-            [] => {
-                return Err(CliError::input(format!(
-                    "{source}: line {hline}: missing column '{name}' (sample needs columns {})",
-                    inputs.join(",")
-                )));
-            }
-            _ => {
-                return Err(CliError::input(format!(
-                    "{source}: line {hline}: column '{name}' appears more than once"
-                )));
-            }
-        }
-    }
+    let index = super::eval::required_columns(&headers, inputs, source, hline, "sample")?;
     let mut writer = csv::Writer::from_writer(Vec::new());
     let mut header_out: Vec<&str> = headers.iter().collect();
     header_out.extend(outputs);
