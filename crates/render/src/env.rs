@@ -219,39 +219,31 @@ impl EnvMap {
             line: None,
             message: m,
         };
-        let f = std::fs::File::open(path)
-            .map_err(|e| bad(format!("cannot read the environment map: {e}")))?;
-        let bytes = fastbrdf_io::read_reader_bounded(f, path, MAX_ENV_BYTES, "an environment map")?;
-        let reader = || {
-            image::ImageReader::new(std::io::Cursor::new(&bytes[..]))
-                .with_guessed_format()
-                .map_err(|e| bad(format!("cannot read the environment map: {e}")))
-        };
-        match reader()?.format() {
-            Some(image::ImageFormat::Hdr | image::ImageFormat::OpenExr) => {}
+        let accept = |format: Option<image::ImageFormat>| match format {
+            Some(image::ImageFormat::Hdr | image::ImageFormat::OpenExr) => Ok(()),
             other => {
                 let found = other.map_or("not an image format this reads".to_string(), |f| {
                     format!("{f:?}")
                 });
-                return Err(bad(format!(
+                Err(format!(
                     "not an HDR environment map (a Radiance .hdr or OpenEXR file is needed; found {found})"
-                )));
+                ))
             }
-        }
-        let (w, h) = reader()?
-            .into_dimensions()
-            .map_err(|e| bad(format!("cannot read the environment map: {e}")))?;
-        check_env_size(w, h).map_err(bad)?;
-        let mut r = reader()?;
-        let mut limits = image::Limits::default();
-        limits.max_image_width = Some(MAX_ENV_WIDTH);
-        limits.max_image_height = Some(MAX_ENV_WIDTH / 2);
-        limits.max_alloc = Some(u64::from(MAX_ENV_WIDTH) * u64::from(MAX_ENV_WIDTH / 2) * 16);
-        r.limits(limits);
-        let img = r
-            .decode()
-            .map_err(|e| bad(format!("cannot read the environment map: {e}")))?
-            .to_rgb32f();
+        };
+        let img = crate::texture::decode_limited(
+            path,
+            MAX_ENV_BYTES,
+            "an environment map",
+            "the environment map",
+            accept,
+            check_env_size,
+            (
+                MAX_ENV_WIDTH,
+                MAX_ENV_WIDTH / 2,
+                u64::from(MAX_ENV_WIDTH) * u64::from(MAX_ENV_WIDTH / 2) * 16,
+            ),
+        )?
+        .to_rgb32f();
         let (w, h) = img.dimensions();
         let texels = img.pixels().map(|p| Vec3::new(p[0], p[1], p[2])).collect();
         Self::from_texels(w, h, texels).map_err(bad)
