@@ -410,41 +410,42 @@ fn env_pass(
                 .wrapping_add(i as u32 % nn);
             let mut rng = Rng::new(id, at.pass);
             let (u1, u2, u3, u4) = (rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
+            // The specular term's local frame and view direction, once per hit.
+            let frame = (m.ks > 0.0).then(|| {
+                let (t, b) = s.n.any_orthonormal_pair();
+                (t, b, [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)])
+            });
+            let brdf = &m.specular.channels[0].scalar;
+            let mut push = |wi: [f32; 3], wo: [f32; 3], li: Vec3| {
+                idx.push(i);
+                lis.push(li);
+                for k in 0..3 {
+                    cols[k].push(wi[k]);
+                    cols[k + 3].push(wo[k]);
+                }
+            };
             // The map's direction: diffuse (MIS with the cosine strategy) and specular.
             let (l, le, pdf_l) = map.sample(u1, u2);
             let cos_i = s.n.dot(l);
             if pdf_l > 0.0 && cos_i > 0.0 && le != Vec3::ZERO && visible(scene, s, l) {
                 radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
-                if m.ks > 0.0 {
-                    let (t, b) = s.n.any_orthonormal_pair();
+                if let Some((t, b, wo)) = frame {
                     let wi = [l.dot(t), l.dot(b), cos_i];
-                    let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
-                    let pdf_b = m.specular.channels[0].scalar.pdf(wo, wi, Strategy::Auto);
-                    idx.push(i);
-                    lis.push(le * (specular_light_weight(pdf_l, Some(pdf_b)) / pdf_l * inv));
-                    for k in 0..3 {
-                        cols[k].push(wi[k]);
-                        cols[k + 3].push(wo[k]);
-                    }
+                    let pdf_b = brdf.pdf(wo, wi, Strategy::Auto);
+                    let w = specular_light_weight(pdf_l, Some(pdf_b));
+                    push(wi, wo, le * (w / pdf_l * inv));
                 }
             }
             // The BRDF's direction: specular only (MIS with the map's direction).
-            if m.ks > 0.0 {
+            if let Some((t, b, wo)) = frame {
                 let (u5, u6) = (rng.uniform(), rng.uniform());
-                let (t, b) = s.n.any_orthonormal_pair();
-                let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
-                let brdf = &m.specular.channels[0].scalar;
                 if let Some(smp) = brdf.sample(wo, [u5, u6], Strategy::Auto) {
                     let wi = smp.wi;
                     let l = t * wi[0] + b * wi[1] + s.n * wi[2];
                     let (le, pdf_l) = map.lookup(l);
                     if smp.pdf > 0.0 && le != Vec3::ZERO && visible(scene, s, l) {
-                        idx.push(i);
-                        lis.push(le * (power_heuristic(smp.pdf, pdf_l) / smp.pdf * inv));
-                        for k in 0..3 {
-                            cols[k].push(wi[k]);
-                            cols[k + 3].push(wo[k]);
-                        }
+                        let w = power_heuristic(smp.pdf, pdf_l);
+                        push(wi, wo, le * (w / smp.pdf * inv));
                     }
                 }
             }
