@@ -195,8 +195,9 @@ pub trait Brdf<T: Real>: Send + Sync {
     /// Values of `cos theta_h` where the BRDF is discontinuous or has a kink (the lobe's cut
     /// and junctions, for `blinn-phong`): where an adversarial search starts.
     fn half_breaks(&self) -> Vec<f64>;
-    /// The sampling strategies it supports, its default (`auto`) first (`crate::sample`).
-    fn strategies(&self) -> Vec<Strategy>;
+    /// The sampling strategies it supports, its default (`auto`) first (`crate::sample`): a
+    /// constant list, so that `sample` and `pdf` resolve `auto` without allocating.
+    fn strategies(&self) -> &'static [Strategy];
     /// `s` with `auto` replaced by the default, or an error naming the valid ones.
     fn resolve(&self, s: Strategy) -> std::result::Result<Strategy, String> {
         let all = self.strategies();

@@ -212,7 +212,7 @@ pub trait BrdfForm: Copy + Debug + Send + Sync + 'static {
         false
     }
     /// The sampling strategies it supports (`crate::sample`), its default first.
-    fn strategies(&self) -> Vec<Strategy>;
+    fn strategies(&self) -> &'static [Strategy];
     /// A direction `wi` (any length, any side) drawn by strategy `s` (one of
     /// [`Self::strategies`]) given the unit `wo` above the horizon, or `None` (no sample).
     fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>>;
@@ -555,7 +555,7 @@ impl BrdfForm for BrdfPlan {
     fn furnace_tol(&self) -> f64 {
         with_brdf!(self, b => b.furnace_tol())
     }
-    fn strategies(&self) -> Vec<Strategy> {
+    fn strategies(&self) -> &'static [Strategy] {
         with_brdf!(self, b => b.strategies())
     }
     fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>> {
@@ -727,7 +727,7 @@ impl<T: Real, B: BrdfForm> model::Brdf<T> for Scalar<B> {
     fn half_breaks(&self) -> Vec<f64> {
         self.0.half_breaks()
     }
-    fn strategies(&self) -> Vec<Strategy> {
+    fn strategies(&self) -> &'static [Strategy] {
         self.0.strategies()
     }
     fn sample(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<crate::sample::Sample<T>> {

@@ -140,7 +140,7 @@ fn runs() -> Vec<(Case, Strategy)> {
     for c in cases() {
         let b = c.build::<f64>();
         let first = seen.insert(c.id);
-        for s in b.strategies() {
+        for &s in b.strategies() {
             if s != Strategy::Cosine || first {
                 out.push((c.clone(), s));
             }

@@ -336,14 +336,14 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G,
     // The body is assembled per instance from its D, G and F's functions; the file holds the
     // anisotropic stretch.
     const WGSL: &'static str = include_str!("cook_torrance.wgsl");
-    fn strategies(&self) -> Vec<Strategy> {
+    fn strategies(&self) -> &'static [Strategy] {
         let s = self.d.sampler();
         if s.exact {
-            vec![Strategy::Vndf, Strategy::DCos, Strategy::Cosine]
+            &[Strategy::Vndf, Strategy::DCos, Strategy::Cosine]
         } else if s.closed.is_some() {
-            vec![Strategy::DCos, Strategy::Twin, Strategy::Cosine]
+            &[Strategy::DCos, Strategy::Twin, Strategy::Cosine]
         } else {
-            vec![Strategy::Twin, Strategy::Cosine]
+            &[Strategy::Twin, Strategy::Cosine]
         }
     }
     fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>> {

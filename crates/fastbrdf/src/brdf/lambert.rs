@@ -75,8 +75,8 @@ impl BrdfForm for Lambert {
     fn claims_energy(&self) -> bool {
         true
     }
-    fn strategies(&self) -> Vec<Strategy> {
-        vec![Strategy::Cosine]
+    fn strategies(&self) -> &'static [Strategy] {
+        &[Strategy::Cosine]
     }
     fn sample_wi<T: Real>(&self, _wo: V3<T>, u: [T; 2], _s: Strategy) -> Option<V3<T>> {
         Some(sample::cosine(u))

@@ -243,11 +243,11 @@ impl<L: LobeForm> BrdfForm for LobeBrdf<L> {
     fn claims_energy(&self) -> bool {
         self.normalized || self.lobe.normalised()
     }
-    fn strategies(&self) -> Vec<Strategy> {
+    fn strategies(&self) -> &'static [Strategy] {
         if self.lobe.cos_dist().is_some() {
-            vec![Strategy::Lobe, Strategy::Twin, Strategy::Cosine]
+            &[Strategy::Lobe, Strategy::Twin, Strategy::Cosine]
         } else {
-            vec![Strategy::Twin, Strategy::Cosine]
+            &[Strategy::Twin, Strategy::Cosine]
         }
     }
     fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>> {

@@ -202,13 +202,11 @@ impl<const FORM: u8> Ward<FORM> {
 
 impl<const FORM: u8> BrdfForm for Ward<FORM> {
     const WGSL: &'static str = include_str!("ward.wgsl");
-    fn strategies(&self) -> Vec<Strategy> {
+    fn strategies(&self) -> &'static [Strategy] {
         match FORM {
-            0 => vec![Strategy::DCos, Strategy::Cosine],
-            _ if self.closed().is_some() => {
-                vec![Strategy::Lobe, Strategy::Twin, Strategy::Cosine]
-            }
-            _ => vec![Strategy::Twin, Strategy::Cosine],
+            0 => &[Strategy::DCos, Strategy::Cosine],
+            _ if self.closed().is_some() => &[Strategy::Lobe, Strategy::Twin, Strategy::Cosine],
+            _ => &[Strategy::Twin, Strategy::Cosine],
         }
     }
     fn sample_wi<T: Real>(&self, wo: V3<T>, u: [T; 2], s: Strategy) -> Option<V3<T>> {
