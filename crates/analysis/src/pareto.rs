@@ -195,6 +195,7 @@ mod tests {
             isa: "sse2".into(),
             threads: 1,
             fma_per_s: 1e9,
+            div_per_s: None,
             kernels: vec![speed::KernelRow {
                 model: "schlick".into(),
                 variant: "simd".into(),
@@ -202,6 +203,8 @@ mod tests {
                 evals_per_s: 2.5e9,
                 isa: "sse2".into(),
                 fma_fraction: None,
+                limit: None,
+                limit_fraction: None,
             }],
             speedups: vec![],
             quick: true,

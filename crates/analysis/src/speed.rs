@@ -46,6 +46,15 @@ pub struct KernelRow {
     /// alone (no division, square root or transcendental, whose cost the registry's counts do
     /// not measure); `null` otherwise.
     pub fma_fraction: Option<f64>,
+    /// The machine limit that bounds this kernel, `"fma"` (the FMA pipes) or `"divider"`
+    /// (the divide unit), with the fraction of it used ([`limit_fraction`]): for kernels of
+    /// cosines whose formula is multiplies, adds and divisions; `null` otherwise (square
+    /// roots and transcendentals are polynomials of uncounted length). Absent from runs saved
+    /// before it existed.
+    #[serde(default)]
+    pub limit: Option<String>,
+    #[serde(default)]
+    pub limit_fraction: Option<f64>,
 }
 
 /// One speedup.
@@ -67,6 +76,10 @@ pub struct Report {
     pub threads: usize,
     /// Lane FMAs per second on one core with `isa` (independent FMA chains).
     pub fma_per_s: f64,
+    /// Lane divisions per second on one core with `isa` (independent division chains);
+    /// absent from runs saved before it was measured.
+    #[serde(default)]
+    pub div_per_s: Option<f64>,
     pub kernels: Vec<KernelRow>,
     pub speedups: Vec<SpeedupRow>,
     pub quick: bool,
@@ -107,6 +120,11 @@ impl Report {
                 r.fma_per_s
             )));
         }
+        if let Some(d) = r.div_per_s.filter(|&d| !rate(d)) {
+            return Err(bad(format!(
+                "div_per_s = {d} is not a possible rate (finite, positive, at most 1e15)"
+            )));
+        }
         if r.threads == 0 {
             return Err(bad("threads = 0: a run has at least one thread".into()));
         }
@@ -117,11 +135,17 @@ impl Report {
                     k.model, k.variant, k.evals_per_s, k.batch
                 )));
             }
-            if let Some(f) = k.fma_fraction.filter(|f| !(f.is_finite() && *f >= 0.0)) {
-                return Err(bad(format!(
-                    "kernels[{i}] ({}): fma_fraction = {f} is not a fraction",
-                    k.model
-                )));
+            let fractions = [
+                ("fma_fraction", k.fma_fraction),
+                ("limit_fraction", k.limit_fraction),
+            ];
+            for (name, f) in fractions {
+                if let Some(f) = f.filter(|f| !(f.is_finite() && *f >= 0.0)) {
+                    return Err(bad(format!(
+                        "kernels[{i}] ({}): {name} = {f} is not a fraction",
+                        k.model
+                    )));
+                }
             }
         }
         for (i, s) in r.speedups.iter().enumerate() {
@@ -210,15 +234,17 @@ fn repeats_for(target: f64, one: f64) -> usize {
 
 const ACC: usize = 256;
 
+/// `ACC` independent chains of `iters` steps each: `x a + b` fused (`DIV` false), or `x / a`
+/// (`DIV` true; `a` near 1 keeps every value normal).
 #[inline(always)]
-fn fma_body(iters: usize, a: f32, b: f32) -> f32 {
+fn peak_body<const DIV: bool>(iters: usize, a: f32, b: f32) -> f32 {
     let mut acc = [0.0f32; ACC];
     for (i, x) in acc.iter_mut().enumerate() {
-        *x = i as f32 * 1e-3;
+        *x = if DIV { 1.0 } else { 0.0 } + i as f32 * 1e-3;
     }
     for _ in 0..iters {
         for x in acc.iter_mut() {
-            *x = x.mul_add(a, b);
+            *x = if DIV { *x / a } else { x.mul_add(a, b) };
         }
     }
     acc.iter().sum()
@@ -226,14 +252,14 @@ fn fma_body(iters: usize, a: f32, b: f32) -> f32 {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f,avx512vl,fma")]
-unsafe fn fma_avx512(iters: usize, a: f32, b: f32) -> f32 {
-    fma_body(iters, a, b)
+unsafe fn fma_avx512<const DIV: bool>(iters: usize, a: f32, b: f32) -> f32 {
+    peak_body::<DIV>(iters, a, b)
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2,fma")]
-unsafe fn fma_avx2(iters: usize, a: f32, b: f32) -> f32 {
-    fma_body(iters, a, b)
+unsafe fn fma_avx2<const DIV: bool>(iters: usize, a: f32, b: f32) -> f32 {
+    peak_body::<DIV>(iters, a, b)
 }
 
 /// Whether this CPU has every feature the FMA loop for `isa` is compiled with (the
@@ -262,26 +288,37 @@ pub fn fma_supported(isa: Isa) -> bool {
 /// as one. `None` when this CPU lacks `isa` ([`fma_supported`]): the loop is never run
 /// with instructions the CPU does not have.
 pub fn fma_per_s(isa: Isa, budget: Duration) -> Option<f64> {
+    peak_per_s::<false>(isa, budget, (0.999_9, 1e-4))
+}
+
+/// Lane divisions per second on one core with `isa`: the divide unit's throughput (256
+/// independent chains of `x / a`, so its latency does not enter), the limit of the kernels
+/// whose formula divides (`schlick`, `rational`, GGX's D). `None` as [`fma_per_s`].
+pub fn div_per_s(isa: Isa, budget: Duration) -> Option<f64> {
+    peak_per_s::<true>(isa, budget, (1.000_1, 0.0))
+}
+
+fn peak_per_s<const DIV: bool>(isa: Isa, budget: Duration, (a, b): (f32, f32)) -> Option<f64> {
     if !fma_supported(isa) {
         return None;
     }
-    let iters = 20_000;
-    let (a, b) = (black_box(0.999_9f32), black_box(1e-4f32));
+    let iters = if DIV { 4_000 } else { 20_000 };
+    let (a, b) = (black_box(a), black_box(b));
     let secs = time(
         || {
             let r = match isa {
                 // SAFETY: `fma_supported(isa)` checked above that the CPU has avx512f,
                 // avx512vl and fma, the features `fma_avx512` is compiled with.
                 #[cfg(target_arch = "x86_64")]
-                Isa::Avx512 => unsafe { fma_avx512(iters, a, b) },
+                Isa::Avx512 => unsafe { fma_avx512::<DIV>(iters, a, b) },
                 // SAFETY: `fma_supported(isa)` checked above that the CPU has avx2 and fma.
                 #[cfg(target_arch = "x86_64")]
-                Isa::Avx2Fma => unsafe { fma_avx2(iters, a, b) },
+                Isa::Avx2Fma => unsafe { fma_avx2::<DIV>(iters, a, b) },
                 _ => {
-                    let mut acc = [0.0f32; ACC];
+                    let mut acc = [1.0f32; ACC];
                     for _ in 0..iters {
                         for x in acc.iter_mut() {
-                            *x = *x * a + b;
+                            *x = if DIV { *x / a } else { *x * a + b };
                         }
                     }
                     acc.iter().sum()
@@ -309,6 +346,37 @@ pub fn fma_slots(info: &fastbrdf::ModelInfo, isa: Isa) -> Option<f64> {
     let (m, a) = (f64::from(o.mul), f64::from(o.add));
     let slots = if isa.fma() { m.max(a) } else { m + a };
     (slots > 0.0).then_some(slots)
+}
+
+/// The machine limit a kernel of cosines is measured against, and the fraction of it that
+/// `evals_per_s` evaluations use: the FMA pipes (`max(mul, add)` slots per evaluation where
+/// the instruction set fuses, `mul + add` otherwise) or the divider (`div` lane divisions per
+/// evaluation, against `div_per_s`), whichever the formula uses more of. `None` for BRDFs,
+/// formulas with a square root or transcendental, scalar fallbacks, and where the divider's
+/// rate is unknown but needed.
+pub fn limit_fraction(
+    info: &fastbrdf::ModelInfo,
+    isa: Isa,
+    evals_per_s: f64,
+    fma_per_s: f64,
+    div_per_s: Option<f64>,
+) -> Option<(&'static str, f64)> {
+    let o = info.ops;
+    if info.kind == Kind::Brdf || o.sqrt != 0 || o.transcendental != 0 || isa == Isa::Scalar {
+        return None;
+    }
+    let (m, a) = (f64::from(o.mul), f64::from(o.add));
+    let slots = if isa.fma() { m.max(a) } else { m + a };
+    let fma = evals_per_s * slots / fma_per_s;
+    if o.div == 0 {
+        return (slots > 0.0).then_some(("fma", fma));
+    }
+    let div = evals_per_s * f64::from(o.div) / div_per_s?;
+    Some(if div >= fma {
+        ("divider", div)
+    } else {
+        ("fma", fma)
+    })
 }
 
 // ---------- inputs ----------
@@ -453,6 +521,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     };
     let isa = Isa::best();
     let fma = fma_per_s(isa, budget * 2).expect("Isa::best() is an instruction set this CPU has");
+    let div = div_per_s(isa, budget * 2);
     let small = 4096;
     let small_in = Inputs::new(small);
     let large_in = Inputs::new(opts.large);
@@ -527,15 +596,22 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         let model = registry::build::<f32>(id, &given)?;
         let slots = fma_slots(info, kernel.isa());
         let frac = |evals: f64| slots.map(|f| evals * f / fma);
-        let row =
-            |variant: &str, batch: usize, evals: f64, isa: Isa, fraction: Option<f64>| KernelRow {
+        let row = |variant: &str, batch: usize, evals: f64, isa: Isa, fraction: Option<f64>| {
+            // The machine's limit is measured on one core: the rows of one thread only.
+            let limit = (variant == "simd")
+                .then(|| limit_fraction(info, isa, evals, fma, div))
+                .flatten();
+            KernelRow {
                 model: name.clone(),
                 variant: variant.into(),
                 batch,
                 evals_per_s: evals,
                 isa: isa.name().into(),
                 fma_fraction: fraction,
-            };
+                limit: limit.map(|l| l.0.into()),
+                limit_fraction: limit.map(|l| l.1),
+            }
+        };
         let input = small_in.input(info.kind, small);
         let t = time(|| scalar_eval(&model, &input, &mut out_small), budget);
         kernels.push(row("scalar", small, small as f64 / t, Isa::Scalar, None));
@@ -584,13 +660,25 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
             Duration::from_millis(2)
         },
     };
-    let peers = peer_rows(&opts.models, &small_in.cos, &peer_opts)?;
+    let mut peers = peer_rows(&opts.models, &small_in.cos, &peer_opts)?;
+    for p in &mut peers {
+        let info = &registry::find(&p.model)?.info;
+        let isa = Isa::available()
+            .iter()
+            .copied()
+            .find(|i| i.name() == p.isa)
+            .unwrap_or(Isa::Scalar);
+        let limit = limit_fraction(info, isa, p.kernel_evals_per_s.median, fma, div);
+        p.kernel_limit = limit.map(|l| l.0.into());
+        p.kernel_limit_fraction = limit.map(|l| l.1);
+    }
     progress(total, total);
     Ok(Report {
         cpu: cpu_name(),
         isa: isa.name().into(),
         threads: rayon::current_num_threads(),
         fma_per_s: fma,
+        div_per_s: div,
         kernels,
         speedups,
         quick: opts.quick,
@@ -608,6 +696,8 @@ fn baseline(model: &str, secs: f64) -> KernelRow {
         evals_per_s: 4096.0 / secs,
         isa: "scalar".into(),
         fma_fraction: None,
+        limit: None,
+        limit_fraction: None,
     }
 }
 
@@ -1039,6 +1129,12 @@ pub struct PeerRow {
     /// MXCSR's flush-to-zero and denormals-are-zero bits (absent off x86-64).
     pub ftz: Option<bool>,
     pub daz: Option<bool>,
+    /// The machine limit of the kernel's median rate, as `KernelRow::limit` (absent from runs
+    /// saved before it existed).
+    #[serde(default)]
+    pub kernel_limit: Option<String>,
+    #[serde(default)]
+    pub kernel_limit_fraction: Option<f64>,
 }
 
 /// How long the race runs.
@@ -1148,6 +1244,8 @@ pub fn peer_rows(
             libmvec: PEER_LIBMVEC,
             ftz: state.map(|s| s.0),
             daz: state.map(|s| s.1),
+            kernel_limit: None,
+            kernel_limit_fraction: None,
         });
     }
     Ok(rows)
@@ -1170,6 +1268,37 @@ mod tests {
         assert_eq!(fma_slots(&info("power16"), Isa::Scalar), None);
     }
 
+    /// The limit is the unit the formula's counted operations load more: power16 (5 fused
+    /// slots, no division) the FMA pipes; schlick (one division, two fused slots) the divider
+    /// unless divisions are nearly as cheap as FMAs; nothing for transcendentals and BRDFs.
+    #[test]
+    fn limit_fraction_names_the_unit_the_formula_loads_most() {
+        let info = |id: &str| fastbrdf::registry::find(id).unwrap().info;
+        let (fma, div) = (100e9, 20e9);
+        let l = limit_fraction(&info("power16"), Isa::Avx512, 10e9, fma, Some(div));
+        assert_eq!(l, Some(("fma", 10e9 * 5.0 / fma)));
+        let l = limit_fraction(&info("schlick"), Isa::Avx512, 10e9, fma, Some(div));
+        assert_eq!(l, Some(("divider", 10e9 / div)));
+        // Divisions as cheap as a third of an FMA slot: the pipes bound it again.
+        let l = limit_fraction(&info("schlick"), Isa::Avx512, 10e9, fma, Some(3.0 * fma));
+        assert_eq!(l.map(|l| l.0), Some("fma"));
+        // Without a divider rate a dividing kernel has no stated limit.
+        assert_eq!(
+            limit_fraction(&info("schlick"), Isa::Avx512, 1e9, fma, None),
+            None
+        );
+        for id in ["sg", "pow", "ward", "cook-torrance"] {
+            assert_eq!(
+                limit_fraction(&info(id), Isa::Avx512, 1e9, fma, Some(div)),
+                None
+            );
+        }
+        assert_eq!(
+            limit_fraction(&info("power16"), Isa::Scalar, 1e9, fma, Some(div)),
+            None
+        );
+    }
+
     /// `fma_per_s` is safe to call with every instruction set: a positive finite rate for
     /// those this CPU has, `None` (never an illegal instruction) for the others.
     #[test]
@@ -1180,6 +1309,17 @@ mod tests {
             assert_eq!(rate.is_some(), fma_supported(isa), "{isa:?}");
             if let Some(r) = rate {
                 assert!(r.is_finite() && r > 0.0, "{isa:?}: {r}");
+            }
+        }
+        for isa in [Isa::Avx512, Isa::Avx2Fma, Isa::Sse2, Isa::Scalar] {
+            let rate = div_per_s(isa, budget);
+            assert_eq!(rate.is_some(), fma_supported(isa), "{isa:?}");
+            // A division is never cheaper than a fused multiply-add.
+            if let (Some(d), Some(f)) = (rate, fma_per_s(isa, budget)) {
+                assert!(
+                    d.is_finite() && d > 0.0 && d < 2.0 * f,
+                    "{isa:?}: {d} vs {f}"
+                );
             }
         }
         // The instruction set the benchmark picks is always measurable.
@@ -1198,6 +1338,8 @@ mod tests {
                 evals_per_s: 4e8,
                 isa: "avx2".into(),
                 fma_fraction: None,
+                limit: None,
+                limit_fraction: None,
             },
         ];
         let r = Report {
@@ -1205,6 +1347,7 @@ mod tests {
             isa: "avx2".into(),
             threads: 1,
             fma_per_s: 1e10,
+            div_per_s: None,
             speedups: speedups(&kernels, 4096, 1 << 24),
             kernels,
             quick: true,

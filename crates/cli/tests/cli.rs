@@ -777,7 +777,7 @@ fn bench_json_has_the_documented_shape_and_round_trips() {
             "bench",
             "--quick",
             "--models",
-            "pow,power16,ward,ward-power16,cook-torrance",
+            "pow,power16,schlick,ward,ward-power16,cook-torrance",
             "--large",
             "4096",
             "--json",
@@ -790,7 +790,20 @@ fn bench_json_has_the_documented_shape_and_round_trips() {
         assert!(!v[key].is_null(), "no {key}");
     }
     assert!(v["fma_per_s"].as_f64().unwrap() > 0.0);
+    assert!(v["div_per_s"].as_f64().unwrap() > 0.0);
     let kernels = v["kernels"].as_array().unwrap();
+    // Each one-thread SIMD row names the limit it is held against, as a number.
+    let limit = |m: &str| {
+        let k = kernels
+            .iter()
+            .find(|k| k["model"] == m && k["variant"] == "simd" && k["batch"] == 4096)
+            .unwrap();
+        (k["limit"].as_str(), k["limit_fraction"].as_f64())
+    };
+    assert_eq!(limit("power16").0, Some("fma"));
+    assert_eq!(limit("schlick").0, Some("divider"));
+    assert!(limit("schlick").1.unwrap() > 0.0);
+    assert_eq!(limit("pow"), (None, None));
     for k in kernels {
         for key in ["model", "variant", "batch", "evals_per_s"] {
             assert!(!k[key].is_null(), "{k} lacks {key}");

@@ -25,11 +25,11 @@ pub struct Args {
     /// About 10 s instead of about a minute (shorter timing rounds; one run of the large batch).
     #[arg(long)]
     quick: bool,
-    /// Print JSON: {"cpu", "isa", "threads", "fma_per_s", "kernels": [{model, variant, batch,
-    /// evals_per_s, isa, fma_fraction}], "speedups": [{name, measured, claimed, how}], "quick",
+    /// Print JSON: {"cpu", "isa", "threads", "fma_per_s", "div_per_s", "kernels": [{model,
+    /// variant, batch, evals_per_s, isa, fma_fraction, limit, limit_fraction}], "speedups": [{name, measured, claimed, how}], "quick",
     /// "peers": [{model, params, batch, repeats, rounds, isa, kernel_evals_per_s,
     /// peer_evals_per_s, ratio, kernel_max_error, peer_max_error, peer, compiler, flags,
-    /// libmvec, ftz, daz}], and with --gpu "gpu" (the adapter's label)}; GPU rows have variant
+    /// libmvec, ftz, daz, kernel_limit, kernel_limit_fraction}], and with --gpu "gpu" (the adapter's label)}; GPU rows have variant
     /// "gpu" or "gpu+transfer" and isa "gpu". Each peers row races the batch kernel against
     /// the C loop `peer` (crates/analysis/c/peer.c, built with `compiler` at `flags`):
     /// `kernel_evals_per_s`, `peer_evals_per_s` and `ratio` (kernel over peer, per round) are
@@ -39,6 +39,11 @@ pub struct Args {
     /// `fma_fraction` is the share of the measured FMA-pipe peak used by the formula's own
     /// multiplies and adds (fused pairs count once on FMA instruction sets); null for BRDFs and
     /// for formulas with a division, square root or transcendental, which it cannot count.
+    /// `limit` names the machine limit a kernel is held against, "fma" (the FMA pipes,
+    /// `fma_per_s`) or "divider" (the divide unit, `div_per_s` lane divisions per second),
+    /// whichever its multiplies, adds and divisions use more of, and `limit_fraction` the share
+    /// used (single-thread "simd" rows; `kernel_limit*` for the peers' median); null where a
+    /// square root or transcendental makes the count meaningless.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown tables that README.md shows.
@@ -98,6 +103,8 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
                 evals_per_s: v,
                 isa: "gpu".into(),
                 fma_fraction: None,
+                limit: None,
+                limit_fraction: None,
             });
         }
         pb.inc(1);
@@ -209,7 +216,7 @@ fn table(r: &Report, md: bool) -> String {
     if md {
         let _ = writeln!(
             s,
-            "| model | scalar (4096) | SIMD (4096) | % FMA peak | SIMD 1 thread ({large}) | SIMD {} threads ({large}) | ISA |{gpu_md}",
+            "| model | scalar (4096) | SIMD (4096) | % of limit | SIMD 1 thread ({large}) | SIMD {} threads ({large}) | ISA |{gpu_md}",
             r.threads
         );
         let _ = writeln!(s, "|---|---|---|---|---|---|---|{gpu_md_rule}");
@@ -220,7 +227,7 @@ fn table(r: &Report, md: bool) -> String {
             "model (evals/s)",
             "scalar 4096",
             "simd 4096",
-            "%fma",
+            "% limit",
             "simd 1T large",
             "simd all large"
         );
@@ -232,8 +239,7 @@ fn table(r: &Report, md: bool) -> String {
                 .unwrap_or_else(|| "-".into())
         };
         let frac = get(m, "simd", 4096)
-            .and_then(|k| k.fma_fraction)
-            .map(|f| format!("{:.0}%", 100.0 * f))
+            .map(|k| limit_text(k.limit.as_deref(), k.limit_fraction, k.fma_fraction))
             .unwrap_or_else(|| "-".into());
         let isa = get(m, "simd", 4096)
             .map(|k| k.isa.clone())
@@ -387,17 +393,37 @@ fn speed_table(r: &Report, md: bool) -> String {
     s
 }
 
+/// `87% fma` or `64% div`: the share of the machine limit a kernel uses; a run saved before
+/// the limits were named shows its FMA fraction alone.
+fn limit_text(limit: Option<&str>, fraction: Option<f64>, fma_fraction: Option<f64>) -> String {
+    match (limit, fraction, fma_fraction) {
+        (Some(l), Some(f), _) => {
+            format!(
+                "{:.0}% {}",
+                100.0 * f,
+                if l == "divider" { "div" } else { l }
+            )
+        }
+        (None, None, Some(f)) => format!("{:.0}%", 100.0 * f),
+        _ => "-".into(),
+    }
+}
+
 fn header(r: &Report) -> String {
     let gpu = match &r.gpu {
         Some(g) => format!("; GPU: {g}"),
         None => String::new(),
     };
     format!(
-        "CPU: {}; instruction set: {}; {} threads; FMA peak {} lane-FMA/s per core{}{gpu}",
+        "CPU: {}; instruction set: {}; {} threads; FMA peak {} lane-FMA/s per core{}{}{gpu}",
         r.cpu,
         r.isa,
         r.threads,
         eng(r.fma_per_s),
+        match r.div_per_s {
+            Some(d) => format!(", divider {} lane-div/s", eng(d)),
+            None => String::new(),
+        },
         if r.quick { " (quick run)" } else { "" }
     )
 }
@@ -448,21 +474,22 @@ fn peer_table(r: &Report, md: bool) -> String {
     if md {
         let _ = writeln!(
             s,
-            "| model | kernel | C peer | kernel / C | kernel max error | C max error | ISA | rounds x calls |\n|---|---|---|---|---|---|---|---|"
+            "| model | kernel | C peer | kernel / C | kernel max error | C max error | kernel % of limit | ISA | rounds x calls |\n|---|---|---|---|---|---|---|---|---|"
         );
     } else {
         let _ = writeln!(
             s,
-            "  {:<22} {:>26} {:>26} {:>20} {:>9} {:>9}  {:<7} rounds x calls",
-            "model", "kernel", "C peer", "kernel / C", "k err", "C err", "isa"
+            "  {:<22} {:>26} {:>26} {:>20} {:>9} {:>9} {:>9}  {:<7} rounds x calls",
+            "model", "kernel", "C peer", "kernel / C", "k err", "C err", "% limit", "isa"
         );
     }
     for p in &r.peers {
         let name = format!("{} {}", p.model, p.params);
+        let limit = limit_text(p.kernel_limit.as_deref(), p.kernel_limit_fraction, None);
         if md {
             let _ = writeln!(
                 s,
-                "| `{}` {} | {} | {} | {} | {:.1e} | {:.1e} | {} | {} x {} |",
+                "| `{}` {} | {} | {} | {} | {:.1e} | {:.1e} | {limit} | {} | {} x {} |",
                 p.model,
                 p.params,
                 iqr(&p.kernel_evals_per_s),
@@ -477,7 +504,7 @@ fn peer_table(r: &Report, md: bool) -> String {
         } else {
             let _ = writeln!(
                 s,
-                "  {:<22} {:>26} {:>26} {:>20} {:>9.1e} {:>9.1e}  {:<7} {} x {}",
+                "  {:<22} {:>26} {:>26} {:>20} {:>9.1e} {:>9.1e} {limit:>9}  {:<7} {} x {}",
                 name,
                 iqr(&p.kernel_evals_per_s),
                 iqr(&p.peer_evals_per_s),
