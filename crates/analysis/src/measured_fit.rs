@@ -26,11 +26,11 @@
 //!
 //! For `ngan-l2` the albedos are solved exactly, not searched: given `theta`, the squared error
 //! separates per channel into a linear least-squares problem in `(rho_d, rho_s)` with both
-//! >= 0, solved in closed form (the 2 x 2 normal equations, or the best one-variable solution on
-//! the boundary when the unconstrained one is negative: an exact non-negative least squares for
-//! two variables). The simplex then only searches `theta` (variable projection). For `low-log`
-//! and `max` the albedos are not linear: the `ngan-l2` fit is computed first and Nelder-Mead
-//! then searches `theta` and the six albedos together from it.
+//! non-negative, solved in closed form (the 2 x 2 normal equations, or the best one-variable
+//! solution on the boundary when the unconstrained one is negative: an exact non-negative
+//! least squares for two variables). The simplex then only searches `theta` (variable
+//! projection). For `low-log` and `max` the albedos are not linear: the `ngan-l2` fit is
+//! computed first and Nelder-Mead then searches `theta` and the six albedos together from it.
 
 use argmin::core::{CostFunction, Error as ArgminError, Executor, State};
 use argmin::solver::neldermead::NelderMead;
@@ -348,9 +348,9 @@ impl Problem {
 pub fn albedos(data: &Data, spec: &[f64]) -> [[f64; 2]; 3] {
     [0, 1, 2].map(|c| {
         let (mut a11, mut a12, mut a22, mut r1, mut r2) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for k in 0..data.len() {
-            let w = data.wi[k][2];
-            let (x1, x2, y) = (w / PI, w * spec[k], w * data.value[k][c]);
+        for ((wi, v), &sk) in data.wi.iter().zip(&data.value).zip(spec) {
+            let w = wi[2];
+            let (x1, x2, y) = (w / PI, w * sk, w * v[c]);
             a11 += x1 * x1;
             a12 += x1 * x2;
             a22 += x2 * x2;
@@ -391,11 +391,11 @@ pub fn albedos(data: &Data, spec: &[f64]) -> [[f64; 2]; 3] {
 /// The three metrics of the model `rho_d / pi + rho_s spec` (per channel) against the data.
 pub fn residuals(data: &Data, spec: &[f64], alb: &[[f64; 2]; 3]) -> Residuals {
     let (mut l2, mut lg, mut mx) = (0.0f64, 0.0f64, 0.0f64);
-    for k in 0..data.len() {
-        let w = data.wi[k][2];
+    for ((wi, v), &sk) in data.wi.iter().zip(&data.value).zip(spec) {
+        let w = wi[2];
         for (c, a) in alb.iter().enumerate() {
-            let m = data.value[k][c];
-            let f = a[0] / PI + a[1] * spec[k];
+            let m = v[c];
+            let f = a[0] / PI + a[1] * sk;
             let d = w * (m - f);
             l2 += d * d;
             mx = mx.max(d.abs());
