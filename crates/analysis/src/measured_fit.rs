@@ -364,7 +364,8 @@ pub fn albedos(data: &Data, spec: &[f64]) -> [[f64; 2]; 3] {
         let mut best = (0.0, 0.0);
         let mut cands = vec![];
         let det = a11 * a22 - a12 * a12;
-        if det > 1e-300 * a11.max(1.0) * a22.max(1.0) {
+        // Nearly collinear columns (a Lambert-like specular): only the boundary solutions.
+        if det > 1e-12 * a11 * a22 {
             let a = (r1 * a22 - r2 * a12) / det;
             let b = (r2 * a11 - r1 * a12) / det;
             if a >= 0.0 && b >= 0.0 {
