@@ -111,7 +111,28 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     // The picture, before anything is printed: a failed write leaves stdout empty.
     let fitted = Arc::new(f.brdf()?);
     let label = {
-        let p: Vec<String> = f.params().iter().map(|(k, v)| format!("{k}={v}")).collect();
+        // Four significant digits for the fitted values: a label, not the result.
+        let sig = |v: f64| {
+            let d = if v == 0.0 {
+                0
+            } else {
+                (3 - v.abs().log10().floor() as i32).max(0) as usize
+            };
+            let t = format!("{v:.d$}");
+            if t.contains('.') {
+                t.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                t
+            }
+        };
+        let mut p: Vec<String> = fixed.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        p.extend(
+            f.problem
+                .free
+                .iter()
+                .zip(&f.values)
+                .map(|(q, v)| format!("{}={}", q.name, sig(*v))),
+        );
         format!("fit: {} {}", a.model, p.join(" "))
     };
     let loaded = fastbrdf_render::setup::load(&spec)?;
