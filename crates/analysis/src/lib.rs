@@ -12,6 +12,8 @@
 //! - [`check`]: every documented bound of the registry re-measured.
 //! - [`charts`]: the data of every chart and of the seeds' figures.
 //! - [`plot`]: the charts drawn (PNG and SVG).
+//! - [`measured_fit`]: registry BRDFs fitted to measured (MERL) data: Ngan 2005's L2, Low
+//!   2012's log and the maximum error; argmin's Nelder-Mead with exact albedos for L2.
 //! - [`materials`]: the 86 MERL materials' published fits (Ngan et al. 2005), embedded.
 //! - [`lut`]: the split-sum "DFG" look-up table of an env model (CSV, EXR, PNG).
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
@@ -26,6 +28,7 @@ pub mod errors;
 pub mod fit;
 pub mod lut;
 pub mod materials;
+pub mod measured_fit;
 pub mod normalize;
 pub mod pareto;
 pub mod pareto_brdf;

@@ -87,7 +87,8 @@ each with a documented and tested error bound.",
 printf 'cos\\n1\\n0.99\\n0.9\\n' | fastbrdf eval --model flog --param n=20\n  \
 fastbrdf eval --model cook-torrance --param alpha=0.2 --param f=schlick --input pairs.csv\n  fastbrdf check\n  \
 fastbrdf errors --model flog --reference pow --n 1..1000 --zone epicentre\n  \
-fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf measured info brass.binary\n  fastbrdf reproduce --out report/\n  \
+fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf measured info brass.binary\n  \
+fastbrdf fit-measured --data brass.binary --model cook-torrance --param f=schlick\n  fastbrdf reproduce --out report/\n  \
 fastbrdf lut --out dfg.exr\n  \
 printf 'wo_x,wo_y,wo_z,u1,u2\\n0,0,1,0.3,0.7\\n' | fastbrdf sample --model cook-torrance --param d=ggx\n  \
 fastbrdf chi2 --model phong --param n=100 --theta-i 60\n\n\
@@ -140,8 +141,12 @@ enum Command {
     Materials(commands::materials::Args),
     /// The named metals: complex index eta + i k per R, G, B channel, F0, sources (--metal).
     Metals(commands::metals::Args),
-    /// Measured BRDFs in MERL's .binary format: `info` (statistics) and `eval` (CSV rows).
+    /// Measured BRDFs in MERL's .binary format: `info` (statistics), `eval` (CSV rows),
+    /// `render` (a picture).
     Measured(commands::measured::Args),
+    /// Fit a registry BRDF (with per-channel albedos) to a MERL file: Ngan 2005's L2, Low 2012's
+    /// log or the max error; fitted parameters, residuals and a comparison picture.
+    FitMeasured(commands::fit_measured::Args),
     /// Minimax-tuned coefficients of an approximation family, per n, and their closed form.
     Fit(commands::fit::FitArgs),
     /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot);
@@ -208,6 +213,7 @@ fn main() -> ExitCode {
         Command::Materials(a) => commands::materials::run(&a),
         Command::Metals(a) => commands::metals::run(&a),
         Command::Measured(a) => commands::measured::run(&a),
+        Command::FitMeasured(a) => commands::fit_measured::run(&a),
         Command::Fit(a) => commands::fit::run_fit(&a),
         Command::Pareto(a) => commands::fit::run_pareto(&a),
         Command::Shader(a) => commands::shader::run(&a),

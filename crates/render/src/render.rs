@@ -310,6 +310,19 @@ fn add_specular(
     out: &mut [Vec<f32>; 3],
     radiance: &mut [Vec3],
 ) {
+    if let Some(rgb) = &m.specular.rgb {
+        // An RGB BRDF (measured data, a fitted model): scalar lookups, one per direction pair,
+        // weighted as the coloured path weights its three channels.
+        for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
+            let [r, g, b] = rgb.eval_rgb(
+                [cols[0][j], cols[1][j], cols[2][j]],
+                [cols[3][j], cols[4][j], cols[5][j]],
+            );
+            let (ks, cos) = (m.ks, cols[2][j]);
+            radiance[i] += li * Vec3::new(ks * r * cos, ks * g * cos, ks * b * cos);
+        }
+        return;
+    }
     let chans = &m.specular.channels;
     for (ch, out) in chans.iter().zip(out.iter_mut()) {
         out.resize(idx.len(), 0.0);
@@ -415,7 +428,8 @@ fn env_pass(
                 let (t, b) = s.n.any_orthonormal_pair();
                 (t, b, [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)])
             });
-            let brdf = &m.specular.channels[0].scalar;
+            // An RGB BRDF (no channels) has no sampling: the map's directions only.
+            let brdf = m.specular.channels.first().map(|c| &c.scalar);
             let mut push = |wi: [f32; 3], wo: [f32; 3], li: Vec3| {
                 idx.push(i);
                 lis.push(li);
@@ -431,13 +445,13 @@ fn env_pass(
                 radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
                 if let Some((t, b, wo)) = frame {
                     let wi = [l.dot(t), l.dot(b), cos_i];
-                    let pdf_b = brdf.pdf(wo, wi, Strategy::Auto);
-                    let w = specular_light_weight(pdf_l, Some(pdf_b));
+                    let pdf_b = brdf.map(|b| b.pdf(wo, wi, Strategy::Auto));
+                    let w = specular_light_weight(pdf_l, pdf_b);
                     push(wi, wo, le * (w / pdf_l * inv));
                 }
             }
             // The BRDF's direction: specular only (MIS with the map's direction).
-            if let Some((t, b, wo)) = frame {
+            if let (Some((t, b, wo)), Some(brdf)) = (frame, brdf) {
                 let (u5, u6) = (rng.uniform(), rng.uniform());
                 if let Some(smp) = brdf.sample(wo, [u5, u6], Strategy::Auto) {
                     let wi = smp.wi;

@@ -253,15 +253,34 @@ impl Channel {
     }
 }
 
+/// An RGB BRDF evaluated one direction pair at a time: a measured material (MERL's lookup,
+/// `fastbrdf::measured::MeasuredBrdf`) or a fitted model with per-channel albedos. Directions
+/// in the local frame (normal +z), no cosine factor; values are linear R, G, B.
+pub trait RgbBrdf: Send + Sync {
+    fn eval_rgb(&self, wi: [f32; 3], wo: [f32; 3]) -> [f32; 3];
+}
+
+/// MERL's nearest-bin lookup: the bin is found in f64 (`eval_rgb_f32`), the value rounded to
+/// f32.
+impl RgbBrdf for fastbrdf::measured::MeasuredBrdf {
+    fn eval_rgb(&self, wi: [f32; 3], wo: [f32; 3]) -> [f32; 3] {
+        self.eval_rgb_f32(wi, wo)
+    }
+}
+
 /// The specular model of a material: a registry id turned into a BRDF, in batch and scalar
 /// form; grey (one channel, weighting R, G and B alike) or coloured (three: R, G, B), when a
-/// parameter is given as `R,G,B` (`fastbrdf::colour::channels`).
+/// parameter is given as `R,G,B` (`fastbrdf::colour::channels`). Or, from
+/// [`Specular::rgb`], an RGB BRDF evaluated by scalar lookups (measured data, fitted models):
+/// then `channels` is empty and `rgb` holds it.
 pub struct Specular {
     pub id: String,
     /// The BRDF actually evaluated (id and parameters, per-channel values as `R,G,B` text).
     pub brdf: (String, Vec<(String, String)>),
-    /// One channel (grey) or three (R, G, B).
+    /// One channel (grey) or three (R, G, B); none for an RGB BRDF.
     pub channels: Vec<Channel>,
+    /// An RGB BRDF evaluated by scalar lookups instead of the channels' kernels.
+    pub rgb: Option<Arc<dyn RgbBrdf>>,
 }
 
 impl Specular {
@@ -280,12 +299,26 @@ impl Specular {
             id: id.into(),
             brdf: (brdf, p),
             channels,
+            rgb: None,
         })
     }
 
-    /// Whether the model is coloured (three channels).
+    /// An RGB BRDF (a measured material, a fitted model) named `label`, shaded by scalar
+    /// lookups in f32 (`RgbBrdf::eval_rgb`); the whole BRDF, diffuse part included, so a scene
+    /// usually gives it the weights 0, 1. With the environment light only the map's
+    /// directions are used for it (no BRDF sampling); the GPU renderer refuses it.
+    pub fn rgb(label: &str, brdf: Arc<dyn RgbBrdf>) -> Self {
+        Self {
+            id: label.into(),
+            brdf: (label.into(), Vec::new()),
+            channels: Vec::new(),
+            rgb: Some(brdf),
+        }
+    }
+
+    /// Whether the model is coloured (three channels, or an RGB BRDF).
     pub fn is_coloured(&self) -> bool {
-        self.channels.len() == 3
+        self.channels.len() == 3 || self.rgb.is_some()
     }
 }
 

@@ -68,7 +68,9 @@ fastbrdf errors --model rational --reference pow --n 2..1000 --zone band:0.42,0.
 fastbrdf errors --model beckmann-power16 --reference beckmann-ct --m 0.2,0.4,0.6 --json\n  \
 fastbrdf errors --model flog --reference pow --material gold-paint   (n = the fit's Blinn-Phong n)\n  \
 fastbrdf errors --over materials                         (every approximation, 86 materials)\n  \
-fastbrdf errors --over materials --model ward-pow --threshold 0.05 --json\n\n\
+fastbrdf errors --over materials --model ward-pow --threshold 0.05 --json\n  \
+fastbrdf errors --model ward --measured blue-rubber.binary --m 0.1..0.5:0.05   (residuals against the data)\n  \
+fastbrdf errors --model cook-torrance --param d=ggx --measured brass.binary --m 0.005..1:log10 --json\n\n\
 --over materials measures each approximation against its reference at every MERL material's\n\
 own fitted parameter (Ngan, Matusik and Durand, EGSR 2005; see `fastbrdf materials`): lobes at\n\
 the Blinn-Phong n, Beckmann approximations and smith-rational at the Beckmann m, Ward's at\n\
@@ -113,6 +115,20 @@ pub struct ErrorsArgs {
     /// Where to measure: all, epicentre (reference >= 0.5 of its peak) or band:LO,HI.
     #[arg(long, default_value = "all")]
     zone: String,
+    /// A measured material (MERL .binary) as the reference instead of a model: at each --n or
+    /// --m value (or once, at the model's parameters) the model with per-channel albedos
+    /// (rho_d/pi + rho_s f, the albedos solved exactly for ngan-l2) against the file over its
+    /// valid bins within 80 degrees of the normal: the three residuals of `fit-measured`.
+    /// BRDFs, and lobes and distributions as they shade (blinn-phong with the lobe,
+    /// cook-torrance with the distribution); --zone does not apply.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["reference", "over", "material"])]
+    measured: Option<std::path::PathBuf>,
+    /// With --measured: a model parameter NAME=VALUE (d=ggx, f=schlick, ...); repeat.
+    #[arg(long = "param", value_name = "NAME=VALUE", requires = "measured")]
+    params: Vec<String>,
+    /// With --measured: bins sampled from the file (fixed seed, as fit-measured); 0 = all.
+    #[arg(long, default_value_t = fastbrdf_analysis::measured_fit::DEFAULT_SAMPLES)]
+    samples: usize,
     /// Print JSON: {"model", "reference", "param": "n"|"alpha", "zone", "worst": {...}, "rows":
     /// [{n or alpha, max_abs, max_abs_at, max_rel, max_rel_at, rms, samples}]}; no finite
     /// value (an infinite relative error) is null. With --over materials: {"over":
@@ -144,6 +160,9 @@ pub fn errors(a: &ErrorsArgs) -> Result<(), CliError> {
             json: a.json,
             csv: a.csv,
         });
+    }
+    if let Some(file) = &a.measured {
+        return measured_errors(a, file);
     }
     let (Some(model), Some(reference)) = (&a.model, &a.reference) else {
         return Err(CliError::input(
@@ -609,4 +628,139 @@ pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
 /// term's `alpha` input).
 pub fn takes(e: &fastbrdf::entry::Entry, param: &str) -> bool {
     e.info.sweep_range(param).is_some()
+}
+
+/// `errors --measured`: the model's residuals against measured data at each swept value (see
+/// `ErrorsArgs::measured`).
+fn measured_errors(a: &ErrorsArgs, file: &std::path::Path) -> Result<(), CliError> {
+    use fastbrdf_analysis::measured_fit::{self, Data, Options, Problem};
+    let Some(model) = &a.model else {
+        return Err(CliError::input("--measured: give --model ID"));
+    };
+    let e = fastbrdf::registry::find(model)?;
+    let given = parse_params(&a.params)?;
+    let (brdf, given) = fastbrdf::registry::shading_brdf(model, &given).map_err(|_| {
+        CliError::input(format!(
+            "--measured: {model} is a {} model; measured data is compared with BRDFs (and with lobes and distributions shaded as BRDFs)",
+            format!("{:?}", e.info.kind).to_lowercase()
+        ))
+    })?;
+    let (param, values) = match (&a.n, &a.m) {
+        (Some(n), None) => (
+            "n",
+            range::parse(n, 1.0).map_err(|e| CliError::input(format!("--n: {e}")))?,
+        ),
+        (None, Some(m)) => (
+            "alpha",
+            range::parse(m, 0.01).map_err(|e| CliError::input(format!("--m: {e}")))?,
+        ),
+        _ => ("", vec![f64::NAN]),
+    };
+    let problems: Vec<Problem> = values
+        .iter()
+        .map(|&v| {
+            let mut p = given.clone();
+            if !param.is_empty() {
+                p.push((param.to_string(), num(v)));
+            }
+            Problem::new(brdf, &p, false)
+                .map_err(|e| CliError::input(format!("--model {model}: {e}")))
+        })
+        .collect::<Result<_, _>>()?;
+    let b = fastbrdf::measured::MeasuredBrdf::read(file)?;
+    let data = Data::from_measured(&b, a.samples);
+    if data.is_empty() {
+        return Err(CliError::input(format!(
+            "{}: no valid (measured) bin within {} degrees of the normal",
+            file.display(),
+            measured_fit::MAX_THETA_DEG
+        )));
+    }
+    let pb = bar(values.len() as u64, "errors");
+    let mut fits = Vec::with_capacity(values.len());
+    for p in &problems {
+        let f = measured_fit::fit(p, &data, &Options::default(), &|_, _| {})
+            .map_err(|e| CliError::input(format!("{}: {e}", file.display())))?;
+        fits.push(f);
+        pb.inc(1);
+    }
+    pb.finish_and_clear();
+    let label = if param.is_empty() { "value" } else { param };
+    if a.json {
+        let rows: Vec<serde_json::Value> = values
+            .iter()
+            .zip(&fits)
+            .map(|(v, f)| {
+                serde_json::json!({
+                    label: v.is_finite().then_some(*v),
+                    "ngan_l2": f.residuals.ngan_l2,
+                    "low_log": f.residuals.low_log,
+                    "max": f.residuals.max,
+                    "rho_d": f.rho_d,
+                    "rho_s": f.rho_s,
+                })
+            })
+            .collect();
+        let v = serde_json::json!({
+            "model": model, "brdf": brdf, "measured": file.display().to_string(),
+            "param": (!param.is_empty()).then_some(param), "samples": data.len(),
+            "eligible": data.eligible, "rows": rows,
+        });
+        crate::outln!(
+            "{}",
+            serde_json::to_string_pretty(&v).expect("serialisable")
+        );
+        return Ok(());
+    }
+    if a.csv {
+        let mut s = format!(
+            "{label},ngan_l2,low_log,max,rho_d_r,rho_d_g,rho_d_b,rho_s_r,rho_s_g,rho_s_b\n"
+        );
+        for (v, f) in values.iter().zip(&fits) {
+            let r = &f.residuals;
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{}",
+                csv_num(*v),
+                csv_num(r.ngan_l2),
+                csv_num(r.low_log),
+                csv_num(r.max),
+                f.rho_d.map(csv_num).join(","),
+                f.rho_s.map(csv_num).join(",")
+            );
+        }
+        crate::out!("{s}");
+        return Ok(());
+    }
+    let mut s = format!(
+        "{model} ({brdf}) against {} on {} of {} eligible bins, albedos solved for ngan-l2\n  {label:>10} {:>13} {:>13} {:>13}   rho_d (R, G, B) / rho_s (R, G, B)\n",
+        file.display(),
+        data.len(),
+        data.eligible,
+        "ngan-l2",
+        "low-log",
+        "max"
+    );
+    for (v, f) in values.iter().zip(&fits) {
+        let r = &f.residuals;
+        let rgb = |x: [f64; 3]| format!("{:.4} {:.4} {:.4}", x[0], x[1], x[2]);
+        let _ = writeln!(
+            s,
+            "  {:>10} {:>13.6e} {:>13.6e} {:>13.6e}   {} / {}",
+            if v.is_finite() {
+                // Six decimals: a range's steps (0.30000000000000004) print as given.
+                let t = format!("{v:.6}");
+                t.trim_end_matches('0').trim_end_matches('.').to_string()
+            } else {
+                "-".into()
+            },
+            r.ngan_l2,
+            r.low_log,
+            r.max,
+            rgb(f.rho_d),
+            rgb(f.rho_s)
+        );
+    }
+    crate::out!("{s}");
+    Ok(())
 }

@@ -6,6 +6,7 @@ pub mod check;
 pub mod demo;
 pub mod eval;
 pub mod fit;
+pub mod fit_measured;
 pub mod lut;
 pub mod materials;
 pub mod measured;

@@ -8,7 +8,7 @@ use fastbrdf_render::bump::Bump;
 use fastbrdf_render::compare::{self, Cell};
 use fastbrdf_render::film::{Film, parse_size, write_atomic};
 use fastbrdf_render::render::{Options, Shading, render};
-use fastbrdf_render::scene::{Light, Specular};
+use fastbrdf_render::scene::{Light, RgbBrdf, Specular};
 use fastbrdf_render::setup::{self, SceneSpec};
 use fastbrdf_render::{RenderError, Result as RResult};
 use glam::Vec3;
@@ -206,6 +206,32 @@ pub fn render_model(
     params: &[(String, String)],
 ) -> Result<Film, CliError> {
     let specular = Arc::new(Specular::new(id, params)?);
+    render_specular(spec, loaded, opts, specular)
+}
+
+/// Renders an RGB BRDF (a measured material, a fitted model): the whole BRDF, diffuse part
+/// included, so the scene's weights are 0, 1 whatever --weights says (the texture and
+/// --albedo colour only the diffuse term, which is 0 here).
+pub fn render_rgb(
+    spec: &SceneSpec,
+    loaded: &setup::Loaded,
+    opts: &Options,
+    label: &str,
+    brdf: Arc<dyn RgbBrdf>,
+) -> Result<Film, CliError> {
+    let mut spec = spec.clone();
+    (spec.kd, spec.ks) = (0.0, 1.0);
+    render_specular(&spec, loaded, opts, Arc::new(Specular::rgb(label, brdf)))
+}
+
+/// Renders one specular model with a progress bar.
+pub fn render_specular(
+    spec: &SceneSpec,
+    loaded: &setup::Loaded,
+    opts: &Options,
+    specular: Arc<Specular>,
+) -> Result<Film, CliError> {
+    let id = specular.id.clone();
     let scene = setup::scene(spec, loaded, specular);
     let pb = bar(1, "render");
     let film = render(&scene, opts, &|d, t| {
@@ -335,7 +361,7 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     Ok(())
 }
 
-fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
+pub fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -357,15 +383,27 @@ fn check_out(path: &Path, exts: &[&str]) -> Result<(), CliError> {
 fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png\n  \
 fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png\n  \
 fastbrdf compare --models ggx,beckmann-power16 --reference cook-torrance --param alpha=0.2 --metal gold --out au.png\n  \
-fastbrdf compare --models flog,schlick --reference pow --param n=100 --env sky --out cmp-sky.png"
+fastbrdf compare --models flog,schlick --reference pow --param n=100 --env sky --out cmp-sky.png\n  \
+fastbrdf compare --models ward,cook-torrance --measured blue-rubber.binary --param alpha=0.29 --weights 0.3,0.05 --out rubber.png"
 )]
 pub struct CompareArgs {
     /// Models to compare (comma-separated ids).
     #[arg(long, value_delimiter = ',', required = true)]
     models: Vec<String>,
     /// The reference model id.
-    #[arg(long)]
-    reference: String,
+    #[arg(
+        long,
+        required_unless_present = "measured",
+        conflicts_with = "measured"
+    )]
+    reference: Option<String>,
+    /// A measured material (MERL .binary, see `fastbrdf measured`) as the reference instead of
+    /// a model. It is the whole BRDF (diffuse included), so it renders with weights 0,1; the
+    /// models render with the scene's --weights and --albedo (give them the material's
+    /// diffuse colour and weights to compare like with like; `fastbrdf fit-measured` fits
+    /// both).
+    #[arg(long, value_name = "FILE")]
+    measured: Option<PathBuf>,
     /// A parameter, NAME=VALUE, given to every model that takes it; repeat for several.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
@@ -417,6 +455,9 @@ pub struct Entry {
     pub label: String,
     pub id: String,
     pub params: Vec<(String, String)>,
+    /// An RGB BRDF (measured data, a fitted model) rendered instead of the registry model
+    /// `id` (see [`render_rgb`]).
+    pub rgb: Option<Arc<dyn RgbBrdf>>,
 }
 
 impl Entry {
@@ -432,6 +473,30 @@ impl Entry {
             label,
             id: id.into(),
             params,
+            rgb: None,
+        }
+    }
+
+    /// An RGB BRDF labelled `label`.
+    pub fn rgb(label: &str, brdf: Arc<dyn RgbBrdf>) -> Self {
+        Self {
+            label: label.into(),
+            id: label.into(),
+            params: Vec::new(),
+            rgb: Some(brdf),
+        }
+    }
+
+    /// Renders the entry: the registry model, or the RGB BRDF with weights 0, 1.
+    pub fn render(
+        &self,
+        spec: &SceneSpec,
+        loaded: &setup::Loaded,
+        opts: &Options,
+    ) -> Result<Film, CliError> {
+        match &self.rgb {
+            Some(b) => render_rgb(spec, loaded, opts, &self.label, b.clone()),
+            None => render_model(spec, loaded, opts, &self.id, &self.params),
         }
     }
 }
@@ -481,11 +546,11 @@ pub fn compare_models(
 ) -> Result<(Vec<u8>, u32, u32, Vec<Scores>), CliError> {
     check_compare(opts, models.len())?;
     let (w, h) = (opts.width, opts.height);
-    let rf = render_model(spec, loaded, opts, &reference.id, &reference.params)?;
+    let rf = reference.render(spec, loaded, opts)?;
     let r = rf.to_srgb8(exposure);
     let mut films = vec![];
     for m in models {
-        films.push(render_model(spec, loaded, opts, &m.id, &m.params)?);
+        films.push(m.render(spec, loaded, opts)?);
     }
     let tests: Vec<Vec<u8>> = films.iter().map(|f| f.to_srgb8(exposure)).collect();
     let metrics: Vec<Scores> = models
@@ -534,7 +599,9 @@ pub fn compare_models(
 
 pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     let (mut spec, opts) = a.scene.spec()?;
-    super::materials::diffuse(&mut spec, &a.scene, a.material.as_deref(), &a.reference)?;
+    // With --measured, the first model stands for the reference where one is needed.
+    let ref_id = a.reference.clone().unwrap_or_else(|| a.models[0].clone());
+    super::materials::diffuse(&mut spec, &a.scene, a.material.as_deref(), &ref_id)?;
     super::metals::weights(&mut spec, &a.scene, a.metal.as_deref());
     check_out(&a.out, &["png"])?;
     check_compare(&opts, a.models.len())?;
@@ -561,7 +628,7 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     let params = parse_params(&a.params)?;
     for (k, _) in &params {
         let mut used = false;
-        for id in a.models.iter().chain([&a.reference]) {
+        for id in a.models.iter().chain(a.reference.as_ref()) {
             used |= params_for(id, &[(k.clone(), String::new())])?.len() == 1;
         }
         if !used {
@@ -575,7 +642,17 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
             super::materials::with_material(a.material.as_deref(), id, &params_for(id, &params)?)?;
         super::metals::with_metal(a.metal.as_deref(), id, &p, true)
     };
-    let reference = Entry::new(&a.reference, own(&a.reference)?);
+    let reference = match &a.measured {
+        Some(file) => {
+            let b = fastbrdf::measured::MeasuredBrdf::read(file)?;
+            Entry::rgb(&format!("measured {}", file.display()), Arc::new(b))
+        }
+        None => Entry::new(&ref_id, own(&ref_id)?),
+    };
+    let ref_name = match &a.measured {
+        Some(file) => file.display().to_string(),
+        None => ref_id.clone(),
+    };
     let models: Vec<Entry> = a
         .models
         .iter()
@@ -591,7 +668,7 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
         println!(
             "{}",
             serde_json::to_string_pretty(
-                &serde_json::json!({"reference": a.reference, "metrics": rows})
+                &serde_json::json!({"reference": ref_name, "metrics": rows})
             )
             .expect("serialisable")
         );
@@ -605,7 +682,7 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
             "RMSE linear",
             "PSNR dB",
             "FLIP rh",
-            a.reference,
+            ref_name,
             metrics.first().map_or(0.0, |m| m.linear.peak)
         );
         for m in &metrics {
