@@ -498,6 +498,19 @@ fn plots_of(
         }
         _ => (Value::Null, Value::Null),
     };
+    Ok(json!({
+        "id": id, "kind": kind.name(),
+        "params": p.iter().map(|(k, v)| json!([k, v])).collect::<Vec<_>>(),
+        "polar": polar, "lobe": lobe, "error": error,
+        "slice": slice,
+    }))
+}
+
+/// The directional albedo of one model and its white-furnace verdict, as `fastbrdf albedo`
+/// computes them (lobes as energy-normalised `phong`, its defaults); null for a distribution
+/// (not a BRDF on its own).
+fn albedo_of(id: &'static str, all: &[(String, String)]) -> Result<Value, CliError> {
+    let p = params_of(id, all)?;
     // Directional albedo and the white furnace, as `fastbrdf albedo` (lobes as phong, energy
     // normalised: its defaults).
     let albedo_v = match albedo::target(id, &p, "phong", "energy") {
@@ -513,31 +526,48 @@ fn plots_of(
         }
         Err(_) => Value::Null,
     };
-    Ok(json!({
-        "id": id, "kind": kind.name(),
-        "params": p.iter().map(|(k, v)| json!([k, v])).collect::<Vec<_>>(),
-        "polar": polar, "lobe": lobe, "error": error, "albedo": albedo_v,
-        "slice": slice,
-    }))
+    Ok(json!({"id": id, "albedo": albedo_v}))
+}
+
+/// The model list of a plots or albedo query, the reference first, each once.
+fn chosen(
+    q: &Query,
+) -> Result<(Vec<&'static str>, Option<Reference>, Vec<(String, String)>), CliError> {
+    let ids = model_ids(q)?;
+    let reference = Reference::from_query(q)?;
+    let all = q.params();
+    let mut order: Vec<&'static str> = reference.iter().map(Reference::id).collect();
+    for id in ids {
+        if !order.contains(&id) {
+            order.push(id);
+        }
+    }
+    check_unused(&order, &all)?;
+    Ok((order, reference, all))
+}
+
+/// `GET /api/albedo?models=A,B&ref=R&NAME=VALUE...`: directional albedo against incidence and
+/// the white-furnace verdict of each model (apart from /api/plots: the quadrature is the slow
+/// part, so the other plots need not wait for it).
+pub fn albedo_endpoint(q: &Query) -> Result<Response, CliError> {
+    let t = Instant::now();
+    let (order, _, all) = chosen(q)?;
+    use rayon::prelude::*;
+    let out: Vec<Value> = order
+        .par_iter()
+        .map(|id| albedo_of(id, &all))
+        .collect::<Result<_, _>>()?;
+    Ok(Response::json(&json!({
+        "models": out,
+        "ms": t.elapsed().as_secs_f64() * 1e3,
+    })))
 }
 
 /// `GET /api/plots?models=A,B&ref=R&theta=DEG&NAME=VALUE...`: every plot's numbers.
 pub fn plots(q: &Query) -> Result<Response, CliError> {
     let t = Instant::now();
-    let ids = model_ids(q)?;
-    let reference = Reference::from_query(q)?;
+    let (seen, reference, all) = chosen(q)?;
     let ti = theta_i(q)?;
-    let all = q.params();
-    // The reference first, as in the renders.
-    let mut with_ref: Vec<&'static str> = reference.iter().map(Reference::id).collect();
-    with_ref.extend(&ids);
-    check_unused(&with_ref, &all)?;
-    let mut seen: Vec<&'static str> = vec![];
-    for id in with_ref {
-        if !seen.contains(&id) {
-            seen.push(id);
-        }
-    }
     // One model per task: the two cores of a slider move's budget.
     use rayon::prelude::*;
     let out: Vec<Value> = seen

@@ -44,7 +44,7 @@ fastbrdf view --mesh head.obj --bench bench.json   (your mesh; costs from `fastb
 fastbrdf view --screenshot docs/images/view.png   (headless Chromium, then exit)\n  \
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
 The whole view lives in the URL after #, so a link reproduces it. The JSON API (README,\n\
-\"Explorer\"): /api/models, /api/plots, /api/render, /api/errors, /api/shader, /api/material.\n\
+\"Explorer\"): /api/models, /api/plots, /api/albedo, /api/render, /api/errors, /api/shader, /api/material.\n\
 Bad requests get HTTP 400 with the message the CLI prints for the same input."
 )]
 pub struct Args {
@@ -212,6 +212,7 @@ pub fn handle(state: &State, method: &str, target: &str) -> Response {
             }),
             "/api/models" => Ok(api::models(state)),
             "/api/plots" => api::plots(&q),
+            "/api/albedo" => api::albedo_endpoint(&q),
             "/api/render" => api::render_endpoint(state, &q),
             "/api/errors" => api::errors_endpoint(&q),
             "/api/shader" => api::shader(&q),
