@@ -196,10 +196,27 @@ fn models_lists_every_shadeable_model_with_its_parameters() {
     assert_eq!(d["type"], "choice");
     assert!(d["options"].as_array().unwrap().iter().any(|o| o == "ggx"));
     assert_eq!(v["materials"].as_array().unwrap().len(), 86);
-    assert!(
-        flog["cost_evals_per_s"].is_null(),
-        "no --bench run: unavailable"
-    );
+    assert!(flog["cost"].is_null(), "no --bench run: unavailable");
+    // With a bench run: the best SIMD row of the saved file.
+    let s = serve(&["--bench", "../../docs/bench/bench.json"]);
+    let v = ok_json(&s.addr, "/api/models");
+    let flog = v["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["id"] == "flog")
+        .unwrap();
+    let saved: Value =
+        serde_json::from_str(&std::fs::read_to_string("../../docs/bench/bench.json").unwrap())
+            .unwrap();
+    let best = saved["kernels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|k| k["model"] == "flog" && k["variant"] == "simd")
+        .map(|k| k["evals_per_s"].as_f64().unwrap())
+        .fold(0.0, f64::max);
+    assert_eq!(flog["cost"]["simd"].as_f64(), Some(best));
 }
 
 #[test]

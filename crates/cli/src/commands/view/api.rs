@@ -272,7 +272,7 @@ pub fn models(state: &State) -> Response {
                 "formula": e.info.formula, "source": e.info.source,
                 "bounds": e.info.bounds, "ops": e.info.ops,
                 "swept": swept_param(e.info.id),
-                "cost_evals_per_s": state.cost(e.info.id),
+                "cost": state.cost(e.info.id),
             })
         })
         .collect();

@@ -130,16 +130,25 @@ impl State {
         })
     }
 
-    /// The best measured throughput of model `id` in the bench run (evaluations per second),
-    /// or None (no run given, or the model is not in it).
-    pub fn cost(&self, id: &str) -> Option<f64> {
-        self.bench.as_ref().and_then(|r| {
-            r.kernels
-                .iter()
-                .filter(|k| fastbrdf_analysis::speed::registry_id(&k.model) == id && k.isa != "gpu")
-                .map(|k| k.evals_per_s)
-                .fold(None, |a: Option<f64>, v| Some(a.map_or(v, |a| a.max(v))))
-        })
+    /// Model `id`'s measured throughput in the bench run, evaluations per second: the best
+    /// row of each CPU variant (`scalar`, `simd`, `simd-threads`: one core's batch kernel, all
+    /// cores), or None (no run given, or the model is not in it).
+    pub fn cost(&self, id: &str) -> Option<serde_json::Value> {
+        let r = self.bench.as_ref()?;
+        let mut best = serde_json::Map::new();
+        for k in r
+            .kernels
+            .iter()
+            .filter(|k| fastbrdf_analysis::speed::registry_id(&k.model) == id && k.isa != "gpu")
+        {
+            let e = best
+                .entry(k.variant.clone())
+                .or_insert(serde_json::json!(0.0));
+            if k.evals_per_s > e.as_f64().unwrap_or(0.0) {
+                *e = serde_json::json!(k.evals_per_s);
+            }
+        }
+        (!best.is_empty()).then_some(serde_json::Value::Object(best))
     }
 
     /// Records `generation` as the newest of `client` (if it is newer).
