@@ -30,7 +30,7 @@ impl Drop for Served {
 }
 
 fn serve(extra: &[&str]) -> Served {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
+    let child = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
         .args(["view", "--port", "0"])
         .args(extra)
         .stdin(Stdio::null())
@@ -38,7 +38,12 @@ fn serve(extra: &[&str]) -> Served {
         .stderr(Stdio::piped())
         .spawn()
         .expect("start fastbrdf view");
-    let mut err = BufReader::new(child.stderr.take().unwrap());
+    // Owned by the guard from here: killed and waited for on every path, panics included.
+    let mut served = Served {
+        child,
+        addr: String::new(),
+    };
+    let mut err = BufReader::new(served.child.stderr.take().unwrap());
     let mut line = String::new();
     loop {
         line.clear();
@@ -47,13 +52,13 @@ fn serve(extra: &[&str]) -> Served {
             "view exited before serving"
         );
         if let Some(rest) = line.split("serving on http://").nth(1) {
-            let addr = rest.split('/').next().unwrap().to_string();
+            served.addr = rest.split('/').next().unwrap().to_string();
             // Keep reading stderr so the server never blocks on a full pipe.
             std::thread::spawn(move || {
                 let mut sink = String::new();
                 let _ = err.read_to_string(&mut sink);
             });
-            return Served { child, addr };
+            return served;
         }
     }
 }

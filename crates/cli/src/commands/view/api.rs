@@ -529,10 +529,12 @@ fn albedo_of(id: &'static str, all: &[(String, String)]) -> Result<Value, CliErr
     Ok(json!({"id": id, "albedo": albedo_v}))
 }
 
+/// What a plots or albedo query chose: the model ids (the reference first, each once), the
+/// reference, and the parameters.
+type Chosen = (Vec<&'static str>, Option<Reference>, Vec<(String, String)>);
+
 /// The model list of a plots or albedo query, the reference first, each once.
-fn chosen(
-    q: &Query,
-) -> Result<(Vec<&'static str>, Option<Reference>, Vec<(String, String)>), CliError> {
+fn chosen(q: &Query) -> Result<Chosen, CliError> {
     let ids = model_ids(q)?;
     let reference = Reference::from_query(q)?;
     let all = q.params();
