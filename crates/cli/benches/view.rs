@@ -142,3 +142,12 @@ fn render_preview_128() -> usize {
         next_n()
     ))
 }
+
+/// One 512x512 sphere with the page's 2 x 2 samples per pixel, no reference.
+#[divan::bench(sample_count = 10)]
+fn render_sphere_512_spp2() -> usize {
+    get(&format!(
+        "/api/render?models=flog&n={}&size=512&spp=2",
+        next_n()
+    ))
+}
