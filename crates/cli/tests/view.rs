@@ -712,4 +712,14 @@ fn page_end_to_end_in_headless_chromium() {
     let copy = snapshot(&mut b, &again);
     assert_eq!(copy["rows"], two["rows"]);
     assert_eq!(copy["n"], two["n"]);
+
+    // Closing the browser leaves no profile behind.
+    drop(b);
+    let prefix = format!("fastbrdf-chromium-{}-", std::process::id());
+    let left: Vec<_> = std::fs::read_dir(std::env::temp_dir())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().starts_with(&prefix))
+        .collect();
+    assert!(left.is_empty(), "profile left behind: {left:?}");
 }

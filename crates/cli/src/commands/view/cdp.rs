@@ -254,10 +254,26 @@ impl Browser {
 }
 
 impl Drop for Browser {
+    /// Asks the browser to close (so that its helper processes stop writing to the profile),
+    /// kills it after 5 s, then removes the profile (again after a moment: a helper may still
+    /// be finishing a write).
     fn drop(&mut self) {
+        let mut bytes =
+            serde_json::to_vec(&json!({"id": 0, "method": "Browser.close"})).expect("serialisable");
+        bytes.push(0);
+        let _ = self.to_chrome.write_all(&bytes);
+        let deadline = Instant::now() + Duration::from_secs(5);
+        while Instant::now() < deadline && matches!(self.child.try_wait(), Ok(None)) {
+            std::thread::sleep(Duration::from_millis(20));
+        }
         let _ = self.child.kill();
         let _ = self.child.wait();
-        let _ = std::fs::remove_dir_all(&self.profile);
+        for _ in 0..5 {
+            if std::fs::remove_dir_all(&self.profile).is_ok() || !self.profile.exists() {
+                break;
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
     }
 }
 
