@@ -91,7 +91,7 @@ fastbrdf materials\n  fastbrdf errors --over materials\n  fastbrdf measured info
 fastbrdf fit-measured --data brass.binary --model cook-torrance --param f=schlick\n  fastbrdf reproduce --out report/\n  \
 fastbrdf lut --out dfg.exr\n  \
 printf 'wo_x,wo_y,wo_z,u1,u2\\n0,0,1,0.3,0.7\\n' | fastbrdf sample --model cook-torrance --param d=ggx\n  \
-fastbrdf chi2 --model phong --param n=100 --theta-i 60\n\n\
+fastbrdf chi2 --model phong --param n=100 --theta-i 60\n  fastbrdf view --open\n\n\
 Exit codes:\n  0  success\n  1  a check failed (`check`), or the GPU itself failed\n  \
 2  bad usage or bad input (unknown model, invalid parameter or range, malformed CSV or mesh,\n     \
 an unreadable or oversized input file); nothing is written\n  \
@@ -157,6 +157,9 @@ enum Command {
     /// The split-sum "DFG" look-up table (scale, bias) of GGX for image-based lighting, as EXR,
     /// PNG or CSV.
     Lut(commands::lut::Args),
+    /// An interactive explorer in the browser: plots, renders, errors and shader export of
+    /// any models, served on a local port (loopback only unless --allow-remote).
+    View(commands::view::Args),
 }
 
 /// A file-size limit (`ulimit -f`) must make a write fail with EFBIG, which the atomic writers
@@ -218,6 +221,7 @@ fn main() -> ExitCode {
         Command::Pareto(a) => commands::fit::run_pareto(&a),
         Command::Shader(a) => commands::shader::run(&a),
         Command::Lut(a) => commands::lut::run(&a),
+        Command::View(a) => commands::view::run(&a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

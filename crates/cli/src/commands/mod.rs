@@ -19,6 +19,7 @@ pub mod render;
 pub mod reproduce;
 pub mod sample;
 pub mod shader;
+pub mod view;
 
 use crate::CliError;
 use std::io::Write;

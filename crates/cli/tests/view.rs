@@ -1,0 +1,725 @@
+//! `fastbrdf view`: the JSON API over real HTTP (the binary on port 0), every endpoint and the
+//! bad requests, with numbers compared against the CLI commands that compute the same things;
+//! and the page end to end in headless Chromium (driven over the DevTools pipe by the same
+//! client as `fastbrdf view --screenshot`). Without Chromium the end-to-end test is skipped
+//! with a message, unless CI is set: then it fails.
+
+#[allow(dead_code)]
+#[path = "../src/commands/view/cdp.rs"]
+mod cdp;
+mod common;
+
+use common::{fastbrdf, stderr, temp_dir};
+use serde_json::Value;
+use std::io::{BufRead, BufReader, Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::Duration;
+
+/// A `fastbrdf view` process on a free port, killed on drop.
+struct Served {
+    child: Child,
+    addr: String,
+}
+
+impl Drop for Served {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn serve(extra: &[&str]) -> Served {
+    let child = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
+        .args(["view", "--port", "0"])
+        .args(extra)
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start fastbrdf view");
+    // Owned by the guard from here: killed and waited for on every path, panics included.
+    let mut served = Served {
+        child,
+        addr: String::new(),
+    };
+    let mut err = BufReader::new(served.child.stderr.take().unwrap());
+    let mut line = String::new();
+    loop {
+        line.clear();
+        assert!(
+            err.read_line(&mut line).unwrap() > 0,
+            "view exited before serving"
+        );
+        if let Some(rest) = line.split("serving on http://").nth(1) {
+            served.addr = rest.split('/').next().unwrap().to_string();
+            // Keep reading stderr so the server never blocks on a full pipe.
+            std::thread::spawn(move || {
+                let mut sink = String::new();
+                let _ = err.read_to_string(&mut sink);
+            });
+            return served;
+        }
+    }
+}
+
+/// One raw HTTP request (the target is sent exactly as given: no client-side normalising).
+fn request(addr: &str, method: &str, target: &str) -> (u16, String, Vec<u8>) {
+    let mut s = TcpStream::connect(addr).unwrap();
+    s.set_read_timeout(Some(Duration::from_secs(120))).unwrap();
+    write!(
+        s,
+        "{method} {target} HTTP/1.1\r\nHost: {addr}\r\nConnection: close\r\n\r\n"
+    )
+    .unwrap();
+    let mut buf = vec![];
+    s.read_to_end(&mut buf).unwrap();
+    let split = buf
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("headers");
+    let head = String::from_utf8_lossy(&buf[..split]).to_string();
+    let status: u16 = head.split(' ').nth(1).unwrap().parse().unwrap();
+    let ctype = head
+        .lines()
+        .find_map(|l| {
+            l.to_ascii_lowercase()
+                .strip_prefix("content-type: ")
+                .map(str::to_string)
+        })
+        .unwrap_or_default();
+    (status, ctype, buf[split + 4..].to_vec())
+}
+
+fn get_json(addr: &str, target: &str) -> (u16, Value) {
+    let (status, ctype, body) = request(addr, "GET", target);
+    assert!(ctype.starts_with("application/json"), "{target}: {ctype}");
+    (status, serde_json::from_slice(&body).unwrap())
+}
+
+fn ok_json(addr: &str, target: &str) -> Value {
+    let (status, v) = get_json(addr, target);
+    assert_eq!(status, 200, "{target}: {v}");
+    v
+}
+
+/// `fastbrdf errors --json` at one parameter value: rows[0].
+fn cli_errors(model: &str, reference: &str, flag: &str, value: &str) -> Value {
+    let o = fastbrdf(
+        &[
+            "errors",
+            "--model",
+            model,
+            "--reference",
+            reference,
+            flag,
+            value,
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    v["rows"][0].clone()
+}
+
+/// The CLI's message for a bad input (stderr without "error: ").
+fn cli_message(args: &[&str]) -> String {
+    let o = fastbrdf(args, "");
+    assert_eq!(o.status.code(), Some(2), "{args:?}");
+    stderr(&o)
+        .trim()
+        .strip_prefix("error: ")
+        .unwrap()
+        .to_string()
+}
+
+#[test]
+fn page_is_embedded_and_self_contained() {
+    let s = serve(&[]);
+    for target in ["/", "/index.html"] {
+        let (status, ctype, body) = request(&s.addr, "GET", target);
+        assert_eq!(status, 200);
+        assert!(ctype.starts_with("text/html"));
+        let page = String::from_utf8(body).unwrap();
+        assert!(page.contains("<canvas") && page.contains("/api/plots"));
+        // Offline: nothing is fetched from anywhere but this server.
+        for bad in ["http://", "https://", "//cdn", "<link "] {
+            assert!(!page.contains(bad), "the page refers to {bad}");
+        }
+    }
+}
+
+#[test]
+fn models_lists_every_shadeable_model_with_its_parameters() {
+    let s = serve(&[]);
+    let v = ok_json(&s.addr, "/api/models");
+    let o = fastbrdf(&["models", "--json"], "");
+    let all: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let expected: Vec<&str> = all["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|m| ["lobe", "distribution", "brdf"].contains(&m["kind"].as_str().unwrap()))
+        .map(|m| m["id"].as_str().unwrap())
+        .collect();
+    let got: Vec<&str> = v["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(got, expected);
+    let flog = v["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["id"] == "flog")
+        .unwrap();
+    let n = &flog["params"][0];
+    assert_eq!(
+        (
+            n["name"].as_str(),
+            n["min"].as_f64(),
+            n["max"].as_f64(),
+            n["log"].as_bool()
+        ),
+        (Some("n"), Some(1.0), Some(100000.0), Some(true))
+    );
+    let ct = v["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["id"] == "cook-torrance")
+        .unwrap();
+    let d = ct["params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "d")
+        .unwrap();
+    assert_eq!(d["type"], "choice");
+    assert!(d["options"].as_array().unwrap().iter().any(|o| o == "ggx"));
+    assert_eq!(v["materials"].as_array().unwrap().len(), 86);
+    assert!(flog["cost"].is_null(), "no --bench run: unavailable");
+    // With a bench run: the best SIMD row of the saved file.
+    let s = serve(&["--bench", "../../docs/bench/bench.json"]);
+    let v = ok_json(&s.addr, "/api/models");
+    let flog = v["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["id"] == "flog")
+        .unwrap();
+    let saved: Value =
+        serde_json::from_str(&std::fs::read_to_string("../../docs/bench/bench.json").unwrap())
+            .unwrap();
+    let best = saved["kernels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|k| k["model"] == "flog" && k["variant"] == "simd")
+        .map(|k| k["evals_per_s"].as_f64().unwrap())
+        .fold(0.0, f64::max);
+    assert_eq!(flog["cost"]["simd"].as_f64(), Some(best));
+}
+
+#[test]
+fn errors_endpoint_equals_fastbrdf_errors() {
+    let s = serve(&[]);
+    for (model, reference, key, flag, value) in [
+        ("flog", "pow", "n", "--n", "100"),
+        ("schlick", "pow", "n", "--n", "7.5"),
+        ("beckmann-power16", "beckmann-ct", "alpha", "--m", "0.2"),
+        ("ward-pow", "ward", "alpha", "--m", "0.35"),
+    ] {
+        let v = ok_json(
+            &s.addr,
+            &format!("/api/errors?model={model}&ref={reference}&{key}={value}"),
+        );
+        let c = cli_errors(model, reference, flag, value);
+        for f in [
+            "max_abs",
+            "max_abs_at",
+            "max_rel",
+            "max_rel_at",
+            "rms",
+            "samples",
+        ] {
+            assert_eq!(v[f], c[f], "{model} {f}");
+        }
+    }
+}
+
+#[test]
+fn plots_carry_every_curve_and_the_cli_numbers() {
+    let s = serve(&[]);
+    let v = ok_json(
+        &s.addr,
+        "/api/plots?models=flog,schlick&ref=pow&n=60&theta=35",
+    );
+    assert_eq!(v["theta_i_deg"], 35.0);
+    let np = v["polar_theta_deg"].as_array().unwrap().len();
+    let nc = v["curve_theta_deg"].as_array().unwrap().len();
+    let side = v["slice_size"].as_u64().unwrap() as usize;
+    let models = v["models"].as_array().unwrap();
+    assert_eq!(
+        models
+            .iter()
+            .map(|m| m["id"].as_str().unwrap())
+            .collect::<Vec<_>>(),
+        ["pow", "flog", "schlick"]
+    );
+    for m in models {
+        assert_eq!(m["polar"].as_array().unwrap().len(), np);
+        assert_eq!(m["lobe"].as_array().unwrap().len(), nc);
+        assert_eq!(m["slice"].as_array().unwrap().len(), side * side);
+        // The polar plot peaks near the mirror direction (+35 degrees: the incident direction
+        // is at -35 on the plot's axis).
+        let polar: Vec<f64> = m["polar"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        let peak = polar
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.total_cmp(b.1))
+            .unwrap()
+            .0;
+        let at = v["polar_theta_deg"][peak].as_f64().unwrap();
+        assert!((at - 35.0).abs() <= 3.0, "{} peaks at {at}", m["id"]);
+    }
+    assert!(
+        models[0]["error"].is_null(),
+        "the reference has no error against itself"
+    );
+    for m in &models[1..] {
+        let e = &m["error"];
+        let c = cli_errors(m["id"].as_str().unwrap(), "pow", "--n", "60");
+        assert_eq!(e["max_abs"], c["max_abs"]);
+        assert_eq!(e["max_rel"], c["max_rel"]);
+        let abs: Vec<f64> = e["abs"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect();
+        // The plotted curve never exceeds the located (refined) maximum.
+        assert!(
+            abs.iter()
+                .all(|a| a.abs() <= c["max_abs"].as_f64().unwrap() + 1e-12)
+        );
+    }
+    // Albedo against `fastbrdf albedo` (its default: lobes as energy-normalised phong).
+    let o = fastbrdf(
+        &[
+            "albedo",
+            "--model",
+            "flog",
+            "--param",
+            "n=60",
+            "--angles",
+            "0,10,20,30,40,50,60,70,80,85",
+            "--json",
+        ],
+        "",
+    );
+    let cli: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let alb = ok_json(&s.addr, "/api/albedo?models=flog,schlick&ref=pow&n=60");
+    let ids: Vec<&str> = alb["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(ids, ["pow", "flog", "schlick"]);
+    let a = &alb["models"][1]["albedo"];
+    for (k, row) in cli["rows"].as_array().unwrap().iter().enumerate() {
+        let (x, y) = (
+            a["albedo"][k].as_f64().unwrap(),
+            row["albedo"].as_f64().unwrap(),
+        );
+        assert!(
+            (x - y).abs() <= 2e-3 * y.max(1e-3),
+            "albedo at {}: {x} vs {y}",
+            row["theta_deg"]
+        );
+    }
+    assert_eq!(a["conserves"], cli["conserves"]);
+    assert_eq!(a["claims_energy"], cli["claims_energy"]);
+}
+
+#[test]
+fn renders_and_their_metrics_equal_fastbrdf_compare() {
+    let s = serve(&["--mesh", "face"]);
+    let v = ok_json(
+        &s.addr,
+        "/api/render?models=flog&ref=pow&n=100&size=64&spp=1",
+    );
+    assert_eq!(
+        (v["width"].as_u64(), v["height"].as_u64()),
+        (Some(64), Some(64))
+    );
+    let ids: Vec<&str> = v["images"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i["id"].as_str().unwrap())
+        .collect();
+    assert_eq!(ids, ["pow", "flog"]);
+    for i in v["images"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .chain(v["diffs"].as_array().unwrap())
+    {
+        let png = cdp::base64_decode(i["png"].as_str().unwrap()).unwrap();
+        let img = image::load_from_memory(&png).unwrap();
+        assert_eq!((img.width(), img.height()), (64, 64));
+    }
+    let dir = temp_dir("view-compare");
+    let out = dir.join("c.png");
+    let o = fastbrdf(
+        &[
+            "compare",
+            "--models",
+            "flog",
+            "--reference",
+            "pow",
+            "--param",
+            "n=100",
+            "--size",
+            "64x64",
+            "--spp",
+            "1",
+            "--json",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let c: Value = serde_json::from_slice(&o.stdout).unwrap();
+    for f in ["rmse", "psnr", "flip"] {
+        assert_eq!(v["metrics"][0][f], c["metrics"][0][f], "{f}");
+    }
+    // The light and the object change the picture.
+    let moved = ok_json(
+        &s.addr,
+        "/api/render?models=flog&n=100&size=64&spp=1&light=-1,0.2,0.5",
+    );
+    assert_ne!(moved["images"][0]["png"], v["images"][1]["png"]);
+    let face = ok_json(
+        &s.addr,
+        "/api/render?models=flog&n=100&size=64&spp=1&mesh=mesh",
+    );
+    assert_ne!(face["images"][0]["png"], v["images"][1]["png"]);
+    assert!(face["metrics"].as_array().unwrap().is_empty() && face["reference"].is_null());
+}
+
+#[test]
+fn shader_and_material_equal_the_cli() {
+    let s = serve(&[]);
+    for lang in ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"] {
+        let (status, ctype, body) = request(
+            &s.addr,
+            "GET",
+            &format!("/api/shader?model=cook-torrance&alpha=0.2&f=schlick&lang={lang}"),
+        );
+        assert_eq!(status, 200);
+        assert!(ctype.starts_with("text/plain"));
+        let o = fastbrdf(
+            &[
+                "shader",
+                "--model",
+                "cook-torrance",
+                "--param",
+                "alpha=0.2",
+                "--param",
+                "f=schlick",
+                "--lang",
+                lang,
+            ],
+            "",
+        );
+        assert_eq!(
+            String::from_utf8(body).unwrap(),
+            String::from_utf8(o.stdout).unwrap(),
+            "{lang}"
+        );
+    }
+    let v = ok_json(&s.addr, "/api/material?name=gold-paint&model=flog");
+    let o = fastbrdf(&["materials", "--json"], "");
+    let m: Value = serde_json::from_slice(&o.stdout).unwrap();
+    let gold = m
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|x| x["name"] == "gold-paint")
+        .unwrap()
+        .clone();
+    assert_eq!(v["params"]["n"].as_f64(), gold["blinn_phong"]["n"].as_f64());
+}
+
+#[test]
+fn bad_requests_get_4xx_with_the_cli_message_and_the_server_survives() {
+    let s = serve(&[]);
+    let unknown = cli_message(&[
+        "errors",
+        "--model",
+        "nope",
+        "--reference",
+        "pow",
+        "--n",
+        "10",
+    ]);
+    let not_number = cli_message(&["eval", "--model", "flog", "--param", "n=abc"]);
+    let out_of_range = cli_message(&["eval", "--model", "flog", "--param", "n=1e9"]);
+    for (target, status, message) in [
+        ("/api/plots?models=nope", 400, Some(unknown.as_str())),
+        (
+            "/api/errors?model=nope&ref=pow&n=10",
+            400,
+            Some(unknown.as_str()),
+        ),
+        (
+            "/api/plots?models=flog&n=abc",
+            400,
+            Some(not_number.as_str()),
+        ),
+        (
+            "/api/render?models=flog&n=1e9",
+            400,
+            Some(out_of_range.as_str()),
+        ),
+        ("/api/shader?model=flog&n=abc", 400, None),
+        (
+            "/api/plots?models=flog&bogus=1",
+            400,
+            Some("model 'flog' has no parameter 'bogus'"),
+        ),
+        ("/api/plots?models=flog&theta=95", 400, None),
+        ("/api/plots?models=a,b,c,d,e,f,g", 400, None),
+        ("/api/plots?models=fresnel-schlick", 400, None),
+        ("/api/plots", 400, Some("missing query parameter 'models'")),
+        ("/api/render?models=flog&size=100000", 400, None),
+        ("/api/render?models=flog&size=-1", 400, None),
+        ("/api/render?models=flog&spp=99", 400, None),
+        ("/api/render?models=flog&light=nan,1,1", 400, None),
+        (
+            "/api/render?models=flog&mesh=mesh",
+            400,
+            Some("mesh=mesh: the server was started without --mesh"),
+        ),
+        ("/api/render?models=flog&mesh=/etc/passwd", 400, None),
+        ("/api/shader?model=flog&lang=cobol", 400, None),
+        ("/api/material?name=unobtainium&model=flog", 400, None),
+        ("/api/plots?models=%ff%fe&n=%zz", 400, None),
+        ("/../../etc/passwd", 404, None),
+        ("/%2e%2e/%2e%2e/etc/passwd", 404, None),
+        ("/api/../../../etc/passwd", 404, None),
+        ("/page.html", 404, None),
+    ] {
+        let (got, v) = get_json(&s.addr, target);
+        assert_eq!(got, status, "{target}: {v}");
+        let e = v["error"].as_str().unwrap();
+        assert!(!e.contains("root:"), "{target}");
+        if let Some(m) = message {
+            assert_eq!(e, m, "{target}");
+        }
+    }
+    let (status, _, _) = request(&s.addr, "POST", "/api/models");
+    assert_eq!(status, 405);
+    let long = format!("/api/plots?models=flog&x={}", "a".repeat(10000));
+    let (status, _, _) = request(&s.addr, "GET", &long);
+    assert!((400..500).contains(&status), "{status}");
+    ok_json(&s.addr, "/api/models");
+}
+
+#[test]
+fn stale_renders_are_dropped() {
+    let s = serve(&[]);
+    ok_json(&s.addr, "/api/render?models=flog&size=16&client=c1&gen=5");
+    let (status, v) = get_json(&s.addr, "/api/render?models=flog&size=16&client=c1&gen=3");
+    assert_eq!(status, 409, "{v}");
+    // Another client is not affected; many at once get an answer each (200, or 503 when the
+    // queue is full), never a dead server.
+    ok_json(&s.addr, "/api/render?models=flog&size=16&client=c2&gen=1");
+    let handles: Vec<_> = (0..12)
+        .map(|k| {
+            let addr = s.addr.clone();
+            std::thread::spawn(move || {
+                get_json(
+                    &addr,
+                    &format!("/api/render?models=flog,pow&size=128&client=p{k}&gen=1"),
+                )
+                .0
+            })
+        })
+        .collect();
+    for h in handles {
+        assert!([200, 503].contains(&h.join().unwrap()));
+    }
+    ok_json(&s.addr, "/api/models");
+}
+
+#[test]
+fn non_loopback_needs_allow_remote_and_warns() {
+    let o = fastbrdf(&["view", "--host", "0.0.0.0", "--port", "0"], "");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--allow-remote"));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
+        .args(["view", "--host", "0.0.0.0", "--port", "0", "--allow-remote"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stderr.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(line.starts_with("warning:"), "{line}");
+}
+
+/// The browser, or None (skip) outside CI; under CI a missing browser fails.
+fn browser() -> Option<std::path::PathBuf> {
+    match cdp::find_browser(None) {
+        Ok(b) => Some(b),
+        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and {e}"),
+        Err(e) => {
+            eprintln!("skipping the end-to-end test: {e} (tools/test.sh installs it)");
+            None
+        }
+    }
+}
+
+const SNAPSHOT: &str = r##"JSON.stringify({
+  plots: ["polar", "lobe", "err-abs", "err-rel", "albedo", "slice"].map(id => document.getElementById(id).toDataURL()),
+  images: [...document.querySelectorAll("img.render")].map(i => i.dataset.model + ":" + i.src.length + ":" + i.src.slice(-64)),
+  n: document.getElementById("text-n").value,
+  rows: Object.fromEntries([...document.querySelectorAll("#numbers tr[data-model]")].map(r => [r.dataset.model,
+     {abs: r.querySelector(".max-abs").dataset.value, abs_text: r.querySelector(".max-abs").textContent,
+      rel: r.querySelector(".max-rel").dataset.value, psnr: r.querySelector(".psnr").textContent}])),
+  status: document.getElementById("status").className,
+  hash: location.hash,
+})"##;
+
+fn snapshot(b: &mut cdp::Browser, s: &str) -> Value {
+    b.wait_for(
+        s,
+        "document.body.dataset.ready === '1'",
+        Duration::from_secs(120),
+    )
+    .unwrap();
+    let v: Value = serde_json::from_str(b.eval(s, SNAPSHOT).unwrap().as_str().unwrap()).unwrap();
+    assert_eq!(v["status"], "", "the page shows an error");
+    v
+}
+
+/// The numbers the page shows for `model` equal `fastbrdf errors` at the page's n.
+fn check_numbers(v: &Value, model: &str) {
+    let n = v["n"].as_str().unwrap();
+    let c = cli_errors(model, "pow", "--n", n);
+    let row = &v["rows"][model];
+    let shown: f64 = row["abs"].as_str().unwrap().parse().unwrap();
+    assert_eq!(shown, c["max_abs"].as_f64().unwrap(), "{model} at n = {n}");
+    // An infinite relative error is null in the CLI's JSON and "inf" on the page.
+    match c["max_rel"].as_f64() {
+        Some(r) => assert_eq!(row["rel"].as_str().unwrap().parse::<f64>().unwrap(), r),
+        None => assert_eq!(row["rel"], "inf"),
+    }
+    let text: f64 = row["abs_text"].as_str().unwrap().parse().unwrap();
+    assert!(
+        (text - shown).abs() <= 1e-3 * shown,
+        "{text} shown for {shown}"
+    );
+    assert!(
+        row["psnr"].as_str().unwrap().parse::<f64>().is_ok(),
+        "PSNR shown: {row}"
+    );
+}
+
+#[test]
+fn page_end_to_end_in_headless_chromium() {
+    let Some(path) = browser() else { return };
+    let s = serve(&[]);
+    let mut b = cdp::Browser::start(&path).unwrap();
+    let url = format!("http://{}/#models=flog&ref=pow&n=100&theta=30", s.addr);
+    let page = b.open(&url, 1400, 1050).unwrap();
+    let before = snapshot(&mut b, &page);
+    assert_eq!(before["n"], "100");
+    check_numbers(&before, "flog");
+
+    // Drag the n slider with real mouse events.
+    let rect: Value = b
+        .eval(&page, "(() => { const r = document.getElementById('slider-n').getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; })()")
+        .unwrap();
+    let (x, y, w, h) = (
+        rect[0].as_f64().unwrap(),
+        rect[1].as_f64().unwrap(),
+        rect[2].as_f64().unwrap(),
+        rect[3].as_f64().unwrap(),
+    );
+    let (x0, x1, yc) = (x + 0.4 * w, x + 0.15 * w, y + h / 2.0);
+    b.mouse(&page, "mousePressed", x0, yc).unwrap();
+    for k in 1..=5 {
+        b.mouse(&page, "mouseMoved", x0 + (x1 - x0) * f64::from(k) / 5.0, yc)
+            .unwrap();
+    }
+    b.mouse(&page, "mouseReleased", x1, yc).unwrap();
+    let moved = snapshot(&mut b, &page);
+    assert_ne!(moved["n"], before["n"], "the slider moved n");
+    for k in 0..5 {
+        assert_ne!(
+            moved["plots"][k], before["plots"][k],
+            "plot {k} unchanged after the slider"
+        );
+    }
+    assert_ne!(
+        moved["images"], before["images"],
+        "pictures unchanged after the slider"
+    );
+    check_numbers(&moved, "flog");
+
+    // Choose a second model.
+    b.eval(&page, "(() => { const s = document.getElementById('add'); s.value = 'schlick'; s.dispatchEvent(new Event('change')); })()")
+        .unwrap();
+    let two = snapshot(&mut b, &page);
+    assert_ne!(
+        two["plots"][0], moved["plots"][0],
+        "polar plot unchanged after adding a model"
+    );
+    assert_eq!(
+        two["images"].as_array().unwrap().len(),
+        3,
+        "{}",
+        two["images"]
+    );
+    check_numbers(&two, "flog");
+    check_numbers(&two, "schlick");
+
+    // The URL reproduces the view.
+    let again = b
+        .open(
+            &format!("http://{}/{}", s.addr, two["hash"].as_str().unwrap()),
+            1400,
+            1050,
+        )
+        .unwrap();
+    let copy = snapshot(&mut b, &again);
+    assert_eq!(copy["rows"], two["rows"]);
+    assert_eq!(copy["n"], two["n"]);
+
+    // Closing the browser leaves no profile behind.
+    drop(b);
+    let prefix = format!("fastbrdf-chromium-{}-", std::process::id());
+    let left: Vec<_> = std::fs::read_dir(std::env::temp_dir())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().starts_with(&prefix))
+        .collect();
+    assert!(left.is_empty(), "profile left behind: {left:?}");
+}
