@@ -6,11 +6,11 @@ The same vocabulary as the ``fastbrdf`` command line: model ids and parameters a
 
 >>> import numpy as np, fastbrdf
 >>> m = fastbrdf.Model("flog", n=20)
->>> m.eval(np.array([1.0, 0.9], dtype=np.float32))      # f32, SIMD kernel
-array([1.        , 0.1194...], dtype=float32)
+>>> m.eval(np.array([1.0, 0.95], dtype=np.float32))      # f32, SIMD kernel
+array([1.        , 0.3448...], dtype=float32)
 >>> ct = fastbrdf.Model("cook-torrance", alpha=0.2, f="schlick")
->>> ct.eval([0.0, 0.0, 1.0], [0.3, 0.0, 0.95], precision="f64")
-array(2.31...)
+>>> float(ct.eval([0.0, 0.0, 1.0], [0.3, 0.0, 0.95], precision="f64"))
+0.0482...
 
 Array rules (every function taking arrays):
 
@@ -144,8 +144,8 @@ class Model:
     """One model by id, with its parameters as keyword arguments (validated at once).
 
     >>> m = fastbrdf.Model("ggx", alpha=0.3)
-    >>> m.kind, m.info["source"][:7]
-    ('distribution', 'Walter ')
+    >>> m.kind, m.inputs
+    ('distribution', (['cos_h'], []))
     >>> fastbrdf.Model("flog", n=0)
     Traceback (most recent call last):
     ValueError: model 'flog': parameter n = 0 is invalid: expected ...
@@ -295,8 +295,8 @@ def errors(
     (microfacet terms, Ward) as a number, a sequence or the CLI's range text
     (``"1..1000:log10"``); ``zone`` is ``all``, ``epicentre`` or ``band:LO,HI``.
 
-    >>> fastbrdf.errors("flog", "pow", n=[10, 100])[0]["max_abs"]
-    0.0369...
+    >>> round(fastbrdf.errors("flog", "pow", n=[10, 100])[0]["max_abs"], 6)
+    0.125
     """
     if (n is None) == (alpha is None):
         raise ValueError("give n=... (lobes) or alpha=... (microfacet terms, Ward), not both")
