@@ -235,12 +235,13 @@ impl Handle {
             let mut soa = vec![[0.0f32; CHUNK]; 6];
             for (c, o) in out.chunks_mut(CHUNK).enumerate() {
                 let len = o.len();
-                for j in 0..len {
-                    let i = (c * CHUNK + j) * 3;
-                    for a in 0..3 {
-                        soa[a][j] = wi[i + a];
-                        soa[3 + a][j] = wo[i + a];
-                    }
+                let span = c * CHUNK * 3..(c * CHUNK + len) * 3;
+                let pairs = wi[span.clone()]
+                    .chunks_exact(3)
+                    .zip(wo[span].chunks_exact(3));
+                for (j, (a, o)) in pairs.enumerate() {
+                    (soa[0][j], soa[1][j], soa[2][j]) = (a[0], a[1], a[2]);
+                    (soa[3][j], soa[4][j], soa[5][j]) = (o[0], o[1], o[2]);
                 }
                 let s: [&[f32]; 6] = std::array::from_fn(|a| &soa[a][..len]);
                 k.eval(Input::Dirs(s), o)?;
