@@ -202,7 +202,7 @@ class Model:
         distributions, ``cos_vh`` for Fresnel terms; ``eval(cos_v, alpha)`` for env terms;
         shadowing terms take their inputs in the order of ``inputs``) and ``eval(wi, wo)``
         with arrays of shape (..., 3) for BRDFs (local frame, normal +z, both pointing away
-        from the surface; not normalised needed; no cosine factor).
+        from the surface, of any length; the value has no cosine factor).
 
         Returns an array of the broadcast shape (a numpy scalar for scalar inputs), float32
         for ``precision="f32"`` and float64 for ``"f64"``. The GIL is released while it runs.

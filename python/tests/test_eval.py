@@ -226,3 +226,19 @@ def test_parameter_value_types():
         fastbrdf.Model("pow", n=True)
     with pytest.raises(TypeError, match="got list"):
         fastbrdf.Model("pow", n=[1])
+
+
+def test_shadowing_scalar_path_equals_numpy():
+    """Shadowing terms have no batch kernel: f32 and f64 both run the scalar model."""
+    a = 0.4
+    m = fastbrdf.Model("smith-ggx", alpha=a)
+    assert m.inputs == (["cos_v"], ["cos_l"]) and not m.simd
+    cv, cl = np.linspace(0.05, 1, 50), np.linspace(1, 0.05, 50)
+
+    def g1(c):
+        return 2 * c / (c + np.sqrt(a * a + (1 - a * a) * c * c))
+
+    np.testing.assert_allclose(m.eval(cv, precision="f64"), g1(cv), rtol=1e-12)
+    np.testing.assert_allclose(m.eval(cv, cl, precision="f64"), g1(cv) * g1(cl), rtol=1e-12)
+    np.testing.assert_allclose(m.eval(cv, cl), g1(cv) * g1(cl), rtol=1e-6)
+    assert m.eval(cv[:, None], cl[None, :]).shape == (50, 50)
