@@ -242,3 +242,31 @@ def test_shadowing_scalar_path_equals_numpy():
     np.testing.assert_allclose(m.eval(cv, cl, precision="f64"), g1(cv) * g1(cl), rtol=1e-12)
     np.testing.assert_allclose(m.eval(cv, cl), g1(cv) * g1(cl), rtol=1e-6)
     assert m.eval(cv[:, None], cl[None, :]).shape == (50, 50)
+
+
+def test_eval_releases_the_gil():
+    """While one thread evaluates, another keeps running Python: the longest pause the main
+    thread sees is far shorter than the call (holding the GIL, it would be the whole call)."""
+    import threading
+    import time
+
+    m = fastbrdf.Model("cook-torrance", alpha=0.3)
+    w = hemisphere(200_000)
+    n = 1
+    while True:
+        ws = np.tile(w, (n, 1))
+        t0 = time.perf_counter()
+        m.eval(ws, ws, precision="f64")
+        call = time.perf_counter() - t0
+        if call > 0.3 or n >= 64:
+            break
+        n *= 2
+    assert call > 0.1
+    t = threading.Thread(target=lambda: m.eval(ws, ws, precision="f64"))
+    last, gap = time.perf_counter(), 0.0
+    t.start()
+    while t.is_alive():
+        now = time.perf_counter()
+        gap, last = max(gap, now - last), now
+    t.join()
+    assert gap < call / 3, (gap, call)
