@@ -251,17 +251,17 @@ def test_eval_releases_the_gil():
     import time
 
     m = fastbrdf.Model("cook-torrance", alpha=0.3)
-    w = hemisphere(200_000)
+    w = hemisphere(100_000)
     n = 1
-    while True:
+    while True:  # a call long enough to see (at most 3.2e6 pairs, 77 MB)
         ws = np.tile(w, (n, 1))
         t0 = time.perf_counter()
         m.eval(ws, ws, precision="f64")
         call = time.perf_counter() - t0
-        if call > 0.3 or n >= 64:
+        if call > 0.2 or n >= 32:
             break
         n *= 2
-    assert call > 0.1
+    assert call > 0.05
     t = threading.Thread(target=lambda: m.eval(ws, ws, precision="f64"))
     last, gap = time.perf_counter(), 0.0
     t.start()
