@@ -67,7 +67,7 @@ def models(kind: Optional[str] = None) -> List[Dict[str, Any]]:
     >>> [m["id"] for m in fastbrdf.models("lobe")][:3]
     ['pow', 'schlick', 'schlick-modified']
     """
-    all_models = json.loads(_native.models_json())["models"]
+    all_models: List[Dict[str, Any]] = json.loads(_native.models_json())["models"]
     if kind is None:
         return all_models
     if kind not in KINDS:
@@ -221,8 +221,8 @@ class Model:
             wi, wo = _vectors(inputs[0], "wi", 3), _vectors(inputs[1], "wo", 3)
             shape = _broadcast(["wi", "wo"], [wi.shape[:-1], wo.shape[:-1]])
             wi, wo = _prepare(wi, shape + (3,), dtype), _prepare(wo, shape + (3,), dtype)
-            f = h.eval_dirs_f32 if precision == "f32" else h.eval_dirs_f64
-            return _result(f(wi.reshape(-1, 3), wo.reshape(-1, 3)), shape)
+            fd = h.eval_dirs_f32 if precision == "f32" else h.eval_dirs_f64
+            return _result(fd(wi.reshape(-1, 3), wo.reshape(-1, 3)), shape)
         req, opt = self.inputs
         if not len(req) <= len(inputs) <= len(req) + len(opt):
             want = ", ".join(req) + ("" if not opt else f" (optionally {', '.join(opt)})")
@@ -233,8 +233,8 @@ class Model:
         arrays = [_array(x, n) for x, n in zip(inputs, names)]
         shape = _broadcast(names, [a.shape for a in arrays])
         cols = [_prepare(a, shape, dtype).reshape(-1) for a in arrays]
-        f = h.eval_f32 if precision == "f32" else h.eval_f64
-        return _result(f(cols), shape)
+        fc = h.eval_f32 if precision == "f32" else h.eval_f64
+        return _result(fc(cols), shape)
 
     def strategies(self) -> List[str]:
         """The sampling strategies of a BRDF, its default (``auto``) first."""
@@ -380,7 +380,7 @@ def render(
         int(spp),
         kd,
         ks,
-        rgb,
+        (rgb[0], rgb[1], rgb[2]),
         list(lights),
         bool(floor),
         bool(shadows),
