@@ -10,6 +10,15 @@
 # Chromium: this installs Debian's chromium when none is found (~100 MB with its libraries);
 # with CI set a missing Chromium fails that test, without CI it is skipped with a message.
 # Extra arguments go to `cargo test` (e.g. `tools/test.sh -p fastbrdf-gpu`).
+#
+# Then the Python package (python/, issue 17): with no arguments (the whole suite) or with
+# `--python` alone (only this step), it makes a virtual environment target/python-venv if
+# missing (installing Debian's python3-venv when `python3 -m venv` cannot), installs maturin,
+# pytest and numpy into it, `pip install ./python` (in cargo's dev profile, so it reuses what
+# `cargo test` just built; a plain `pip install ./python` builds the release profile), and
+# runs `pytest python/tests`. With extra cargo arguments the Python step is left out. Under CI
+# a missing piece (python3, the venv, a package) fails the script; without CI it is skipped
+# with a message.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -48,4 +57,51 @@ if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
     XDG_RUNTIME_DIR="$(mktemp -d)"
     export XDG_RUNTIME_DIR
 fi
-exec cargo test --workspace --locked "$@"
+
+# The Python step. Prints why and fails under CI, or skips (returns 0) without CI.
+python_missing() {
+    if [ -n "${CI:-}" ]; then
+        echo "test.sh: $1 (CI: failing)" >&2
+        exit 1
+    fi
+    echo "test.sh: $1; skipping the Python tests" >&2
+}
+
+python_tests() {
+    local venv=target/python-venv
+    if ! command -v python3 > /dev/null; then
+        python_missing "no python3"
+        return 0
+    fi
+    if [ ! -x "$venv/bin/python" ]; then
+        if ! python3 -m venv "$venv" > /dev/null 2>&1; then
+            rm -rf "$venv"
+            echo "test.sh: python3 -m venv failed: installing python3-venv" >&2
+            if command -v apt-get > /dev/null; then
+                apt_install python3-venv || { $sudo apt-get update -qq > /dev/null && apt_install python3-venv; } || true
+            fi
+            if ! python3 -m venv "$venv"; then
+                rm -rf "$venv"
+                python_missing "cannot create a virtual environment (python3-venv)"
+                return 0
+            fi
+        fi
+    fi
+    if ! "$venv/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.9,<2" pytest numpy; then
+        python_missing "cannot install maturin, pytest and numpy into $venv"
+        return 0
+    fi
+    echo "test.sh: pip install ./python (dev profile) and pytest python/tests" >&2
+    MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/python" -m pip install -q --disable-pip-version-check \
+        --force-reinstall --no-deps ./python
+    "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
+}
+
+if [ "$#" -eq 1 ] && [ "$1" = "--python" ]; then
+    python_tests
+    exit 0
+fi
+cargo test --workspace --locked "$@"
+if [ "$#" -eq 0 ]; then
+    python_tests
+fi
