@@ -480,16 +480,32 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
         );
         x *= 1.001;
     }
-    for y in [1.0f32, 7.0, 200.0, 10000.0, 100000.0] {
-        for i in 1..=20_000 {
-            let x = i as f32 / 20_000.0;
+    // fma::pow is double-f32 (not the f64 form): the same grid as `math::pow`'s test, and
+    // every f32 in the interval edges' neighbourhoods of its three reduction centres.
+    for y in [
+        1.0f32, 1.5, 7.0, 20.0, 200.0, 1234.5, 10000.0, 99999.0, 100000.0,
+    ] {
+        let dense = (1..=200_000).map(|i| 1.0 - i as f32 * 1e-9 * (1.0 + y.min(1000.0)));
+        let edges = [0.890_898_7f32, 1.122_462 / 2.0, 0.707_106_77, 0.5]
+            .into_iter()
+            .flat_map(|x0| {
+                (-2000..=2000).map(move |k| f32::from_bits((x0.to_bits() as i32 + k) as u32))
+            });
+        for x in (1..=200_000)
+            .map(|i| i as f32 / 200_000.0)
+            .chain(dense)
+            .chain(edges)
+        {
             let want = (x as f64).powf(y as f64);
-            if want >= 1e-9 {
+            if want >= 1e-30 {
                 let rel = (fma::pow(x, y) as f64 - want).abs() / want;
                 assert!(rel <= 2.0 * eps, "pow({x}, {y}): {rel:.2e}");
             }
         }
     }
+    assert_eq!(fma::pow(0.0, 3.0), 0.0);
+    assert_eq!(fma::pow(1.0, 1e5), 1.0);
+    assert!(fma::pow(f32::NAN, 2.0).is_nan() && fma::pow(-0.5, 2.0).is_nan());
 }
 
 /// The denormal policy: kernels run with flush-to-zero, so a value the scalar model gives as a
