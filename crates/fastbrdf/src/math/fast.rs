@@ -289,10 +289,10 @@ pub(crate) fn pow_fma(x: f32, y: f32) -> f32 {
     // interval edges 2^(+-1/6).
     const C_UP: f32 = 1.259_921_1;
     const C_DN: f32 = 0.793_700_5;
-    const LC_HEAD: f32 = 0.333_328_247_070_312_5;
-    const LC_TAIL_UP: f32 = 5.113_765_8e-6;
-    const LC_TAIL_DN: f32 = -5.104_003_8e-6;
-    const EDGE_UP: f32 = 1.122_462_0;
+    const LC_HEAD: f32 = 0.333_328_25; // exactly 21845 / 65536
+    const LC_TAIL_UP: f32 = 5.113_766e-6;
+    const LC_TAIL_DN: f32 = -5.104_004e-6;
+    const EDGE_UP: f32 = 1.122_462;
     const EDGE_DN: f32 = 0.890_898_7;
     let bits = x.to_bits();
     let e = ((bits >> 23) & 0xff) as i32 - 127;
