@@ -455,19 +455,8 @@ fn albedo_json(
     let rows = py
         .detach(|| albedo::curve(&t, &angles, 1e-7))
         .map_err(value_error)?;
-    let (holds, _) = albedo::furnace(&rows, t.furnace_tol.max(1e-6));
-    let p: serde_json::Map<String, serde_json::Value> = t
-        .params
-        .iter()
-        .map(|(k, v)| {
-            let value = v
-                .parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .map_or_else(|| serde_json::json!(v), |x| serde_json::json!(x));
-            (k.clone(), value)
-        })
-        .collect();
+    let (holds, _) = albedo::furnace(&rows, t.furnace_tolerance());
+    let p = t.params_json();
     let v = serde_json::json!({"model": model, "brdf": t.id, "params": p,
         "claims_energy": t.claims_energy, "conserves": holds, "rows": rows});
     Ok(v.to_string())

@@ -35,6 +35,19 @@ pub struct Target {
     pub view: bool,
 }
 
+impl Target {
+    /// The white furnace's tolerance: how far above 1 the albedo may read (at least 1e-6, the
+    /// quadrature's own error).
+    pub fn furnace_tolerance(&self) -> f64 {
+        self.furnace_tol.max(1e-6)
+    }
+
+    /// The parameters as a JSON object ([`crate::params_json`]).
+    pub fn params_json(&self) -> serde_json::Map<String, serde_json::Value> {
+        crate::params_json(&self.params)
+    }
+}
+
 /// Builds the BRDF target for any model id: full BRDFs as they are, lobes wrapped as `as_brdf`
 /// (`phong` or `blinn-phong`) with `norm`. Distributions, shadowing and Fresnel terms are not
 /// BRDFs: an error.

@@ -39,3 +39,19 @@ pub mod simplex;
 pub mod speed;
 
 pub use fastbrdf::{Error, Result};
+
+/// `name=value` parameters as a JSON object: numbers as numbers, choices (`f=schlick`) as
+/// their names (the machine outputs of `albedo`, `fit-measured` and the Python package).
+pub fn params_json(params: &[(String, String)]) -> serde_json::Map<String, serde_json::Value> {
+    params
+        .iter()
+        .map(|(k, v)| {
+            let value = v
+                .parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .map_or_else(|| serde_json::json!(v), |x| serde_json::json!(x));
+            (k.clone(), value)
+        })
+        .collect()
+}

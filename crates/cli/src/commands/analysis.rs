@@ -563,21 +563,9 @@ pub fn albedo(a: &AlbedoArgs) -> Result<(), CliError> {
     let pb = bar(1, "albedo");
     let rows = albedo::curve(&t, &angles, 1e-7)?;
     pb.finish_and_clear();
-    let (holds, worst) = albedo::furnace(&rows, t.furnace_tol.max(1e-6));
+    let (holds, worst) = albedo::furnace(&rows, t.furnace_tolerance());
     if a.json {
-        // Parameters as an object: numbers as numbers, choices (f=schlick) as their names.
-        let params: serde_json::Map<String, serde_json::Value> = t
-            .params
-            .iter()
-            .map(|(k, v)| {
-                let value = v
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite())
-                    .map_or_else(|| serde_json::json!(v), |x| serde_json::json!(x));
-                (k.clone(), value)
-            })
-            .collect();
+        let params = t.params_json();
         let v = serde_json::json!({"model": a.model, "brdf": t.id, "params": params, "claims_energy": t.claims_energy,
             "conserves": holds, "rows": rows});
         crate::outln!(

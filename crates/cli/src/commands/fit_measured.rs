@@ -147,17 +147,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     eprintln!("wrote {}", a.out.display());
     let r = &f.residuals;
     if a.json {
-        let fixed: serde_json::Map<String, serde_json::Value> = fixed
-            .iter()
-            .map(|(k, v)| {
-                let val = v
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite())
-                    .map_or_else(|| serde_json::json!(v), |x| serde_json::json!(x));
-                (k.clone(), val)
-            })
-            .collect();
+        let fixed = fastbrdf_analysis::params_json(&fixed);
         let params: serde_json::Map<String, serde_json::Value> = f
             .problem
             .free

@@ -516,11 +516,11 @@ fn albedo_of(id: &'static str, all: &[(String, String)]) -> Result<Value, CliErr
     let albedo_v = match albedo::target(id, &p, "phong", "energy") {
         Ok(t) => {
             let rows = albedo::curve(&t, &ALBEDO_ANGLES, ALBEDO_TOL)?;
-            let (holds, worst) = albedo::furnace(&rows, t.furnace_tol.max(1e-6));
+            let (holds, worst) = albedo::furnace(&rows, t.furnace_tolerance());
             json!({
                 "brdf": t.id, "theta_deg": ALBEDO_ANGLES, "albedo": rows.iter().map(|r| r.albedo).collect::<Vec<_>>(),
                 "error": rows.iter().map(|r| r.error).collect::<Vec<_>>(),
-                "claims_energy": t.claims_energy, "conserves": holds, "tolerance": t.furnace_tol.max(1e-6),
+                "claims_energy": t.claims_energy, "conserves": holds, "tolerance": t.furnace_tolerance(),
                 "worst_theta_deg": worst.map(|w| w.theta_deg), "worst_albedo": worst.map(|w| w.albedo),
             })
         }
