@@ -351,6 +351,72 @@ fn plots_carry_every_curve_and_the_cli_numbers() {
     assert_eq!(a["claims_energy"], cli["claims_energy"]);
 }
 
+/// How far the quick albedo estimate (`quick=1`) may be from the precise curve, relative to
+/// max(precise, 1e-3) at each angle. Measured worst over the queries below (the test prints
+/// it with `-- --nocapture`): 1.5e-3; the bound leaves a factor of about 3.
+const QUICK_ALBEDO_TOL: f64 = 5e-3;
+
+#[test]
+fn quick_albedo_is_close_to_the_precise_one_and_carries_no_verdict() {
+    let s = serve(&[]);
+    let mut worst: f64 = 0.0;
+    for q in [
+        "models=flog,schlick&ref=pow&n=60",
+        "models=flog,schlick&ref=pow&n=2",
+        "models=flog&ref=pow&n=1000",
+        "models=beckmann-power16&ref=cook-torrance&alpha=0.05",
+        "models=beckmann-power16&ref=cook-torrance&alpha=0.5",
+        "models=ward,blinn-phong&alpha=0.2",
+        // The ends of the sliders: the sharpest lobes.
+        "models=flog&ref=pow&n=100000",
+        "models=ward&ref=cook-torrance&alpha=0.005",
+        "models=cook-torrance&alpha=1",
+    ] {
+        let precise = ok_json(&s.addr, &format!("/api/albedo?{q}"));
+        let quick = ok_json(&s.addr, &format!("/api/albedo?{q}&quick=1"));
+        assert_eq!(precise["estimate"], false);
+        assert_eq!(quick["estimate"], true);
+        let (pm, qm) = (
+            precise["models"].as_array().unwrap(),
+            quick["models"].as_array().unwrap(),
+        );
+        assert_eq!(pm.len(), qm.len());
+        for (p, k) in pm.iter().zip(qm) {
+            assert_eq!(p["id"], k["id"]);
+            let id = p["id"].as_str().unwrap();
+            let (p, k) = (&p["albedo"], &k["albedo"]);
+            if p.is_null() {
+                assert!(k.is_null(), "{q}");
+                continue;
+            }
+            // The verdict only from the precise computation.
+            assert!(p["conserves"].is_boolean(), "{q}: {p}");
+            assert!(k["conserves"].is_null(), "{q}: {k}");
+            assert!(k["worst_albedo"].is_null(), "{q}: {k}");
+            assert_eq!(p["theta_deg"], k["theta_deg"]);
+            for (x, y) in p["albedo"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .zip(k["albedo"].as_array().unwrap())
+            {
+                let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
+                let d = (x - y).abs() / x.max(1e-3);
+                worst = worst.max(d);
+                assert!(d <= QUICK_ALBEDO_TOL, "{q}: {id}: quick {y} vs precise {x}");
+            }
+        }
+        eprintln!(
+            "{q}: precise {:.1} ms, quick {:.1} ms (server, debug build)",
+            precise["ms"], quick["ms"]
+        );
+    }
+    eprintln!("worst relative difference quick vs precise: {worst:.2e}");
+    let (status, v) = get_json(&s.addr, "/api/albedo?models=flog&n=60&quick=2");
+    assert_eq!(status, 400);
+    assert!(v["error"].as_str().unwrap().contains("quick"), "{v}");
+}
+
 #[test]
 fn renders_and_their_metrics_equal_fastbrdf_compare() {
     let s = serve(&["--mesh", "face"]);
@@ -604,6 +670,8 @@ const SNAPSHOT: &str = r##"JSON.stringify({
      {abs: r.querySelector(".max-abs").dataset.value, abs_text: r.querySelector(".max-abs").textContent,
       rel: r.querySelector(".max-rel").dataset.value, psnr: r.querySelector(".psnr").textContent}])),
   status: document.getElementById("status").className,
+  albedo_estimate: document.getElementById("albedo").dataset.estimate,
+  verdicts: document.getElementById("verdicts").textContent,
   hash: location.hash,
 })"##;
 
@@ -616,6 +684,22 @@ fn snapshot(b: &mut cdp::Browser, s: &str) -> Value {
     .unwrap();
     let v: Value = serde_json::from_str(b.eval(s, SNAPSHOT).unwrap().as_str().unwrap()).unwrap();
     assert_eq!(v["status"], "", "the page shows an error");
+    // Once everything has arrived, the precise albedo has replaced the quick estimate, and the
+    // verdict shown is the precise computation's.
+    assert_eq!(
+        v["albedo_estimate"], "0",
+        "the albedo estimate was not replaced"
+    );
+    assert!(
+        v["verdicts"].as_str().unwrap().contains(" deg"),
+        "{}",
+        v["verdicts"]
+    );
+    assert!(
+        !v["verdicts"].as_str().unwrap().contains("computing"),
+        "{}",
+        v["verdicts"]
+    );
     v
 }
 

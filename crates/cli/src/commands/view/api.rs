@@ -76,8 +76,9 @@ const SLICE: usize = 48;
 const ALBEDO_TOL: f64 = 1e-3;
 
 /// Keys of the query that are not model parameters.
-const RESERVED: [&str; 11] = [
+const RESERVED: [&str; 12] = [
     "models", "ref", "theta", "lang", "size", "spp", "mesh", "light", "client", "gen", "model",
+    "quick",
 ];
 
 /// The decoded query string, in order.
@@ -508,18 +509,29 @@ fn plots_of(
 
 /// The directional albedo of one model and its white-furnace verdict, as `fastbrdf albedo`
 /// computes them (lobes as energy-normalised `phong`, its defaults); null for a distribution
-/// (not a BRDF on its own).
-fn albedo_of(id: &'static str, all: &[(String, String)]) -> Result<Value, CliError> {
+/// (not a BRDF on its own). `quick`: `albedo::curve_quick`'s estimate, without a verdict or
+/// error estimates (`conserves`, `worst_*`, `error` null; `estimate` true).
+fn albedo_of(id: &'static str, all: &[(String, String)], quick: bool) -> Result<Value, CliError> {
     let p = params_of(id, all)?;
-    // Directional albedo and the white furnace, as `fastbrdf albedo` (lobes as phong, energy
-    // normalised: its defaults).
     let albedo_v = match albedo::target(id, &p, "phong", "energy") {
         Ok(t) => {
-            let rows = albedo::curve(&t, &ALBEDO_ANGLES, ALBEDO_TOL)?;
+            // The quick estimate: a fixed quadrature on the same angles (a looser tolerance
+            // of the adaptive one is no faster: its initial panels are most of the cost).
+            let rows = if quick {
+                albedo::curve_quick(&t, &ALBEDO_ANGLES)?
+            } else {
+                albedo::curve(&t, &ALBEDO_ANGLES, ALBEDO_TOL)?
+            };
             let (holds, worst) = albedo::furnace(&rows, t.furnace_tolerance());
+            let (holds, worst) = if quick {
+                (None, None)
+            } else {
+                (Some(holds), worst)
+            };
             json!({
                 "brdf": t.id, "theta_deg": ALBEDO_ANGLES, "albedo": rows.iter().map(|r| r.albedo).collect::<Vec<_>>(),
                 "error": rows.iter().map(|r| r.error).collect::<Vec<_>>(),
+                "estimate": quick,
                 "claims_energy": t.claims_energy, "conserves": holds, "tolerance": t.furnace_tolerance(),
                 "worst_theta_deg": worst.map(|w| w.theta_deg), "worst_albedo": worst.map(|w| w.albedo),
             })
@@ -548,19 +560,31 @@ fn chosen(q: &Query) -> Result<Chosen, CliError> {
     Ok((order, reference, all))
 }
 
-/// `GET /api/albedo?models=A,B&ref=R&NAME=VALUE...`: directional albedo against incidence and
-/// the white-furnace verdict of each model (apart from /api/plots: the quadrature is the slow
-/// part, so the other plots need not wait for it).
+/// `GET /api/albedo?models=A,B&ref=R&NAME=VALUE...[&quick=1]`: directional albedo against
+/// incidence and the white-furnace verdict of each model (apart from /api/plots: the
+/// quadrature is the slow part, so the other plots need not wait for it). `quick=1`: the
+/// estimate the page draws first (no verdict).
 pub fn albedo_endpoint(q: &Query) -> Result<Response, CliError> {
     let t = Instant::now();
+    let quick = match q.get("quick") {
+        None | Some("0") => false,
+        Some("1") => true,
+        Some(v) => {
+            return Err(CliError::input(format!(
+                "quick '{}': expected 0 or 1",
+                fastbrdf_io::shorten(v, 64)
+            )));
+        }
+    };
     let (order, _, all) = chosen(q)?;
     use rayon::prelude::*;
     let out: Vec<Value> = order
         .par_iter()
-        .map(|id| albedo_of(id, &all))
+        .map(|id| albedo_of(id, &all, quick))
         .collect::<Result<_, _>>()?;
     Ok(Response::json(&json!({
         "models": out,
+        "estimate": quick,
         "ms": t.elapsed().as_secs_f64() * 1e3,
     })))
 }
