@@ -371,6 +371,8 @@ fn quick_albedo_is_close_to_the_precise_one_and_carries_no_verdict() {
         "models=flog&ref=pow&n=100000",
         "models=ward&ref=cook-torrance&alpha=0.005",
         "models=cook-torrance&alpha=1",
+        // The non-reciprocal BRDF, integrated over wi (`Target::view`).
+        "models=cook-torrance&ms=filament&d=ggx&g=smith-ggx-correlated&alpha=0.3",
     ] {
         let precise = ok_json(&s.addr, &format!("/api/albedo?{q}"));
         let quick = ok_json(&s.addr, &format!("/api/albedo?{q}&quick=1"));
@@ -808,12 +810,33 @@ fn page_end_to_end_in_headless_chromium() {
     assert!(left.is_empty(), "profile left behind: {left:?}");
 }
 
-/// One synthetic MERL file per test run (35 MB: written once, shared by the tests that need
-/// it): `kd / pi + ks * ward(alpha 0.25)` at the bin centres, from the registry's Ward.
-fn merl_file() -> &'static std::path::Path {
+/// The synthetic MERL file shared by the tests that need it, and how many hold it.
+static MERL: std::sync::Mutex<(usize, Option<std::path::PathBuf>)> =
+    std::sync::Mutex::new((0, None));
+
+/// A hold on the synthetic MERL file: the folder is removed when the last hold goes (a file
+/// is 35 MB; a later test writes it again).
+struct MerlFile(std::path::PathBuf);
+
+impl Drop for MerlFile {
+    fn drop(&mut self) {
+        let mut m = MERL.lock().unwrap_or_else(|e| e.into_inner());
+        m.0 -= 1;
+        if m.0 == 0 {
+            if let Some(p) = m.1.take() {
+                let _ = std::fs::remove_dir_all(p.parent().unwrap());
+            }
+        }
+    }
+}
+
+/// One synthetic MERL file for the tests running at once (35 MB, written once):
+/// `kd / pi + ks * ward(alpha 0.25)` at the bin centres, from the registry's Ward.
+fn merl_file() -> MerlFile {
     use fastbrdf::measured::{from_half_diff, write_merl};
-    static FILE: std::sync::OnceLock<std::path::PathBuf> = std::sync::OnceLock::new();
-    FILE.get_or_init(|| {
+    let mut m = MERL.lock().unwrap_or_else(|e| e.into_inner());
+    m.0 += 1;
+    if m.1.is_none() {
         let dir = temp_dir("view-measured");
         let path = dir.join("ward-view.binary");
         let fastbrdf::Model::Brdf(b) =
@@ -831,8 +854,9 @@ fn merl_file() -> &'static std::path::Path {
             [0, 1, 2].map(|c| kd[c] / std::f64::consts::PI + ks[c] * s)
         })
         .unwrap();
-        path
-    })
+        m.1 = Some(path);
+    }
+    MerlFile(m.1.clone().unwrap())
 }
 
 /// `fastbrdf errors --measured FILE --model ID [--m M] --json`: rows[0].
@@ -850,7 +874,7 @@ fn cli_measured_errors(file: &str, model: &str, m: Option<&str>) -> Value {
 #[test]
 fn measured_reference_equals_errors_and_compare_measured() {
     let file = merl_file();
-    let fs = file.to_str().unwrap();
+    let fs = file.0.to_str().unwrap();
     let s = serve(&["--measured", fs]);
     let info = ok_json(&s.addr, "/api/models");
     let name = info["measured"]["name"].as_str().unwrap().to_string();
@@ -995,7 +1019,7 @@ fn bad_measured_file_is_exit_2_naming_it() {
 fn page_chooses_the_measured_reference_in_headless_chromium() {
     let Some(path) = browser() else { return };
     let file = merl_file();
-    let fs = file.to_str().unwrap();
+    let fs = file.0.to_str().unwrap();
     let s = serve(&["--measured", fs]);
     let mut b = cdp::Browser::start(&path).unwrap();
     let page = b
