@@ -989,6 +989,7 @@ fn measured_reference_equals_errors_and_compare_measured() {
     for f in ["rmse", "psnr", "flip"] {
         assert_eq!(v["metrics"][0][f], c["metrics"][0][f], "{f}");
     }
+    let _ = std::fs::remove_dir_all(dir);
     // A model reference still works beside it, and an unknown reference is the registry's.
     ok_json(
         &s.addr,
@@ -1013,6 +1014,7 @@ fn bad_measured_file_is_exit_2_naming_it() {
         assert!(o.stdout.is_empty());
         assert!(stderr(&o).contains(f.to_str().unwrap()), "{}", stderr(&o));
     }
+    let _ = std::fs::remove_dir_all(dir);
 }
 
 #[test]
