@@ -115,6 +115,33 @@ fn albedo_one_model_and_reference() -> usize {
     get(&format!("/api/albedo?models=flog&ref=pow&n={}", next_n()))
 }
 
+/// The quick estimate the page draws first (`quick=1`: a fixed quadrature, no verdict).
+#[divan::bench(sample_count = 30)]
+fn albedo_quick_one_model_and_reference() -> usize {
+    get(&format!(
+        "/api/albedo?models=flog&ref=pow&n={}&quick=1",
+        next_n()
+    ))
+}
+
+/// The quick estimate for a Beckmann approximation against Cook-Torrance.
+#[divan::bench(sample_count = 30)]
+fn albedo_quick_microfacet() -> usize {
+    get(&format!(
+        "/api/albedo?models=beckmann-power16&ref=cook-torrance&alpha={}&quick=1",
+        next_n() / 1000.0
+    ))
+}
+
+/// The quick estimate with three models and the reference.
+#[divan::bench(sample_count = 30)]
+fn albedo_quick_three_models_and_reference() -> usize {
+    get(&format!(
+        "/api/albedo?models=flog,schlick,cubic-rational&ref=pow&n={}&quick=1",
+        next_n()
+    ))
+}
+
 /// One 512x512 sphere, 1 sample per pixel, PNG-encoded in the JSON.
 #[divan::bench(sample_count = 10)]
 fn render_sphere_512_spp1() -> usize {

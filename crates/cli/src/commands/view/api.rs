@@ -5,7 +5,7 @@
 //! `compare::metrics` as `fastbrdf compare`, `export_form` as `fastbrdf shader`), and every
 //! refusal carries the message the CLI would print for the same input.
 
-use super::State;
+use super::{Measured, State};
 use crate::CliError;
 use crate::commands::render::params_for;
 use fastbrdf::Kind;
@@ -76,8 +76,9 @@ const SLICE: usize = 48;
 const ALBEDO_TOL: f64 = 1e-3;
 
 /// Keys of the query that are not model parameters.
-const RESERVED: [&str; 11] = [
+const RESERVED: [&str; 12] = [
     "models", "ref", "theta", "lang", "size", "spp", "mesh", "light", "client", "gen", "model",
+    "quick",
 ];
 
 /// The decoded query string, in order.
@@ -143,23 +144,37 @@ pub fn decode(s: &str) -> String {
     String::from_utf8_lossy(&out).into_owned()
 }
 
-/// What the approximations are measured against. One place, so that another kind of
-/// reference (a measured MERL file, later) is one more variant here.
-pub enum Reference {
+/// What the approximations are measured against: the one place that knows the kinds of
+/// reference (`ref=` in every query).
+pub enum Reference<'a> {
     /// A registry model, with the same parameters as the others.
     Model(&'static str),
+    /// The server's `--measured` file (`ref=` its name).
+    Measured(&'a Measured),
 }
 
-impl Reference {
-    fn from_query(q: &Query) -> Result<Option<Self>, CliError> {
+impl<'a> Reference<'a> {
+    fn from_query(q: &Query, state: &'a State) -> Result<Option<Self>, CliError> {
         match q.get("ref") {
             None | Some("") => Ok(None),
-            Some(id) => Ok(Some(Reference::Model(checked_id(id)?))),
+            Some(r) => match &state.measured {
+                Some(m) if m.name == r => Ok(Some(Reference::Measured(m))),
+                _ => Ok(Some(Reference::Model(checked_id(r)?))),
+            },
         }
     }
-    fn id(&self) -> &'static str {
+    /// What the page and the JSON call it: the model id, or the measured file's name.
+    pub fn name(&self) -> &str {
         match self {
             Reference::Model(id) => id,
+            Reference::Measured(m) => &m.name,
+        }
+    }
+    /// The registry model, if the reference is one.
+    fn model(&self) -> Option<&'static str> {
+        match self {
+            Reference::Model(id) => Some(id),
+            Reference::Measured(_) => None,
         }
     }
 }
@@ -285,6 +300,9 @@ pub fn models(state: &State) -> Response {
         "materials": materials,
         "mesh": state.mesh_name,
         "bench": state.bench_source,
+        "measured": state.measured.as_ref().map(|m| json!({
+            "name": m.name, "file": m.path.display().to_string(), "samples": m.data.len(),
+        })),
         "limits": {"size": MAX_SIZE, "spp": MAX_SPP, "models": MAX_MODELS},
         "langs": ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"],
     }))
@@ -335,9 +353,37 @@ pub fn errors_row(
     Ok(rows[0])
 }
 
-/// `GET /api/errors?model=ID&ref=ID&n=N` (or `alpha=A`): one row of `fastbrdf errors --json`.
-pub fn errors_endpoint(q: &Query) -> Result<Response, CliError> {
+/// The residuals of model `id` (parameters `p`, as `params_of` gives them) against measured
+/// data: what `fastbrdf errors --measured FILE --model ID` prints for the same parameters (the
+/// same shading BRDF, `Problem` without a search, `measured_fit::fit` with its defaults).
+pub fn measured_row(id: &str, p: &[(String, String)], m: &Measured) -> Result<Value, CliError> {
+    use fastbrdf_analysis::measured_fit::{self, Options, Problem};
+    let (brdf, bp) = fastbrdf::registry::shading_brdf(id, p)?;
+    let problem = Problem::new(brdf, &bp, false)
+        .map_err(|e| CliError::input(format!("--model {id}: {e}")))?;
+    let f = measured_fit::fit(&problem, &m.data, &Options::default(), &|_, _| {})
+        .map_err(|e| CliError::input(format!("{}: {e}", m.path.display())))?;
+    Ok(json!({
+        "reference": m.name, "brdf": brdf, "ngan_l2": f.residuals.ngan_l2,
+        "low_log": f.residuals.low_log, "max": f.residuals.max, "rho_d": f.rho_d,
+        "rho_s": f.rho_s, "samples": m.data.len(),
+    }))
+}
+
+/// `GET /api/errors?model=ID&ref=ID&n=N` (or `alpha=A`): one row of `fastbrdf errors --json`;
+/// with `ref=` the measured file's name, the row of `fastbrdf errors --measured FILE --json`
+/// (`NAME=VALUE` parameters as its `--param`).
+pub fn errors_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let id = checked_id(q.need("model")?)?;
+    q.need("ref")?;
+    if let Some(Reference::Measured(m)) = Reference::from_query(q, state)? {
+        let all = q.params();
+        check_unused(&[id], &all)?;
+        let p = params_of(id, &all)?;
+        let mut row = measured_row(id, &p, m)?;
+        row["model"] = json!(id);
+        return Ok(Response::json(&row));
+    }
     let reference = checked_id(q.need("ref")?)?;
     let (param, text) = match (q.get("n"), q.get("alpha")) {
         (Some(n), None) => ("n", n),
@@ -378,30 +424,22 @@ fn eval_brdf(m: &fastbrdf::Model<f64>, wi: [f64; 3], wo: [f64; 3]) -> f64 {
     }
 }
 
-/// The plots of one model (see README's API section for the shape).
-fn plots_of(
-    id: &'static str,
-    all: &[(String, String)],
-    reference: Option<&Reference>,
-    ti_deg: f64,
-) -> Result<Value, CliError> {
-    let p = params_of(id, all)?;
-    let m = shading_model(id, &p)?;
+/// The in-plane polar plot of `f` at incidence `ti_deg`: theta_o from -90 (the incident side:
+/// wi is at -theta_i) to 90 degrees (the mirror direction is at +theta_i).
+fn polar_of(f: impl Fn([f64; 3], [f64; 3]) -> f64, ti_deg: f64) -> Vec<f64> {
     let ti = ti_deg.to_radians();
     let wi = [ti.sin(), 0.0, ti.cos()];
-    // In-plane polar: theta_o from -90 (the incident side: wi is at -theta_i) to 90 degrees
-    // (the mirror direction is at +theta_i).
-    let polar_t: Vec<f64> = (0..POLAR_POINTS)
-        .map(|k| -90.0 + 180.0 * k as f64 / (POLAR_POINTS - 1) as f64)
-        .collect();
-    let polar: Vec<f64> = polar_t
-        .iter()
-        .map(|t| {
+    (0..POLAR_POINTS)
+        .map(|k| {
+            let t = -90.0 + 180.0 * k as f64 / (POLAR_POINTS - 1) as f64;
             let r = t.to_radians();
-            eval_brdf(&m, wi, [-r.sin(), 0.0, r.cos()])
+            f(wi, [-r.sin(), 0.0, r.cos()])
         })
-        .collect();
-    // The theta_h x theta_d slice at phi_d = 90 degrees (rows theta_d, columns theta_h).
+        .collect()
+}
+
+/// The theta_h x theta_d slice of `f` at phi_d = 90 degrees (rows theta_d, columns theta_h).
+fn slice_of(f: impl Fn([f64; 3], [f64; 3]) -> f64) -> Vec<f64> {
     let mut slice = Vec::with_capacity(SLICE * SLICE);
     for jd in 0..SLICE {
         let td = (jd as f64 + 0.5) / SLICE as f64 * std::f64::consts::FRAC_PI_2;
@@ -414,9 +452,54 @@ fn plots_of(
             let h = [s, 0.0, c];
             let k = 2.0 * (h[0] * wi[0] + h[1] * wi[1] + h[2] * wi[2]);
             let wo = [k * h[0] - wi[0], k * h[1] - wi[1], k * h[2] - wi[2]];
-            slice.push(eval_brdf(&m, wi, wo));
+            slice.push(f(wi, wo));
         }
     }
+    slice
+}
+
+/// Rec. 709 luminance of an RGB BRDF value: what the plots show of measured data.
+fn luminance(c: [f64; 3]) -> f64 {
+    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+}
+
+/// The plots of the measured reference: polar and slice of its luminance, its "lobe" as a
+/// BRDF's (the value at wi = wo against theta), no error curves (it is the reference).
+fn measured_plots(m: &Measured, ti_deg: f64) -> Value {
+    let f = |wi: [f64; 3], wo: [f64; 3]| luminance(m.brdf.eval_rgb(wi, wo));
+    let lobe: Vec<f64> = curve_theta()
+        .iter()
+        .map(|t| {
+            let r = t.to_radians();
+            let w = [r.sin(), 0.0, r.cos()];
+            f(w, w)
+        })
+        .collect();
+    json!({
+        "id": m.name, "kind": "measured", "channel": "luminance", "params": [],
+        "polar": polar_of(f, ti_deg), "lobe": lobe, "error": Value::Null,
+        "measured": Value::Null, "slice": slice_of(f),
+    })
+}
+
+/// The lobe and error curves' abscissae, degrees.
+fn curve_theta() -> Vec<f64> {
+    (0..CURVE_POINTS)
+        .map(|k| 89.9 * k as f64 / (CURVE_POINTS - 1) as f64)
+        .collect()
+}
+
+/// The plots of one model (see README's API section for the shape).
+fn plots_of(
+    id: &'static str,
+    all: &[(String, String)],
+    reference: Option<&Reference>,
+    ti_deg: f64,
+) -> Result<Value, CliError> {
+    let p = params_of(id, all)?;
+    let m = shading_model(id, &p)?;
+    let polar = polar_of(|wi, wo| eval_brdf(&m, wi, wo), ti_deg);
+    let slice = slice_of(|wi, wo| eval_brdf(&m, wi, wo));
     // The model's own scalar curve at the swept parameter (what `errors` compares).
     let kind = fastbrdf::registry::find(id)?.info.kind;
     let swept = swept_param(id);
@@ -435,9 +518,7 @@ fn plots_of(
         },
         _ => None,
     };
-    let theta_h: Vec<f64> = (0..CURVE_POINTS)
-        .map(|k| 89.9 * k as f64 / (CURVE_POINTS - 1) as f64)
-        .collect();
+    let theta_h = curve_theta();
     let to_x = |deg: f64| {
         if kind == Kind::Brdf {
             deg.to_radians()
@@ -456,13 +537,13 @@ fn plots_of(
         (Some(s), Some(pv)) => {
             let c = fastbrdf::accuracy::Curve::new(id, s, pv)?;
             let lobe: Vec<f64> = theta_h.iter().map(|&t| c.at(to_x(t))).collect();
-            let error = match reference {
+            let error = match reference.and_then(Reference::model) {
                 Some(r)
-                    if r.id() != id
-                        && swept_param(r.id()) == Some(s)
-                        && fastbrdf::registry::find(r.id())?.info.kind == kind =>
+                    if r != id
+                        && swept_param(r) == Some(s)
+                        && fastbrdf::registry::find(r)?.info.kind == kind =>
                 {
-                    let rc = fastbrdf::accuracy::Curve::new(r.id(), s, pv)?;
+                    let rc = fastbrdf::accuracy::Curve::new(r, s, pv)?;
                     let rv: Vec<f64> = theta_h.iter().map(|&t| rc.at(to_x(t))).collect();
                     let peak = rv
                         .iter()
@@ -483,9 +564,9 @@ fn plots_of(
                             }
                         })
                         .collect();
-                    let row = errors_row(id, r.id(), s, pv)?;
+                    let row = errors_row(id, r, s, pv)?;
                     json!({
-                        "reference": r.id(), "param": s, "value": pv, "abs": abs, "rel": rel,
+                        "reference": r, "param": s, "value": pv, "abs": abs, "rel": rel,
                         "max_abs": row.max_abs, "max_abs_at": row.max_abs_at,
                         "max_abs_at_deg": x_to_deg(row.max_abs_at),
                         "max_rel": row.max_rel, "max_rel_at": row.max_rel_at,
@@ -498,28 +579,44 @@ fn plots_of(
         }
         _ => (Value::Null, Value::Null),
     };
+    // Against measured data: the residuals of `fastbrdf errors --measured`.
+    let measured = match reference {
+        Some(Reference::Measured(mm)) => measured_row(id, &p, mm)?,
+        _ => Value::Null,
+    };
     Ok(json!({
         "id": id, "kind": kind.name(),
         "params": p.iter().map(|(k, v)| json!([k, v])).collect::<Vec<_>>(),
-        "polar": polar, "lobe": lobe, "error": error,
+        "polar": polar, "lobe": lobe, "error": error, "measured": measured,
         "slice": slice,
     }))
 }
 
 /// The directional albedo of one model and its white-furnace verdict, as `fastbrdf albedo`
 /// computes them (lobes as energy-normalised `phong`, its defaults); null for a distribution
-/// (not a BRDF on its own).
-fn albedo_of(id: &'static str, all: &[(String, String)]) -> Result<Value, CliError> {
+/// (not a BRDF on its own). `quick`: `albedo::curve_quick`'s estimate, without a verdict or
+/// error estimates (`conserves`, `worst_*`, `error` null; `estimate` true).
+fn albedo_of(id: &'static str, all: &[(String, String)], quick: bool) -> Result<Value, CliError> {
     let p = params_of(id, all)?;
-    // Directional albedo and the white furnace, as `fastbrdf albedo` (lobes as phong, energy
-    // normalised: its defaults).
     let albedo_v = match albedo::target(id, &p, "phong", "energy") {
         Ok(t) => {
-            let rows = albedo::curve(&t, &ALBEDO_ANGLES, ALBEDO_TOL)?;
+            // The quick estimate: a fixed quadrature on the same angles (a looser tolerance
+            // of the adaptive one is no faster: its initial panels are most of the cost).
+            let rows = if quick {
+                albedo::curve_quick(&t, &ALBEDO_ANGLES)?
+            } else {
+                albedo::curve(&t, &ALBEDO_ANGLES, ALBEDO_TOL)?
+            };
             let (holds, worst) = albedo::furnace(&rows, t.furnace_tolerance());
+            let (holds, worst) = if quick {
+                (None, None)
+            } else {
+                (Some(holds), worst)
+            };
             json!({
                 "brdf": t.id, "theta_deg": ALBEDO_ANGLES, "albedo": rows.iter().map(|r| r.albedo).collect::<Vec<_>>(),
                 "error": rows.iter().map(|r| r.error).collect::<Vec<_>>(),
+                "estimate": quick,
                 "claims_energy": t.claims_energy, "conserves": holds, "tolerance": t.furnace_tolerance(),
                 "worst_theta_deg": worst.map(|w| w.theta_deg), "worst_albedo": worst.map(|w| w.albedo),
             })
@@ -529,16 +626,21 @@ fn albedo_of(id: &'static str, all: &[(String, String)]) -> Result<Value, CliErr
     Ok(json!({"id": id, "albedo": albedo_v}))
 }
 
-/// What a plots or albedo query chose: the model ids (the reference first, each once), the
-/// reference, and the parameters.
-type Chosen = (Vec<&'static str>, Option<Reference>, Vec<(String, String)>);
+/// What a plots, albedo or render query chose: the registry model ids (a model reference
+/// first, each once; a measured reference is not among them), the reference, and the
+/// parameters.
+type Chosen<'a> = (
+    Vec<&'static str>,
+    Option<Reference<'a>>,
+    Vec<(String, String)>,
+);
 
-/// The model list of a plots or albedo query, the reference first, each once.
-fn chosen(q: &Query) -> Result<Chosen, CliError> {
+/// The model list of a plots, albedo or render query, a model reference first, each once.
+fn chosen<'a>(state: &'a State, q: &Query) -> Result<Chosen<'a>, CliError> {
     let ids = model_ids(q)?;
-    let reference = Reference::from_query(q)?;
+    let reference = Reference::from_query(q, state)?;
     let all = q.params();
-    let mut order: Vec<&'static str> = reference.iter().map(Reference::id).collect();
+    let mut order: Vec<&'static str> = reference.iter().filter_map(Reference::model).collect();
     for id in ids {
         if !order.contains(&id) {
             order.push(id);
@@ -548,43 +650,64 @@ fn chosen(q: &Query) -> Result<Chosen, CliError> {
     Ok((order, reference, all))
 }
 
-/// `GET /api/albedo?models=A,B&ref=R&NAME=VALUE...`: directional albedo against incidence and
-/// the white-furnace verdict of each model (apart from /api/plots: the quadrature is the slow
-/// part, so the other plots need not wait for it).
-pub fn albedo_endpoint(q: &Query) -> Result<Response, CliError> {
+/// `GET /api/albedo?models=A,B&ref=R&NAME=VALUE...[&quick=1]`: directional albedo against
+/// incidence and the white-furnace verdict of each model (apart from /api/plots: the
+/// quadrature is the slow part, so the other plots need not wait for it). `quick=1`: the
+/// estimate the page draws first (no verdict).
+pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let t = Instant::now();
-    let (order, _, all) = chosen(q)?;
+    let quick = match q.get("quick") {
+        None | Some("0") => false,
+        Some("1") => true,
+        Some(v) => {
+            return Err(CliError::input(format!(
+                "quick '{}': expected 0 or 1",
+                fastbrdf_io::shorten(v, 64)
+            )));
+        }
+    };
+    let (order, reference, all) = chosen(state, q)?;
     use rayon::prelude::*;
-    let out: Vec<Value> = order
+    let mut out: Vec<Value> = order
         .par_iter()
-        .map(|id| albedo_of(id, &all))
+        .map(|id| albedo_of(id, &all, quick))
         .collect::<Result<_, _>>()?;
+    if let Some(Reference::Measured(m)) = &reference {
+        out.insert(
+            0,
+            json!({"id": m.name, "albedo": Value::Null,
+                   "why": "not computed for measured data (the explorer integrates registry models only)"}),
+        );
+    }
     Ok(Response::json(&json!({
         "models": out,
+        "estimate": quick,
         "ms": t.elapsed().as_secs_f64() * 1e3,
     })))
 }
 
 /// `GET /api/plots?models=A,B&ref=R&theta=DEG&NAME=VALUE...`: every plot's numbers.
-pub fn plots(q: &Query) -> Result<Response, CliError> {
+pub fn plots(state: &State, q: &Query) -> Result<Response, CliError> {
     let t = Instant::now();
-    let (seen, reference, all) = chosen(q)?;
+    let (seen, reference, all) = chosen(state, q)?;
     let ti = theta_i(q)?;
     // One model per task: the two cores of a slider move's budget.
     use rayon::prelude::*;
-    let out: Vec<Value> = seen
+    let mut out: Vec<Value> = seen
         .par_iter()
         .map(|id| plots_of(id, &all, reference.as_ref(), ti))
         .collect::<Result<_, _>>()?;
+    if let Some(Reference::Measured(m)) = &reference {
+        out.insert(0, measured_plots(m, ti));
+    }
     let polar_t: Vec<f64> = (0..POLAR_POINTS)
         .map(|k| -90.0 + 180.0 * k as f64 / (POLAR_POINTS - 1) as f64)
         .collect();
-    let theta_h: Vec<f64> = (0..CURVE_POINTS)
-        .map(|k| 89.9 * k as f64 / (CURVE_POINTS - 1) as f64)
-        .collect();
+    let theta_h = curve_theta();
     Ok(Response::json(&json!({
         "theta_i_deg": ti,
-        "reference": reference.as_ref().map(Reference::id),
+        "reference": reference.as_ref().map(Reference::name),
+        "reference_kind": reference.as_ref().map(|r| if r.model().is_some() { "model" } else { "measured" }),
         "polar_theta_deg": polar_t,
         "curve_theta_deg": theta_h,
         "slice_size": SLICE,
@@ -652,9 +775,7 @@ fn parse_u32(q: &Query, key: &str, default: u32, lo: u32, hi: u32) -> Result<u32
 /// client has since sent a newer generation is dropped (409) before each model's render.
 pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let t0 = Instant::now();
-    let ids = model_ids(q)?;
-    let reference = Reference::from_query(q)?;
-    let all = q.params();
+    let (order, reference, all) = chosen(state, q)?;
     let size = parse_u32(q, "size", 256, 16, MAX_SIZE)?;
     let spp = parse_u32(q, "spp", 1, 1, MAX_SPP)?;
     let mut spec = setup::SceneSpec::new();
@@ -678,16 +799,6 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     if let Some(l) = q.get("light") {
         spec.lights = vec![Light::parse(&format!("dir:{l}"))?];
     }
-    let mut order: Vec<&'static str> = vec![];
-    if let Some(r) = &reference {
-        order.push(r.id());
-    }
-    for id in &ids {
-        if !order.contains(id) {
-            order.push(id);
-        }
-    }
-    check_unused(&order, &all)?;
     let params: Vec<Vec<(String, String)>> = order
         .iter()
         .map(|id| params_of(id, &all))
@@ -724,23 +835,43 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let Some(_slot) = state.render_slot() else {
         return Ok(Response::error(503, "too many renders waiting; try again"));
     };
-    let mut pictures: Vec<Vec<u8>> = vec![];
+    // What is rendered, the reference first: a measured one as `fastbrdf compare --measured`
+    // renders it (the whole BRDF in colour, weights 0, 1), the models as `fastbrdf compare`.
+    let mut jobs: Vec<(String, setup::SceneSpec, Arc<Specular>)> = vec![];
+    if let Some(Reference::Measured(m)) = &reference {
+        let mut s = scene_spec.clone();
+        (s.kd, s.ks) = (0.0, 1.0);
+        let label = format!("measured {}", m.path.display());
+        jobs.push((
+            m.name.clone(),
+            s,
+            Arc::new(Specular::rgb(&label, m.brdf.clone())),
+        ));
+    }
     for (id, p) in order.iter().zip(&params) {
+        jobs.push((
+            id.to_string(),
+            scene_spec.clone(),
+            Arc::new(Specular::new(id, p)?),
+        ));
+    }
+    let names: Vec<String> = jobs.iter().map(|j| j.0.clone()).collect();
+    let mut pictures: Vec<Vec<u8>> = vec![];
+    for (id, spec, specular) in jobs {
         if state.superseded(&client, generation) {
             return Ok(Response::error(
                 409,
                 "superseded by a newer request from this client",
             ));
         }
-        let specular = Arc::new(Specular::new(id, p)?);
-        let scene = setup::scene(&scene_spec, loaded, specular);
+        let scene = setup::scene(&spec, loaded, specular);
         let film = render(&scene, &opts, &|_, _| {})?;
         film.check_finite()
             .map_err(|e| CliError::input(format!("--model {id}: {e}")))?;
         pictures.push(film.to_srgb8(1.0));
     }
     let mut images = vec![];
-    for (id, px) in order.iter().zip(&pictures) {
+    for (id, px) in names.iter().zip(&pictures) {
         images.push(json!({"id": id, "png": base64(&png_bytes(px, size, size)?)}));
     }
     let mut diffs = vec![];
@@ -757,13 +888,13 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
             .copied()
             .fold(0.0f32, f32::max)
             .max(1.0 / 255.0);
-        for (k, (id, px)) in order[1..].iter().zip(&pictures[1..]).enumerate() {
+        for (k, (id, px)) in names[1..].iter().zip(&pictures[1..]).enumerate() {
             let m = compare::metrics(id, r, px, size, size);
             metrics.push(json!({"model": id, "rmse": m.rmse, "psnr": m.psnr, "flip": m.flip}));
             diffs.push(json!({"id": id, "png": base64(&png_bytes(&compare::heat_map(&d[k], scale), size, size)?)}));
         }
         return Ok(Response::json(&json!({
-            "width": size, "height": size, "spp": spp, "reference": order[0],
+            "width": size, "height": size, "spp": spp, "reference": names[0],
             "images": images, "diffs": diffs, "diff_scale": scale, "metrics": metrics,
             "ms": t0.elapsed().as_secs_f64() * 1e3,
         })));

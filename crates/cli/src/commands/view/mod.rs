@@ -42,6 +42,7 @@ fastbrdf view --port 9000 --open\n  \
 fastbrdf view --mesh face              (the embedded face beside the sphere)\n  \
 fastbrdf view --mesh head.obj --bench bench.json   (your mesh; costs from `fastbrdf bench --json`)\n  \
 fastbrdf view --screenshot docs/images/view.png   (headless Chromium, then exit)\n  \
+fastbrdf view --measured gold-metallic-paint.binary   (the MERL file as a reference: #models=ward&ref=gold-metallic-paint.binary)\n  \
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
 The whole view lives in the URL after #, so a link reproduces it. The JSON API (README,\n\
 \"Explorer\"): /api/models, /api/plots, /api/albedo, /api/render, /api/errors, /api/shader, /api/material.\n\
@@ -66,6 +67,11 @@ pub struct Args {
     /// A saved `fastbrdf bench --json` run: the page shows each model's measured cost.
     #[arg(long, value_name = "FILE")]
     bench: Option<PathBuf>,
+    /// A measured material (MERL .binary, see `fastbrdf measured`) offered as a reference,
+    /// named after the file: residuals as `fastbrdf errors --measured`, pictures as `fastbrdf
+    /// compare --measured`. A malformed file is exit 2 at start-up.
+    #[arg(long, value_name = "FILE")]
+    measured: Option<PathBuf>,
     /// Take a screenshot of the page in headless Chromium to this PNG file, then exit.
     #[arg(long, value_name = "FILE.png")]
     screenshot: Option<PathBuf>,
@@ -77,8 +83,51 @@ pub struct Args {
     browser: Option<PathBuf>,
 }
 
+/// A measured material loaded at start-up: the reference the page may choose.
+pub struct Measured {
+    /// What the page and the API call it: the file's name (prefixed with `measured ` if that
+    /// is a registry id).
+    pub name: String,
+    pub path: PathBuf,
+    pub brdf: Arc<fastbrdf::measured::MeasuredBrdf>,
+    /// The bins `fastbrdf errors --measured` compares at (its default sample count).
+    pub data: fastbrdf_analysis::measured_fit::Data,
+}
+
+impl Measured {
+    /// Reads `path` (the CLI's errors for a malformed file).
+    pub fn load(path: &std::path::Path) -> Result<Self, CliError> {
+        use fastbrdf_analysis::measured_fit::{self, DEFAULT_SAMPLES, Data};
+        let brdf = fastbrdf::measured::MeasuredBrdf::read(path)?;
+        let data = Data::from_measured(&brdf, DEFAULT_SAMPLES);
+        if data.is_empty() {
+            return Err(CliError::input(format!(
+                "{}: no valid (measured) bin within {} degrees of the normal",
+                path.display(),
+                measured_fit::MAX_THETA_DEG
+            )));
+        }
+        let file = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |f| f.to_string_lossy().into_owned(),
+        );
+        let name = if fastbrdf::registry::find(&file).is_ok() {
+            format!("measured {file}")
+        } else {
+            file
+        };
+        Ok(Self {
+            name,
+            path: path.to_path_buf(),
+            brdf: Arc::new(brdf),
+            data,
+        })
+    }
+}
+
 /// What the handlers share.
 pub struct State {
+    pub measured: Option<Measured>,
     pub loaded_sphere: Loaded,
     pub loaded_mesh: Option<Loaded>,
     pub mesh_path: Option<PathBuf>,
@@ -103,7 +152,12 @@ impl Drop for Slot<'_> {
 
 impl State {
     /// The state for a server with an optional mesh and bench run.
-    pub fn new(mesh: Option<PathBuf>, bench: Option<PathBuf>) -> Result<Self, CliError> {
+    pub fn new(
+        mesh: Option<PathBuf>,
+        bench: Option<PathBuf>,
+        measured: Option<PathBuf>,
+    ) -> Result<Self, CliError> {
+        let measured = measured.as_deref().map(Measured::load).transpose()?;
         let loaded_sphere = setup::load(&SceneSpec::new())?;
         let loaded_mesh = match &mesh {
             Some(m) => {
@@ -118,6 +172,7 @@ impl State {
             .map(fastbrdf_analysis::speed::Report::load)
             .transpose()?;
         Ok(Self {
+            measured,
             loaded_sphere,
             loaded_mesh,
             mesh_name: mesh.as_ref().map(|m| m.display().to_string()),
@@ -220,10 +275,10 @@ pub fn handle(state: &State, method: &str, target: &str) -> Response {
                 body: PAGE.as_bytes().to_vec(),
             }),
             "/api/models" => Ok(api::models(state)),
-            "/api/plots" => api::plots(&q),
-            "/api/albedo" => api::albedo_endpoint(&q),
+            "/api/plots" => api::plots(state, &q),
+            "/api/albedo" => api::albedo_endpoint(state, &q),
             "/api/render" => api::render_endpoint(state, &q),
-            "/api/errors" => api::errors_endpoint(&q),
+            "/api/errors" => api::errors_endpoint(state, &q),
             "/api/shader" => api::shader(&q),
             "/api/material" => api::material(&q),
             // Nothing else exists: no file is ever read from a path, so `..` leads nowhere.
@@ -314,7 +369,11 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             a.host
         )));
     }
-    let state = Arc::new(State::new(a.mesh.clone(), a.bench.clone())?);
+    let state = Arc::new(State::new(
+        a.mesh.clone(),
+        a.bench.clone(),
+        a.measured.clone(),
+    )?);
     let port = if a.screenshot.is_some() { 0 } else { a.port };
     let server = Server::start(SocketAddr::new(a.host, port), state)?;
     if !loopback {
