@@ -118,49 +118,129 @@ pub fn albedo(
     u_breaks: &[f64],
     rel_tol: f64,
 ) -> (f64, f64) {
-    // An orthonormal frame (t, b, peak).
-    let p = peak;
-    let t = if p[2].abs() < 0.9 {
-        [p[1], -p[0], 0.0]
-    } else {
-        [0.0, p[2], -p[1]]
-    };
-    let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-    let t = [t[0] / tl, t[1] / tl, t[2] / tl];
-    let b = [
-        p[1] * t[2] - p[2] * t[1],
-        p[2] * t[0] - p[0] * t[2],
-        p[0] * t[1] - p[1] * t[0],
-    ];
-    let inner_err = std::cell::Cell::new(0.0);
+    let polar = Polar::new(peak);
     let ring = |u: f64| {
-        let s = (1.0 - u * u).max(0.0).sqrt();
-        let g = |phi: f64| {
-            let (sp, cp) = phi.sin_cos();
-            let w = [
-                s * (cp * t[0] + sp * b[0]) + u * p[0],
-                s * (cp * t[1] + sp * b[1]) + u * p[1],
-                s * (cp * t[2] + sp * b[2]) + u * p[2],
-            ];
-            if w[2] > 0.0 { f(w) * w[2] } else { 0.0 }
+        let g = |phi: f64| polar.value(&f, u, phi);
+        integrate(g, 0.0, TAU, &polar.horizon(u), rel_tol * 0.1).0
+    };
+    integrate(ring, -1.0, 1.0, &outer_breaks(u_breaks), rel_tol)
+}
+
+/// [`albedo`]'s integral (the same coordinates and breakpoints) by a fixed rule: Gauss-Legendre
+/// 7 points on `outer_panels` panels per `u` interval and `inner_panels` per ring interval.
+/// No error estimate and no guarantee: an interactive preview (the explorer's albedo estimate,
+/// measured against [`albedo`] in its tests).
+pub fn albedo_fixed(
+    f: impl Fn([f64; 3]) -> f64,
+    peak: [f64; 3],
+    u_breaks: &[f64],
+    outer_panels: usize,
+    inner_panels: usize,
+) -> f64 {
+    let polar = Polar::new(peak);
+    let ring = |u: f64| {
+        let g = |phi: f64| polar.value(&f, u, phi);
+        fixed(g, 0.0, TAU, &polar.horizon(u), inner_panels)
+    };
+    fixed(ring, -1.0, 1.0, &outer_breaks(u_breaks), outer_panels)
+}
+
+const TAU: f64 = 2.0 * std::f64::consts::PI;
+
+/// The outer variable's breakpoints: `1 - 10^-k` (k = 1..7, where narrow lobes live) and the
+/// caller's.
+fn outer_breaks(u_breaks: &[f64]) -> Vec<f64> {
+    let mut breaks: Vec<f64> = (1..=7).map(|k| 1.0 - 10f64.powi(-k)).collect();
+    breaks.extend_from_slice(u_breaks);
+    breaks
+}
+
+/// Polar coordinates around `peak`: an orthonormal frame (t, b, peak).
+struct Polar {
+    p: [f64; 3],
+    t: [f64; 3],
+    b: [f64; 3],
+}
+
+impl Polar {
+    fn new(p: [f64; 3]) -> Self {
+        let t = if p[2].abs() < 0.9 {
+            [p[1], -p[0], 0.0]
+        } else {
+            [0.0, p[2], -p[1]]
         };
-        // The horizon cuts the ring where s (cos phi t_z + sin phi b_z) + u p_z = 0.
+        let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+        let t = [t[0] / tl, t[1] / tl, t[2] / tl];
+        let b = [
+            p[1] * t[2] - p[2] * t[1],
+            p[2] * t[0] - p[0] * t[2],
+            p[0] * t[1] - p[1] * t[0],
+        ];
+        Self { p, t, b }
+    }
+
+    /// `f(w) cos theta_w` at the direction `w` of the ring `u` (cosine to the peak) at angle
+    /// `phi`; 0 below the horizon.
+    fn value(&self, f: &impl Fn([f64; 3]) -> f64, u: f64, phi: f64) -> f64 {
+        let (p, t, b) = (self.p, self.t, self.b);
+        let s = (1.0 - u * u).max(0.0).sqrt();
+        let (sp, cp) = phi.sin_cos();
+        let w = [
+            s * (cp * t[0] + sp * b[0]) + u * p[0],
+            s * (cp * t[1] + sp * b[1]) + u * p[1],
+            s * (cp * t[2] + sp * b[2]) + u * p[2],
+        ];
+        if w[2] > 0.0 { f(w) * w[2] } else { 0.0 }
+    }
+
+    /// The angles where the horizon cuts the ring `u`: s (cos phi t_z + sin phi b_z) + u p_z = 0.
+    fn horizon(&self, u: f64) -> Vec<f64> {
+        let s = (1.0 - u * u).max(0.0).sqrt();
         let mut breaks = vec![];
-        let (a, bb, c) = (s * t[2], s * b[2], u * p[2]);
+        let (a, bb, c) = (s * self.t[2], s * self.b[2], u * self.p[2]);
         let r = (a * a + bb * bb).sqrt();
         if r > 0.0 && (c / r).abs() < 1.0 {
             let base = bb.atan2(a);
             let d = (-c / r).acos();
             for x in [base + d, base - d] {
-                breaks.push(x.rem_euclid(2.0 * std::f64::consts::PI));
+                breaks.push(x.rem_euclid(TAU));
             }
         }
-        let (v, e) = integrate(g, 0.0, 2.0 * std::f64::consts::PI, &breaks, rel_tol * 0.1);
-        inner_err.set(inner_err.get() + e);
-        v
-    };
-    let mut breaks: Vec<f64> = (1..=7).map(|k| 1.0 - 10f64.powi(-k)).collect();
-    breaks.extend_from_slice(u_breaks);
-    let (v, e) = integrate(ring, -1.0, 1.0, &breaks, rel_tol);
-    (v, e)
+        breaks
+    }
+}
+
+/// Gauss-Legendre 7 points on [-1, 1]: (node, weight), the non-negative nodes.
+const GL7: [(f64, f64); 4] = [
+    (0.0, 0.417_959_183_673_469_4),
+    (0.405_845_151_377_397_2, 0.381_830_050_505_118_9),
+    (0.741_531_185_599_394_4, 0.279_705_391_489_276_7),
+    (0.949_107_912_342_758_5, 0.129_484_966_168_869_7),
+];
+
+/// `f` over `[a, b]` split at `breaks`, `panels` Gauss-Legendre 7 panels per piece.
+fn fixed(f: impl Fn(f64) -> f64, a: f64, b: f64, breaks: &[f64], panels: usize) -> f64 {
+    let mut pts = vec![a];
+    let mut inner: Vec<f64> = breaks
+        .iter()
+        .copied()
+        .filter(|x| *x > a && *x < b)
+        .collect();
+    inner.sort_by(f64::total_cmp);
+    pts.extend(inner);
+    pts.push(b);
+    let mut sum = 0.0;
+    for w in pts.windows(2) {
+        for i in 0..panels {
+            let lo = w[0] + (w[1] - w[0]) * i as f64 / panels as f64;
+            let hi = w[0] + (w[1] - w[0]) * (i + 1) as f64 / panels as f64;
+            let (c, h) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+            let mut s = GL7[0].1 * f(c);
+            for &(x, wt) in &GL7[1..] {
+                s += wt * (f(c - h * x) + f(c + h * x));
+            }
+            sum += s * h;
+        }
+    }
+    sum
 }
