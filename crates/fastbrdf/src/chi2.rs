@@ -164,6 +164,39 @@ pub fn expected(
         .collect()
 }
 
+/// [`run`] on a BRDF's sampler at `wo` by strategy `s`, against its f64 density. With `f32`,
+/// the f32 model draws (at `wo` rounded to f32) and the f64 density is read at that rounded
+/// `wo`: the f32 sampler is held to the exact density (`fastbrdf sample`, `tests/sampling.rs`).
+pub fn run_brdf(
+    b64: &dyn crate::model::Brdf<f64>,
+    f32: Option<&dyn crate::model::Brdf<f32>>,
+    wo: [f64; 3],
+    s: crate::sample::Strategy,
+    cfg: &Config,
+    tests: usize,
+) -> Outcome {
+    match f32 {
+        Some(b32) => {
+            let wo32 = wo.map(|x| x as f32);
+            run(
+                |u| {
+                    b32.sample(wo32, [u[0] as f32, u[1] as f32], s)
+                        .map(|x| x.wi.map(f64::from))
+                },
+                |wi| b64.pdf(wo32.map(f64::from), wi, s),
+                cfg,
+                tests,
+            )
+        }
+        None => run(
+            |u| b64.sample(wo, u, s).map(|x| x.wi),
+            |wi| b64.pdf(wo, wi, s),
+            cfg,
+            tests,
+        ),
+    }
+}
+
 /// Runs one test: `sample` maps `u` in [0, 1)^2 to a direction or no sample, `pdf` is the
 /// density claimed for it; `tests` is the number of tests the significance is shared by
 /// (Bonferroni).

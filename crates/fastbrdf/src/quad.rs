@@ -49,6 +49,20 @@ fn panel(f: &impl Fn(f64) -> f64, a: f64, b: f64) -> (f64, f64) {
     (k * h, ((k - g) * h).abs())
 }
 
+/// `a`, the `breaks` strictly inside `(a, b)` in order, `b`: the pieces' ends.
+fn pieces(a: f64, b: f64, breaks: &[f64]) -> Vec<f64> {
+    let mut pts = vec![a];
+    let mut inner: Vec<f64> = breaks
+        .iter()
+        .copied()
+        .filter(|x| *x > a && *x < b)
+        .collect();
+    inner.sort_by(f64::total_cmp);
+    pts.extend(inner);
+    pts.push(b);
+    pts
+}
+
 /// The integral of `f` over `[a, b]` to relative tolerance `rel_tol` (absolute floor 1e-300),
 /// splitting first at `breaks` (points outside `(a, b)` are ignored).
 /// Returns `(value, error estimate)`.
@@ -59,15 +73,7 @@ pub fn integrate(
     breaks: &[f64],
     rel_tol: f64,
 ) -> (f64, f64) {
-    let mut pts = vec![a];
-    let mut inner: Vec<f64> = breaks
-        .iter()
-        .copied()
-        .filter(|x| *x > a && *x < b)
-        .collect();
-    inner.sort_by(f64::total_cmp);
-    pts.extend(inner);
-    pts.push(b);
+    let pts = pieces(a, b, breaks);
     // Start every interval with 8 panels so that narrow peaks are seen.
     let mut work: Vec<(f64, f64, f64, f64)> = Vec::new();
     for w in pts.windows(2) {
@@ -220,15 +226,7 @@ const GL7: [(f64, f64); 4] = [
 
 /// `f` over `[a, b]` split at `breaks`, `panels` Gauss-Legendre 7 panels per piece.
 fn fixed(f: impl Fn(f64) -> f64, a: f64, b: f64, breaks: &[f64], panels: usize) -> f64 {
-    let mut pts = vec![a];
-    let mut inner: Vec<f64> = breaks
-        .iter()
-        .copied()
-        .filter(|x| *x > a && *x < b)
-        .collect();
-    inner.sort_by(f64::total_cmp);
-    pts.extend(inner);
-    pts.push(b);
+    let pts = pieces(a, b, breaks);
     let mut sum = 0.0;
     for w in pts.windows(2) {
         for i in 0..panels {

@@ -204,25 +204,14 @@ fn chi_square_goodness_of_fit() {
                 seed: cfg.seed ^ (seed << 8) ^ theta as u64,
                 ..cfg
             };
-            let out = if f32 {
-                let wo32 = wo.map(|x| x as f32);
-                chi2::run(
-                    |u| {
-                        b32.sample(wo32, [u[0] as f32, u[1] as f32], s)
-                            .map(|x| x.wi.map(f64::from))
-                    },
-                    |wi| b64.pdf(wo32.map(f64::from), wi, s),
-                    &cfg,
-                    tests,
-                )
-            } else {
-                chi2::run(
-                    |u| b64.sample(wo, u, s).map(|x| x.wi),
-                    |wi| b64.pdf(wo, wi, s),
-                    &cfg,
-                    tests,
-                )
-            };
+            let out = chi2::run_brdf(
+                b64.as_ref(),
+                f32.then_some(b32.as_ref()),
+                wo,
+                s,
+                &cfg,
+                tests,
+            );
             (!out.passed).then(|| {
                 format!(
                     "{} [{s}] theta={theta} f32={f32}: p={:.3e} chi2={:.1} dof={} integral={:.6} missing {}/{:.1}",

@@ -269,26 +269,12 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
     let (b64, s) = brdf::<f64>(&a.model, &params, &a.strategy)?;
     let t = a.theta_i.to_radians();
     let wo = [t.sin(), 0.0, t.cos()];
-    let out = if a.precision == "f32" {
-        let (b32, _) = brdf::<f32>(&a.model, &params, &a.strategy)?;
-        let wo32 = wo.map(|x| x as f32);
-        chi2::run(
-            |u| {
-                b32.sample(wo32, [u[0] as f32, u[1] as f32], s)
-                    .map(|x| x.wi.map(f64::from))
-            },
-            |wi| b64.pdf(wo32.map(f64::from), wi, s),
-            &cfg,
-            1,
-        )
+    let b32 = if a.precision == "f32" {
+        Some(brdf::<f32>(&a.model, &params, &a.strategy)?.0)
     } else {
-        chi2::run(
-            |u| b64.sample(wo, u, s).map(|x| x.wi),
-            |wi| b64.pdf(wo, wi, s),
-            &cfg,
-            1,
-        )
+        None
     };
+    let out = chi2::run_brdf(b64.as_ref(), b32.as_deref(), wo, s, &cfg, 1);
     if let Some(path) = &a.out {
         fastbrdf_io::write_atomic(path, &picture(&out)?)?;
     }
