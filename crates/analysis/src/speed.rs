@@ -381,13 +381,59 @@ pub fn limit_fraction(
 
 // ---------- inputs ----------
 
+/// `len` floats starting on a 64-byte boundary (a cache line, one AVX-512 vector). Every
+/// timed loop reads and writes these: where a buffer starts decides whether each vector load
+/// and store straddles two cache lines, and with a `Vec` of its own per side (16-byte
+/// aligned by the allocator) the C peers' `cubic` and `schlick` rates moved by up to 40%
+/// from one run to the next (issue 13). Written by hand: `Vec::as_ptr().align_offset` and
+/// a slice are all it takes (no unsafe code).
+pub struct Aligned {
+    buf: Vec<f32>,
+    off: usize,
+    len: usize,
+}
+
+impl Aligned {
+    /// `len` zeros.
+    pub fn zeroed(len: usize) -> Self {
+        let buf = vec![0.0f32; len + 15];
+        // `align_offset` may decline (usize::MAX): the buffer is then merely unaligned, which
+        // costs speed, not correctness.
+        let off = match buf.as_ptr().align_offset(64) {
+            o if o < 16 => o,
+            _ => 0,
+        };
+        Self { buf, off, len }
+    }
+
+    /// A copy of `v`.
+    pub fn from_slice(v: &[f32]) -> Self {
+        let mut a = Self::zeroed(v.len());
+        a.copy_from_slice(v);
+        a
+    }
+}
+
+impl std::ops::Deref for Aligned {
+    type Target = [f32];
+    fn deref(&self) -> &[f32] {
+        &self.buf[self.off..self.off + self.len]
+    }
+}
+
+impl std::ops::DerefMut for Aligned {
+    fn deref_mut(&mut self) -> &mut [f32] {
+        &mut self.buf[self.off..self.off + self.len]
+    }
+}
+
 /// Benchmark inputs of one size: cosines uniform in [0, 1] (uniform in solid angle),
 /// direction pairs uniform over the upper hemisphere, and roughnesses `alpha` uniform in
 /// [0.005, 1] (the split-sum terms' second input, beside `cos`).
 pub struct Inputs {
-    pub cos: Vec<f32>,
-    pub dirs: [Vec<f32>; 6],
-    pub alpha: Vec<f32>,
+    pub cos: Aligned,
+    pub dirs: [Aligned; 6],
+    pub alpha: Aligned,
 }
 
 impl Inputs {
@@ -414,15 +460,21 @@ impl Inputs {
                 [a[0], a[1], a[2], b[0], b[1], b[2]]
             })
             .collect();
-        let dirs = std::array::from_fn(|k| pairs.iter().map(|p| p[k]).collect());
-        let alpha = (0..n)
+        let dirs = std::array::from_fn(|k| {
+            Aligned::from_slice(&pairs.iter().map(|p| p[k]).collect::<Vec<_>>())
+        });
+        let alpha: Vec<f32> = (0..n)
             .into_par_iter()
             .map(|i| {
                 let mut s = i as u64 * 13 + 5;
                 (0.005 + 0.995 * splitmix(&mut s)) as f32
             })
             .collect();
-        Self { cos, dirs, alpha }
+        Self {
+            cos: Aligned::from_slice(&cos),
+            dirs,
+            alpha: Aligned::from_slice(&alpha),
+        }
     }
 
     /// The batch input of a model of `kind`: its first `len` elements.
@@ -525,8 +577,8 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     let small = 4096;
     let small_in = Inputs::new(small);
     let large_in = Inputs::new(opts.large);
-    let mut out_small = vec![0.0f32; small];
-    let mut out_large = vec![0.0f32; opts.large];
+    let mut out_small = Aligned::zeroed(small);
+    let mut out_large = Aligned::zeroed(opts.large);
     let configs: Vec<_> = configurations()
         .into_iter()
         .filter(|(name, _)| {
@@ -544,7 +596,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     let n = black_box(200.0f32);
     let t = time(
         || {
-            for (o, &c) in out_small.iter_mut().zip(&small_in.cos) {
+            for (o, &c) in out_small.iter_mut().zip(small_in.cos.iter()) {
                 *o = c.powf(n);
             }
             black_box(&out_small);
@@ -556,7 +608,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     let k = black_box(3.0f32);
     let t = time(
         || {
-            for (o, &c) in out_small.iter_mut().zip(&small_in.cos) {
+            for (o, &c) in out_small.iter_mut().zip(small_in.cos.iter()) {
                 *o = (-k * c).exp();
             }
             black_box(&out_small);
@@ -571,7 +623,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     );
     let t = time(
         || {
-            for (o, &c) in out_small.iter_mut().zip(&small_in.cos) {
+            for (o, &c) in out_small.iter_mut().zip(small_in.cos.iter()) {
                 let c2 = c * c;
                 *o = if c > 0.0 {
                     scale * (-(1.0 - c2) / c2 * inv_a2).exp() / (c2 * c2)
@@ -1202,26 +1254,28 @@ pub fn peer_rows(
             kernel.eval(Input::Cos(x), o).expect("shapes match")
         });
         let peer_max_error = max_mixed_error(&m64, &acc_in, |x, o| peer.eval(x, o));
-        let mut out = vec![0.0f32; cos.len()];
-        let mut run_kernel = || {
+        // One input and one output buffer, both 64-byte aligned, for both sides: the same
+        // addresses, so neither gains from where its allocation happened to land.
+        let x = Aligned::from_slice(cos);
+        let mut out = Aligned::zeroed(cos.len());
+        let run_kernel = |o: &mut [f32]| {
             kernel
-                .eval(Input::Cos(black_box(cos)), &mut out)
+                .eval(Input::Cos(black_box(&x)), o)
                 .expect("shapes match");
-            black_box(&mut out);
+            black_box(o);
         };
-        let mut out_p = vec![0.0f32; cos.len()];
-        let mut run_peer = || {
-            peer.eval(black_box(cos), &mut out_p);
-            black_box(&mut out_p);
+        let run_peer = |o: &mut [f32]| {
+            peer.eval(black_box(&x), o);
+            black_box(o);
         };
         // Warm up, then size a round: enough calls that the slower side takes `opts.round`.
-        let one = timed(8, &mut run_kernel).max(timed(8, &mut run_peer)) / 8.0;
+        let one = timed(8, || run_kernel(&mut out)).max(timed(8, || run_peer(&mut out))) / 8.0;
         let repeats = repeats_for(opts.round.as_secs_f64(), one);
         let evals = (repeats * cos.len()) as f64;
         let (mut k, mut p, mut ratio) = (vec![], vec![], vec![]);
         for _ in 0..opts.rounds.max(1) {
-            let tk = timed(repeats, &mut run_kernel).max(1e-12);
-            let tp = timed(repeats, &mut run_peer).max(1e-12);
+            let tk = timed(repeats, || run_kernel(&mut out)).max(1e-12);
+            let tp = timed(repeats, || run_peer(&mut out)).max(1e-12);
             k.push(evals / tk);
             p.push(evals / tp);
             ratio.push(tp / tk);
