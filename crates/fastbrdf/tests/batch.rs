@@ -500,17 +500,45 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
             if want >= 1e-30 {
                 let rel = (fma::pow(x, y) as f64 - want).abs() / want;
                 assert!(rel <= 2.0 * eps, "pow({x}, {y}): {rel:.2e}");
+                // The clamped lobe's form: the same bits wherever the result is normal.
+                assert_eq!(fma::pow_unit(x, y).to_bits(), fma::pow(x, y).to_bits());
+            } else if want < f64::from(f32::MIN_POSITIVE) {
+                // Below the normal range: 0 or a value under 2^-126, never more.
+                let u = fma::pow_unit(x, y);
+                assert!(
+                    (0.0..=f32::MIN_POSITIVE).contains(&u),
+                    "pow_unit({x}, {y}) = {u:e}"
+                );
+            } else if want >= 2.0 * f64::from(f32::MIN_POSITIVE) {
+                assert_eq!(fma::pow_unit(x, y).to_bits(), fma::pow(x, y).to_bits());
             }
         }
+    }
+    for y in [1.0f32, 1.5, 200.0, 1e5] {
+        // x = 0, subnormal and the smallest normals: 0, or at most 2^-126 (y = 1).
+        for x in [
+            0.0f32,
+            1e-45,
+            1e-40,
+            f32::MIN_POSITIVE,
+            2.0 * f32::MIN_POSITIVE,
+        ] {
+            let u = fma::pow_unit(x, y);
+            assert!(
+                (0.0..=f32::MIN_POSITIVE).contains(&u) || x.powf(y) >= f32::MIN_POSITIVE,
+                "pow_unit({x:e}, {y}) = {u:e}"
+            );
+        }
+        assert_eq!(fma::pow_unit(1.0, y), 1.0);
     }
     assert_eq!(fma::pow(0.0, 3.0), 0.0);
     assert_eq!(fma::pow(1.0, 1e5), 1.0);
     assert!(fma::pow(f32::NAN, 2.0).is_nan() && fma::pow(-0.5, 2.0).is_nan());
 }
 
-/// The denormal policy: kernels run with flush-to-zero, so a value the scalar model gives as a
-/// subnormal number is 0 from the kernel (power16 at n = 20 near its zero at c = 0.2), and the
-/// caller's floating-point state is restored afterwards.
+/// The denormal policy: a kernel that flushes (here power16 at n = 20 near its zero at
+/// c = 0.2) gives 0 where the scalar model gives a subnormal number, and the caller's
+/// floating-point state is restored afterwards.
 #[test]
 fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
     let k = Kernel::new("power16", &[("n", "20")]).unwrap();
@@ -539,6 +567,59 @@ fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
     assert_eq!(mxcsr(), before, "MXCSR not restored");
     // The caller's own arithmetic still produces subnormals.
     assert!(!(std::hint::black_box(1e-30f32) * 1e-10).is_normal());
+}
+
+/// The denormal policy's choice per kernel (`Kernel::flush_to_zero`): the power forms flush
+/// where their band of cosines making subnormals is wide (power16 at n = 20: its zero at
+/// c = 0.2 with 3.4e-3 of [0, 1] below 2^-126), not where it is negligible (power4 at
+/// n = 200); `cubic` and `schlick` never (subnormals only from tiny inputs: a plain kernel
+/// then returns the subnormal value the scalar model gives); the others always. A plain
+/// kernel leaves the caller's MXCSR alone too.
+#[test]
+fn the_flush_to_zero_switch_is_decided_per_kernel() {
+    // The band's edge: the least base whose 2^k-th power by squarings is normal.
+    for k in 2..=4u32 {
+        let t = fastbrdf::lobes::power::base_min(k);
+        let sq = |mut x: f32| {
+            for _ in 0..k {
+                x *= x;
+            }
+            x
+        };
+        assert!(
+            sq(t) >= f32::MIN_POSITIVE && sq(f32::from_bits(t.to_bits() - 1)) < f32::MIN_POSITIVE
+        );
+    }
+    let ftz = |id: &str, n: &str| Kernel::new(id, &[("n", n)]).unwrap().flush_to_zero();
+    assert!(ftz("power16", "20") && ftz("power16", "200"));
+    assert!(!ftz("power4", "200") && !ftz("power8", "200") && !ftz("power4", "20"));
+    assert!(!ftz("cubic", "200") && !ftz("schlick", "200"));
+    assert!(ftz("sg", "200") && ftz("pow", "200"));
+    assert!(Kernel::new("beckmann", &[]).unwrap().flush_to_zero());
+    let k = Kernel::new("schlick", &[("n", "200")]).unwrap();
+    let Model::Lobe(m) = registry::build::<f32>("schlick", &[("n", "200")]).unwrap() else {
+        panic!()
+    };
+    let c = [1e-37f32; 21];
+    let want = m.eval(c[0]);
+    assert!(want > 0.0 && !want.is_normal(), "scalar {want:e}");
+    for &isa in Isa::available() {
+        let mut out = [0.0f32; 21];
+        k.eval_with(isa, Input::Cos(&c), &mut out).unwrap();
+        // The FMA form's denominator rounds differently from the scalar one: within 1%.
+        assert!(
+            out.iter().all(|v| (v / want - 1.0).abs() < 1e-2),
+            "{}: {out:?} vs {want:e}",
+            isa.name()
+        );
+    }
+    // Forcing the switch on gives the flushed 0 instead.
+    let mut k = k;
+    k.set_flush_to_zero(true);
+    let mut out = [1.0f32; 21];
+    k.eval(Input::Cos(&c), &mut out).unwrap();
+    #[cfg(target_arch = "x86_64")]
+    assert!(out.iter().all(|v| *v == 0.0), "{out:?}");
 }
 
 /// The non-positive-argument exponentials (sg, gauss, Beckmann, Ward): the plain and fused

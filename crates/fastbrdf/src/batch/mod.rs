@@ -55,6 +55,7 @@ pub enum Isa {
 
 impl Isa {
     /// The best SIMD instruction set this CPU supports (detected once, then cached).
+    #[inline]
     pub fn best() -> Self {
         static BEST: OnceLock<Isa> = OnceLock::new();
         *BEST.get_or_init(Self::detect)
@@ -80,6 +81,7 @@ impl Isa {
 
     /// Every SIMD instruction set this CPU supports, best first (no allocation: a slice of a
     /// constant list, from the cached best).
+    #[inline]
     pub fn available() -> &'static [Isa] {
         const ALL: [Isa; 3] = [Isa::Avx512, Isa::Avx2Fma, Isa::Sse2];
         let best = ALL.iter().position(|i| *i == Self::best()).unwrap_or(2);
@@ -117,6 +119,11 @@ impl Isa {
 
 /// An operation on one cosine.
 pub trait Op1: Send + Sync + 'static {
+    /// Whether the kernel runs with flush-to-zero set (`FlushToZero`; for lobes,
+    /// `LobeForm::batch_ftz`).
+    fn ftz(&self) -> bool {
+        true
+    }
     fn f<M: Math<f32>>(&self, x: f32) -> f32;
 }
 
@@ -130,20 +137,27 @@ pub trait Op6: Send + Sync + 'static {
     fn f<M: Math<f32>>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32;
 }
 
-/// A lobe with `Lobe::eval`'s rules: clamp to [0, 1], NaN gives 0 (branch-free: `max` then
-/// `min` maps NaN to 0, and the select restores 0 for NaN inputs).
-struct LobeOp<L>(L);
+/// A lobe with `Lobe::eval`'s rules ([`LobeForm::batch`]).
+struct LobeOp<L> {
+    lobe: L,
+    /// `LobeForm::batch_ftz`, decided once.
+    ftz: bool,
+}
+impl<L: LobeForm> LobeOp<L> {
+    fn new(lobe: L) -> Self {
+        Self {
+            ftz: lobe.batch_ftz(),
+            lobe,
+        }
+    }
+}
 impl<L: LobeForm> Op1 for LobeOp<L> {
+    fn ftz(&self) -> bool {
+        self.ftz
+    }
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
-        // The clamp keeps NaN (`0 > c ? 0 : c` and `1 < x ? 1 : x`: one maxps and one minps
-        // each), every lobe maps a NaN argument to NaN or 0, and the final `v > 0 ? v : 0`
-        // (one maxps; lobes are non-negative) turns that into the rule's 0: the NaN rule costs
-        // no separate compare and blend.
-        let x = if 0.0 > c { 0.0 } else { c };
-        let x = if 1.0 < x { 1.0 } else { x };
-        let v = self.0.at::<f32, M>(x);
-        if L::NAN_TO_ZERO || v > 0.0 { v } else { 0.0 }
+        self.lobe.batch::<M>(c)
     }
 }
 
@@ -297,7 +311,6 @@ impl Drop for FlushToZero {
 }
 
 fn run1<O: Op1>(isa: Isa, op: &O, x: &[f32], out: &mut [f32]) {
-    let _ftz = FlushToZero::on();
     match isa {
         // SAFETY: `Kernel` only passes an ISA that `Isa::available` reported.
         #[cfg(target_arch = "x86_64")]
@@ -309,7 +322,6 @@ fn run1<O: Op1>(isa: Isa, op: &O, x: &[f32], out: &mut [f32]) {
 }
 
 fn run2<O: Op2>(isa: Isa, op: &O, x: [&[f32]; 2], out: &mut [f32]) {
-    let _ftz = FlushToZero::on();
     match isa {
         // SAFETY: as in `run1`.
         #[cfg(target_arch = "x86_64")]
@@ -321,7 +333,6 @@ fn run2<O: Op2>(isa: Isa, op: &O, x: [&[f32]; 2], out: &mut [f32]) {
 }
 
 fn run6<O: Op6>(isa: Isa, op: &O, w: [&[f32]; 6], out: &mut [f32]) {
-    let _ftz = FlushToZero::on();
     match isa {
         // SAFETY: as in `run1`.
         #[cfg(target_arch = "x86_64")]
@@ -367,18 +378,25 @@ impl Input<'_> {
 
 /// A compiled kernel (one family, monomorphised; the ISA chosen per call).
 pub trait Imp: Send + Sync {
-    fn run(&self, isa: Isa, input: Input, out: &mut [f32]);
+    fn run(&self, isa: Isa, input: &Input, out: &mut [f32]);
     fn simd(&self) -> bool {
+        true
+    }
+    /// Whether it runs with flush-to-zero set (the denormal policy, `Kernel::flush_to_zero`).
+    fn ftz(&self) -> bool {
         true
     }
 }
 
 struct Map1<O>(O);
 impl<O: Op1> Imp for Map1<O> {
-    fn run(&self, isa: Isa, input: Input, out: &mut [f32]) {
-        if let Input::Cos(x) = input {
+    fn run(&self, isa: Isa, input: &Input, out: &mut [f32]) {
+        if let Input::Cos(x) = *input {
             run1(isa, &self.0, x, out)
         }
+    }
+    fn ftz(&self) -> bool {
+        self.0.ftz()
     }
 }
 
@@ -387,8 +405,8 @@ struct Map2<O> {
     simd: bool,
 }
 impl<O: Op2> Imp for Map2<O> {
-    fn run(&self, isa: Isa, input: Input, out: &mut [f32]) {
-        if let Input::Env(x) = input {
+    fn run(&self, isa: Isa, input: &Input, out: &mut [f32]) {
+        if let Input::Env(x) = *input {
             run2(isa, &self.op, x, out)
         }
     }
@@ -402,8 +420,8 @@ struct Map6<O> {
     simd: bool,
 }
 impl<O: Op6> Imp for Map6<O> {
-    fn run(&self, isa: Isa, input: Input, out: &mut [f32]) {
-        if let Input::Dirs(w) = input {
+    fn run(&self, isa: Isa, input: &Input, out: &mut [f32]) {
+        if let Input::Dirs(w) = *input {
             run6(isa, &self.op, w, out)
         }
     }
@@ -435,7 +453,7 @@ pub fn lobe_brdf_kernel(b: &LobeBrdf) -> Box<dyn Imp> {
 /// The kernel of a plan; `None` for shadowing terms (several cosines per element).
 fn kernel_of(plan: &Plan) -> Option<Box<dyn Imp>> {
     Some(match plan {
-        Plan::Lobe(l) => with_lobe!(l, x => Box::new(Map1(LobeOp(*x))) as Box<dyn Imp>),
+        Plan::Lobe(l) => with_lobe!(l, x => Box::new(Map1(LobeOp::new(*x))) as Box<dyn Imp>),
         Plan::Distribution(d) => with_dist!(d, x => Box::new(Map1(DistOp(*x))) as Box<dyn Imp>),
         Plan::Fresnel(f) => with_fresnel!(f, x => Box::new(Map1(FresnelOp(*x))) as Box<dyn Imp>),
         // Composites are instantiated with their parts' concrete families (a composite not
@@ -461,6 +479,8 @@ pub struct Kernel {
     id: &'static str,
     kind: Kind,
     imp: Box<dyn Imp>,
+    /// Whether calls run with flush-to-zero set (`flush_to_zero`).
+    ftz: bool,
 }
 
 impl Kernel {
@@ -482,6 +502,7 @@ impl Kernel {
         Ok(Self {
             id,
             kind: plan.kind(),
+            ftz: imp.ftz(),
             imp,
         })
     }
@@ -497,11 +518,38 @@ impl Kernel {
     }
 
     /// Whether a SIMD kernel exists (else the scalar model runs per element).
+    #[inline]
     pub fn simd(&self) -> bool {
         self.imp.simd()
     }
 
+    /// Whether its calls run with flush-to-zero set (the denormal policy): results below
+    /// 2^-126 become 0 and no time is lost to subnormal numbers (a subnormal result cost
+    /// `power16` 1.8x at n = 20). The switch (two MXCSR writes, restored on return, panics
+    /// included) costs about 8 ns a call, so the lobes whose batch form makes subnormals only
+    /// from rare inputs run without it (`LobeForm::batch_ftz`: `cubic`, `schlick`, and the
+    /// power forms where their subnormal band of cosines is narrower than
+    /// `plan::SUBNORMAL_BAND`) and may return a subnormal value where a flushing kernel gives
+    /// 0. Other architectures: no switch.
+    pub fn flush_to_zero(&self) -> bool {
+        self.ftz
+    }
+
+    /// Overrides the denormal policy (for measurements: `examples/ftz_band.rs` times both
+    /// sides).
+    pub fn set_flush_to_zero(&mut self, on: bool) {
+        self.ftz = on;
+    }
+
+    /// Runs the kernel on this thread under the denormal policy.
+    #[inline]
+    fn run(&self, isa: Isa, input: &Input, out: &mut [f32]) {
+        let _ftz = self.ftz.then(FlushToZero::on);
+        self.imp.run(isa, input, out);
+    }
+
     /// The instruction set `eval` uses.
+    #[inline]
     pub fn isa(&self) -> Isa {
         if self.simd() {
             Isa::best()
@@ -510,6 +558,7 @@ impl Kernel {
         }
     }
 
+    #[inline]
     fn check(&self, input: &Input, out: &[f32]) -> Result<()> {
         let ok_kind = matches!(
             (self.kind, input),
@@ -546,12 +595,14 @@ impl Kernel {
     }
 
     /// Evaluates with the best instruction set, on this thread.
+    #[inline]
     pub fn eval(&self, input: Input, out: &mut [f32]) -> Result<()> {
         self.eval_with(self.isa(), input, out)
     }
 
     /// Evaluates with a given instruction set (one of `Isa::available()`, or `Isa::Scalar`,
     /// which runs the baseline loop). Errors if the CPU lacks it.
+    #[inline]
     pub fn eval_with(&self, isa: Isa, input: Input, out: &mut [f32]) -> Result<()> {
         self.check(&input, out)?;
         if isa != Isa::Scalar && !Isa::available().contains(&isa) {
@@ -560,8 +611,11 @@ impl Kernel {
                 reason: format!("this CPU does not support {}", isa.name()),
             });
         }
-        self.imp
-            .run(if isa == Isa::Scalar { Isa::Sse2 } else { isa }, input, out);
+        self.run(
+            if isa == Isa::Scalar { Isa::Sse2 } else { isa },
+            &input,
+            out,
+        );
         Ok(())
     }
 
@@ -577,7 +631,7 @@ impl Kernel {
         let n = input.len();
         let first = n.min(CHUNK);
         let t0 = std::time::Instant::now();
-        self.imp.run(isa, input.slice(0, first), &mut out[..first]);
+        self.run(isa, &input.slice(0, first), &mut out[..first]);
         let rest = n - first;
         if rest == 0 {
             return Ok(());
@@ -586,11 +640,11 @@ impl Kernel {
         let estimate = per_chunk.mul_f64(rest as f64 / first as f64);
         let (input, out) = (input.slice(first, n), &mut out[first..]);
         if estimate < PAR_MIN_WORK || rayon::current_num_threads() < 2 {
-            self.imp.run(isa, input, out);
+            self.run(isa, &input, out);
         } else {
             out.par_chunks_mut(CHUNK).enumerate().for_each(|(i, o)| {
                 let lo = i * CHUNK;
-                self.imp.run(isa, input.slice(lo, lo + o.len()), o);
+                self.run(isa, &input.slice(lo, lo + o.len()), o);
             });
         }
         Ok(())

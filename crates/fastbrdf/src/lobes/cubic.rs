@@ -299,6 +299,21 @@ impl LobeForm for Cubic {
         // The cut is an f32 number, so both precisions cut at the same input.
         if c < cut { T::zero() } else { pos(p) }
     }
+    /// The kernel clamps once: the cut is >= 0, so `c >= cut` already fails for c < 0 and
+    /// NaN (0, the rule's value); only c > 1 is clamped (`c < 1 ? c : 1`, one minps; NaN
+    /// becomes 1 there, and the cut test still gives 0). Issue 13.
+    #[inline(always)]
+    fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
+        let [a, b, d3, cut] = self.k.map(|k| k.t::<f32>());
+        let x = c - 1.0;
+        let x = if x < 0.0 { x } else { 0.0 };
+        let p = M::madd(x, M::madd(x, M::madd(x, d3, b), a), 1.0);
+        pos(if c >= cut { p } else { 0.0 })
+    }
+    /// Horner's terms are of order 1 above the cut; p is tiny only next to its root.
+    fn batch_ftz(&self) -> bool {
+        false
+    }
     fn zero_below(&self) -> f64 {
         self.shape.cut
     }

@@ -85,6 +85,24 @@ pub struct Power<const K: u32> {
     s: Coef,
     /// `s` from the minimax fit of `lobes::tuned` rather than `n / 2^K`.
     tuned: bool,
+    /// The least base whose `2^K`-th power (by squarings in f32) is a normal number
+    /// ([`base_min`]).
+    tmin: f32,
+}
+
+/// The least f32 `t` whose `2^k`-th power by `k` squarings is at least 2^-126 (the smallest
+/// normal f32): smaller bases make subnormal numbers on the way (`LobeForm::batch_ftz`).
+pub fn base_min(k: u32) -> f32 {
+    // Neighbouring positive floats by their bits (`next_up` needs Rust 1.86; MSRV 1.85).
+    let step = |t: f32, d: i32| f32::from_bits(t.to_bits().wrapping_add_signed(d));
+    let mut t = 2f64.powf(-126.0 / f64::from(1u32 << k)) as f32;
+    while pow2k(t, k) < f32::MIN_POSITIVE {
+        t = step(t, 1);
+    }
+    while pow2k(step(t, -1), k) >= f32::MIN_POSITIVE {
+        t = step(t, -1);
+    }
+    t
 }
 
 impl<const K: u32> Power<K> {
@@ -97,6 +115,7 @@ impl<const K: u32> Power<K> {
         Ok(Self {
             s: Coef::new(n / f64::from(Self::G)),
             tuned: false,
+            tmin: base_min(K),
         })
     }
 
@@ -106,6 +125,7 @@ impl<const K: u32> Power<K> {
         Ok(Self {
             s: Coef::new(super::tuned::power_slope(Self::G, n)),
             tuned: true,
+            tmin: base_min(K),
         })
     }
 }
@@ -130,6 +150,29 @@ impl<const K: u32> LobeForm for Power<K> {
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         pow2k(pos(M::madd(self.s.t::<T>(), c - T::one(), T::one())), K)
+    }
+    /// The kernel folds `Lobe::eval`'s clamp into the base where `s >= 1` on the FMA
+    /// instruction sets: `t = fma(s, c, 1 - s)` (one rounding; `1 - s` is exact for an f32 `s`
+    /// in [1, 2^24]), `min(t, 1)` (t increases with c, so this is c's clamp at 1; NaN kept)
+    /// and `max(t, 0)` (c below `1 - 1/s`, every c < 0, and NaN): one subtraction and one
+    /// clamp fewer than clamping c first, the C loop's operation count (issue 13).
+    /// Elsewhere (`s < 1`, where the base at c = 0 is positive, or SSE2, where the product
+    /// would round alone) c is clamped first.
+    #[inline(always)]
+    fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
+        let s = self.s.t::<f32>();
+        if M::FMA && s >= 1.0 {
+            let t = M::madd(s, c, 1.0 - s);
+            let t = if 1.0 < t { 1.0 } else { t };
+            pow2k(pos(t), K)
+        } else {
+            crate::plan::clamped_batch::<Self, M>(self, c)
+        }
+    }
+    /// Subnormal squarings come from bases in (0, `tmin`), cosines in a band `tmin / s` wide
+    /// above the zero `1 - 1/s`: the switch pays for itself only where that band is wide.
+    fn batch_ftz(&self) -> bool {
+        f64::from(self.tmin) / self.s.x > crate::plan::SUBNORMAL_BAND
     }
     fn zero_below(&self) -> f64 {
         (1.0 - 1.0 / self.s.x).max(0.0)

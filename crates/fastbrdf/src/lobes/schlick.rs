@@ -18,7 +18,7 @@ use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
 use crate::plan::{LobeForm, Plan};
-use crate::real::{K, Real};
+use crate::real::{K, Real, pos};
 use crate::wgsl::Emit;
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -123,6 +123,25 @@ impl LobeForm for Schlick {
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
         // n - n c + c written as n (1 - c) + c: 1 - c is exact for c >= 0.5.
         c / M::madd(self.n.t::<T>(), T::one() - c, c)
+    }
+    /// The kernel clamps only c > 1: with n >= 1 the denominator stays positive below c = 0,
+    /// so the value there is negative (NaN at -inf) and the final `max(v, 0)` gives the
+    /// rule's 0. With FMA the denominator is `fma(c, 1 - n, n)`, one rounding (`1 - n` is
+    /// exact for an f32 n in [1, 2^24]) instead of a subtraction and a fused step (issue 13).
+    #[inline(always)]
+    fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
+        let n = self.n.t::<f32>();
+        let x = if 1.0 < c { 1.0 } else { c };
+        let d = if M::FMA {
+            M::madd(x, 1.0 - n, n)
+        } else {
+            M::madd(n, 1.0 - x, x)
+        };
+        pos(x / d)
+    }
+    /// d is in [1, n] on [0, 1]: c / d is subnormal only for c below n 2^-126.
+    fn batch_ftz(&self) -> bool {
+        false
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         format!("fb_lobe_schlick({c}, {})", e.kx(self.n, "p_n", &["n"]))

@@ -78,7 +78,14 @@ pub mod fma {
     /// [`super::pow_fma`].
     #[inline(always)]
     pub fn pow(x: f32, y: f32) -> f32 {
-        super::pow_fma(x, y)
+        super::pow_fma::<false>(x, y)
+    }
+    /// `pow` for `x` in [0, 1] (not NaN) and `y >= 1`, the `pow` lobe's use after its clamp:
+    /// one select instead of three (the underflow test also covers `x = 0` and subnormal
+    /// `x`), and results below 2^-126 are 0. Same bound above that (tested).
+    #[inline(always)]
+    pub fn pow_unit(x: f32, y: f32) -> f32 {
+        super::pow_fma::<true>(x, y)
     }
     #[inline(always)]
     pub fn acos(x: f32) -> f32 {
@@ -279,8 +286,12 @@ pub fn pow(x: f32, y: f32) -> f32 {
 /// normal f32 `x` in (0, 1] at y = 1, 2, 20, 200, 1234.5, 1e4, 99999, 1e5: at most 1.44
 /// f32 epsilons relative, against 1.40 for the f64 form (`tests/batch.rs` checks 2).
 /// 0 for `x` below 2^-126 (subnormals as zero, as `log2_wide`), NaN for NaN or negative `x`.
+///
+/// `UNIT`: `x` is in [0, 1] and not NaN and `y >= 1` (`fma::pow_unit`). Then `x = 0` and
+/// subnormal `x` have `log2 x <= -126`, so `y log2 x > -126` is the only test needed, and it
+/// also keeps `k >= -126`, where the exponent addition of [`scale2`] gives a normal number.
 #[inline(always)]
-pub(crate) fn pow_fma(x: f32, y: f32) -> f32 {
+pub(crate) fn pow_fma<const UNIT: bool>(x: f32, y: f32) -> f32 {
     const MAGIC: f32 = 12_582_912.0; // 1.5 * 2^23
     // log2 e as f32 head and tail.
     const KH: f32 = std::f32::consts::LOG2_E;
@@ -357,6 +368,9 @@ pub(crate) fn pow_fma(x: f32, y: f32) -> f32 {
     let k = tk - MAGIC;
     let ki = (tk.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
     let v = scale2::<true>(ki, (p_hi - k) + p_lo);
+    if UNIT {
+        return if pa > -126.0 { v } else { 0.0 };
+    }
     let v = if pa > -127.0 { v } else { 0.0 };
     let v = if x >= f32::MIN_POSITIVE { v } else { 0.0 };
     if x >= 0.0 { v } else { f32::NAN }

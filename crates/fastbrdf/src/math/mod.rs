@@ -15,7 +15,15 @@ use fast as math;
 
 /// The elementary functions a formula may call.
 pub trait Math<T: Real> {
+    /// Whether `madd` is one fused multiply-add (one rounding): a family's batch form may then
+    /// fold a subtraction into it where the fused step is exact enough (`LobeForm::batch`).
+    const FMA: bool = false;
     fn pow(x: T, y: T) -> T;
+    /// `pow` for `x` in [0, 1], not NaN, and `y >= 1` (the clamped `pow` lobe): a backend may
+    /// skip `pow`'s NaN, negative and subnormal-input handling and give 0 below 2^-126.
+    fn pow_unit(x: T, y: T) -> T {
+        Self::pow(x, y)
+    }
     fn exp(x: T) -> T;
     fn exp2(x: T) -> T;
     fn log2(x: T) -> T;
@@ -122,9 +130,14 @@ impl Math<f32> for Fast {
 pub struct FastFma;
 
 impl Math<f32> for FastFma {
+    const FMA: bool = true;
     #[inline(always)]
     fn pow(x: f32, y: f32) -> f32 {
         fast::fma::pow(x, y)
+    }
+    #[inline(always)]
+    fn pow_unit(x: f32, y: f32) -> f32 {
+        fast::fma::pow_unit(x, y)
     }
     #[inline(always)]
     fn exp(x: f32) -> f32 {
