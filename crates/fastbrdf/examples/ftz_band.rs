@@ -1,9 +1,9 @@
-//! The denormal policy's measurement (`Kernel::flush_to_zero`, `plan::SUBNORMAL_BAND`): each
-//! lobe kernel below is timed on 4096 uniform cosines (L1-resident) with the flush-to-zero
-//! switch and without it, interleaved round by round; the output gives both rates, their
-//! ratio, the width of the band of cosines whose evaluation makes subnormal numbers (power
-//! forms: `base_min(K) / s`), and what the library chose. A kernel should flush where the
-//! switch wins and skip it where it loses.
+//! The denormal policy's measurement (`Kernel::flush_to_zero`): each lobe kernel below is
+//! timed on 4096 uniform cosines (L1-resident) with the flush-to-zero switch and without it,
+//! interleaved round by round; the output gives both rates, their ratio, the width of the band
+//! of cosines whose squarings would be subnormal (power forms: `base_min(K) / s`; `power16`
+//! zeroes its base there, so it should not care), and what the library chose. A kernel should
+//! flush where the switch wins and skip it where it loses or is even.
 //! Run: `cargo run --release -p fastbrdf --example ftz_band`.
 
 use fastbrdf::batch::{Input, Isa, Kernel};
@@ -40,8 +40,10 @@ fn main() {
         ("power4", 20.0),
         ("power8", 20.0),
         ("power16", 20.0),
+        ("power8", 1.0),
         ("cubic", 200.0),
         ("schlick", 200.0),
+        ("sg", 200.0),
     ] {
         let text = format!("{exponent}");
         let mut k = Kernel::new(id, &[("n", &text)]).unwrap();

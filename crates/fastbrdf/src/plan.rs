@@ -33,14 +33,6 @@ use crate::microfacet::{
     beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, ms, shadowing, smith_ggx,
 };
 
-/// A function of one cosine (a specular lobe).
-/// The width of the band of cosines (in [0, 1]) making subnormal numbers above which a lobe
-/// kernel sets flush-to-zero (`LobeForm::batch_ftz`). Measured by `examples/ftz_band.rs`
-/// (4096 uniform cosines, AVX-512): `power16` at n = 20 (band 3.4e-3) ran 1.28x faster with
-/// the switch and at n = 200 (3.4e-4) the same either way; `power4` and `power8` (bands
-/// below 1e-5) ran 3-7% faster without it, as did `cubic` (4%).
-pub const SUBNORMAL_BAND: f64 = 1e-4;
-
 /// [`LobeForm::batch`]'s default: clamp `c` into [0, 1], `at`, NaN gives 0.
 #[inline(always)]
 pub fn clamped_batch<L: LobeForm, M: Math<f32>>(lobe: &L, c: f32) -> f32 {
@@ -54,6 +46,7 @@ pub fn clamped_batch<L: LobeForm, M: Math<f32>>(lobe: &L, c: f32) -> f32 {
     if L::NAN_TO_ZERO || v > 0.0 { v } else { 0.0 }
 }
 
+/// A function of one cosine (a specular lobe).
 pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
     /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
@@ -79,10 +72,12 @@ pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     }
     /// Whether the batch kernel runs with flush-to-zero set (results below 2^-126 become 0,
     /// and no time is lost to subnormal numbers). The switch costs two MXCSR writes, about
-    /// 8 ns a call (8% of a 4096-cosine `power4` batch), so a family whose batch form makes
-    /// subnormals only from rare inputs (cosines below about 1e-30, or within a few ulp of
-    /// a zero crossing), or from a band of cosines narrower than [`SUBNORMAL_BAND`], says
-    /// false; its kernel may then return a subnormal value where a flushing one gives 0.
+    /// 8 ns a call (8% of a 4096-cosine `power4` batch), and its cost varied between
+    /// processes (`power16` at 23.6 or 18.6 G/s, bimodal over `fastbrdf bench` runs), so a
+    /// family whose batch form makes subnormals only from rare inputs (cosines below about
+    /// 1e-30, within a few ulp of a zero crossing, or in a band of cosines under 2e-4 of
+    /// [0, 1] wide) or never says false; its kernel may then return a subnormal value where a
+    /// flushing one gives 0.
     fn batch_ftz(&self) -> bool {
         true
     }

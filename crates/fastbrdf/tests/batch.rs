@@ -536,8 +536,9 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
     assert!(fma::pow(f32::NAN, 2.0).is_nan() && fma::pow(-0.5, 2.0).is_nan());
 }
 
-/// The denormal policy: a kernel that flushes (here power16 at n = 20 near its zero at
-/// c = 0.2) gives 0 where the scalar model gives a subnormal number, and the caller's
+/// The denormal policy: a value the scalar model gives as a subnormal number is 0 from the
+/// kernel (power16 at n = 20 near its zero at c = 0.2: its base is zeroed below `base_min`;
+/// a Beckmann lobe far in its tail: flushed by the MXCSR switch), and the caller's
 /// floating-point state is restored afterwards.
 #[test]
 fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
@@ -548,6 +549,22 @@ fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
     let c = [0.202f32; 37];
     let scalar = m.eval(c[0]);
     assert!(scalar > 0.0 && !scalar.is_normal(), "scalar {scalar:e}");
+    // A flushing kernel: Beckmann at alpha = 0.05 where exp(-tan^2 / alpha^2) / cos^4 is
+    // subnormal in f32 (found by scanning down from the peak).
+    let kb = Kernel::new("beckmann", &[("alpha", "0.05")]).unwrap();
+    assert!(kb.flush_to_zero());
+    let Model::Distribution(mb) = registry::build::<f32>("beckmann", &[("alpha", "0.05")]).unwrap()
+    else {
+        panic!()
+    };
+    let cb = (0..100_000)
+        .map(|i| 1.0 - i as f32 * 1e-5)
+        .find(|&c| {
+            let v = mb.eval(c);
+            v > 0.0 && !v.is_normal()
+        })
+        .expect("a cosine with a subnormal Beckmann value");
+    let cb = [cb; 37];
     #[cfg(target_arch = "x86_64")]
     let mxcsr = || {
         let mut v = 0u32;
@@ -560,6 +577,9 @@ fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
     for &isa in Isa::available() {
         let mut out = [1.0f32; 37];
         k.eval_with(isa, Input::Cos(&c), &mut out).unwrap();
+        assert!(out.iter().all(|v| *v == 0.0), "{}: {out:?}", isa.name());
+        let mut out = [1.0f32; 37];
+        kb.eval_with(isa, Input::Cos(&cb), &mut out).unwrap();
         #[cfg(target_arch = "x86_64")]
         assert!(out.iter().all(|v| *v == 0.0), "{}: {out:?}", isa.name());
     }
@@ -569,10 +589,9 @@ fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
     assert!(!(std::hint::black_box(1e-30f32) * 1e-10).is_normal());
 }
 
-/// The denormal policy's choice per kernel (`Kernel::flush_to_zero`): the power forms flush
-/// where their band of cosines making subnormals is wide (power16 at n = 20: its zero at
-/// c = 0.2 with 3.4e-3 of [0, 1] below 2^-126), not where it is negligible (power4 at
-/// n = 200); `cubic` and `schlick` never (subnormals only from tiny inputs: a plain kernel
+/// The denormal policy's choice per kernel (`Kernel::flush_to_zero`): the power forms never
+/// flush (power16 zeroes its base below `base_min`, checked in the test above; the others'
+/// subnormal bands are under 1.5e-4 of [0, 1]); `cubic` and `schlick` never (subnormals only from tiny inputs: a plain kernel
 /// then returns the subnormal value the scalar model gives), nor the spherical Gaussians
 /// (their `exp2` is built from bits); the others always. A plain
 /// kernel leaves the caller's MXCSR alone too.
@@ -592,7 +611,7 @@ fn the_flush_to_zero_switch_is_decided_per_kernel() {
         );
     }
     let ftz = |id: &str, n: &str| Kernel::new(id, &[("n", n)]).unwrap().flush_to_zero();
-    assert!(ftz("power16", "20") && ftz("power16", "200"));
+    assert!(!ftz("power16", "20") && !ftz("power16", "200") && !ftz("power8", "1"));
     assert!(!ftz("power4", "200") && !ftz("power8", "200") && !ftz("power4", "20"));
     assert!(!ftz("cubic", "200") && !ftz("schlick", "200"));
     assert!(!ftz("sg", "200") && !ftz("ue4-phong-approx", "20") && ftz("pow", "200"));

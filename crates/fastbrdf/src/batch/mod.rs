@@ -526,17 +526,18 @@ impl Kernel {
     /// Whether its calls run with flush-to-zero set (the denormal policy): results below
     /// 2^-126 become 0 and no time is lost to subnormal numbers (a subnormal result cost
     /// `power16` 1.8x at n = 20). The switch (two MXCSR writes, restored on return, panics
-    /// included) costs about 8 ns a call, so the lobes whose batch form makes subnormals only
-    /// from rare inputs run without it (`LobeForm::batch_ftz`: `cubic`, `schlick`, the
-    /// spherical Gaussians, whose `exp2` is built from bits, and the power forms where their
-    /// subnormal band of cosines is narrower than `plan::SUBNORMAL_BAND`) and may return a subnormal value where a flushing kernel gives
-    /// 0. Other architectures: no switch.
+    /// included) costs about 8 ns a call and varied between processes, so the lobes whose
+    /// batch form makes subnormals only from rare inputs, or never, run without it
+    /// (`LobeForm::batch_ftz`: the power forms, `power16` zeroing its base below
+    /// `lobes::power::base_min`; `cubic`, `schlick`; the spherical Gaussians, whose `exp2` is
+    /// built from bits) and may return a subnormal value where a flushing kernel gives 0.
+    /// Other architectures: no switch.
     pub fn flush_to_zero(&self) -> bool {
         self.ftz
     }
 
     /// Overrides the denormal policy (for measurements: `examples/ftz_band.rs` times both
-    /// sides).
+    /// ways).
     pub fn set_flush_to_zero(&mut self, on: bool) {
         self.ftz = on;
     }

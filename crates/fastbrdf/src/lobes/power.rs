@@ -91,7 +91,7 @@ pub struct Power<const K: u32> {
 }
 
 /// The least f32 `t` whose `2^k`-th power by `k` squarings is at least 2^-126 (the smallest
-/// normal f32): smaller bases make subnormal numbers on the way (`LobeForm::batch_ftz`).
+/// normal f32): smaller bases make subnormal numbers on the way (see `Power::batch`).
 pub fn base_min(k: u32) -> f32 {
     // Neighbouring positive floats by their bits (`next_up` needs Rust 1.86; MSRV 1.85).
     let step = |t: f32, d: i32| f32::from_bits(t.to_bits().wrapping_add_signed(d));
@@ -158,21 +158,34 @@ impl<const K: u32> LobeForm for Power<K> {
     /// clamp fewer than clamping c first, the C loop's operation count (issue 13).
     /// Elsewhere (`s < 1`, where the base at c = 0 is positive, or SSE2, where the product
     /// would round alone) c is clamped first.
+    ///
+    /// Subnormals: bases in (0, `tmin`) make subnormal squarings, cosines in a band
+    /// `tmin / s` wide above the zero `1 - 1/s`. For `power4` and `power8` that band is under
+    /// 1.5e-4 of [0, 1] at every n >= 1 (`tmin` 3.3e-10 and 1.8e-5): rare, left alone. For
+    /// `power16` (`tmin` 4.3e-3: 3.4e-3 of [0, 1] at n = 20, which cost 1.3x) the base is
+    /// zeroed below `tmin` instead of at 0, selected into the first squaring
+    /// (`t >= tmin ? t^2 : 0`, also NaN and c < 0): free in a kernel bound by its five
+    /// multiplies, so no kernel of the family needs the flush-to-zero switch.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
         let s = self.s.t::<f32>();
-        if M::FMA && s >= 1.0 {
+        let t = if M::FMA && s >= 1.0 {
             let t = M::madd(s, c, 1.0 - s);
-            let t = if 1.0 < t { 1.0 } else { t };
-            pow2k(pos(t), K)
+            if 1.0 < t { 1.0 } else { t }
         } else {
-            crate::plan::clamped_batch::<Self, M>(self, c)
+            let x = if 0.0 > c { 0.0 } else { c };
+            let x = if 1.0 < x { 1.0 } else { x };
+            M::madd(s, x - 1.0, 1.0)
+        };
+        if K >= 4 {
+            let t2 = t * t;
+            pow2k(if t >= self.tmin { t2 } else { 0.0 }, K - 1)
+        } else {
+            pow2k(pos(t), K)
         }
     }
-    /// Subnormal squarings come from bases in (0, `tmin`), cosines in a band `tmin / s` wide
-    /// above the zero `1 - 1/s`: the switch pays for itself only where that band is wide.
     fn batch_ftz(&self) -> bool {
-        f64::from(self.tmin) / self.s.x > crate::plan::SUBNORMAL_BAND
+        false
     }
     fn zero_below(&self) -> f64 {
         (1.0 - 1.0 / self.s.x).max(0.0)
