@@ -537,7 +537,7 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
 }
 
 /// The denormal policy: a value the scalar model gives as a subnormal number is 0 from the
-/// kernel (power16 at n = 20 near its zero at c = 0.2: its base is zeroed below `base_min`;
+/// kernel (power16 at n = 20 near its zero at c = 0.2: its base is clamped at `base_min`;
 /// a Beckmann lobe far in its tail: flushed by the MXCSR switch), and the caller's
 /// floating-point state is restored afterwards.
 #[test]
@@ -590,7 +590,7 @@ fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
 }
 
 /// The denormal policy's choice per kernel (`Kernel::flush_to_zero`): the power forms never
-/// flush (power16 zeroes its base below `base_min`, checked in the test above; the others'
+/// flush (power16 clamps its base at `base_min`, checked in the test above; the others'
 /// subnormal bands are under 1.5e-4 of [0, 1]); `cubic` and `schlick` never (subnormals only from tiny inputs: a plain kernel
 /// then returns the subnormal value the scalar model gives), nor the spherical Gaussians
 /// (their `exp2` is built from bits); the others always. A plain

@@ -528,8 +528,8 @@ impl Kernel {
     /// `power16` 1.8x at n = 20). The switch (two MXCSR writes, restored on return, panics
     /// included) costs about 8 ns a call and varied between processes, so the lobes whose
     /// batch form makes subnormals only from rare inputs, or never, run without it
-    /// (`LobeForm::batch_ftz`: the power forms, `power16` zeroing its base below
-    /// `lobes::power::base_min`; `cubic`, `schlick`; the spherical Gaussians, whose `exp2` is
+    /// (`LobeForm::batch_ftz`: the power forms, `power16` clamping its base at
+    /// `lobes::power::base_min` and subtracting that base's power; `cubic`, `schlick`; the spherical Gaussians, whose `exp2` is
     /// built from bits) and may return a subnormal value where a flushing kernel gives 0.
     /// Other architectures: no switch.
     pub fn flush_to_zero(&self) -> bool {

@@ -88,6 +88,8 @@ pub struct Power<const K: u32> {
     /// The least base whose `2^K`-th power (by squarings in f32) is a normal number
     /// ([`base_min`]).
     tmin: f32,
+    /// `tmin^(2^K)` by the same squarings (about 2^-126).
+    tmin_pow: f32,
 }
 
 /// The least f32 `t` whose `2^k`-th power by `k` squarings is at least 2^-126 (the smallest
@@ -116,6 +118,7 @@ impl<const K: u32> Power<K> {
             s: Coef::new(n / f64::from(Self::G)),
             tuned: false,
             tmin: base_min(K),
+            tmin_pow: pow2k(base_min(K), K),
         })
     }
 
@@ -126,6 +129,7 @@ impl<const K: u32> Power<K> {
             s: Coef::new(super::tuned::power_slope(Self::G, n)),
             tuned: true,
             tmin: base_min(K),
+            tmin_pow: pow2k(base_min(K), K),
         })
     }
 }
@@ -163,9 +167,12 @@ impl<const K: u32> LobeForm for Power<K> {
     /// `tmin / s` wide above the zero `1 - 1/s`. For `power4` and `power8` that band is under
     /// 1.5e-4 of [0, 1] at every n >= 1 (`tmin` 3.3e-10 and 1.8e-5): rare, left alone. For
     /// `power16` (`tmin` 4.3e-3: 3.4e-3 of [0, 1] at n = 20, which cost 1.3x) the base is
-    /// zeroed below `tmin` instead of at 0, selected into the first squaring
-    /// (`t >= tmin ? t^2 : 0`, also NaN and c < 0): free in a kernel bound by its five
-    /// multiplies, so no kernel of the family needs the flush-to-zero switch.
+    /// clamped at `tmin` instead of 0 (`t > tmin ? t : tmin`, NaN and c < 0 included) and
+    /// `tmin^16` (1.2e-38) subtracted at the end: 0 exactly below `tmin`, 1.2e-38 less
+    /// elsewhere (1 stays 1), no subnormal squaring, and no compare; the subtraction runs
+    /// beside the five multiplies that bound the kernel (a compare and select ran slower;
+    /// on `power4`, whose multiplies do not dominate, the subtraction would not be free). So
+    /// no kernel of the family needs the flush-to-zero switch.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
         let s = self.s.t::<f32>();
@@ -178,8 +185,7 @@ impl<const K: u32> LobeForm for Power<K> {
             M::madd(s, x - 1.0, 1.0)
         };
         if K >= 4 {
-            let t2 = t * t;
-            pow2k(if t >= self.tmin { t2 } else { 0.0 }, K - 1)
+            pow2k(if t > self.tmin { t } else { self.tmin }, K) - self.tmin_pow
         } else {
             pow2k(pos(t), K)
         }
