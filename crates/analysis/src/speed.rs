@@ -1310,6 +1310,22 @@ mod tests {
     use super::*;
 
     #[test]
+    fn aligned_buffers_start_on_a_cache_line_and_hold_their_values() {
+        for len in [0usize, 1, 15, 16, 4096, 4097] {
+            let v: Vec<f32> = (0..len).map(|i| i as f32 * 0.5).collect();
+            let a = Aligned::from_slice(&v);
+            assert_eq!(&a[..], &v[..]);
+            // `align_offset` may decline in principle (then only speed suffers); on the
+            // platforms we build for it does not.
+            assert_eq!(a.as_ptr() as usize % 64, 0, "len {len}");
+            let mut z = Aligned::zeroed(len);
+            assert!(z.iter().all(|x| *x == 0.0) && z.len() == len);
+            z.copy_from_slice(&v);
+            assert_eq!(&z[..], &v[..]);
+        }
+    }
+
+    #[test]
     fn fma_slots_count_only_what_the_registry_can_count() {
         let info = |id: &str| fastbrdf::registry::find(id).unwrap().info;
         // power16: 5 mul, 1 add; fused, the add rides on a multiply.
