@@ -23,6 +23,11 @@ fn exp2_is_within_2_ulp() {
     );
     assert!(worst <= 2.0 * f32::EPSILON as f64, "{worst}");
     assert_eq!(math::exp2(-130.0), 0.0);
+    assert_eq!(math::exp2(-126.0), f32::MIN_POSITIVE);
+    for x in [-126.2f32, -126.6, -126.99] {
+        assert_eq!(math::exp2(x), 0.0, "exp2({x})");
+        assert_eq!(fastbrdf::math::fast::fma::exp2(x), 0.0, "fma::exp2({x})");
+    }
     assert_eq!(math::exp2(f32::NEG_INFINITY), 0.0);
     assert_eq!(math::exp2(200.0), f32::INFINITY);
     assert!(math::exp2(f32::NAN).is_nan());
@@ -669,6 +674,14 @@ fn nonpositive_exponentials_keep_the_bounds() {
         assert!(worst <= 2.0 * eps, "{name}: {worst:.3e}");
         assert_eq!(f(-200.0), 0.0, "{name}");
         assert_eq!(f(0.0), 1.0, "{name}");
+        if name.contains("exp2") {
+            // 2^-126 is the last normal result; below it 0 (the exponent addition cannot
+            // build subnormals, and used to return wrong ones there).
+            assert_eq!(f(-126.0), f32::MIN_POSITIVE, "{name}");
+            for x in [-126.001f32, -126.3, -126.5, -126.7, -126.999] {
+                assert_eq!(f(x), 0.0, "{name}({x})");
+            }
+        }
         let nan = f(f32::NAN);
         assert!(nan == 0.0 || nan.is_nan(), "{name}: {nan}");
     }

@@ -3,7 +3,8 @@
 //!
 //! Accuracy against f64 for f32 inputs (measured by `tests/batch.rs`):
 //! - `exp2`: relative error <= 2 ulp (split `x = k + f` exactly, degree-7 Taylor polynomial of
-//!   `2^f` on [-0.5, 0.5], truncation 5e-9). Exactly 0 below -127, +inf from 128.
+//!   `2^f` on [-0.5, 0.5], truncation 5e-9). Exactly 0 below -126 (where the result would be
+//!   subnormal: the exponent addition cannot build those), +inf from 128.
 //! - `log2_wide` (f64 result) for x in (0, 4): absolute error <= 1e-12 (atanh series to t^15 in
 //!   f64 on |t| <= 0.1716); `log2` is it rounded to f32 (<= 1 ulp). `log2(0) = -inf`;
 //!   negative inputs give NaN (callers clamp first).
@@ -100,7 +101,7 @@ pub fn exp2(x: f32) -> f32 {
 
 /// `exp2(x)` for `x <= 0` (the lobes' and distributions' exponents): no overflow or NaN
 /// branch; NaN gives 0 (the clamp `x > -127 ? x : -127` maps it below the range). Same
-/// accuracy as `exp2` on `[-127, 0]`.
+/// accuracy as `exp2` on `[-126, 0]`, 0 below.
 #[inline(always)]
 pub fn exp2_nonpos(x: f32) -> f32 {
     exp2_nonpos_g::<false>(x)
@@ -113,7 +114,7 @@ fn exp2_nonpos_g<const F: bool>(x: f32) -> f32 {
     let k = t - MAGIC;
     let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
     let r = scale2::<F>(ki, xc - k);
-    if xc > -127.0 { r } else { 0.0 }
+    if xc >= -126.0 { r } else { 0.0 }
 }
 
 /// `exp(x)` for `x <= 0`, as [`exp2_nonpos`] (`x log2 e` then the same reduction; the
@@ -146,7 +147,7 @@ fn exp2_g<const F: bool>(x: f32) -> f32 {
     // the bits of t.
     let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
     let r = scale2::<F>(ki, xc - k);
-    let r = if xc <= -127.0 { 0.0 } else { r };
+    let r = if xc < -126.0 { 0.0 } else { r };
     let r = if x >= 128.0 { f32::INFINITY } else { r };
     if x.is_nan() { x } else { r }
 }
@@ -164,7 +165,9 @@ fn estrin7<const F: bool>(x: f32, c: &[f32; 8]) -> f32 {
     madd::<F>(x4, madd::<F>(x2, e, d), madd::<F>(x2, b, a))
 }
 
-/// `2^(k + f)` for an integer `k` in [-127, 128] and `f` in [-0.5, 0.5].
+/// `2^(k + f)` for an integer `k` in [-126, 128] and `f` in [-0.5, 0.5], where the result is
+/// normal or +inf: the exponent addition has no subnormal form (at `k = -126` with `f < 0`, or
+/// `k = -127`, it would build a wrong bit pattern), so callers give 0 below `k + f = -126`.
 #[inline(always)]
 fn scale2<const F: bool>(ki: i32, f: f32) -> f32 {
     const C: [f32; 8] = [
@@ -191,7 +194,7 @@ fn exp2_wide<const F: bool>(a: f64) -> f32 {
     let k = t - MAGIC;
     let ki = (t.to_bits() as i64).wrapping_sub(MAGIC.to_bits() as i64) as i32;
     let r = scale2::<F>(ki, (ac - k) as f32);
-    let r = if ac <= -127.0 { 0.0 } else { r };
+    let r = if ac < -126.0 { 0.0 } else { r };
     let r = if a >= 128.0 { f32::INFINITY } else { r };
     if a.is_nan() { f32::NAN } else { r }
 }
@@ -361,7 +364,7 @@ pub(crate) fn pow_fma<const UNIT: bool>(x: f32, y: f32) -> f32 {
     // y log2 x = p_hi + p_lo, split as k + f with k from their rounded sum.
     let p_hi = y * s;
     let p_lo = madd::<true>(y, s, -p_hi) + y * l_lo;
-    // Below -127 the result is 0 (selected last), so the rounding trick, exact for
+    // Below -126 the result is 0 (selected last), so the rounding trick, exact for
     // |pa| < 2^22, may give anything there: no clamp.
     let pa = p_hi + p_lo;
     let tk = pa + MAGIC;
@@ -371,7 +374,7 @@ pub(crate) fn pow_fma<const UNIT: bool>(x: f32, y: f32) -> f32 {
     if UNIT {
         return if pa > -126.0 { v } else { 0.0 };
     }
-    let v = if pa > -127.0 { v } else { 0.0 };
+    let v = if pa >= -126.0 { v } else { 0.0 };
     let v = if x >= f32::MIN_POSITIVE { v } else { 0.0 };
     if x >= 0.0 { v } else { f32::NAN }
 }
