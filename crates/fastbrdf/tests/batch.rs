@@ -485,6 +485,25 @@ fn fma_variants_of_the_vector_functions_keep_their_bounds() {
         );
         x *= 1.001;
     }
+    // fma::log2 is f32 arithmetic (flog's kernels): one epsilon, mixed absolute/relative, over the
+    // normal floats up to 2^24 and every f32 within 4096 ulp of 1, its hardest neighbourhood.
+    let mut worst_log: f64 = 0.0;
+    let mut x = f32::MIN_POSITIVE;
+    let near_one = (-4096..=4096).map(|k| f32::from_bits((1.0f32.to_bits() as i32 + k) as u32));
+    let mut grid = vec![];
+    while x < 16_777_216.0 {
+        grid.push(x);
+        x *= 1.000_03;
+    }
+    for x in grid.into_iter().chain(near_one) {
+        let want = (x as f64).log2();
+        worst_log = worst_log.max((fma::log2(x) as f64 - want).abs() / want.abs().max(1.0));
+    }
+    println!("fma::log2 max error {worst_log:.3e}");
+    assert!(worst_log <= eps, "fma::log2: {worst_log:.3e}");
+    assert_eq!(fma::log2(0.0), f32::NEG_INFINITY);
+    assert_eq!(fma::log2(1.0), 0.0);
+    assert!(fma::log2(-1.0).is_nan() && fma::log2(f32::NAN).is_nan());
     // fma::pow is double-f32 (not the f64 form): the same grid as `math::pow`'s test, and
     // every f32 in the interval edges' neighbourhoods of its three reduction centres.
     for y in [
