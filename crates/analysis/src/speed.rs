@@ -723,6 +723,8 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         let limit = limit_fraction(info, isa, p.kernel_evals_per_s.median, fma, div);
         p.kernel_limit = limit.map(|l| l.0.into());
         p.kernel_limit_fraction = limit.map(|l| l.1);
+        p.peer_limit_fraction =
+            limit_fraction(info, isa, p.peer_evals_per_s.median, fma, div).map(|l| l.1);
     }
     progress(total, total);
     Ok(Report {
@@ -1187,6 +1189,11 @@ pub struct PeerRow {
     pub kernel_limit: Option<String>,
     #[serde(default)]
     pub kernel_limit_fraction: Option<f64>,
+    /// The C loop's median rate against the same limit, counted with the model's own
+    /// operations (what the same arithmetic at the C loop's rate would use): how close the
+    /// peer is to the bound the kernel is held to.
+    #[serde(default)]
+    pub peer_limit_fraction: Option<f64>,
 }
 
 /// How long the race runs.
@@ -1300,6 +1307,7 @@ pub fn peer_rows(
             daz: state.map(|s| s.1),
             kernel_limit: None,
             kernel_limit_fraction: None,
+            peer_limit_fraction: None,
         });
     }
     Ok(rows)

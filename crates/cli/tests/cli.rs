@@ -910,6 +910,20 @@ fn bench_peers_have_the_documented_shape_and_old_runs_still_load() {
         assert_eq!(p["peer"], format!("peer_{}", p["model"].as_str().unwrap()));
     }
     assert_eq!(peers[2]["params"], "alpha=0.3");
+    // power16 is held against the FMA pipes, and so is its C loop (same operation count);
+    // pow and beckmann have transcendentals: no fraction on either side.
+    assert_eq!(peers[1]["kernel_limit"], "fma");
+    let (k, c) = (
+        peers[1]["kernel_limit_fraction"].as_f64().unwrap(),
+        peers[1]["peer_limit_fraction"].as_f64().unwrap(),
+    );
+    let ratio = peers[1]["kernel_evals_per_s"]["median"].as_f64().unwrap()
+        / peers[1]["peer_evals_per_s"]["median"].as_f64().unwrap();
+    assert!(
+        c > 0.0 && ((k / c) / ratio - 1.0).abs() < 1e-9,
+        "{k} {c} {ratio}"
+    );
+    assert!(peers[0]["peer_limit_fraction"].is_null() && peers[2]["peer_limit_fraction"].is_null());
     // The saved run renders its peer table (Markdown and text).
     let d = temp_dir("bench-peers");
     let path = d.join("run.json");
@@ -919,7 +933,7 @@ fn bench_peers_have_the_documented_shape_and_old_runs_still_load() {
     assert!(md.status.success(), "{}", stderr(&md));
     let md = stdout(&md);
     assert!(
-        md.contains("| model | kernel | C peer | kernel / C |"),
+        md.contains("| model | kernel | C peer | kernel / C |") && md.contains("| C % of limit |"),
         "{md}"
     );
     assert!(

@@ -29,7 +29,7 @@ pub struct Args {
     /// variant, batch, evals_per_s, isa, fma_fraction, limit, limit_fraction}], "speedups": [{name, measured, claimed, how}], "quick",
     /// "peers": [{model, params, batch, repeats, rounds, isa, kernel_evals_per_s,
     /// peer_evals_per_s, ratio, kernel_max_error, peer_max_error, peer, compiler, flags,
-    /// libmvec, ftz, daz, kernel_limit, kernel_limit_fraction}], and with --gpu "gpu" (the adapter's label)}; GPU rows have variant
+    /// libmvec, ftz, daz, kernel_limit, kernel_limit_fraction, peer_limit_fraction}], and with --gpu "gpu" (the adapter's label)}; GPU rows have variant
     /// "gpu" or "gpu+transfer" and isa "gpu". Each peers row races the batch kernel against
     /// the C loop `peer` (crates/analysis/c/peer.c, built with `compiler` at `flags`):
     /// `kernel_evals_per_s`, `peer_evals_per_s` and `ratio` (kernel over peer, per round) are
@@ -42,8 +42,10 @@ pub struct Args {
     /// `limit` names the machine limit a kernel is held against, "fma" (the FMA pipes,
     /// `fma_per_s`) or "divider" (the divide unit, `div_per_s` lane divisions per second),
     /// whichever its multiplies, adds and divisions use more of, and `limit_fraction` the share
-    /// used (single-thread "simd" rows; `kernel_limit*` for the peers' median); null where a
-    /// square root or transcendental makes the count meaningless.
+    /// used (single-thread "simd" rows; `kernel_limit*` for the peers' median, and
+    /// `peer_limit_fraction` the C loop's median against the same limit with the same
+    /// operation count); null where a square root or transcendental makes the count
+    /// meaningless.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown tables that README.md shows.
@@ -474,22 +476,23 @@ fn peer_table(r: &Report, md: bool) -> String {
     if md {
         let _ = writeln!(
             s,
-            "| model | kernel | C peer | kernel / C | kernel max error | C max error | kernel % of limit | ISA | rounds x calls |\n|---|---|---|---|---|---|---|---|---|"
+            "| model | kernel | C peer | kernel / C | kernel max error | C max error | kernel % of limit | C % of limit | ISA | rounds x calls |\n|---|---|---|---|---|---|---|---|---|---|"
         );
     } else {
         let _ = writeln!(
             s,
-            "  {:<22} {:>26} {:>26} {:>20} {:>9} {:>9} {:>9}  {:<7} rounds x calls",
-            "model", "kernel", "C peer", "kernel / C", "k err", "C err", "% limit", "isa"
+            "  {:<22} {:>26} {:>26} {:>20} {:>9} {:>9} {:>9} {:>9}  {:<7} rounds x calls",
+            "model", "kernel", "C peer", "kernel / C", "k err", "C err", "% limit", "C %", "isa"
         );
     }
     for p in &r.peers {
         let name = format!("{} {}", p.model, p.params);
         let limit = limit_text(p.kernel_limit.as_deref(), p.kernel_limit_fraction, None);
+        let peer_limit = limit_text(p.kernel_limit.as_deref(), p.peer_limit_fraction, None);
         if md {
             let _ = writeln!(
                 s,
-                "| `{}` {} | {} | {} | {} | {:.1e} | {:.1e} | {limit} | {} | {} x {} |",
+                "| `{}` {} | {} | {} | {} | {:.1e} | {:.1e} | {limit} | {peer_limit} | {} | {} x {} |",
                 p.model,
                 p.params,
                 iqr(&p.kernel_evals_per_s),
@@ -504,7 +507,7 @@ fn peer_table(r: &Report, md: bool) -> String {
         } else {
             let _ = writeln!(
                 s,
-                "  {:<22} {:>26} {:>26} {:>20} {:>9.1e} {:>9.1e} {limit:>9}  {:<7} {} x {}",
+                "  {:<22} {:>26} {:>26} {:>20} {:>9.1e} {:>9.1e} {limit:>9} {peer_limit:>9}  {:<7} {} x {}",
                 name,
                 iqr(&p.kernel_evals_per_s),
                 iqr(&p.peer_evals_per_s),
