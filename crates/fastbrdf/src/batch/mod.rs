@@ -138,26 +138,15 @@ pub trait Op6: Send + Sync + 'static {
 }
 
 /// A lobe with `Lobe::eval`'s rules ([`LobeForm::batch`]).
-struct LobeOp<L> {
-    lobe: L,
-    /// `LobeForm::batch_ftz`, decided once.
-    ftz: bool,
-}
-impl<L: LobeForm> LobeOp<L> {
-    fn new(lobe: L) -> Self {
-        Self {
-            ftz: lobe.batch_ftz(),
-            lobe,
-        }
-    }
-}
+struct LobeOp<L>(L);
 impl<L: LobeForm> Op1 for LobeOp<L> {
+    // Read once, by `Kernel::new`.
     fn ftz(&self) -> bool {
-        self.ftz
+        self.0.batch_ftz()
     }
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
-        self.lobe.batch::<M>(c)
+        self.0.batch::<M>(c)
     }
 }
 
@@ -453,7 +442,7 @@ pub fn lobe_brdf_kernel(b: &LobeBrdf) -> Box<dyn Imp> {
 /// The kernel of a plan; `None` for shadowing terms (several cosines per element).
 fn kernel_of(plan: &Plan) -> Option<Box<dyn Imp>> {
     Some(match plan {
-        Plan::Lobe(l) => with_lobe!(l, x => Box::new(Map1(LobeOp::new(*x))) as Box<dyn Imp>),
+        Plan::Lobe(l) => with_lobe!(l, x => Box::new(Map1(LobeOp(*x))) as Box<dyn Imp>),
         Plan::Distribution(d) => with_dist!(d, x => Box::new(Map1(DistOp(*x))) as Box<dyn Imp>),
         Plan::Fresnel(f) => with_fresnel!(f, x => Box::new(Map1(FresnelOp(*x))) as Box<dyn Imp>),
         // Composites are instantiated with their parts' concrete families (a composite not
@@ -529,8 +518,9 @@ impl Kernel {
     /// included) costs about 8 ns a call and varied between processes, so the lobes whose
     /// batch form makes subnormals only from rare inputs, or never, run without it
     /// (`LobeForm::batch_ftz`: the power forms, `power16` clamping its base at
-    /// `lobes::power::base_min` and subtracting that base's power; `cubic`, `schlick`; the spherical Gaussians, whose `exp2` is
-    /// built from bits) and may return a subnormal value where a flushing kernel gives 0.
+    /// `lobes::power::base_min` and subtracting that base's power; `cubic`, `schlick`; the
+    /// spherical Gaussians, whose `exp2` is built from bits) and may return a subnormal value
+    /// where a flushing kernel gives 0.
     /// Other architectures: no switch.
     pub fn flush_to_zero(&self) -> bool {
         self.ftz

@@ -114,23 +114,26 @@ impl<const K: u32> Power<K> {
     /// The lobe with `s = n / 2^K`; `n` must be in [1, 100000].
     pub fn new(n: f64) -> Result<Self> {
         let n = params::check("power", &params::N, n)?;
-        Ok(Self {
-            s: Coef::new(n / f64::from(Self::G)),
-            tuned: false,
-            tmin: base_min(K),
-            tmin_pow: pow2k(base_min(K), K),
-        })
+        Ok(Self::with_slope(n / f64::from(Self::G), false))
     }
 
     /// The tuned lobe at exponent `n` (slope `tuned::power_slope`).
     pub fn tuned(n: f64) -> Result<Self> {
         let n = params::check("power-tuned", &params::N, n)?;
-        Ok(Self {
-            s: Coef::new(super::tuned::power_slope(Self::G, n)),
-            tuned: true,
-            tmin: base_min(K),
-            tmin_pow: pow2k(base_min(K), K),
-        })
+        Ok(Self::with_slope(
+            super::tuned::power_slope(Self::G, n),
+            true,
+        ))
+    }
+
+    fn with_slope(s: f64, tuned: bool) -> Self {
+        let tmin = base_min(K);
+        Self {
+            s: Coef::new(s),
+            tuned,
+            tmin,
+            tmin_pow: pow2k(tmin, K),
+        }
     }
 }
 
