@@ -226,6 +226,19 @@ fn exp_g<const F: bool>(x: f32) -> f32 {
     if x.is_nan() { x } else { r }
 }
 
+/// `x = 2^e m` with `m` in [2^-1/2, 2^1/2), read from the bits (exact; a subnormal `x` gives
+/// `e = -127` or -126 and its mantissa bits as `m`, which the callers' `x < 2^-126` select
+/// overrides). The reduction of every `log2` form here.
+#[inline(always)]
+fn split(x: f32) -> (i32, f32) {
+    let bits = x.to_bits();
+    let e = ((bits >> 23) & 0xff) as i32 - 127;
+    let m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000); // [1, 2)
+    let big = m > std::f32::consts::SQRT_2;
+    let m = if big { m * 0.5 } else { m };
+    (if big { e + 1 } else { e }, m)
+}
+
 /// `log2(x)` in f64 for an f32 `x >= 0` (normal or zero; subnormals are treated as zero).
 #[inline(always)]
 pub fn log2_wide(x: f32) -> f64 {
@@ -234,12 +247,10 @@ pub fn log2_wide(x: f32) -> f64 {
 
 #[inline(always)]
 fn log2_wide_g<const F: bool>(x: f32) -> f64 {
-    let bits = x.to_bits();
-    let e = ((bits >> 23) & 0xff) as i32 - 127;
-    let m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000) as f64; // [1, 2)
-    let big = m > std::f64::consts::SQRT_2;
-    let m = if big { m * 0.5 } else { m };
-    let e = if big { e + 1 } else { e } as f64;
+    // The f32 split is exact, and no f32 lies between f32's SQRT_2 and sqrt(2): the same
+    // reduction as comparing in f64.
+    let (e, m) = split(x);
+    let (e, m) = (f64::from(e), f64::from(m));
     let t = (m - 1.0) / (m + 1.0);
     let t2 = t * t;
     const K: f64 = 2.0 * std::f64::consts::LOG2_E;
@@ -272,19 +283,15 @@ pub fn log2(x: f32) -> f32 {
 /// [2^-1/2, 2^1/2): `t = (m - 1) / (m + 1)`, `|t| <= 0.1716` (`m - 1` exact), `log2 m =
 /// (2 / ln 2)(t + t^3/3 + ... + t^11/11)` (truncation 5e-11 relative), then `e + log2 m` with
 /// 2 / ln 2 as head and tail. At most one f32 epsilon (1.2e-7) absolute below 1 and relative
-/// above (measured 1.0e-7, `tests/batch.rs`). `-inf` for `x < 2^-126` (subnormals as zero, as `log2_wide`), NaN for
-/// NaN and negative `x`.
+/// above (measured 1.0e-7, `tests/batch.rs`). `-inf` for `x < 2^-126` (subnormals as zero,
+/// as `log2_wide`), NaN for NaN and negative `x`.
 #[inline(always)]
 fn log2_g<const F: bool>(x: f32) -> f32 {
     // 2 / ln 2 as f32 head and tail.
     const KH: f32 = (2.0 * std::f64::consts::LOG2_E) as f32;
     const KL: f32 = (2.0 * std::f64::consts::LOG2_E - KH as f64) as f32;
-    let bits = x.to_bits();
-    let e = ((bits >> 23) & 0xff) as i32 - 127;
-    let m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000); // [1, 2)
-    let big = m > std::f32::consts::SQRT_2;
-    let m = if big { m * 0.5 } else { m };
-    let e = (if big { e + 1 } else { e }) as f32;
+    let (e, m) = split(x);
+    let e = e as f32;
     let t = (m - 1.0) / (m + 1.0);
     let t2 = t * t;
     let p = madd::<F>(
@@ -346,12 +353,8 @@ pub(crate) fn pow_fma<const UNIT: bool>(x: f32, y: f32) -> f32 {
     const LC_TAIL_DN: f32 = -5.104_004e-6;
     const EDGE_UP: f32 = 1.122_462;
     const EDGE_DN: f32 = 0.890_898_7;
-    let bits = x.to_bits();
-    let e = ((bits >> 23) & 0xff) as i32 - 127;
-    let m = f32::from_bits((bits & 0x007f_ffff) | 0x3f80_0000); // [1, 2)
-    let big = m > std::f32::consts::SQRT_2;
-    let m = if big { m * 0.5 } else { m };
-    let e = (if big { e + 1 } else { e }) as f32;
+    let (e, m) = split(x);
+    let e = e as f32;
     let up = m >= EDGE_UP;
     let dn = m < EDGE_DN;
     let c = if up {
