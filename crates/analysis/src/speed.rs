@@ -439,13 +439,17 @@ pub struct Inputs {
 impl Inputs {
     /// `n` cosines and `n` direction pairs, deterministic.
     pub fn new(n: usize) -> Self {
-        let cos: Vec<f32> = (0..n)
-            .into_par_iter()
-            .map(|i| {
-                let mut s = i as u64 * 7 + 1;
-                splitmix(&mut s) as f32
-            })
-            .collect();
+        // Each column is written in place into its aligned buffer (no Vec to copy from: the
+        // large batch is 16M elements a column).
+        let fill = |f: &(dyn Fn(usize) -> f32 + Sync)| {
+            let mut a = Aligned::zeroed(n);
+            a.par_iter_mut().enumerate().for_each(|(i, o)| *o = f(i));
+            a
+        };
+        let cos = fill(&|i| {
+            let mut s = i as u64 * 7 + 1;
+            splitmix(&mut s) as f32
+        });
         let pairs: Vec<[f32; 6]> = (0..n)
             .into_par_iter()
             .map(|i| {
@@ -460,21 +464,12 @@ impl Inputs {
                 [a[0], a[1], a[2], b[0], b[1], b[2]]
             })
             .collect();
-        let dirs = std::array::from_fn(|k| {
-            Aligned::from_slice(&pairs.iter().map(|p| p[k]).collect::<Vec<_>>())
+        let dirs = std::array::from_fn(|k| fill(&|i| pairs[i][k]));
+        let alpha = fill(&|i| {
+            let mut s = i as u64 * 13 + 5;
+            (0.005 + 0.995 * splitmix(&mut s)) as f32
         });
-        let alpha: Vec<f32> = (0..n)
-            .into_par_iter()
-            .map(|i| {
-                let mut s = i as u64 * 13 + 5;
-                (0.005 + 0.995 * splitmix(&mut s)) as f32
-            })
-            .collect();
-        Self {
-            cos: Aligned::from_slice(&cos),
-            dirs,
-            alpha: Aligned::from_slice(&alpha),
-        }
+        Self { cos, dirs, alpha }
     }
 
     /// The batch input of a model of `kind`: its first `len` elements.
