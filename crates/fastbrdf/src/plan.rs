@@ -46,6 +46,15 @@ pub fn clamped_batch<L: LobeForm, M: Math<f32>>(lobe: &L, c: f32) -> f32 {
     if L::NAN_TO_ZERO || v > 0.0 { v } else { 0.0 }
 }
 
+/// [`DistForm::batch`]'s default, `Distribution::eval`'s rules: `cos_h > 1` is treated as 1,
+/// NaN and `cos_h < COS_MIN` give 0, `sin^2` as `(1 - c)(1 + c)`.
+#[inline(always)]
+pub fn clamped_dist_batch<D: DistForm, M: Math<f32>>(dist: &D, c: f32) -> f32 {
+    let cc = if c < 1.0 { c } else { 1.0 };
+    let v = dist.d::<f32, M>(cc, (1.0 - cc) * (1.0 + cc));
+    if c >= COS_MIN as f32 { v } else { 0.0 }
+}
+
 /// A function of one cosine (a specular lobe).
 pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     /// The WGSL functions of its twin: the `.wgsl` file beside the family's Rust file
@@ -122,6 +131,13 @@ pub trait DistForm: Copy + Debug + Send + Sync + 'static {
     const ANISO: bool = false;
     /// `D` at `cos_h` in `[COS_MIN, 1]` with `sin2_h = sin^2 theta_h`.
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T;
+    /// The batch kernels' value at any f32 `cos_h`, with `Distribution::eval`'s rules; the
+    /// default is [`clamped_dist_batch`]. A family may fold the rules into its formula (as
+    /// [`LobeForm::batch`]); the batch tests hold it to the scalar model everywhere.
+    #[inline(always)]
+    fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
+        clamped_dist_batch::<Self, M>(self, c)
+    }
     /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String;
     /// How `cook-torrance` samples half vectors for this D (see [`DistSampler`]).

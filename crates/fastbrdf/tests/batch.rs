@@ -706,6 +706,54 @@ fn nonpositive_exponentials_keep_the_bounds() {
     }
 }
 
+/// `exp2_nonpos_times` (Beckmann's batch form): `s 2^x` within 3 ulp on [-123, 0] for scales
+/// across the documented [1/4, 2^64] (Beckmann's and Cook-Torrance's at alpha 1 and 0.005
+/// among them), exactly `s` at 0, and 0 below -123 and for NaN.
+#[test]
+fn scaled_exponential_keeps_its_bound() {
+    use fastbrdf::math::fast::{self, fma};
+    let eps = f32::EPSILON as f64;
+    for (name, f) in [
+        (
+            "exp2_nonpos_times",
+            fast::exp2_nonpos_times as fn(f32, f32) -> f32,
+        ),
+        ("fma::exp2_nonpos_times", fma::exp2_nonpos_times),
+    ] {
+        for s in [
+            0.25f32,
+            1.0 / std::f32::consts::PI,
+            1.0,
+            3.5368,
+            1.2732e4,
+            2f32.powi(64),
+        ] {
+            let steps = 200_000;
+            let mut worst: f64 = 0.0;
+            for i in 0..=steps {
+                let x = -123.0 * i as f32 / steps as f32;
+                let want = s as f64 * (x as f64).exp2();
+                let got = f(x, s) as f64;
+                assert!(got.is_normal(), "{name}({x}, {s}) = {got:e}");
+                worst = worst.max((got - want).abs() / want);
+            }
+            println!("{name} s = {s:e}: {worst:.2e}");
+            assert!(worst <= 3.0 * eps, "{name} s = {s}: {worst:.3e}");
+            assert_eq!(f(0.0, s), s, "{name}");
+            for x in [
+                -123.01f32,
+                -126.0,
+                -127.5,
+                -1e30,
+                f32::NEG_INFINITY,
+                f32::NAN,
+            ] {
+                assert_eq!(f(x, s), 0.0, "{name}({x}, {s})");
+            }
+        }
+    }
+}
+
 /// issue 14: anisotropic `cook-torrance` (`alpha_x`, `alpha_y`: the registry-wide test above
 /// gives them equal) in the batch kernels on every ISA against the scalar f32 model, every
 /// allowed D and G, slopes to their extremes, within twice the anisotropic f32 bound.

@@ -33,7 +33,6 @@ use crate::plan::{
     with_env, with_fresnel, with_lobe, with_shadow,
 };
 use crate::registry;
-use crate::vec3::COS_MIN;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::OnceLock;
@@ -155,9 +154,7 @@ struct DistOp<D>(D);
 impl<D: DistForm> Op1 for DistOp<D> {
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
-        let cc = if c < 1.0 { c } else { 1.0 };
-        let v = self.0.d::<f32, M>(cc, (1.0 - cc) * (1.0 + cc));
-        if c >= COS_MIN as f32 { v } else { 0.0 }
+        self.0.batch::<M>(c)
     }
 }
 

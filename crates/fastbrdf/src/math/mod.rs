@@ -40,6 +40,11 @@ pub trait Math<T: Real> {
     fn exp_nonpos(x: T) -> T {
         Self::exp(x)
     }
+    /// `s 2^x` for `x <= 0` and `s` in [1/4, 2^64]: the vector backends fold `s` into the
+    /// polynomial and give 0 where `x < -123` (see [`fast::exp2_nonpos_times`]).
+    fn exp2_nonpos_times(x: T, s: T) -> T {
+        s * Self::exp2_nonpos(x)
+    }
     /// `a b + c`: two roundings in `Exact` and `Fast` (the scalar models keep their documented
     /// f32 behaviour; SSE2 has no FMA), one in `FastFma`.
     fn madd(a: T, b: T, c: T) -> T;
@@ -121,6 +126,10 @@ impl Math<f32> for Fast {
     fn exp_nonpos(x: f32) -> f32 {
         math::exp_nonpos(x)
     }
+    #[inline(always)]
+    fn exp2_nonpos_times(x: f32, s: f32) -> f32 {
+        math::exp2_nonpos_times(x, s)
+    }
 }
 
 /// `Fast` with fused multiply-adds, in the formulas and in the polynomials of
@@ -170,5 +179,9 @@ impl Math<f32> for FastFma {
     #[inline(always)]
     fn exp_nonpos(x: f32) -> f32 {
         fast::fma::exp_nonpos(x)
+    }
+    #[inline(always)]
+    fn exp2_nonpos_times(x: f32, s: f32) -> f32 {
+        fast::fma::exp2_nonpos_times(x, s)
     }
 }
