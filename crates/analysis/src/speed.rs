@@ -933,6 +933,7 @@ mod ffi {
         pub fn peer_cubic(x: *const f32, out: *mut f32, n: usize, a: f32, b: f32, d: f32, cut: f32);
         pub fn peer_schlick(x: *const f32, out: *mut f32, n: usize, e: f32);
         pub fn peer_beckmann(x: *const f32, out: *mut f32, n: usize, inv_a2: f32, scale: f32);
+        pub fn peer_ggx(x: *const f32, out: *mut f32, n: usize, a2m1: f32, scale: f32);
     }
 }
 
@@ -954,6 +955,8 @@ enum PeerFn {
     Schlick(f32),
     /// `scale expf(max(-87, -tan^2 inv_a2)) / cos^4`.
     Beckmann { inv_a2: f32, scale: f32 },
+    /// `scale / ((alpha^2 - 1) c^2 + 1)^2`, `scale = alpha^2 / pi`, 0 for `c <= 0`.
+    Ggx { a2m1: f32, scale: f32 },
 }
 
 /// One C peer: the model it stands in for (id and parameters) and its loop.
@@ -968,7 +971,7 @@ pub struct Peer {
 
 impl Peer {
     /// The peer of `id` (`pow`, `sg`, `power4`, `power8`, `power16`, `cubic`, `schlick`: at
-    /// `n`; `beckmann`: at `alpha`), `None` for a model without one.
+    /// `n`; `beckmann`, `ggx`: at `alpha`), `None` for a model without one.
     pub fn new(id: &str, param: f64) -> Option<Self> {
         let n = param;
         let (id, function, name, f) = match id {
@@ -1005,6 +1008,14 @@ impl Peer {
                     scale: (1.0 / (std::f64::consts::PI * a2)) as f32,
                 };
                 ("beckmann", "peer_beckmann", "alpha", f)
+            }
+            "ggx" => {
+                let a2 = param * param;
+                let f = PeerFn::Ggx {
+                    a2m1: (a2 - 1.0) as f32,
+                    scale: (a2 / std::f64::consts::PI) as f32,
+                };
+                ("ggx", "peer_ggx", "alpha", f)
             }
             _ => return None,
         };
@@ -1046,6 +1057,7 @@ impl Peer {
                 PeerFn::Cubic { a, b, d, cut } => ffi::peer_cubic(x, o, n, a, b, d, cut),
                 PeerFn::Schlick(e) => ffi::peer_schlick(x, o, n, e),
                 PeerFn::Beckmann { inv_a2, scale } => ffi::peer_beckmann(x, o, n, inv_a2, scale),
+                PeerFn::Ggx { a2m1, scale } => ffi::peer_ggx(x, o, n, a2m1, scale),
             }
         }
     }
@@ -1058,8 +1070,8 @@ fn power(squarings: u32, n: f64) -> PeerFn {
     }
 }
 
-/// The peers the benchmark races: the lobes at n = 200 (as the kernel rows) and Beckmann at
-/// alpha = 0.3.
+/// The peers the benchmark races: the lobes at n = 200 (as the kernel rows), Beckmann and GGX
+/// at alpha = 0.3.
 pub fn peers() -> Vec<Peer> {
     let lobes = [
         "pow", "sg", "power4", "power8", "power16", "cubic", "schlick",
@@ -1069,6 +1081,7 @@ pub fn peers() -> Vec<Peer> {
         .map(|id| Peer::new(id, 200.0).expect("a peer exists"))
         .collect();
     v.push(Peer::new("beckmann", 0.3).expect("a peer exists"));
+    v.push(Peer::new("ggx", 0.3).expect("a peer exists"));
     v
 }
 
@@ -1470,7 +1483,7 @@ mod tests {
         assert_eq!(
             ids,
             [
-                "pow", "sg", "power4", "power8", "power16", "cubic", "schlick", "beckmann"
+                "pow", "sg", "power4", "power8", "power16", "cubic", "schlick", "beckmann", "ggx"
             ]
         );
         for (id, peer, kernel) in errors {

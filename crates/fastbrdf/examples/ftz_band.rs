@@ -1,4 +1,5 @@
-//! The denormal policy's measurement (`Kernel::flush_to_zero`): each lobe kernel below is
+//! The denormal policy's measurement (`Kernel::flush_to_zero`): each lobe (and distribution,
+//! at `alpha`) kernel below is
 //! timed on 4096 uniform cosines (L1-resident) with the flush-to-zero switch and without it,
 //! interleaved round by round; the output gives both rates, their ratio, the width of the band
 //! of cosines whose squarings would be subnormal (power forms: `base_min(K) / s`; `power16`
@@ -44,9 +45,16 @@ fn main() {
         ("cubic", 200.0),
         ("schlick", 200.0),
         ("sg", 200.0),
+        ("ggx", 0.3),
+        ("beckmann", 0.3),
     ] {
         let text = format!("{exponent}");
-        let mut k = Kernel::new(id, &[("n", &text)]).unwrap();
+        let name = if id == "ggx" || id == "beckmann" {
+            "alpha"
+        } else {
+            "n"
+        };
+        let mut k = Kernel::new(id, &[(name, &text)]).unwrap();
         let chosen = k.flush_to_zero();
         let band = match id {
             "power4" => Some(base_min(2) as f64 / (exponent / 4.0)),

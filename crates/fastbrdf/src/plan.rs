@@ -138,6 +138,10 @@ pub trait DistForm: Copy + Debug + Send + Sync + 'static {
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
         clamped_dist_batch::<Self, M>(self, c)
     }
+    /// Whether the batch kernel runs with flush-to-zero set, as [`LobeForm::batch_ftz`].
+    fn batch_ftz(&self) -> bool {
+        true
+    }
     /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String;
     /// How `cook-torrance` samples half vectors for this D (see [`DistSampler`]).

@@ -640,6 +640,7 @@ fn the_flush_to_zero_switch_is_decided_per_kernel() {
     assert!(!ftz("cubic", "200") && !ftz("schlick", "200"));
     assert!(!ftz("sg", "200") && !ftz("ue4-phong-approx", "20") && ftz("pow", "200"));
     assert!(Kernel::new("beckmann", &[]).unwrap().flush_to_zero());
+    assert!(!Kernel::new("ggx", &[]).unwrap().flush_to_zero());
     let k = Kernel::new("schlick", &[("n", "200")]).unwrap();
     let Model::Lobe(m) = registry::build::<f32>("schlick", &[("n", "200")]).unwrap() else {
         panic!()

@@ -12,7 +12,7 @@ use std::path::PathBuf;
     after_help = "Examples:\n  fastbrdf bench --quick\n  fastbrdf bench --json > bench.json\n  \
 fastbrdf bench --from bench.json --markdown\n  fastbrdf bench --models pow,power16,cook-torrance\n  \
 fastbrdf bench --gpu --quick\n\n\
-Every run also races each lobe's (n = 200) and Beckmann's (alpha = 0.3) batch kernel against\n\
+Every run also races each lobe's (n = 200), Beckmann's and GGX's (alpha = 0.3) batch kernel against\n\
 the plain C loop a user would write (powf, exp2f, expf, squarings; compiled with the system C\n\
 compiler at -O3 -march=native -ffast-math), interleaved in the same process on the same\n\
 inputs, with both sides' error against the f64 model and the FTZ/DAZ state (\"C peers\").\n\n\

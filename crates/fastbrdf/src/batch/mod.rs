@@ -152,6 +152,9 @@ impl<L: LobeForm> Op1 for LobeOp<L> {
 /// A distribution with `Distribution::eval`'s rules.
 struct DistOp<D>(D);
 impl<D: DistForm> Op1 for DistOp<D> {
+    fn ftz(&self) -> bool {
+        self.0.batch_ftz()
+    }
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
         self.0.batch::<M>(c)
