@@ -138,7 +138,8 @@ pub fn exp2_nonpos_times(x: f32, s: f32) -> f32 {
 /// error (Remez exchange in 40-digit arithmetic; 1.97e-9 before rounding to f32).
 pub const EXP2_C6: [f32; 7] = [
     1.0,
-    0.693_147_2,
+    // 0.693147202855 rounds to the same f32 as ln 2.
+    std::f32::consts::LN_2,
     0.240_226_48,
     0.055_503_324,
     0.009_618_437,

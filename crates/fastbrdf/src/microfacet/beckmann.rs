@@ -146,12 +146,7 @@ impl DistForm for Beckmann {
     /// `exp_nonpos` takes 21. Same f32 bound, tested against the scalar model on every ISA.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
-        let cc = if c < 1.0 { c } else { 1.0 };
-        let s2 = if M::FMA {
-            M::madd(-cc, cc, 1.0)
-        } else {
-            (1.0 - cc) * (1.0 + cc)
-        };
+        let (cc, s2) = crate::plan::clamp_sin2::<M>(c);
         let q = s2 / (cc * cc);
         let ic = 1.0 + q;
         let v = M::exp2_nonpos_times(q * self.log2_k.t::<f32>(), self.scale.t::<f32>()) * (ic * ic);

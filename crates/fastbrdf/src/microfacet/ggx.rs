@@ -103,12 +103,7 @@ impl DistForm for Ggx {
     /// `(alpha^2 - 1) c^2 + 1`.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
-        let cc = if c < 1.0 { c } else { 1.0 };
-        let s2 = if M::FMA {
-            M::madd(-cc, cc, 1.0)
-        } else {
-            (1.0 - cc) * (1.0 + cc)
-        };
+        let (_, s2) = crate::plan::clamp_sin2::<M>(c);
         let t = M::madd(self.one_minus_alpha2.t::<f32>(), s2, self.alpha2.t::<f32>());
         let v = self.scale.t::<f32>() / (t * t);
         if c >= crate::vec3::COS_MIN as f32 {
