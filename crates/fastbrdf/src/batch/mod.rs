@@ -470,6 +470,12 @@ pub struct Kernel {
     imp: Box<dyn Imp>,
     /// Whether calls run with flush-to-zero set (`flush_to_zero`).
     ftz: bool,
+    /// Whether a SIMD kernel exists (`imp.simd()`, read once).
+    simd: bool,
+    /// The instruction set `eval` and `eval_par` run (`Isa::best()`, or the baseline loop for
+    /// a scalar fallback, which ignores it), decided once: a call then does no detection, no
+    /// check of a caller's choice and no virtual call before the kernel's own.
+    run_isa: Isa,
 }
 
 impl Kernel {
@@ -488,10 +494,13 @@ impl Kernel {
             expected: "lobe, distribution, fresnel, brdf or env".into(),
             found: "shadowing".into(),
         })?;
+        let simd = imp.simd();
         Ok(Self {
             id,
             kind: plan.kind(),
             ftz: imp.ftz(),
+            simd,
+            run_isa: if simd { Isa::best() } else { Isa::Sse2 },
             imp,
         })
     }
@@ -509,7 +518,7 @@ impl Kernel {
     /// Whether a SIMD kernel exists (else the scalar model runs per element).
     #[inline]
     pub fn simd(&self) -> bool {
-        self.imp.simd()
+        self.simd
     }
 
     /// Whether its calls run with flush-to-zero set (the denormal policy): results below
@@ -588,7 +597,9 @@ impl Kernel {
     /// Evaluates with the best instruction set, on this thread.
     #[inline]
     pub fn eval(&self, input: Input, out: &mut [f32]) -> Result<()> {
-        self.eval_with(self.isa(), input, out)
+        self.check(&input, out)?;
+        self.run(self.run_isa, &input, out);
+        Ok(())
     }
 
     /// Evaluates with a given instruction set (one of `Isa::available()`, or `Isa::Scalar`,
@@ -618,7 +629,7 @@ impl Kernel {
     pub fn eval_par(&self, input: Input, out: &mut [f32]) -> Result<()> {
         self.check(&input, out)?;
         const CHUNK: usize = 16384;
-        let isa = if self.simd() { Isa::best() } else { Isa::Sse2 };
+        let isa = self.run_isa;
         let n = input.len();
         let first = n.min(CHUNK);
         let t0 = std::time::Instant::now();
