@@ -14,7 +14,9 @@
 //! there. Below `cos_h = COS_MIN` every form returns 0. `cos theta_h - 1` is computed as
 //! `-sin^2 / (1 + cos)`, exact in f32 near the peak.
 //! Parameters: `alpha` (= m) in [0.005, 1] (default 0.3). Source: seed 000 (Romanyuk et al.).
-//! Cost: `beckmann-pow` 1 mul and 1 pow; power forms 2 mul, 2 add, 1 div and k squarings.
+//! Cost: `beckmann-pow` 1 mul and 1 pow; power forms 2 mul, 2 add and k squarings in the batch
+//! kernels (`DistForm::batch`: `cos - 1` straight from the f32 cosine), one division more in
+//! the BRDFs (`d`: `-sin^2 / (1 + cos)` from the half vector's `sin^2`).
 //! Error bounds against `beckmann-ct`: see the `INFO` constants.
 //! Sampling (in `cook-torrance`): `beckmann-pow` inverts `D cos ~ cos^(2/m^2 - 3)` in closed form (m < 1); the power forms (and `twin`) sample Beckmann's `D cos` at the same alpha and weight by f/pdf.
 
@@ -78,7 +80,8 @@ macro_rules! power_info {
             params: &[params::ALPHA],
             formula: $formula,
             source: "seed 000 (D4, D8, D16); Lyon 1993",
-            ops: Ops::new(2 + $k, 2, 1, 0, 0),
+            // The batch kernel's count (`batch`: no division); `d` adds one for the BRDFs.
+            ops: Ops::new(2 + $k, 2, 0, 0, 0),
             bounds: &[
                 ErrorBound {
                     reference: "beckmann-ct",
@@ -258,6 +261,23 @@ impl<const K: u32> DistForm for BeckmannPower<K> {
     fn d<T: Real, M: Math<T>>(&self, cos_h: T, sin2_h: T) -> T {
         let cos_minus_1 = -sin2_h / (T::one() + cos_h);
         self.scale.t::<T>() * pow2k(pos(M::madd(self.s.t::<T>(), cos_minus_1, T::one())), K)
+    }
+    /// The batch kernels' form (issue 13): their input is the f32 cosine itself, so `cos - 1`
+    /// is computed directly (exact for `cos >= 1/2`; below, where `1 + s (cos - 1)` is clamped
+    /// to 0 unless `s <= 2`, relative to 6e-8) instead of `-sin^2 / (1 + cos)`, whose division
+    /// only adds a rounding when `sin^2` is itself `(1 - c)(1 + c)`. `d` keeps that form for
+    /// the BRDFs, whose `sin^2` comes from the half vector. No division: three or more
+    /// multiplies fewer than the default form and no divider.
+    #[inline(always)]
+    fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
+        let cc = if c < 1.0 { c } else { 1.0 };
+        let t = M::madd(self.s.t::<f32>(), cc - 1.0, 1.0);
+        let v = self.scale.t::<f32>() * pow2k(pos(t), K);
+        if c >= crate::vec3::COS_MIN as f32 {
+            v
+        } else {
+            0.0
+        }
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let g = Self::G;
