@@ -17,6 +17,27 @@ pub trait Real: Float + FloatConst + Debug + Display + Default + Send + Sync + '
     fn erfc(self) -> Self;
     /// `x64` in f64, `x32` in f32: a coefficient's precomputed rounding ([`K`]).
     fn pick(x64: f64, x32: f32) -> Self;
+    /// [`pos`] written on the concrete type. The same select written generically (`x >
+    /// T::zero()`, through `PartialOrd`) reaches LLVM in another shape: where a formula
+    /// clamps a value into [0, 1], it fused the two selects into mask compares and blends
+    /// (`fresnel-schlick`'s kernel ran at 15 G/s instead of 32 on 4096 cosines, issue 13).
+    fn sel_pos(self) -> Self;
+    /// [`min1`] written on the concrete type (see `sel_pos`).
+    fn sel_min1(self) -> Self;
+}
+
+/// The concrete selects behind [`pos`] and [`min1`], one `maxps` and one `minps`.
+macro_rules! concrete_selects {
+    () => {
+        #[inline(always)]
+        fn sel_pos(self) -> Self {
+            if self > 0.0 { self } else { 0.0 }
+        }
+        #[inline(always)]
+        fn sel_min1(self) -> Self {
+            if self < 1.0 { self } else { 1.0 }
+        }
+    };
 }
 
 /// A per-parameter coefficient, computed once in f64 with its f32 rounding beside it, so that
@@ -74,6 +95,7 @@ impl Real for f32 {
     fn pick(_x64: f64, x32: f32) -> Self {
         x32
     }
+    concrete_selects!();
 }
 
 impl Real for f64 {
@@ -97,6 +119,7 @@ impl Real for f64 {
     fn pick(x64: f64, _x32: f32) -> Self {
         x64
     }
+    concrete_selects!();
 }
 
 /// Squares a value (pbrt's `Sqr`).
@@ -109,13 +132,13 @@ pub fn sqr<T: Real>(x: T) -> T {
 /// `maxps` on x86 (Rust's `max` must also handle a NaN first operand: three instructions).
 #[inline(always)]
 pub fn pos<T: Real>(x: T) -> T {
-    if x > T::zero() { x } else { T::zero() }
+    x.sel_pos()
 }
 
 /// `min(x, 1)` as the select `x < 1 ? x : 1` (one `minps`; NaN gives 1, as Rust's `min`).
 #[inline(always)]
 pub fn min1<T: Real>(x: T) -> T {
-    if x < T::one() { x } else { T::one() }
+    x.sel_min1()
 }
 
 /// `x^(2^k)` by `k` squarings.
