@@ -216,6 +216,17 @@ impl LobeForm for CubicRational {
         let b = self.rational.at::<T, M>(c);
         if c >= self.q.t::<T>() { a } else { b }
     }
+    /// The batch form (issue 13): the cubic's own batch form above the junction (it clamps
+    /// `c > 1` and sends NaN to 0 itself), the rational below on `max(c, 0)`, and one final
+    /// `max(0, .)` for NaN (the rational is non-negative on [0, 1]).
+    #[inline(always)]
+    fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
+        let a = self.cubic.batch::<M>(c);
+        let x = if 0.0 > c { 0.0 } else { c };
+        let b = self.rational.at::<f32, M>(x);
+        let v = if c >= self.q.t::<f32>() { a } else { b };
+        if v > 0.0 { v } else { 0.0 }
+    }
     fn kinks(&self) -> Vec<f64> {
         vec![self.q.x]
     }
