@@ -368,6 +368,10 @@ pub fn render_scatter(
             .configure_mesh()
             .x_desc(xl)
             .y_desc(yl)
+            .x_labels(8)
+            .y_labels(8)
+            .x_label_formatter(&|v| tick(*v))
+            .y_label_formatter(&|v| tick(*v))
             .label_style(("sans-serif", 18))
             .axis_desc_style(("sans-serif", 22))
             .draw()
@@ -415,4 +419,36 @@ pub fn render_scatter(
         |root| draw(root, title, x_label, y_label, front, &finite, r),
         |root| draw(root, title, x_label, y_label, front, &finite, r),
     )
+}
+
+/// A log axis's tick value with at most three significant digits (plotters prints the f64
+/// it computes, `0.30000000000000004`).
+fn tick(v: f64) -> String {
+    if !(v.is_finite() && v > 0.0) {
+        return format!("{v}");
+    }
+    let decimals = (2 - v.log10().floor() as i32).max(0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::tick;
+
+    /// Log-axis ticks print as people write them, not as the f64 plotters computes.
+    #[test]
+    fn ticks_have_at_most_three_significant_digits() {
+        assert_eq!(tick(0.300_000_000_000_000_04), "0.3");
+        assert_eq!(tick(0.7000000000000001), "0.7");
+        assert_eq!(tick(1.0), "1");
+        assert_eq!(tick(0.01), "0.01");
+        assert_eq!(tick(0.012_345_6), "0.0123");
+        assert_eq!(tick(2500.0), "2500");
+        assert_eq!(tick(12.5), "12.5");
+    }
 }

@@ -27,10 +27,11 @@ use crate::brdf::cook_torrance::CookTorrance;
 use crate::brdf::phong::LobeBrdf;
 use crate::error::{Error, Result};
 use crate::math::{Fast, FastFma, Math};
+use crate::microfacet::ms::Ms;
 use crate::model::Kind;
 use crate::plan::{
-    BrdfForm, BrdfPlan, DistForm, EnvForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist,
-    with_env, with_fresnel, with_lobe, with_shadow,
+    BrdfForm, BrdfPlan, DistForm, EnvForm, FresnelForm, LobeForm, Plan, ShadowForm, with_brdf,
+    with_dist, with_env, with_fresnel, with_lobe, with_shadow,
 };
 use crate::registry;
 use rayon::prelude::*;
@@ -427,11 +428,30 @@ pub fn brdf_kernel<B: BrdfForm>(b: B) -> Box<dyn Imp> {
     })
 }
 
-/// Cook-Torrance with its D, G and F as concrete families: one kernel per combination.
+/// Cook-Torrance without energy compensation, on the pair set-up of the scalar `Pair::new`:
+/// `CookTorrance::single_scattering`, so the loop holds no branch on `ms`.
+struct CtOp<D, G, F>(CookTorrance<D, G, F>);
+impl<D: DistForm, G: ShadowForm, F: FresnelForm> Op6 for CtOp<D, G, F> {
+    #[inline(always)]
+    fn f<M: Math<f32>>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
+        let (valid, p) = crate::vec3::pair_setup(wi, wo);
+        let v = self.0.single_scattering::<f32, M>(&p);
+        if valid { v } else { 0.0 }
+    }
+}
+
+/// Cook-Torrance with its D, G and F as concrete families: one kernel per combination. With
+/// an energy compensation (only GGX with the correlated Smith term; its table reads make it a
+/// scalar fallback anyway) the plan's own parts run, matched per element: one instantiation,
+/// not one per combination.
 pub fn cook_torrance_kernel(ct: &CookTorrance) -> Box<dyn Imp> {
-    with_dist!(&ct.d, d => with_shadow!(&ct.g, g => with_fresnel!(&ct.f, f => brdf_kernel(
-        CookTorrance { d: *d, g: *g, f: *f, k: ct.k, ms: ct.ms, aniso: ct.aniso }
-    ))))
+    if ct.ms != Ms::None {
+        return brdf_kernel(*ct);
+    }
+    with_dist!(&ct.d, d => with_shadow!(&ct.g, g => with_fresnel!(&ct.f, f => {
+        let ct = CookTorrance { d: *d, g: *g, f: *f, k: ct.k, ms: ct.ms, aniso: ct.aniso };
+        Box::new(Map6 { simd: ct.simd(), op: CtOp(ct) }) as Box<dyn Imp>
+    })))
 }
 
 /// Phong or Blinn-Phong with its lobe as a concrete family.
