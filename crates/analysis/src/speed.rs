@@ -379,6 +379,48 @@ pub fn limit_fraction(
     })
 }
 
+/// Below this ratio of a kernel's rate to a saved run's, `fastbrdf bench --compare` marks the
+/// row `slower`: this shared 2-core machine moves a kernel by 10-20% between runs, while the
+/// regressions this is for were 2-10x (a Cook-Torrance kernel ran 6.4x slower for a day of
+/// commits before anyone compared the tables).
+pub const SLOWER_BELOW: f64 = 0.8;
+
+/// One kernel row of two runs: `ratio = new / old` evaluations per second.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct CompareRow {
+    pub model: String,
+    pub variant: String,
+    pub batch: usize,
+    pub old_evals_per_s: f64,
+    pub new_evals_per_s: f64,
+    pub ratio: f64,
+    /// `ratio < SLOWER_BELOW`.
+    pub slower: bool,
+}
+
+/// The kernel rows `new` shares with `old` (same model, variant and batch), in `new`'s order.
+pub fn compare(old: &Report, new: &Report) -> Vec<CompareRow> {
+    new.kernels
+        .iter()
+        .filter_map(|k| {
+            let o = old
+                .kernels
+                .iter()
+                .find(|o| o.model == k.model && o.variant == k.variant && o.batch == k.batch)?;
+            let ratio = k.evals_per_s / o.evals_per_s;
+            Some(CompareRow {
+                model: k.model.clone(),
+                variant: k.variant.clone(),
+                batch: k.batch,
+                old_evals_per_s: o.evals_per_s,
+                new_evals_per_s: k.evals_per_s,
+                ratio,
+                slower: ratio < SLOWER_BELOW,
+            })
+        })
+        .collect()
+}
+
 // ---------- inputs ----------
 
 /// `len` floats starting on a 64-byte boundary (a cache line, one AVX-512 vector). Every
@@ -1448,6 +1490,61 @@ mod tests {
             .expect("the pow speedup is computed");
         assert_eq!(name, "pow.simd.over.powf-loop");
         assert!((v - 4.0).abs() < 1e-12, "{v}");
+    }
+
+    /// `compare` pairs rows by model, variant and batch, in the new run's order, and marks
+    /// only the ones below `SLOWER_BELOW`.
+    #[test]
+    fn compare_pairs_rows_and_marks_the_slower_ones() {
+        let row = |model: &str, variant: &str, batch: usize, rate: f64| KernelRow {
+            model: model.into(),
+            variant: variant.into(),
+            batch,
+            evals_per_s: rate,
+            isa: "avx512".into(),
+            fma_fraction: None,
+            limit: None,
+            limit_fraction: None,
+        };
+        let run = |kernels: Vec<KernelRow>| Report {
+            cpu: "test".into(),
+            isa: "avx512".into(),
+            threads: 2,
+            fma_per_s: 1e11,
+            div_per_s: None,
+            speedups: vec![],
+            kernels,
+            quick: true,
+            gpu: None,
+            peers: vec![],
+        };
+        let old = run(vec![
+            row("power4", "simd", 4096, 4e10),
+            row("cook-torrance", "simd", 4096, 5e8),
+            row("cook-torrance", "simd", 1 << 24, 5e8),
+            row("ward", "simd", 4096, 5e8),
+        ]);
+        let new = run(vec![
+            row("cook-torrance", "simd", 4096, 6e7),
+            row("power4", "simd", 4096, 3.3e10),
+            row("power4", "scalar", 4096, 7e8),
+            row("phong", "simd", 4096, 4e8),
+        ]);
+        let c = compare(&old, &new);
+        let got: Vec<(&str, f64, bool)> = c
+            .iter()
+            .map(|r| (r.model.as_str(), r.ratio, r.slower))
+            .collect();
+        assert_eq!(
+            got,
+            [("cook-torrance", 0.12, true), ("power4", 0.825, false)]
+        );
+        assert_eq!((c[0].old_evals_per_s, c[0].new_evals_per_s), (5e8, 6e7));
+        assert!(
+            compare(&new, &new)
+                .iter()
+                .all(|r| r.ratio == 1.0 && !r.slower)
+        );
     }
 
     /// Each C peer's maximum mixed error against the f64 model of the same id and

@@ -851,6 +851,67 @@ fn bench_json_has_the_documented_shape_and_round_trips() {
     assert_eq!(o.status.code(), Some(2));
 }
 
+/// `bench --compare`: a run against itself gives ratio 1 everywhere and marks nothing; a row
+/// made 3x slower is marked; a missing file is a clear error (exit 2, nothing on stdout).
+/// No timing is asserted (both sides are saved runs).
+#[test]
+fn bench_compare_marks_slower_rows() {
+    let saved = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
+    let o = fastbrdf(
+        &["bench", "--from", saved, "--compare", saved, "--json"],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let rows = v["rows"].as_array().unwrap();
+    assert!(rows.len() > 100, "{}", rows.len());
+    assert!(
+        rows.iter()
+            .all(|r| r["ratio"] == 1.0 && r["slower"] == false)
+    );
+    assert_eq!(v["slower_below"], 0.8);
+    // The old run three times faster on one row: that row, and only it, is slower.
+    let mut old: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(saved).unwrap()).unwrap();
+    let k = &mut old["kernels"][0];
+    let (model, variant) = (k["model"].clone(), k["variant"].clone());
+    k["evals_per_s"] = serde_json::json!(k["evals_per_s"].as_f64().unwrap() * 3.0);
+    let d = temp_dir("bench-compare");
+    let path = d.join("old.json");
+    std::fs::write(&path, serde_json::to_string(&old).unwrap()).unwrap();
+    let o = fastbrdf(
+        &[
+            "bench",
+            "--from",
+            saved,
+            "--compare",
+            path.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    let slower: Vec<&str> = text.lines().filter(|l| l.ends_with("slower")).collect();
+    assert_eq!(slower.len(), 1, "{text}");
+    assert!(
+        slower[0].starts_with(model.as_str().unwrap())
+            && slower[0].contains(variant.as_str().unwrap()),
+        "{text}"
+    );
+    assert!(text.contains("1 below 0.8"), "{text}");
+    std::fs::remove_dir_all(&d).unwrap();
+    let o = fastbrdf(
+        &["bench", "--from", saved, "--compare", "/nonexistent.json"],
+        "",
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        o.stdout.is_empty() && stderr(&o).contains("/nonexistent.json"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 /// Issue 13: every run races the batch kernels against their C peers; the "peers" rows have
 /// the shape `bench --help` documents, render from a saved run, and runs saved before them
 /// still load and print as they did. Shapes only: no timing is asserted.

@@ -11,7 +11,8 @@ use std::path::PathBuf;
 #[command(
     after_help = "Examples:\n  fastbrdf bench --quick\n  fastbrdf bench --json > bench.json\n  \
 fastbrdf bench --from bench.json --markdown\n  fastbrdf bench --models pow,power16,cook-torrance\n  \
-fastbrdf bench --gpu --quick\n\n\
+fastbrdf bench --gpu --quick\n  \
+fastbrdf bench --quick --compare docs/bench/bench.json\n\n\
 Every run also races each lobe's (n = 200), Beckmann's and GGX's (alpha = 0.3) batch kernel against\n\
 the plain C loop a user would write (powf, exp2f, expf, squarings; compiled with the system C\n\
 compiler at -O3 -march=native -ffast-math), interleaved in the same process on the same\n\
@@ -67,6 +68,13 @@ pub struct Args {
     /// GPU speedups; for a run made with --gpu.
     #[arg(long, conflicts_with = "json")]
     gpu_only: bool,
+    /// Instead of the tables, compare this run (measured, or --from) with a saved `--json`
+    /// run: every kernel row both have (same model, variant and batch), old and new
+    /// evaluations per second and new/old, rows below 0.8 marked slower (runs on a shared
+    /// machine move 10-20%; look for 2x). With --json: {"old", "new", "slower_below", "rows":
+    /// [{model, variant, batch, old_evals_per_s, new_evals_per_s, ratio, slower}]}.
+    #[arg(long, value_name = "OLD.json", conflicts_with = "gpu_only")]
+    compare: Option<PathBuf>,
 }
 
 /// Adds the GPU rows and speedups to a CPU run.
@@ -149,6 +157,21 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             r
         }
     };
+    if let Some(old_path) = &a.compare {
+        let old = Report::load(old_path)?;
+        let rows = speed::compare(&old, &report);
+        if rows.is_empty() {
+            return Err(CliError::input(format!(
+                "--compare {}: no kernel row (model, variant, batch) in common with this run",
+                old_path.display()
+            )));
+        }
+        crate::out!(
+            "{}",
+            compare_table(&rows, &old, &report, a.json, a.markdown)
+        );
+        return Ok(());
+    }
     if a.gpu_only {
         if report.gpu.is_none() {
             return Err(CliError::input(
@@ -167,6 +190,79 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         crate::out!("{}", text(&report));
     }
     Ok(())
+}
+
+/// `--compare`'s output: JSON, Markdown or text, slower rows marked.
+fn compare_table(
+    rows: &[speed::CompareRow],
+    old: &Report,
+    new: &Report,
+    json: bool,
+    md: bool,
+) -> String {
+    if json {
+        let v = serde_json::json!({
+            "old": {"cpu": old.cpu, "isa": old.isa, "quick": old.quick},
+            "new": {"cpu": new.cpu, "isa": new.isa, "quick": new.quick},
+            "slower_below": speed::SLOWER_BELOW,
+            "rows": rows,
+        });
+        return format!(
+            "{}\n",
+            serde_json::to_string_pretty(&v).expect("serialisable")
+        );
+    }
+    let mut s = String::new();
+    let slower = rows.iter().filter(|r| r.slower).count();
+    if md {
+        let _ = writeln!(s, "| model | variant | batch | old | new | new / old | |");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    } else {
+        let _ = writeln!(
+            s,
+            "{:<44} {:<13} {:>9} {:>10} {:>10} {:>9}",
+            "model", "variant", "batch", "old", "new", "new/old"
+        );
+    }
+    for r in rows {
+        let mark = if r.slower { "slower" } else { "" };
+        if md {
+            let _ = writeln!(
+                s,
+                "| `{}` | {} | {} | {} | {} | {:.2} | {mark} |",
+                r.model,
+                r.variant,
+                r.batch,
+                eng(r.old_evals_per_s),
+                eng(r.new_evals_per_s),
+                r.ratio
+            );
+        } else {
+            let _ = writeln!(
+                s,
+                "{:<44} {:<13} {:>9} {:>10} {:>10} {:>9.2} {mark}",
+                r.model,
+                r.variant,
+                r.batch,
+                eng(r.old_evals_per_s),
+                eng(r.new_evals_per_s),
+                r.ratio
+            );
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\n{} rows in common, {slower} below {} of the saved run (old: {}, {}{}; new: {}, {}{})",
+        rows.len(),
+        speed::SLOWER_BELOW,
+        old.cpu,
+        old.isa,
+        if old.quick { ", --quick" } else { "" },
+        new.cpu,
+        new.isa,
+        if new.quick { ", --quick" } else { "" },
+    );
+    s
 }
 
 fn eng(x: f64) -> String {
