@@ -226,29 +226,20 @@ fn compare_table(
     }
     for r in rows {
         let mark = if r.slower { "slower" } else { "" };
-        if md {
-            let _ = writeln!(
-                s,
-                "| `{}` | {} | {} | {} | {} | {:.2} | {mark} |",
-                r.model,
-                r.variant,
-                r.batch,
-                eng(r.old_evals_per_s),
-                eng(r.new_evals_per_s),
+        let (m, v, n) = (&r.model, &r.variant, r.batch);
+        let (old, new) = (eng(r.old_evals_per_s), eng(r.new_evals_per_s));
+        let line = if md {
+            format!(
+                "| `{m}` | {v} | {n} | {old} | {new} | {:.2} | {mark} |",
                 r.ratio
-            );
+            )
         } else {
-            let _ = writeln!(
-                s,
-                "{:<44} {:<13} {:>9} {:>10} {:>10} {:>9.2} {mark}",
-                r.model,
-                r.variant,
-                r.batch,
-                eng(r.old_evals_per_s),
-                eng(r.new_evals_per_s),
+            format!(
+                "{m:<44} {v:<13} {n:>9} {old:>10} {new:>10} {:>9.2} {mark}",
                 r.ratio
-            );
-        }
+            )
+        };
+        let _ = writeln!(s, "{line}");
     }
     let _ = writeln!(
         s,
