@@ -107,7 +107,10 @@ void peer_beckmann(const float *x, float *out, size_t n, float inv_a2, float sca
 /* GGX (Trowbridge-Reitz) D(cos_h) = alpha^2 / (pi ((alpha^2 - 1) cos^2 + 1)^2), in the form
  * engines print (UE4, Filament's reference): a2m1 = alpha^2 - 1 and scale = alpha^2 / pi
  * hoisted by the caller. (This form cancels near cos = 1 at small alpha: at the benchmark's
- * alpha = 0.3 it is within 2e-6 of f64; fastbrdf's alpha^2 cos^2 + sin^2 does not cancel.) */
+ * alpha = 0.3 it is within 2e-6 of f64; fastbrdf's alpha^2 cos^2 + sin^2 does not cancel.)
+ * Like the other peers it has no domain rules: for 0 < c < 2^-20 (fastbrdf's COS_MIN, where
+ * the model is 0) it returns about alpha^2 / pi, and it grows for c > 1; the benchmark's
+ * cosines never fall there. */
 void peer_ggx(const float *x, float *out, size_t n, float a2m1, float scale)
 {
     for (size_t i = 0; i < n; i++) {

@@ -617,8 +617,9 @@ fn kernels_flush_subnormal_results_to_zero_and_restore_the_callers_state() {
 /// flush (power16 clamps its base at `base_min`, checked in the test above; the others'
 /// subnormal bands are under 1.5e-4 of [0, 1]); `cubic` and `schlick` never (subnormals only from tiny inputs: a plain kernel
 /// then returns the subnormal value the scalar model gives), nor the spherical Gaussians
-/// (their `exp2` is built from bits); the others always. A plain
-/// kernel leaves the caller's MXCSR alone too.
+/// (their `exp2` is built from bits), nor `ggx` (no subnormal step: every output 0 or normal,
+/// checked here on the awkward inputs); the others always. A plain kernel leaves the caller's
+/// MXCSR alone too.
 #[test]
 fn the_flush_to_zero_switch_is_decided_per_kernel() {
     // The band's edge: the least base whose 2^k-th power by squarings is normal.
@@ -640,7 +641,24 @@ fn the_flush_to_zero_switch_is_decided_per_kernel() {
     assert!(!ftz("cubic", "200") && !ftz("schlick", "200"));
     assert!(!ftz("sg", "200") && !ftz("ue4-phong-approx", "20") && ftz("pow", "200"));
     assert!(Kernel::new("beckmann", &[]).unwrap().flush_to_zero());
-    assert!(!Kernel::new("ggx", &[]).unwrap().flush_to_zero());
+    for alpha in ["0.005", "0.3", "1"] {
+        let k = Kernel::new("ggx", &[("alpha", alpha)]).unwrap();
+        assert!(!k.flush_to_zero());
+        let mut x = cos_inputs(50.0);
+        x.extend([1e-38f32, 1e-40, f32::MIN_POSITIVE, 1.0 - f32::EPSILON, 1e-6]);
+        for &isa in Isa::available() {
+            let mut out = vec![0.0f32; x.len()];
+            k.eval_with(isa, Input::Cos(&x), &mut out).unwrap();
+            assert!(
+                out.iter().all(|v| *v == 0.0 || v.is_normal()),
+                "ggx alpha={alpha} ({}): {:?}",
+                isa.name(),
+                out.iter()
+                    .zip(&x)
+                    .find(|(v, _)| **v != 0.0 && !v.is_normal())
+            );
+        }
+    }
     let k = Kernel::new("schlick", &[("n", "200")]).unwrap();
     let Model::Lobe(m) = registry::build::<f32>("schlick", &[("n", "200")]).unwrap() else {
         panic!()
@@ -726,6 +744,7 @@ fn scaled_exponential_keeps_its_bound() {
             1.0 / std::f32::consts::PI,
             1.0,
             3.5368,
+            1e4,
             1.2732e4,
             2f32.powi(64),
         ] {

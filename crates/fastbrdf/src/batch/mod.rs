@@ -549,7 +549,8 @@ impl Kernel {
     /// (`LobeForm::batch_ftz`: the power forms, `power16` clamping its base at
     /// `lobes::power::base_min` and subtracting that base's power; `cubic`, `schlick`; the
     /// spherical Gaussians, whose `exp2` is built from bits) and may return a subnormal value
-    /// where a flushing kernel gives 0.
+    /// where a flushing kernel gives 0; so does `ggx` (`DistForm::batch_ftz`), whose batch form
+    /// has no subnormal step.
     /// Other architectures: no switch.
     pub fn flush_to_zero(&self) -> bool {
         self.ftz

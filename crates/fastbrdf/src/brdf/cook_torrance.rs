@@ -427,7 +427,7 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> CookTorrance<D, G, F> {
     /// `F D G k / (cos_i cos_o)`, the value without the energy compensation: `at_pair` with
     /// `ms = none`, and what the batch kernels of `ms = none` run (`batch::CtOp`: with the
     /// compensation's branch in the loop, even never taken, LLVM no longer vectorised it and
-    /// every Cook-Torrance kernel ran 6.4x slower, issue 13).
+    /// every Cook-Torrance kernel ran 6-10x slower, issue 13).
     #[inline(always)]
     pub fn single_scattering<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
         // Anisotropic: D and G of the parts at sqrt(alpha_x alpha_y) on stretched arguments

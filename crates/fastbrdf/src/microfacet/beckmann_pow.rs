@@ -266,8 +266,8 @@ impl<const K: u32> DistForm for BeckmannPower<K> {
     /// is computed directly (exact for `cos >= 1/2`; below, where `1 + s (cos - 1)` is clamped
     /// to 0 unless `s <= 2`, relative to 6e-8) instead of `-sin^2 / (1 + cos)`, whose division
     /// only adds a rounding when `sin^2` is itself `(1 - c)(1 + c)`. `d` keeps that form for
-    /// the BRDFs, whose `sin^2` comes from the half vector. No division: three or more
-    /// multiplies fewer than the default form and no divider.
+    /// the BRDFs, whose `sin^2` comes from the half vector. One multiply and the division
+    /// fewer than the default form.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
         let cc = if c < 1.0 { c } else { 1.0 };
