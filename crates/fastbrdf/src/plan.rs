@@ -240,11 +240,29 @@ pub trait EnvForm: Copy + Debug + Send + Sync + 'static {
 /// `cos_v` clamped into [0, 1] (NaN to 0) and `alpha` into the documented range of
 /// `params::ALPHA` (NaN to its minimum): the lenient rule of every `Env` model, applied
 /// before the family's formula (scalar models, batch kernels and WGSL alike).
+///
+/// Written with generic selects, not `real::pos`/`min1`: in the scalar models (one call per
+/// value, into libm's `exp2f` for `env-brdf-approx`) these compile to well-predicted branches,
+/// and the concrete selects' `maxss`/`minss` made that path 1.9x slower. The batch kernels use
+/// [`env_args_batch`], the same rule with the concrete selects (one `maxps`/`minps` each).
 #[inline(always)]
 pub fn env_args<T: Real>(cos_v: T, alpha: T) -> (T, T) {
     let (lo, hi) = crate::params::ALPHA.range();
-    let a = crate::real::pos(alpha - T::c(lo)) + T::c(lo);
-    (crate::real::min1(crate::real::pos(cos_v)), a.min(T::c(hi)))
+    let d = alpha - T::c(lo);
+    let a = if d > T::zero() { d } else { T::zero() } + T::c(lo);
+    let v = if cos_v > T::zero() { cos_v } else { T::zero() };
+    let v = if v < T::one() { v } else { T::one() };
+    (v, a.min(T::c(hi)))
+}
+
+/// [`env_args`] for the batch kernels, bit for bit (tested), with `real::pos` and `min1`:
+/// the generic selects there reach LLVM's vectoriser as mask blends (the kernel of
+/// `env-brdf-approx` 4.3 -> 3.8 G/s).
+#[inline(always)]
+pub fn env_args_batch(cos_v: f32, alpha: f32) -> (f32, f32) {
+    let (lo, hi) = crate::params::ALPHA.range();
+    let a = crate::real::pos(alpha - lo as f32) + lo as f32;
+    (crate::real::min1(crate::real::pos(cos_v)), a.min(hi as f32))
 }
 
 /// A full BRDF of a prepared direction pair.

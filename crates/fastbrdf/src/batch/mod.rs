@@ -176,7 +176,7 @@ struct EnvOp<E>(E);
 impl<E: EnvForm> Op2 for EnvOp<E> {
     #[inline(always)]
     fn f<M: Math<f32>>(&self, v: f32, a: f32) -> f32 {
-        let (v, a) = crate::plan::env_args(v, a);
+        let (v, a) = crate::plan::env_args_batch(v, a);
         self.0.e::<f32, M>(v, a)
     }
 }
