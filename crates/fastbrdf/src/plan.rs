@@ -50,8 +50,14 @@ pub fn clamped_batch<L: LobeForm, M: Math<f32>>(lobe: &L, c: f32) -> f32 {
 /// NaN and `cos_h < COS_MIN` give 0, `sin^2` as `(1 - c)(1 + c)`.
 #[inline(always)]
 pub fn clamped_dist_batch<D: DistForm, M: Math<f32>>(dist: &D, c: f32) -> f32 {
-    let cc = if c < 1.0 { c } else { 1.0 };
-    let v = dist.d::<f32, M>(cc, (1.0 - cc) * (1.0 + cc));
+    let cc = crate::real::min1(c);
+    above_cos_min(c, dist.d::<f32, M>(cc, (1.0 - cc) * (1.0 + cc)))
+}
+
+/// `v` where the raw cosine `c` is at least `COS_MIN`, else 0 (NaN included): the last step
+/// of every distribution's batch form (`Distribution::eval`'s cut).
+#[inline(always)]
+pub fn above_cos_min(c: f32, v: f32) -> f32 {
     if c >= COS_MIN as f32 { v } else { 0.0 }
 }
 
@@ -60,7 +66,7 @@ pub fn clamped_dist_batch<D: DistForm, M: Math<f32>>(dist: &D, c: f32) -> f32 {
 /// near 1), `(1 - c)(1 + c)` on SSE2.
 #[inline(always)]
 pub fn clamp_sin2<M: Math<f32>>(c: f32) -> (f32, f32) {
-    let cc = if c < 1.0 { c } else { 1.0 };
+    let cc = crate::real::min1(c);
     let s2 = if M::FMA {
         M::madd(-cc, cc, 1.0)
     } else {

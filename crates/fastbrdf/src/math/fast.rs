@@ -116,8 +116,7 @@ pub fn exp2_nonpos(x: f32) -> f32 {
 fn exp2_nonpos_g<const F: bool>(x: f32) -> f32 {
     let xc = if x > -127.0 { x } else { -127.0 };
     let t = xc + MAGIC;
-    let k = t - MAGIC;
-    let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let (k, ki) = unmagic(t);
     let r = scale2::<F>(ki, xc - k);
     if xc >= -126.0 { r } else { 0.0 }
 }
@@ -154,8 +153,7 @@ pub const EXP2_C6: [f32; 7] = [
 fn exp2_nonpos_times_g<const F: bool>(x: f32, s: f32) -> f32 {
     let xc = if x > -127.0 { x } else { -127.0 };
     let t = xc + MAGIC;
-    let k = t - MAGIC;
-    let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let (k, ki) = unmagic(t);
     let c = EXP2_C6.map(|c| c * s);
     let f = xc - k;
     // Estrin's scheme of degree 6 (depth 3).
@@ -164,7 +162,7 @@ fn exp2_nonpos_times_g<const F: bool>(x: f32, s: f32) -> f32 {
     let b = madd::<F>(c[3], f, c[2]);
     let d = madd::<F>(c[5], f, c[4]);
     let p = madd::<F>(f2 * f2, madd::<F>(c[6], f2, d), madd::<F>(f2, b, a));
-    let r = f32::from_bits((p.to_bits() as i32).wrapping_add(ki << 23) as u32);
+    let r = add_exponent(p, ki);
     if xc >= -123.0 { r } else { 0.0 }
 }
 
@@ -181,8 +179,7 @@ fn exp_nonpos_g<const F: bool>(x: f32) -> f32 {
     // polynomial, scaled by 2^k; below -87.3 the result is 0 (flushed anyway).
     let xc = if x > -87.3 { x } else { -87.3 };
     let t = madd::<F>(xc, std::f32::consts::LOG2_E, MAGIC);
-    let k = t - MAGIC;
-    let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let (k, ki) = unmagic(t);
     let r = madd::<F>(-k, LN2_LO, madd::<F>(-k, LN2_HI, xc));
     let p = estrin7::<F>(r, &EXP_C);
     let s = f32::from_bits(((ki + 127) << 23) as u32);
@@ -193,10 +190,7 @@ fn exp_nonpos_g<const F: bool>(x: f32) -> f32 {
 fn exp2_g<const F: bool>(x: f32) -> f32 {
     let xc = x.clamp(-127.0, 128.0);
     let t = xc + MAGIC;
-    let k = t - MAGIC;
-    // No float-to-int conversion (Rust's saturating `as` blocks vectorisation): read k from
-    // the bits of t.
-    let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let (k, ki) = unmagic(t);
     let r = scale2::<F>(ki, xc - k);
     let r = if xc < -126.0 { 0.0 } else { r };
     let r = if x >= 128.0 { f32::INFINITY } else { r };
@@ -231,8 +225,25 @@ fn scale2<const F: bool>(ki: i32, f: f32) -> f32 {
         0.000_154_035_3,
         0.000_015_252_734,
     ];
-    let p = estrin7::<F>(f, &C);
+    add_exponent(estrin7::<F>(f, &C), ki)
+}
+
+/// `p 2^ki` by adding `ki` to the exponent field (exact where both `p` and the result are
+/// normal: the callers keep them so).
+#[inline(always)]
+fn add_exponent(p: f32, ki: i32) -> f32 {
     f32::from_bits((p.to_bits() as i32).wrapping_add(ki << 23) as u32)
+}
+
+/// For `t = x + MAGIC` (rounded, |x| < 2^22): the integer `k` nearest `x`, as an f32 and as
+/// an i32. No float-to-int conversion (Rust's saturating `as` blocks vectorisation): `k` is
+/// read from the bits of `t`.
+#[inline(always)]
+fn unmagic(t: f32) -> (f32, i32) {
+    (
+        t - MAGIC,
+        (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32),
+    )
 }
 
 /// `2^a` for an f64 exponent, rounded to f32: the integer part is split off in f64, so the
@@ -262,8 +273,7 @@ pub fn exp(x: f32) -> f32 {
 fn exp_g<const F: bool>(x: f32) -> f32 {
     let xc = x.clamp(-88.5, 88.8);
     let t = xc * std::f32::consts::LOG2_E + MAGIC;
-    let k = t - MAGIC;
-    let ki = (t.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let (k, ki) = unmagic(t);
     let r = (xc - k * LN2_HI) - k * LN2_LO;
     let p = estrin7::<F>(r, &EXP_C);
     // 2^k may be 2^-127 or 2^128 at the ends: scale in two halves to stay finite.
@@ -459,8 +469,7 @@ pub(crate) fn pow_fma<const UNIT: bool>(x: f32, y: f32) -> f32 {
     // |pa| < 2^22, may give anything there: no clamp.
     let pa = p_hi + p_lo;
     let tk = pa + MAGIC;
-    let k = tk - MAGIC;
-    let ki = (tk.to_bits() as i32).wrapping_sub(MAGIC.to_bits() as i32);
+    let (k, ki) = unmagic(tk);
     let v = scale2::<true>(ki, (p_hi - k) + p_lo);
     if UNIT {
         return if pa > -126.0 { v } else { 0.0 };

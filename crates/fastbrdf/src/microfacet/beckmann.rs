@@ -151,11 +151,7 @@ impl DistForm for Beckmann {
         let ic = 1.0 + q;
         let v = M::exp2_nonpos_times(q * self.log2_k.t::<f32>(), self.scale.t::<f32>()) * (ic * ic);
         // NaN, c = 0 (q = inf: 0 * inf) and c < COS_MIN give 0.
-        if c >= crate::vec3::COS_MIN as f32 {
-            v
-        } else {
-            0.0
-        }
+        crate::plan::above_cos_min(c, v)
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let a = self.alpha;

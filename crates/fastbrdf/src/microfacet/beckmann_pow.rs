@@ -270,14 +270,9 @@ impl<const K: u32> DistForm for BeckmannPower<K> {
     /// fewer than the default form.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
-        let cc = if c < 1.0 { c } else { 1.0 };
-        let t = M::madd(self.s.t::<f32>(), cc - 1.0, 1.0);
+        let t = M::madd(self.s.t::<f32>(), crate::real::min1(c) - 1.0, 1.0);
         let v = self.scale.t::<f32>() * pow2k(pos(t), K);
-        if c >= crate::vec3::COS_MIN as f32 {
-            v
-        } else {
-            0.0
-        }
+        crate::plan::above_cos_min(c, v)
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let g = Self::G;
