@@ -381,7 +381,7 @@ pub fn limit_fraction(
 
 /// Below this ratio of a kernel's rate to a saved run's, `fastbrdf bench --compare` marks the
 /// row `slower`: this shared 2-core machine moves a kernel by 10-20% between runs, while the
-/// regressions this is for were 2-10x (a Cook-Torrance kernel ran 6.4x slower for a day of
+/// regressions this is for were 2-10x (the Cook-Torrance kernels ran 6-10x slower for a day of
 /// commits before anyone compared the tables).
 pub const SLOWER_BELOW: f64 = 0.8;
 
@@ -1568,7 +1568,8 @@ mod tests {
     }
 
     /// The peers compile, link and compute their models: each within 1e-5 (mixed) of the f64
-    /// model of the same id and parameters (measured: 3e-8 to 7e-7; GGX's engine form 1.2e-6, its cancellation near the peak), like the kernels.
+    /// model of the same id and parameters (measured: 3e-8 to 7e-7; GGX's engine form
+    /// 1.2e-6, its cancellation near the peak), like the kernels.
     /// The exception is the seed cubic, which C evaluates in the seed's monomial form: at
     /// n = 200 its coefficients are about 1.3e4 and cancel in f32 (measured 4.8e-4; the
     /// library's Newton form is 1e-7), so it is held to 2e-3 only and must stay a cubic (a

@@ -127,6 +127,8 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
+    // The saved run to compare with is read first: a bad file fails before a minute of timing.
+    let old = a.compare.as_deref().map(Report::load).transpose()?;
     let report: Report = match &a.from {
         Some(path) => Report::load(path)?,
         None => {
@@ -157,19 +159,15 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             r
         }
     };
-    if let Some(old_path) = &a.compare {
-        let old = Report::load(old_path)?;
-        let rows = speed::compare(&old, &report);
+    if let (Some(old), Some(old_path)) = (&old, &a.compare) {
+        let rows = speed::compare(old, &report);
         if rows.is_empty() {
             return Err(CliError::input(format!(
                 "--compare {}: no kernel row (model, variant, batch) in common with this run",
                 old_path.display()
             )));
         }
-        crate::out!(
-            "{}",
-            compare_table(&rows, &old, &report, a.json, a.markdown)
-        );
+        crate::out!("{}", compare_table(&rows, old, &report, a.json, a.markdown));
         return Ok(());
     }
     if a.gpu_only {
