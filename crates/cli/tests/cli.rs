@@ -910,6 +910,14 @@ fn bench_compare_marks_slower_rows() {
         "{}",
         stderr(&o)
     );
+    // Without --from the saved run is read before any timing: the same refusal.
+    let o = fastbrdf(&["bench", "--quick", "--compare", "/nonexistent.json"], "");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        o.stdout.is_empty() && stderr(&o).contains("/nonexistent.json"),
+        "{}",
+        stderr(&o)
+    );
 }
 
 /// Issue 13: every run races the batch kernels against their C peers; the "peers" rows have
