@@ -26,7 +26,7 @@
 
 use fastbrdf::accuracy::splitmix;
 use fastbrdf::batch::{Input, Isa, Kernel};
-use fastbrdf::{Kind, Model, registry};
+use fastbrdf::{Kind, Model, PipeOps, registry};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::hint::black_box;
@@ -48,9 +48,11 @@ pub struct KernelRow {
     pub fma_fraction: Option<f64>,
     /// The machine limit that bounds this kernel, `"fma"` (the FMA pipes) or `"divider"`
     /// (the divide unit), with the fraction of it used ([`limit_fraction`]): for kernels of
-    /// cosines whose formula is multiplies, adds and divisions; `null` otherwise (square
-    /// roots and transcendentals are polynomials of uncounted length). Absent from runs saved
-    /// before it existed.
+    /// cosines whose formula is multiplies, adds and divisions, and for those whose family
+    /// counts its kernel's operations (`Kernel::pipe_ops`: `sg`, `ue4-phong-approx`,
+    /// `sg-tuned`, `beckmann`, `beckmann-ct`, whose vectorised `exp2` is a polynomial the
+    /// registry's counts do not see); `null` otherwise. Absent from runs saved before it
+    /// existed.
     #[serde(default)]
     pub limit: Option<String>,
     #[serde(default)]
@@ -349,29 +351,38 @@ pub fn fma_slots(info: &fastbrdf::ModelInfo, isa: Isa) -> Option<f64> {
 }
 
 /// The machine limit a kernel of cosines is measured against, and the fraction of it that
-/// `evals_per_s` evaluations use: the FMA pipes (`max(mul, add)` slots per evaluation where
-/// the instruction set fuses, `mul + add` otherwise) or the divider (`div` lane divisions per
-/// evaluation, against `div_per_s`), whichever the formula uses more of. `None` for BRDFs,
-/// formulas with a square root or transcendental, scalar fallbacks, and where the divider's
-/// rate is unknown but needed.
+/// `evals_per_s` evaluations use: the FMA pipes or the divider (`div` lane divisions per
+/// evaluation, against `div_per_s`), whichever the kernel uses more of. The count is the
+/// kernel's own where its family gives one (`kernel`, from `Kernel::pipe_ops`: its
+/// multiply-pipe operations, a vectorised `exp2`'s polynomial included), else the formula's
+/// (`max(mul, add)` slots per evaluation where the instruction set fuses, `mul + add`
+/// otherwise). `None` for BRDFs, uncounted formulas with a square root or transcendental,
+/// scalar fallbacks, and where the divider's rate is unknown but needed.
 pub fn limit_fraction(
     info: &fastbrdf::ModelInfo,
     isa: Isa,
     evals_per_s: f64,
     fma_per_s: f64,
     div_per_s: Option<f64>,
+    kernel: Option<PipeOps>,
 ) -> Option<(&'static str, f64)> {
     let o = info.ops;
-    if info.kind == Kind::Brdf || o.sqrt != 0 || o.transcendental != 0 || isa == Isa::Scalar {
+    if info.kind == Kind::Brdf || isa == Isa::Scalar {
         return None;
     }
-    let (m, a) = (f64::from(o.mul), f64::from(o.add));
-    let slots = if isa.fma() { m.max(a) } else { m + a };
+    let (slots, divs) = match kernel {
+        Some(k) if isa.fma() => (f64::from(k.mul), k.div),
+        _ if o.sqrt != 0 || o.transcendental != 0 => return None,
+        _ => {
+            let (m, a) = (f64::from(o.mul), f64::from(o.add));
+            (if isa.fma() { m.max(a) } else { m + a }, o.div)
+        }
+    };
     let fma = evals_per_s * slots / fma_per_s;
-    if o.div == 0 {
+    if divs == 0 {
         return (slots > 0.0).then_some(("fma", fma));
     }
-    let div = evals_per_s * f64::from(o.div) / div_per_s?;
+    let div = evals_per_s * f64::from(divs) / div_per_s?;
     Some(if div >= fma {
         ("divider", div)
     } else {
@@ -688,7 +699,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         let row = |variant: &str, batch: usize, evals: f64, isa: Isa, fraction: Option<f64>| {
             // The machine's limit is measured on one core: the rows of one thread only.
             let limit = (variant == "simd")
-                .then(|| limit_fraction(info, isa, evals, fma, div))
+                .then(|| limit_fraction(info, isa, evals, fma, div, kernel.pipe_ops()))
                 .flatten();
             KernelRow {
                 model: name.clone(),
@@ -757,11 +768,28 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
             .copied()
             .find(|i| i.name() == p.isa)
             .unwrap_or(Isa::Scalar);
-        let limit = limit_fraction(info, isa, p.kernel_evals_per_s.median, fma, div);
+        // The kernel's own count where its family gives one: the C loop calls libm's or
+        // libmvec's exp2f/expf there, whose operations are not the kernel's, so it gets no
+        // fraction (the formula's count would understate it).
+        let pipe_ops = self::peers()
+            .into_iter()
+            .find(|q| q.id == p.model)
+            .and_then(|q| {
+                let given: Vec<(&str, &str)> = q
+                    .params
+                    .iter()
+                    .map(|(a, b)| (a.as_str(), b.as_str()))
+                    .collect();
+                Kernel::new(q.id, &given).ok()?.pipe_ops()
+            });
+        let limit = limit_fraction(info, isa, p.kernel_evals_per_s.median, fma, div, pipe_ops);
         p.kernel_limit = limit.map(|l| l.0.into());
         p.kernel_limit_fraction = limit.map(|l| l.1);
-        p.peer_limit_fraction =
-            limit_fraction(info, isa, p.peer_evals_per_s.median, fma, div).map(|l| l.1);
+        p.peer_limit_fraction = if pipe_ops.is_some() {
+            None
+        } else {
+            limit_fraction(info, isa, p.peer_evals_per_s.median, fma, div, None).map(|l| l.1)
+        };
     }
     progress(total, total);
     Ok(Report {
@@ -1403,26 +1431,62 @@ mod tests {
     fn limit_fraction_names_the_unit_the_formula_loads_most() {
         let info = |id: &str| fastbrdf::registry::find(id).unwrap().info;
         let (fma, div) = (100e9, 20e9);
-        let l = limit_fraction(&info("power16"), Isa::Avx512, 10e9, fma, Some(div));
+        let l = limit_fraction(&info("power16"), Isa::Avx512, 10e9, fma, Some(div), None);
         assert_eq!(l, Some(("fma", 10e9 * 5.0 / fma)));
-        let l = limit_fraction(&info("schlick"), Isa::Avx512, 10e9, fma, Some(div));
+        let l = limit_fraction(&info("schlick"), Isa::Avx512, 10e9, fma, Some(div), None);
         assert_eq!(l, Some(("divider", 10e9 / div)));
         // Divisions as cheap as a third of an FMA slot: the pipes bound it again.
-        let l = limit_fraction(&info("schlick"), Isa::Avx512, 10e9, fma, Some(3.0 * fma));
+        let l = limit_fraction(
+            &info("schlick"),
+            Isa::Avx512,
+            10e9,
+            fma,
+            Some(3.0 * fma),
+            None,
+        );
         assert_eq!(l.map(|l| l.0), Some("fma"));
         // Without a divider rate a dividing kernel has no stated limit.
         assert_eq!(
-            limit_fraction(&info("schlick"), Isa::Avx512, 1e9, fma, None),
+            limit_fraction(&info("schlick"), Isa::Avx512, 1e9, fma, None, None),
             None
         );
         for id in ["sg", "pow", "ward", "cook-torrance"] {
             assert_eq!(
-                limit_fraction(&info(id), Isa::Avx512, 1e9, fma, Some(div)),
+                limit_fraction(&info(id), Isa::Avx512, 1e9, fma, Some(div), None),
                 None
             );
         }
         assert_eq!(
-            limit_fraction(&info("power16"), Isa::Scalar, 1e9, fma, Some(div)),
+            limit_fraction(&info("power16"), Isa::Scalar, 1e9, fma, Some(div), None),
+            None
+        );
+    }
+
+    /// A family that counts its kernel (`Kernel::pipe_ops`) is measured with that count on
+    /// the FMA instruction sets: sg's exponential is a polynomial the registry's
+    /// `1 mul, 1 add, 1 transcendental` cannot see; beckmann's one division against its
+    /// eleven multiply-pipe operations picks whichever unit it loads more.
+    #[test]
+    fn limit_fraction_uses_a_kernels_own_count() {
+        let info = |id: &str| fastbrdf::registry::find(id).unwrap().info;
+        let (fma, div) = (100e9, 20e9);
+        let sg = Some(PipeOps { mul: 7, div: 0 });
+        let l = limit_fraction(&info("sg"), Isa::Avx512, 10e9, fma, Some(div), sg);
+        assert_eq!(l, Some(("fma", 10e9 * 7.0 / fma)));
+        // Not on SSE2 (the count is the FMA kernels') and not for scalar fallbacks.
+        for isa in [Isa::Sse2, Isa::Scalar] {
+            assert_eq!(
+                limit_fraction(&info("sg"), isa, 1e9, fma, Some(div), sg),
+                None
+            );
+        }
+        let b = Some(PipeOps { mul: 11, div: 1 });
+        let l = limit_fraction(&info("beckmann"), Isa::Avx2Fma, 5e9, fma, Some(div), b);
+        assert_eq!(l, Some(("fma", 5e9 * 11.0 / fma)));
+        let l = limit_fraction(&info("beckmann"), Isa::Avx2Fma, 5e9, fma, Some(4e9), b);
+        assert_eq!(l, Some(("divider", 5e9 / 4e9)));
+        assert_eq!(
+            limit_fraction(&info("beckmann"), Isa::Avx2Fma, 5e9, fma, None, b),
             None
         );
     }

@@ -980,7 +980,9 @@ fn bench_peers_have_the_documented_shape_and_old_runs_still_load() {
     }
     assert_eq!(peers[2]["params"], "alpha=0.3");
     // power16 is held against the FMA pipes, and so is its C loop (same operation count);
-    // pow and beckmann have transcendentals: no fraction on either side.
+    // pow's transcendental is uncounted: no fraction on either side; beckmann counts its
+    // kernel (its exp2's polynomial, on FMA instruction sets), while its C loop, which calls
+    // libm's expf, gets none.
     assert_eq!(peers[1]["kernel_limit"], "fma");
     let (k, c) = (
         peers[1]["kernel_limit_fraction"].as_f64().unwrap(),
@@ -993,6 +995,15 @@ fn bench_peers_have_the_documented_shape_and_old_runs_still_load() {
         "{k} {c} {ratio}"
     );
     assert!(peers[0]["peer_limit_fraction"].is_null() && peers[2]["peer_limit_fraction"].is_null());
+    assert!(peers[0]["kernel_limit_fraction"].is_null());
+    let fma_isa = matches!(peers[2]["isa"].as_str(), Some("avx512" | "avx2+fma"));
+    let b = peers[2]["kernel_limit_fraction"].as_f64();
+    assert_eq!(b.is_some(), fma_isa, "{}", peers[2]);
+    if fma_isa {
+        assert!(b.unwrap() > 0.0 && b.unwrap() < 2.0, "{}", peers[2]);
+        let unit = peers[2]["kernel_limit"].as_str().unwrap();
+        assert!(unit == "fma" || unit == "divider", "{unit}");
+    }
     // The saved run renders its peer table (Markdown and text).
     let d = temp_dir("bench-peers");
     let path = d.join("run.json");

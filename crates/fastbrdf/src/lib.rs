@@ -51,7 +51,7 @@ pub mod wgsl;
 
 pub use error::{Error, Result};
 pub use model::{
-    Brdf, Distribution, ErrorBound, Fresnel, Kind, Lobe, Metric, Model, ModelInfo, Ops, Shadowing,
-    Zone,
+    Brdf, Distribution, ErrorBound, Fresnel, Kind, Lobe, Metric, Model, ModelInfo, Ops, PipeOps,
+    Shadowing, Zone,
 };
 pub use real::Real;

@@ -34,6 +34,16 @@ impl Ops {
     }
 }
 
+/// What a SIMD kernel executes per element on the FMA instruction sets, counted from its
+/// code where the formula's [`Ops`] miss it (the polynomial of a vectorised `exp2`):
+/// multiply-pipe operations (multiplies and fused multiply-adds) and divisions. Adds, clamps,
+/// compares and integer steps run on other pipes and are not counted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub struct PipeOps {
+    pub mul: u8,
+    pub div: u8,
+}
+
 /// How an error is measured.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "kebab-case")]

@@ -19,7 +19,7 @@
 
 use crate::error::{Error, Result};
 use crate::math::{Exact, Math};
-use crate::model::{self, Kind, Model, ShadowInput};
+use crate::model::{self, Kind, Model, PipeOps, ShadowInput};
 use crate::params::Params;
 use crate::real::Real;
 use crate::sample::{CosDist, Strategy};
@@ -110,6 +110,15 @@ pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     fn batch_ftz(&self) -> bool {
         true
     }
+    /// The batch kernel's multiply-pipe operations (multiplies and fused multiply-adds) and
+    /// divisions per element on the FMA instruction sets, where the registry's `Ops` cannot
+    /// give them: a kernel whose vectorised `exp2` is a polynomial of its own length
+    /// (`math::fast::EXP2_NONPOS_MULS` and the like). `fastbrdf bench` measures such a
+    /// kernel against the FMA pipes or the divider with this count. `None` (the default):
+    /// not counted.
+    fn batch_pipe_ops(&self) -> Option<PipeOps> {
+        None
+    }
     /// The largest cosine below which the lobe is identically zero (0 when it has none).
     fn zero_below(&self) -> f64 {
         0.0
@@ -161,6 +170,11 @@ pub trait DistForm: Copy + Debug + Send + Sync + 'static {
     /// Whether the batch kernel runs with flush-to-zero set, as [`LobeForm::batch_ftz`].
     fn batch_ftz(&self) -> bool {
         true
+    }
+    /// The batch kernel's multiply-pipe operations and divisions per element, as
+    /// [`LobeForm::batch_pipe_ops`].
+    fn batch_pipe_ops(&self) -> Option<PipeOps> {
+        None
     }
     /// The WGSL call on the expressions `c` (`cos_h`, in range) and `s2` (`sin^2`).
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String;

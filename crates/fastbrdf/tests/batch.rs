@@ -853,3 +853,31 @@ fn anisotropic_cook_torrance_kernels_match_the_scalar_model() {
     }
     println!("anisotropic cook-torrance batch vs scalar f32: max mixed error {worst:.2e}");
 }
+
+/// `Kernel::pipe_ops` (issue 13: `fastbrdf bench` states the fraction of the machine's limit
+/// for kernels whose vectorised `exp2` the registry's counts cannot see): on an instruction
+/// set with FMA the families that count their kernels report them, with the form the
+/// parameters select (`sg` at rates below 127 runs `exp2_nonpos`, above `exp2_nonpos_times`);
+/// the others, and every kernel without FMA, report nothing.
+#[test]
+fn kernels_count_their_multiply_pipe_operations_where_the_registry_cannot() {
+    use fastbrdf::PipeOps;
+    use fastbrdf::math::fast::{EXP2_C6, EXP2_NONPOS_TIMES_MULS};
+    // Horner over EXP2_C6: one fused multiply-add a degree.
+    assert_eq!(usize::from(EXP2_NONPOS_TIMES_MULS), EXP2_C6.len() - 1);
+    let ops = |id: &str, p: &str, v: &str| Kernel::new(id, &[(p, v)]).unwrap().pipe_ops();
+    let fma = Isa::best().fma();
+    let want = |mul, div| fma.then_some(PipeOps { mul, div });
+    assert_eq!(ops("sg", "n", "200"), want(7, 0));
+    assert_eq!(ops("ue4-phong-approx", "n", "200"), want(7, 0));
+    assert_eq!(ops("sg", "n", "20"), want(10, 0));
+    assert_eq!(ops("beckmann", "alpha", "0.3"), want(11, 1));
+    assert_eq!(ops("beckmann-ct", "alpha", "0.005"), want(11, 1));
+    for (id, p, v) in [
+        ("power16", "n", "200"),
+        ("schlick", "n", "20"),
+        ("ggx", "alpha", "0.3"),
+    ] {
+        assert_eq!(ops(id, p, v), None, "{id}");
+    }
+}

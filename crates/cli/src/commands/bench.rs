@@ -45,8 +45,11 @@ pub struct Args {
     /// whichever its multiplies, adds and divisions use more of, and `limit_fraction` the share
     /// used (single-thread "simd" rows; `kernel_limit*` for the peers' median, and
     /// `peer_limit_fraction` the C loop's median against the same limit with the same
-    /// operation count); null where a square root or transcendental makes the count
-    /// meaningless.
+    /// operation count). A kernel whose family counts its own operations (sg,
+    /// ue4-phong-approx, sg-tuned, beckmann, beckmann-ct: their vectorised exp2's polynomial
+    /// included, on FMA instruction sets) is held to that count, and its C loop, which calls
+    /// libm's or libmvec's exponential, gets no peer_limit_fraction. Null where an uncounted
+    /// square root or transcendental makes the count meaningless.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown tables that README.md shows.

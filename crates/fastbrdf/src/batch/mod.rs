@@ -28,7 +28,7 @@ use crate::brdf::phong::LobeBrdf;
 use crate::error::{Error, Result};
 use crate::math::{Fast, FastFma, Math};
 use crate::microfacet::ms::Ms;
-use crate::model::Kind;
+use crate::model::{Kind, PipeOps};
 use crate::plan::{
     BrdfForm, BrdfPlan, DistForm, EnvForm, FresnelForm, LobeForm, Plan, ShadowForm, with_brdf,
     with_dist, with_env, with_fresnel, with_lobe, with_shadow,
@@ -124,6 +124,11 @@ pub trait Op1: Send + Sync + 'static {
     fn ftz(&self) -> bool {
         true
     }
+    /// Multiply-pipe operations per element on the FMA instruction sets, where the family
+    /// counts them (`LobeForm::batch_pipe_ops`).
+    fn pipe_ops(&self) -> Option<PipeOps> {
+        None
+    }
     fn f<M: Math<f32>>(&self, x: f32) -> f32;
 }
 
@@ -144,6 +149,9 @@ impl<L: LobeForm> Op1 for LobeOp<L> {
     fn ftz(&self) -> bool {
         self.0.batch_ftz()
     }
+    fn pipe_ops(&self) -> Option<PipeOps> {
+        self.0.batch_pipe_ops()
+    }
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
         self.0.batch::<M>(c)
@@ -155,6 +163,9 @@ struct DistOp<D>(D);
 impl<D: DistForm> Op1 for DistOp<D> {
     fn ftz(&self) -> bool {
         self.0.batch_ftz()
+    }
+    fn pipe_ops(&self) -> Option<PipeOps> {
+        self.0.batch_pipe_ops()
     }
     #[inline(always)]
     fn f<M: Math<f32>>(&self, c: f32) -> f32 {
@@ -376,10 +387,17 @@ pub trait Imp: Send + Sync {
     fn ftz(&self) -> bool {
         true
     }
+    /// Multiply-pipe operations per element on the FMA instruction sets, where counted.
+    fn pipe_ops(&self) -> Option<PipeOps> {
+        None
+    }
 }
 
 struct Map1<O>(O);
 impl<O: Op1> Imp for Map1<O> {
+    fn pipe_ops(&self) -> Option<PipeOps> {
+        self.0.pipe_ops()
+    }
     fn run(&self, isa: Isa, input: &Input, out: &mut [f32]) {
         if let Input::Cos(x) = *input {
             run1(isa, &self.0, x, out)
@@ -567,6 +585,18 @@ impl Kernel {
     fn run(&self, isa: Isa, input: &Input, out: &mut [f32]) {
         let _ftz = self.ftz.then(FlushToZero::on);
         self.imp.run(isa, input, out);
+    }
+
+    /// Multiply-pipe operations (multiplies and fused multiply-adds) per element of this
+    /// kernel where its family counts them (a vectorised `exp2` whose polynomial the
+    /// registry's `Ops` do not see: `LobeForm::batch_pipe_ops`), on an instruction set with
+    /// FMA; `None` elsewhere (other families, SSE2, scalar fallbacks).
+    pub fn pipe_ops(&self) -> Option<PipeOps> {
+        if self.simd && self.run_isa.fma() {
+            self.imp.pipe_ops()
+        } else {
+            None
+        }
     }
 
     /// The instruction set `eval` uses.
