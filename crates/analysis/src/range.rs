@@ -35,10 +35,10 @@ pub fn parse(text: &str, default_step: f64) -> Result<Vec<f64>, String> {
         }
     };
     if let Some((lo, rest)) = t.split_once("..") {
-        if let Some((hi, per)) = rest.split_once(':') {
-            if let Some(k) = per.trim().strip_prefix("log") {
-                return log_range(text, num(lo)?, num(hi)?, k);
-            }
+        if let Some((hi, per)) = rest.split_once(':')
+            && let Some(k) = per.trim().strip_prefix("log")
+        {
+            return log_range(text, num(lo)?, num(hi)?, k);
         }
         let (hi, step) = match rest.split_once(':') {
             Some((hi, step)) => (num(hi)?, num(step)?),
@@ -73,19 +73,19 @@ pub fn parse(text: &str, default_step: f64) -> Result<Vec<f64>, String> {
         let mut v: Vec<f64> = Vec::with_capacity(count);
         for i in 0..count {
             let x = lo + i as f64 * step;
-            if let Some(&prev) = v.last() {
-                if !(x > prev) {
-                    return Err(format!(
-                        "the step {step:e} of '{text}' is too small to change {prev:e} in f64"
-                    ));
-                }
+            if let Some(&prev) = v.last()
+                && !(x > prev)
+            {
+                return Err(format!(
+                    "the step {step:e} of '{text}' is too small to change {prev:e} in f64"
+                ));
             }
             v.push(x);
         }
-        if let Some(last) = v.last_mut() {
-            if (*last - hi).abs() < 1e-9 * step {
-                *last = hi;
-            }
+        if let Some(last) = v.last_mut()
+            && (*last - hi).abs() < 1e-9 * step
+        {
+            *last = hi;
         }
         return Ok(v);
     }

@@ -822,10 +822,10 @@ impl Drop for MerlFile {
     fn drop(&mut self) {
         let mut m = MERL.lock().unwrap_or_else(|e| e.into_inner());
         m.0 -= 1;
-        if m.0 == 0 {
-            if let Some(p) = m.1.take() {
-                let _ = std::fs::remove_dir_all(p.parent().unwrap());
-            }
+        if m.0 == 0
+            && let Some(p) = m.1.take()
+        {
+            let _ = std::fs::remove_dir_all(p.parent().unwrap());
         }
     }
 }

@@ -61,9 +61,9 @@ fn output_err(path: &Path, e: impl fmt::Display) -> IoError {
 
 /// `limit` bytes in words: "64 MiB", "512 KiB", "100 bytes".
 pub fn human_size(limit: u64) -> String {
-    if limit >= 1 << 20 && limit % (1 << 20) == 0 {
+    if limit >= 1 << 20 && limit.is_multiple_of(1 << 20) {
         format!("{} MiB", limit >> 20)
-    } else if limit >= 1 << 10 && limit % (1 << 10) == 0 {
+    } else if limit >= 1 << 10 && limit.is_multiple_of(1 << 10) {
         format!("{} KiB", limit >> 10)
     } else {
         format!("{limit} bytes")
@@ -177,11 +177,11 @@ fn create_dirs(dir: &Path) -> io::Result<Vec<PathBuf>> {
     }
     missing.reverse();
     for (i, p) in missing.iter().enumerate() {
-        if let Err(e) = fs::create_dir(p) {
-            if !(e.kind() == io::ErrorKind::AlreadyExists && p.is_dir()) {
-                remove_dirs(&missing[..i]);
-                return Err(e);
-            }
+        if let Err(e) = fs::create_dir(p)
+            && !(e.kind() == io::ErrorKind::AlreadyExists && p.is_dir())
+        {
+            remove_dirs(&missing[..i]);
+            return Err(e);
         }
     }
     Ok(missing)
