@@ -881,3 +881,42 @@ fn kernels_count_their_multiply_pipe_operations_where_the_registry_cannot() {
         assert_eq!(ops(id, p, v), None, "{id}");
     }
 }
+
+/// `exp2_nonpos_tail` (the spherical Gaussians' kernels, no final select): within 3 ulp of
+/// `2^x` down to -125.5, off by at most 2^-126 below (where the exact value is under
+/// 2^-125.5), never negative or NaN, and exactly 0 for NaN, -inf and everything at or below
+/// -127 (every f32 of the tail [-127, -125.5] is checked).
+#[test]
+fn exponential_without_the_select_keeps_its_tail_bound() {
+    use fastbrdf::math::fast::{self, fma};
+    let eps = f32::EPSILON as f64;
+    for (name, f) in [
+        ("exp2_nonpos_tail", fast::exp2_nonpos_tail as fn(f32) -> f32),
+        ("fma::exp2_nonpos_tail", fma::exp2_nonpos_tail),
+    ] {
+        let mut worst: f64 = 0.0;
+        let steps = 400_000;
+        for i in 0..=steps {
+            let x = -125.5 * i as f32 / steps as f32;
+            let want = (x as f64).exp2();
+            let got = f(x) as f64;
+            assert!(got.is_normal(), "{name}({x}) = {got:e}");
+            worst = worst.max((got - want).abs() / want);
+        }
+        assert!(worst <= 3.0 * eps, "{name}: {worst:.3e}");
+        assert_eq!(f(0.0), 1.0, "{name}");
+        // Every f32 between -127 and -125.5: the tail.
+        let (lo, hi) = ((-127.0f32).to_bits(), (-125.5f32).to_bits());
+        let mut tail: f64 = 0.0;
+        for b in hi..=lo {
+            let x = f32::from_bits(b);
+            let got = f(x);
+            assert!(got >= 0.0 && got.is_finite(), "{name}({x}) = {got:e}");
+            tail = tail.max((got as f64 - (x as f64).exp2()).abs());
+        }
+        assert!(tail <= 2f64.powi(-126), "{name}: tail error {tail:e}");
+        for x in [-127.0f32, -128.0, -1e30, f32::NEG_INFINITY, f32::NAN] {
+            assert_eq!(f(x).to_bits(), 0, "{name}({x})");
+        }
+    }
+}

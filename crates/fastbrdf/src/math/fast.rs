@@ -73,6 +73,10 @@ pub mod fma {
         super::exp2_nonpos_times_g::<true>(x, s)
     }
     #[inline(always)]
+    pub fn exp2_nonpos_tail(x: f32) -> f32 {
+        super::exp2_nonpos_tail_g::<true>(x)
+    }
+    #[inline(always)]
     pub fn log2(x: f32) -> f32 {
         super::log2_g::<true>(x)
     }
@@ -111,9 +115,9 @@ pub fn exp2(x: f32) -> f32 {
 /// [`estrin7`].
 pub const EXP2_NONPOS_MULS: u8 = 9;
 
-/// Multiply-pipe operations of [`fma::exp2_nonpos_times`] per element: six fused
-/// multiply-adds (degree 6 by Horner; the scale is folded into the coefficients outside the
-/// loop, `2^k` added to the exponent bits).
+/// Multiply-pipe operations of [`fma::exp2_nonpos_times`] and [`fma::exp2_nonpos_tail`] per
+/// element: six fused multiply-adds (degree 6 by Horner; the scale is folded into the
+/// coefficients outside the loop, `2^k` added to the exponent bits).
 pub const EXP2_NONPOS_TIMES_MULS: u8 = 6;
 
 /// `exp2(x)` for `x <= 0` (the lobes' and distributions' exponents): no overflow or NaN
@@ -164,20 +168,46 @@ pub const EXP2_C6: [f32; 7] = [
 #[inline(always)]
 fn exp2_nonpos_times_g<const F: bool>(x: f32, s: f32) -> f32 {
     let xc = if x > -127.0 { x } else { -127.0 };
-    let t = xc + MAGIC;
-    let (k, ki) = unmagic(t);
+    let r = scaled_exp2_c6::<F>(xc, s);
+    if xc >= -123.0 { r } else { 0.0 }
+}
+
+/// `s 2^xc` for `xc` in [-127, 0], the exponent field unchecked: `2^f` by [`EXP2_C6`] with
+/// `s` folded into the coefficients (loop-invariant; `s = 1` folds away), `2^k` added to the
+/// exponent bits. Horner: six fused multiply-adds where Estrin's scheme takes eight
+/// multiply-pipe operations (two squarings); the loops that call this overlap iterations
+/// enough that the longer chain costs nothing (`beckmann` 5% faster, `sg` 9% faster than
+/// with Estrin, in `fastbrdf bench`) and it rounds less (0.8 ulp measured where Estrin gave
+/// 1.6).
+#[inline(always)]
+fn scaled_exp2_c6<const F: bool>(xc: f32, s: f32) -> f32 {
+    let (k, ki) = unmagic(xc + MAGIC);
     let c = EXP2_C6.map(|c| c * s);
     let f = xc - k;
-    // Horner: six fused multiply-adds where Estrin's scheme takes eight multiply-pipe
-    // operations (two squarings); the loops that call this overlap iterations enough that
-    // the longer chain costs nothing (`beckmann` 5% faster, `sg` even, in `fastbrdf bench`)
-    // and it rounds less (0.8 ulp measured where Estrin gave 1.6).
     let mut p = c[6];
     for &ci in c[..6].iter().rev() {
         p = madd::<F>(p, f, ci);
     }
-    let r = add_exponent(p, ki);
-    if xc >= -123.0 { r } else { 0.0 }
+    add_exponent(p, ki)
+}
+
+/// `2^x` for `x <= 0` without the final select of [`exp2_nonpos_times`] (`s = 1`): the
+/// spherical Gaussians' kernels, where that compare-and-blend cost 19% (`sg` 9.7 -> 11.6 G/s
+/// in a lab copy). The clamp `x > -127 ? x : -127` maps NaN and everything below to -127,
+/// where `k = -127`, `f = 0`, the polynomial is exactly 1 and adding -127 to its exponent
+/// field gives the bits of +0: exactly 0 there. Above -125.5 the result is
+/// [`exp2_nonpos_times`]'s (same polynomial, <= 3 ulp); in between, where the exact value is
+/// below 2^-125.5 = 1.7e-38, the exponent addition reaches the exponent field's 0 and leaves
+/// a subnormal bit pattern: non-negative, finite, off by at most 2^-126 = 1.2e-38
+/// (tested). No subnormal arithmetic happens (the bits are built by an integer add).
+#[inline(always)]
+pub fn exp2_nonpos_tail(x: f32) -> f32 {
+    exp2_nonpos_tail_g::<false>(x)
+}
+
+#[inline(always)]
+fn exp2_nonpos_tail_g<const F: bool>(x: f32) -> f32 {
+    scaled_exp2_c6::<F>(if x > -127.0 { x } else { -127.0 }, 1.0)
 }
 
 /// `exp(x)` for `x <= 0`, as [`exp2_nonpos`] (`x log2 e` then the same reduction; the

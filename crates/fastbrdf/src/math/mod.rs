@@ -45,6 +45,12 @@ pub trait Math<T: Real> {
     fn exp2_nonpos_times(x: T, s: T) -> T {
         s * Self::exp2_nonpos(x)
     }
+    /// `exp2(x)` for `x <= 0`, 0 for NaN and `x <= -127`; the vector backends drop the final
+    /// select and may return a value off by up to 2^-126 (never negative) where the exact one
+    /// is below 2^-125.5 (see [`fast::exp2_nonpos_tail`]).
+    fn exp2_nonpos_tail(x: T) -> T {
+        Self::exp2_nonpos(x)
+    }
     /// `a b + c`: two roundings in `Exact` and `Fast` (the scalar models keep their documented
     /// f32 behaviour; SSE2 has no FMA), one in `FastFma`.
     fn madd(a: T, b: T, c: T) -> T;
@@ -130,6 +136,10 @@ impl Math<f32> for Fast {
     fn exp2_nonpos_times(x: f32, s: f32) -> f32 {
         math::exp2_nonpos_times(x, s)
     }
+    #[inline(always)]
+    fn exp2_nonpos_tail(x: f32) -> f32 {
+        math::exp2_nonpos_tail(x)
+    }
 }
 
 /// `Fast` with fused multiply-adds, in the formulas and in the polynomials of
@@ -183,5 +193,9 @@ impl Math<f32> for FastFma {
     #[inline(always)]
     fn exp2_nonpos_times(x: f32, s: f32) -> f32 {
         fast::fma::exp2_nonpos_times(x, s)
+    }
+    #[inline(always)]
+    fn exp2_nonpos_tail(x: f32) -> f32 {
+        fast::fma::exp2_nonpos_tail(x)
     }
 }
