@@ -113,7 +113,7 @@ pub trait LobeForm: Copy + Debug + Send + Sync + 'static {
     /// The batch kernel's multiply-pipe operations (multiplies and fused multiply-adds) and
     /// divisions per element on the FMA instruction sets, where the registry's `Ops` cannot
     /// give them: a kernel whose vectorised `exp2` is a polynomial of its own length
-    /// (`math::fast::EXP2_NONPOS_MULS` and the like). `fastbrdf bench` measures such a
+    /// (`math::fast::EXP2_NONPOS_TIMES_MULS`). `fastbrdf bench` measures such a
     /// kernel against the FMA pipes or the divider with this count. `None` (the default):
     /// not counted.
     fn batch_pipe_ops(&self) -> Option<PipeOps> {

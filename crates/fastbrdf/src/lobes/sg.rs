@@ -145,10 +145,10 @@ impl LobeForm for Exp2Lobe {
     }
     #[inline(always)]
     fn at<T: Real, M: Math<T>>(&self, c: T) -> T {
-        M::exp2_nonpos(self.k.t::<T>() * (c - T::one()))
+        M::exp2_nonpos_tail(self.k.t::<T>() * (c - T::one()))
     }
     /// Where the rate `k >= 127` (n >= 88 for `sg`) the value at c = 0 is already below
-    /// 2^-126, 0 from `exp2_nonpos`, so c < 0 needs no clamp: on the FMA instruction sets the
+    /// 2^-126, 0 from `exp2_nonpos_tail`, so c < 0 needs no clamp: on the FMA instruction sets the
     /// exponent is one fused `k c - k` (elsewhere the product would round alone), clamped at
     /// 0 for c > 1 (`0 < x ? 0 : x` keeps NaN, which the exponential maps to 0), and no final
     /// `max(0, v)`: three of the kernel's twenty operations (issue 13). The exponential is
@@ -166,21 +166,15 @@ impl LobeForm for Exp2Lobe {
             crate::plan::clamped_batch::<Self, M>(self, c)
         }
     }
-    /// The FMA kernels: `k c - k` (one fused multiply-add) and `exp2_nonpos_tail`'s six at
-    /// rates >= 127; below, `clamped_batch`'s `k (c - 1)` (one multiply) and
-    /// `exp2_nonpos`'s nine. No division.
+    /// The FMA kernels: `k c - k` (one fused multiply-add) at rates >= 127, `k (c - 1)` (one
+    /// multiply) below, and `exp2_nonpos_tail`'s six. No division.
     fn batch_pipe_ops(&self) -> Option<crate::model::PipeOps> {
-        let exp2 = if self.k.t::<f32>() >= 127.0 {
-            crate::math::fast::EXP2_NONPOS_TIMES_MULS
-        } else {
-            crate::math::fast::EXP2_NONPOS_MULS
-        };
         Some(crate::model::PipeOps {
-            mul: 1 + exp2,
+            mul: 1 + crate::math::fast::EXP2_NONPOS_TIMES_MULS,
             div: 0,
         })
     }
-    /// `exp2_nonpos` builds its result from the bits of 2^k: no subnormal arithmetic.
+    /// `exp2_nonpos_tail` builds its result from the bits of 2^k: no subnormal arithmetic.
     fn batch_ftz(&self) -> bool {
         false
     }

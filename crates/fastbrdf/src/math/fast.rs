@@ -108,13 +108,6 @@ pub fn exp2(x: f32) -> f32 {
     exp2_g::<false>(x)
 }
 
-/// Multiply-pipe operations of [`fma::exp2_nonpos`] per element: its degree-7 polynomial by
-/// Estrin's scheme, two squarings and seven fused multiply-adds (the range reduction's adds,
-/// clamps and exponent-field addition run on other pipes). Counted for `fastbrdf bench`'s
-/// fraction of the machine's limit (`LobeForm::batch_pipe_ops`); change it with
-/// [`estrin7`].
-pub const EXP2_NONPOS_MULS: u8 = 9;
-
 /// Multiply-pipe operations of [`fma::exp2_nonpos_times`] and [`fma::exp2_nonpos_tail`] per
 /// element: six fused multiply-adds (degree 6 by Horner; the scale is folded into the
 /// coefficients outside the loop, `2^k` added to the exponent bits).

@@ -306,7 +306,7 @@ impl EnvForm for Approx {
         let r = alpha.sqrt();
         let px = M::madd(r, k(0), k(4));
         let py = M::madd(r, k(1), k(5));
-        let a004 = M::madd((px * px).min(M::exp2_nonpos(k(8) * cos_v)), px, py);
+        let a004 = M::madd((px * px).min(M::exp2_nonpos_tail(k(8) * cos_v)), px, py);
         let v = if self.bias {
             M::madd(k(10), a004, M::madd(r, k(3), k(7)))
         } else {

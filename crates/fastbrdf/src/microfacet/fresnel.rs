@@ -248,7 +248,7 @@ impl FresnelForm for SchlickSg {
         let c = min1(pos(cos));
         let f0 = self.f0.t::<T>();
         let x = M::madd(self.a.t::<T>(), c, self.b.t::<T>()) * c;
-        M::madd(self.f90.t::<T>() - f0, M::exp2_nonpos(x), f0)
+        M::madd(self.f90.t::<T>() - f0, M::exp2_nonpos_tail(x), f0)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
         // `a`, `b` are fixed by the id, never runtime parameters.
