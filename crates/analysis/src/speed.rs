@@ -775,11 +775,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
             .into_iter()
             .find(|q| q.id == p.model)
             .and_then(|q| {
-                let given: Vec<(&str, &str)> = q
-                    .params
-                    .iter()
-                    .map(|(a, b)| (a.as_str(), b.as_str()))
-                    .collect();
+                let given = q.given();
                 Kernel::new(q.id, &given).ok()?.pipe_ops()
             });
         let limit = limit_fraction(info, isa, p.kernel_evals_per_s.median, fma, div, pipe_ops);
@@ -1097,6 +1093,14 @@ impl Peer {
         })
     }
 
+    /// The model's parameters as `Kernel::new` and `registry::build` take them.
+    pub fn given(&self) -> Vec<(&str, &str)> {
+        self.params
+            .iter()
+            .map(|(a, b)| (a.as_str(), b.as_str()))
+            .collect()
+    }
+
     /// The model's parameters as `name=value` (the CLI's form).
     pub fn params_text(&self) -> String {
         self.params
@@ -1328,11 +1332,7 @@ pub fn peer_rows(
         if !(models.is_empty() || models.iter().any(|m| m == peer.id)) {
             continue;
         }
-        let given: Vec<(&str, &str)> = peer
-            .params
-            .iter()
-            .map(|(a, b)| (a.as_str(), b.as_str()))
-            .collect();
+        let given = peer.given();
         let kernel = Kernel::new(peer.id, &given)?;
         let m64 = registry::build::<f64>(peer.id, &given)?;
         let kernel_max_error = max_mixed_error(&m64, &acc_in, |x, o| {
@@ -1618,11 +1618,7 @@ mod tests {
         peers()
             .iter()
             .map(|p| {
-                let given: Vec<(&str, &str)> = p
-                    .params
-                    .iter()
-                    .map(|(a, b)| (a.as_str(), b.as_str()))
-                    .collect();
+                let given = p.given();
                 let m64 = registry::build::<f64>(p.id, &given).unwrap();
                 let kernel = Kernel::new(p.id, &given).unwrap();
                 let ke = max_mixed_error(&m64, &xs, |x, o| kernel.eval(Input::Cos(x), o).unwrap());
@@ -1668,11 +1664,7 @@ mod tests {
             ("alpha=0.3", "peer_beckmann")
         );
         for p in peers() {
-            let given: Vec<(&str, &str)> = p
-                .params
-                .iter()
-                .map(|(a, b)| (a.as_str(), b.as_str()))
-                .collect();
+            let given = p.given();
             assert!(registry::build::<f64>(p.id, &given).is_ok(), "{}", p.id);
             assert_eq!(p.function, format!("peer_{}", p.id));
         }
