@@ -124,8 +124,8 @@ pub trait Op1: Send + Sync + 'static {
     fn ftz(&self) -> bool {
         true
     }
-    /// Multiply-pipe operations per element on the FMA instruction sets, where the family
-    /// counts them (`LobeForm::batch_pipe_ops`).
+    /// Multiply-pipe operations and divisions per element on the FMA instruction sets, where
+    /// the family counts them (`LobeForm::batch_pipe_ops`).
     fn pipe_ops(&self) -> Option<PipeOps> {
         None
     }
@@ -387,7 +387,8 @@ pub trait Imp: Send + Sync {
     fn ftz(&self) -> bool {
         true
     }
-    /// Multiply-pipe operations per element on the FMA instruction sets, where counted.
+    /// Multiply-pipe operations and divisions per element on the FMA instruction sets, where
+    /// counted.
     fn pipe_ops(&self) -> Option<PipeOps> {
         None
     }
@@ -587,8 +588,8 @@ impl Kernel {
         self.imp.run(isa, input, out);
     }
 
-    /// Multiply-pipe operations (multiplies and fused multiply-adds) per element of this
-    /// kernel where its family counts them (a vectorised `exp2` whose polynomial the
+    /// Multiply-pipe operations (multiplies and fused multiply-adds) and divisions per
+    /// element of this kernel where its family counts them (a vectorised `exp2` whose polynomial the
     /// registry's `Ops` do not see: `LobeForm::batch_pipe_ops`), on an instruction set with
     /// FMA; `None` elsewhere (other families, SSE2, scalar fallbacks).
     pub fn pipe_ops(&self) -> Option<PipeOps> {
