@@ -37,7 +37,9 @@ impl Ops {
 /// What a SIMD kernel executes per element on the FMA instruction sets, counted from its
 /// code where the formula's [`Ops`] miss it (the polynomial of a vectorised `exp2`):
 /// multiply-pipe operations (multiplies and fused multiply-adds) and divisions. Adds, clamps,
-/// compares and integer steps run on other pipes and are not counted.
+/// compares and integer steps are not counted: on AMD's Zen 4 and 5 they run on other pipes
+/// (on Intel's cores float adds and vector shifts share the FMA ports, so the fraction
+/// understates the load there).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 pub struct PipeOps {
     pub mul: u8,

@@ -14,8 +14,9 @@
 //!   `fma::pow` reaches the same bound in double-f32 arithmetic (no f64 lane; `pow_fma`).
 //! - `exp`: relative error <= 2 ulp for x in [-87, 88] (Cody-Waite reduction in f32).
 //! - `exp2_nonpos_times(x, s)` (`s 2^x`) and `exp2_nonpos_tail(x)` (`2^x` without the final
-//!   select): degree-6 minimax polynomial by Horner, <= 3 ulp (0.8 measured) where the result
-//!   is normal; see each for its tail.
+//!   select): degree-6 minimax polynomial by Horner, <= 3 ulp where the result is normal
+//!   (about 1 f32 epsilon measured: `cargo test -p fastbrdf --test batch exponential --
+//!   --nocapture` prints each); see each for its tail.
 //! - `acos` on [0, 1]: absolute error <= 2e-8 plus f32 rounding (Abramowitz and Stegun 4.4.46).
 //!
 //! Rounding to the nearest integer uses the 1.5 * 2^23 (2^52) trick instead of `floor`, because
@@ -138,7 +139,8 @@ fn exp2_nonpos_g<const F: bool>(x: f32) -> f32 {
 /// computes them once) and `2^k` added to the exponent bits, so the scale and the power of
 /// two cost no multiply. `2^f` on [-1/2, 1/2] is the degree-6 minimax polynomial
 /// [`EXP2_C6`] (relative error 1.6e-8 with its f32 coefficients, where `exp2`'s degree 7 has
-/// 7e-9: one operation fewer for well under one ulp). The
+/// 7e-9: by Horner six fused multiply-adds where `exp2`'s Estrin takes nine multiply-pipe
+/// operations, for well under one ulp). The
 /// result is normal down to `x = -123` (`s 2^f >= 2^-3`); below that, and for NaN, it is 0
 /// (the exact value there is below `1.1e-37 s`). Relative error <= 3 ulp (tested).
 #[inline(always)]
@@ -173,8 +175,8 @@ fn exp2_nonpos_times_g<const F: bool>(x: f32, s: f32) -> f32 {
 /// exponent bits. Horner: six fused multiply-adds where Estrin's scheme takes eight
 /// multiply-pipe operations (two squarings); the loops that call this overlap iterations
 /// enough that the longer chain costs nothing (`beckmann` 5% faster, `sg` 9% faster than
-/// with Estrin, in `fastbrdf bench`) and it rounds less (0.8 ulp measured where Estrin gave
-/// 1.6).
+/// with Estrin, in `fastbrdf bench`) and it rounds less (0.6-1.05 f32 epsilons in the
+/// batch tests' prints where Estrin gave 1.4-1.6).
 #[inline(always)]
 fn scaled_exp2_c6<const F: bool>(xc: f32, s: f32) -> f32 {
     let (k, ki) = unmagic(xc + MAGIC);
@@ -195,14 +197,17 @@ fn scaled_exp2_c6_at<const F: bool>(f: f32, ki: i32, s: f32) -> f32 {
 }
 
 /// `2^x` for `x <= 0` without the final select of [`exp2_nonpos_times`] (`s = 1`): the
-/// spherical Gaussians' kernels, where that compare-and-blend cost 19% (`sg` 9.7 -> 11.6 G/s
-/// in a lab copy). The clamp `x > -127 ? x : -127` maps NaN and everything below to -127,
-/// where `k = -127`, `f = 0`, the polynomial is exactly 1 and adding -127 to its exponent
-/// field gives the bits of +0: exactly 0 there. Above -125.5 the result is
-/// [`exp2_nonpos_times`]'s (same polynomial, <= 3 ulp); in between, where the exact value is
-/// below 2^-125.5 = 1.7e-38, the exponent addition reaches the exponent field's 0 and leaves
-/// a subnormal bit pattern: non-negative, finite, off by at most 2^-126 = 1.2e-38
-/// (tested). No subnormal arithmetic happens (the bits are built by an integer add).
+/// spherical Gaussians' kernels, where that compare-and-blend took 19% of the time (`sg`
+/// 9.1 -> 11.3 G/s in `fastbrdf bench`). The clamp `x > -127 ? x : -127` maps NaN and
+/// everything below to -127, where `k = -127`, `f = 0`, the polynomial is exactly 1 and
+/// adding -127 to its exponent field gives the bits of +0: exactly 0 there. Above -125.5
+/// the result is `exp2_nonpos_times(x, 1)` before its select (same polynomial, <= 3 ulp); in
+/// between, where the exact value is below 2^-125.5 = 1.7e-38, the exponent addition
+/// reaches the exponent field's 0 and leaves a subnormal bit pattern: non-negative, finite,
+/// off by at most 2^-126 = 1.2e-38 (tested). No subnormal arithmetic happens (the bits are
+/// built by an integer add). `x > 0` is outside the contract: about `2^x` below 128, `+inf`
+/// at 128, negative garbage above and NaN for `+inf` (every caller clamps its argument to
+/// `<= 0` first).
 #[inline(always)]
 pub fn exp2_nonpos_tail(x: f32) -> f32 {
     exp2_nonpos_tail_g::<false>(x)

@@ -47,7 +47,8 @@ pub trait Math<T: Real> {
     }
     /// `exp2(x)` for `x <= 0`, 0 for NaN and `x <= -127`; the vector backends drop the final
     /// select and may return a value off by up to 2^-126 (never negative) where the exact one
-    /// is below 2^-125.5 (see [`fast::exp2_nonpos_tail`]).
+    /// is below 2^-125.5 (see [`fast::exp2_nonpos_tail`]). `x > 0` is unspecified there: the
+    /// caller clamps first.
     fn exp2_nonpos_tail(x: T) -> T {
         Self::exp2_nonpos(x)
     }
