@@ -771,13 +771,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         // The kernel's own count where its family gives one: the C loop calls libm's or
         // libmvec's exp2f/expf there, whose operations are not the kernel's, so it gets no
         // fraction (the formula's count would understate it).
-        let pipe_ops = self::peers()
-            .into_iter()
-            .find(|q| q.id == p.model)
-            .and_then(|q| {
-                let given = q.given();
-                Kernel::new(q.id, &given).ok()?.pipe_ops()
-            });
+        let pipe_ops = p.kernel_pipe_ops;
         let limit = limit_fraction(info, isa, p.kernel_evals_per_s.median, fma, div, pipe_ops);
         p.kernel_limit = limit.map(|l| l.0.into());
         p.kernel_limit_fraction = limit.map(|l| l.1);
@@ -1276,6 +1270,10 @@ pub struct PeerRow {
     /// peer is to the bound the kernel is held to.
     #[serde(default)]
     pub peer_limit_fraction: Option<f64>,
+    /// The kernel's own operation count where its family gives one (`Kernel::pipe_ops`),
+    /// read when the race builds the kernel; not saved (the limit fields carry its use).
+    #[serde(skip)]
+    pub kernel_pipe_ops: Option<PipeOps>,
 }
 
 /// How long the race runs.
@@ -1386,6 +1384,7 @@ pub fn peer_rows(
             kernel_limit: None,
             kernel_limit_fraction: None,
             peer_limit_fraction: None,
+            kernel_pipe_ops: kernel.pipe_ops(),
         });
     }
     Ok(rows)
