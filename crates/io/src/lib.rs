@@ -8,11 +8,16 @@
 //!   byte.
 //! - Writes are atomic: [`write_atomic`] writes a uniquely named temporary file in the target's
 //!   folder and renames it; on every error path the temporary file (and any folder the call
-//!   created) is removed, so a failure leaves nothing behind.
+//!   created) is removed, so a failure leaves nothing behind. What the path names decides how
+//!   ([`resolve_output`]): a symbolic link is followed and the file it names is replaced (the
+//!   link stays a link); a FIFO, a character device (`/dev/null`, a terminal) and
+//!   `/dev/stdout` are written in place, never replaced; a block device, a socket or a folder
+//!   is refused (exit code 2).
 //! - Multi-file outputs are all-or-nothing: [`OutputSet`] stages every file in a hidden
 //!   temporary folder beside the destination and moves them into place only in
 //!   [`OutputSet::commit`]; dropping it uncommitted (an error, a panic) removes the staging
-//!   folder and any destination folder it created.
+//!   folder and any destination folder it created. Its files follow links too, and refuse
+//!   anything that is not a regular file.
 //!
 //! Written by hand because the crates that do atomic writes (`tempfile`, `atomicwrites`) do not
 //! remove the folders they did not create, do not stage several files, and pull in more than
@@ -205,28 +210,221 @@ impl Drop for TmpGuard {
     }
 }
 
+/// Where a write to a path the user named goes (see [`resolve_output`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum OutputTarget {
+    /// A regular file, or nothing yet: replaced atomically. The path is the end of the symlink
+    /// chain (the temporary is made in its folder and renamed onto it, so a link stays a link
+    /// and a dangling link's target is created).
+    Replace(PathBuf),
+    /// This process's standard output (`/dev/stdout`, `/dev/fd/1`, `/proc/self/fd/1`), written
+    /// through the process's own handle whatever it is (terminal, pipe, socket, file).
+    Stdout,
+    /// This process's standard error (`/dev/stderr`, `/dev/fd/2`).
+    Stderr,
+    /// An existing FIFO or character device (`/dev/null`, `/dev/full`, a terminal), or another
+    /// file-descriptor link (`/dev/fd/63` of a process substitution): opened for writing without
+    /// truncating or replacing it, and written in place. A regular file reached through a
+    /// descriptor link is appended to, as the open file it is.
+    Direct { path: PathBuf, append: bool },
+}
+
+/// How many symbolic links [`resolve_output`] follows before giving up (Linux's own limit).
+const MAX_LINKS: usize = 40;
+
+/// Decides how a write to `path` is done, without writing anything:
+///
+/// - symbolic links are followed (up to 40) to the file they finally name; a regular file
+///   there, or nothing (a new file, a dangling link), is [`OutputTarget::Replace`]d atomically
+///   in its own folder;
+/// - an existing FIFO or character device is written directly ([`OutputTarget::Direct`]):
+///   replacing it by a regular file would break whoever reads it (a pipe's reader, `/dev/null`
+///   as root); a FIFO's open waits for a reader, like the shell's `>`;
+/// - `/dev/stdout` and `/dev/stderr` (and their `/dev/fd`, `/proc/self/fd` names) are this
+///   process's own streams;
+/// - a folder, a block device, a socket (other than stdout/stderr) or a link loop is refused
+///   as bad usage ([`IoError::Input`], exit code 2): nothing sensible can be written there.
+pub fn resolve_output(path: &Path) -> Result<OutputTarget, IoError> {
+    let mut cur = path.to_path_buf();
+    for _ in 0..=MAX_LINKS {
+        if let Some(t) = fd_link(&cur)? {
+            return Ok(t);
+        }
+        let md = match fs::symlink_metadata(&cur) {
+            Ok(md) => md,
+            // Nothing there (or a folder on the way that the write will report): a new file.
+            Err(_) => return Ok(OutputTarget::Replace(cur)),
+        };
+        let ft = md.file_type();
+        if ft.is_symlink() {
+            let to = fs::read_link(&cur).map_err(|e| output_err(path, e))?;
+            cur = match cur.parent() {
+                Some(dir) if to.is_relative() => dir.join(to),
+                _ => to,
+            };
+            continue;
+        }
+        if ft.is_file() {
+            return Ok(OutputTarget::Replace(cur));
+        }
+        if ft.is_dir() {
+            // The user named a folder where a file is wanted: bad usage (exit 2), not an I/O
+            // failure.
+            return Err(input_err(
+                path,
+                format!("{}is a folder, not a file to write", via(path, &cur)),
+            ));
+        }
+        return special(path, &cur, ft);
+    }
+    Err(input_err(
+        path,
+        format!("more than {MAX_LINKS} symbolic links in a row (a loop?); nothing was written"),
+    ))
+}
+
+/// "(a link to X) " when `cur` is not `path` itself.
+fn via(path: &Path, cur: &Path) -> String {
+    if path == cur {
+        String::new()
+    } else {
+        format!("(a link to {}) ", cur.display())
+    }
+}
+
+#[cfg(unix)]
+fn special(path: &Path, cur: &Path, ft: fs::FileType) -> Result<OutputTarget, IoError> {
+    use std::os::unix::fs::FileTypeExt;
+    if ft.is_fifo() || ft.is_char_device() {
+        return Ok(OutputTarget::Direct {
+            path: cur.to_path_buf(),
+            append: false,
+        });
+    }
+    let kind = if ft.is_block_device() {
+        "a block device"
+    } else if ft.is_socket() {
+        "a socket"
+    } else {
+        "not a regular file"
+    };
+    Err(input_err(
+        path,
+        format!(
+            "{}is {kind}: outputs go to regular files, FIFOs and character devices; nothing was written",
+            via(path, cur)
+        ),
+    ))
+}
+
+#[cfg(not(unix))]
+fn special(_path: &Path, cur: &Path, _ft: fs::FileType) -> Result<OutputTarget, IoError> {
+    Ok(OutputTarget::Replace(cur.to_path_buf()))
+}
+
+/// `cur` as a file-descriptor link (`/proc/<pid>/fd/N`, which `/dev/fd/N`, `/dev/stdout` and
+/// `/proc/self/fd/N` all lead to): its target is an open file, not a path to rename onto.
+fn fd_link(cur: &Path) -> Result<Option<OutputTarget>, IoError> {
+    let (Some(dir), Some(name)) = (cur.parent(), cur.file_name()) else {
+        return Ok(None);
+    };
+    let Ok(n) = name.to_string_lossy().parse::<u32>() else {
+        return Ok(None);
+    };
+    let Ok(dir) = fs::canonicalize(dir) else {
+        return Ok(None);
+    };
+    let dir = dir.to_string_lossy().into_owned();
+    if !(dir.starts_with("/proc/") && dir.ends_with("/fd")) {
+        return Ok(None);
+    }
+    let pid = std::process::id();
+    let own = dir == format!("/proc/{pid}/fd") || dir.starts_with(&format!("/proc/{pid}/task/"));
+    if own && n == 1 {
+        return Ok(Some(OutputTarget::Stdout));
+    }
+    if own && n == 2 {
+        return Ok(Some(OutputTarget::Stderr));
+    }
+    match fs::metadata(cur) {
+        Ok(md) if md.is_file() => Ok(Some(OutputTarget::Direct {
+            path: cur.to_path_buf(),
+            append: true,
+        })),
+        Ok(md) if md.is_dir() => Err(input_err(cur, "is a folder, not a file to write")),
+        Ok(md) => special(cur, cur, md.file_type()).map(Some),
+        // A closed descriptor: the write will report it.
+        Err(_) => Ok(Some(OutputTarget::Direct {
+            path: cur.to_path_buf(),
+            append: false,
+        })),
+    }
+}
+
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder, flushed, then
 /// renamed over `path`. Missing folders are created; on failure the temporary file and the
-/// folders this call created are removed and `path` is untouched.
+/// folders this call created are removed and `path` is untouched. Symbolic links are followed
+/// and FIFOs, character devices and stdout are written in place: see [`resolve_output`].
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), IoError> {
     write_atomic_with(path, |w| w.write_all(bytes))
 }
 
 /// [`write_atomic`] with the content streamed by `fill`.
+///
+/// A write into a FIFO, a device or stdout cannot be atomic: what was written before an error
+/// has been delivered. A full device (`/dev/full`) is an [`IoError::Output`] naming `path`.
 pub fn write_atomic_with(
     path: &Path,
     fill: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> Result<(), IoError> {
-    let name = path
-        .file_name()
-        .ok_or_else(|| output_err(path, "not a file name"))?
-        .to_string_lossy()
-        .into_owned();
+    if path.file_name().is_none() {
+        return Err(output_err(path, "not a file name"));
+    }
     if path.is_dir() {
-        // The user named a folder where a file is wanted: bad usage (exit 2), not an I/O failure.
         return Err(input_err(path, "is a folder, not a file to write"));
     }
-    let dir = path
+    match resolve_output(path)? {
+        OutputTarget::Replace(target) => replace_atomic(path, &target, fill),
+        OutputTarget::Stdout => write_direct(path, io::stdout().lock(), fill),
+        OutputTarget::Stderr => write_direct(path, io::stderr().lock(), fill),
+        OutputTarget::Direct { path: at, append } => {
+            // No truncation (a device or FIFO has nothing to truncate; a descriptor's file is
+            // appended to), no creation (it exists).
+            let file = fs::OpenOptions::new()
+                .write(true)
+                .append(append)
+                .open(&at)
+                .map_err(|e| output_err(path, e))?;
+            write_direct(path, file, fill)
+        }
+    }
+}
+
+/// Streams `fill` into `w` and flushes; errors name `path`.
+fn write_direct(
+    path: &Path,
+    w: impl Write,
+    fill: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), IoError> {
+    let mut w = io::BufWriter::new(w);
+    fill(&mut w)
+        .and_then(|()| w.flush())
+        .map_err(|e| output_err(path, e))
+}
+
+/// Writes a temporary file beside `target` (a regular file or nothing; symlinks resolved) and
+/// renames it onto `target`. Errors name `path`, what the user asked for.
+fn replace_atomic(
+    path: &Path,
+    target: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), IoError> {
+    let name = target
+        .file_name()
+        .ok_or_else(|| output_err(path, format!("{}is not a file name", via(path, target))))?
+        .to_string_lossy()
+        .into_owned();
+    let dir = target
         .parent()
         .filter(|d| !d.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
@@ -243,9 +441,13 @@ pub fn write_atomic_with(
             fill(&mut w)?;
             w.flush()?;
         }
+        // A replaced file keeps its permissions.
+        if let Ok(md) = fs::metadata(target) {
+            file.set_permissions(md.permissions())?;
+        }
         file.sync_all()?;
         drop(file);
-        fs::rename(&tmp, path)?;
+        fs::rename(&tmp, target)?;
         guard.0 = None;
         Ok(())
     })();
@@ -341,19 +543,40 @@ impl OutputSet {
 
     /// Moves every staged file into place and removes the staging folder. Returns the
     /// destination paths.
+    ///
+    /// A destination that is a symbolic link is followed: the file it names is replaced (a
+    /// temporary beside it, renamed) and the link stays. A destination that exists and is not a
+    /// regular file (a FIFO, a device, a socket, a folder) is refused as bad usage before
+    /// anything moves: one file of a set cannot be streamed into a device all-or-nothing.
     pub fn commit(mut self) -> Result<Vec<PathBuf>, IoError> {
+        let mut targets = Vec::with_capacity(self.files.len());
         for f in &self.files {
             let dest = self.dir.join(f);
             if let Some(parent) = dest.parent() {
                 fs::create_dir_all(parent).map_err(|e| output_err(&dest, e))?;
             }
-            if dest.is_dir() {
-                return Err(output_err(&dest, "is a folder"));
+            match resolve_output(&dest)? {
+                OutputTarget::Replace(target) => targets.push(target),
+                _ => {
+                    return Err(input_err(
+                        &dest,
+                        "exists and is not a regular file: the files of an output set are \
+                         written to regular files only; nothing was written",
+                    ));
+                }
             }
         }
-        for f in &self.files {
+        for (f, target) in self.files.iter().zip(&targets) {
             let dest = self.dir.join(f);
-            fs::rename(self.staging.join(f), &dest).map_err(|e| output_err(&dest, e))?;
+            let staged = self.staging.join(f);
+            if *target == dest {
+                fs::rename(&staged, &dest).map_err(|e| output_err(&dest, e))?;
+            } else {
+                // A link to elsewhere (maybe another file system): copy beside the target.
+                replace_atomic(&dest, target, |w| {
+                    io::copy(&mut fs::File::open(&staged)?, w).map(|_| ())
+                })?;
+            }
         }
         let _ = fs::remove_dir_all(&self.staging);
         self.committed = true;
@@ -494,6 +717,175 @@ mod tests {
             set.write("c.txt", b"c").unwrap();
         }
         assert_eq!(listing(&d.join("out")), vec!["a.txt", "x"]);
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[cfg(unix)]
+    fn is_link(p: &Path) -> bool {
+        fs::symlink_metadata(p).unwrap().file_type().is_symlink()
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_are_followed_and_stay_links() {
+        use std::os::unix::fs::{PermissionsExt, symlink};
+        let d = scratch("links");
+        fs::create_dir_all(d.join("real")).unwrap();
+        fs::create_dir_all(d.join("out")).unwrap();
+        let target = d.join("real/t.csv");
+        fs::write(&target, b"old").unwrap();
+        fs::set_permissions(&target, fs::Permissions::from_mode(0o640)).unwrap();
+        // A relative link in another folder: the target is replaced beside itself.
+        let link = d.join("out/l.csv");
+        symlink("../real/t.csv", &link).unwrap();
+        write_atomic(&link, b"new").unwrap();
+        assert!(is_link(&link), "the link was replaced by a file");
+        assert_eq!(fs::read(&target).unwrap(), b"new");
+        assert_eq!(
+            fs::metadata(&target).unwrap().permissions().mode() & 0o777,
+            0o640
+        );
+        assert_eq!(listing(&d.join("real")), vec!["t.csv"]);
+        assert_eq!(listing(&d.join("out")), vec!["l.csv"]);
+        // A chain of two links.
+        let chain = d.join("chain.csv");
+        symlink(&link, &chain).unwrap();
+        write_atomic(&chain, b"chained").unwrap();
+        assert!(is_link(&chain) && is_link(&link));
+        assert_eq!(fs::read(&target).unwrap(), b"chained");
+        // A dangling link: its target is created, the link stays.
+        let dangling = d.join("dangling.csv");
+        symlink("real/new.csv", &dangling).unwrap();
+        write_atomic(&dangling, b"created").unwrap();
+        assert!(is_link(&dangling));
+        assert_eq!(fs::read(d.join("real/new.csv")).unwrap(), b"created");
+        // A failing writer leaves the target and no temporary beside it.
+        write_atomic_with(&link, |_| Err(io::Error::other("disk full"))).unwrap_err();
+        assert_eq!(fs::read(&target).unwrap(), b"chained");
+        assert_eq!(listing(&d.join("real")), vec!["new.csv", "t.csv"]);
+        // A loop is bad usage.
+        symlink("loop-b", d.join("loop-a")).unwrap();
+        symlink("loop-a", d.join("loop-b")).unwrap();
+        let e = write_atomic(&d.join("loop-a"), b"x").unwrap_err();
+        assert!(matches!(e, IoError::Input { .. }) && e.to_string().contains("symbolic links"));
+        assert!(is_link(&d.join("loop-a")) && is_link(&d.join("loop-b")));
+        // A link to a folder is a folder.
+        symlink("real", d.join("dirlink")).unwrap();
+        assert!(matches!(
+            write_atomic(&d.join("dirlink"), b"x"),
+            Err(IoError::Input { .. })
+        ));
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[cfg(unix)]
+    fn mkfifo(p: &Path) {
+        let ok = std::process::Command::new("mkfifo")
+            .arg(p)
+            .status()
+            .expect("mkfifo runs");
+        assert!(ok.success());
+    }
+
+    #[cfg(unix)]
+    fn file_type(p: &Path) -> fs::FileType {
+        fs::symlink_metadata(p).unwrap().file_type()
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn fifos_and_devices_are_written_in_place() {
+        use std::os::unix::fs::FileTypeExt;
+        let d = scratch("special");
+        fs::create_dir_all(&d).unwrap();
+        let fifo = d.join("pipe");
+        mkfifo(&fifo);
+        // The reader reports through a channel so that a regression (the FIFO replaced while
+        // the reader waits in open) fails after 30 s instead of hanging.
+        let (tx, rx) = std::sync::mpsc::channel();
+        {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || tx.send(fs::read(fifo).unwrap()));
+        }
+        write_atomic(&fifo, b"through the pipe").unwrap();
+        assert!(file_type(&fifo).is_fifo(), "the FIFO was replaced");
+        let got = rx.recv_timeout(std::time::Duration::from_secs(30));
+        assert_eq!(got.expect("the reader got the bytes"), b"through the pipe");
+        assert_eq!(listing(&d), vec!["pipe"]);
+        // A character device that takes everything.
+        write_atomic(Path::new("/dev/null"), b"gone").unwrap();
+        assert!(file_type(Path::new("/dev/null")).is_char_device());
+        // A full one: an output error naming it, and the device stays.
+        if fs::OpenOptions::new().write(true).open("/dev/full").is_ok() {
+            let e = write_atomic(Path::new("/dev/full"), b"x").unwrap_err();
+            assert!(matches!(e, IoError::Output { .. }), "{e:?}");
+            assert!(e.to_string().contains("/dev/full"), "{e}");
+            assert!(file_type(Path::new("/dev/full")).is_char_device());
+        }
+        // A socket cannot be opened: refused, and it stays a socket.
+        let sock = d.join("sock");
+        let _listener = std::os::unix::net::UnixListener::bind(&sock).unwrap();
+        let e = write_atomic(&sock, b"x").unwrap_err();
+        assert!(
+            matches!(e, IoError::Input { .. }) && e.to_string().contains("socket"),
+            "{e}"
+        );
+        assert!(file_type(&sock).is_socket());
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn standard_streams_are_the_process_own() {
+        for p in ["/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"] {
+            assert_eq!(
+                resolve_output(Path::new(p)).unwrap(),
+                OutputTarget::Stdout,
+                "{p}"
+            );
+        }
+        assert_eq!(
+            resolve_output(Path::new("/dev/stderr")).unwrap(),
+            OutputTarget::Stderr
+        );
+        assert_eq!(
+            resolve_output(Path::new("/dev/null")).unwrap(),
+            OutputTarget::Direct {
+                path: PathBuf::from("/dev/null"),
+                append: false
+            }
+        );
+        assert!(matches!(
+            resolve_output(Path::new("/nonexistent-folder/x.csv")).unwrap(),
+            OutputTarget::Replace(_)
+        ));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn output_sets_follow_links_and_refuse_special_files() {
+        use std::os::unix::fs::{FileTypeExt, symlink};
+        let d = scratch("set-links");
+        fs::create_dir_all(d.join("out")).unwrap();
+        fs::create_dir_all(d.join("elsewhere")).unwrap();
+        fs::write(d.join("elsewhere/a.txt"), b"old").unwrap();
+        symlink(d.join("elsewhere/a.txt"), d.join("out/a.txt")).unwrap();
+        let mut set = OutputSet::new(&d.join("out")).unwrap();
+        set.write("a.txt", b"new").unwrap();
+        set.commit().unwrap();
+        assert!(is_link(&d.join("out/a.txt")));
+        assert_eq!(fs::read(d.join("elsewhere/a.txt")).unwrap(), b"new");
+        assert_eq!(listing(&d.join("elsewhere")), vec!["a.txt"]);
+        // A FIFO among the destinations: refused before anything moves.
+        mkfifo(&d.join("out/b.txt"));
+        let mut set = OutputSet::new(&d.join("out")).unwrap();
+        set.write("a.txt", b"newer").unwrap();
+        set.write("b.txt", b"b").unwrap();
+        let e = set.commit().unwrap_err();
+        assert!(matches!(e, IoError::Input { .. }), "{e:?}");
+        assert!(file_type(&d.join("out/b.txt")).is_fifo());
+        assert_eq!(fs::read(d.join("elsewhere/a.txt")).unwrap(), b"new");
+        assert_eq!(listing(&d.join("out")), vec!["a.txt", "b.txt"]);
         fs::remove_dir_all(&d).unwrap();
     }
 }
