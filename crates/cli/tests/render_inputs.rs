@@ -68,7 +68,7 @@ fn files(d: &Path) -> Vec<String> {
 fn face() -> String {
     concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/canonical_face_model.obj"
+        "/../render/data/canonical_face_model.obj"
     )
     .into()
 }

@@ -46,7 +46,7 @@ use std::sync::Arc;
 fn face() -> PathBuf {
     PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/canonical_face_model.obj"
+        "/../render/data/canonical_face_model.obj"
     ))
 }
 

@@ -34,17 +34,15 @@ fn the_embedded_face_is_mediapipes_canonical_face() {
             .all(|t| (0.0..=1.0).contains(&t.x) && (0.0..=1.0).contains(&t.y))
     );
     assert!(m.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4));
-    // The same mesh as the shared copy, when there is one.
-    let shared = PathBuf::from(concat!(
+    // The same mesh as the file the repository carries (read from its path, not embedded).
+    let file = PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/canonical_face_model.obj"
+        "/data/canonical_face_model.obj"
     ));
-    if shared.exists() {
-        let s = load_obj(&shared).unwrap();
-        assert_eq!(s.positions, m.positions);
-        assert_eq!(s.triangles, m.triangles);
-        assert_eq!(s.uvs, m.uvs);
-    }
+    let s = load_obj(&file).unwrap();
+    assert_eq!(s.positions, m.positions);
+    assert_eq!(s.triangles, m.triangles);
+    assert_eq!(s.uvs, m.uvs);
     // The licence notice travels with it.
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("data");
     let notice = std::fs::read_to_string(data.join("NOTICE.md")).unwrap();

@@ -291,14 +291,24 @@ fn a_mesh_is_read_once_so_a_named_pipe_works() {
         .status()
         .unwrap();
     assert!(ok.success());
+    // Read the text before anything can block: a missing file fails here, not in a writer
+    // thread that never opens the FIFO (which left the reader below waiting forever).
+    let text = std::fs::read_to_string(face_path()).unwrap();
     let writer = {
         let fifo = fifo.clone();
-        std::thread::spawn(move || {
-            let text = std::fs::read_to_string(face_path()).unwrap();
-            std::fs::write(&fifo, text).unwrap();
-        })
+        std::thread::spawn(move || std::fs::write(&fifo, text).unwrap())
     };
-    let m = load_obj(&fifo).expect("a FIFO is read once");
+    // The read runs on its own thread with a bounded wait: a reader stuck on the FIFO fails
+    // the test instead of hanging the suite (the blocked thread ends with the test process).
+    let (tx, rx) = std::sync::mpsc::channel();
+    {
+        let fifo = fifo.clone();
+        std::thread::spawn(move || tx.send(load_obj(&fifo)).unwrap());
+    }
+    let m = rx
+        .recv_timeout(std::time::Duration::from_secs(120))
+        .expect("reading the FIFO finishes within 120 s")
+        .expect("a FIFO is read once");
     writer.join().unwrap();
     std::fs::remove_file(&fifo).unwrap();
     let direct = load_obj(&face_path()).unwrap();
@@ -309,7 +319,7 @@ fn a_mesh_is_read_once_so_a_named_pipe_works() {
 fn face_path() -> PathBuf {
     PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/canonical_face_model.obj"
+        "/data/canonical_face_model.obj"
     ))
 }
 

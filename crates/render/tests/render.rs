@@ -16,7 +16,7 @@ use std::sync::Arc;
 fn face() -> PathBuf {
     PathBuf::from(concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../../../shared/data/canonical_face_model.obj"
+        "/data/canonical_face_model.obj"
     ))
 }
 
