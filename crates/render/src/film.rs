@@ -23,7 +23,7 @@ pub fn check_size(w: u32, h: u32) -> Result<()> {
     if w > MAX_SIDE || h > MAX_SIDE || u64::from(w) * u64::from(h) > MAX_PIXELS {
         return Err(RenderError::Invalid(format!(
             "size {w}x{h} is too large: at most {MAX_SIDE} per side and {MAX_PIXELS} pixels (the film would need {} MiB)",
-            (u64::from(w) * u64::from(h) * 12) >> 20
+            (u64::from(w) * u64::from(h)).saturating_mul(12) >> 20
         )));
     }
     Ok(())
