@@ -49,6 +49,17 @@ if [ ! -e "$icd" ]; then
         echo "test.sh: no apt-get; install a Vulkan driver to run the GPU tests" >&2
     fi
 fi
+# glslang's HLSL front end compiles every HLSL export (crates/gpu/tests/hlsl_glslang.rs); with
+# CI set a missing glslangValidator fails that test, without CI it is skipped with a message.
+if ! command -v glslangValidator > /dev/null; then
+    echo "test.sh: no glslangValidator: installing glslang-tools (the HLSL export test)" >&2
+    if command -v apt-get > /dev/null; then
+        apt_install glslang-tools || { $sudo apt-get update -qq > /dev/null && apt_install glslang-tools; } ||
+            echo "test.sh: could not install glslang-tools; the HLSL export test will skip (or fail under CI)" >&2
+    else
+        echo "test.sh: no apt-get; install glslang (glslangValidator) to run the HLSL export test" >&2
+    fi
+fi
 if [ -e "$icd" ] && [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}" ]; then
     export VK_ICD_FILENAMES="$icd"
 fi

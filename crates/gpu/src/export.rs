@@ -640,7 +640,81 @@ fn hlsl(wgsl: &str, what: &str) -> Result<String, GpuError> {
     let mut w = naga::back::hlsl::Writer::new(&mut out, &options, &pipeline);
     w.write(&module, &info, None)
         .map_err(|e| backend_error("HLSL", what, e))?;
-    Ok(format!("{}\n", out.trim()))
+    Ok(format!("{}\n", initialiser_lists(&out).trim()))
+}
+
+/// naga writes a constant array (`const FB_MS_LOSS = array<f32, 1024>(...)`) as
+/// `static const float FB_MS_LOSS[1024] = Constructarray1024_float_(...);`, a call of a helper
+/// function that returns the array. glslang's HLSL front end (the usual HLSL-to-SPIR-V path
+/// besides DXC) rejects a function call in a static initialiser ("Recursion detected:
+/// Constructarray12_float_", glslang issue 1216), so such declarations become initialiser
+/// lists (`= { ... };`, valid HLSL for every compiler), and a helper no longer called is
+/// removed (its `typedef` and definition). Calls inside function bodies are left as they are.
+pub fn initialiser_lists(hlsl: &str) -> String {
+    let mut lines: Vec<String> = hlsl
+        .lines()
+        .map(|line| {
+            let Some(decl) = line.strip_prefix("static const ") else {
+                return line.to_string();
+            };
+            let Some((lhs, rhs)) = decl.split_once(" = ") else {
+                return line.to_string();
+            };
+            let call = rhs.strip_suffix(';').unwrap_or(rhs);
+            let helper = call.split('(').next().unwrap_or("");
+            if !helper.starts_with("Constructarray") || !lhs.ends_with(']') {
+                return line.to_string();
+            }
+            match call[helper.len()..]
+                .strip_prefix('(')
+                .and_then(|a| a.strip_suffix(')'))
+            {
+                // Only a flat list of scalars (no nested array constructor).
+                Some(args) if !args.contains("Construct") => {
+                    format!("static const {lhs} = {{ {args} }};")
+                }
+                _ => line.to_string(),
+            }
+        })
+        .collect();
+    // Drop helpers nobody calls any more: `typedef T ret_H[N];`, then `ret_H H(...) {` to `}`.
+    let helpers: Vec<String> = lines
+        .iter()
+        .filter_map(|l| l.strip_prefix("typedef "))
+        .filter_map(|l| l.split_whitespace().nth(1))
+        .filter_map(|l| l.split('[').next())
+        .filter_map(|l| l.strip_prefix("ret_"))
+        .filter(|h| h.starts_with("Constructarray"))
+        .map(str::to_string)
+        .collect();
+    for h in helpers {
+        let call = format!("{h}(");
+        let definition = format!("ret_{h} {h}(");
+        let used = lines
+            .iter()
+            .any(|l| l.contains(&call) && !l.starts_with(&definition));
+        if used {
+            continue;
+        }
+        let typedef = format!("ret_{h}[");
+        lines.retain(|l| !(l.starts_with("typedef ") && l.contains(&typedef)));
+        if let Some(start) = lines.iter().position(|l| l.starts_with(&definition)) {
+            let end = lines[start..]
+                .iter()
+                .position(|l| l == "}")
+                .map_or(lines.len(), |e| start + e + 1);
+            // The blank line after the definition goes with it.
+            let end = if lines.get(end).is_some_and(|l| l.is_empty()) {
+                end + 1
+            } else {
+                end
+            };
+            lines.drain(start..end);
+        }
+    }
+    let mut out = lines.join("\n");
+    out.push('\n');
+    out
 }
 
 fn msl(wgsl: &str, what: &str) -> Result<String, GpuError> {

@@ -11,14 +11,8 @@
 // Runtime parameters: none (the model has no numeric parameter) (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_env_brdf(cos_v, alpha): n.v and the GGX roughness alpha (the look-up table's axes); specular albedo = f0 scale + bias; returns f32.
 
-typedef float ret_Constructarray12_float_[12];
-ret_Constructarray12_float_ Constructarray12_float_(float arg0, float arg1, float arg2, float arg3, float arg4, float arg5, float arg6, float arg7, float arg8, float arg9, float arg10, float arg11) {
-    float ret[12] = { arg0, arg1, arg2, arg3, arg4, arg5, arg6, arg7, arg8, arg9, arg10, arg11 };
-    return ret;
-}
-
-static const float FB_GL24_X[12] = Constructarray12_float_(0.9951872, 0.9747286, 0.93827456, 0.88641554, 0.82000196, 0.74012417, 0.64809364, 0.5454215, 0.43379351, 0.31504267, 0.19111887, 0.064056896);
-static const float FB_GL24_W[12] = Constructarray12_float_(0.01234123, 0.02853139, 0.044277437, 0.059298586, 0.07334648, 0.086190164, 0.097618654, 0.10744427, 0.115505666, 0.12167047, 0.12583746, 0.1279382);
+static const float FB_GL24_X[12] = { 0.9951872, 0.9747286, 0.93827456, 0.88641554, 0.82000196, 0.74012417, 0.64809364, 0.5454215, 0.43379351, 0.31504267, 0.19111887, 0.064056896 };
+static const float FB_GL24_W[12] = { 0.01234123, 0.02853139, 0.044277437, 0.059298586, 0.07334648, 0.086190164, 0.097618654, 0.10744427, 0.115505666, 0.12167047, 0.12583746, 0.1279382 };
 
 float fb_env_cos(float x)
 {
