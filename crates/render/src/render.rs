@@ -71,6 +71,18 @@ pub fn render(
     opts: &Options,
     progress: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Film> {
+    render_until(scene, opts, progress, &|| false)?
+        .ok_or_else(|| crate::RenderError::Invalid("the render was stopped".into()))
+}
+
+/// [`render`], asking `stop` before each tile: once it says true, the tiles not started are
+/// skipped and the render returns `None` (the Python package stops a render on Ctrl-C so).
+pub fn render_until(
+    scene: &Scene,
+    opts: &Options,
+    progress: &(dyn Fn(usize, usize) + Sync),
+    stop: &(dyn Fn() -> bool + Sync),
+) -> Result<Option<Film>> {
     check_size(opts.width, opts.height)?;
     if !(1..=16).contains(&opts.spp) {
         return Err(crate::RenderError::Invalid(format!(
@@ -88,6 +100,7 @@ pub fn render(
     let passes = scene.environment.as_ref().map_or(1, |e| e.samples.max(1));
     let total = (tiles_x * h.div_ceil(TILE) * passes) as usize;
     let mut film = Film::new(w, h);
+    let stopped = std::sync::atomic::AtomicBool::new(false);
     for pass in 0..passes {
         // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies
         // its tiles into the film itself, so assembling the film is parallel too.
@@ -98,6 +111,10 @@ pub fn render(
                 let tiles: Vec<Vec<Vec3>> = (0..tiles_x)
                     .into_par_iter()
                     .map_init(Scratch::default, |scratch, tx| {
+                        if stop() {
+                            stopped.store(true, std::sync::atomic::Ordering::Relaxed);
+                            return Vec::new();
+                        }
                         let px = render_tile(scene, opts, &rays, tx, ty as u32, pass, scratch);
                         progress(
                             done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
@@ -106,6 +123,9 @@ pub fn render(
                         px
                     })
                     .collect();
+                if tiles.iter().any(Vec::is_empty) {
+                    return; // stopped: the render is dropped
+                }
                 for (row, line) in band.chunks_mut(w as usize).enumerate() {
                     for (tx, px) in tiles.iter().enumerate() {
                         let x0 = tx * TILE as usize;
@@ -122,8 +142,11 @@ pub fn render(
                     }
                 }
             });
+        if stopped.load(std::sync::atomic::Ordering::Relaxed) {
+            return Ok(None);
+        }
     }
-    Ok(film)
+    Ok(Some(film))
 }
 
 fn render_tile(
