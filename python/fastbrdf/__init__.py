@@ -28,7 +28,17 @@ Array rules (every function taking arrays):
   distributions, shadowing terms and BRDFs give 0 for NaN (a lobe clamps its cosine to
   [0, 1] first; a BRDF gives 0 below the horizon or for a zero vector); a Fresnel term gives its
   value at 0 for NaN; a split-sum (env) term reads a NaN ``cos_v`` as 0 and a NaN ``alpha`` as
-  its smallest value. No function raises for NaN input.
+  its smallest value. No evaluation raises for NaN input (``sample`` refuses a NaN ``u``).
+- unaligned arrays (``np.frombuffer`` at an odd offset) and byte-swapped ones are copied once.
+
+Limits (as the CLI's): a sequence of parameter values (``errors``) or of angles (``albedo``)
+holds at most ``MAX_VALUES`` (10^6) values and at least one. An output too large for memory
+raises ``MemoryError`` (the output is allocated by numpy, as numpy's own). Long calls
+(evaluations, sweeps, albedo curves, renders) stop on Ctrl-C with ``KeyboardInterrupt``: an
+evaluation runs in chunks of about a million elements, the others on a worker thread that
+stops at its next step. Wrong values raise ``ValueError`` and wrong types ``TypeError``, each
+naming the argument; nothing else is raised for bad input (an internal error, a bug, is a
+``RuntimeError``).
 """
 
 from __future__ import annotations
@@ -43,6 +53,7 @@ from . import _fastbrdf as _native
 __all__ = [
     "KINDS",
     "LANGS",
+    "MAX_VALUES",
     "Model",
     "albedo",
     "errors",
@@ -56,7 +67,13 @@ KINDS = ("lobe", "distribution", "shadowing", "fresnel", "brdf", "env")
 #: The languages of :func:`shader`, as ``fastbrdf shader --lang`` names them.
 LANGS = ("wgsl", "glsl", "hlsl", "msl", "brdf-explorer")
 
+#: The most values a sequence of parameter values or angles may hold (the CLI's cap on its
+#: ranges and lists).
+MAX_VALUES: int = int(_native.MAX_VALUES)
+
 _DTYPES = {"f32": np.float32, "f64": np.float64}
+#: The largest float32 below 1: where a float64 ``u`` just below 1 rounds to 1 in float32.
+_BELOW_ONE_F32 = np.nextafter(np.float32(1), np.float32(0))
 
 Number = Union[int, float, str]
 
@@ -113,11 +130,27 @@ def _array(x: Any, name: str) -> np.ndarray:
 
 
 def _prepare(a: np.ndarray, shape: Tuple[int, ...], dtype: Any) -> np.ndarray:
-    """``a`` broadcast to ``shape``, C-contiguous and of ``dtype``: ``a`` itself (no copy)
-    when it already is all three."""
+    """``a`` broadcast to ``shape``, C-contiguous, aligned and of ``dtype`` (native byte
+    order): ``a`` itself (no copy) when it already is all of these."""
     if a.shape != shape:
         a = np.broadcast_to(a, shape)
-    return np.ascontiguousarray(a, dtype=dtype)
+    a = np.ascontiguousarray(a, dtype=dtype)
+    if not a.flags.aligned:
+        a = a.copy()
+    return a
+
+
+def _check_unit_interval(u: np.ndarray, name: str) -> None:
+    """Every value of ``u`` in [0, 1) (NaN is not): else ``ValueError`` naming the first."""
+    if u.size == 0:
+        return
+    lo, hi = u.min(), u.max()  # NaN propagates: the test below fails for it
+    if lo >= 0 and hi < 1:
+        return
+    flat = u.reshape(-1)
+    i = int(np.flatnonzero(~((flat >= 0) & (flat < 1)))[0])
+    width = u.shape[-1]
+    raise ValueError(f"{name}: {flat[i]} (row {i // width}, column {i % width}) is outside [0, 1)")
 
 
 def _vectors(x: Any, name: str, width: int) -> np.ndarray:
@@ -244,7 +277,8 @@ class Model:
         self, wo: Any, u: Any, strategy: str = "auto", precision: str = "f32"
     ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Draws ``wi`` given ``wo`` (..., 3) and ``u`` (..., 2) in [0, 1)^2, as
-        ``fastbrdf sample``: returns ``(wi (..., 3), weight (...), pdf (...))`` with
+        ``fastbrdf sample`` (``u`` outside [0, 1) or NaN is a ``ValueError``): returns
+        ``(wi (..., 3), weight (...), pdf (...))`` with
         ``weight = f(wi, wo) cos(theta_i) / pdf``. A draw that yields no sample (below the
         horizon, density 0: the strategy's missing mass, or ``wo`` out of the domain) gives
         ``wi = (0, 0, 0)``, weight 0 and pdf 0. BRDFs only.
@@ -254,9 +288,13 @@ class Model:
         1.0
         """
         dtype = _dtype(precision)
-        wo_a, u_a = _vectors(wo, "wo", 3), _vectors(u, "u", 2)
-        shape = _broadcast(["wo", "u"], [wo_a.shape[:-1], u_a.shape[:-1]])
-        wo_a, u_a = _prepare(wo_a, shape + (3,), dtype), _prepare(u_a, shape + (2,), dtype)
+        wo_a, u_given = _vectors(wo, "wo", 3), _vectors(u, "u", 2)
+        _check_unit_interval(u_given, "u")
+        shape = _broadcast(["wo", "u"], [wo_a.shape[:-1], u_given.shape[:-1]])
+        wo_a, u_a = _prepare(wo_a, shape + (3,), dtype), _prepare(u_given, shape + (2,), dtype)
+        if u_a.dtype != u_given.dtype and dtype is np.float32:
+            # A fresh copy: keep float64 values just below 1 below 1 in float32.
+            np.minimum(u_a, _BELOW_ONE_F32, out=u_a)
         h = self._handle
         f = h.sample_f32 if precision == "f32" else h.sample_f64
         wi, weight, pdf = f(wo_a.reshape(-1, 3), u_a.reshape(-1, 2), strategy)
@@ -275,10 +313,15 @@ class Model:
 
 
 def _values(x: Any, name: str, default_step: float) -> List[float]:
+    """A range text or a sequence of numbers: at least one, at most ``MAX_VALUES``."""
     if isinstance(x, str):
         return list(_native.parse_range(x, default_step))
-    a = _array(x, name).astype(np.float64).reshape(-1)
-    return [float(v) for v in a]
+    a = _array(x, name).reshape(-1)
+    if a.size > MAX_VALUES:
+        raise ValueError(f"{name}: {a.size} values; at most {MAX_VALUES} are allowed")
+    if a.size == 0:
+        raise ValueError(f"{name}: no values")
+    return [float(v) for v in a.astype(np.float64)]
 
 
 def errors(
@@ -292,8 +335,9 @@ def errors(
     """The errors of ``model`` against ``reference`` per parameter value, as the rows of
     ``fastbrdf errors --json``: ``{n or alpha, max_abs, max_abs_at, max_rel, max_rel_at, rms,
     samples}`` (an infinite relative error is ``None``). Give ``n`` (lobes) or ``alpha``
-    (microfacet terms, Ward) as a number, a sequence or the CLI's range text
-    (``"1..1000:log10"``); ``zone`` is ``all``, ``epicentre`` or ``band:LO,HI``.
+    (microfacet terms, Ward) as a number, a sequence (1 to ``MAX_VALUES`` values) or the
+    CLI's range text (``"1..1000:log10"``); ``zone`` is ``all``, ``epicentre`` or
+    ``band:LO,HI``. Ctrl-C stops it.
 
     >>> round(fastbrdf.errors("flog", "pow", n=[10, 100])[0]["max_abs"], 6)
     0.125
@@ -317,6 +361,8 @@ def albedo(
     white-furnace verdict, as ``fastbrdf albedo --json``: ``{model, brdf, params,
     claims_energy, conserves, rows: [{theta_deg, albedo, error}]}``. A lobe is evaluated as
     ``as_brdf`` (``phong`` or ``blinn-phong``) normalised by ``norm`` (``energy`` or ``none``).
+    ``angles``: a number, a sequence (1 to ``MAX_VALUES`` values) or a range text. Ctrl-C stops
+    it.
 
     >>> r = fastbrdf.albedo("lambert", angles=[0, 60])
     >>> [round(row["albedo"], 6) for row in r["rows"]]
@@ -358,6 +404,7 @@ def render(
     returns the linear radiance film, float32 of shape (height, width, 3), top row first (no
     exposure, no sRGB). ``weights`` are (kd, ks), ``lights`` the CLI's ``--light`` specs
     (``dir:X,Y,Z[:R,G,B[:I]]``, ``point:...``), ``env`` ``sky``, ``white`` or a map file.
+    Ctrl-C stops it.
 
     >>> img = fastbrdf.render("ggx", alpha=0.3, width=64, height=48)
     >>> img.shape, img.dtype

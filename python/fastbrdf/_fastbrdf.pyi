@@ -1,6 +1,7 @@
 """Type stubs of the native module (python/src/lib.rs). Use the package's public API
-(``fastbrdf.Model`` and the functions in ``fastbrdf/__init__.py``): these take only
-contiguous arrays of the exact dtype, already checked and broadcast."""
+(``fastbrdf.Model`` and the functions in ``fastbrdf/__init__.py``): these take arrays of the
+exact dtype, not broadcast (they copy non-contiguous or unaligned ones, and check lengths,
+counts and values themselves)."""
 
 from typing import List, Optional, Sequence, Tuple
 
@@ -9,6 +10,10 @@ import numpy.typing as npt
 
 F32 = npt.NDArray[np.float32]
 F64 = npt.NDArray[np.float64]
+
+MAX_VALUES: int
+MAX_ITEMS: int
+MAX_WEIGHT: float
 
 def models_json() -> str: ...
 def info_json(id: str) -> str: ...
@@ -25,7 +30,7 @@ def render(
     spp: int,
     kd: float,
     ks: float,
-    albedo: Tuple[float, float, float],
+    albedo: Sequence[float],
     lights: Sequence[str],
     floor: bool,
     shadows: bool,
