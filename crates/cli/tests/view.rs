@@ -147,6 +147,15 @@ fn page_is_embedded_and_self_contained() {
         for bad in ["http://", "https://", "//cdn", "<link "] {
             assert!(!page.contains(bad), "the page refers to {bad}");
         }
+        // No string is ever parsed as HTML (issue 27: ids from the link ran as script).
+        for bad in [
+            "innerHTML",
+            "outerHTML",
+            "insertAdjacentHTML",
+            "document.write",
+        ] {
+            assert!(!page.contains(bad), "the page uses {bad}");
+        }
     }
 }
 
@@ -1074,5 +1083,64 @@ fn page_chooses_the_measured_reference_in_headless_chromium() {
             .unwrap()
             .contains("not computed for measured data"),
         "{v}"
+    );
+}
+
+/// Model ids from the link and the `--measured` file's name reach the page as text: markup in
+/// them shows literally and runs nothing (issue 27: they went into innerHTML).
+#[test]
+fn hostile_names_show_as_text_in_headless_chromium() {
+    let Some(path) = browser() else { return };
+    let file = merl_file();
+    let dir = temp_dir("view-hostile-name");
+    let name = "<img src=x onerror=window.__xss=2>.binary";
+    let link = dir.join(name);
+    std::os::unix::fs::symlink(&file.0, &link).unwrap();
+    let s = serve(&["--measured", link.to_str().unwrap()]);
+    let mut b = cdp::Browser::start(&path).unwrap();
+    let bad_id = "<img src=x onerror=window.__xss=1>";
+    let page = b
+        .open(
+            &format!(
+                "http://{}/#models=flog,{}&ref=pow&n=30",
+                s.addr,
+                bad_id.replace(' ', "%20")
+            ),
+            1400,
+            1050,
+        )
+        .unwrap();
+    // The page asks the server about the unknown model (a 400 shown as an error) and draws
+    // the controls; give an injected image time to fail to load.
+    b.wait_for(
+        &page,
+        "document.body.dataset.ready === '1'",
+        Duration::from_secs(120),
+    )
+    .unwrap();
+    std::thread::sleep(Duration::from_millis(1000));
+    let v: Value = serde_json::from_str(
+        b.eval(
+            &page,
+            r##"JSON.stringify({
+              xss: window.__xss === undefined ? null : window.__xss,
+              injected: document.querySelectorAll("img[src=x]").length,
+              models: document.getElementById("models").textContent,
+            })"##,
+        )
+        .unwrap()
+        .as_str()
+        .unwrap(),
+    )
+    .unwrap();
+    drop(b);
+    let _ = std::fs::remove_dir_all(dir);
+    assert_eq!(v["xss"], Value::Null, "injected script ran: {v}");
+    assert_eq!(v["injected"], 0, "{v}");
+    let shown = v["models"].as_str().unwrap();
+    assert!(shown.contains(bad_id), "the id is not shown as text: {v}");
+    assert!(
+        shown.contains(name),
+        "the file name is not shown as text: {v}"
     );
 }

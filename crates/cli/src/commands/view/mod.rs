@@ -1,13 +1,33 @@
-//! `fastbrdf view`: an interactive explorer in the browser. A small synchronous HTTP server
-//! (tiny_http, loopback only unless `--allow-remote`) serves one page embedded in the binary
-//! (`page.html`: hand-written HTML, CSS and JavaScript, plots drawn on `<canvas>` from the JSON
-//! numbers; no CDN, works offline) and the JSON API of [`api`] that the page calls.
+//! `fastbrdf view`: an interactive explorer in the browser. An HTTP/1.1 server (hyper on a
+//! small tokio runtime, loopback only unless `--allow-remote`) serves one page embedded in the
+//! binary (`page.html`: hand-written HTML, CSS and JavaScript, plots drawn on `<canvas>` from
+//! the JSON numbers; no CDN, works offline; every string from the link, a file name or the
+//! server goes into the page as text, never as HTML) and the JSON API of [`api`] that the page
+//! calls.
 //!
-//! Bounded work: a fixed pool of worker threads answers requests; renders take one of
-//! [`RENDER_SLOTS`] slots (at most [`MAX_WAITING`] wait, the rest get 503), each at most
-//! `api::MAX_SIZE` square and `api::MAX_SPP` samples per axis; a render whose client has sent a
-//! newer generation since is dropped before each model's render (409). Every handler runs
-//! under `catch_unwind`: a panic is a 500, never a dead server.
+//! One client must never take the explorer down. The limits:
+//! - connections: at most [`MAX_CONNECTIONS`] open (`--max-connections`, lowered to leave
+//!   [`FD_RESERVE`] of the open-file limit free); more get a short 503 and are closed, and a
+//!   failed accept (out of file descriptors) is retried after [`ACCEPT_RETRY`], never the end
+//!   of the listener;
+//! - request heads: at most [`MAX_HEAD`] bytes and [`MAX_HEADERS`] fields (431, hyper's), the
+//!   target at most `MAX_URL` bytes (414); a request with a body is refused (413, connection
+//!   closed) without reading it: the API is GET-only;
+//! - time: a request head must arrive within [`IDLE_TIMEOUT_S`] seconds of the connection's
+//!   start or of the previous answer (idle keep-alive connections are closed after it); a write
+//!   the client does not read for [`WRITE_TIMEOUT_S`] seconds closes the connection (a client
+//!   that pipelines and never reads stalls only itself);
+//! - `Host` (or an absolute target's authority) must name the bound address (see [`Hosts`]):
+//!   403 otherwise (DNS rebinding);
+//! - HTTP/2 is not spoken: its preface gets an HTTP/2 GOAWAY (HTTP_1_1_REQUIRED), a request
+//!   line of another version hyper's 400;
+//! - work: each request's [`handle`] runs on the runtime's blocking pool, which has a thread
+//!   for every connection allowed, so a cheap request (the page, `/api/models`) never waits
+//!   behind renders; renders take one of [`RENDER_SLOTS`] slots (at most [`MAX_WAITING`] wait,
+//!   the rest get 503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per
+//!   axis; a render whose client has sent a newer generation since is dropped before each
+//!   model's render (409). Every handler runs under `catch_unwind`: a panic is a 500, never a
+//!   dead server.
 
 pub mod api;
 pub mod cdp;
@@ -28,8 +48,29 @@ pub const PAGE: &str = include_str!("page.html");
 pub const RENDER_SLOTS: usize = 2;
 /// Renders waiting for a slot; more get 503.
 pub const MAX_WAITING: usize = 8;
-/// Worker threads answering requests.
-const WORKERS: usize = 6;
+/// Connections served at once by default (`--max-connections`); more get a short 503.
+pub const MAX_CONNECTIONS: usize = 128;
+/// File descriptors left free of connections (listener, runtime, the files handlers open,
+/// refusals): the connection cap is lowered to fit the open-file limit less this.
+pub const FD_RESERVE: u64 = 64;
+/// 503 answers being written at once; past it a connection over the cap is closed unanswered.
+const MAX_REFUSING: usize = 16;
+/// Longest a 503 or an HTTP/2 refusal may take to write (and, for HTTP/2, read the preface).
+const REFUSAL_TIME: Duration = Duration::from_secs(1);
+/// How long a 503 then reads what the client sent before closing.
+const REFUSAL_DRAIN: Duration = Duration::from_millis(200);
+/// Pause after a failed accept (out of file descriptors) before the next.
+pub const ACCEPT_RETRY: Duration = Duration::from_millis(100);
+/// Largest request head (request line and header fields), bytes: beyond, 431.
+pub const MAX_HEAD: usize = 16 * 1024;
+/// Most header fields in a request: beyond, 431.
+pub const MAX_HEADERS: usize = 64;
+/// hyper's connection buffer (read side: pipelined requests wait there, unread beyond it).
+const MAX_BUF: usize = 64 * 1024;
+/// Default seconds within which a request head must arrive (`--idle-timeout`).
+pub const IDLE_TIMEOUT_S: u64 = 20;
+/// Default seconds a write may wait for the client to read (`--write-timeout`).
+pub const WRITE_TIMEOUT_S: u64 = 30;
 /// Longest request target (path and query) accepted.
 const MAX_URL: usize = 8192;
 /// Clients whose latest render generation is remembered.
@@ -46,7 +87,14 @@ fastbrdf view --measured gold-metallic-paint.binary   (the MERL file as a refere
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
 The whole view lives in the URL after #, so a link reproduces it. The JSON API (README,\n\
 \"Explorer\"): /api/models, /api/plots, /api/albedo, /api/render, /api/errors, /api/shader, /api/material.\n\
-Bad requests get HTTP 400 with the message the CLI prints for the same input."
+Bad requests get HTTP 400 with the message the CLI prints for the same input.\n\n\
+Limits (one client cannot take the server down): HTTP/1.1 only (HTTP/2 is refused with a GOAWAY);\n\
+at most 128 connections (--max-connections; lowered to leave 64 of the open-file limit free),\n\
+more get 503; request heads at most 16 KiB and 64 fields (431), targets 8 KiB (414); GET only,\n\
+bodies refused (413); a request head must arrive within 20 s (idle connections are closed), a\n\
+client that does not read an answer for 30 s is dropped; Host must name the bound address\n\
+(127.0.0.1, localhost or [::1] on loopback; --allow-host NAME for a proxy), else 403; 2 renders\n\
+at once and 8 waiting (503 beyond), 1024x1024 and 4x4 samples at most."
 )]
 pub struct Args {
     /// TCP port (0: any free port; the address is printed on stderr).
@@ -58,6 +106,19 @@ pub struct Args {
     /// Allow listening on a non-loopback address (anyone who reaches it can use the server).
     #[arg(long)]
     allow_remote: bool,
+    /// Another name the server answers to (the `Host` a reverse proxy forwards), `NAME` (any
+    /// port) or `NAME:PORT`; repeatable. Requests for names not allowed get 403.
+    #[arg(long = "allow-host", value_name = "NAME", value_parser = host_name)]
+    allow_host: Vec<String>,
+    /// Connections served at once; more get 503 (lowered to fit the open-file limit).
+    #[arg(long, default_value_t = MAX_CONNECTIONS as u32, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    max_connections: u32,
+    /// Seconds within which a request head must arrive (tests lower it).
+    #[arg(long, hide = true, default_value_t = IDLE_TIMEOUT_S, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    idle_timeout: u64,
+    /// Seconds a write may wait for the client to read (tests lower it).
+    #[arg(long, hide = true, default_value_t = WRITE_TIMEOUT_S, value_parser = clap::value_parser!(u64).range(1..=3600))]
+    write_timeout: u64,
     /// Open the page in the browser (xdg-open, or the Chromium found).
     #[arg(long)]
     open: bool,
@@ -81,6 +142,23 @@ pub struct Args {
     /// The Chromium executable (default: chromium, chromium-browser or google-chrome on PATH).
     #[arg(long, value_name = "PATH")]
     browser: Option<PathBuf>,
+}
+
+/// `--allow-host`'s value: a host name or address, optionally with `:PORT`.
+fn host_name(s: &str) -> Result<String, String> {
+    let ok = !s.is_empty()
+        && s.len() <= 253
+        && s.bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b"-._:[]".contains(&b))
+        && Hosts::split(&s.to_ascii_lowercase()).is_some();
+    if ok {
+        Ok(s.to_string())
+    } else {
+        Err(format!(
+            "'{}' is not a host name (letters, digits, '-', '.', an optional ':PORT')",
+            fastbrdf_io::shorten(s, 64)
+        ))
+    }
 }
 
 /// A measured material loaded at start-up: the reference the page may choose.
@@ -254,8 +332,120 @@ impl State {
     }
 }
 
-/// Answers one request (method, request target). Never panics: a handler's panic is a 500.
-pub fn handle(state: &State, method: &str, target: &str) -> Response {
+/// One request as [`handle`] sees it.
+pub struct Request<'a> {
+    pub method: &'a str,
+    /// The request target: path and query.
+    pub target: &'a str,
+    /// The authority the client asked for: the absolute-form target's, else the `Host` header
+    /// (None: neither, as an HTTP/1.0 client may send).
+    pub host: Option<&'a str>,
+    /// Whether the request carries a body (a `Content-Length` above 0, or chunked).
+    pub has_body: bool,
+}
+
+/// The names the server answers to (`Host`): the bound address with the bound port; on a
+/// loopback address also `localhost`, `127.0.0.1` and `[::1]`; on an unspecified address
+/// (`0.0.0.0`, `::`) any IP literal and `localhost`; and each `--allow-host` (`NAME`: any
+/// port, `NAME:PORT`: that one). A page served under another name that resolves to this
+/// machine (DNS rebinding) gets 403 instead of the API.
+pub struct Hosts {
+    ip: IpAddr,
+    port: u16,
+    extra: Vec<String>,
+}
+
+impl Hosts {
+    pub fn new(bound: SocketAddr, extra: &[String]) -> Self {
+        Self {
+            ip: bound.ip(),
+            port: bound.port(),
+            extra: extra
+                .iter()
+                .map(|e| e.trim().to_ascii_lowercase())
+                .collect(),
+        }
+    }
+
+    /// Splits `name[:port]` (`[v6]:port` for IPv6); None when the port is not a number.
+    fn split(host: &str) -> Option<(&str, Option<u16>)> {
+        let (name, port) = if let Some(rest) = host.strip_prefix('[') {
+            let (name, after) = rest.split_once(']')?;
+            match after {
+                "" => (name, None),
+                _ => (name, Some(after.strip_prefix(':')?)),
+            }
+        } else {
+            match host.rsplit_once(':') {
+                Some((n, p)) if !n.contains(':') => (n, Some(p)),
+                _ => (host, None),
+            }
+        };
+        let port = match port {
+            Some(p) => Some(p.parse().ok()?),
+            None => None,
+        };
+        Some((name, port))
+    }
+
+    /// Whether a request for `host` is answered.
+    pub fn allows(&self, host: &str) -> bool {
+        let host = host.trim().to_ascii_lowercase();
+        let Some((name, port)) = Self::split(&host) else {
+            return false;
+        };
+        let name = name.strip_suffix('.').unwrap_or(name);
+        for e in &self.extra {
+            match Self::split(e) {
+                Some((n, None)) if n == name => return true,
+                Some((n, Some(p))) if n == name && Some(p) == port => return true,
+                _ => {}
+            }
+        }
+        if port.unwrap_or(80) != self.port {
+            return false;
+        }
+        let local = self.ip.is_loopback() || self.ip.is_unspecified();
+        match name.parse::<IpAddr>() {
+            Ok(ip) => {
+                ip == self.ip
+                    || self.ip.is_unspecified()
+                    || (self.ip.is_loopback() && ip.is_loopback())
+            }
+            Err(_) => local && name == "localhost",
+        }
+    }
+
+    /// What the bound address is called in messages.
+    fn expected(&self) -> String {
+        SocketAddr::new(self.ip, self.port).to_string()
+    }
+}
+
+/// Answers one request: the one place that does, for every request hyper parsed (the
+/// transport only adds refusals before a request exists: the connection cap's 503, hyper's
+/// 400/431 for a malformed or oversized head, the HTTP/2 preface's GOAWAY). Never panics: a
+/// handler's panic is a 500.
+pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
+    if let Some(host) = req.host
+        && !hosts.allows(host)
+    {
+        return Response::error(
+            403,
+            &format!(
+                "Host '{}' is not this server's address ({}); requests for other names are refused (DNS rebinding). Add --allow-host NAME to serve under another name (a reverse proxy)",
+                fastbrdf_io::shorten(host, 64),
+                hosts.expected()
+            ),
+        );
+    }
+    if req.has_body {
+        return Response::error(
+            413,
+            "request bodies are refused: the API is GET-only, parameters go in the query",
+        );
+    }
+    let (method, target) = (req.method, req.target);
     if target.len() > MAX_URL {
         return Response::error(414, &format!("request target longer than {MAX_URL} bytes"));
     }
@@ -273,6 +463,12 @@ pub fn handle(state: &State, method: &str, target: &str) -> Response {
                 status: 200,
                 content_type: "text/html; charset=utf-8",
                 body: PAGE.as_bytes().to_vec(),
+            }),
+            // No icon: an empty answer instead of a 404 (a console error on every page load).
+            "/favicon.ico" => Ok(Response {
+                status: 204,
+                content_type: "image/x-icon",
+                body: Vec::new(),
             }),
             "/api/models" => Ok(api::models(state)),
             "/api/plots" => api::plots(state, &q),
@@ -292,55 +488,110 @@ pub fn handle(state: &State, method: &str, target: &str) -> Response {
     result.unwrap_or_else(|_| Response::error(500, "internal error (a panic); the server goes on"))
 }
 
-/// A running server: its address, and the threads that answer.
+/// The transport's limits (the defaults are the constants above; `fastbrdf view` takes them
+/// from its arguments, the tests lower them).
+#[derive(Clone, Debug)]
+pub struct Limits {
+    /// Connections served at once (lowered to fit the open-file limit).
+    pub max_connections: usize,
+    /// A connection's request head must be complete within this, counted from the connection's
+    /// start or the previous response (an idle keep-alive connection is closed after it).
+    pub idle_timeout: Duration,
+    /// A write the client does not take for this long closes the connection.
+    pub write_timeout: Duration,
+    /// `--allow-host` names.
+    pub allow_hosts: Vec<String>,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Self {
+            max_connections: MAX_CONNECTIONS,
+            idle_timeout: Duration::from_secs(IDLE_TIMEOUT_S),
+            write_timeout: Duration::from_secs(WRITE_TIMEOUT_S),
+            allow_hosts: Vec::new(),
+        }
+    }
+}
+
+/// `wanted`, lowered so that connections leave [`FD_RESERVE`] descriptors of the open-file
+/// limit free (at least 1).
+fn fit_to_fd_limit(wanted: usize) -> usize {
+    #[cfg(unix)]
+    {
+        let mut r = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        // SAFETY: getrlimit writes the struct it is given and nothing else.
+        if unsafe { libc::getrlimit(libc::RLIMIT_NOFILE, &mut r) } == 0
+            && r.rlim_cur != libc::RLIM_INFINITY
+        {
+            let free = r.rlim_cur.saturating_sub(FD_RESERVE).max(1);
+            return wanted.min(usize::try_from(free).unwrap_or(usize::MAX));
+        }
+    }
+    wanted
+}
+
+/// What every connection's task shares.
+struct Shared {
+    state: Arc<State>,
+    hosts: Hosts,
+    limits: Limits,
+}
+
+/// A running server: its address and the runtime that serves it.
 pub struct Server {
     pub addr: SocketAddr,
-    http: Arc<tiny_http::Server>,
-    workers: Vec<std::thread::JoinHandle<()>>,
+    /// The connection cap in force (`Limits::max_connections` fitted to the open-file limit).
+    pub max_connections: usize,
+    runtime: Option<tokio::runtime::Runtime>,
+    stop: Arc<tokio::sync::Notify>,
+    accepting: Option<tokio::task::JoinHandle<()>>,
 }
 
 impl Server {
-    /// Binds `addr` and starts the workers.
-    pub fn start(addr: SocketAddr, state: Arc<State>) -> Result<Self, CliError> {
-        let http = Arc::new(
-            tiny_http::Server::http(addr)
-                .map_err(|e| CliError::input(format!("cannot listen on {addr}: {e}")))?,
-        );
-        let addr = http
-            .server_addr()
-            .to_ip()
-            .ok_or_else(|| CliError::input("not an IP listener"))?;
-        let workers = (0..WORKERS)
-            .map(|_| {
-                let http = http.clone();
-                let state = state.clone();
-                std::thread::spawn(move || {
-                    for req in http.incoming_requests() {
-                        let r = handle(&state, req.method().as_str(), req.url());
-                        // Content-Length always (no chunking): the simplest clients can read it.
-                        let mut resp = tiny_http::Response::from_data(r.body)
-                            .with_status_code(r.status)
-                            .with_chunked_threshold(usize::MAX);
-                        for (k, v) in [
-                            ("Content-Type", r.content_type),
-                            ("Cache-Control", "no-store"),
-                            ("X-Content-Type-Options", "nosniff"),
-                        ] {
-                            resp.add_header(
-                                tiny_http::Header::from_bytes(k.as_bytes(), v.as_bytes())
-                                    .expect("valid header"),
-                            );
-                        }
-                        // A client that went away is not the server's problem.
-                        let _ = req.respond(resp);
-                    }
-                })
-            })
-            .collect();
+    /// Binds `addr` and starts serving: a tokio runtime of 2 threads accepts and speaks
+    /// HTTP/1.1 (hyper); each request's [`handle`] runs on the runtime's blocking pool, which
+    /// has a thread for every connection the cap allows (so a cheap request never waits for a
+    /// thread behind renders; renders themselves wait for [`RENDER_SLOTS`]).
+    pub fn start(addr: SocketAddr, state: Arc<State>, limits: Limits) -> Result<Self, CliError> {
+        let std_listener = std::net::TcpListener::bind(addr)
+            .map_err(|e| CliError::input(format!("cannot listen on {addr}: {e}")))?;
+        let addr = std_listener
+            .local_addr()
+            .map_err(|e| CliError::input(format!("cannot listen on {addr}: {e}")))?;
+        std_listener
+            .set_nonblocking(true)
+            .map_err(|e| CliError::input(format!("cannot listen on {addr}: {e}")))?;
+        let max_connections = fit_to_fd_limit(limits.max_connections.max(1));
+        let runtime = tokio::runtime::Builder::new_multi_thread()
+            .worker_threads(2)
+            .max_blocking_threads(max_connections + 8)
+            .thread_name("fastbrdf-view")
+            .enable_io()
+            .enable_time()
+            .build()
+            .map_err(|e| CliError::input(format!("cannot start the server's runtime: {e}")))?;
+        let listener = {
+            let _inside = runtime.enter();
+            tokio::net::TcpListener::from_std(std_listener)
+                .map_err(|e| CliError::input(format!("cannot listen on {addr}: {e}")))?
+        };
+        let shared = Arc::new(Shared {
+            state,
+            hosts: Hosts::new(addr, &limits.allow_hosts),
+            limits,
+        });
+        let stop = Arc::new(tokio::sync::Notify::new());
+        let accepting = runtime.spawn(accept_loop(listener, shared, max_connections, stop.clone()));
         Ok(Self {
             addr,
-            http,
-            workers,
+            max_connections,
+            runtime: Some(runtime),
+            stop,
+            accepting: Some(accepting),
         })
     }
 
@@ -348,17 +599,253 @@ impl Server {
         format!("http://{}/", self.addr)
     }
 
-    /// Blocks until the server stops (it does not, short of a signal).
-    pub fn wait(self) {
-        for w in self.workers {
-            let _ = w.join();
+    /// Blocks until the server stops ([`Server::stop`] from another thread, or a signal).
+    pub fn wait(mut self) {
+        if let (Some(rt), Some(task)) = (self.runtime.as_ref(), self.accepting.take()) {
+            let _ = rt.block_on(task);
         }
     }
 
-    /// Stops answering.
+    /// Stops accepting connections (those open finish their request).
     pub fn stop(&self) {
-        self.http.unblock();
+        self.stop.notify_one();
     }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        // A render still running on the blocking pool cannot be interrupted: leave it behind
+        // rather than wait for it.
+        if let Some(rt) = self.runtime.take() {
+            rt.shutdown_background();
+        }
+    }
+}
+
+/// Accepts until stopped. Over the cap a connection gets a short 503 and is closed; a failed
+/// accept (out of file descriptors: EMFILE, ENFILE; or a connection reset before it was
+/// accepted) is retried after [`ACCEPT_RETRY`]: the listener is never dropped.
+async fn accept_loop(
+    listener: tokio::net::TcpListener,
+    shared: Arc<Shared>,
+    max_connections: usize,
+    stop: Arc<tokio::sync::Notify>,
+) {
+    let open = Arc::new(tokio::sync::Semaphore::new(max_connections));
+    let refusing = Arc::new(tokio::sync::Semaphore::new(MAX_REFUSING));
+    let mut last_warning: Option<std::time::Instant> = None;
+    loop {
+        let accepted = tokio::select! {
+            _ = stop.notified() => return,
+            r = listener.accept() => r,
+        };
+        match accepted {
+            Ok((stream, _)) => {
+                if let Ok(permit) = open.clone().try_acquire_owned() {
+                    let shared = shared.clone();
+                    tokio::spawn(async move {
+                        serve_connection(stream, &shared).await;
+                        drop(permit);
+                    });
+                } else if let Ok(permit) = refusing.clone().try_acquire_owned() {
+                    tokio::spawn(async move {
+                        refuse(stream, max_connections).await;
+                        drop(permit);
+                    });
+                }
+                // Else: too many refusals under way already; the connection closes unanswered.
+            }
+            Err(e) => {
+                if last_warning.is_none_or(|t| t.elapsed() >= Duration::from_secs(10)) {
+                    eprintln!(
+                        "warning: fastbrdf view: accepting a connection failed: {e}; retrying"
+                    );
+                    last_warning = Some(std::time::Instant::now());
+                }
+                tokio::time::sleep(ACCEPT_RETRY).await;
+            }
+        }
+    }
+}
+
+/// The 503 of a connection over the cap: written and the sending side shut within
+/// [`REFUSAL_TIME`].
+async fn refuse(mut stream: tokio::net::TcpStream, cap: usize) {
+    use tokio::io::AsyncWriteExt;
+    let body = Response::error(
+        503,
+        &format!("too many connections ({cap} open); try again when one closes"),
+    )
+    .body;
+    let head = format!(
+        "HTTP/1.1 503 Service Unavailable\r\ncontent-type: application/json\r\ncontent-length: {}\r\nretry-after: 1\r\ncache-control: no-store\r\nconnection: close\r\n\r\n",
+        body.len()
+    );
+    let _ = tokio::time::timeout(REFUSAL_TIME, async {
+        stream.write_all(head.as_bytes()).await?;
+        stream.write_all(&body).await?;
+        stream.shutdown().await?;
+        Ok::<_, std::io::Error>(())
+    })
+    .await;
+    // Read what the client sent meanwhile, briefly, so that the close does not reset the
+    // answer away; the slot is free again within [`REFUSAL_DRAIN`].
+    let _ = tokio::time::timeout(REFUSAL_DRAIN, drain(&mut stream)).await;
+}
+
+/// Reads and drops what the client sends until it closes (at most 64 KiB).
+async fn drain(stream: &mut tokio::net::TcpStream) -> std::io::Result<()> {
+    use tokio::io::AsyncReadExt;
+    let mut sink = [0u8; 4096];
+    let mut total = 0;
+    while total < 65536 {
+        let n = stream.read(&mut sink).await?;
+        if n == 0 {
+            break;
+        }
+        total += n;
+    }
+    Ok(())
+}
+
+/// The HTTP/2 connection preface (RFC 9113, section 3.4).
+const H2_PREFACE: &[u8; 24] = b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n";
+
+/// Whether the client opened with the HTTP/2 preface ("prior knowledge"), waiting at most
+/// `wait` for its 24 bytes; only peeks, so that hyper reads everything else itself.
+async fn starts_with_h2_preface(stream: &tokio::net::TcpStream, wait: Duration) -> bool {
+    let deadline = tokio::time::Instant::now() + wait;
+    let mut buf = [0u8; 24];
+    loop {
+        let n = match tokio::time::timeout_at(deadline, stream.peek(&mut buf)).await {
+            Ok(Ok(n)) => n,
+            _ => return false,
+        };
+        // End of stream, or not the preface (every HTTP/1 request differs at its first
+        // bytes): hyper answers it.
+        if n == 0 || buf[..n] != H2_PREFACE[..n] {
+            return false;
+        }
+        if n == H2_PREFACE.len() {
+            return true;
+        }
+        // Part of the preface: wait for the rest.
+        if tokio::time::Instant::now() >= deadline {
+            return false;
+        }
+        tokio::time::sleep(Duration::from_millis(10)).await;
+    }
+}
+
+/// Refuses an HTTP/2 connection in HTTP/2 (hyper's HTTP/1 server would close it without a
+/// word): an empty SETTINGS frame, then GOAWAY with HTTP_1_1_REQUIRED (0xd, RFC 9113 section
+/// 7) and a reason, which HTTP/2 clients report (curl then retries in HTTP/1.1).
+async fn refuse_h2(mut stream: tokio::net::TcpStream) {
+    use tokio::io::{AsyncReadExt, AsyncWriteExt};
+    const WHY: &[u8] = b"fastbrdf view speaks HTTP/1.1 only";
+    let mut out = vec![0, 0, 0, 4, 0, 0, 0, 0, 0];
+    let len = 8 + WHY.len();
+    out.extend([
+        (len >> 16) as u8,
+        (len >> 8) as u8,
+        len as u8,
+        7,
+        0,
+        0,
+        0,
+        0,
+        0,
+    ]);
+    out.extend([0, 0, 0, 0, 0, 0, 0, 0x0d]);
+    out.extend(WHY);
+    let _ = tokio::time::timeout(REFUSAL_TIME, async {
+        let mut preface = [0u8; 24];
+        stream.read_exact(&mut preface).await?;
+        stream.write_all(&out).await?;
+        stream.shutdown().await?;
+        drain(&mut stream).await
+    })
+    .await;
+}
+
+/// Serves one connection in HTTP/1.1 until it closes, goes idle past the idle timeout, or
+/// stops reading past the write timeout.
+async fn serve_connection(stream: tokio::net::TcpStream, shared: &Arc<Shared>) {
+    let limits = &shared.limits;
+    let _ = stream.set_nodelay(true);
+    if starts_with_h2_preface(&stream, limits.idle_timeout).await {
+        return refuse_h2(stream).await;
+    }
+    let mut io = tokio_io_timeout::TimeoutStream::new(stream);
+    io.set_write_timeout(Some(limits.write_timeout));
+    let io = hyper_util::rt::TokioIo::new(Box::pin(io));
+    let for_service = shared.clone();
+    let service = hyper::service::service_fn(move |req: hyper::Request<hyper::body::Incoming>| {
+        let shared = for_service.clone();
+        async move { Ok::<_, std::convert::Infallible>(answer(shared, req).await) }
+    });
+    let _ = hyper::server::conn::http1::Builder::new()
+        .timer(hyper_util::rt::TokioTimer::new())
+        .header_read_timeout(limits.idle_timeout)
+        .max_header_size(MAX_HEAD)
+        .max_headers(MAX_HEADERS)
+        .max_buf_size(MAX_BUF)
+        .serve_connection(io, service)
+        .await;
+}
+
+/// Runs [`handle`] for one parsed request on the blocking pool and turns its answer into
+/// hyper's.
+async fn answer(
+    shared: Arc<Shared>,
+    req: hyper::Request<hyper::body::Incoming>,
+) -> hyper::Response<http_body_util::Full<bytes::Bytes>> {
+    use hyper::body::Body as _;
+    let method = req.method().as_str().to_owned();
+    let target = req
+        .uri()
+        .path_and_query()
+        .map_or_else(|| req.uri().to_string(), |p| p.as_str().to_owned());
+    let host = match req.uri().authority() {
+        Some(a) => Some(a.as_str().to_owned()),
+        None => req
+            .headers()
+            .get(hyper::header::HOST)
+            .map(|h| String::from_utf8_lossy(h.as_bytes()).into_owned()),
+    };
+    let has_body = !req.body().is_end_stream();
+    drop(req);
+    let for_handler = shared.clone();
+    let r = tokio::task::spawn_blocking(move || {
+        handle(
+            &for_handler.state,
+            &for_handler.hosts,
+            &Request {
+                method: &method,
+                target: &target,
+                host: host.as_deref(),
+                has_body,
+            },
+        )
+    })
+    .await
+    .unwrap_or_else(|_| Response::error(500, "internal error (a panic); the server goes on"));
+    let mut b = hyper::Response::builder()
+        .status(r.status)
+        .header(hyper::header::CONTENT_TYPE, r.content_type)
+        .header(hyper::header::CACHE_CONTROL, "no-store")
+        .header("x-content-type-options", "nosniff")
+        .header("x-frame-options", "DENY");
+    // A body the request still carries is not read: the connection ends with this answer.
+    if has_body {
+        b = b.header(hyper::header::CONNECTION, "close");
+    }
+    b.body(http_body_util::Full::new(bytes::Bytes::from(r.body)))
+        .unwrap_or_else(|_| {
+            let mut r = hyper::Response::new(http_body_util::Full::new(bytes::Bytes::new()));
+            *r.status_mut() = hyper::StatusCode::INTERNAL_SERVER_ERROR;
+            r
+        })
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
@@ -375,7 +862,19 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         a.measured.clone(),
     )?);
     let port = if a.screenshot.is_some() { 0 } else { a.port };
-    let server = Server::start(SocketAddr::new(a.host, port), state)?;
+    let limits = Limits {
+        max_connections: a.max_connections as usize,
+        idle_timeout: Duration::from_secs(a.idle_timeout),
+        write_timeout: Duration::from_secs(a.write_timeout),
+        allow_hosts: a.allow_host.clone(),
+    };
+    let server = Server::start(SocketAddr::new(a.host, port), state, limits)?;
+    if server.max_connections < a.max_connections as usize {
+        eprintln!(
+            "note: at most {} connections at once (the open-file limit less {FD_RESERVE})",
+            server.max_connections
+        );
+    }
     if !loopback {
         eprintln!(
             "warning: serving on {}: every machine that reaches this address can use the explorer (no authentication)",
