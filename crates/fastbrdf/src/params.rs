@@ -6,9 +6,11 @@ use crate::kind::Kind;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
-/// What values a parameter takes.
-#[derive(Clone, Copy, Debug, Serialize)]
-#[serde(tag = "type", rename_all = "lowercase")]
+/// What values a parameter takes. JSON (`fastbrdf models --json`): `{"type": "number", min,
+/// max, default, requires (when not empty)}` or `{"type": "choice", options, default}`, and
+/// for a choice whose default follows another ([`Follow`]) `"default_follows": {"param",
+/// "defaults": {value of param: default}}`.
+#[derive(Clone, Copy, Debug)]
 pub enum ParamKind {
     /// A real number in `[min, max]`. `default: None` means "optional" (see the doc line).
     /// `requires`: choice parameters that must hold one of the listed values when this one is
@@ -20,7 +22,6 @@ pub enum ParamKind {
         min: f64,
         max: f64,
         default: Option<f64>,
-        #[serde(skip_serializing_if = "<[_]>::is_empty")]
         requires: Requires,
     },
     /// One of a set of names.
@@ -40,25 +41,68 @@ pub enum Options {
     List(&'static [&'static str]),
     /// Any model of a kind, by id without `prefix` (`cook-torrance`'s `f`: `fresnel-`): the
     /// registry replaces it by the list of its ids of that kind (`registry::all`), so that a
-    /// new model is a choice without a second list to keep.
-    Models { kind: Kind, prefix: &'static str },
+    /// new model is a choice without a second list to keep; with `follow`, by
+    /// [`Options::Follows`] (the default depends on another choice).
+    Models {
+        kind: Kind,
+        prefix: &'static str,
+        follow: Option<Follow>,
+    },
     /// A fixed list whose options other than the parameter's default need other choice
     /// parameters at given values (`cook-torrance`'s `ms` needs `d = ggx` and
-    /// `g = smith-ggx-correlated`): `Params::resolve` refuses the rest with an error naming
-    /// them, and `accuracy`'s configuration lists leave them out. The required parameters
-    /// come before this one in the model's list.
+    /// `g = smith-ggx-correlated`; a part's choice reached through its composite, such as
+    /// `schlick-ggx`'s `remap` in `cook-torrance`, needs `g = schlick-ggx`):
+    /// `Params::resolve` refuses the rest with an error naming them, and `accuracy`'s
+    /// configuration lists leave them out. The required parameters come before this one in
+    /// the model's list.
     Gated {
         list: &'static [&'static str],
-        requires: &'static [(&'static str, &'static str)],
+        requires: Requires,
     },
+    /// A fixed list whose default, when the parameter is not given, follows another choice
+    /// parameter ([`Follow`]: `cook-torrance`'s `g` is the Smith term of the distribution
+    /// `d` names). What the registry makes of `Models` with a `follow`.
+    Follows {
+        list: &'static [&'static str],
+        follow: Follow,
+    },
+}
+
+/// A default that depends on another choice parameter: where `param` holds one of the first
+/// names of `defaults`, the default is the paired name, else the parameter's own `default`.
+/// `param` comes before the parameter in the model's list. Given values always win.
+#[derive(Clone, Copy, Debug)]
+pub struct Follow {
+    pub param: &'static str,
+    pub defaults: &'static [(&'static str, &'static str)],
+}
+
+impl Follow {
+    /// The default beside `other` (the value of `param`), `None` where `defaults` has no pair.
+    pub fn default_for(&self, other: &str) -> Option<&'static str> {
+        self.defaults
+            .iter()
+            .find(|(k, _)| *k == other)
+            .map(|(_, v)| *v)
+    }
 }
 
 impl Options {
     /// The names (empty for an unresolved `Models`: only the registry's copies are resolved).
     pub fn names(&self) -> &'static [&'static str] {
         match *self {
-            Options::List(l) | Options::Gated { list: l, .. } => l,
+            Options::List(l)
+            | Options::Gated { list: l, .. }
+            | Options::Follows { list: l, .. } => l,
             Options::Models { .. } => &[],
+        }
+    }
+    /// The rule that moves the default with another choice, if any.
+    pub fn follow(&self) -> Option<Follow> {
+        match *self {
+            Options::Follows { follow, .. } => Some(follow),
+            Options::Models { follow, .. } => follow,
+            _ => None,
         }
     }
     /// Whether option `name` (of a parameter whose default is `default`) is allowed beside the
@@ -72,9 +116,59 @@ impl Options {
         match *self {
             Options::Gated { requires, .. } if name != default => requires
                 .iter()
-                .all(|(p, v)| other(p).as_deref() == Some(*v)),
+                .all(|(p, vals)| other(p).is_some_and(|v| vals.contains(&v.as_str()))),
             _ => true,
         }
+    }
+}
+
+impl Serialize for ParamKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut m = s.serialize_map(None)?;
+        match *self {
+            ParamKind::Number {
+                min,
+                max,
+                default,
+                requires,
+            } => {
+                m.serialize_entry("type", "number")?;
+                m.serialize_entry("min", &min)?;
+                m.serialize_entry("max", &max)?;
+                m.serialize_entry("default", &default)?;
+                if !requires.is_empty() {
+                    m.serialize_entry("requires", requires)?;
+                }
+            }
+            ParamKind::Choice { options, default } => {
+                m.serialize_entry("type", "choice")?;
+                m.serialize_entry("options", &options)?;
+                m.serialize_entry("default", default)?;
+                if let Some(f) = options.follow() {
+                    let defaults: BTreeMap<&str, &str> = f.defaults.iter().copied().collect();
+                    m.serialize_entry(
+                        "default_follows",
+                        &json_shape::Follows {
+                            param: f.param,
+                            defaults,
+                        },
+                    )?;
+                }
+            }
+        }
+        m.end()
+    }
+}
+
+/// The shape of `default_follows` in JSON.
+mod json_shape {
+    use serde::Serialize;
+    use std::collections::BTreeMap;
+    #[derive(Serialize)]
+    pub struct Follows<'a> {
+        pub param: &'a str,
+        pub defaults: BTreeMap<&'a str, &'a str>,
     }
 }
 
@@ -252,8 +346,14 @@ impl Params {
                 } => {
                     values.insert(spec.name, Value::Num(d));
                 }
-                ParamKind::Choice { default, .. } => {
-                    values.insert(spec.name, Value::Text(default.into()));
+                ParamKind::Choice { default, options } => {
+                    // A default that follows another choice (cook-torrance's g follows d),
+                    // which comes earlier in the list and so is already filled in.
+                    let follows = options.follow().and_then(|f| match values.get(f.param) {
+                        Some(Value::Text(t)) => f.default_for(t),
+                        _ => None,
+                    });
+                    values.insert(spec.name, Value::Text(follows.unwrap_or(default).into()));
                 }
                 ParamKind::Number { default: None, .. } => {}
             }
@@ -286,6 +386,11 @@ impl Params {
                 ),
             })
         };
+        // A gated choice's need: "d = ggx" for one value, "g in {a, b}" for several.
+        let need = |n: &str, vals: &[&str]| match vals {
+            [v] => format!("{n} = {v}"),
+            _ => format!("{n} in {{{}}}", vals.join(", ")),
+        };
         for spec in specs {
             match spec.kind {
                 ParamKind::Number { requires, .. }
@@ -308,7 +413,7 @@ impl Params {
                     return refuse(
                         spec,
                         p.choice(spec.name).into(),
-                        requires.iter().map(|(n, x)| format!("{n} = {x}")).collect(),
+                        requires.iter().map(|(n, vals)| need(n, vals)).collect(),
                         requires.iter().map(|(n, _)| *n).collect(),
                     );
                 }
@@ -332,6 +437,32 @@ impl Params {
                 .insert(spec.name, Value::Num(check(model, spec, *x)?));
         }
         Ok(p)
+    }
+
+    /// Validates values given as [`Value`]s (a composite's values handed to its parts:
+    /// `cook-torrance`'s `alpha` and `remap` to `g`) and fills in defaults, as
+    /// [`Params::resolve`] (numbers are written in Rust's shortest round-trip form, so they
+    /// arrive unchanged; non-finite ones are refused).
+    pub fn resolve_values(
+        model: &'static str,
+        specs: &[ParamSpec],
+        given: &[(&str, Value)],
+    ) -> Result<Self> {
+        let text: Vec<(&str, String)> = given
+            .iter()
+            .map(|(n, v)| match v {
+                Value::Num(x) => (*n, format!("{x}")),
+                Value::Text(t) => (*n, t.clone()),
+            })
+            .collect();
+        let pairs: Vec<(&str, &str)> = text.iter().map(|(n, t)| (*n, t.as_str())).collect();
+        Self::resolve(model, specs, &pairs)
+    }
+
+    /// A resolved value (given, or its default), `None` for an unknown name or an optional
+    /// number not given.
+    pub fn get(&self, name: &str) -> Option<&Value> {
+        self.values.get(name)
     }
 
     /// The model these parameters belong to.

@@ -20,7 +20,7 @@
 use crate::error::{Error, Result};
 use crate::math::{Exact, Math};
 use crate::model::{self, Kind, Model, PipeOps, ShadowInput};
-use crate::params::Params;
+use crate::params::{Params, Value};
 use crate::real::Real;
 use crate::sample::{CosDist, Strategy};
 use crate::vec3::{COS_MIN, Pair, V3};
@@ -180,6 +180,11 @@ pub trait DistForm: Copy + Debug + Send + Sync + 'static {
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String;
     /// How `cook-torrance` samples half vectors for this D (see [`DistSampler`]).
     fn sampler(&self) -> DistSampler;
+    /// The id of this D's own Smith shadowing-masking term (the one derived from its slope
+    /// distribution: `smith` for Beckmann and its approximations, `smith-ggx` for GGX):
+    /// `cook-torrance`'s `g` when not given (`brdf::cook_torrance::SMITH_OF`, which the
+    /// parameter resolution reads, is checked against this for every distribution).
+    fn smith(&self) -> &'static str;
 }
 
 /// How a distribution's half vectors are sampled inside `cook-torrance`.
@@ -546,6 +551,9 @@ impl DistForm for DistPlan {
     fn sampler(&self) -> DistSampler {
         with_dist!(self, d => d.sampler())
     }
+    fn smith(&self) -> &'static str {
+        with_dist!(self, d => d.smith())
+    }
 }
 
 impl DistPlan {
@@ -880,14 +888,17 @@ impl<T: Real, B: BrdfForm> model::Brdf<T> for Scalar<B> {
 /// Builds the plans of sub-models (Cook-Torrance's D, G and F; Phong's lobe) by id: the
 /// registry implements it, so that no family imports the registry (no module cycle).
 pub trait Models {
-    /// The plan of model `id`, each of its numeric parameters taken from `nums` (by name)
-    /// where it gives one, else its default.
-    fn plan(&self, id: &str, nums: &dyn Fn(&str) -> Option<f64>) -> Result<Plan>;
+    /// The plan of model `id`, each of its parameters (numbers and choices) taken from
+    /// `given` (by name) where it gives one, else its default. A composite hands its parts
+    /// every value it holds, so each option of a part is reachable through it (the registry
+    /// adds the parts' parameters the composite does not declare: `registry::all`).
+    fn plan(&self, id: &str, given: &dyn Fn(&str) -> Option<Value>) -> Result<Plan>;
 
     /// Lobe `id` at exponent `n` (Phong's and Blinn-Phong's `lobe`); an error for another
     /// kind.
     fn lobe(&self, id: &str, n: f64) -> Result<LobePlan> {
-        self.plan(id, &|name| (name == "n").then_some(n))?.lobe(id)
+        self.plan(id, &|name| (name == "n").then_some(Value::Num(n)))?
+            .lobe(id)
     }
 }
 

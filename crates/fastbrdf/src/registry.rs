@@ -12,7 +12,7 @@ use crate::microfacet::{
     beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
 };
 use crate::model::{Kind, Lobe, Model};
-use crate::params::{Options, ParamKind, ParamSpec, Params};
+use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
 use crate::plan::{Models, Plan};
 use crate::real::Real;
 use std::sync::OnceLock;
@@ -83,7 +83,11 @@ pub static REGISTRY: &[Entry] = &[
 ];
 
 /// Every registry entry, with the choices that name "any model of kind X"
-/// (`Options::Models`) replaced by the ids of that kind in registry order.
+/// (`Options::Models`) replaced by the ids of that kind in registry order (by
+/// `Options::Follows` where the default follows another choice), and a composite's list
+/// completed with every parameter of its possible parts that it does not declare itself
+/// ([`part_params`]: `cook-torrance` gains `schlick-ggx`'s `remap`), so that each option of a
+/// part is reachable through the composite.
 pub fn all() -> &'static [Entry] {
     static RESOLVED: OnceLock<Vec<Entry>> = OnceLock::new();
     RESOLVED.get_or_init(|| {
@@ -100,7 +104,9 @@ pub fn all() -> &'static [Entry] {
                         }
                     )
                 }) {
-                    let specs: Vec<ParamSpec> = e.info.params.iter().map(resolve_spec).collect();
+                    let mut specs: Vec<ParamSpec> =
+                        e.info.params.iter().map(resolve_spec).collect();
+                    specs.extend(part_params(e.info.params));
                     e.info.params = Box::leak(specs.into_boxed_slice());
                 }
                 e
@@ -114,7 +120,12 @@ pub fn all() -> &'static [Entry] {
 fn resolve_spec(spec: &ParamSpec) -> ParamSpec {
     let mut s = *spec;
     if let ParamKind::Choice {
-        options: Options::Models { kind, prefix },
+        options:
+            Options::Models {
+                kind,
+                prefix,
+                follow,
+            },
         default,
     } = spec.kind
     {
@@ -122,12 +133,82 @@ fn resolve_spec(spec: &ParamSpec) -> ParamSpec {
             .into_iter()
             .map(|id| id.strip_prefix(prefix).unwrap_or(id))
             .collect();
+        let list: &'static [&'static str] = Box::leak(names.into_boxed_slice());
         s.kind = ParamKind::Choice {
-            options: Options::List(Box::leak(names.into_boxed_slice())),
+            options: match follow {
+                None => Options::List(list),
+                Some(follow) => Options::Follows { list, follow },
+            },
             default,
         };
     }
     s
+}
+
+/// The parameters of a composite's possible parts that the composite (`specs`, unresolved)
+/// does not declare, in registry order, each gated on the choice that selects a part
+/// declaring it: a number by its `requires`, a choice by `Options::Gated` (its non-default
+/// options need that part; its default is harmless anywhere). The composite hands every value
+/// it holds to its parts (`plan::Models::plan`), so these reach the part.
+fn part_params(specs: &[ParamSpec]) -> Vec<ParamSpec> {
+    // (the part's spec, the choice parameter, the options whose model declares it)
+    let mut found: Vec<(ParamSpec, &'static str, Vec<&'static str>)> = Vec::new();
+    for choice in specs {
+        let ParamKind::Choice {
+            options: Options::Models { kind, prefix, .. },
+            ..
+        } = choice.kind
+        else {
+            continue;
+        };
+        for part in REGISTRY.iter().filter(|e| e.info.kind == kind) {
+            let option = part.info.id.strip_prefix(prefix).unwrap_or(part.info.id);
+            for ps in part.info.params {
+                if specs.iter().any(|s| s.name == ps.name) {
+                    continue;
+                }
+                match found.iter_mut().find(|(s, _, _)| s.name == ps.name) {
+                    // The same name in another part selected by the same choice: one
+                    // parameter, needing either part (a name shared across choices keeps
+                    // the first; `tests/composites.rs` would then find the second
+                    // unreachable).
+                    Some((_, c, opts)) if *c == choice.name => opts.push(option),
+                    Some(_) => {}
+                    None => found.push((*ps, choice.name, vec![option])),
+                }
+            }
+        }
+    }
+    found
+        .into_iter()
+        .map(|(ps, choice, opts)| {
+            let opts: &'static [&'static str] = Box::leak(opts.into_boxed_slice());
+            let requires: params::Requires = Box::leak(vec![(choice, opts)].into_boxed_slice());
+            let need = format!("{choice} = {}", opts.join(" or "));
+            let doc: &'static str = Box::leak(format!("{} (needs {need})", ps.doc).into());
+            let kind = match ps.kind {
+                ParamKind::Number {
+                    min, max, default, ..
+                } => ParamKind::Number {
+                    min,
+                    max,
+                    default,
+                    requires,
+                },
+                ParamKind::Choice { default, .. } => ParamKind::Choice {
+                    options: Options::Gated {
+                        list: match resolve_spec(&ps).kind {
+                            ParamKind::Choice { options, .. } => options.names(),
+                            ParamKind::Number { .. } => &[],
+                        },
+                        requires,
+                    },
+                    default,
+                },
+            };
+            ParamSpec { kind, doc, ..ps }
+        })
+        .collect()
 }
 
 /// The ids of every model of `kind`, in registry order.
@@ -151,15 +232,15 @@ pub fn find(id: &str) -> Result<&'static Entry> {
 struct Registry;
 
 impl Models for Registry {
-    fn plan(&self, id: &str, nums: &dyn Fn(&str) -> Option<f64>) -> Result<Plan> {
+    fn plan(&self, id: &str, given: &dyn Fn(&str) -> Option<Value>) -> Result<Plan> {
         let e = find(id)?;
-        let given: Vec<(&str, f64)> = e
+        let given: Vec<(&str, Value)> = e
             .info
             .params
             .iter()
-            .filter_map(|s| nums(s.name).map(|x| (s.name, x)))
+            .filter_map(|s| given(s.name).map(|v| (s.name, v)))
             .collect();
-        let p = Params::resolve_nums(e.info.id, e.info.params, &given)?;
+        let p = Params::resolve_values(e.info.id, e.info.params, &given)?;
         e.build_plan(&p, self)
     }
 }

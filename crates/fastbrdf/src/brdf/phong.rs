@@ -27,7 +27,7 @@ use crate::entry::Entry;
 use crate::error::Result;
 use crate::math::{Exact, Math};
 use crate::model::{Kind, ModelInfo, Ops};
-use crate::params::{self, Options, ParamKind, ParamSpec, Params};
+use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
 use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
 use crate::quad;
 use crate::real::{K, Real, min1, pos};
@@ -41,6 +41,7 @@ pub const LOBE: ParamSpec = ParamSpec {
         options: Options::Models {
             kind: Kind::Lobe,
             prefix: "",
+            follow: None,
         },
         default: "pow",
     },
@@ -122,7 +123,17 @@ impl LobeBrdf {
         let id = if blinn { "blinn-phong" } else { "phong" };
         let n = params::check(id, &params::N, p.num("n"))?;
         let lobe_id = p.choice("lobe");
-        let lobe = models.lobe(lobe_id, n)?;
+        // Every value this model holds goes to the lobe where it declares it (`n` today; a
+        // lobe parameter this model does not declare is added by the registry).
+        let lobe = models
+            .plan(lobe_id, &|name| {
+                if name == "n" {
+                    Some(Value::Num(n))
+                } else {
+                    p.get(name).cloned()
+                }
+            })?
+            .lobe(lobe_id)?;
         let normalized = p.choice("norm") == "energy";
         let coef = if normalized {
             1.0 / (2.0 * std::f64::consts::PI * lobe_integral(&lobe))

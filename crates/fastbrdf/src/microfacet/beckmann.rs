@@ -115,6 +115,10 @@ pub(crate) fn ct_scale_wgsl(alpha: f64, e: &Emit) -> String {
 
 impl DistForm for Beckmann {
     const ANISO: bool = true;
+    /// Beckmann's own Smith term (Walter et al. 2007, eq. 25-27), also for `beckmann-ct`.
+    fn smith(&self) -> &'static str {
+        "smith"
+    }
     fn sampler(&self) -> DistSampler {
         DistSampler {
             micro: Micro {

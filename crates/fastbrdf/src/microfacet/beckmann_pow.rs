@@ -207,6 +207,10 @@ fn twin(alpha: f64, closed: Option<CosDist>) -> DistSampler {
 }
 
 impl DistForm for BeckmannPow {
+    /// An approximation of `beckmann-ct` at the same alpha: Beckmann's Smith term.
+    fn smith(&self) -> &'static str {
+        "smith"
+    }
     /// `D cos = cos^(2/m^2 - 3) / (4 m^2)` inverts in closed form where it is integrable
     /// (`2/m^2 - 3 > -1`: m < 1); at m = 1 only the twin.
     fn sampler(&self) -> DistSampler {
@@ -252,6 +256,10 @@ impl<const K: u32> BeckmannPower<K> {
 }
 
 impl<const K: u32> DistForm for BeckmannPower<K> {
+    /// An approximation of `beckmann-ct` at the same alpha: Beckmann's Smith term.
+    fn smith(&self) -> &'static str {
+        "smith"
+    }
     /// `D cos` (a power-g form times `cos`) has no closed-form inverse: the twin.
     fn sampler(&self) -> DistSampler {
         twin(self.alpha, None)

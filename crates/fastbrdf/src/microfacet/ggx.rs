@@ -77,6 +77,10 @@ impl Ggx {
 
 impl DistForm for Ggx {
     const ANISO: bool = true;
+    /// GGX's own Smith term (Walter et al. 2007, eq. 34).
+    fn smith(&self) -> &'static str {
+        "smith-ggx"
+    }
     fn sampler(&self) -> DistSampler {
         let a = self.alpha2.x.sqrt();
         DistSampler {
