@@ -8,7 +8,9 @@
 //! - full BRDFs: `x = theta`, with `wi = wo = (sin theta, 0, cos theta)` (so `theta_h = theta`
 //!   and the approximations' relative error is that of their exponential factor).
 //!
-//! The zone is decided by the reference value divided by its peak over the sample set.
+//! The zone is decided by the reference value divided by its peak over the sample set, and
+//! `MaxAbs` errors are divided by that peak, for every kind ([`error`]; the peak is 1 for
+//! lobes and shadowing terms: [`abs_is_absolute`]).
 //! Samples are dense where the function changes: for a lobe of exponent `n`, uniform in
 //! `u = n (1 - c)` on [0, 60] plus a geometric tail to `c = 0`.
 
@@ -145,7 +147,30 @@ pub fn in_zone(zone: Zone, rel: f64) -> bool {
     }
 }
 
-/// The error of `f` against the reference value `r` under `metric` (`peak` scales `MaxAbs`).
+/// Whether a [`Metric::MaxAbs`] bound of a model of `kind` is an absolute error: the error is
+/// divided by the reference's peak for every kind ([`error`]), and that peak is exactly 1 at
+/// every parameter value for lobes (`c^n` at `c = 1`, a sample of [`lobe_samples`]) and
+/// shadowing terms (`G1` at `cos = 1`, a sample too); below 1 for Fresnel (its value at the
+/// smallest sampled cosine) and the split-sum terms, `1 / (pi alpha^2)`-sized for
+/// distributions and BRDFs. `tests/bound_meaning.rs` measures this for every documented bound.
+pub fn abs_is_absolute(kind: crate::Kind) -> bool {
+    matches!(kind, crate::Kind::Lobe | crate::Kind::Shadowing)
+}
+
+/// The short name of a bound of a model of `kind` (`fastbrdf models`' table): `abs` (an
+/// absolute error, [`abs_is_absolute`]), `abs/peak` (divided by the reference's peak) or
+/// `rel` (divided by the reference's value).
+pub fn bound_label(kind: crate::Kind, metric: Metric) -> &'static str {
+    match metric {
+        Metric::MaxAbs if abs_is_absolute(kind) => "abs",
+        Metric::MaxAbs => "abs/peak",
+        Metric::MaxRel => "rel",
+    }
+}
+
+/// The error of `f` against the reference value `r` under `metric`: `MaxAbs` divided by
+/// `peak` (the reference's largest sampled value at the same parameter, for every kind:
+/// [`abs_is_absolute`] says where that is 1), `MaxRel` by `r`.
 pub fn error(metric: Metric, f: f64, r: f64, peak: f64) -> f64 {
     match metric {
         Metric::MaxAbs => (f - r).abs() / peak,

@@ -50,7 +50,12 @@ pub struct PipeOps {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Metric {
-    /// `max |f - ref|`, for distributions and BRDFs divided by the reference's peak.
+    /// `max |f - ref| / peak`, for every kind, `peak` the reference's largest value over the
+    /// sampled inputs at the same parameter value (`accuracy::error`). The peak is exactly 1
+    /// for lobes and shadowing terms, so their bounds are absolute too; for distributions,
+    /// Fresnel terms, split-sum (env) terms and BRDFs they are relative to the peak
+    /// (`accuracy::abs_is_absolute`; `fastbrdf models` prints `abs` or `abs/peak`, its JSON
+    /// `"divided_by": "peak"`).
     MaxAbs,
     /// `max |f - ref| / ref`.
     MaxRel,
@@ -69,17 +74,53 @@ pub enum Zone {
 }
 
 /// A documented error bound against a reference model, enforced by `tests/bounds.rs`.
-#[derive(Clone, Copy, Debug, Serialize)]
+/// JSON: its fields, and `divided_by` (what the error is divided by: `"peak"` for
+/// [`Metric::MaxAbs`], `"reference"` for [`Metric::MaxRel`]).
+#[derive(Clone, Copy, Debug)]
 pub struct ErrorBound {
     /// The reference model id (same parameters).
     pub reference: &'static str,
     pub metric: Metric,
-    #[serde(flatten)]
     pub zone: Zone,
     /// The parameter range the bound holds on: `(name, lo, hi)`.
     pub param: (&'static str, f64, f64),
     /// The bound itself (measured maximum, rounded up).
     pub bound: f64,
+}
+
+impl ErrorBound {
+    /// What the error is divided by (see [`Metric`]): `"peak"` (the reference's largest
+    /// value at the same parameter) or `"reference"` (its value at the same input).
+    pub fn divided_by(&self) -> &'static str {
+        match self.metric {
+            Metric::MaxAbs => "peak",
+            Metric::MaxRel => "reference",
+        }
+    }
+}
+
+impl Serialize for ErrorBound {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        #[derive(Serialize)]
+        struct Json {
+            reference: &'static str,
+            metric: Metric,
+            #[serde(flatten)]
+            zone: Zone,
+            param: (&'static str, f64, f64),
+            bound: f64,
+            divided_by: &'static str,
+        }
+        Json {
+            reference: self.reference,
+            metric: self.metric,
+            zone: self.zone,
+            param: self.param,
+            bound: self.bound,
+            divided_by: self.divided_by(),
+        }
+        .serialize(s)
+    }
 }
 
 /// A model's self-description: everything `fastbrdf models` prints.
