@@ -28,6 +28,21 @@ apt_install() {
     $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "$@" > /dev/null
 }
 
+# nv-flip-sys (the FLIP metric) and the analysis crate's C peers compile C++ and C: a machine
+# with Rust but no C++ compiler gets Debian's build-essential before anything is built.
+if ! command -v c++ > /dev/null || ! command -v cc > /dev/null; then
+    echo "test.sh: no C/C++ compiler: installing build-essential" >&2
+    if command -v apt-get > /dev/null; then
+        apt_install build-essential || { $sudo apt-get update -qq > /dev/null && apt_install build-essential; } || {
+            echo "test.sh: could not install build-essential; the build needs a C++ compiler" >&2
+            exit 1
+        }
+    else
+        echo "test.sh: no apt-get; install a C and C++ compiler (the build needs them)" >&2
+        exit 1
+    fi
+fi
+
 if [ -z "${FASTBRDF_BROWSER:-}" ] && ! command -v chromium > /dev/null &&
     ! command -v chromium-browser > /dev/null && ! command -v google-chrome > /dev/null; then
     echo "test.sh: no Chromium: installing Debian's chromium (fastbrdf view's end-to-end test)" >&2
