@@ -273,9 +273,12 @@ impl FresnelForm for Dielectric {
         dielectric(cos, &self.0)
     }
     fn wgsl(&self, c: &str, e: &Emit) -> String {
+        // `eta^2 - 1` as the CPU holds it: computed in f64 from the parameter and rounded
+        // once (literal and storage forms), or from the f32 argument (runtime form).
         format!(
-            "fb_f_dielectric({c}, {})",
-            e.kx(self.0.eta, "p_eta", &["eta"])
+            "fb_f_dielectric_e({c}, {}, {})",
+            e.kx(self.0.eta, "p_eta", &["eta"]),
+            e.kx(self.0.e, "(p_eta - 1.0) * (p_eta + 1.0)", &["eta"])
         )
     }
 }
@@ -305,10 +308,22 @@ impl FresnelForm for Conductor {
 /// `s_hi + s_lo` of two `T` (split where it is used, in the evaluation precision), so that
 /// `c - s_hi` is exact (Sterbenz) and the f32 result keeps its relative accuracy instead of
 /// the absolute `2^-24` of a rounded `c^2 - p`.
+///
+/// The terms that depend on `eta` alone (`e = eta^2 - 1`, `eta^2`, `e - k^2`) are computed
+/// here in f64 from the parameter as given and rounded once (issue 27): near `eta = 1`, `e`
+/// computed in f32 from `eta`'s f32 rounding is off by that rounding's relative `1e-4` (at
+/// `eta = 1.0001`: `eta - 1` carries an error of 1.7e-8 in 1e-4), which moved `F` by 3e-5 at
+/// grazing, 30 times the f32 bound, where the f64 value is the parameter's own.
 #[derive(Clone, Copy, Debug)]
 pub struct Consts {
     pub eta: K,
     pub k: K,
+    /// `eta^2 - 1 = (eta - 1)(eta + 1)`.
+    pub e: K,
+    /// `eta^2`.
+    pub eta2: K,
+    /// `eta^2 - 1 - k^2` (`t0` at `c = 0`).
+    pub ek: K,
     /// `s_hi + s_lo = sqrt(p)` when `p > 0` (else 0): in f64 `s_hi` is `sqrt(p)` and `s_lo`
     /// 0; in f32 `s_hi` is its rounding and `s_lo` the rest, rounded.
     pub s_hi: K,
@@ -322,9 +337,13 @@ impl Consts {
     pub fn new(eta: f64, k: f64) -> Self {
         let p = k * k + (1.0 - eta) * (1.0 + eta);
         let s = if p > 0.0 { p.sqrt() } else { 0.0 };
+        let e = (eta - 1.0) * (eta + 1.0);
         Self {
             eta: K::new(eta),
             k: K::new(k),
+            e: K::new(e),
+            eta2: K::new(eta * eta),
+            ek: K::new(e - k * k),
             s_hi: K::new(s),
             s_lo: K::pair(0.0, (s - f64::from(s as f32)) as f32),
             edge: p > 0.0,
@@ -334,13 +353,11 @@ impl Consts {
     /// `t0 = eta^2 - k^2 - sin^2 = c^2 - p`, without cancellation.
     #[inline(always)]
     fn t0<T: Real>(&self, c: T) -> T {
-        let one = T::one();
         if self.edge {
             let (s_hi, s_lo) = (self.s_hi.t::<T>(), self.s_lo.t::<T>());
             ((c - s_hi) - s_lo) * ((c + s_hi) + s_lo)
         } else {
-            let (eta, k) = (self.eta.t::<T>(), self.k.t::<T>());
-            ((eta - one) * (eta + one) - k * k) + c * c
+            self.ek.t::<T>() + c * c
         }
     }
 }
@@ -361,8 +378,9 @@ fn clamp_lo<T: Real>(c: T) -> T {
 }
 
 /// The exact dielectric reflectance, arranged for f32 (twins: the batch kernel of [`Dielectric`],
-/// `fb_f_dielectric` in the WGSL library). With `e = eta^2 - 1 = (eta - 1)(eta + 1)` (exact
-/// near `eta = 1`) and `g = eta cos_t = sqrt(e + c^2)`:
+/// `fb_f_dielectric_e` in the WGSL library). With `e = eta^2 - 1 = (eta - 1)(eta + 1)` (and
+/// `eta^2`, `e - k^2`: [`Consts`], in f64 from the parameter, rounded once) and
+/// `g = eta cos_t = sqrt(e + c^2)`:
 /// `r_perp = (c - g) / (c + g) = -e / (c + g)^2` and
 /// `r_par = (eta^2 c - g) / (eta^2 c + g) = e ((eta^2 + 1) c^2 - 1) / (eta^2 c + g)^2`,
 /// so neither subtracts nearly equal numbers: both vanish exactly at `eta = 1`; `g^2` is
@@ -372,13 +390,12 @@ fn clamp_lo<T: Real>(c: T) -> T {
 #[inline(always)]
 pub fn dielectric<T: Real>(cos: T, p: &Consts) -> T {
     let one = T::one();
-    let eta = p.eta.t::<T>();
     let c = clamp_lo(cos);
     let c2 = c * c;
-    let e = (eta - one) * (eta + one);
+    let e = p.e.t::<T>();
     let g2 = p.t0(c);
     let g = pos(g2).sqrt();
-    let eta2 = eta * eta;
+    let eta2 = p.eta2.t::<T>();
     let d_perp = c + g;
     let r_perp = -e / (d_perp * d_perp);
     let d_par = eta2 * c + g;

@@ -2,7 +2,8 @@
 //! `smith-beckmann-correlated`.
 //!
 //! - `v-cavity` (Cook & Torrance 1982): `G = min(1, 2 NH NV / VH, 2 NH NL / VH)`; the one-sided
-//!   term (no `cos_l`) is `min(1, 2 NH NV / VH)`. Cost: 3 mul, 1 div (two-sided 4 mul, 1 div).
+//!   term (no `cos_l`) is `min(1, 2 NH NV / VH)`, each side as `2 NH (NV / VH)` (no overflow at
+//!   a subnormal `VH`). Cost: 2 mul, 1 div (two-sided 3 mul, 2 div).
 //! - `smith`: Smith's G1 for Beckmann, exact: `G1 = 1 / (1 + Lambda(a))`,
 //!   `a = 1 / (alpha tan theta)`, `Lambda(a) = (erf(a) - 1) / 2 + exp(-a^2) / (2 a sqrt(pi))`
 //!   (Walter et al. 2007, eq. 25-27). We compute `erf(a) - 1 = -erfc(a)` to avoid cancellation.
@@ -36,7 +37,7 @@ pub const INFO_VCAVITY: ModelInfo = ModelInfo {
     params: &[],
     formula: "min(1, 2 NH NV / VH, 2 NH NL / VH)",
     source: "Cook & Torrance 1982 (after Torrance & Sparrow 1967)",
-    ops: Ops::new(4, 0, 1, 0, 0),
+    ops: Ops::new(3, 0, 2, 0, 0),
     bounds: &[],
     f32_bound: 1e-6,
     note: "input columns cos_v, cos_h, cos_vh and optional cos_l (two-sided)",
@@ -107,11 +108,29 @@ impl ShadowForm for VCavity {
     const WGSL: &'static str = include_str!("shadowing.wgsl");
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, cos_h: T, cos_vh: T) -> T {
-        let k = T::c(2.0) * cos_h / cos_vh;
-        T::one().min(k * cos_v).min(k * cos_l)
+        T::one()
+            .min(v_cavity_side(cos_v, cos_h, cos_vh))
+            .min(v_cavity_side(cos_l, cos_h, cos_vh))
     }
     fn wgsl(&self, v: &str, l: &str, h: &str, vh: &str, _e: &Emit) -> String {
         format!("fb_g_v_cavity({v}, {l}, {h}, {vh})")
+    }
+}
+
+/// One side of the V-cavity, `2 cos_h cos / cos_vh` (positive cosines, `cos` at most 1 or
+/// `+inf`), as `2 cos_h (cos / cos_vh)`: the ratio of the two cosines first, which is at most
+/// 1 for `cos <= cos_vh` and overflows only where `cos_vh` is subnormal and `cos` is not;
+/// there `(2 cos_h / cos_vh) cos`. (`2 cos_h / cos_vh` first, as before issue 27, overflowed
+/// to `+inf` in f32 for every subnormal `cos_vh` and gave `G = 1` where the value is below 1,
+/// 0.8425 at the issue's point.)
+#[inline(always)]
+fn v_cavity_side<T: Real>(cos: T, cos_h: T, cos_vh: T) -> T {
+    let two_h = T::c(2.0) * cos_h;
+    let r = cos / cos_vh;
+    if r.is_finite() {
+        two_h * r
+    } else {
+        two_h / cos_vh * cos
     }
 }
 
