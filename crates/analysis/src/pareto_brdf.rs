@@ -473,6 +473,22 @@ impl FrontOn {
     }
 }
 
+/// `[[NAME, VALUE], ...]` with each value a JSON number where it is one (`["eta", 1.5]`), else
+/// the choice's name: machine outputs carry numbers (issue 27).
+pub fn params_pairs_json(params: &[(String, String)]) -> serde_json::Value {
+    params
+        .iter()
+        .map(|(k, v)| {
+            let one = crate::params_json(&[(k.clone(), v.clone())]);
+            serde_json::json!([k, one[k]])
+        })
+        .collect()
+}
+
+fn ser_pairs<S: serde::Serializer>(p: &[(String, String)], s: S) -> Result<S::Ok, S::Error> {
+    params_pairs_json(p).serialize(s)
+}
+
 /// One configuration at one alpha.
 #[derive(Clone, Debug, Serialize)]
 pub struct Row {
@@ -481,7 +497,9 @@ pub struct Row {
     pub g: String,
     pub f: String,
     pub denominator: String,
-    /// Every parameter given (besides alpha), name and value.
+    /// Every parameter given (besides alpha), name and value (JSON: `[NAME, VALUE]` pairs, a
+    /// value a number where it is one).
+    #[serde(serialize_with = "ser_pairs")]
     pub params: Vec<(String, String)>,
     pub alpha: f64,
     /// The reference configuration itself.

@@ -501,10 +501,8 @@ fn albedo_ms_compare(
                 )
             })
             .collect();
-        let p: serde_json::Map<String, serde_json::Value> = base
-            .iter()
-            .map(|(k, v)| (k.clone(), serde_json::json!(v)))
-            .collect();
+        // Numbers as numbers, choices as their names.
+        let p = fastbrdf_analysis::params_json(&base);
         let v = serde_json::json!({"model": a.model, "params": p, "ms": ms});
         crate::outln!(
             "{}",

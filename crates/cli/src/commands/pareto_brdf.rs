@@ -198,7 +198,7 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
         .map(|s| s.to_string_lossy().into_owned());
     if json {
         let v = serde_json::json!({
-            "reference": o.reference.params,
+            "reference": fastbrdf_analysis::pareto_brdf::params_pairs_json(&o.reference.params),
             "reference_label": o.reference.label(),
             "alphas": o.alphas,
             "grid": o.grid,

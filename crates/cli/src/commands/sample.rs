@@ -283,11 +283,8 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
         v["model"] = a.model.clone().into();
         v["strategy"] = s.name().into();
         v["theta_i"] = a.theta_i.into();
-        v["params"] = params
-            .iter()
-            .map(|(k, v)| (k.clone(), serde_json::Value::from(v.clone())))
-            .collect::<serde_json::Map<_, _>>()
-            .into();
+        // Numbers as numbers, choices as their names (issue 27).
+        v["params"] = fastbrdf_analysis::params_json(&params).into();
         format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON"))
     } else {
         format!(
