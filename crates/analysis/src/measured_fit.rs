@@ -31,6 +31,18 @@
 //! least squares for two variables). The simplex then only searches `theta` (variable
 //! projection). For `low-log` and `max` the albedos are not linear: the `ngan-l2` fit is
 //! computed first and Nelder-Mead then searches `theta` and the six albedos together from it.
+//!
+//! Identifiability. Some parameters trade against the albedos exactly: Schlick's `f90` scales
+//! the Fresnel term's grazing end as `rho_s` scales the whole lobe, so with `f0`, `f90` and
+//! `rho_s` all free only the products `rho_s f0` and `rho_s f90` are determined (exact data
+//! made with f0 0.04, rho_s 1 were fitted as f0 0.0316, f90 0.791, rho_s 1.265). Such
+//! parameters ([`HELD`]) stay at their default unless asked for ([`Problem::with_free`]).
+//! Every fit is then checked ([`Fit::undetermined`]): the Jacobian of the weighted model values
+//! `cos f` with respect to the free parameters and the six albedos is taken at the optimum
+//! (central differences), its columns scaled to unit length, and a singular value below
+//! [`FLAT_TOL`] (a direction along which the model moves by less than 1e-5 of what any one
+//! parameter alone does) names the parameters of that direction as not determined by the data.
+//! A parameter whose column is zero (a lobe parameter when every `rho_s` is 0) is one too.
 
 use argmin::core::{CostFunction, Error as ArgminError, Executor, State};
 use argmin::solver::neldermead::NelderMead;
@@ -46,6 +58,19 @@ pub const SEED: u64 = 0x6d65_726c_2d66_6974;
 pub const DEFAULT_SAMPLES: usize = 8000;
 /// Bins whose incident or outgoing direction is further than this from the normal are left out.
 pub const MAX_THETA_DEG: f64 = 80.0;
+
+/// Numeric parameters held at their default by a search unless asked for by name
+/// ([`Problem::with_free`]), with the reason: each trades exactly against the albedos.
+pub const HELD: &[(&str, &str)] = &[(
+    "f90",
+    "Schlick's f90 scales the grazing reflectance as rho_s scales the lobe: with f0, f90 and rho_s all free only their products are determined",
+)];
+
+/// A singular value of the column-normalised Jacobian below this is a flat direction: the
+/// parameters along it are not determined by the data (see the module documentation). Exact
+/// trade-offs measure ~1e-10 (the finite differences' error); the least determined parameter
+/// of a well-posed fit in the tests (Cook-Torrance's f0 against rho_s) is far above it.
+pub const FLAT_TOL: f64 = 1e-5;
 
 /// A fitting metric (see the module documentation for the formulas).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -207,14 +232,43 @@ pub struct Problem {
     pub id: String,
     pub fixed: Vec<(String, String)>,
     pub free: Vec<Free>,
+    /// Parameters of [`HELD`] the model reads that a search left at their default (name,
+    /// value): not fitted, and not in `fixed`.
+    pub held: Vec<(&'static str, f64)>,
 }
 
 impl Problem {
     /// Model `id` (a BRDF) with `fixed` parameters; with `search`, every other numeric
-    /// parameter that has a default and whose required choices hold is free, otherwise none
-    /// is (defaults are used). Errors: an unknown id, a non-BRDF kind, an invalid parameter.
+    /// parameter that has a default and whose required choices hold is free, except those of
+    /// [`HELD`] (left at their default), otherwise none is (defaults are used). Errors: an
+    /// unknown id, a non-BRDF kind, an invalid parameter.
     pub fn new(id: &str, fixed: &[(String, String)], search: bool) -> Result<Self, String> {
+        Self::with_free(id, fixed, search, &[])
+    }
+
+    /// [`Problem::new`], with the [`HELD`] parameters named in `also` fitted too. Errors also:
+    /// a name in `also` that is not one of the model's numeric parameters, or that `fixed`
+    /// gives.
+    pub fn with_free(
+        id: &str,
+        fixed: &[(String, String)],
+        search: bool,
+        also: &[String],
+    ) -> Result<Self, String> {
         let e = registry::find(id).map_err(|e| e.to_string())?;
+        for name in also {
+            let short = fastbrdf_io::shorten(name, 40);
+            match e.info.params.iter().find(|p| p.name == name) {
+                Some(p) if matches!(p.kind, ParamKind::Number { .. }) => {}
+                Some(_) => return Err(format!("{short} is a choice, not a number to fit")),
+                None => return Err(format!("{} has no parameter '{short}'", e.info.id)),
+            }
+            if fixed.iter().any(|(k, _)| k == name) {
+                return Err(format!(
+                    "{short} is both fixed (--param) and asked to be fitted"
+                ));
+            }
+        }
         if e.info.kind != Kind::Brdf {
             return Err(format!(
                 "{id} is a {} model; fitting measured data needs a BRDF (see `fastbrdf models --kind brdf`)",
@@ -241,6 +295,7 @@ impl Problem {
             })
         };
         let mut free = Vec::new();
+        let mut held = Vec::new();
         if search {
             for p in e.info.params {
                 if given(p.name).is_some() {
@@ -255,21 +310,27 @@ impl Problem {
                 else {
                     continue;
                 };
-                if p.allowed(choice) && max > min {
-                    free.push(Free {
-                        name: p.name,
-                        lo: min,
-                        hi: max,
-                        log: min > 0.0 && max / min > 20.0,
-                        default,
-                    });
+                if !(p.allowed(choice) && max > min) {
+                    continue;
                 }
+                // Probed below like the others; moved to `held` if the model reads it.
+                held.push(
+                    HELD.iter().any(|(n, _)| *n == p.name) && !also.iter().any(|a| a == p.name),
+                );
+                free.push(Free {
+                    name: p.name,
+                    lo: min,
+                    hi: max,
+                    log: min > 0.0 && max / min > 20.0,
+                    default,
+                });
             }
         }
         let mut problem = Self {
             id: e.info.id.to_string(),
             fixed: fixed.to_vec(),
             free,
+            held: Vec::new(),
         };
         let defaults: Vec<f64> = problem.free.iter().map(|f| f.default).collect();
         let base = problem.model(&defaults).map_err(|e| e.to_string())?;
@@ -300,11 +361,14 @@ impl Problem {
             }
             used.push(reads);
         }
-        let mut k = 0;
-        problem.free.retain(|_| {
-            k += 1;
-            used[k - 1]
-        });
+        let all = std::mem::take(&mut problem.free);
+        for ((f, used), held) in all.into_iter().zip(used).zip(held) {
+            match (used, held) {
+                (false, _) => {}
+                (true, true) => problem.held.push((f.name, f.default)),
+                (true, false) => problem.free.push(f),
+            }
+        }
         Ok(problem)
     }
 
@@ -448,6 +512,10 @@ pub struct Fit {
     /// Nelder-Mead runs made (starts and polishes).
     pub runs: usize,
     pub samples: usize,
+    /// The fitted quantities the data do not determine (see the module documentation): free
+    /// parameter names and `rho_d` / `rho_s` (any channel), in that order; empty when every
+    /// one is determined.
+    pub undetermined: Vec<String>,
 }
 
 impl Fit {
@@ -675,7 +743,9 @@ pub fn fit(
     let spec = problem
         .spec(data, &values)
         .ok_or("the model is not finite at the optimum")?;
+    let undetermined = undetermined(problem, data, &values, &spec, &alb);
     Ok(Fit {
+        undetermined,
         problem: problem.clone(),
         metric: opts.metric,
         residuals: residuals(data, &spec, &alb),
@@ -686,4 +756,239 @@ pub fn fit(
         runs,
         samples: data.len(),
     })
+}
+
+/// The fitted quantities along flat directions of the model at the optimum (see the module
+/// documentation): the Jacobian `J` of `cos_k f_c(k)` (rows: samples x channels) with respect
+/// to the free parameters (central differences) and the six albedos (exact), columns scaled to
+/// unit length; the eigenvectors of `J^T J` with an eigenvalue below `FLAT_TOL^2` name them.
+pub fn undetermined(
+    problem: &Problem,
+    data: &Data,
+    values: &[f64],
+    spec: &[f64],
+    alb: &[[f64; 2]; 3],
+) -> Vec<String> {
+    let k = problem.free.len();
+    let n = data.len();
+    let mut names: Vec<String> = problem.free.iter().map(|f| f.name.to_string()).collect();
+    let mut cols: Vec<Vec<f64>> = Vec::with_capacity(k + 6);
+    for (i, f) in problem.free.iter().enumerate() {
+        let v = values[i];
+        let h = 1e-5 * if f.log { v } else { f.hi - f.lo };
+        let (a, b) = ((v - h).max(f.lo), (v + h).min(f.hi));
+        let at = |x: f64| {
+            let mut p = values.to_vec();
+            p[i] = x;
+            problem.spec(data, &p)
+        };
+        let col = match (at(a), at(b)) {
+            (Some(sa), Some(sb)) if b > a => (0..n)
+                .flat_map(|j| {
+                    let d = data.wi[j][2] * (sb[j] - sa[j]) / (b - a);
+                    alb.map(|c| c[1] * d)
+                })
+                .collect(),
+            // Not differentiable here (a model error at a neighbour): say nothing of it.
+            _ => vec![f64::NAN; 3 * n],
+        };
+        cols.push(col);
+    }
+    for (which, name) in [(0, "rho_d"), (1, "rho_s")] {
+        for c in 0..3 {
+            let col = (0..n)
+                .flat_map(|j| {
+                    let w = data.wi[j][2];
+                    let x = if which == 0 { w / PI } else { w * spec[j] };
+                    [0, 1, 2].map(|cc| if cc == c { x } else { 0.0 })
+                })
+                .collect();
+            cols.push(col);
+            names.push(name.to_string());
+        }
+    }
+    // Columns that are not finite are left out; zero ones are undetermined by themselves.
+    let norms: Vec<f64> = cols
+        .iter()
+        .map(|c| c.iter().map(|x| x * x).sum::<f64>().sqrt())
+        .collect();
+    let biggest = norms
+        .iter()
+        .copied()
+        .filter(|x| x.is_finite())
+        .fold(0.0, f64::max);
+    let mut flat = vec![false; cols.len()];
+    let mut kept = Vec::new();
+    for (i, &nm) in norms.iter().enumerate() {
+        if !nm.is_finite() {
+            continue;
+        }
+        if nm <= 1e-12 * biggest {
+            flat[i] = true;
+        } else {
+            kept.push(i);
+        }
+    }
+    let m = kept.len();
+    let mut g = vec![vec![0.0; m]; m];
+    for a in 0..m {
+        for b in a..m {
+            let (ca, cb) = (&cols[kept[a]], &cols[kept[b]]);
+            let dot: f64 = ca.iter().zip(cb).map(|(x, y)| x * y).sum();
+            g[a][b] = dot / (norms[kept[a]] * norms[kept[b]]);
+            g[b][a] = g[a][b];
+        }
+    }
+    let (eig, vecs) = jacobi_eigen(g);
+    for (j, &l) in eig.iter().enumerate() {
+        if l < FLAT_TOL * FLAT_TOL {
+            for (a, &i) in kept.iter().enumerate() {
+                if vecs[a][j].abs() > 0.05 {
+                    flat[i] = true;
+                }
+            }
+        }
+    }
+    let mut out: Vec<String> = Vec::new();
+    for (i, name) in names.into_iter().enumerate() {
+        if flat[i] && !out.contains(&name) {
+            out.push(name);
+        }
+    }
+    out
+}
+
+/// Eigenvalues and eigenvectors (the columns of the second result) of the symmetric matrix
+/// `a`, by cyclic Jacobi rotations. Written here for the at most a dozen by a dozen matrices of
+/// [`undetermined`]: no linear-algebra crate is a dependency of this workspace.
+pub fn jacobi_eigen(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let n = a.len();
+    let mut v: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| f64::from(u8::from(i == j))).collect())
+        .collect();
+    for _sweep in 0..100 {
+        let off: f64 = (0..n)
+            .flat_map(|p| ((p + 1)..n).map(move |q| (p, q)))
+            .map(|(p, q)| a[p][q] * a[p][q])
+            .sum();
+        let scale: f64 = (0..n).map(|i| a[i][i] * a[i][i]).sum();
+        if off <= 1e-32 * scale || off == 0.0 {
+            break;
+        }
+        for p in 0..n {
+            for q in (p + 1)..n {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for row in a.iter_mut() {
+                    let (x, y) = (row[p], row[q]);
+                    row[p] = c * x - s * y;
+                    row[q] = s * x + c * y;
+                }
+                for k in 0..n {
+                    let (x, y) = (a[p][k], a[q][k]);
+                    a[p][k] = c * x - s * y;
+                    a[q][k] = s * x + c * y;
+                }
+                for row in v.iter_mut() {
+                    let (x, y) = (row[p], row[q]);
+                    row[p] = c * x - s * y;
+                    row[q] = s * x + c * y;
+                }
+            }
+        }
+    }
+    ((0..n).map(|i| a[i][i]).collect(), v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Cook-Torrance (f = schlick, d = ggx) tabulated exactly with f0 0.04, f90 1 and rho_s 1.
+    fn schlick_data() -> Data {
+        let params = [
+            ("f", "schlick"),
+            ("d", "ggx"),
+            ("alpha", "0.3"),
+            ("f0", "0.04"),
+        ];
+        let Model::Brdf(b) = registry::build::<f64>("cook-torrance", &params).unwrap() else {
+            panic!("a BRDF")
+        };
+        let kd = [0.05, 0.04, 0.03];
+        let bytes = measured::merl_bytes(|th, td, pd| {
+            let (wi, wo) = measured::from_half_diff(th, td, pd);
+            if wi[2] <= 0.0 || wo[2] <= 0.0 {
+                return [-1.0; 3];
+            }
+            let s = b.eval(wi, wo);
+            [0, 1, 2].map(|c| kd[c] / PI + s)
+        });
+        let m = MeasuredBrdf::from_reader(&bytes[..], std::path::Path::new("s.binary")).unwrap();
+        Data::from_measured(&m, 1500)
+    }
+
+    fn fixed(p: &[(&str, &str)]) -> Vec<(String, String)> {
+        p.iter()
+            .map(|(a, b)| (a.to_string(), b.to_string()))
+            .collect()
+    }
+
+    /// Issue 27: with f90 free only products of f0, f90 and rho_s were determined (f0 0.0316,
+    /// f90 0.791, rho_s 1.265 on these data, no warning). f90 is now held at 1 and the fit
+    /// recovers f0 and rho_s; asking for f90 is reported as undetermined.
+    #[test]
+    fn schlick_f90_is_held_and_a_degenerate_request_is_reported() {
+        let data = schlick_data();
+        let fx = fixed(&[("f", "schlick"), ("d", "ggx")]);
+        let problem = Problem::new("cook-torrance", &fx, true).unwrap();
+        let names: Vec<&str> = problem.free.iter().map(|f| f.name).collect();
+        assert_eq!(names, ["alpha", "f0"]);
+        assert_eq!(problem.held, [("f90", 1.0)]);
+        let r = fit(&problem, &data, &Options::default(), &|_, _| {}).unwrap();
+        assert!((r.values[1] - 0.04).abs() < 0.02 * 0.04, "{:?}", r.values);
+        assert!((r.values[0] - 0.3).abs() < 0.02 * 0.3, "{:?}", r.values);
+        for c in 0..3 {
+            assert!((r.rho_s[c] - 1.0).abs() < 0.02, "{:?}", r.rho_s);
+        }
+        assert!(r.undetermined.is_empty(), "{:?}", r.undetermined);
+        // Asked for, f90 is fitted, and the fit says what it cannot determine.
+        let free = Problem::with_free("cook-torrance", &fx, true, &["f90".into()]).unwrap();
+        let names: Vec<&str> = free.free.iter().map(|f| f.name).collect();
+        assert_eq!(names, ["alpha", "f0", "f90"]);
+        let d = fit(&free, &data, &Options::default(), &|_, _| {}).unwrap();
+        assert_eq!(d.undetermined, ["f0", "f90", "rho_s"], "{d:?}");
+        // Bad requests.
+        assert!(Problem::with_free("cook-torrance", &fx, true, &["nope".into()]).is_err());
+        assert!(Problem::with_free("cook-torrance", &fx, true, &["d".into()]).is_err());
+        let both = fixed(&[("f", "schlick"), ("f90", "1")]);
+        assert!(Problem::with_free("cook-torrance", &both, true, &["f90".into()]).is_err());
+    }
+
+    #[test]
+    fn jacobi_finds_eigenpairs() {
+        let a = vec![
+            vec![4.0, 1.0, 2.0],
+            vec![1.0, 3.0, 0.5],
+            vec![2.0, 0.5, 1.0 + 1e-12],
+        ];
+        let (l, v) = jacobi_eigen(a.clone());
+        for j in 0..3 {
+            for i in 0..3 {
+                let av: f64 = (0..3).map(|k| a[i][k] * v[k][j]).sum();
+                assert!((av - l[j] * v[i][j]).abs() < 1e-12, "{l:?}");
+            }
+        }
+        let tr: f64 = l.iter().sum();
+        assert!((tr - (8.0 + 1e-12)).abs() < 1e-12);
+        // A rank-deficient matrix: one eigenvalue is 0.
+        let b = vec![vec![1.0, 1.0], vec![1.0, 1.0]];
+        let (l, _) = jacobi_eigen(b);
+        assert!(l.iter().any(|x| x.abs() < 1e-15) && l.iter().any(|x| (x - 2.0).abs() < 1e-15));
+    }
 }

@@ -18,7 +18,11 @@ fastbrdf fit-measured --data brass.binary --model blinn-phong --metric low-log -
 The fitted model is, per colour channel c: rho_d[c]/pi + rho_s[c] * f(wi, wo), f the registry\n\
 BRDF with its own numeric parameters shared by R, G and B (Ngan, Matusik and Durand 2005).\n\
 --param fixes choices and values; every other numeric parameter the model reads is fitted over\n\
-its documented range (see `fastbrdf models --kind brdf`). Data: the valid bins (all channels\n\
+its documented range (see `fastbrdf models --kind brdf`), except Schlick's f90: it trades\n\
+exactly against rho_s (only the products f0 rho_s and f90 rho_s are determined), so it is\n\
+held at 1 unless --free f90 asks for it. After the fit, the parameters along a flat direction\n\
+of the model at the optimum (not determined by the data: the column-normalised Jacobian of\n\
+cos f has a singular value below 1e-5) are named in a warning on stderr. Data: the valid bins (all channels\n\
 measured) with both directions within 80 degrees of the normal, at their centre directions;\n\
 a fixed-seed subsample of --samples of them (deterministic). Metrics, over samples and\n\
 channels, cos = the incident cosine, m measured, f fitted:\n  \
@@ -35,7 +39,10 @@ difference heat map.\n\n\
 --json prints {\"data\": FILE, \"model\": ID, \"metric\": NAME, \"samples\": N, \"eligible\": N,\n\
 \"fixed\": {NAME: VALUE}, \"params\": {NAME: NUMBER}, \"rho_d\": [R, G, B], \"rho_s\": [R, G, B],\n\
 \"residuals\": {\"ngan-l2\": X, \"low-log\": X, \"max\": X}, \"evaluations\": N, \"runs\": N,\n\
-\"fit_seconds\": X, \"picture\": FILE} (fixed values are numbers where they parse as one).\n\
+\"fit_seconds\": X, \"picture\": FILE, \"held\": {NAME: NUMBER}, \"undetermined\": [NAME]}\n\
+(fixed values are numbers where they parse as one; held: parameters left at their default,\n\
+not fitted; undetermined: the fitted quantities the data do not determine, rho_d and rho_s\n\
+for the albedos, empty when all are).\n\
 Errors: a malformed file, an unknown model, a non-BRDF or a bad --param is exit 2 naming it,\n\
 with nothing on stdout and no picture written."
 )]
@@ -49,6 +56,9 @@ pub struct Args {
     /// Fix a parameter, NAME=VALUE (a choice such as f=schlick, or a number); repeat.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
+    /// Fit a parameter that is otherwise held at its default (f90); repeat.
+    #[arg(long = "free", value_name = "NAME")]
+    free: Vec<String>,
     /// The metric minimised: ngan-l2, low-log or max.
     #[arg(long, default_value = "ngan-l2", value_parser = ["ngan-l2", "low-log", "max"])]
     metric: String,
@@ -79,8 +89,12 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let (spec, opts) = a.scene.spec()?;
     check_out(&a.out, &["png"])?;
     let fixed = parse_params(&a.params)?;
-    let problem = Problem::new(&a.model, &fixed, true)
-        .map_err(|e| CliError::input(format!("--model {}: {e}", a.model)))?;
+    let problem = Problem::with_free(&a.model, &fixed, true, &a.free).map_err(|e| {
+        CliError::input(format!(
+            "--model {}: {e}",
+            fastbrdf_io::shorten(&a.model, 64)
+        ))
+    })?;
     let b = MeasuredBrdf::read(&a.data)?;
     let data = Data::from_measured(&b, a.samples);
     if data.is_empty() {
@@ -108,6 +122,14 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     .map_err(|e| CliError::input(format!("{}: {e}", a.data.display())))?;
     pb.finish_and_clear();
     let seconds = t.elapsed().as_secs_f64();
+    if !f.undetermined.is_empty() {
+        eprintln!(
+            "warning: the data do not determine {} separately: the fit moves along a flat \
+             direction of the model (only a combination of them is measured); fix one with \
+             --param NAME=VALUE",
+            and_list(&f.undetermined)
+        );
+    }
     // The picture, before anything is printed: a failed write leaves stdout empty.
     let fitted = Arc::new(f.brdf()?);
     let label = {
@@ -170,6 +192,9 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             "runs": f.runs,
             "fit_seconds": seconds,
             "picture": a.out.display().to_string(),
+            "held": f.problem.held.iter().map(|(k, v)| (k.to_string(), serde_json::json!(v)))
+                .collect::<serde_json::Map<_, _>>(),
+            "undetermined": f.undetermined,
         });
         outln!(
             "{}",
@@ -191,9 +216,19 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     for (k, v) in &fixed {
         s.push_str(&format!("  {k:<10} {v} (fixed)\n"));
     }
-    for (p, v) in f.problem.free.iter().zip(&f.values) {
+    for (k, v) in &f.problem.held {
         s.push_str(&format!(
-            "  {:<10} {v:.6} (fitted in [{}, {}])\n",
+            "  {k:<10} {v} (held: trades against rho_s; --free {k} to fit it)\n"
+        ));
+    }
+    for (p, v) in f.problem.free.iter().zip(&f.values) {
+        let note = if f.undetermined.iter().any(|u| u == p.name) {
+            ", not determined by the data"
+        } else {
+            ""
+        };
+        s.push_str(&format!(
+            "  {:<10} {v:.6} (fitted in [{}, {}]{note})\n",
             p.name, p.lo, p.hi
         ));
     }
@@ -205,4 +240,13 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         r.ngan_l2, r.low_log, r.max
     ));
     super::write_stdout(s.as_bytes())
+}
+
+/// "a", "a and b", "a, b and c".
+fn and_list(names: &[String]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.clone(),
+        [rest @ .., last] => format!("{} and {last}", rest.join(", ")),
+    }
 }
