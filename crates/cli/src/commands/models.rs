@@ -1,7 +1,7 @@
 //! `fastbrdf models`: the registry as a table or JSON.
 
 use crate::CliError;
-use fastbrdf::{Kind, Metric, Zone, registry};
+use fastbrdf::{Kind, Zone, registry};
 use std::fmt::Write;
 
 #[derive(clap::Args)]
@@ -32,11 +32,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     Ok(())
 }
 
-fn bound_text(b: &fastbrdf::ErrorBound) -> String {
-    let metric = match b.metric {
-        Metric::MaxAbs => "abs",
-        Metric::MaxRel => "rel",
-    };
+/// A bound as `abs|abs/peak|rel [zone] BOUND (PARAM LO..HI)`: the label says what the error
+/// is divided by for a model of `kind` (`fastbrdf::accuracy::bound_label`).
+fn bound_text(kind: Kind, b: &fastbrdf::ErrorBound) -> String {
+    let metric = fastbrdf::accuracy::bound_label(kind, b.metric);
     let zone = match b.zone {
         Zone::All => String::new(),
         Zone::Epicentre => " epi".into(),
@@ -85,7 +84,7 @@ pub fn table(models: &[&fastbrdf::ModelInfo]) -> String {
             let bounds: Vec<String> = m
                 .bounds
                 .iter()
-                .map(|b| format!("{}: {}", b.reference, bound_text(b)))
+                .map(|b| format!("{}: {}", b.reference, bound_text(m.kind, b)))
                 .collect();
             let mut params_text = params.join(" ");
             if params_text.len() > 34 {
@@ -108,7 +107,11 @@ pub fn table(models: &[&fastbrdf::ModelInfo]) -> String {
         "ops: multiplies/adds/divides/square roots/transcendental calls per evaluation.\n",
     );
     out.push_str("f32: documented bound of |f32 - f64| / max(1, |f64|) over the whole domain.\n");
-    out.push_str("error bound: abs = max |f - ref| (divided by the reference's peak for distributions), rel = max |f - ref| / ref;\n");
+    out.push_str("error bound: abs/peak = max |f - ref| / peak, peak = the reference's largest value at the same\n");
+    out.push_str("  parameter (\"divided_by\": \"peak\" in --json); abs = the same where that peak is 1 (lobes, shadowing),\n");
+    out.push_str(
+        "  so an absolute error; rel = max |f - ref| / ref (\"divided_by\": \"reference\");\n",
+    );
     out.push_str("  epi = where ref >= 0.5 peak, lo-hi = where lo < ref/peak < hi; '-' = a reference, an exact model,\n");
     out.push_str("  or a normalised/wrapper model (checked by the energy tests). `fastbrdf check` re-measures every bound.\n");
     out
