@@ -17,7 +17,9 @@
 //! whose dimensions are not 90 x 90 x 180, or negative, is refused before anything else is
 //! read or allocated), then at most the 34,992,000 bytes of samples plus one; a shorter or
 //! longer file is an error naming the byte counts, a NaN or infinite sample an error naming
-//! its channel and index.
+//! its channel and index, and so is a sample whose BRDF value (stored value times scale) is
+//! above [`MAX_VALUE`] (1e8 sr^-1, see there): such a file is not a measurement, and its
+//! values would overflow the sums every consumer makes (a mean, an albedo, a pixel).
 
 use fastbrdf_io::IoError;
 use std::f64::consts::{FRAC_PI_2, PI};
@@ -41,6 +43,22 @@ pub const SCALE: [f64; 3] = [1.0 / 1500.0, 1.15 / 1500.0, 1.66 / 1500.0];
 /// Channel names, for messages.
 pub const CHANNELS: [&str; 3] = ["red", "green", "blue"];
 
+/// The largest BRDF value (sr^-1, after the channel's scale) a file may hold; a larger one is
+/// refused at read time naming the file, channel and bin.
+///
+/// Why 1e8. A BRDF that conserves energy (albedo at most 1) and puts all of it into the
+/// incident directions of MERL's smallest bin has there `f <= 1 / (cos_i * omega)`, `omega`
+/// the bin's solid angle in incident directions: theta_h bin 0 ends at `(1/90)^2 pi/2 =
+/// 1.94e-4` rad, so `wi` lies within about `2 * 1.94e-4` rad of the mirror direction, `omega
+/// ~ pi (3.9e-4)^2 = 4.7e-7` sr, and `f <= 2.1e6 / cos_i` sr^-1. 1e8 admits that perfect mirror
+/// down to cos_i = 0.02 (89 degrees; real measurements, blurred by the gonioreflectometer's
+/// aperture, peak orders of magnitude lower), so no plausible file is refused. And it keeps
+/// every sum the tools make finite with room to spare: a channel's 1.46 million samples sum to
+/// at most 1.5e14, their squares to 1.5e22, and an f32 render multiplies values by radiances
+/// far below f32's 3.4e38. Values of 1e300 (finite) made `errors --measured` report zero
+/// albedos and `render` blame the model for non-finite pixels.
+pub const MAX_VALUE: f64 = 1e8;
+
 /// A measured BRDF: the three channels' samples, already multiplied by their scales; a
 /// missing sample is stored as a negative number.
 #[derive(Clone)]
@@ -50,7 +68,8 @@ pub struct MeasuredBrdf {
     data: Vec<f64>,
 }
 
-/// Per-channel statistics of the valid (non-negative) samples.
+/// Per-channel statistics of the valid (non-negative) samples. With no valid sample
+/// (`valid == 0`) `min`, `max` and `mean` are NaN: there is nothing to describe.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ChannelStats {
     pub min: f64,
@@ -272,7 +291,21 @@ impl MeasuredBrdf {
                     ),
                 ));
             }
-            data.push(v * SCALE[channel]);
+            let value = v * SCALE[channel];
+            if value > MAX_VALUE {
+                let i = k % SAMPLES;
+                let (th, td, pd) = bin_of(i);
+                return Err(input_err(
+                    name,
+                    format!(
+                        "{} channel, sample {i} (theta_h bin {th}, theta_d bin {td}, phi_d bin \
+                         {pd}): {v:e} is a BRDF value of {value:e} sr^-1, above the {MAX_VALUE:e} \
+                         a measured BRDF can plausibly reach (not a MERL measurement?)",
+                        CHANNELS[channel]
+                    ),
+                ));
+            }
+            data.push(value);
         }
         Ok(Self { data })
     }

@@ -26,6 +26,17 @@ pub const MAX_ENV_BYTES: u64 = 512 << 20;
 pub const MAX_ENV_WIDTH: u32 = 8192;
 /// Largest `--env-samples`.
 pub const MAX_ENV_SAMPLES: u32 = 4096;
+/// The largest radiance a texel may hold (any channel); a map with a larger one is refused at
+/// load, naming the file and the texel.
+///
+/// Why 1e12. The brightest thing an environment map shows is the Sun: 1.6e9 cd/m^2, so a map
+/// in absolute photometric units with the Sun unclipped stays below about 1e10, and captures
+/// in relative units are far lower (Poly Haven's unclipped suns read 1e4 to 1e6). 1e12 leaves
+/// a factor 100 over the Sun and keeps a path's product, radiance x BRDF x cos / pdf (a
+/// measured BRDF is at most 1e8 sr^-1, `fastbrdf::measured::MAX_VALUE`), far below f32's
+/// 3.4e38. A map of 3e38 texels (finite in f32) made the render overflow and the error blame
+/// the model.
+pub const MAX_ENV_RADIANCE: f32 = 1e12;
 
 /// The built-in sky's sun: the direction towards it (the default key light's) and its
 /// angular radius in degrees.
@@ -92,7 +103,8 @@ fn sample_cdf(cdf: &[f32], u: f32) -> (usize, f32) {
 
 impl EnvMap {
     /// A map from linear texels (row-major, top row = straight up). Errors name the problem:
-    /// not 2:1, too large, a NaN, infinite or negative texel.
+    /// not 2:1, too large, a NaN, infinite, negative or implausibly bright (above
+    /// [`MAX_ENV_RADIANCE`]) texel.
     pub fn from_texels(
         width: u32,
         height: u32,
@@ -100,20 +112,21 @@ impl EnvMap {
     ) -> std::result::Result<Self, String> {
         check_env_size(width, height)?;
         assert_eq!(texels.len(), (width * height) as usize, "texel count");
-        if let Some(i) = texels
-            .iter()
-            .position(|t| !t.is_finite() || t.min_element() < 0.0)
-        {
+        if let Some(i) = texels.iter().position(|t| {
+            !t.is_finite() || t.min_element() < 0.0 || t.max_element() > MAX_ENV_RADIANCE
+        }) {
             let t = texels[i];
             let what = if t.is_nan() {
                 "NaN"
             } else if !t.is_finite() {
                 "infinite"
-            } else {
+            } else if t.min_element() < 0.0 {
                 "negative"
+            } else {
+                "implausibly bright (above 1e12, a hundred times the Sun's luminance)"
             };
             return Err(format!(
-                "texel ({}, {}) is {what} ({}, {}, {}): an environment map holds finite, non-negative radiance",
+                "texel ({}, {}) is {what} ({}, {}, {}): an environment map holds finite, non-negative radiance up to {MAX_ENV_RADIANCE:e}",
                 i as u32 % width,
                 i as u32 / width,
                 t.x,
@@ -478,10 +491,20 @@ mod tests {
         );
         t[5] = Vec3::new(f32::INFINITY, 0.0, 0.0);
         assert!(
-            EnvMap::from_texels(4, 2, t)
+            EnvMap::from_texels(4, 2, t.clone())
                 .unwrap_err()
                 .contains("infinite")
         );
+        // Finite in f32 but no radiance a map can hold (issue 27: 3e38 overflowed the render,
+        // whose error blamed the model); the bound itself is accepted.
+        t[5] = Vec3::new(1.0, 3e38, 1.0);
+        let e = EnvMap::from_texels(4, 2, t.clone()).unwrap_err();
+        assert!(
+            e.contains("implausibly bright") && e.contains("(1, 1)"),
+            "{e}"
+        );
+        t[5] = Vec3::splat(MAX_ENV_RADIANCE);
+        assert!(EnvMap::from_texels(4, 2, t).is_ok());
         assert!(check_env_size(16384, 8192).unwrap_err().contains("at most"));
         // A black map still samples (sin theta alone).
         let m = EnvMap::from_texels(4, 2, vec![Vec3::ZERO; 8]).unwrap();

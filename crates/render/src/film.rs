@@ -101,7 +101,7 @@ impl Film {
             let bad = self.pixels[i..].iter().filter(|p| !p.is_finite()).count();
             let (x, y) = (i as u32 % self.width, i as u32 / self.width);
             return Err(RenderError::Invalid(format!(
-                "the render has {bad} non-finite pixels (the first at x = {x}, y = {y}: {:?}): the model, its parameters or the lights overflow f32; nothing was written",
+                "the render has {bad} non-finite pixels (the first at x = {x}, y = {y}: {:?}): the model, its parameters, the lights or the environment map overflow f32; nothing was written",
                 self.pixels[i].to_array()
             )));
         }

@@ -181,9 +181,31 @@ fn info(a: &InfoArgs) -> Result<(), CliError> {
         "missing"
     );
     for (c, name) in stats.iter().zip(CHANNELS) {
+        if c.valid == 0 {
+            // Nothing measured: no statistic to print (they would read NaN).
+            s.push_str(&format!(
+                "{name:<7} {:>12} {:>12} {:>12} {:>9}\n",
+                "-", "-", "-", c.missing
+            ));
+        } else {
+            s.push_str(&format!(
+                "{name:<7} {:>12.6} {:>12.6} {:>12.6} {:>9}\n",
+                c.min, c.max, c.mean, c.missing
+            ));
+        }
+    }
+    let empty: Vec<&str> = stats
+        .iter()
+        .zip(CHANNELS)
+        .filter(|(c, _)| c.valid == 0)
+        .map(|(_, n)| n)
+        .collect();
+    if !empty.is_empty() {
         s.push_str(&format!(
-            "{name:<7} {:>12.6} {:>12.6} {:>12.6} {:>9}\n",
-            c.min, c.max, c.mean, c.missing
+            "no measured sample in the {} channel{}: every value is negative (MERL's mark for \
+             a missing sample), so min, max and mean are undefined (-)\n",
+            empty.join(", "),
+            if empty.len() > 1 { "s" } else { "" }
         ));
     }
     super::write_stdout(s.as_bytes())
