@@ -15,6 +15,8 @@ use std::time::{Duration, Instant};
 struct Served {
     child: Child,
     addr: String,
+    /// What the server wrote on stderr after its start-up line.
+    log: Arc<std::sync::Mutex<String>>,
 }
 
 impl Drop for Served {
@@ -48,6 +50,7 @@ fn serve_with(nofile: Option<u32>, extra: &[&str]) -> Served {
     let mut served = Served {
         child,
         addr: String::new(),
+        log: Arc::default(),
     };
     let mut err = BufReader::new(served.child.stderr.take().unwrap());
     let mut line = String::new();
@@ -59,9 +62,13 @@ fn serve_with(nofile: Option<u32>, extra: &[&str]) -> Served {
         );
         if let Some(rest) = line.split("serving on http://").nth(1) {
             served.addr = rest.split('/').next().unwrap().to_string();
+            let log = served.log.clone();
             std::thread::spawn(move || {
-                let mut sink = String::new();
-                let _ = err.read_to_string(&mut sink);
+                let mut line = String::new();
+                while err.read_line(&mut line).is_ok_and(|n| n > 0) {
+                    log.lock().unwrap().push_str(&line);
+                    line.clear();
+                }
             });
             return served;
         }
@@ -240,9 +247,30 @@ fn running_out_of_file_descriptors_does_not_stop_accepting() {
     }
     assert!(refused > 0, "no connection past the cap got a 503");
     // All closed: a fresh client is served within a few retries.
+    served_again(&s.addr);
+
+    // 24 descriptors: about 8 in use at start, the cap 1, 16 refusals at once: a burst of 100
+    // runs the accept loop out of descriptors (EMFILE), which it survives.
+    let s = serve_with(Some(24), &[]);
+    let addr: std::net::SocketAddr = s.addr.parse().unwrap();
+    let held: Vec<TcpStream> = (0..100)
+        .filter_map(|_| TcpStream::connect_timeout(&addr, Duration::from_secs(2)).ok())
+        .collect();
+    std::thread::sleep(Duration::from_millis(1000));
+    drop(held);
+    served_again(&s.addr);
+    let log = s.log.lock().unwrap().clone();
+    assert!(
+        log.contains("accepting a connection failed"),
+        "the burst did not reach the open-file limit: {log}"
+    );
+}
+
+/// `/api/models` answers 200 within 20 s of retries.
+fn served_again(addr: &str) {
     let t = Instant::now();
     loop {
-        match get(&s.addr, "/api/models") {
+        match get(addr, "/api/models") {
             Ok((200, _, _)) => break,
             r => assert!(
                 t.elapsed() < Duration::from_secs(20),

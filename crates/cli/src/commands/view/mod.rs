@@ -906,3 +906,66 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     server.wait();
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hosts_name_the_bound_address_only() {
+        let loopback = Hosts::new("127.0.0.1:8000".parse().unwrap(), &[]);
+        for ok in [
+            "127.0.0.1:8000",
+            "localhost:8000",
+            "LocalHost.:8000",
+            "[::1]:8000",
+            "127.0.0.2:8000",
+        ] {
+            assert!(loopback.allows(ok), "{ok}");
+        }
+        for bad in [
+            "evil.example:8000",
+            "localhost",
+            "localhost:8001",
+            "127.0.0.1",
+            "10.0.0.1:8000",
+            "[::1]",
+            "[::1:8000",
+            "localhost:80x",
+            "",
+        ] {
+            assert!(!loopback.allows(bad), "{bad}");
+        }
+        let on_80 = Hosts::new("[::1]:80".parse().unwrap(), &["proxy.example:443".into()]);
+        assert!(on_80.allows("localhost") && on_80.allows("[::1]"));
+        assert!(on_80.allows("proxy.example:443") && !on_80.allows("proxy.example"));
+        let any = Hosts::new("0.0.0.0:9000".parse().unwrap(), &["box.lan".into()]);
+        assert!(any.allows("192.168.1.7:9000") && any.allows("localhost:9000"));
+        assert!(any.allows("box.lan") && any.allows("box.lan:1234"));
+        assert!(!any.allows("evil.example:9000") && !any.allows("192.168.1.7:9001"));
+        let lan = Hosts::new("192.168.1.7:9000".parse().unwrap(), &[]);
+        assert!(lan.allows("192.168.1.7:9000"));
+        assert!(!lan.allows("localhost:9000") && !lan.allows("127.0.0.1:9000"));
+    }
+
+    /// The numbers `fastbrdf view --help` states are the constants in force.
+    #[test]
+    fn help_states_the_limits() {
+        use clap::Args as _;
+        let help = Args::augment_args(clap::Command::new("view"))
+            .render_long_help()
+            .to_string()
+            .replace('\n', " ");
+        for stated in [
+            format!("at most {MAX_CONNECTIONS} connections"),
+            format!("leave {FD_RESERVE} of the open-file limit"),
+            format!("at most {} KiB and {MAX_HEADERS} fields", MAX_HEAD / 1024),
+            format!("targets {} KiB", MAX_URL / 1024),
+            format!("within {IDLE_TIMEOUT_S} s"),
+            format!("for {WRITE_TIMEOUT_S} s"),
+            format!("{RENDER_SLOTS} renders at once and {MAX_WAITING} waiting"),
+        ] {
+            assert!(help.contains(&stated), "--help lacks '{stated}': {help}");
+        }
+    }
+}
