@@ -9,6 +9,11 @@
 //!   `accuracy::domain_configs`) and an adversarial search (`accuracy::f32_search`, seeded, so
 //!   reproducible). The search also fails a model that returns a non-finite or negative
 //!   value in either precision.
+//! - the corners of the domain (issue 27, [`corners`]): every model at its domain
+//!   configurations (and, for `eta`, at decimals near 1 that f32 does not hold, as a user
+//!   types them) evaluated at the ends of the input ranges, where a random search seldom
+//!   lands: zero, subnormal and tiny cosines, grazing and normal incidence, the issue's
+//!   points. Its maximum counts in the f32 row like the grid's and the search's.
 
 use fastbrdf::entry::Entry;
 use fastbrdf::{ErrorBound, Metric, Zone, accuracy};
@@ -41,6 +46,8 @@ pub struct F32Row {
     pub configurations: usize,
     /// Evaluations (each in both precisions) of the adversarial search.
     pub evaluations: usize,
+    /// Evaluations (each in both precisions) at the domain's corners ([`corners`]).
+    pub corners: usize,
     pub at: String,
     /// Every value found finite and non-negative in both precisions.
     pub finite: bool,
@@ -119,17 +126,221 @@ pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
             format!("{} {}", fmt_params(&found.params), found.at),
         );
     }
+    let corner = corners(&e.info);
+    if corner.err > worst.0 {
+        worst = (corner.err, corner.at.clone());
+    }
+    let invalid = found.invalid.clone().or(corner.invalid.clone());
     F32Row {
         model: e.info.id,
         documented: e.info.f32_bound,
         measured: worst.0,
         configurations: configs.len(),
         evaluations: found.evaluations,
+        corners: corner.evaluations,
         at: worst.1,
-        finite: found.invalid.is_none(),
-        invalid: found.invalid.clone().unwrap_or_default(),
-        ok: worst.0 <= e.info.f32_bound && found.invalid.is_none(),
+        finite: invalid.is_none(),
+        ok: worst.0 <= e.info.f32_bound && invalid.is_none(),
+        invalid: invalid.unwrap_or_default(),
     }
+}
+
+/// Cosines at the ends of `[0, 1]`: 0, subnormal (`1e-45` is the smallest f32), the smallest
+/// normal, tiny, grazing (issue 27's `0.003908168`), and 1 and its neighbour.
+pub const CORNER_COS: [f32; 19] = [
+    0.0,
+    1e-45,
+    1e-42,
+    1e-39,
+    1.175_494_4e-38,
+    1e-30,
+    1e-20,
+    1e-10,
+    1e-7,
+    1e-5,
+    1e-4,
+    0.003_908_168,
+    0.01,
+    0.1,
+    0.5,
+    0.9,
+    0.999,
+    0.999_999_94,
+    1.0,
+];
+
+/// Decimals near `eta = 1` that f32 does not hold: the f64 model reads them as given, the f32
+/// model their rounding, as `--param eta=1.0001` does (issue 27: the Fresnel terms computed
+/// `eta^2 - 1` from that rounding, 30 times their f32 bound off at grazing).
+pub const CORNER_ETAS: [&str; 4] = ["1.0001", "0.9999", "1.000001", "0.999999"];
+
+/// The worst f32-against-f64 error at the corners.
+#[derive(Clone, Debug, Default)]
+pub struct Corners {
+    pub err: f64,
+    pub at: String,
+    /// A non-finite or negative value found there.
+    pub invalid: Option<String>,
+    pub evaluations: usize,
+}
+
+/// The parameter sets of the corners: `accuracy::domain_configs`, and each configuration
+/// with an `eta` again at every [`CORNER_ETAS`] value.
+pub fn corner_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
+    let mut out = accuracy::domain_configs(info, info.kind == fastbrdf::Kind::Brdf);
+    let with_eta: Vec<_> = out
+        .iter()
+        .filter(|c| c.iter().any(|(k, _)| k == "eta"))
+        .cloned()
+        .collect();
+    let mut seen = std::collections::BTreeSet::new();
+    for c in with_eta {
+        let mut c = c.clone();
+        for (k, v) in c.iter_mut() {
+            if k == "eta" {
+                *v = String::new();
+            }
+        }
+        if !seen.insert(c.clone()) {
+            continue;
+        }
+        for eta in CORNER_ETAS {
+            let c: Vec<_> = c
+                .iter()
+                .map(|(k, v)| {
+                    if k == "eta" {
+                        (k.clone(), eta.to_string())
+                    } else {
+                        (k.clone(), v.clone())
+                    }
+                })
+                .collect();
+            out.push(c);
+        }
+    }
+    out
+}
+
+/// The directions of a BRDF's corner pairs: `wi` at the cosines `CORNER_COS` (above 0), `wo`
+/// at the same cosines at azimuths 0, 1e-3, pi/2, pi - 1e-3 and pi from `wi`'s (the mirror
+/// pair, back to back and near both).
+fn corner_pairs() -> Vec<([f32; 3], [f32; 3])> {
+    let dir = |c: f32, phi: f64| {
+        let c = c as f64;
+        let s = ((1.0 - c) * (1.0 + c)).sqrt();
+        [(s * phi.cos()) as f32, (s * phi.sin()) as f32, c as f32]
+    };
+    let pi = std::f64::consts::PI;
+    let mut out = vec![];
+    for &ci in &CORNER_COS[1..] {
+        for &co in &CORNER_COS[1..] {
+            for phi in [0.0, 1e-3, 0.5 * pi, pi - 1e-3, pi] {
+                out.push((dir(ci, 0.0), dir(co, phi)));
+            }
+        }
+    }
+    out
+}
+
+/// Model `info` in both precisions at every [`corner_configs`] configuration and every corner
+/// input of its kind: cosines of [`CORNER_COS`] (lobes, distributions, Fresnel terms), all
+/// combinations of them as `cos_v`, `cos_h`, `cos_vh` and `cos_l` (absent or a corner:
+/// shadowing), with `alpha` at its ends (env terms), and [`corner_pairs`] (BRDFs). Mixed metric
+/// `|v32 - v64| / max(1, |v64|)`; a non-finite or negative value is recorded as invalid.
+pub fn corners(info: &fastbrdf::ModelInfo) -> Corners {
+    use fastbrdf::{Model, model::ShadowInput, registry};
+    let mut out = Corners::default();
+    let note = |out: &mut Corners, v32: f32, v64: f64, at: &dyn Fn() -> String| {
+        out.evaluations += 1;
+        if !(v32.is_finite() && v32 >= 0.0 && v64.is_finite() && v64 >= 0.0) {
+            if out.invalid.is_none() {
+                out.invalid = Some(format!("corner: {} f32={v32} f64={v64}", at()));
+            }
+            return;
+        }
+        let e = (f64::from(v32) - v64).abs() / v64.abs().max(1.0);
+        if e > out.err || out.at.is_empty() {
+            out.err = e;
+            out.at = format!("corner: {} f32={v32} f64={v64}", at());
+        }
+    };
+    let (alo, ahi) = fastbrdf::params::ALPHA.range();
+    for c in corner_configs(info) {
+        let given: Vec<(&str, &str)> = c.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
+        let (Ok(m32), Ok(m64)) = (
+            registry::build::<f32>(info.id, &given),
+            registry::build::<f64>(info.id, &given),
+        ) else {
+            continue; // a combination the model refuses: not part of its domain
+        };
+        let p = fmt_params(&c);
+        match (&m32, &m64) {
+            (Model::Lobe(a), Model::Lobe(b)) => {
+                for x in CORNER_COS {
+                    note(&mut out, a.eval(x), b.eval(x as f64), &|| {
+                        format!("{p} c={x:e}")
+                    });
+                }
+            }
+            (Model::Distribution(a), Model::Distribution(b)) => {
+                for x in CORNER_COS {
+                    note(&mut out, a.eval(x), b.eval(x as f64), &|| {
+                        format!("{p} cos_h={x:e}")
+                    });
+                }
+            }
+            (Model::Fresnel(a), Model::Fresnel(b)) => {
+                for x in CORNER_COS {
+                    note(&mut out, a.f(x), b.f(x as f64), &|| {
+                        format!("{p} cos={x:e}")
+                    });
+                }
+            }
+            (Model::Shadowing(a), Model::Shadowing(b)) => {
+                let ls = std::iter::once(None).chain(CORNER_COS.iter().map(|&l| Some(l)));
+                for l in ls {
+                    for v in CORNER_COS {
+                        for h in CORNER_COS {
+                            for vh in CORNER_COS {
+                                let s32 = ShadowInput {
+                                    cos_v: v,
+                                    cos_l: l,
+                                    cos_h: h,
+                                    cos_vh: vh,
+                                };
+                                let s64 = ShadowInput {
+                                    cos_v: v as f64,
+                                    cos_l: l.map(f64::from),
+                                    cos_h: h as f64,
+                                    cos_vh: vh as f64,
+                                };
+                                note(&mut out, a.g(&s32), b.g(&s64), &|| format!("{p} {s32:?}"));
+                            }
+                        }
+                    }
+                }
+            }
+            (Model::Env(a), Model::Env(b)) => {
+                for al in [alo, 0.01, 0.5, ahi] {
+                    let al = al as f32;
+                    for x in CORNER_COS {
+                        note(&mut out, a.e(x, al), b.e(x as f64, al as f64), &|| {
+                            format!("{p} cos_v={x:e} alpha={al}")
+                        });
+                    }
+                }
+            }
+            (Model::Brdf(a), Model::Brdf(b)) => {
+                for (wi, wo) in corner_pairs() {
+                    let v32 = a.eval(wi, wo);
+                    let v64 = b.eval(wi.map(f64::from), wo.map(f64::from));
+                    note(&mut out, v32, v64, &|| format!("{p} wi={wi:?} wo={wo:?}"));
+                }
+            }
+            _ => unreachable!("both precisions build the same kind"),
+        }
+    }
+    out
 }
 
 /// How many steps [`run`] reports to `progress` for `entries`: one per error bound and one
@@ -221,6 +432,50 @@ mod tests {
         r.f32[0].ok = false;
         assert!(!r.ok());
         assert_eq!(r.holding(), (1, 2));
+    }
+
+    /// Issue 27: the corners reach the points the search missed (`fresnel-dielectric` at
+    /// `eta = 1.0001` as typed, `cos = 0.003908168`; `v-cavity` at a subnormal `cos_vh` with
+    /// `cos_v` of a smaller order), and the models hold their f32 bounds there. Failed before
+    /// the fixes of `microfacet::fresnel` and `shadowing::VCavity` (3e-5 and 1 measured).
+    #[test]
+    fn corners_reach_the_ends_of_the_domain_and_hold() {
+        let d = registry::find("fresnel-dielectric").unwrap();
+        let configs = corner_configs(&d.info);
+        assert!(
+            configs
+                .iter()
+                .any(|c| c == &[("eta".to_string(), "1.0001".to_string())]),
+            "{configs:?}"
+        );
+        assert!(CORNER_COS.contains(&0.003_908_168));
+        assert!(CORNER_COS.iter().any(|&c| c > 0.0 && c < f32::MIN_POSITIVE));
+        for id in ["fresnel-dielectric", "fresnel-conductor", "v-cavity"] {
+            let e = registry::find(id).unwrap();
+            let c = corners(&e.info);
+            assert!(c.evaluations > 0 && c.invalid.is_none(), "{id}: {c:?}");
+            assert!(c.err <= e.info.f32_bound, "{id}: {c:?}");
+            let row = f32_bound(e, SMALL);
+            assert!(row.ok && row.corners == c.evaluations, "{row:?}");
+        }
+    }
+
+    /// Every model of the registry holds its f32 bound at the corners, finite and
+    /// non-negative in both precisions.
+    #[test]
+    fn every_model_holds_its_f32_bound_at_the_corners() {
+        let mut bad = vec![];
+        for e in registry::all() {
+            let c = corners(&e.info);
+            eprintln!(
+                "{:<28} {:>9.3e} {:>8} {}",
+                e.info.id, c.err, c.evaluations, c.at
+            );
+            if c.invalid.is_some() || c.err > e.info.f32_bound || c.evaluations == 0 {
+                bad.push(format!("{}: {c:?}", e.info.id));
+            }
+        }
+        assert!(bad.is_empty(), "{}", bad.join("\n"));
     }
 
     #[test]

@@ -8,8 +8,9 @@
 //!   `accuracy::domain_configs`) and an adversarial search (`accuracy::f32_search`: every
 //!   combination of choice parameters, random restarts at parameter extremes, special and
 //!   random values, hill climbing over parameters and inputs together; seeded, so
-//!   reproducible). The search also fails a model that returns a non-finite or negative
-//!   value in either precision.
+//!   reproducible), and the corners of the domain (`check::corners`: zero, subnormal and tiny
+//!   cosines, grazing pairs, `eta` near 1 as typed). The search and the corners also fail a
+//!   model that returns a non-finite or negative value in either precision.
 //!
 //! The measuring is fastbrdf-analysis::check; this command prints it.
 //!
@@ -93,7 +94,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             );
         }
         println!(
-            "\nf32 against f64 (|v32 - v64| / max(1, |v64|), same inputs, whole documented domain:\n  grid of parameter sets + adversarial search{})",
+            "\nf32 against f64 (|v32 - v64| / max(1, |v64|), same inputs, whole documented domain:\n  grid of parameter sets + adversarial search{} + corners)",
             if a.full { ", --full" } else { "" }
         );
         println!(
