@@ -99,9 +99,14 @@ const NEAR: f64 = 1e-5;
 
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The visibility pass's target: object index + 1 (0: none), triangle.
+const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 
-/// The two pipelines of one specular model.
+/// The pipelines of one specular model: the visibility pass (`_id`: depth and the nearest
+/// hit's object and triangle) and the shading pass (radiance of the visible hit only).
 struct Pipelines {
+    analytic_id: wgpu::RenderPipeline,
+    mesh_id: wgpu::RenderPipeline,
     analytic: wgpu::RenderPipeline,
     mesh: wgpu::RenderPipeline,
 }
@@ -128,6 +133,20 @@ pub fn render(
     queue: &wgpu::Queue,
     scene: &Scene,
     opts: &Options,
+) -> Result<Film, GpuError> {
+    render_with_progress(device, queue, scene, opts, &|_, _| {})
+}
+
+/// [`render`], calling `progress(done, total)` after each tile (tiles of at most
+/// 2048 x 2048 samples, each finished on the GPU before the next is drawn), as
+/// `fastbrdf_render::render::render` does with its tiles: the CLI draws its progress bar
+/// from it.
+pub fn render_with_progress(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    opts: &Options,
+    progress: &dyn Fn(usize, usize),
 ) -> Result<Film, GpuError> {
     check_size(opts.width, opts.height).map_err(|e| GpuError::Input(e.to_string()))?;
     if !(1..=16).contains(&opts.spp) {
@@ -201,6 +220,29 @@ pub fn render(
     };
     let color = target(COLOR_FORMAT, "fastbrdf render colour");
     let depth = target(DEPTH_FORMAT, "fastbrdf render depth");
+    let ids = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("fastbrdf render ids"),
+        size: wgpu::Extent3d {
+            width: tw_max,
+            height: th_max,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: ID_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+    let ids_view = ids.create_view(&Default::default());
+    let ids_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("fastbrdf render ids"),
+        layout: &layouts.ids,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::TextureView(&ids_view),
+        }],
+    });
     let (color_view, depth_view) = (
         color.create_view(&Default::default()),
         depth.create_view(&Default::default()),
@@ -215,6 +257,9 @@ pub fn render(
 
     let mut film = Film::new(w, h);
     let inv = 1.0 / (n * n) as f32;
+    let tiles = (w.div_ceil(tile_px) * h.div_ceil(tile_px)) as usize;
+    let mut done = 0;
+    progress(done, tiles);
     for py0 in (0..h).step_by(tile_px as usize) {
         for px0 in (0..w).step_by(tile_px as usize) {
             let (pw, ph) = (tile_px.min(w - px0), tile_px.min(h - py0));
@@ -257,6 +302,55 @@ pub fn render(
             });
             validated(device, "the GPU render pass", || {
                 let mut enc = device.create_command_encoder(&Default::default());
+                // Visibility: per sample the nearest hit's object and triangle (each fragment
+                // only intersects its primary ray), so that the shading pass below shades one
+                // fragment per sample however many surfaces overlap there: shading every
+                // fragment that passed the depth test so far (it writes its depth, so the test
+                // comes after the shader) cost a shadow ray per overlapping layer, thousands
+                // per sample on a mesh of stacked copies.
+                {
+                    let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+                        label: Some("fastbrdf render visibility"),
+                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                            view: &ids_view,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                                store: wgpu::StoreOp::Store,
+                            },
+                        })],
+                        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                            view: &depth_view,
+                            depth_ops: Some(wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(1.0),
+                                store: wgpu::StoreOp::Discard,
+                            }),
+                            stencil_ops: None,
+                        }),
+                        timestamp_writes: None,
+                        occlusion_query_set: None,
+                        multiview_mask: None,
+                    });
+                    pass.set_viewport(0.0, 0.0, tile.w as f32, tile.h as f32, 0.0, 1.0);
+                    pass.set_scissor_rect(0, 0, tile.w, tile.h);
+                    pass.set_bind_group(0, &frame_bind, &[]);
+                    for o in &objects {
+                        let p = &pipelines[&o.model];
+                        pass.set_bind_group(1, &o.bind, &[]);
+                        match &o.corners {
+                            None => {
+                                pass.set_pipeline(&p.analytic_id);
+                                pass.draw(0..3, 0..1);
+                            }
+                            Some((buf, count)) => {
+                                pass.set_pipeline(&p.mesh_id);
+                                pass.set_vertex_buffer(0, buf.slice(..));
+                                pass.draw(0..*count, 0..1);
+                            }
+                        }
+                    }
+                }
                 {
                     let bg = scene.background;
                     let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
@@ -290,7 +384,9 @@ pub fn render(
                     pass.set_viewport(0.0, 0.0, tile.w as f32, tile.h as f32, 0.0, 1.0);
                     pass.set_scissor_rect(0, 0, tile.w, tile.h);
                     pass.set_bind_group(0, &frame_bind, &[]);
-                    // Scene order: with the `Less` depth test, ties keep the earlier object.
+                    pass.set_bind_group(2, &ids_bind, &[]);
+                    // Scene order: with the `Less` depth test, ties keep the earlier object
+                    // (decided by the visibility pass; here only its winner passes).
                     for o in &objects {
                         let p = &pipelines[&o.model];
                         pass.set_bind_group(1, &o.bind, &[]);
@@ -349,6 +445,8 @@ pub fn render(
                     }
                 }
             })?;
+            done += 1;
+            progress(done, tiles);
         }
     }
     Ok(film)
@@ -366,7 +464,12 @@ struct Tile {
 struct Layouts {
     frame: wgpu::BindGroupLayout,
     object: wgpu::BindGroupLayout,
+    /// The visibility pass's ids, read by the shading pass.
+    ids: wgpu::BindGroupLayout,
+    /// The shading pass: frame, object, ids.
     pipeline: wgpu::PipelineLayout,
+    /// The visibility pass: frame, object.
+    visibility: wgpu::PipelineLayout,
 }
 
 impl Layouts {
@@ -416,15 +519,34 @@ impl Layouts {
                 entry(4, fragment, storage),
             ],
         });
+        let ids = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("fastbrdf render ids"),
+            entries: &[entry(
+                0,
+                fragment,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Uint,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            )],
+        });
         let pipeline = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("fastbrdf render"),
+            bind_group_layouts: &[Some(&frame), Some(&object), Some(&ids)],
+            immediate_size: 0,
+        });
+        let visibility = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("fastbrdf render visibility"),
             bind_group_layouts: &[Some(&frame), Some(&object)],
             immediate_size: 0,
         });
         Self {
             frame,
             object,
+            ids,
             pipeline,
+            visibility,
         }
     }
 }
@@ -454,9 +576,14 @@ impl Pipelines {
                 source: wgpu::ShaderSource::Wgsl(src.into()),
             });
             let pipeline = |vs: &str, fs: &str, buffers: &[Option<wgpu::VertexBufferLayout>]| {
+                let visibility = fs.ends_with("_id");
                 device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                     label: Some(&what),
-                    layout: Some(&layouts.pipeline),
+                    layout: Some(if visibility {
+                        &layouts.visibility
+                    } else {
+                        &layouts.pipeline
+                    }),
                     vertex: wgpu::VertexState {
                         module: &module,
                         entry_point: Some(vs),
@@ -482,7 +609,7 @@ impl Pipelines {
                         entry_point: Some(fs),
                         compilation_options: Default::default(),
                         targets: &[Some(wgpu::ColorTargetState {
-                            format: COLOR_FORMAT,
+                            format: if visibility { ID_FORMAT } else { COLOR_FORMAT },
                             blend: None,
                             write_mask: wgpu::ColorWrites::ALL,
                         })],
@@ -497,6 +624,8 @@ impl Pipelines {
                 attributes: &wgpu::vertex_attr_array![0 => Float32x3],
             };
             Self {
+                analytic_id: pipeline("rd_vs_full", "rd_fs_analytic_id", &[]),
+                mesh_id: pipeline("rd_vs_mesh", "rd_fs_mesh_id", &[Some(corners.clone())]),
                 analytic: pipeline("rd_vs_full", "rd_fs_analytic", &[]),
                 mesh: pipeline("rd_vs_mesh", "rd_fs_mesh", &[Some(corners)]),
             }
@@ -838,7 +967,10 @@ fn upload_object(
         u32::from(m.bump.is_some()),
         has_uvs,
     ]);
-    uniform.extend([tex_w, tex_h, 0, 0]);
+    // The object's id in the visibility pass: its index plus one (0 is no hit).
+    let id = u32::try_from(index + 1)
+        .map_err(|_| GpuError::Input(format!("object {index}: too many objects")))?;
+    uniform.extend([tex_w, tex_h, id, 0]);
     let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("fastbrdf render object"),
         contents: bytemuck::cast_slice(&uniform),

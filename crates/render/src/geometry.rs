@@ -113,6 +113,16 @@ pub struct TriMesh {
     order: Vec<u32>,
 }
 
+/// Entries of the traversal stack (`TriMesh::hit`, and the GPU renderer's shadow rays, which
+/// use the same size). A depth-first walk holds at most depth + 1 entries, and the median
+/// split's depth is at most ceil(log2(ceil(n / LEAF))) + 1 whatever the triangles (it halves
+/// the count, so coincident or overlapping triangles cannot make it deeper): 31 for 2^32
+/// triangles, so the stack never fills.
+pub const BVH_STACK: usize = 64;
+
+/// Most triangles in a leaf.
+pub const LEAF: usize = 4;
+
 /// A BVH node (public for the GPU renderer, which uploads the tree for its shadow rays).
 #[derive(Clone, Copy, Debug)]
 pub struct Node {
@@ -124,7 +134,10 @@ pub struct Node {
 }
 
 impl TriMesh {
-    /// Builds the BVH (median split on the longest axis, leaves of up to 4 triangles).
+    /// Builds the BVH (median split on the longest axis of the node's bounds, by centroid,
+    /// leaves of up to [`LEAF`] triangles). The split is at the median index, not a position,
+    /// so each child holds half the triangles even when their centroids coincide (stacked
+    /// copies): the depth is logarithmic in the count (see [`BVH_STACK`]).
     pub fn new(
         positions: Vec<Vec3>,
         normals: Vec<Vec3>,
@@ -163,7 +176,7 @@ impl TriMesh {
             lo = lo.min(a);
             hi = hi.max(b);
         }
-        if end - start <= 4 {
+        if end - start <= LEAF {
             self.nodes[node] = Node {
                 lo,
                 hi,
@@ -232,7 +245,7 @@ impl TriMesh {
     pub fn hit(&self, r: &Ray, t_min: f32, mut t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
         let inv = r.d.recip();
         let mut best: Option<(f32, u32, f32, f32)> = None;
-        let mut stack = [0u32; 64];
+        let mut stack = [0u32; BVH_STACK];
         let mut sp = 1;
         while sp > 0 {
             sp -= 1;

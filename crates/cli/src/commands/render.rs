@@ -313,7 +313,18 @@ fn render_model_gpu(
     }
     let scene = setup::scene(spec, loaded, specular);
     let gpu = fastbrdf_gpu::Gpu::new()?;
-    let film = fastbrdf_gpu::render::render(&gpu.device, &gpu.queue, &scene, opts)?;
+    let pb = bar(1, "render (GPU)");
+    let film = fastbrdf_gpu::render::render_with_progress(
+        &gpu.device,
+        &gpu.queue,
+        &scene,
+        opts,
+        &|d, t| {
+            pb.set_length(t as u64);
+            pb.set_position(d as u64);
+        },
+    )?;
+    pb.finish_and_clear();
     Ok((film, gpu.label()))
 }
 

@@ -58,7 +58,8 @@ struct Object {
     tex: vec4<f32>,
     /// Shape (0 sphere, 1 plane, 2 mesh), has a texture, has a bump, mesh has uvs.
     flags: vec4<u32>,
-    /// Texture width and height, 0, 0.
+    /// Texture width and height, the object's index in the scene plus one (its id in the
+    /// visibility pass), 0.
     tex_size: vec4<u32>,
 }
 
@@ -99,6 +100,9 @@ struct BvhNode {
 @group(1) @binding(3) var<storage, read> mesh_t: array<u32>;
 /// The model instance's coefficients (spec::Emit::storage).
 @group(1) @binding(4) var<storage, read> fb_k: array<f32>;
+/// The visibility pass's result, read by the shading pass only: per sample, the object
+/// nearest along the primary ray (its index plus one; 0: none) and, for a mesh, its triangle.
+@group(2) @binding(0) var rd_ids: texture_2d<u32>;
 
 const RD_PI: f32 = 3.14159265358979323846;
 const RD_TAU: f32 = 6.28318530717958647692;
@@ -673,6 +677,20 @@ struct RdOut {
     @builtin(frag_depth) depth: f32,
 }
 
+/// The visibility pass's output: the hit's object and triangle, and its depth.
+struct RdIdOut {
+    @location(0) id: vec2<u32>,
+    @builtin(frag_depth) depth: f32,
+}
+
+/// Whether the visibility pass found this object's triangle `tri` nearest at this sample:
+/// only that fragment is shaded (overlapping and coincident surfaces, however many, cost one
+/// shading per sample; the exact tie rule is the visibility pass's `Less` in scene order).
+fn rd_visible(pos: vec2<f32>, tri: u32) -> bool {
+    let id = textureLoad(rd_ids, vec2<i32>(pos), 0).xy;
+    return id.x == object.tex_size.z && id.y == tri;
+}
+
 // ---- entry points ---------------------------------------------------------------------------
 
 /// Spheres and planes: one triangle covering the tile.
@@ -684,15 +702,31 @@ fn rd_vs_full(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
 }
 
 /// Spheres and planes: the analytic intersection of the sample's primary ray.
+fn rd_analytic_hit(r: RdRay) -> RdHit {
+    if object.flags.x == 0u {
+        return rd_sphere(r);
+    }
+    return rd_plane(r);
+}
+
+/// Spheres and planes, visibility pass: the hit's depth and id.
+@fragment
+fn rd_fs_analytic_id(@builtin(position) pos: vec4<f32>) -> RdIdOut {
+    let hit = rd_analytic_hit(rd_primary_ray(pos.xy));
+    if !hit.ok {
+        discard;
+    }
+    return RdIdOut(vec2<u32>(object.tex_size.z, 0u), rd_depth(hit.t));
+}
+
+/// Spheres and planes, shading pass: the visible sample's radiance.
 @fragment
 fn rd_fs_analytic(@builtin(position) pos: vec4<f32>) -> RdOut {
-    let r = rd_primary_ray(pos.xy);
-    var hit: RdHit;
-    if object.flags.x == 0u {
-        hit = rd_sphere(r);
-    } else {
-        hit = rd_plane(r);
+    if !rd_visible(pos.xy, 0u) {
+        discard;
     }
+    let r = rd_primary_ray(pos.xy);
+    let hit = rd_analytic_hit(r);
     if !hit.ok {
         discard;
     }
@@ -713,11 +747,26 @@ fn rd_vs_mesh(@builtin(vertex_index) i: u32, @location(0) p: vec3<f32>) -> RdMes
     return RdMeshVertex(clip, i / 3u);
 }
 
-/// Meshes: the ray-triangle intersection of the sample's primary ray with the covering
-/// triangle (the CPU's barycentrics, t and interpolation).
+/// Meshes, visibility pass: the ray-triangle intersection of the sample's primary ray with
+/// the covering triangle, its depth and id.
+@fragment
+fn rd_fs_mesh_id(@builtin(position) pos: vec4<f32>, @location(0) @interpolate(flat) tri: u32)
+    -> RdIdOut {
+    let hit = rd_triangle(rd_primary_ray(pos.xy), tri);
+    if !hit.ok {
+        discard;
+    }
+    return RdIdOut(vec2<u32>(object.tex_size.z, tri), rd_depth(hit.t));
+}
+
+/// Meshes, shading pass: the ray-triangle intersection of the sample's primary ray with the
+/// visible triangle (the CPU's barycentrics, t and interpolation), shaded.
 @fragment
 fn rd_fs_mesh(@builtin(position) pos: vec4<f32>, @location(0) @interpolate(flat) tri: u32)
     -> RdOut {
+    if !rd_visible(pos.xy, tri) {
+        discard;
+    }
     let r = rd_primary_ray(pos.xy);
     let hit = rd_triangle(r, tri);
     if !hit.ok {
