@@ -149,7 +149,8 @@ fn resolve_spec(spec: &ParamSpec) -> ParamSpec {
 /// does not declare, in registry order, each gated on the choice that selects a part
 /// declaring it: a number by its `requires`, a choice by `Options::Gated` (its non-default
 /// options need that part; its default is harmless anywhere). The composite hands every value
-/// it holds to its parts (`plan::Models::plan`), so these reach the part.
+/// it holds to its parts (`plan::Models::plan`), so these reach the part. A number is optional
+/// in the composite (the part's own default applies when it is not given).
 fn part_params(specs: &[ParamSpec]) -> Vec<ParamSpec> {
     // (the part's spec, the choice parameter, the options whose model declares it)
     let mut found: Vec<(ParamSpec, &'static str, Vec<&'static str>)> = Vec::new();
@@ -187,12 +188,13 @@ fn part_params(specs: &[ParamSpec]) -> Vec<ParamSpec> {
             let need = format!("{choice} = {}", opts.join(" or "));
             let doc: &'static str = Box::leak(format!("{} (needs {need})", ps.doc).into());
             let kind = match ps.kind {
-                ParamKind::Number {
-                    min, max, default, ..
-                } => ParamKind::Number {
+                // Optional in the composite (a number with a default would always be
+                // present, and so refused beside the other parts): the part takes its own
+                // default when it is not given.
+                ParamKind::Number { min, max, .. } => ParamKind::Number {
                     min,
                     max,
-                    default,
+                    default: None,
                     requires,
                 },
                 ParamKind::Choice { default, .. } => ParamKind::Choice {
@@ -301,5 +303,48 @@ pub fn shading_brdf(
             expected: "a lobe, a distribution or a BRDF (something to shade with)".into(),
             found: e.info.kind.name().into(),
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Kind;
+
+    /// A composite that declares none of its parts' parameters gains them all, each gated on
+    /// the parts that declare it: a number optional (so the composite builds with any part),
+    /// refused beside a part without it, accepted beside one with it.
+    #[test]
+    fn part_params_gate_numbers_and_choices_on_their_part() {
+        const G: ParamSpec = ParamSpec {
+            name: "g",
+            kind: ParamKind::Choice {
+                options: Options::Models {
+                    kind: Kind::Shadowing,
+                    prefix: "",
+                    follow: None,
+                },
+                default: "v-cavity",
+            },
+            doc: "",
+        };
+        let raw = [G];
+        let mut specs: Vec<ParamSpec> = raw.iter().map(resolve_spec).collect();
+        specs.extend(part_params(&raw));
+        let names: Vec<&str> = specs.iter().map(|s| s.name).collect();
+        assert_eq!(names, ["g", "alpha", "remap"]);
+        let ok = |given: &[(&str, &str)]| Params::resolve("test", &specs, given);
+        assert!(ok(&[]).is_ok());
+        assert!(ok(&[("g", "smith")]).is_ok());
+        assert!(ok(&[("g", "smith"), ("alpha", "0.5")]).is_ok());
+        let err = ok(&[("g", "v-cavity"), ("alpha", "0.5")])
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("alpha") && err.contains("g in {smith"),
+            "{err}"
+        );
+        assert!(ok(&[("g", "schlick-ggx"), ("remap", "ue4")]).is_ok());
+        assert!(ok(&[("g", "smith"), ("remap", "ue4")]).is_err());
     }
 }
