@@ -17,22 +17,22 @@
 using metal::uint;
 
 
-float fb_f_dielectric(
+float fb_f_dielectric_e(
     float c_in,
-    float eta
+    float eta,
+    float e
 ) {
     float c = (c_in >= 0.00000000000000000086736174) ? metal::min(c_in, 1.0) : 0.00000000000000000086736174;
     float c2_ = c * c;
-    float e = (eta - 1.0) * (eta + 1.0);
-    float s = metal::sqrt(metal::max((1.0 - eta) * (1.0 + eta), 0.0));
-    float g2_ = (eta < 1.0) ? ((c - s) * (c + s)) : (e + c2_);
+    float s = metal::sqrt(metal::max(-(e), 0.0));
+    float g2_ = (e < 0.0) ? ((c - s) * (c + s)) : (e + c2_);
     float g = metal::sqrt(metal::max(g2_, 0.0));
     float eta2_ = eta * eta;
     float d_perp = c + g;
     float r_perp = -(e) / (d_perp * d_perp);
     float d_par = (eta2_ * c) + g;
     float sin2_ = (1.0 - c) * (1.0 + c);
-    float brewster = (eta < 1.0) ? (g2_ - (eta2_ * sin2_)) : ((eta2_ * c2_) - sin2_);
+    float brewster = (e < 0.0) ? (g2_ - (eta2_ * sin2_)) : ((eta2_ * c2_) - sin2_);
     float r_par = (e * brewster) / (d_par * d_par);
     float f = metal::min(((r_par * r_par) + (r_perp * r_perp)) * 0.5, 1.0);
     return (g2_ <= 0.0) ? 1.0 : f;
@@ -42,6 +42,6 @@ float fb_fresnel_dielectric(
     float cos_vh
 ) {
     float c_1 = metal::max(cos_vh, 0.0);
-    float _e4 = fb_f_dielectric(c_1, 1.5);
-    return _e4;
+    float _e5 = fb_f_dielectric_e(c_1, 1.5, 1.25);
+    return _e5;
 }

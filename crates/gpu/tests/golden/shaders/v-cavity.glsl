@@ -12,8 +12,8 @@
 // V form: fb_v_cavity_v, the same arguments, returns V = G / (4 cos_v cos_l), the visibility term engines multiply by D and F with no further denominator (Filament's V_SmithGGXCorrelated, Unreal's Vis_*).
 
 float fb_g_v_cavity(float cos_v, float cos_l, float cos_h, float cos_vh) {
-    float k = ((2.0 * cos_h) / cos_vh);
-    return min(min(1.0, (k * cos_v)), (k * cos_l));
+    float two_h = (2.0 * cos_h);
+    return min(min(1.0, (two_h * (cos_v / cos_vh))), (two_h * (cos_l / cos_vh)));
 }
 
 float fb_v_cavity(float cos_v_1, float cos_l_1, float cos_h_1, float cos_vh_1) {

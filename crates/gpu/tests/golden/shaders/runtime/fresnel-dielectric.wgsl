@@ -10,25 +10,26 @@
 // Runtime parameters: p_eta (f32, after the inputs; the parameters above are only the defaults of this export). Coefficients are computed in the shader in f32: closed forms inline, the rest by the fb_rt_* functions (cubic shapes, rational nodes, normalisation integrals), whose added f32 error fastbrdf measures per model (ARCHITECTURE.md, 'Runtime parameters'). Values outside a parameter's range are not checked in the shader.
 // Entry: fb_fresnel_dielectric(cos_vh) with cos_vh = v.h, then p_eta; returns f32.
 
-/// fresnel-dielectric: the exact unpolarised Fresnel reflectance of a dielectric of relative
-/// index eta (1 on total internal reflection). Twin of fresnel::dielectric, same arrangement:
-/// e = (eta - 1)(eta + 1), g = sqrt(e + c^2), r_perp = -e / (c + g)^2,
-/// r_par = e ((eta^2 + 1) c^2 - 1) / (eta^2 c + g)^2 (both exactly 0 at eta = 1); see the twin.
-fn fb_f_dielectric(c_in: f32, eta: f32) -> f32 {
+/// fresnel-dielectric with e = eta^2 - 1 = (eta - 1)(eta + 1) given, which the CPU computes
+/// in f64 from the parameter and rounds once (exports with fixed parameters pass that number;
+/// near eta = 1 the f32 eta's own rounding would move e by 1e-4 relative). Twin of
+/// fresnel::dielectric, same arrangement: g = sqrt(e + c^2),
+/// r_perp = -e / (c + g)^2, r_par = e ((eta^2 + 1) c^2 - 1) / (eta^2 c + g)^2 (both exactly 0
+/// at eta = 1); see the twin.
+fn fb_f_dielectric_e(c_in: f32, eta: f32, e: f32) -> f32 {
     let c = select(8.673617379884035e-19, min(c_in, 1.0), c_in >= 8.673617379884035e-19);
     let c2 = c * c;
-    let e = (eta - 1.0) * (eta + 1.0);
     // Near the critical angle (eta < 1) g^2 = (c - s)(c + s), s = sqrt(1 - eta^2) (the CPU
     // holds s in two floats; here s is rounded once).
-    let s = sqrt(max((1.0 - eta) * (1.0 + eta), 0.0));
-    let g2 = select(e + c2, (c - s) * (c + s), eta < 1.0);
+    let s = sqrt(max(-e, 0.0));
+    let g2 = select(e + c2, (c - s) * (c + s), e < 0.0);
     let g = sqrt(max(g2, 0.0));
     let eta2 = eta * eta;
     let d_perp = c + g;
     let r_perp = -e / (d_perp * d_perp);
     let d_par = eta2 * c + g;
     let sin2 = (1.0 - c) * (1.0 + c);
-    let brewster = select(eta2 * c2 - sin2, g2 - eta2 * sin2, eta < 1.0);
+    let brewster = select(eta2 * c2 - sin2, g2 - eta2 * sin2, e < 0.0);
     let r_par = e * brewster / (d_par * d_par);
     let f = min((r_par * r_par + r_perp * r_perp) * 0.5, 1.0);
     return select(f, 1.0, g2 <= 0.0);
@@ -38,5 +39,5 @@ fn fb_f_dielectric(c_in: f32, eta: f32) -> f32 {
 /// Source: Fresnel equations; pbrt-v3 FrDielectric. Instance: runtime parameters p_eta; fixed: no parameters.
 fn fb_fresnel_dielectric(cos_vh: f32, p_eta: f32) -> f32 {
     let c = max(cos_vh, 0.0);
-    return fb_f_dielectric(c, (p_eta));
+    return fb_f_dielectric_e(c, (p_eta), ((p_eta - 1.0) * (p_eta + 1.0)));
 }

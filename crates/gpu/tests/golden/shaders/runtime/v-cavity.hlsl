@@ -13,8 +13,8 @@
 
 float fb_g_v_cavity(float cos_v, float cos_l, float cos_h, float cos_vh)
 {
-    float k = ((2.0 * cos_h) / cos_vh);
-    return min(min(1.0, (k * cos_v)), (k * cos_l));
+    float two_h = (2.0 * cos_h);
+    return min(min(1.0, (two_h * (cos_v / cos_vh))), (two_h * (cos_l / cos_vh)));
 }
 
 float fb_v_cavity(float cos_v_1, float cos_l_1, float cos_h_1, float cos_vh_1)

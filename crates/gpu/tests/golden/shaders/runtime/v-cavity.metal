@@ -24,8 +24,8 @@ float fb_g_v_cavity(
     float cos_h,
     float cos_vh
 ) {
-    float k = (2.0 * cos_h) / cos_vh;
-    return metal::min(metal::min(1.0, k * cos_v), k * cos_l);
+    float two_h = 2.0 * cos_h;
+    return metal::min(metal::min(1.0, two_h * (cos_v / cos_vh)), two_h * (cos_l / cos_vh));
 }
 
 float fb_v_cavity(

@@ -11,10 +11,12 @@
 // Entry: fb_v_cavity(cos_v, cos_l, cos_h, cos_vh): n.v, n.l, n.h, v.h; two-sided; returns f32.
 // V form: fb_v_cavity_v, the same arguments, returns V = G / (4 cos_v cos_l), the visibility term engines multiply by D and F with no further denominator (Filament's V_SmithGGXCorrelated, Unreal's Vis_*).
 
-/// v-cavity (Cook & Torrance 1982): min(1, 2 NH NV / VH, 2 NH NL / VH).
+/// v-cavity (Cook & Torrance 1982): min(1, 2 NH NV / VH, 2 NH NL / VH), each side as
+/// 2 NH (NV / VH) (the ratio of cosines first, as the CPU's v_cavity_side; its fallback for a
+/// ratio that overflows needs a subnormal VH, which GPUs flush to 0).
 fn fb_g_v_cavity(cos_v: f32, cos_l: f32, cos_h: f32, cos_vh: f32) -> f32 {
-    let k = 2.0 * cos_h / cos_vh;
-    return min(min(1.0, k * cos_v), k * cos_l);
+    let two_h = 2.0 * cos_h;
+    return min(min(1.0, two_h * (cos_v / cos_vh)), two_h * (cos_l / cos_vh));
 }
 
 /// v-cavity: min(1, 2 NH NV / VH, 2 NH NL / VH)
