@@ -747,6 +747,112 @@ pub struct Slider {
     pub log: bool,
 }
 
+/// How far a lobe's argument (its cosine) may lie from the CPU's in a shader, in units of
+/// 2^-24 (the f32 spacing just below 1): the parity rule of `tests/parity.rs` for Phong and
+/// Blinn-Phong, whose lobe argument goes through three normalisations in f32. Near its peak a
+/// lobe of exponent n moves by about n times this, so BRDF Explorer's `n` slider stops where
+/// that stays within the lobe's documented error ([`lobe_n_max`]).
+pub const LOBE_ARG_ULPS: f64 = 32.0;
+
+/// The largest change of lobe `lobe`'s value at exponent `n`, relative to its peak, when its
+/// cosine moves by [`LOBE_ARG_ULPS`] units of 2^-24 (on cosines 1 - 2^-24 .. 0, log-spaced,
+/// away from its cuts and kinks, where a jump is a jump whatever the precision).
+pub fn lobe_argument_error(lobe: &str, n: f64) -> Result<f64, GpuError> {
+    let l = fastbrdf::registry::lobe::<f64>(lobe, n)?;
+    let peak = l.eval(1.0).abs().max(f64::MIN_POSITIVE);
+    let u = LOBE_ARG_ULPS * 2f64.powi(-24);
+    let mut marks = l.kinks();
+    marks.push(l.zero_below());
+    let mut worst = 0.0f64;
+    for i in 0..=1200 {
+        let c = 1.0 - 2f64.powf(-24.0 + 24.0 * i as f64 / 1200.0);
+        if marks.iter().any(|&m| m > 0.0 && (c - m).abs() <= 2.0 * u) {
+            continue;
+        }
+        let v = l.eval(c);
+        for d in [(c + u).min(1.0), (c - u).max(0.0)] {
+            worst = worst.max((l.eval(d) - v).abs() / peak);
+        }
+    }
+    Ok(worst)
+}
+
+/// The error lobe `lobe` documents at exponent `n`: the tightest of its max-abs bounds against
+/// its reference on the whole lobe whose `n` range holds `n`; for a lobe that documents none
+/// (the reference `pow` itself) the tightest such bound any lobe documents at `n`.
+pub fn lobe_tolerance(lobe: &str, n: f64) -> Result<f64, GpuError> {
+    let documented = |info: &fastbrdf::ModelInfo| {
+        info.bounds
+            .iter()
+            .filter(|b| b.metric == Metric::MaxAbs && b.zone == Zone::All)
+            .filter(|b| b.param.0 == "n" && b.param.1 <= n && n <= b.param.2)
+            .map(|b| b.bound)
+            .reduce(f64::min)
+    };
+    let info = &fastbrdf::registry::find(lobe)?.info;
+    Ok(documented(info).unwrap_or_else(|| {
+        fastbrdf::registry::all()
+            .iter()
+            .filter(|e| e.info.kind == Kind::Lobe)
+            .filter_map(|e| documented(&e.info))
+            .fold(f64::INFINITY, f64::min)
+    }))
+}
+
+/// Where BRDF Explorer's `n` slider of lobe `lobe` stops, in `[min, max]`: the largest n
+/// (two significant digits, rounded down) at which [`lobe_argument_error`] stays within
+/// [`lobe_tolerance`], so that the f32 shader's lobe stays within the lobe's documented error
+/// on the whole slider. Issue 27: `power4-tuned` at n = 1e5 was off by 0.82 of its peak in
+/// BRDF Explorer.
+pub fn lobe_n_max(lobe: &str, min: f64, max: f64) -> Result<f64, GpuError> {
+    let holds =
+        |n: f64| Ok::<_, GpuError>(lobe_argument_error(lobe, n)? <= lobe_tolerance(lobe, n)?);
+    if holds(max)? {
+        return Ok(max);
+    }
+    // The error grows with n: bisect on log n.
+    let (mut lo, mut hi) = (min.ln(), max.ln());
+    if !holds(min)? {
+        return Ok(min);
+    }
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if holds(mid.exp())? {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let n = lo.exp();
+    let scale = 10f64.powf(n.log10().floor() - 1.0);
+    Ok(((n / scale).floor() * scale).max(min))
+}
+
+/// The largest value BRDF Explorer's slider of parameter `name` reaches in the export of
+/// `target` (the shaded instance) at `value`: the documented maximum, or for the exponent of a
+/// lobe [`lobe_n_max`] (at least `value`, so that the export's own value stays reachable).
+pub fn slider_max(target: &Instance, name: &str, max: f64, value: f64) -> Result<f64, GpuError> {
+    let lobe = target
+        .params
+        .iter()
+        .find(|(k, _)| k == "lobe")
+        .map(|(_, v)| v.as_str());
+    let min = match target
+        .info
+        .params
+        .iter()
+        .find(|p| p.name == name)
+        .map(|p| p.kind)
+    {
+        Some(ParamKind::Number { min, .. }) => min,
+        _ => return Ok(max),
+    };
+    match lobe {
+        Some(lobe) if name == "n" => Ok(lobe_n_max(lobe, min, max)?.max(value).min(max)),
+        _ => Ok(max),
+    }
+}
+
 /// Parameters spanning at least this ratio (two decades) get a logarithmic slider.
 pub const LOG_SLIDER_RATIO: f64 = 100.0;
 
@@ -883,6 +989,7 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
     let mut sliders = String::new();
     let mut params = String::new();
     let mut extra = String::new();
+    let mut capped = String::new();
     for (name, value) in &target.sliders {
         let spec = target
             .info
@@ -891,7 +998,16 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
             .find(|p| p.name == name)
             .expect("sliders are parameters");
         if let ParamKind::Number { min, max, .. } = spec.kind {
-            let s = slider(name, min, max, *value);
+            let top = slider_max(target, name, max, *value)?;
+            if top < max {
+                let _ = writeln!(
+                    capped,
+                    "# The {name} slider stops at {top} (the model allows {max}): beyond it a few \
+                     f32 roundings of the lobe's cosine move the lobe by more than its documented \
+                     error (fastbrdf_gpu::export::lobe_n_max)."
+                );
+            }
+            let s = slider(name, min, top, *value);
             let _ = writeln!(sliders, "{}", s.declaration());
             if s.param == *name {
                 let _ = write!(extra, ", {name}");
@@ -929,6 +1045,7 @@ fn brdf_explorer(target: &Instance, header: &str) -> Result<String, GpuError> {
     let mut s = String::new();
     s.push_str("analytic\n\n");
     s.push_str(header);
+    s.push_str(&capped);
     let _ = write!(
         s,
         "\n::begin parameters\n{sliders}::end parameters\n\n::begin shader\n\n{functions}"
