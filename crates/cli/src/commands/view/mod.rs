@@ -13,10 +13,11 @@
 //! - request heads: at most [`MAX_HEAD`] bytes and [`MAX_HEADERS`] fields (431, hyper's), the
 //!   target at most `MAX_URL` bytes (414); a request with a body is refused (413, connection
 //!   closed) without reading it: the API is GET-only;
-//! - time: a request head must arrive within [`IDLE_TIMEOUT_S`] seconds of the connection's
-//!   start or of the previous answer (idle keep-alive connections are closed after it); a write
-//!   the client does not read for [`WRITE_TIMEOUT_S`] seconds closes the connection (a client
-//!   that pipelines and never reads stalls only itself);
+//! - time: a connection that sends nothing for [`IDLE_TIMEOUT_S`] seconds (at its start, or
+//!   after an answer: idle keep-alive) is closed, and a request head must be complete within
+//!   as long of its first byte (or of the previous answer); a write the client does not read
+//!   for [`WRITE_TIMEOUT_S`] seconds closes the connection (a client that pipelines and never
+//!   reads stalls only itself);
 //! - `Host` (or an absolute target's authority) must name the bound address (see [`Hosts`]):
 //!   403 otherwise (DNS rebinding);
 //! - HTTP/2 is not spoken: its preface gets an HTTP/2 GOAWAY (HTTP_1_1_REQUIRED), a request
@@ -494,8 +495,8 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
 pub struct Limits {
     /// Connections served at once (lowered to fit the open-file limit).
     pub max_connections: usize,
-    /// A connection's request head must be complete within this, counted from the connection's
-    /// start or the previous response (an idle keep-alive connection is closed after it).
+    /// A connection silent this long (at its start, or after an answer) is closed, and a
+    /// request head must be complete within this of its first byte or of the previous answer.
     pub idle_timeout: Duration,
     /// A write the client does not take for this long closes the connection.
     pub write_timeout: Duration,
@@ -711,27 +712,39 @@ async fn drain(stream: &mut tokio::net::TcpStream) -> std::io::Result<()> {
 /// The HTTP/2 connection preface (RFC 9113, section 3.4).
 const H2_PREFACE: &[u8; 24] = b"PRI * HTTP/2.0\r\n\r\nSM\r\n\r\n";
 
-/// Whether the client opened with the HTTP/2 preface ("prior knowledge"), waiting at most
-/// `wait` for its 24 bytes; only peeks, so that hyper reads everything else itself.
-async fn starts_with_h2_preface(stream: &tokio::net::TcpStream, wait: Duration) -> bool {
+/// How a connection opens.
+enum Opening {
+    /// The HTTP/2 preface ("prior knowledge").
+    H2,
+    /// Anything else: hyper reads it (every HTTP/1 request differs from the preface at its
+    /// first bytes).
+    Http1,
+    /// Nothing within the idle timeout, or the end of the stream: nothing to answer.
+    Silent,
+}
+
+/// Looks at the first bytes, waiting at most `wait` for them; only peeks, so that hyper reads
+/// everything itself.
+async fn opening(stream: &tokio::net::TcpStream, wait: Duration) -> Opening {
     let deadline = tokio::time::Instant::now() + wait;
     let mut buf = [0u8; 24];
     loop {
         let n = match tokio::time::timeout_at(deadline, stream.peek(&mut buf)).await {
             Ok(Ok(n)) => n,
-            _ => return false,
+            _ => return Opening::Silent,
         };
-        // End of stream, or not the preface (every HTTP/1 request differs at its first
-        // bytes): hyper answers it.
-        if n == 0 || buf[..n] != H2_PREFACE[..n] {
-            return false;
+        if n == 0 {
+            return Opening::Silent;
+        }
+        if buf[..n] != H2_PREFACE[..n] {
+            return Opening::Http1;
         }
         if n == H2_PREFACE.len() {
-            return true;
+            return Opening::H2;
         }
-        // Part of the preface: wait for the rest.
+        // Part of the preface: wait for the rest (hyper would only wait as long).
         if tokio::time::Instant::now() >= deadline {
-            return false;
+            return Opening::Silent;
         }
         tokio::time::sleep(Duration::from_millis(10)).await;
     }
@@ -773,8 +786,10 @@ async fn refuse_h2(mut stream: tokio::net::TcpStream) {
 async fn serve_connection(stream: tokio::net::TcpStream, shared: &Arc<Shared>) {
     let limits = &shared.limits;
     let _ = stream.set_nodelay(true);
-    if starts_with_h2_preface(&stream, limits.idle_timeout).await {
-        return refuse_h2(stream).await;
+    match opening(&stream, limits.idle_timeout).await {
+        Opening::H2 => return refuse_h2(stream).await,
+        Opening::Silent => return,
+        Opening::Http1 => {}
     }
     let mut io = tokio_io_timeout::TimeoutStream::new(stream);
     io.set_write_timeout(Some(limits.write_timeout));
