@@ -32,10 +32,15 @@ env-brdf costs about 20 us per value (two per texel): 128 x 128 is well under a 
 CPU time, 1024 x 1024 about 40 s, 4096 x 4096 about 10 minutes, shared across the cores (a\n\
 progress bar shows on a terminal). Bad input (a size outside 1..4096, an unknown format,\n\
 a model that is not an env model) is exit code 2 and writes nothing; a failed write is exit\n\
-code 3 and leaves no file or temporary behind."
+code 3 and leaves no file or temporary behind.\n\n\
+--out (as every --out of fastbrdf): a regular file is replaced atomically; a symbolic link is\n\
+followed and the file it names is replaced (the link stays); a FIFO, a character device\n\
+(/dev/null) or /dev/stdout is written in place, never replaced (no extension there: give\n\
+--format); a socket, a block device or a link loop is exit code 2."
 )]
 pub struct Args {
-    /// Output file: .exr, .png or .csv (see --format).
+    /// Output file: .exr, .png or .csv (see --format); a link is followed, a FIFO, a device or
+    /// /dev/stdout is written in place.
     #[arg(long)]
     out: PathBuf,
     /// An env model (split-sum terms; see `fastbrdf models --kind env`).
