@@ -4,10 +4,10 @@
 // Formula: F(wi.h) D(h) G(wi, wo) / (4 cos_i cos_o) [+ Kulla-Conty's f_ms | x Filament's 1 + F(1) (1 / E(cos_o) - 1)]
 // Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators)
 // Note: ops exclude D, G, F and the pair set-up; equals Mitsuba 3 roughconductor eval / cos_o; f32: 1e-5 except with f = dielectric/conductor at eta << 1, where F is a near-step at the critical angle and wi.h rounded once to f32 can double it (1.0 at eta = 0.01); anisotropic (alpha_x, alpha_y, d = beckmann(-ct)/ggx, a Smith g): f32 1.4e-6 measured with f = none/schlick (1e-5 documented)
-// Parameters (this export: alpha = 0.2, d = ggx, denominator = 4, eta = 0.18299, f = conductor, f0 = 0.04, f90 = 1, g = smith, k = 3.4242, ms = none):
+// Parameters (this export: alpha = 0.2, d = ggx, denominator = 4, eta = 0.18299, f = conductor, f0 = 0.04, f90 = 1, g = smith-ggx, k = 3.4242, ms = none, remap = alpha-half):
 //   alpha: RMS microfacet slope m (range [0.005, 1], default 0.3)
 //   d: microfacet distribution id (one of beckmann, beckmann-ct, beckmann-pow, beckmann-power4, beckmann-power8, beckmann-power16, ggx, default beckmann)
-//   g: shadowing-masking term (one of v-cavity, smith, smith-rational, smith-beckmann-correlated, smith-ggx, smith-ggx-correlated, smith-ggx-correlated-fast, smith-ggx-correlated-fast-tuned, smith-ggx-joint-approx, schlick-ggx, kelemen, neumann, default smith)
+//   g: shadowing-masking term; when not given, the Smith term of d (smith for the Beckmann family, smith-ggx for ggx) (one of v-cavity, smith, smith-rational, smith-beckmann-correlated, smith-ggx, smith-ggx-correlated, smith-ggx-correlated-fast, smith-ggx-correlated-fast-tuned, smith-ggx-joint-approx, schlick-ggx, kelemen, neumann, default smith)
 //   f: Fresnel term (one of none, schlick, schlick-sg, schlick-sg-tuned, dielectric, conductor, default none)
 //   f0: reflectance at normal incidence (Schlick) (range [0, 1], default 0.04)
 //   f90: reflectance at grazing incidence (Schlick; 1 is Schlick's own form) (range [0, 1], default 1)
@@ -17,14 +17,15 @@
 //   ms: energy compensation for multiple scattering: none, kulla-conty (Kulla and Conty 2017), filament (Filament's, view direction wo only; not reciprocal); needs d = ggx, g = smith-ggx-correlated (one of none, kulla-conty, filament, default none)
 //   alpha_x: anisotropic slope along x (with alpha_y; replaces alpha); needs d = beckmann(-ct) or ggx, a Smith g, ms = none (range [0.005, 1], default -)
 //   alpha_y: anisotropic slope along y (with alpha_x; replaces alpha); needs d = beckmann(-ct) or ggx, a Smith g, ms = none (range [0.005, 1], default -)
+//   remap: Schlick's k: alpha / 2, or Unreal's (sqrt(alpha) + 1)^2 / 8 (needs g = schlick-ggx) (one of alpha-half, ue4, default alpha-half)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 3e0 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
 // Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
 // Entry: fb_cook_torrance_rgb(wi, wo): directions in the local frame (normal +z, need not be unit), value without the cosine factor; returns a 3-vector (R, G, B).
 // Colour: per-channel parameters make three grey instances, fb_cook_torrance_r, fb_cook_torrance_g, fb_cook_torrance_b (channels R, G, B at 650, 550, 450 nm; the parameters above are the R channel's), and fb_cook_torrance_rgb with the same inputs, returning the three as a vector.
-//   R (650 nm): alpha = 0.2, d = ggx, denominator = 4, eta = 0.18299, f = conductor, f0 = 0.04, f90 = 1, g = smith, k = 3.4242, ms = none
-//   G (550 nm): alpha = 0.2, d = ggx, denominator = 4, eta = 0.42108, f = conductor, f0 = 0.04, f90 = 1, g = smith, k = 2.3459, ms = none
-//   B (450 nm): alpha = 0.2, d = ggx, denominator = 4, eta = 1.3734, f = conductor, f0 = 0.04, f90 = 1, g = smith, k = 1.7704, ms = none
+//   R (650 nm): alpha = 0.2, d = ggx, denominator = 4, eta = 0.18299, f = conductor, f0 = 0.04, f90 = 1, g = smith-ggx, k = 3.4242, ms = none, remap = alpha-half
+//   G (550 nm): alpha = 0.2, d = ggx, denominator = 4, eta = 0.42108, f = conductor, f0 = 0.04, f90 = 1, g = smith-ggx, k = 2.3459, ms = none, remap = alpha-half
+//   B (450 nm): alpha = 0.2, d = ggx, denominator = 4, eta = 1.3734, f = conductor, f0 = 0.04, f90 = 1, g = smith-ggx, k = 1.7704, ms = none, remap = alpha-half
 
 /// Cosines below this give zero in distributions and BRDFs: 2^-20, exact in f32 and f64
 /// (Rust twin: fastbrdf::vec3::COS_MIN).
@@ -86,26 +87,16 @@ fn fb_d_ggx(c: f32, s2: f32, alpha2: f32, scale: f32) -> f32 {
     return scale / (t * t);
 }
 
-/// 1 / sqrt(pi), for the Smith term.
-const FB_INV_SQRT_PI: f32 = 0.5641895835477563;
-
-/// erfc(x) for x >= 0, relative error below 1.2e-7 (Numerical Recipes' erfcc, a Chebyshev
-/// fit). WGSL has no erf; the CPU uses libm's erfc.
-fn fb_erfc(x: f32) -> f32 {
-    let t = 1.0 / (1.0 + 0.5 * x);
-    let p = -1.26551223 + t * (1.00002368 + t * (0.37409196 + t * (0.09678418 + t * (-0.18628806
-        + t * (0.27886807 + t * (-1.13520398 + t * (1.48851587 + t * (-0.82215223
-        + t * 0.17087277))))))));
-    return t * exp(-x * x + p);
+/// sqrt(1 + alpha^2 tan^2) = sqrt(c^2 + alpha^2 (1 - c)(1 + c)) / c, for the GGX Smith terms
+/// (1 + Lambda = (1 + S) / 2; no S - 1 is formed).
+fn fb_ggx_s(c: f32, alpha2: f32) -> f32 {
+    let s2 = (1.0 - c) * (1.0 + c);
+    return sqrt(c * c + alpha2 * s2) / c;
 }
 
-/// smith (Walter et al. 2007, eq. 25-27): G1 = 1 / (1 + Lambda(a)), a = 1 / (alpha tan theta),
-/// Lambda = (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2.
-fn fb_g1_smith(c: f32, alpha: f32) -> f32 {
-    let sin = sqrt(max((1.0 - c) * (1.0 + c), 0.0));
-    let a = c / (alpha * sin);
-    let lambda = 0.5 * (exp(-a * a) * FB_INV_SQRT_PI / a - fb_erfc(a));
-    return select(1.0 / (1.0 + lambda), 1.0, c >= 1.0);
+/// smith-ggx (Walter et al. 2007, eq. 34): G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2)); 1 at c >= 1.
+fn fb_g1_smith_ggx(c: f32, alpha2: f32) -> f32 {
+    return select(2.0 / (1.0 + fb_ggx_s(c, alpha2)), 1.0, c >= 1.0);
 }
 
 /// fresnel-conductor: the exact unpolarised Fresnel reflectance of a conductor eta + i k,
@@ -134,33 +125,33 @@ fn fb_f_conductor(c_in: f32, eta: f32, k: f32) -> f32 {
 }
 
 /// cook-torrance: F(wi.h) D(h) G(wi, wo) / (4 cos_i cos_o) [+ Kulla-Conty's f_ms | x Filament's 1 + F(1) (1 / E(cos_o) - 1)]
-/// Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators). Instance: alpha = 0.2, d = ggx, denominator = 4, eta = 0.18299, f = conductor, f0 = 0.04, f90 = 1, g = smith, k = 3.4242, ms = none.
+/// Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators). Instance: alpha = 0.2, d = ggx, denominator = 4, eta = 0.18299, f = conductor, f0 = 0.04, f90 = 1, g = smith-ggx, k = 3.4242, ms = none, remap = alpha-half.
 fn fb_cook_torrance_r(wi: vec3<f32>, wo: vec3<f32>) -> f32 {
     let p = fb_pair(wi, wo);
     let d = select(0.0, fb_d_ggx(p.h.z, p.sin2_h, 0.04f, 0.012732396f), p.h.z >= FB_COS_MIN);
-    let g = fb_g1_smith(p.cos_o, 0.2f) * fb_g1_smith(p.cos_i, 0.2f);
+    let g = fb_g1_smith_ggx(p.cos_o, 0.04f) * fb_g1_smith_ggx(p.cos_i, 0.04f);
     let f = fb_f_conductor(p.cos_ih, 0.18299f, 3.4242f);
     let v = f * d * g * 0.25f / (p.cos_i * p.cos_o);
     return select(0.0, v, p.valid);
 }
 
 /// cook-torrance: F(wi.h) D(h) G(wi, wo) / (4 cos_i cos_o) [+ Kulla-Conty's f_ms | x Filament's 1 + F(1) (1 / E(cos_o) - 1)]
-/// Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators). Instance: alpha = 0.2, d = ggx, denominator = 4, eta = 0.42108, f = conductor, f0 = 0.04, f90 = 1, g = smith, k = 2.3459, ms = none.
+/// Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators). Instance: alpha = 0.2, d = ggx, denominator = 4, eta = 0.42108, f = conductor, f0 = 0.04, f90 = 1, g = smith-ggx, k = 2.3459, ms = none, remap = alpha-half.
 fn fb_cook_torrance_g(wi: vec3<f32>, wo: vec3<f32>) -> f32 {
     let p = fb_pair(wi, wo);
     let d = select(0.0, fb_d_ggx(p.h.z, p.sin2_h, 0.04f, 0.012732396f), p.h.z >= FB_COS_MIN);
-    let g = fb_g1_smith(p.cos_o, 0.2f) * fb_g1_smith(p.cos_i, 0.2f);
+    let g = fb_g1_smith_ggx(p.cos_o, 0.04f) * fb_g1_smith_ggx(p.cos_i, 0.04f);
     let f = fb_f_conductor(p.cos_ih, 0.42108f, 2.3459f);
     let v = f * d * g * 0.25f / (p.cos_i * p.cos_o);
     return select(0.0, v, p.valid);
 }
 
 /// cook-torrance: F(wi.h) D(h) G(wi, wo) / (4 cos_i cos_o) [+ Kulla-Conty's f_ms | x Filament's 1 + F(1) (1 / E(cos_o) - 1)]
-/// Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators). Instance: alpha = 0.2, d = ggx, denominator = 4, eta = 1.3734, f = conductor, f0 = 0.04, f90 = 1, g = smith, k = 1.7704, ms = none.
+/// Source: Cook & Torrance 1982; Walter et al. 2007; seeds 000 and 001 (denominators). Instance: alpha = 0.2, d = ggx, denominator = 4, eta = 1.3734, f = conductor, f0 = 0.04, f90 = 1, g = smith-ggx, k = 1.7704, ms = none, remap = alpha-half.
 fn fb_cook_torrance_b(wi: vec3<f32>, wo: vec3<f32>) -> f32 {
     let p = fb_pair(wi, wo);
     let d = select(0.0, fb_d_ggx(p.h.z, p.sin2_h, 0.04f, 0.012732396f), p.h.z >= FB_COS_MIN);
-    let g = fb_g1_smith(p.cos_o, 0.2f) * fb_g1_smith(p.cos_i, 0.2f);
+    let g = fb_g1_smith_ggx(p.cos_o, 0.04f) * fb_g1_smith_ggx(p.cos_i, 0.04f);
     let f = fb_f_conductor(p.cos_ih, 1.3734f, 1.7704f);
     let v = f * d * g * 0.25f / (p.cos_i * p.cos_o);
     return select(0.0, v, p.valid);
