@@ -141,6 +141,13 @@ fn get(addr: &str, target: &str) -> Result<(u16, String, Vec<u8>), String> {
     read_answer(&mut s)
 }
 
+/// Sends `text` in one write, ignoring a failure: the server may answer and close before it
+/// has read everything (hyper refuses a bad request line before its headers arrive); the
+/// answer is what a test reads.
+fn send(s: &mut TcpStream, text: &str) {
+    let _ = s.write_all(text.as_bytes());
+}
+
 /// `/api/models` answers 200.
 fn alive(addr: &str) {
     let (status, _, _) = get(addr, "/api/models").expect("the server answers");
@@ -173,12 +180,13 @@ fn request_bodies_are_refused_without_reading_them() {
         ("GET", "Transfer-Encoding: chunked\r\n", "5\r\nhello\r\n"),
     ] {
         let mut c = connect(&s.addr, 20);
-        write!(
-            c,
-            "{method} /api/models HTTP/1.1\r\nHost: {}\r\n{headers}\r\n{body}",
-            s.addr
-        )
-        .unwrap();
+        send(
+            &mut c,
+            &format!(
+                "{method} /api/models HTTP/1.1\r\nHost: {}\r\n{headers}\r\n{body}",
+                s.addr
+            ),
+        );
         let (status, head, body) = read_answer(&mut c).unwrap();
         assert_eq!(status, 413, "{method} {headers}: {head}");
         let v: serde_json::Value = serde_json::from_slice(&body).unwrap();
@@ -225,6 +233,7 @@ fn connections_past_the_cap_get_503_and_idle_ones_are_closed() {
     );
 }
 
+#[cfg(unix)]
 #[test]
 fn running_out_of_file_descriptors_does_not_stop_accepting() {
     // 200 connections against 100 descriptors: the cap (lowered to fit) refuses most with
@@ -336,7 +345,10 @@ fn oversized_heads_are_refused_early() {
     // Too many fields.
     let mut c = connect(&s.addr, 20);
     let fields: String = (0..200).map(|k| format!("X-{k}: v\r\n")).collect();
-    write!(c, "GET / HTTP/1.1\r\nHost: {}\r\n{fields}\r\n", s.addr).unwrap();
+    send(
+        &mut c,
+        &format!("GET / HTTP/1.1\r\nHost: {}\r\n{fields}\r\n", s.addr),
+    );
     assert_eq!(read_answer(&mut c).unwrap().0, 431);
     alive(&s.addr);
 }
@@ -346,7 +358,10 @@ fn http2_is_answered_not_left_hanging() {
     let s = serve(&[]);
     // A request line of version 2.0: 400 (hyper's), at once.
     let mut c = connect(&s.addr, 10);
-    write!(c, "GET / HTTP/2.0\r\nHost: {}\r\n\r\n", s.addr).unwrap();
+    send(
+        &mut c,
+        &format!("GET / HTTP/2.0\r\nHost: {}\r\n\r\n", s.addr),
+    );
     let (status, head, _) = read_answer(&mut c).expect("an answer to HTTP/2.0");
     assert!([400, 505].contains(&status), "{head}");
     // The HTTP/2 preface ("prior knowledge") and an empty SETTINGS frame: an HTTP/2 GOAWAY
@@ -411,6 +426,48 @@ fn cheap_requests_do_not_wait_behind_renders() {
         done.load(Ordering::SeqCst) < renders,
         "the renders ended too soon to tell"
     );
+}
+
+#[test]
+fn abandoned_computations_do_not_starve_quick_requests() {
+    let s = serve(&["--max-connections", "2"]);
+    // 14 heavy renders asked for and hung up on: a render cannot be interrupted, so each
+    // would keep a thread (2 rendering, 8 waiting for a slot) whatever the connection cap.
+    let render =
+        "/api/render?models=flog,pow,schlick,ward,blinn-phong,cook-torrance&size=1024&spp=4";
+    for k in 0..14 {
+        let mut c = connect(&s.addr, 10);
+        write!(
+            c,
+            "GET {render}&client=gone{k}&gen=1 HTTP/1.1\r\nHost: {}\r\n\r\n",
+            s.addr
+        )
+        .unwrap();
+        std::thread::sleep(Duration::from_millis(50));
+        drop(c);
+    }
+    std::thread::sleep(Duration::from_millis(300));
+    // Quick requests are answered at once; a computation gets 503 at once: the two permits
+    // (the connection cap) are held by renders whose clients have gone, which shows they ran.
+    for (target, expected) in [
+        ("/api/models", 200),
+        ("/", 200),
+        ("/api/plots?models=flog&ref=pow", 503),
+    ] {
+        let t = Instant::now();
+        let (status, _, body) = get(&s.addr, target).unwrap();
+        assert_eq!(
+            status,
+            expected,
+            "{target}: {}",
+            String::from_utf8_lossy(&body)
+        );
+        assert!(
+            t.elapsed() < Duration::from_secs(4),
+            "{target} waited {:?} behind abandoned renders",
+            t.elapsed()
+        );
+    }
 }
 
 #[test]

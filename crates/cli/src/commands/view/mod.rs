@@ -22,8 +22,10 @@
 //!   403 otherwise (DNS rebinding);
 //! - HTTP/2 is not spoken: its preface gets an HTTP/2 GOAWAY (HTTP_1_1_REQUIRED), a request
 //!   line of another version hyper's 400;
-//! - work: each request's [`handle`] runs on the runtime's blocking pool, which has a thread
-//!   for every connection allowed, so a cheap request (the page, `/api/models`) never waits
+//! - work: each request's [`handle`] runs on the runtime's blocking pool; computations
+//!   (plots, albedo, errors, renders) hold one of as many permits as connections allowed until
+//!   they return, even for a client that has gone (more get 503), and the pool has a thread for
+//!   each permit and each connection, so a quick request (the page, `/api/models`) never waits
 //!   behind renders; renders take one of [`RENDER_SLOTS`] slots (at most [`MAX_WAITING`] wait,
 //!   the rest get 503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per
 //!   axis; a render whose client has sent a newer generation since is dropped before each
@@ -540,7 +542,15 @@ struct Shared {
     state: Arc<State>,
     hosts: Hosts,
     limits: Limits,
+    /// Computations ([`COMPUTED`] paths) under way, one permit each, held until the handler
+    /// returns, even when its client has gone: as many as connections are allowed.
+    computing: Arc<tokio::sync::Semaphore>,
+    computing_max: usize,
 }
+
+/// The endpoints that compute (time in the milliseconds to seconds); the others (the page,
+/// `/api/models`, `/api/shader`, `/api/material`, errors) answer at once.
+const COMPUTED: [&str; 4] = ["/api/plots", "/api/albedo", "/api/errors", "/api/render"];
 
 /// A running server: its address and the runtime that serves it.
 pub struct Server {
@@ -569,7 +579,9 @@ impl Server {
         let max_connections = fit_to_fd_limit(limits.max_connections.max(1));
         let runtime = tokio::runtime::Builder::new_multi_thread()
             .worker_threads(2)
-            .max_blocking_threads(max_connections + 8)
+            // A thread for each computation allowed and one for each connection's quick
+            // request: nothing ever waits in the pool's queue.
+            .max_blocking_threads(2 * max_connections + 8)
             .thread_name("fastbrdf-view")
             .enable_io()
             .enable_time()
@@ -584,6 +596,8 @@ impl Server {
             state,
             hosts: Hosts::new(addr, &limits.allow_hosts),
             limits,
+            computing: Arc::new(tokio::sync::Semaphore::new(max_connections)),
+            computing_max: max_connections,
         });
         let stop = Arc::new(tokio::sync::Notify::new());
         let accepting = runtime.spawn(accept_loop(listener, shared, max_connections, stop.clone()));
@@ -830,8 +844,32 @@ async fn answer(
     };
     let has_body = !req.body().is_end_stream();
     drop(req);
+    // A computation keeps running when its client goes (it cannot be interrupted), so a
+    // client that asks and hangs up, again and again, could pile them up: at most
+    // `computing_max` run, more get 503, and the quick requests never wait for a thread.
+    let path = target.split('?').next().unwrap_or("");
+    let permit = if COMPUTED.contains(&path) {
+        match shared.computing.clone().try_acquire_owned() {
+            Ok(p) => Some(p),
+            Err(_) => {
+                return to_hyper(
+                    Response::error(
+                        503,
+                        &format!(
+                            "busy: {} computations under way (some for clients that have gone); try again shortly",
+                            shared.computing_max
+                        ),
+                    ),
+                    has_body,
+                );
+            }
+        }
+    } else {
+        None
+    };
     let for_handler = shared.clone();
     let r = tokio::task::spawn_blocking(move || {
+        let _permit = permit;
         handle(
             &for_handler.state,
             &for_handler.hosts,
@@ -845,14 +883,19 @@ async fn answer(
     })
     .await
     .unwrap_or_else(|_| Response::error(500, "internal error (a panic); the server goes on"));
+    to_hyper(r, has_body)
+}
+
+/// hyper's response for `r`; `close`: the connection ends with it (a request body was left
+/// unread).
+fn to_hyper(r: Response, close: bool) -> hyper::Response<http_body_util::Full<bytes::Bytes>> {
     let mut b = hyper::Response::builder()
         .status(r.status)
         .header(hyper::header::CONTENT_TYPE, r.content_type)
         .header(hyper::header::CACHE_CONTROL, "no-store")
         .header("x-content-type-options", "nosniff")
         .header("x-frame-options", "DENY");
-    // A body the request still carries is not read: the connection ends with this answer.
-    if has_body {
+    if close {
         b = b.header(hyper::header::CONNECTION, "close");
     }
     b.body(http_body_util::Full::new(bytes::Bytes::from(r.body)))
