@@ -35,7 +35,7 @@ use pyo3::exceptions::{
     PyKeyboardInterrupt, PyOverflowError, PyRuntimeError, PyTypeError, PyValueError,
 };
 use pyo3::prelude::*;
-use pyo3::types::{PyByteArray, PyBytes, PyString};
+use pyo3::types::{PyByteArray, PyBytes, PyComplex, PyFloat, PyInt, PyString};
 use std::any::Any;
 use std::ops::Range;
 use std::panic::{AssertUnwindSafe, catch_unwind, resume_unwind};
@@ -103,7 +103,23 @@ fn named(py: Python<'_>, e: PyErr, name: &str) -> PyErr {
 
 /// Argument `name` as a float (`ValueError` for an int too large for one).
 fn float_arg(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<f64> {
-    obj.extract::<f64>().map_err(|e| named(obj.py(), e, name))
+    real(obj).map_err(|e| named(obj.py(), e, name))
+}
+
+/// A real number: a float or an int (exactly, the fast path), else anything with `__float__`
+/// but a complex number (Python's `float()` of numpy's complex scalars drops the imaginary
+/// part with a warning).
+fn real(x: &Bound<'_, PyAny>) -> PyResult<f64> {
+    if !(x.is_exact_instance_of::<PyFloat>() || x.is_exact_instance_of::<PyInt>())
+        && (x.is_instance_of::<PyComplex>()
+            || x.get_type().name()?.to_str()?.starts_with("complex"))
+    {
+        return Err(PyTypeError::new_err(format!(
+            "expected a real number, got {}",
+            x.get_type().name()?
+        )));
+    }
+    x.extract::<f64>()
 }
 
 /// Argument `name` as a `u32`: a negative or too large integer is a `ValueError` naming it.
@@ -189,7 +205,7 @@ fn params_arg(obj: &Bound<'_, PyAny>) -> PyResult<Vec<(String, String)>> {
 /// Parameter values or angles: finite or not (the library says what is wrong with a value),
 /// at least one, at most [`MAX_VALUES`].
 fn values_arg(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<Vec<f64>> {
-    let v = seq(obj, name, MAX_VALUES, |x| x.extract::<f64>())?;
+    let v = seq(obj, name, MAX_VALUES, real)?;
     if v.is_empty() {
         return Err(value_error(format!("{name}: no values")));
     }
