@@ -819,6 +819,52 @@ fn page_end_to_end_in_headless_chromium() {
     assert!(left.is_empty(), "profile left behind: {left:?}");
 }
 
+/// Waits until the page has drawn everything, without an error shown.
+fn ready(b: &mut cdp::Browser, s: &str) {
+    b.wait_for(
+        s,
+        "document.body.dataset.ready === '1'",
+        Duration::from_secs(120),
+    )
+    .unwrap();
+    let status = b
+        .eval(s, "document.getElementById('status').className")
+        .unwrap();
+    assert_eq!(status, "", "the page shows an error");
+}
+
+/// Cook-Torrance's g follows d on the server (ggx -> smith-ggx): the page's g menu shows the
+/// term the pictures use, follows a change of d, and keeps a g the link names.
+#[test]
+fn page_g_menu_follows_d_in_headless_chromium() {
+    let Some(path) = browser() else { return };
+    let s = serve(&[]);
+    let mut b = cdp::Browser::start(&path).unwrap();
+    let g = "document.getElementById('choice-g').value";
+    let page = b
+        .open(
+            &format!("http://{}/#models=cook-torrance&d=ggx", s.addr),
+            1400,
+            1050,
+        )
+        .unwrap();
+    ready(&mut b, &page);
+    assert_eq!(b.eval(&page, g).unwrap(), "smith-ggx");
+    b.eval(&page, "(() => { const s = document.getElementById('choice-d'); s.value = 'beckmann'; s.dispatchEvent(new Event('change')); })()")
+        .unwrap();
+    ready(&mut b, &page);
+    assert_eq!(b.eval(&page, g).unwrap(), "smith");
+    let named = b
+        .open(
+            &format!("http://{}/#models=cook-torrance&d=ggx&g=v-cavity", s.addr),
+            1400,
+            1050,
+        )
+        .unwrap();
+    ready(&mut b, &named);
+    assert_eq!(b.eval(&named, g).unwrap(), "v-cavity");
+}
+
 /// The synthetic MERL file shared by the tests that need it, and how many hold it.
 static MERL: std::sync::Mutex<(usize, Option<std::path::PathBuf>)> =
     std::sync::Mutex::new((0, None));

@@ -276,10 +276,23 @@ pub fn models(state: &State) -> Response {
                         // Exponents and roughness span decades: their sliders are logarithmic.
                         "log": min > 0.0 && max / min >= 50.0,
                     }),
-                    ParamKind::Choice { options, default } => json!({
-                        "name": p.name, "type": "choice", "options": options.names(),
-                        "default": default, "doc": p.doc,
-                    }),
+                    ParamKind::Choice { options, default } => {
+                        let mut v = json!({
+                            "name": p.name, "type": "choice", "options": options.names(),
+                            "default": default, "doc": p.doc,
+                        });
+                        // As `fastbrdf models --json`: a default that follows another choice
+                        // (cook-torrance's g follows d), so the page's menu shows what is used.
+                        if let Some(f) = options.follow() {
+                            let defaults: serde_json::Map<String, Value> = f
+                                .defaults
+                                .iter()
+                                .map(|(k, d)| ((*k).to_string(), json!(d)))
+                                .collect();
+                            v["default_follows"] = json!({"param": f.param, "defaults": defaults});
+                        }
+                        v
+                    }
                 })
                 .collect();
             json!({
