@@ -279,31 +279,28 @@ impl MeasuredBrdf {
         for (k, c) in bytes.chunks_exact(8).enumerate() {
             let v = f64::from_le_bytes(c.try_into().expect("8 bytes"));
             let channel = k / SAMPLES;
-            if !v.is_finite() {
+            // The bad sample, named by channel and bin.
+            let refuse = |why: String| {
                 let i = k % SAMPLES;
                 let (th, td, pd) = bin_of(i);
-                return Err(input_err(
+                input_err(
                     name,
                     format!(
                         "{} channel, sample {i} (theta_h bin {th}, theta_d bin {td}, phi_d bin \
-                         {pd}): {v} is not a finite number",
+                         {pd}): {why}",
                         CHANNELS[channel]
                     ),
-                ));
+                )
+            };
+            if !v.is_finite() {
+                return Err(refuse(format!("{v} is not a finite number")));
             }
             let value = v * SCALE[channel];
             if value > MAX_VALUE {
-                let i = k % SAMPLES;
-                let (th, td, pd) = bin_of(i);
-                return Err(input_err(
-                    name,
-                    format!(
-                        "{} channel, sample {i} (theta_h bin {th}, theta_d bin {td}, phi_d bin \
-                         {pd}): {v:e} is a BRDF value of {value:e} sr^-1, above the {MAX_VALUE:e} \
-                         a measured BRDF can plausibly reach (not a MERL measurement?)",
-                        CHANNELS[channel]
-                    ),
-                ));
+                return Err(refuse(format!(
+                    "{v:e} is a BRDF value of {value:e} sr^-1, above the {MAX_VALUE:e} a \
+                     measured BRDF can plausibly reach (not a MERL measurement?)"
+                )));
             }
             data.push(value);
         }
