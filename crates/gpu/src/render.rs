@@ -120,6 +120,74 @@ struct GpuObject {
     corners: Option<(wgpu::Buffer, u32)>,
 }
 
+/// One pass over the scene's objects into `target` (cleared to `clear`, depth cleared and
+/// discarded): `pick` chooses each model's analytic and mesh pipelines; `ids` (the visibility
+/// pass's result) is bound at group 2 when given.
+struct ScenePass<'a> {
+    label: &'static str,
+    target: &'a wgpu::TextureView,
+    clear: wgpu::Color,
+    ids: Option<&'a wgpu::BindGroup>,
+    pick: fn(&Pipelines) -> (&wgpu::RenderPipeline, &wgpu::RenderPipeline),
+}
+
+impl ScenePass<'_> {
+    fn draw(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        depth_view: &wgpu::TextureView,
+        tile: &Tile,
+        frame_bind: &wgpu::BindGroup,
+        objects: &[GpuObject],
+        pipelines: &HashMap<String, Pipelines>,
+    ) {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(self.label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: self.target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(self.clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_viewport(0.0, 0.0, tile.w as f32, tile.h as f32, 0.0, 1.0);
+        pass.set_scissor_rect(0, 0, tile.w, tile.h);
+        pass.set_bind_group(0, frame_bind, &[]);
+        if let Some(ids) = self.ids {
+            pass.set_bind_group(2, ids, &[]);
+        }
+        for o in objects {
+            let (analytic, mesh) = (self.pick)(&pipelines[&o.model]);
+            pass.set_bind_group(1, &o.bind, &[]);
+            match &o.corners {
+                None => {
+                    pass.set_pipeline(analytic);
+                    pass.draw(0..3, 0..1);
+                }
+                Some((buf, count)) => {
+                    pass.set_pipeline(mesh);
+                    pass.set_vertex_buffer(0, buf.slice(..));
+                    pass.draw(0..*count, 0..1);
+                }
+            }
+        }
+    }
+}
+
 /// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` (within
 /// the tolerances of `tests/render.rs`), shadow rays included when `scene.shadows`, as a
 /// linear `Film`.
@@ -308,100 +376,41 @@ pub fn render_with_progress(
                 // fragment that passed the depth test so far (it writes its depth, so the test
                 // comes after the shader) cost a shadow ray per overlapping layer, thousands
                 // per sample on a mesh of stacked copies.
-                {
-                    let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("fastbrdf render visibility"),
-                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                            view: &ids_view,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                                store: wgpu::StoreOp::Store,
-                            },
-                        })],
-                        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                            view: &depth_view,
-                            depth_ops: Some(wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(1.0),
-                                store: wgpu::StoreOp::Discard,
-                            }),
-                            stencil_ops: None,
-                        }),
-                        timestamp_writes: None,
-                        occlusion_query_set: None,
-                        multiview_mask: None,
-                    });
-                    pass.set_viewport(0.0, 0.0, tile.w as f32, tile.h as f32, 0.0, 1.0);
-                    pass.set_scissor_rect(0, 0, tile.w, tile.h);
-                    pass.set_bind_group(0, &frame_bind, &[]);
-                    for o in &objects {
-                        let p = &pipelines[&o.model];
-                        pass.set_bind_group(1, &o.bind, &[]);
-                        match &o.corners {
-                            None => {
-                                pass.set_pipeline(&p.analytic_id);
-                                pass.draw(0..3, 0..1);
-                            }
-                            Some((buf, count)) => {
-                                pass.set_pipeline(&p.mesh_id);
-                                pass.set_vertex_buffer(0, buf.slice(..));
-                                pass.draw(0..*count, 0..1);
-                            }
-                        }
-                    }
-                }
-                {
-                    let bg = scene.background;
-                    let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
-                        label: Some("fastbrdf render"),
-                        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                            view: &color_view,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(wgpu::Color {
-                                    r: f64::from(bg.x),
-                                    g: f64::from(bg.y),
-                                    b: f64::from(bg.z),
-                                    a: 1.0,
-                                }),
-                                store: wgpu::StoreOp::Store,
-                            },
-                        })],
-                        depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                            view: &depth_view,
-                            depth_ops: Some(wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(1.0),
-                                store: wgpu::StoreOp::Discard,
-                            }),
-                            stencil_ops: None,
-                        }),
-                        timestamp_writes: None,
-                        occlusion_query_set: None,
-                        multiview_mask: None,
-                    });
-                    pass.set_viewport(0.0, 0.0, tile.w as f32, tile.h as f32, 0.0, 1.0);
-                    pass.set_scissor_rect(0, 0, tile.w, tile.h);
-                    pass.set_bind_group(0, &frame_bind, &[]);
-                    pass.set_bind_group(2, &ids_bind, &[]);
-                    // Scene order: with the `Less` depth test, ties keep the earlier object
-                    // (decided by the visibility pass; here only its winner passes).
-                    for o in &objects {
-                        let p = &pipelines[&o.model];
-                        pass.set_bind_group(1, &o.bind, &[]);
-                        match &o.corners {
-                            None => {
-                                pass.set_pipeline(&p.analytic);
-                                pass.draw(0..3, 0..1);
-                            }
-                            Some((buf, count)) => {
-                                pass.set_pipeline(&p.mesh);
-                                pass.set_vertex_buffer(0, buf.slice(..));
-                                pass.draw(0..*count, 0..1);
-                            }
-                        }
-                    }
+                let bg = scene.background;
+                let passes = [
+                    // The visibility pass: ids into `ids_view`.
+                    ScenePass {
+                        label: "fastbrdf render visibility",
+                        target: &ids_view,
+                        clear: wgpu::Color::TRANSPARENT,
+                        ids: None,
+                        pick: |p: &Pipelines| (&p.analytic_id, &p.mesh_id),
+                    },
+                    // The shading pass. Scene order: with the `Less` depth test, ties keep the
+                    // earlier object (decided by the visibility pass; here only its winner
+                    // passes).
+                    ScenePass {
+                        label: "fastbrdf render",
+                        target: &color_view,
+                        clear: wgpu::Color {
+                            r: f64::from(bg.x),
+                            g: f64::from(bg.y),
+                            b: f64::from(bg.z),
+                            a: 1.0,
+                        },
+                        ids: Some(&ids_bind),
+                        pick: |p: &Pipelines| (&p.analytic, &p.mesh),
+                    },
+                ];
+                for p in &passes {
+                    p.draw(
+                        &mut enc,
+                        &depth_view,
+                        &tile,
+                        &frame_bind,
+                        &objects,
+                        &pipelines,
+                    );
                 }
                 enc.copy_texture_to_buffer(
                     wgpu::TexelCopyTextureInfo {
