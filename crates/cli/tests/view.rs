@@ -8,61 +8,17 @@
 #[path = "../src/commands/view/cdp.rs"]
 mod cdp;
 mod common;
+mod served;
 
 use common::{fastbrdf, stderr, temp_dir};
 use serde_json::Value;
+use served::serve;
 use std::io::{BufRead, BufReader, Read, Write};
 use std::net::TcpStream;
-use std::process::{Child, Command, Stdio};
+use std::process::{Command, Stdio};
 use std::time::Duration;
 
 /// A `fastbrdf view` process on a free port, killed on drop.
-struct Served {
-    child: Child,
-    addr: String,
-}
-
-impl Drop for Served {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
-}
-
-fn serve(extra: &[&str]) -> Served {
-    let child = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
-        .args(["view", "--port", "0"])
-        .args(extra)
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("start fastbrdf view");
-    // Owned by the guard from here: killed and waited for on every path, panics included.
-    let mut served = Served {
-        child,
-        addr: String::new(),
-    };
-    let mut err = BufReader::new(served.child.stderr.take().unwrap());
-    let mut line = String::new();
-    loop {
-        line.clear();
-        assert!(
-            err.read_line(&mut line).unwrap() > 0,
-            "view exited before serving"
-        );
-        if let Some(rest) = line.split("serving on http://").nth(1) {
-            served.addr = rest.split('/').next().unwrap().to_string();
-            // Keep reading stderr so the server never blocks on a full pipe.
-            std::thread::spawn(move || {
-                let mut sink = String::new();
-                let _ = err.read_to_string(&mut sink);
-            });
-            return served;
-        }
-    }
-}
-
 /// One raw HTTP request (the target is sent exactly as given: no client-side normalising).
 fn request(addr: &str, method: &str, target: &str) -> (u16, String, Vec<u8>) {
     let mut s = TcpStream::connect(addr).unwrap();
