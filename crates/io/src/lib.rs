@@ -12,7 +12,8 @@
 //!   ([`resolve_output`]): a symbolic link is followed and the file it names is replaced (the
 //!   link stays a link); a FIFO, a character device (`/dev/null`, a terminal) and
 //!   `/dev/stdout` are written in place, never replaced; a block device, a socket or a folder
-//!   is refused (exit code 2).
+//!   is refused (exit code 2). As the kernel's `protected_symlinks`/`protected_fifos` would,
+//!   another user's link or FIFO in a sticky world-writable folder (`/tmp`) is refused too.
 //! - Multi-file outputs are all-or-nothing: [`OutputSet`] stages every file in a hidden
 //!   temporary folder beside the destination and moves them into place only in
 //!   [`OutputSet::commit`]; dropping it uncommitted (an error, a panic) removes the staging
@@ -257,6 +258,7 @@ pub fn resolve_output(path: &Path) -> Result<OutputTarget, IoError> {
         };
         let ft = md.file_type();
         if ft.is_symlink() {
+            refuse_foreign_in_sticky(path, &cur, &md, "a symbolic link")?;
             let to = fs::read_link(&cur).map_err(|e| output_err(path, e))?;
             cur = match cur.parent() {
                 Some(dir) if to.is_relative() => dir.join(to),
@@ -275,12 +277,119 @@ pub fn resolve_output(path: &Path) -> Result<OutputTarget, IoError> {
                 format!("{}is a folder, not a file to write", via(path, &cur)),
             ));
         }
+        if is_fifo(ft) {
+            refuse_foreign_in_sticky(path, &cur, &md, "a FIFO")?;
+        }
         return special(path, &cur, ft);
     }
     Err(input_err(
         path,
         format!("more than {MAX_LINKS} symbolic links in a row (a loop?); nothing was written"),
     ))
+}
+
+#[cfg(unix)]
+fn is_fifo(ft: fs::FileType) -> bool {
+    use std::os::unix::fs::FileTypeExt;
+    ft.is_fifo()
+}
+
+#[cfg(not(unix))]
+fn is_fifo(_ft: fs::FileType) -> bool {
+    false
+}
+
+/// The kernel's `fs.protected_symlinks` and `fs.protected_fifos` rule, which never runs for a
+/// link this crate reads itself or a FIFO it decided to open: a symbolic link or a FIFO (`md`,
+/// not followed) in a sticky, world-writable folder (`/tmp`) whose owner is neither this
+/// process's effective user nor the folder's owner is refused. Otherwise another user could
+/// plant `/tmp/out.png -> ~/.bashrc` and have it replaced by whoever writes `/tmp/out.png`.
+#[cfg(unix)]
+fn refuse_foreign_in_sticky(
+    path: &Path,
+    cur: &Path,
+    md: &fs::Metadata,
+    what: &str,
+) -> Result<(), IoError> {
+    use std::os::unix::fs::MetadataExt;
+    let dir = cur
+        .parent()
+        .filter(|d| !d.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let Ok(dmd) = fs::metadata(dir) else {
+        return Ok(());
+    };
+    let sticky_world_writable = dmd.mode() & 0o1002 == 0o1002;
+    // SAFETY: geteuid has no preconditions and cannot fail.
+    let euid = unsafe { libc::geteuid() };
+    if sticky_world_writable && md.uid() != euid && md.uid() != dmd.uid() {
+        return Err(input_err(
+            path,
+            format!(
+                "{}is {what} owned by another user (uid {}) in the sticky, world-writable folder {}: \
+                 refused, as the kernel's protected_symlinks/protected_fifos would (someone else \
+                 could point it at your files); nothing was written",
+                via(path, cur),
+                md.uid(),
+                dir.display()
+            ),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(not(unix))]
+fn refuse_foreign_in_sticky(
+    _path: &Path,
+    _cur: &Path,
+    _md: &fs::Metadata,
+    _what: &str,
+) -> Result<(), IoError> {
+    Ok(())
+}
+
+/// Opens the FIFO or device `at` that [`resolve_output`] chose, for writing in place. A name
+/// that is not a descriptor link is opened without following a link (`O_NOFOLLOW`), and the
+/// opened file is checked to still be a FIFO or character device (and a FIFO still not a
+/// foreign one in a sticky folder): a swap to a link or a regular file between the decision and
+/// the open must not be written through.
+#[cfg(unix)]
+fn open_direct(path: &Path, at: &Path, append: bool) -> Result<fs::File, IoError> {
+    use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
+    let fd = fd_link(at)?.is_some();
+    let mut opts = fs::OpenOptions::new();
+    opts.write(true).append(append);
+    if !fd {
+        opts.custom_flags(libc::O_NOFOLLOW);
+    }
+    let file = opts.open(at).map_err(|e| output_err(path, e))?;
+    if !fd {
+        let md = file.metadata().map_err(|e| output_err(path, e))?;
+        let ft = md.file_type();
+        if !(ft.is_fifo() || ft.is_char_device()) {
+            return Err(input_err(
+                path,
+                format!(
+                    "{}changed while being opened (no longer a FIFO or character device); \
+                     nothing was written",
+                    via(path, at)
+                ),
+            ));
+        }
+        if ft.is_fifo() {
+            refuse_foreign_in_sticky(path, at, &md, "a FIFO")?;
+        }
+    }
+    Ok(file)
+}
+
+#[cfg(not(unix))]
+fn open_direct(path: &Path, at: &Path, append: bool) -> Result<fs::File, IoError> {
+    fs::OpenOptions::new()
+        .write(true)
+        .append(append)
+        .open(at)
+        .map_err(|e| output_err(path, e))
 }
 
 /// "(a link to X) " when `cur` is not `path` itself.
@@ -390,11 +499,7 @@ pub fn write_atomic_with(
         OutputTarget::Direct { path: at, append } => {
             // No truncation (a device or FIFO has nothing to truncate; a descriptor's file is
             // appended to), no creation (it exists).
-            let file = fs::OpenOptions::new()
-                .write(true)
-                .append(append)
-                .open(&at)
-                .map_err(|e| output_err(path, e))?;
+            let file = open_direct(path, &at, append)?;
             write_direct(path, file, fill)
         }
     }
@@ -831,6 +936,104 @@ mod tests {
             "{e}"
         );
         assert!(file_type(&sock).is_socket());
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// Root (this machine, CI) can give a file away with `lchown`; others skip, except under CI.
+    #[cfg(unix)]
+    fn can_chown() -> bool {
+        // SAFETY: geteuid has no preconditions and cannot fail.
+        if unsafe { libc::geteuid() } == 0 {
+            return true;
+        }
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI is set and the test is not root: it cannot make a file another user's"
+        );
+        eprintln!("skipped: not root, cannot make a link or FIFO another user's");
+        false
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn foreign_links_and_fifos_in_sticky_folders_are_refused() {
+        use std::os::unix::fs::{PermissionsExt, lchown, symlink};
+        if !can_chown() {
+            return;
+        }
+        let d = scratch("sticky");
+        let tmp = d.join("tmp");
+        fs::create_dir_all(&tmp).unwrap();
+        fs::set_permissions(&tmp, fs::Permissions::from_mode(0o1777)).unwrap();
+        let victim = d.join("bashrc");
+        fs::write(&victim, b"mine").unwrap();
+        // Another user's link in a sticky, world-writable folder: not followed.
+        let link = tmp.join("out.png");
+        symlink(&victim, &link).unwrap();
+        lchown(&link, Some(12345), Some(12345)).unwrap();
+        let e = write_atomic(&link, b"owned").unwrap_err();
+        assert!(matches!(e, IoError::Input { .. }), "{e:?}");
+        let m = e.to_string();
+        assert!(
+            m.contains("out.png") && m.contains("another user") && m.contains("sticky"),
+            "{m}"
+        );
+        assert_eq!(fs::read(&victim).unwrap(), b"mine");
+        assert!(is_link(&link));
+        // Also as a member of an output set, and through a chain that starts elsewhere.
+        let chain = d.join("chain.png");
+        symlink(&link, &chain).unwrap();
+        assert!(matches!(
+            write_atomic(&chain, b"owned"),
+            Err(IoError::Input { .. })
+        ));
+        let mut set = OutputSet::new(&tmp).unwrap();
+        set.write("out.png", b"owned").unwrap();
+        assert!(matches!(set.commit(), Err(IoError::Input { .. })));
+        assert_eq!(fs::read(&victim).unwrap(), b"mine");
+        // Our own link there is followed as before.
+        fs::remove_file(&link).unwrap();
+        symlink(&victim, &link).unwrap();
+        write_atomic(&link, b"ours").unwrap();
+        assert_eq!(fs::read(&victim).unwrap(), b"ours");
+        // Another user's FIFO there is refused before the open (which would wait for a reader:
+        // the write runs in a thread so that a regression fails instead of hanging).
+        let fifo = tmp.join("pipe");
+        mkfifo(&fifo);
+        lchown(&fifo, Some(12345), Some(12345)).unwrap();
+        let (tx, rx) = std::sync::mpsc::channel();
+        {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || tx.send(write_atomic(&fifo, b"x")));
+        }
+        let got = rx.recv_timeout(std::time::Duration::from_secs(10));
+        let e = got.expect("refused, not opened").unwrap_err();
+        assert!(
+            matches!(e, IoError::Input { .. }) && e.to_string().contains("FIFO"),
+            "{e:?}"
+        );
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn direct_writes_do_not_follow_a_swap() {
+        use std::os::unix::fs::symlink;
+        let d = scratch("swap");
+        fs::create_dir_all(&d).unwrap();
+        // The FIFO decided on was swapped for a regular file: refused, the file untouched.
+        let file = d.join("was-a-fifo");
+        fs::write(&file, b"keep").unwrap();
+        let e = open_direct(&file, &file, false).unwrap_err();
+        assert!(matches!(e, IoError::Input { .. }), "{e:?}");
+        assert!(e.to_string().contains("changed"), "{e}");
+        // ... or for a link to a device: not followed.
+        let link = d.join("was-a-device");
+        symlink("/dev/null", &link).unwrap();
+        assert!(open_direct(&link, &link, false).is_err());
+        assert_eq!(fs::read(&file).unwrap(), b"keep");
+        // The real thing still opens.
+        assert!(open_direct(Path::new("/dev/null"), Path::new("/dev/null"), false).is_ok());
         fs::remove_dir_all(&d).unwrap();
     }
 
