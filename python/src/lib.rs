@@ -32,7 +32,7 @@ use numpy::{
     Element, PyArray, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray, PyUntypedArrayMethods,
 };
 use pyo3::exceptions::{
-    PyKeyboardInterrupt, PyOverflowError, PyRuntimeError, PyTypeError, PyValueError,
+    PyKeyboardInterrupt, PyMemoryError, PyOverflowError, PyRuntimeError, PyTypeError, PyValueError,
 };
 use pyo3::prelude::*;
 use pyo3::types::{PyByteArray, PyBytes, PyComplex, PyFloat, PyInt, PyString};
@@ -1042,6 +1042,9 @@ fn render<'py>(
             shading: Shading::Batch,
         };
         let specular = Arc::new(Specular::new(model, &params).map_err(value_error)?);
+        // The output first: a size the process cannot have is numpy's MemoryError before any
+        // work (the film below is allocated fallibly too).
+        let out = empty::<f32>(py, 3 * width as usize * height as usize)?;
         let film = interruptible(py, |cancel| -> fastbrdf_render::Result<_> {
             let loaded = setup::load(&spec)?;
             let scene = setup::scene(&spec, &loaded, specular);
@@ -1052,9 +1055,11 @@ fn render<'py>(
             }
             Ok(film)
         })?
-        .map_err(value_error)?
+        .map_err(|e| match e {
+            fastbrdf_render::RenderError::Memory(m) => PyMemoryError::new_err(m),
+            e => value_error(e),
+        })?
         .ok_or_else(|| PyKeyboardInterrupt::new_err(()))?;
-        let out = empty::<f32>(py, 3 * film.pixels.len())?;
         {
             let mut rw = out.try_readwrite()?;
             let o = rw.as_slice_mut().map_err(value_error)?;

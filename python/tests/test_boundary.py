@@ -81,6 +81,21 @@ def test_an_output_too_large_is_a_memory_error(zeros, call):
     assert p.stdout.startswith("MemoryError:"), p.stdout + p.stderr[-2000:]
 
 
+@pytest.mark.parametrize("headroom", [256, 600])
+def test_a_render_too_large_is_a_memory_error(headroom):
+    # 8192 x 4096 (2^25 pixels, the largest size allowed): a 384 MiB output and a 384 MiB film.
+    # With 256 MiB to spare the output fails first (numpy's MemoryError); with 600 MiB the
+    # output fits and the renderer's film does not (it aborted the interpreter before).
+    code = (
+        MEMORY.replace("{ZEROS}", "None")
+        .replace("(256 << 20)", f"({headroom} << 20)")
+        .replace("{CALL}", "fastbrdf.render('ggx', width=8192, height=4096, spp=1)")
+    )
+    p = python(code, timeout=120)
+    assert p.returncode == 0, f"exit {p.returncode}: {p.stderr[-2000:]}"
+    assert p.stdout.startswith("MemoryError:"), p.stdout + p.stderr[-2000:]
+
+
 # ---------------------------------------------------------------------------------------------
 # Long calls: sequences are capped as the CLI caps its ranges, and Ctrl-C stops a call.
 

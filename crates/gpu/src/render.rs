@@ -323,7 +323,7 @@ pub fn render_with_progress(
         mapped_at_creation: false,
     });
 
-    let mut film = Film::new(w, h);
+    let mut film = Film::try_new(w, h).map_err(|e| GpuError::Input(e.to_string()))?;
     let inv = 1.0 / (n * n) as f32;
     let tiles = (w.div_ceil(tile_px) * h.div_ceil(tile_px)) as usize;
     let mut done = 0;

@@ -17,6 +17,9 @@ pub enum RenderError {
     Model(fastbrdf::Error),
     /// Writing an output failed.
     Output { file: String, message: String },
+    /// A buffer of the size the caller asked for could not be allocated (the film): an error,
+    /// never an abort, so that an embedding process (Python) survives it.
+    Memory(String),
 }
 
 impl fmt::Display for RenderError {
@@ -32,7 +35,7 @@ impl fmt::Display for RenderError {
                 line: None,
                 message,
             } => write!(f, "{file}: {message}"),
-            RenderError::Invalid(m) => write!(f, "{m}"),
+            RenderError::Invalid(m) | RenderError::Memory(m) => write!(f, "{m}"),
             RenderError::Model(e) => write!(f, "{e}"),
             RenderError::Output { file, message } => write!(f, "cannot write {file}: {message}"),
         }

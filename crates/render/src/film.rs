@@ -59,6 +59,26 @@ impl Film {
         }
     }
 
+    /// A black film, or [`RenderError::Memory`] when its pixels cannot be allocated (the
+    /// renderers use this: a size within [`check_size`] may still exceed what the process can
+    /// have, and an allocation failure must not abort an embedding interpreter).
+    pub fn try_new(width: u32, height: u32) -> Result<Self> {
+        let n = width as usize * height as usize;
+        let mut pixels = Vec::new();
+        pixels.try_reserve_exact(n).map_err(|_| {
+            RenderError::Memory(format!(
+                "cannot allocate {} MiB for a {width} x {height} film (out of memory)",
+                (n as u64).saturating_mul(12) >> 20
+            ))
+        })?;
+        pixels.resize(n, Vec3::ZERO);
+        Ok(Self {
+            width,
+            height,
+            pixels,
+        })
+    }
+
     /// The pixel at (x, y).
     pub fn at(&self, x: u32, y: u32) -> Vec3 {
         self.pixels[(y * self.width + x) as usize]

@@ -99,7 +99,7 @@ pub fn render_until(
     // progress counts tiles over all passes.
     let passes = scene.environment.as_ref().map_or(1, |e| e.samples.max(1));
     let total = (tiles_x * h.div_ceil(TILE) * passes) as usize;
-    let mut film = Film::new(w, h);
+    let mut film = Film::try_new(w, h)?;
     let stopped = std::sync::atomic::AtomicBool::new(false);
     for pass in 0..passes {
         // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies
