@@ -369,6 +369,61 @@ impl Problem {
                 (true, false) => problem.free.push(f),
             }
         }
+        // A name in `also` that did not change what is fitted is refused: a silent no-op would
+        // let the user believe it was fitted (or that the model reads it).
+        for name in also {
+            let short = fastbrdf_io::shorten(name, 40);
+            let Some(p) = e.info.params.iter().find(|p| p.name == name) else {
+                continue;
+            };
+            let ParamKind::Number {
+                min,
+                max,
+                default,
+                requires,
+            } = p.kind
+            else {
+                continue;
+            };
+            let why = if !search {
+                format!("nothing is fitted without a search, so {short} is not either")
+            } else if !p.allowed(choice) {
+                let need: Vec<String> = requires
+                    .iter()
+                    .map(|(c, vals)| format!("{c} = {}", vals.join(" or ")))
+                    .collect();
+                format!(
+                    "{short} is not read with these choices (it needs {}); nothing to fit",
+                    need.join(" and ")
+                )
+            } else if default.is_none() || max <= min {
+                format!("{short} has no default and range to search from; give it with --param")
+            } else if !problem.free.iter().any(|f| f.name == name.as_str()) {
+                let with: Vec<String> = problem
+                    .fixed
+                    .iter()
+                    .map(|(k, v)| format!("{k}={v}"))
+                    .collect();
+                format!(
+                    "{} {} does not read {short} (moving it changes nothing); nothing to fit",
+                    e.info.id,
+                    if with.is_empty() {
+                        "with its default choices".to_string()
+                    } else {
+                        format!("with {}", with.join(" "))
+                    }
+                )
+            } else if !HELD.iter().any(|(n, _)| n == name) {
+                let held: Vec<&str> = HELD.iter().map(|(n, _)| *n).collect();
+                format!(
+                    "{short} is fitted already; --free only adds the parameters held at their default ({})",
+                    held.join(", ")
+                )
+            } else {
+                continue;
+            };
+            return Err(format!("--free {short}: {why}"));
+        }
         Ok(problem)
     }
 

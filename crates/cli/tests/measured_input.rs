@@ -263,3 +263,68 @@ fn fit_measured_schlick_recovers_f0_and_reports_what_is_undetermined() {
     assert!(stderr(&o).contains("bogus"), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Issue 27 review: `--free NAME` was silently a no-op when NAME was already fitted, when the
+/// model with the given choices does not read it (f = none, a conductor Fresnel), or when its
+/// requirements do not hold: the user believed it fitted. Each is now bad usage naming it.
+#[test]
+fn fit_measured_free_that_changes_nothing_is_refused() {
+    let d = temp_dir("measured-free-noop");
+    let f = d.join("ct.binary");
+    merl(&f, "cook-torrance", &[("f", "schlick")], [0.1; 3], [1.0; 3]);
+    let pic = d.join("fit.png");
+    let cases: &[(&[&str], &str, &str)] = &[
+        (&["--param", "f=none"], "f90", "does not read f90"),
+        (&["--param", "f=conductor"], "f90", "does not read f90"),
+        (&["--param", "f=none"], "f0", "does not read f0"),
+        (
+            &["--param", "f=schlick"],
+            "alpha",
+            "alpha is fitted already",
+        ),
+        (
+            &[
+                "--param",
+                "d=ggx",
+                "--param",
+                "g=smith-ggx-correlated",
+                "--param",
+                "ms=kulla-conty",
+            ],
+            "alpha_x",
+            "alpha_x is not read with these choices (it needs",
+        ),
+    ];
+    for (params, name, why) in cases {
+        let mut args = vec![
+            "fit-measured",
+            "--data",
+            f.to_str().unwrap(),
+            "--model",
+            "cook-torrance",
+            "--samples",
+            "300",
+            "--restarts",
+            "1",
+            "--size",
+            "8x8",
+            "--spp",
+            "1",
+            "--out",
+            pic.to_str().unwrap(),
+        ];
+        args.extend(*params);
+        args.extend(["--free", name]);
+        let o = fastbrdf(&args, "");
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{params:?} --free {name}: {e}");
+        assert!(e.contains(&format!("--free {name}: ")), "{e}");
+        assert!(
+            e.contains(why),
+            "{params:?} --free {name}: {e:?} should say {why:?}"
+        );
+        assert!(o.stdout.is_empty(), "{}", stdout(&o));
+        assert!(!pic.exists(), "{params:?} --free {name} wrote {pic:?}");
+    }
+    let _ = std::fs::remove_dir_all(&d);
+}

@@ -56,7 +56,8 @@ pub struct Args {
     /// Fix a parameter, NAME=VALUE (a choice such as f=schlick, or a number); repeat.
     #[arg(long = "param", value_name = "NAME=VALUE")]
     params: Vec<String>,
-    /// Fit a parameter that is otherwise held at its default (f90); repeat.
+    /// Fit a parameter that is otherwise held at its default (f90); repeat. A NAME that is
+    /// fitted already or that the model with these choices does not read is refused (exit 2).
     #[arg(long = "free", value_name = "NAME")]
     free: Vec<String>,
     /// The metric minimised: ngan-l2, low-log or max.
@@ -90,6 +91,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     check_out(&a.out, &["png"])?;
     let fixed = parse_params(&a.params)?;
     let problem = Problem::with_free(&a.model, &fixed, true, &a.free).map_err(|e| {
+        if e.starts_with("--free ") {
+            // Already names the argument at fault.
+            return CliError::input(e);
+        }
         CliError::input(format!(
             "--model {}: {e}",
             fastbrdf_io::shorten(&a.model, 64)
