@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 mod served;
 
-use served::{serve, serve_with};
+use served::{serve, serve_with, serve_with_stderr_closed};
 
 /// A connection whose reads and writes give up after `secs`.
 fn connect(addr: &str, secs: u64) -> TcpStream {
@@ -382,12 +382,12 @@ fn abandoned_computations_do_not_starve_quick_requests() {
         drop(c);
     }
     std::thread::sleep(Duration::from_millis(300));
-    // Quick requests are answered at once; a computation gets 503 at once: the two permits
-    // (the connection cap) are held by renders whose clients have gone, which shows they ran.
+    // Quick requests are answered at once; a render gets 503 at once: the render slots and
+    // the waiting places are held by renders whose clients have gone, which shows they ran.
     for (target, expected) in [
         ("/api/models", 200),
         ("/", 200),
-        ("/api/plots?models=flog&ref=pow", 503),
+        (&*format!("{render}&client=late&gen=1"), 503),
     ] {
         let t = Instant::now();
         let (status, _, body) = get(&s.addr, target).unwrap();
@@ -451,4 +451,144 @@ fn favicon_is_an_empty_answer_not_a_404() {
     let (status, _, body) = get(&s.addr, "/favicon.ico").unwrap();
     assert_eq!(status, 204);
     assert!(body.is_empty());
+}
+
+/// The computation cap `fastbrdf view` sets on this machine: as many as CPUs, at least 2.
+fn compute_slots() -> usize {
+    std::thread::available_parallelism().map_or(2, |n| n.get().max(2))
+}
+
+#[test]
+fn computations_are_capped_apart_from_connections() {
+    // The cap was the connection cap (128): a client asking for heavy computations and
+    // hanging up could leave 128 running, starving the two runtime workers. Now as many run as
+    // CPUs (at least 2); one more waits at most 1 s for a permit, then gets 503.
+    let s = serve(&[]);
+    let cap = compute_slots();
+    let albedo = "/api/albedo?models=flog,pow,ggx,ward,cook-torrance,blinn-phong&ref=pow";
+    // Abandoned: asked for and hung up on.
+    for _ in 0..cap + 2 {
+        let mut c = connect(&s.addr, 10);
+        write!(c, "GET {albedo} HTTP/1.1\r\nHost: {}\r\n\r\n", s.addr).unwrap();
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    // Many more at once than the cap: those that do not get a permit within the wait get 503
+    // (each of these computations takes most of a second of every core).
+    let n = 4 * cap + 8;
+    let answers: Vec<_> = (0..n)
+        .map(|_| {
+            let (addr, target) = (s.addr.clone(), albedo.to_string());
+            std::thread::spawn(move || {
+                let t = Instant::now();
+                (get(&addr, &target), t.elapsed())
+            })
+        })
+        .collect();
+    std::thread::sleep(Duration::from_millis(300));
+    let t = Instant::now();
+    alive(&s.addr);
+    assert!(
+        t.elapsed() < Duration::from_secs(4),
+        "/api/models waited {:?} behind computations",
+        t.elapsed()
+    );
+    let mut busy = 0;
+    for a in answers {
+        let (r, took) = a.join().unwrap();
+        let (status, _, body) = r.unwrap();
+        let text = String::from_utf8_lossy(&body).to_string();
+        match status {
+            200 => {}
+            503 => {
+                busy += 1;
+                assert!(
+                    text.contains(&format!("{cap} computations under way")),
+                    "{text}"
+                );
+                assert!(took < Duration::from_secs(8), "a 503 after {took:?}");
+            }
+            _ => panic!("{status}: {text}"),
+        }
+    }
+    assert!(busy > 0, "{n} computations at once and none refused");
+}
+
+#[test]
+fn losing_stderr_does_not_stop_the_server() {
+    // stderr is a pipe closed after the start-up line (`fastbrdf view 2>&1 | head -1`); 24
+    // descriptors and a burst of 100 connections run the accept loop out of descriptors, and
+    // its warning then fails to write: the server goes on.
+    let mut s = serve_with_stderr_closed(Some(24), &[]);
+    let addr: std::net::SocketAddr = s.addr.parse().unwrap();
+    let held: Vec<TcpStream> = (0..100)
+        .filter_map(|_| TcpStream::connect_timeout(&addr, Duration::from_secs(2)).ok())
+        .collect();
+    std::thread::sleep(Duration::from_millis(1000));
+    drop(held);
+    assert!(
+        s.child.try_wait().unwrap().is_none(),
+        "the server exited when its stderr went away"
+    );
+    served_again(&s.addr);
+}
+
+#[test]
+fn cross_site_requests_to_the_api_are_refused() {
+    let s = serve(&["--allow-host", "proxy.example"]);
+    let port = s.addr.rsplit(':').next().unwrap().to_string();
+    let ask = |target: &str, headers: &str| {
+        let mut c = connect(&s.addr, 20);
+        write!(
+            c,
+            "GET {target} HTTP/1.1\r\nHost: {}\r\n{headers}Connection: close\r\n\r\n",
+            s.addr
+        )
+        .unwrap();
+        read_answer(&mut c).unwrap()
+    };
+    let render = "/api/render?models=flog&size=16";
+    for headers in [
+        "Sec-Fetch-Site: cross-site\r\n".to_string(),
+        "Sec-Fetch-Site: same-site\r\n".to_string(),
+        "Origin: http://evil.example\r\n".to_string(),
+        format!("Origin: http://evil.example:{port}\r\n"),
+        "Origin: null\r\n".to_string(),
+        format!(
+            "Origin: http://localhost:{}\r\n",
+            port.parse::<u16>().unwrap() ^ 1
+        ),
+        format!("Sec-Fetch-Site: same-origin\r\nOrigin: http://127.0.0.1:{port}.evil.example\r\n"),
+    ] {
+        for target in ["/api/models", render, "/api/plots?models=flog&ref=pow"] {
+            let (status, _, body) = ask(target, &headers);
+            assert_eq!(status, 403, "{target} with {headers:?}");
+            let v: serde_json::Value = serde_json::from_slice(&body).unwrap();
+            assert!(v["error"].as_str().unwrap().contains("cross-site"), "{v}");
+        }
+    }
+    // The page itself may be opened from a link; the page's own requests, a typed address
+    // and curl (no header) are served.
+    assert_eq!(ask("/", "Sec-Fetch-Site: cross-site\r\n").0, 200);
+    for headers in [
+        String::new(),
+        "Sec-Fetch-Site: same-origin\r\n".to_string(),
+        "Sec-Fetch-Site: none\r\n".to_string(),
+        format!(
+            "Sec-Fetch-Site: same-origin\r\nOrigin: http://{}\r\n",
+            s.addr
+        ),
+        format!("Origin: http://localhost:{port}\r\n"),
+        "Origin: http://proxy.example\r\n".to_string(),
+        "Origin: https://proxy.example\r\n".to_string(),
+    ] {
+        for target in ["/api/models", render] {
+            let (status, _, body) = ask(target, &headers);
+            assert_eq!(
+                status,
+                200,
+                "{target} with {headers:?}: {}",
+                String::from_utf8_lossy(&body)
+            );
+        }
+    }
 }

@@ -23,6 +23,18 @@ impl Drop for Served {
 
 /// Starts `fastbrdf view --port 0 EXTRA`, under `ulimit -n NOFILE` when given.
 pub fn serve_with(nofile: Option<u32>, extra: &[&str]) -> Served {
+    start(nofile, extra, true)
+}
+
+/// As [`serve_with`], but the read end of the server's stderr is closed right after its
+/// start-up line (`fastbrdf view 2>&1 | head -1`): every later write there fails.
+pub fn serve_with_stderr_closed(nofile: Option<u32>, extra: &[&str]) -> Served {
+    start(nofile, extra, false)
+}
+
+/// Starts the server; `keep_stderr`: read its stderr into `log` after the start-up line (else
+/// close it).
+fn start(nofile: Option<u32>, extra: &[&str], keep_stderr: bool) -> Served {
     let bin = env!("CARGO_BIN_EXE_fastbrdf");
     let mut cmd = match nofile {
         Some(n) => {
@@ -57,6 +69,10 @@ pub fn serve_with(nofile: Option<u32>, extra: &[&str]) -> Served {
         );
         if let Some(rest) = line.split("serving on http://").nth(1) {
             served.addr = rest.split('/').next().unwrap().to_string();
+            if !keep_stderr {
+                drop(err);
+                return served;
+            }
             let log = served.log.clone();
             std::thread::spawn(move || {
                 let mut line = String::new();

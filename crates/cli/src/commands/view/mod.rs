@@ -22,15 +22,24 @@
 //!   403 otherwise (DNS rebinding);
 //! - HTTP/2 is not spoken: its preface gets an HTTP/2 GOAWAY (HTTP_1_1_REQUIRED), a request
 //!   line of another version hyper's 400;
-//! - work: each request's [`handle`] runs on the runtime's blocking pool; computations
-//!   (plots, albedo, errors, renders) hold one of as many permits as connections allowed until
-//!   they return, even for a client that has gone (more get 503), and the pool has a thread for
-//!   each permit and each connection, so a quick request (the page, `/api/models`) never waits
-//!   behind renders; renders take one of [`RENDER_SLOTS`] slots (at most [`MAX_WAITING`] wait,
-//!   the rest get 503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per
-//!   axis; a render whose client has sent a newer generation since is dropped before each
-//!   model's render (409). Every handler runs under `catch_unwind`: a panic is a 500, never a
-//!   dead server.
+//! - work: each request's [`handle`] runs on the runtime's blocking pool. A computation cannot
+//!   be interrupted once it runs, so one client asking and hanging up could pile them up: at
+//!   most [`compute_slots`] (as many as CPUs, at least 2) plots, albedo and errors computations
+//!   run at once, a further one waits at most [`COMPUTE_WAIT`] for a permit, then gets 503;
+//!   renders take one of [`RENDER_SLOTS`] slots (at most [`MAX_WAITING`] wait, the rest get
+//!   503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per axis. The pool
+//!   has a thread for each of these and for each connection, so a quick request (the page,
+//!   `/api/models`) never waits behind computations, and the two runtime workers (accept,
+//!   HTTP) compete with a bounded number of busy threads. A render whose client has sent a
+//!   newer generation since is dropped before each model's render (409). Every handler runs
+//!   under `catch_unwind`: a panic is a 500, never a dead server;
+//! - cross-site requests: a page of another site can make the browser send requests to
+//!   127.0.0.1 (its `Host` passes), so `/api/*` refuses (403) a request marked
+//!   `Sec-Fetch-Site: cross-site` or `same-site`, or whose `Origin` is not `http://` (or
+//!   `https://`) and an allowed host (see [`cross_site`]); the page's own requests and tools
+//!   such as curl (no such header) are served;
+//! - stderr: after start-up the server writes to stderr ignoring failures (a closed pipe, as
+//!   in `fastbrdf view 2>&1 | head -1`), so that losing stderr never stops it.
 
 pub mod api;
 pub mod cdp;
@@ -51,6 +60,23 @@ pub const PAGE: &str = include_str!("page.html");
 pub const RENDER_SLOTS: usize = 2;
 /// Renders waiting for a slot; more get 503.
 pub const MAX_WAITING: usize = 8;
+/// Longest a plots, albedo or errors request waits for a computation permit before its 503.
+pub const COMPUTE_WAIT: Duration = Duration::from_secs(1);
+
+/// Plots, albedo and errors computations running at once: as many as CPUs, at least 2 (each
+/// is parallel over its models, so more would only share the same cores, and ones whose
+/// client has gone keep running).
+pub fn compute_slots() -> usize {
+    std::thread::available_parallelism().map_or(2, |n| n.get().max(2))
+}
+
+/// Writes `msg` and a newline on stderr, ignoring failures: after start-up stderr may be a
+/// pipe whose reader has gone (`fastbrdf view 2>&1 | head -1`), which must not stop the server
+/// (`eprintln!` panics on a failed write).
+fn note(msg: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr(), "{msg}");
+}
 /// Connections served at once by default (`--max-connections`); more get a short 503.
 pub const MAX_CONNECTIONS: usize = 128;
 /// File descriptors left free of connections (listener, runtime, the files handlers open,
@@ -96,8 +122,11 @@ at most 128 connections (--max-connections; lowered to leave 64 of the open-file
 more get 503; request heads at most 16 KiB and 64 fields (431), targets 8 KiB (414); GET only,\n\
 bodies refused (413); a request head must arrive within 20 s (idle connections are closed), a\n\
 client that does not read an answer for 30 s is dropped; Host must name the bound address\n\
-(127.0.0.1, localhost or [::1] on loopback; --allow-host NAME for a proxy), else 403; 2 renders\n\
-at once and 8 waiting (503 beyond), 1024x1024 and 4x4 samples at most."
+(127.0.0.1, localhost or [::1] on loopback; --allow-host NAME for a proxy), else 403; /api/*\n\
+refuses cross-site requests (Sec-Fetch-Site cross-site or same-site, or an Origin that is not\n\
+an allowed host) with 403; as many plots/albedo/errors computations at once as CPUs (at least\n\
+2), one more waits 1 s then gets 503; 2 renders at once and 8 waiting (503 beyond), 1024x1024\n\
+and 4x4 samples at most."
 )]
 pub struct Args {
     /// TCP port (0: any free port; the address is printed on stderr).
@@ -345,6 +374,43 @@ pub struct Request<'a> {
     pub host: Option<&'a str>,
     /// Whether the request carries a body (a `Content-Length` above 0, or chunked).
     pub has_body: bool,
+    /// The `Sec-Fetch-Site` header (a browser's: `same-origin`, `same-site`, `cross-site`,
+    /// `none`), if any.
+    pub fetch_site: Option<&'a str>,
+    /// The `Origin` header, if any.
+    pub origin: Option<&'a str>,
+}
+
+/// Why a request for `/api/*` is refused as cross-site, or None. A page of another site can
+/// make the browser send requests here (its `Host` is this server's), so refused are: a
+/// request the browser marks `Sec-Fetch-Site: cross-site` or `same-site` (another port or
+/// name of the same site), and one whose `Origin` is present and not `http://HOST[:PORT]` (or
+/// `https://`, a proxy's) of an allowed host (`null` included). The page's own requests
+/// (`same-origin`, a typed address: `none`) and clients that send neither header (curl) pass.
+pub fn cross_site(hosts: &Hosts, req: &Request<'_>) -> Option<String> {
+    if let Some(site) = req.fetch_site {
+        let site = site.trim().to_ascii_lowercase();
+        if site == "cross-site" || site == "same-site" {
+            return Some(format!(
+                "cross-site request refused (Sec-Fetch-Site: {}): the API answers the explorer's own page only",
+                fastbrdf_io::shorten(&site, 32)
+            ));
+        }
+    }
+    if let Some(origin) = req.origin {
+        let o = origin.trim();
+        let authority = o
+            .strip_prefix("http://")
+            .or_else(|| o.strip_prefix("https://"));
+        if !authority.is_some_and(|a| !a.is_empty() && !a.contains('/') && hosts.allows(a)) {
+            return Some(format!(
+                "cross-site request refused (Origin '{}' is not this server, {}): the API answers the explorer's own page only",
+                fastbrdf_io::shorten(origin, 64),
+                hosts.expected()
+            ));
+        }
+    }
+    None
 }
 
 /// The names the server answers to (`Host`): the bound address with the bound port; on a
@@ -441,6 +507,11 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
                 hosts.expected()
             ),
         );
+    }
+    if req.target.starts_with("/api/")
+        && let Some(why) = cross_site(hosts, req)
+    {
+        return Response::error(403, &why);
     }
     if req.has_body {
         return Response::error(
@@ -543,14 +614,15 @@ struct Shared {
     hosts: Hosts,
     limits: Limits,
     /// Computations ([`COMPUTED`] paths) under way, one permit each, held until the handler
-    /// returns, even when its client has gone: as many as connections are allowed.
+    /// returns, even when its client has gone: [`compute_slots`].
     computing: Arc<tokio::sync::Semaphore>,
     computing_max: usize,
 }
 
-/// The endpoints that compute (time in the milliseconds to seconds); the others (the page,
-/// `/api/models`, `/api/shader`, `/api/material`, errors) answer at once.
-const COMPUTED: [&str; 4] = ["/api/plots", "/api/albedo", "/api/errors", "/api/render"];
+/// The endpoints that compute (time in the milliseconds to seconds) under a computation
+/// permit; renders (`/api/render`) have their own slots ([`RENDER_SLOTS`], [`MAX_WAITING`]);
+/// the others (the page, `/api/models`, `/api/shader`, `/api/material`, errors) answer at once.
+const COMPUTED: [&str; 3] = ["/api/plots", "/api/albedo", "/api/errors"];
 
 /// A running server: its address and the runtime that serves it.
 pub struct Server {
@@ -577,11 +649,13 @@ impl Server {
             .set_nonblocking(true)
             .map_err(|e| CliError::input(format!("cannot listen on {addr}: {e}")))?;
         let max_connections = fit_to_fd_limit(limits.max_connections.max(1));
+        let computing_max = compute_slots();
         let runtime = tokio::runtime::Builder::new_multi_thread()
             .worker_threads(2)
-            // A thread for each computation allowed and one for each connection's quick
-            // request: nothing ever waits in the pool's queue.
-            .max_blocking_threads(2 * max_connections + 8)
+            // A thread for each connection's request, and for each computation or render
+            // (running or waiting for a slot) whose client has gone: nothing ever waits in
+            // the pool's queue.
+            .max_blocking_threads(max_connections + computing_max + RENDER_SLOTS + MAX_WAITING + 8)
             .thread_name("fastbrdf-view")
             .enable_io()
             .enable_time()
@@ -596,8 +670,8 @@ impl Server {
             state,
             hosts: Hosts::new(addr, &limits.allow_hosts),
             limits,
-            computing: Arc::new(tokio::sync::Semaphore::new(max_connections)),
-            computing_max: max_connections,
+            computing: Arc::new(tokio::sync::Semaphore::new(computing_max)),
+            computing_max,
         });
         let stop = Arc::new(tokio::sync::Notify::new());
         let accepting = runtime.spawn(accept_loop(listener, shared, max_connections, stop.clone()));
@@ -614,11 +688,17 @@ impl Server {
         format!("http://{}/", self.addr)
     }
 
-    /// Blocks until the server stops ([`Server::stop`] from another thread, or a signal).
-    pub fn wait(mut self) {
+    /// Blocks until the server stops ([`Server::stop`] from another thread, or a signal); an
+    /// error if the accept loop ended otherwise (a panic), so that the exit status says so.
+    pub fn wait(mut self) -> Result<(), CliError> {
         if let (Some(rt), Some(task)) = (self.runtime.as_ref(), self.accepting.take()) {
-            let _ = rt.block_on(task);
+            rt.block_on(task).map_err(|e| {
+                CliError::io(format!(
+                    "fastbrdf view: the server stopped unexpectedly: {e}"
+                ))
+            })?;
         }
+        Ok(())
     }
 
     /// Stops accepting connections (those open finish their request).
@@ -672,9 +752,9 @@ async fn accept_loop(
             }
             Err(e) => {
                 if last_warning.is_none_or(|t| t.elapsed() >= Duration::from_secs(10)) {
-                    eprintln!(
+                    note(&format!(
                         "warning: fastbrdf view: accepting a connection failed: {e}; retrying"
-                    );
+                    ));
                     last_warning = Some(std::time::Instant::now());
                 }
                 tokio::time::sleep(ACCEPT_RETRY).await;
@@ -843,15 +923,36 @@ async fn answer(
             .map(|h| String::from_utf8_lossy(h.as_bytes()).into_owned()),
     };
     let has_body = !req.body().is_end_stream();
+    let header = |name: &str| {
+        req.headers()
+            .get(name)
+            .map(|h| String::from_utf8_lossy(h.as_bytes()).into_owned())
+    };
+    let (fetch_site, origin) = (header("sec-fetch-site"), header("origin"));
     drop(req);
     // A computation keeps running when its client goes (it cannot be interrupted), so a
     // client that asks and hangs up, again and again, could pile them up: at most
-    // `computing_max` run, more get 503, and the quick requests never wait for a thread.
+    // `computing_max` run, one more waits `COMPUTE_WAIT` then gets 503, and the quick requests
+    // never wait for a thread.
     let path = target.split('?').next().unwrap_or("");
-    let permit = if COMPUTED.contains(&path) {
-        match shared.computing.clone().try_acquire_owned() {
-            Ok(p) => Some(p),
-            Err(_) => {
+    // A refused request (foreign Host, cross-site) takes no permit: `handle` answers it.
+    let refused = host.as_deref().is_some_and(|h| !shared.hosts.allows(h))
+        || cross_site(
+            &shared.hosts,
+            &Request {
+                method: &method,
+                target: &target,
+                host: host.as_deref(),
+                has_body,
+                fetch_site: fetch_site.as_deref(),
+                origin: origin.as_deref(),
+            },
+        )
+        .is_some();
+    let permit = if COMPUTED.contains(&path) && !refused {
+        match tokio::time::timeout(COMPUTE_WAIT, shared.computing.clone().acquire_owned()).await {
+            Ok(Ok(p)) => Some(p),
+            _ => {
                 return to_hyper(
                     Response::error(
                         503,
@@ -878,6 +979,8 @@ async fn answer(
                 target: &target,
                 host: host.as_deref(),
                 has_body,
+                fetch_site: fetch_site.as_deref(),
+                origin: origin.as_deref(),
             },
         )
     })
@@ -928,41 +1031,46 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     };
     let server = Server::start(SocketAddr::new(a.host, port), state, limits)?;
     if server.max_connections < a.max_connections as usize {
-        eprintln!(
+        note(&format!(
             "note: at most {} connections at once (the open-file limit less {FD_RESERVE})",
             server.max_connections
-        );
+        ));
     }
     if !loopback {
-        eprintln!(
+        note(&format!(
             "warning: serving on {}: every machine that reaches this address can use the explorer (no authentication)",
             server.addr
-        );
+        ));
     }
     if let Some(out) = &a.screenshot {
         let url = format!("{}#{}", server.url(), a.state);
         let png = cdp::screenshot(a.browser.as_deref(), &url, 1400, 1050)
             .map_err(|e| CliError::input(format!("--screenshot: {e}")))?;
         fastbrdf_io::write_atomic(out, &png)?;
-        eprintln!("wrote {} ({} bytes, from {url})", out.display(), png.len());
+        note(&format!(
+            "wrote {} ({} bytes, from {url})",
+            out.display(),
+            png.len()
+        ));
         server.stop();
         return Ok(());
     }
-    eprintln!(
+    note(&format!(
         "fastbrdf view: serving on {} (Ctrl-C to stop)",
         server.url()
-    );
+    ));
     if a.open {
         let url = server.url();
         let opener = cdp::find_browser(a.browser.as_deref())
             .map(|b| b.display().to_string())
             .unwrap_or_else(|_| "xdg-open".into());
         if let Err(e) = std::process::Command::new(&opener).arg(&url).spawn() {
-            eprintln!("warning: --open: cannot start {opener}: {e}; open {url} yourself");
+            note(&format!(
+                "warning: --open: cannot start {opener}: {e}; open {url} yourself"
+            ));
         }
     }
-    server.wait();
-    Ok(())
+    server.wait()
 }
 
 #[cfg(test)]
@@ -1022,6 +1130,9 @@ mod tests {
             format!("within {IDLE_TIMEOUT_S} s"),
             format!("for {WRITE_TIMEOUT_S} s"),
             format!("{RENDER_SLOTS} renders at once and {MAX_WAITING} waiting"),
+            "as many plots/albedo/errors computations at once as CPUs (at least 2)".into(),
+            format!("waits {} s then gets 503", COMPUTE_WAIT.as_secs()),
+            "refuses cross-site requests".into(),
         ] {
             assert!(help.contains(&stated), "--help lacks '{stated}': {help}");
         }
