@@ -321,3 +321,39 @@ fn json_outputs_carry_numbers_not_strings() {
     }
     let _ = std::fs::remove_dir_all(&d);
 }
+
+/// Review of issue 27: user B's `/tmp/out.csv -> ~A/.bashrc` had A's file replaced by
+/// `--out /tmp/out.csv` (the link is read by fastbrdf, so the kernel's protected_symlinks never
+/// ran). Another user's link in a sticky, world-writable folder is now refused: exit 2, naming
+/// it, the file it points at untouched. Needs root to give the link away (CI runs as root).
+#[test]
+fn another_users_link_in_a_sticky_folder_is_refused() {
+    use std::os::unix::fs::{PermissionsExt, lchown};
+    // SAFETY: geteuid has no preconditions and cannot fail.
+    if unsafe { libc::geteuid() } != 0 {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI is set and the test is not root"
+        );
+        eprintln!("skipped: not root, cannot make a link another user's");
+        return;
+    }
+    let d = temp_dir("outputs-sticky");
+    let tmp = d.join("tmp");
+    std::fs::create_dir_all(&tmp).unwrap();
+    std::fs::set_permissions(&tmp, std::fs::Permissions::from_mode(0o1777)).unwrap();
+    let victim = d.join("bashrc");
+    std::fs::write(&victim, b"export PATH\n").unwrap();
+    let link = tmp.join("out.csv");
+    symlink(&victim, &link).unwrap();
+    lchown(&link, Some(12345), Some(12345)).unwrap();
+    let o = lut_to(&link);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("out.csv") && e.contains("another user"), "{e}");
+    assert!(o.stdout.is_empty());
+    assert_eq!(std::fs::read(&victim).unwrap(), b"export PATH\n");
+    assert!(is_link(&link));
+    assert_eq!(listing(&d), vec!["bashrc", "tmp"]);
+    let _ = std::fs::remove_dir_all(&d);
+}
