@@ -871,6 +871,10 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let names: Vec<String> = jobs.iter().map(|j| j.0.clone()).collect();
     let mut pictures: Vec<Vec<u8>> = vec![];
     for (id, spec, specular) in jobs {
+        // Nobody reads the answer of a client that has hung up: the slot goes to another.
+        if super::client_gone() {
+            return Ok(Response::error(499, "the client has gone"));
+        }
         if state.superseded(&client, generation) {
             return Ok(Response::error(
                 409,

@@ -30,9 +30,10 @@
 //!   503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per axis. The pool
 //!   has a thread for each of these and for each connection, so a quick request (the page,
 //!   `/api/models`) never waits behind computations, and the two runtime workers (accept,
-//!   HTTP) compete with a bounded number of busy threads. A render whose client has sent a
-//!   newer generation since is dropped before each model's render (409). Every handler runs
-//!   under `catch_unwind`: a panic is a 500, never a dead server;
+//!   HTTP) compete with a bounded number of busy threads. A render whose client has gone
+//!   ([`client_gone`]), or has sent a newer generation since (409), is dropped before each
+//!   model's render. Every handler runs under `catch_unwind`: a panic is a 500, never a dead
+//!   server;
 //! - cross-site requests: a page of another site can make the browser send requests to
 //!   127.0.0.1 (its `Host` passes), so `/api/*` refuses (403) a request marked
 //!   `Sec-Fetch-Site: cross-site` or `same-site`, or whose `Origin` is not `http://` (or
@@ -68,6 +69,33 @@ pub const COMPUTE_WAIT: Duration = Duration::from_secs(1);
 /// client has gone keep running).
 pub fn compute_slots() -> usize {
     std::thread::available_parallelism().map_or(2, |n| n.get().max(2))
+}
+
+thread_local! {
+    /// Set while a handler runs on a blocking-pool thread: raised when its client has gone
+    /// (hyper drops the request's future when the connection ends).
+    static GONE: std::cell::RefCell<Option<Arc<std::sync::atomic::AtomicBool>>> =
+        const { std::cell::RefCell::new(None) };
+}
+
+/// Whether the client of the request this thread is handling has gone (hung up): a render
+/// checks it before each model's render and stops (nobody would read the answer).
+pub fn client_gone() -> bool {
+    GONE.with(|g| {
+        g.borrow()
+            .as_ref()
+            .is_some_and(|f| f.load(std::sync::atomic::Ordering::Relaxed))
+    })
+}
+
+/// Raises its flag when dropped: with the request's future, when hyper drops it because the
+/// client has gone, or once the answer is made (then no one looks).
+struct Hangup(Arc<std::sync::atomic::AtomicBool>);
+
+impl Drop for Hangup {
+    fn drop(&mut self) {
+        self.0.store(true, std::sync::atomic::Ordering::Relaxed);
+    }
 }
 
 /// Writes `msg` and a newline on stderr, ignoring failures: after start-up stderr may be a
@@ -969,8 +997,18 @@ async fn answer(
         None
     };
     let for_handler = shared.clone();
+    let gone = Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let _hangup = Hangup(gone.clone());
     let r = tokio::task::spawn_blocking(move || {
         let _permit = permit;
+        GONE.with(|g| *g.borrow_mut() = Some(gone));
+        struct Clear;
+        impl Drop for Clear {
+            fn drop(&mut self) {
+                GONE.with(|g| *g.borrow_mut() = None);
+            }
+        }
+        let _clear = Clear;
         handle(
             &for_handler.state,
             &for_handler.hosts,
