@@ -4,36 +4,10 @@
 //! issue 27, where `d = ggx` with Beckmann's Smith term gained energy).
 
 use fastbrdf::params::{Options, ParamKind, ParamSpec, Value};
-use fastbrdf::{Model, quad, registry};
+mod common;
 
-fn brdf(id: &str, given: &[(&str, &str)]) -> Box<dyn fastbrdf::Brdf<f64>> {
-    match registry::build::<f64>(id, given).unwrap() {
-        Model::Brdf(b) => b,
-        _ => panic!("{id} is not a BRDF"),
-    }
-}
-
-fn wi_at(theta_deg: f64) -> [f64; 3] {
-    let t = theta_deg.to_radians();
-    [t.sin(), 0.0, t.cos()]
-}
-
-/// The directional albedo at incidence `wi`: the quadrature `fastbrdf albedo` runs
-/// (`fastbrdf_analysis::albedo::curve`: `quad::albedo` around the mirror direction, with the
-/// model's own breakpoints).
-fn albedo(b: &dyn fastbrdf::Brdf<f64>, wi: [f64; 3]) -> f64 {
-    let (v, e) = quad::albedo(
-        |wo| b.eval(wi, wo),
-        [-wi[0], -wi[1], wi[2]],
-        &b.mirror_breaks(),
-        1e-8,
-    );
-    assert!(
-        e <= 1e-6 * v.abs().max(1e-3),
-        "albedo quadrature did not converge: {v} +- {e}"
-    );
-    v
-}
+use common::{albedo, brdf, wi_at};
+use fastbrdf::{Model, registry};
 
 /// The resolved value of `name` when `cook-torrance` is built from `given`.
 fn resolved(given: &[(&str, &str)], name: &str) -> String {

@@ -1,35 +1,11 @@
 //! Energy: Beckmann's normalisation, and the directional albedo of every model that claims
 //! energy conservation (albedo <= 1), by deterministic nested adaptive quadrature.
 
+mod common;
+
+use common::{albedo, brdf, wi_at};
 use fastbrdf::{Model, quad, registry};
 use std::f64::consts::PI;
-
-fn brdf(id: &str, given: &[(&str, &str)]) -> Box<dyn fastbrdf::Brdf<f64>> {
-    match registry::build::<f64>(id, given).unwrap() {
-        Model::Brdf(b) => b,
-        _ => panic!(),
-    }
-}
-
-fn wi_at(theta_deg: f64) -> [f64; 3] {
-    let t = theta_deg.to_radians();
-    [t.sin(), 0.0, t.cos()]
-}
-
-/// Albedo of `b` at incidence `wi`, integrating around the mirror direction.
-fn albedo(b: &dyn fastbrdf::Brdf<f64>, wi: [f64; 3]) -> f64 {
-    let (v, e) = quad::albedo(
-        |wo| b.eval(wi, wo),
-        [-wi[0], -wi[1], wi[2]],
-        &b.mirror_breaks(),
-        1e-8,
-    );
-    assert!(
-        e <= 1e-6 * v.abs().max(1e-3),
-        "albedo quadrature did not converge: {v} +- {e}"
-    );
-    v
-}
 
 #[test]
 fn beckmann_integrates_to_one() {

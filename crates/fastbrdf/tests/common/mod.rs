@@ -54,3 +54,34 @@ impl Rng {
 pub fn direction_pairs(count: usize, seed: u64) -> Vec<([f64; 3], [f64; 3])> {
     fastbrdf::accuracy::direction_pairs(count, seed)
 }
+
+/// The incident direction `theta_deg` from the normal, in the xz plane.
+pub fn wi_at(theta_deg: f64) -> [f64; 3] {
+    let t = theta_deg.to_radians();
+    [t.sin(), 0.0, t.cos()]
+}
+
+/// The directional albedo at incidence `wi`: the quadrature `fastbrdf albedo` runs
+/// (`quad::albedo` around the mirror direction, with the model's own breakpoints), converged to
+/// 1e-6 relative or the test fails.
+pub fn albedo(b: &dyn fastbrdf::Brdf<f64>, wi: [f64; 3]) -> f64 {
+    let (v, e) = fastbrdf::quad::albedo(
+        |wo| b.eval(wi, wo),
+        [-wi[0], -wi[1], wi[2]],
+        &b.mirror_breaks(),
+        1e-8,
+    );
+    assert!(
+        e <= 1e-6 * v.abs().max(1e-3),
+        "albedo quadrature did not converge: {v} +- {e}"
+    );
+    v
+}
+
+/// Model `id` built in f64 from `given`, which must be a BRDF.
+pub fn brdf(id: &str, given: &[(&str, &str)]) -> Box<dyn fastbrdf::Brdf<f64>> {
+    match fastbrdf::registry::build::<f64>(id, given).unwrap() {
+        fastbrdf::Model::Brdf(b) => b,
+        _ => panic!("{id} is not a BRDF"),
+    }
+}

@@ -931,6 +931,30 @@ async fn serve_connection(stream: tokio::net::TcpStream, shared: &Arc<Shared>) {
         .await;
 }
 
+/// What [`answer`] reads of a request, owned so that the blocking pool can take it; lent to
+/// the checks and to [`handle`] as a [`Request`].
+struct Head {
+    method: String,
+    target: String,
+    host: Option<String>,
+    has_body: bool,
+    fetch_site: Option<String>,
+    origin: Option<String>,
+}
+
+impl Head {
+    fn request(&self) -> Request<'_> {
+        Request {
+            method: &self.method,
+            target: &self.target,
+            host: self.host.as_deref(),
+            has_body: self.has_body,
+            fetch_site: self.fetch_site.as_deref(),
+            origin: self.origin.as_deref(),
+        }
+    }
+}
+
 /// Runs [`handle`] for one parsed request on the blocking pool and turns its answer into
 /// hyper's.
 async fn answer(
@@ -956,27 +980,26 @@ async fn answer(
             .get(name)
             .map(|h| String::from_utf8_lossy(h.as_bytes()).into_owned())
     };
-    let (fetch_site, origin) = (header("sec-fetch-site"), header("origin"));
+    let head = Head {
+        method,
+        target,
+        host,
+        has_body,
+        fetch_site: header("sec-fetch-site"),
+        origin: header("origin"),
+    };
     drop(req);
     // A computation keeps running when its client goes (it cannot be interrupted), so a
     // client that asks and hangs up, again and again, could pile them up: at most
     // `computing_max` run, one more waits `COMPUTE_WAIT` then gets 503, and the quick requests
     // never wait for a thread.
-    let path = target.split('?').next().unwrap_or("");
+    let path = head.target.split('?').next().unwrap_or("");
     // A refused request (foreign Host, cross-site) takes no permit: `handle` answers it.
-    let refused = host.as_deref().is_some_and(|h| !shared.hosts.allows(h))
-        || cross_site(
-            &shared.hosts,
-            &Request {
-                method: &method,
-                target: &target,
-                host: host.as_deref(),
-                has_body,
-                fetch_site: fetch_site.as_deref(),
-                origin: origin.as_deref(),
-            },
-        )
-        .is_some();
+    let refused = head
+        .host
+        .as_deref()
+        .is_some_and(|h| !shared.hosts.allows(h))
+        || cross_site(&shared.hosts, &head.request()).is_some();
     let permit = if COMPUTED.contains(&path) && !refused {
         match tokio::time::timeout(COMPUTE_WAIT, shared.computing.clone().acquire_owned()).await {
             Ok(Ok(p)) => Some(p),
@@ -1009,18 +1032,7 @@ async fn answer(
             }
         }
         let _clear = Clear;
-        handle(
-            &for_handler.state,
-            &for_handler.hosts,
-            &Request {
-                method: &method,
-                target: &target,
-                host: host.as_deref(),
-                has_body,
-                fetch_site: fetch_site.as_deref(),
-                origin: origin.as_deref(),
-            },
-        )
+        handle(&for_handler.state, &for_handler.hosts, &head.request())
     })
     .await
     .unwrap_or_else(|_| Response::error(500, "internal error (a panic); the server goes on"));
