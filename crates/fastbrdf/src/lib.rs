@@ -46,6 +46,7 @@ pub mod quad;
 pub mod real;
 pub mod registry;
 pub mod sample;
+pub mod spec;
 pub mod vec3;
 pub mod wgsl;
 
@@ -55,3 +56,4 @@ pub use model::{
     Shadowing, Zone,
 };
 pub use real::Real;
+pub use spec::{Given, ModelSpec};

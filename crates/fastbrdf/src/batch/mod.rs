@@ -526,6 +526,12 @@ impl Kernel {
         Self::from_plan(e.info.id, &registry::plan(id, given)?)
     }
 
+    /// The kernel of a grey model spec (a coloured one is an error: build one kernel per
+    /// channel from `spec.channel_specs()`).
+    pub fn from_spec(spec: &crate::spec::ModelSpec) -> Result<Self> {
+        Self::from_plan(spec.id(), spec.plan()?)
+    }
+
     /// The kernel of a plan (`id` names it in messages).
     pub fn from_plan(id: &'static str, plan: &Plan) -> Result<Self> {
         let imp = kernel_of(plan).ok_or_else(|| Error::WrongKind {
