@@ -1,0 +1,73 @@
+//! Text checks and text for messages: UTF-8 naming the line and column of the first bad
+//! byte, and user text shortened to fit on one line of an error message.
+
+use crate::error::{IoError, input_err};
+use std::path::Path;
+
+/// Converts `bytes` (read from `name`) to text, naming the line and column (1-based, columns in
+/// bytes) of the first byte that is not UTF-8.
+pub fn utf8_text(bytes: Vec<u8>, name: &Path) -> Result<String, IoError> {
+    String::from_utf8(bytes).map_err(|e| {
+        let bytes = e.as_bytes();
+        let at = e.utf8_error().valid_up_to();
+        let (line, col) = line_col(bytes, at);
+        input_err(
+            name,
+            format!(
+                "line {line}, column {col}: not UTF-8 text (byte 0x{:02x})",
+                bytes[at]
+            ),
+        )
+    })
+}
+
+/// Line and column (1-based; columns count bytes) of byte offset `at` in `bytes`.
+pub fn line_col(bytes: &[u8], at: usize) -> (usize, usize) {
+    let before = &bytes[..at.min(bytes.len())];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let col = at
+        - before
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |p| p + 1)
+        + 1;
+    (line, col)
+}
+
+/// Shortens `s` for an error message: at most `max` characters, the rest replaced by
+/// "... (N more bytes)". Control characters are escaped so a message stays on one line.
+pub fn shorten(s: &str, max: usize) -> String {
+    let mut out = String::new();
+    for (taken, (i, ch)) in s.char_indices().enumerate() {
+        if taken == max {
+            out.push_str(&format!("... ({} more bytes)", s.len() - i));
+            return out;
+        }
+        out.extend(ch.escape_debug());
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    #[test]
+    fn non_utf8_names_line_and_column() {
+        let e = utf8_text(b"a,b\n\n1,\xff2\n".to_vec(), Path::new("in.csv")).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "in.csv: line 3, column 3: not UTF-8 text (byte 0xff)"
+        );
+        assert_eq!(line_col(b"ab", 0), (1, 1));
+        assert_eq!(line_col(b"a\nb", 2), (2, 1));
+    }
+
+    #[test]
+    fn shorten_caps_and_escapes() {
+        assert_eq!(shorten("abc", 5), "abc");
+        assert_eq!(shorten("abcdef", 3), "abc... (3 more bytes)");
+        assert_eq!(shorten("a\nb", 5), "a\\nb");
+        let long = "x".repeat(10_000_000);
+        assert!(shorten(&long, 40).len() < 80);
+    }
+}
