@@ -120,7 +120,10 @@ pub fn metal(name: &str) -> Result<&'static Metal> {
     METALS
         .iter()
         .find(|m| m.id == name.trim())
-        .ok_or_else(|| Error::UnknownMetal(name.into()))
+        .ok_or_else(|| Error::UnknownMetal {
+            name: name.into(),
+            known: metal_names(),
+        })
 }
 
 /// `a,b,c` with each number written so that it parses back to the same f64.

@@ -21,8 +21,10 @@ pub enum Error {
     MissingParam { model: String, param: String },
     /// An input (cosine or direction) outside the model's documented domain.
     Domain { input: String, reason: String },
-    /// No named metal (`colour::METALS`) has this name.
-    UnknownMetal(String),
+    /// No named metal (`colour::METALS`) has this name; `known` lists the names
+    /// (comma-separated), given by the caller so that this module imports nothing of the
+    /// crate.
+    UnknownMetal { name: String, known: String },
     /// A model of one kind was used where another kind is needed.
     WrongKind {
         model: String,
@@ -70,12 +72,11 @@ impl fmt::Display for Error {
                 write!(f, "model '{model}': parameter {param} is required here")
             }
             Error::Domain { input, reason } => write!(f, "input {input}: {reason}"),
-            Error::UnknownMetal(name) => {
+            Error::UnknownMetal { name, known } => {
                 let name = echo(name);
                 write!(
                     f,
-                    "unknown metal '{name}': expected one of {} (run `fastbrdf metals` for their constants)",
-                    crate::colour::metal_names()
+                    "unknown metal '{name}': expected one of {known} (run `fastbrdf metals` for their constants)"
                 )
             }
             Error::WrongKind {

@@ -34,6 +34,7 @@ pub mod chi2;
 pub mod colour;
 pub mod entry;
 pub mod error;
+pub mod forms;
 pub mod kind;
 pub mod lobes;
 pub mod math;

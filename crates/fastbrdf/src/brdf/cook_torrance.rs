@@ -81,14 +81,13 @@
 
 use crate::entry::Entry;
 use crate::error::{Error, Result};
+use crate::forms::{BrdfForm, DistForm, FresnelForm, ShadowForm};
 use crate::math::Math;
 use crate::microfacet::fresnel;
 use crate::microfacet::ms::{self, Ms};
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Follow, Options, ParamKind, ParamSpec, Params, Value};
-use crate::plan::{
-    BrdfForm, DistForm, DistPlan, FresnelForm, FresnelPlan, Models, Plan, ShadowForm, ShadowPlan,
-};
+use crate::plan::{DistPlan, FresnelPlan, Models, Plan, ShadowPlan};
 use crate::real::{K, Real};
 use crate::sample::{self, Micro, Strategy};
 use crate::vec3::COS_MIN;
@@ -550,7 +549,7 @@ mod tests {
     /// (`DistForm::smith`), itself a registered shadowing term.
     #[test]
     fn smith_of_agrees_with_the_families() {
-        use crate::plan::DistForm;
+        use crate::forms::DistForm;
         let dists = crate::registry::ids_of(Kind::Distribution);
         let listed: Vec<&str> = SMITH_OF.iter().map(|(d, _)| *d).collect();
         assert_eq!(listed, dists);

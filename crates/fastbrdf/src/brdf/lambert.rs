@@ -6,10 +6,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::BrdfForm;
 use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{ParamKind, ParamSpec};
-use crate::plan::{BrdfForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real};
 use crate::sample::{self, Strategy};
 use crate::vec3::{Pair, V3};

@@ -25,10 +25,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::{BrdfForm, LobeForm};
 use crate::math::{Exact, Math};
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
-use crate::plan::{BrdfForm, LobeForm, LobePlan, Models, Plan};
+use crate::plan::{LobePlan, Models, Plan};
 use crate::quad;
 use crate::real::{K, Real, min1, pos};
 use crate::sample::{self, CosDist, Strategy};

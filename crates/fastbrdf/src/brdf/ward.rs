@@ -21,10 +21,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::BrdfForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
-use crate::plan::{BrdfForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real, pos, pow2k, sqr};
 use crate::sample::{self, CosDist, Micro, MicroKind, Strategy};
 use crate::vec3::{Pair, V3};

@@ -29,10 +29,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::LobeForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::plan::{LobeForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real, pos};
 use crate::wgsl::Emit;
 
@@ -285,7 +286,7 @@ impl LobeForm for Cubic {
     // NaN: `pos` (power, cubic) or the `c > 0` select (flog) gives 0.
     const NAN_TO_ZERO: bool = true;
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("cubic.wgsl");
     fn id(&self) -> &'static str {

@@ -19,10 +19,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::LobeForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::plan::{LobeForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real, min1, pos};
 use crate::wgsl::Emit;
 
@@ -158,7 +159,7 @@ impl LobeForm for Flog {
     // NaN: `pos` (power, cubic) or the `c > 0` select (flog) gives 0.
     const NAN_TO_ZERO: bool = true;
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("flog.wgsl");
     fn id(&self) -> &'static str {

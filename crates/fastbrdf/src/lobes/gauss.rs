@@ -7,10 +7,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::LobeForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::plan::{LobeForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
@@ -60,7 +61,7 @@ impl Gauss {
 
 impl LobeForm for Gauss {
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("gauss.wgsl");
     fn id(&self) -> &'static str {

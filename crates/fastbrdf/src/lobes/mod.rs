@@ -15,14 +15,5 @@ pub mod schlick;
 pub mod sg;
 pub mod tuned;
 
-use crate::real::Real;
-
 /// The lenient lobe argument: `c` clamped to [0, 1]; `None` (value 0) for NaN.
-#[inline(always)]
-pub fn arg<T: Real>(c: T) -> Option<T> {
-    if c.is_nan() {
-        None
-    } else {
-        Some(c.max(T::zero()).min(T::one()))
-    }
-}
+pub use crate::forms::lobe_arg as arg;

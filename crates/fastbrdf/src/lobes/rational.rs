@@ -15,10 +15,11 @@
 use super::cubic::{Cubic, CubicShape};
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::LobeForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::plan::{LobeForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
@@ -140,7 +141,7 @@ impl Rational {
 
 impl LobeForm for Rational {
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("rational.wgsl");
     fn id(&self) -> &'static str {
@@ -200,7 +201,7 @@ impl CubicRational {
 
 impl LobeForm for CubicRational {
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("rational.wgsl");
     fn id(&self) -> &'static str {

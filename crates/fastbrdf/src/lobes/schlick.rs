@@ -14,10 +14,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::LobeForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::plan::{LobeForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real, pos};
 use crate::wgsl::Emit;
 
@@ -113,7 +114,7 @@ impl Schlick {
 
 impl LobeForm for Schlick {
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("schlick.wgsl");
     fn id(&self) -> &'static str {
@@ -165,7 +166,7 @@ impl SchlickModified {
 
 impl LobeForm for SchlickModified {
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("schlick.wgsl");
     fn id(&self) -> &'static str {

@@ -10,10 +10,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::LobeForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self};
-use crate::plan::{LobeForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real};
 use crate::wgsl::Emit;
 
@@ -133,7 +134,7 @@ impl Exp2Lobe {
 
 impl LobeForm for Exp2Lobe {
     fn wgsl_norm(&self, e: &Emit) -> String {
-        crate::plan::norm_by_integral(self.id(), e)
+        crate::forms::norm_by_integral(self.id(), e)
     }
     const WGSL: &'static str = include_str!("sg.wgsl");
     fn id(&self) -> &'static str {
@@ -164,7 +165,7 @@ impl LobeForm for Exp2Lobe {
             let x = M::madd(k, c, -k);
             M::exp2_nonpos_tail(if 0.0 < x { 0.0 } else { x })
         } else {
-            crate::plan::clamped_batch::<Self, M>(self, c)
+            crate::forms::clamped_batch::<Self, M>(self, c)
         }
     }
     /// The FMA kernels: `k c - k` (one fused multiply-add) at rates >= 127, `k (c - 1)` (one

@@ -24,10 +24,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::{DistForm, DistSampler};
 use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params;
-use crate::plan::{DistForm, DistSampler, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real};
 use crate::sample::{Micro, MicroKind};
 use crate::wgsl::Emit;
@@ -151,12 +152,12 @@ impl DistForm for Beckmann {
     /// against the scalar model on every ISA.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
-        let (cc, s2) = crate::plan::clamp_sin2::<M>(c);
+        let (cc, s2) = crate::forms::clamp_sin2::<M>(c);
         let q = s2 / (cc * cc);
         let ic = 1.0 + q;
         let v = M::exp2_nonpos_times(q * self.log2_k.t::<f32>(), self.scale.t::<f32>()) * (ic * ic);
         // NaN, c = 0 (q = inf: 0 * inf) and c < COS_MIN give 0.
-        crate::plan::above_cos_min(c, v)
+        crate::forms::above_cos_min(c, v)
     }
     /// `batch` on the FMA instruction sets: `c^2`, `1 - c^2` (fused), `q log2_k`, the
     /// polynomial of `exp2_nonpos_times`, `(1 + q)^2` and the product: 5 + 6 multiply-pipe

@@ -23,10 +23,11 @@
 use super::beckmann::{ct_scale, ct_scale_wgsl};
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::{DistForm, DistSampler};
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
-use crate::plan::{DistForm, DistSampler, Plan};
+use crate::plan::Plan;
 use crate::real::{K as Coef, Real, pos, pow2k};
 use crate::sample::{CosDist, Micro, MicroKind};
 use crate::wgsl::Emit;
@@ -280,7 +281,7 @@ impl<const K: u32> DistForm for BeckmannPower<K> {
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
         let t = M::madd(self.s.t::<f32>(), crate::real::min1(c) - 1.0, 1.0);
         let v = self.scale.t::<f32>() * pow2k(pos(t), K);
-        crate::plan::above_cos_min(c, v)
+        crate::forms::above_cos_min(c, v)
     }
     fn wgsl(&self, c: &str, s2: &str, e: &Emit) -> String {
         let g = Self::G;

@@ -46,10 +46,11 @@
 //! `INFO_*` constants (and `fastbrdf models`).
 
 use crate::entry::Entry;
+use crate::forms::EnvForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{Options, ParamKind, ParamSpec, Params};
-use crate::plan::{EnvForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real, min1, pos};
 use crate::wgsl::Emit;
 

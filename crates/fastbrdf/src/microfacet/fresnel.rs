@@ -26,10 +26,11 @@
 //! microfacet normal.
 
 use crate::entry::Entry;
+use crate::forms::FresnelForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{ParamKind, ParamSpec};
-use crate::plan::{FresnelForm, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real, min1, pos, sqr};
 use crate::wgsl::Emit;
 

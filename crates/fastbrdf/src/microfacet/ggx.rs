@@ -25,10 +25,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::{DistForm, DistSampler};
 use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params;
-use crate::plan::{DistForm, DistSampler, Plan};
+use crate::plan::Plan;
 use crate::real::{K, Real};
 use crate::sample::{Micro, MicroKind};
 use crate::wgsl::Emit;
@@ -107,9 +108,9 @@ impl DistForm for Ggx {
     /// `(alpha^2 - 1) c^2 + 1`.
     #[inline(always)]
     fn batch<M: Math<f32>>(&self, c: f32) -> f32 {
-        let (_, s2) = crate::plan::clamp_sin2::<M>(c);
+        let (_, s2) = crate::forms::clamp_sin2::<M>(c);
         let t = M::madd(self.one_minus_alpha2.t::<f32>(), s2, self.alpha2.t::<f32>());
-        crate::plan::above_cos_min(c, self.scale.t::<f32>() / (t * t))
+        crate::forms::above_cos_min(c, self.scale.t::<f32>() / (t * t))
     }
     /// No flush-to-zero switch (its ~8 ns a call is 4% of a 4096-cosine batch): no step of
     /// the batch form is subnormal (`1 - c^2` is one fused multiply-add or `(1 - c)(1 + c)`,

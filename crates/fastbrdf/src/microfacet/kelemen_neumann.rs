@@ -16,9 +16,10 @@
 //! `neumann` is exact (measured 0; documented 1e-7).
 
 use crate::entry::Entry;
+use crate::forms::ShadowForm;
 use crate::math::Math;
 use crate::model::{Kind, ModelInfo, Ops};
-use crate::plan::{Plan, ShadowForm};
+use crate::plan::Plan;
 use crate::real::{Real, min1};
 use crate::wgsl::Emit;
 

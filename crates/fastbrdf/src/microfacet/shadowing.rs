@@ -24,10 +24,11 @@
 
 use crate::entry::Entry;
 use crate::error::Result;
+use crate::forms::ShadowForm;
 use crate::math::Math;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params;
-use crate::plan::{Plan, ShadowForm};
+use crate::plan::Plan;
 use crate::real::{K, Real, pos, sqr};
 use crate::wgsl::Emit;
 

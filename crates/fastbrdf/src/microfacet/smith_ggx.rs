@@ -57,11 +57,12 @@
 
 use crate::entry::Entry;
 use crate::error::{Error, Result};
+use crate::forms::ShadowForm;
 use crate::math::Math;
 use crate::microfacet::shadowing::separable;
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{self, Options, ParamKind, ParamSpec};
-use crate::plan::{Plan, ShadowForm};
+use crate::plan::Plan;
 use crate::real::{K, Real, min1};
 use crate::wgsl::Emit;
 
