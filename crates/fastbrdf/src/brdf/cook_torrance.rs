@@ -6,7 +6,7 @@
 //! |---|---|---|---|
 //! | `alpha` | [0.005, 1] | 0.3 | RMS slope of D and of the Smith terms |
 //! | `d` | a distribution id | `beckmann` | `beckmann`, `beckmann-ct`, `beckmann-pow`, `beckmann-power4/8/16`, `ggx` |
-//! | `g` | a shadowing id | `d`'s own Smith term: `smith` (the Beckmann family), `smith-ggx` (`ggx`) | shadowing-masking: `v-cavity`, `smith`, `smith-rational`, `smith-beckmann-correlated`, `smith-ggx(-correlated)`, `smith-ggx-correlated-fast`, `smith-ggx-joint-approx`, `schlick-ggx`, `kelemen`, `neumann` |
+//! | `g` | a shadowing id | `d`'s own Smith term: `smith` (the Beckmann family), `smith-ggx` (`ggx`) | shadowing-masking: `v-cavity`, `smith`, `smith-rational`, `smith-beckmann-correlated`, `smith-ggx(-correlated)`, `smith-ggx-correlated-fast(-tuned)`, `smith-ggx-joint-approx`, `schlick-ggx`, `kelemen`, `neumann` |
 //! | `remap` | `alpha-half`, `ue4` | `alpha-half` | `schlick-ggx`'s (only with `g = schlick-ggx`; added by the registry, as any parameter of a part this model does not declare) |
 //! | `f` | a Fresnel id without `fresnel-` | `none` | Fresnel at `wi . h` |
 //! | `f0`, `f90`, `eta`, `k` | see `microfacet::fresnel` | 0.04, 1, 1.5, 0 | Fresnel parameters |
