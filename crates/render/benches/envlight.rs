@@ -29,15 +29,12 @@ fn scene(subject: &str, env: bool) -> Scene {
         spec.env_samples = 1;
     }
     let loaded = setup::load(&spec).unwrap();
-    let params: Vec<(String, String)> = [("alpha", "0.3"), ("g", "v-cavity"), ("f", "schlick")]
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect();
-    setup::scene(
-        &spec,
-        &loaded,
-        Arc::new(Specular::new("cook-torrance", &params).unwrap()),
+    let model = fastbrdf::ModelSpec::parse(
+        "cook-torrance",
+        &[("alpha", "0.3"), ("g", "v-cavity"), ("f", "schlick")],
     )
+    .unwrap();
+    setup::scene(&spec, &loaded, Arc::new(Specular::new(&model).unwrap()))
 }
 
 fn run(bencher: divan::Bencher, subject: &str, env: bool, threads: usize) {

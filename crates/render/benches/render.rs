@@ -15,20 +15,13 @@ fn main() {
 fn scene(id: &str) -> fastbrdf_render::scene::Scene {
     let spec = SceneSpec::new();
     let loaded = setup::load(&spec).unwrap();
-    let params: Vec<(String, String)> = if id == "pow" {
-        vec![("n".into(), "200".into())]
+    let params: &[(&str, &str)] = if id == "pow" {
+        &[("n", "200")]
     } else {
-        vec![
-            ("alpha".into(), "0.3".into()),
-            ("g".into(), "v-cavity".into()),
-            ("f".into(), "schlick".into()),
-        ]
+        &[("alpha", "0.3"), ("g", "v-cavity"), ("f", "schlick")]
     };
-    setup::scene(
-        &spec,
-        &loaded,
-        Arc::new(Specular::new(id, &params).unwrap()),
-    )
+    let model = fastbrdf::ModelSpec::parse(id, params).unwrap();
+    setup::scene(&spec, &loaded, Arc::new(Specular::new(&model).unwrap()))
 }
 
 fn run(id: &str, shading: Shading, threads: usize) {

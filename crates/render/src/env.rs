@@ -15,6 +15,7 @@
 //! [`specular_light_weight`] for the map's side).
 
 use crate::error::{RenderError, Result};
+pub use crate::hash::pcg;
 use glam::Vec3;
 use std::f32::consts::PI;
 use std::path::Path;
@@ -243,7 +244,7 @@ impl EnvMap {
                 ))
             }
         };
-        let img = crate::texture::decode_limited(
+        let img = crate::decode::decode_limited(
             path,
             MAX_ENV_BYTES,
             "an environment map",
@@ -362,13 +363,6 @@ pub fn specular_light_weight(pdf_light: f32, brdf_pdf: Option<f32>) -> f32 {
 /// A small deterministic generator (PCG hash, 24-bit uniforms).
 #[derive(Clone, Copy, Debug)]
 pub struct Rng(u32);
-
-/// The PCG hash of `x` (Jarzynski and Olano 2020).
-pub fn pcg(x: u32) -> u32 {
-    let s = x.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
-    let w = ((s >> ((s >> 28) + 4)) ^ s).wrapping_mul(277_803_737);
-    (w >> 22) ^ w
-}
 
 impl Rng {
     /// The generator of sample `id` in pass `pass`.

@@ -18,10 +18,12 @@
 
 pub mod bump;
 pub mod compare;
+mod decode;
 pub mod env;
 pub mod error;
 pub mod film;
 pub mod geometry;
+mod hash;
 pub mod mesh;
 pub mod render;
 pub mod scene;

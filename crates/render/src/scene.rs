@@ -6,7 +6,7 @@ use crate::error::{RenderError, Result};
 use crate::geometry::{Hit, Plane, Ray, Sphere, TriMesh};
 use crate::texture::Texture;
 use fastbrdf::batch::Kernel;
-use fastbrdf::{Model, registry};
+use fastbrdf::{Model, ModelSpec};
 use glam::Vec3;
 use std::sync::Arc;
 
@@ -229,24 +229,20 @@ impl Light {
 
 /// One channel of a specular model: a BRDF in batch and scalar form.
 pub struct Channel {
-    /// The channel's parameters (all grey: `fastbrdf::colour::channels`).
-    pub params: Vec<(String, String)>,
+    /// The channel's grey spec (`ModelSpec::channel_specs`).
+    pub spec: ModelSpec,
     pub kernel: Kernel,
     pub scalar: Box<dyn fastbrdf::Brdf<f32>>,
 }
 
 impl Channel {
-    fn new(brdf: &str, params: Vec<(String, String)>) -> Result<Self> {
-        let given: Vec<(&str, &str)> = params
-            .iter()
-            .map(|(a, b)| (a.as_str(), b.as_str()))
-            .collect();
-        let kernel = Kernel::new(brdf, &given)?;
-        let Model::Brdf(scalar) = registry::build::<f32>(brdf, &given)? else {
-            unreachable!("brdf ids build BRDFs")
+    fn new(spec: ModelSpec) -> Result<Self> {
+        let kernel = Kernel::from_spec(&spec)?;
+        let Model::Brdf(scalar) = spec.model::<f32>()? else {
+            unreachable!("shaded specs are BRDFs")
         };
         Ok(Self {
-            params,
+            spec,
             kernel,
             scalar,
         })
@@ -268,15 +264,17 @@ impl RgbBrdf for fastbrdf::measured::MeasuredBrdf {
     }
 }
 
-/// The specular model of a material: a registry id turned into a BRDF, in batch and scalar
+/// The specular model of a material: a model spec turned into a BRDF, in batch and scalar
 /// form; grey (one channel, weighting R, G and B alike) or coloured (three: R, G, B), when a
-/// parameter is given as `R,G,B` (`fastbrdf::colour::channels`). Or, from
-/// [`Specular::rgb`], an RGB BRDF evaluated by scalar lookups (measured data, fitted models):
-/// then `channels` is empty and `rgb` holds it.
+/// parameter is given as `R,G,B` (`ModelSpec::is_coloured`). Or, from [`Specular::rgb`], an
+/// RGB BRDF evaluated by scalar lookups (measured data, fitted models): then `channels` is
+/// empty, `brdf` is `None` and `rgb` holds it.
 pub struct Specular {
+    /// The model's id (as given, before shading), or an RGB BRDF's label.
     pub id: String,
-    /// The BRDF actually evaluated (id and parameters, per-channel values as `R,G,B` text).
-    pub brdf: (String, Vec<(String, String)>),
+    /// The BRDF actually evaluated ([`shading_brdf`] of the spec given); `None` for an RGB
+    /// BRDF.
+    pub brdf: Option<ModelSpec>,
     /// One channel (grey) or three (R, G, B); none for an RGB BRDF.
     pub channels: Vec<Channel>,
     /// An RGB BRDF evaluated by scalar lookups instead of the channels' kernels.
@@ -285,19 +283,18 @@ pub struct Specular {
 
 impl Specular {
     /// Lobes become the lobe of `n . h` (`blinn-phong`, `norm = none`: the seeds' pictures),
-    /// distributions the `d` of `cook-torrance` (alpha passed on), BRDFs stay as they are.
-    pub fn new(id: &str, params: &[(String, String)]) -> Result<Self> {
-        let (brdf, p) = shading_brdf(id, params)?;
-        let channels = match fastbrdf::colour::channels(&brdf, &p)? {
-            None => vec![Channel::new(&brdf, p.clone())?],
-            Some(lists) => lists
-                .into_iter()
-                .map(|l| Channel::new(&brdf, l))
-                .collect::<Result<_>>()?,
-        };
+    /// distributions the `d` of `cook-torrance` (alpha passed on), BRDFs stay as they are
+    /// ([`shading_brdf`]).
+    pub fn new(spec: &ModelSpec) -> Result<Self> {
+        let brdf = shading_brdf(spec)?;
+        let channels = brdf
+            .channel_specs()
+            .into_iter()
+            .map(Channel::new)
+            .collect::<Result<_>>()?;
         Ok(Self {
-            id: id.into(),
-            brdf: (brdf, p),
+            id: spec.id().into(),
+            brdf: Some(brdf),
             channels,
             rgb: None,
         })
@@ -310,7 +307,7 @@ impl Specular {
     pub fn rgb(label: &str, brdf: Arc<dyn RgbBrdf>) -> Self {
         Self {
             id: label.into(),
-            brdf: (label.into(), Vec::new()),
+            brdf: None,
             channels: Vec::new(),
             rgb: Some(brdf),
         }
@@ -322,16 +319,14 @@ impl Specular {
     }
 }
 
-/// The BRDF (id and parameters) that shading with model `id` evaluates: the core crate's
-/// policy (`fastbrdf::registry::shading_brdf`), its refusal as this crate's error.
-pub fn shading_brdf(
-    id: &str,
-    params: &[(String, String)],
-) -> Result<(String, Vec<(String, String)>)> {
-    match registry::shading_brdf(id, params) {
-        Ok((brdf, p)) => Ok((brdf.to_string(), p)),
+/// The BRDF that shading with `spec` evaluates: the core crate's policy
+/// (`ModelSpec::shaded`), its refusal as this crate's error.
+pub fn shading_brdf(spec: &ModelSpec) -> Result<ModelSpec> {
+    match spec.shaded() {
+        Ok(brdf) => Ok(brdf),
         Err(fastbrdf::Error::WrongKind { found, .. }) => Err(RenderError::Invalid(format!(
-            "'{id}' is a {found}, not something to shade with: give a lobe, a distribution or a BRDF"
+            "'{}' is a {found}, not something to shade with: give a lobe, a distribution or a BRDF",
+            spec.id()
         ))),
         Err(e) => Err(e.into()),
     }

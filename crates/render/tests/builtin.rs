@@ -2,6 +2,7 @@
 //! skin texture (`--texture skin`), by name through `setup::load`, and rendered together
 //! under the built-in sky.
 
+use fastbrdf::ModelSpec;
 use fastbrdf_render::mesh::{FACE_OBJ, face, load_obj};
 use fastbrdf_render::render::{Options, Shading, render};
 use fastbrdf_render::scene::Specular;
@@ -82,7 +83,7 @@ fn the_face_with_the_skin_texture_renders_under_the_sky() {
     spec.env = Some("sky".into());
     spec.env_samples = 2;
     let loaded = setup::load(&spec).unwrap();
-    let specular = Specular::new("ward", &[("alpha".into(), "0.35".into())]).unwrap();
+    let specular = Specular::new(&ModelSpec::parse("ward", &[("alpha", "0.35")]).unwrap()).unwrap();
     let scene = setup::scene(&spec, &loaded, Arc::new(specular));
     let opts = Options {
         width: 64,

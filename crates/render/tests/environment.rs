@@ -3,6 +3,7 @@
 //! built-in sky (deterministic, lit where the sun is, shadows on the floor), the progress
 //! counted over every pass.
 
+use fastbrdf::ModelSpec;
 use fastbrdf_render::film::Film;
 use fastbrdf_render::render::{Options, Shading, render};
 use fastbrdf_render::scene::Specular;
@@ -11,12 +12,12 @@ use glam::Vec3;
 use std::sync::Arc;
 
 fn shoot(spec: &SceneSpec, id: &str, params: &[(&str, &str)], size: u32, spp: u32) -> Film {
-    let params: Vec<(String, String)> = params
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect();
     let loaded = setup::load(spec).unwrap();
-    let scene = setup::scene(spec, &loaded, Arc::new(Specular::new(id, &params).unwrap()));
+    let scene = setup::scene(
+        spec,
+        &loaded,
+        Arc::new(Specular::new(&ModelSpec::parse(id, params).unwrap()).unwrap()),
+    );
     let o = Options {
         width: size,
         height: size,
@@ -177,7 +178,7 @@ fn progress_counts_every_pass() {
     let scene = setup::scene(
         &spec,
         &loaded,
-        Arc::new(Specular::new("pow", &[("n".into(), "20".into())]).unwrap()),
+        Arc::new(Specular::new(&ModelSpec::parse("pow", &[("n", "20")]).unwrap()).unwrap()),
     );
     let o = Options {
         width: 40,

@@ -3,6 +3,7 @@
 //! finitely are refused, no NaN or inf reaches a file, EXR is scanline ZIP and linear, PNG has
 //! an sRGB chunk, comparisons are capped as a whole, and the linear metrics see highlights.
 
+use fastbrdf::ModelSpec;
 use fastbrdf_render::compare;
 use fastbrdf_render::film::Film;
 use fastbrdf_render::mesh::{load_obj, parse_obj, validate_obj};
@@ -421,8 +422,8 @@ fn no_nan_or_inf_reaches_a_file() {
     spec.lights = vec![Light::parse("dir:0,0,1:1,1,1:1e6").unwrap()];
     spec.ks = 1e3;
     let loaded = setup::load(&spec).unwrap();
-    let specular =
-        Arc::new(Specular::new("cook-torrance", &[("alpha".into(), "0.01".into())]).unwrap());
+    let sharp = ModelSpec::parse("cook-torrance", &[("alpha", "0.01")]).unwrap();
+    let specular = Arc::new(Specular::new(&sharp).unwrap());
     let scene = setup::scene(&spec, &loaded, specular);
     let film = render(&scene, &opts(32, 32, 1), &|_, _| {}).unwrap();
     film.check_finite().unwrap();
@@ -509,7 +510,7 @@ fn the_linear_metrics_see_the_highlight_that_clipping_hides() {
     let spec = SceneSpec::new();
     let loaded = setup::load(&spec).unwrap();
     let film = |id: &str| {
-        let s = Arc::new(Specular::new(id, &[("n".into(), "100".into())]).unwrap());
+        let s = Arc::new(Specular::new(&ModelSpec::parse(id, &[("n", "100")]).unwrap()).unwrap());
         render(
             &setup::scene(&spec, &loaded, s),
             &opts(96, 96, 1),

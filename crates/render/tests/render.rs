@@ -2,6 +2,7 @@
 //! the camera, identical models giving a zero difference, batch and scalar shading agreeing,
 //! golden images. Bad inputs: tests/inputs.rs.
 
+use fastbrdf::ModelSpec;
 use fastbrdf_render::bump::Bump;
 use fastbrdf_render::compare;
 use fastbrdf_render::film::Film;
@@ -26,12 +27,12 @@ fn shoot(
     params: &[(&str, &str)],
     opts: Options,
 ) -> (Film, fastbrdf_render::scene::Camera) {
-    let params: Vec<(String, String)> = params
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect();
     let loaded = setup::load(spec).unwrap();
-    let scene = setup::scene(spec, &loaded, Arc::new(Specular::new(id, &params).unwrap()));
+    let scene = setup::scene(
+        spec,
+        &loaded,
+        Arc::new(Specular::new(&ModelSpec::parse(id, params).unwrap()).unwrap()),
+    );
     (render(&scene, &opts, &|_, _| {}).unwrap(), scene.camera)
 }
 
@@ -317,11 +318,33 @@ fn a_coloured_render_is_three_grey_renders() {
             assert!(lit > 100, "{shading:?} channel {c}: the sphere is lit");
         }
     }
-    let grey = Specular::new("cook-torrance", &[("alpha".into(), "0.2".into())]).unwrap();
+    let grey =
+        Specular::new(&ModelSpec::parse("cook-torrance", &[("alpha", "0.2")]).unwrap()).unwrap();
     assert!(!grey.is_coloured() && grey.channels.len() == 1);
-    let err = Specular::new("cook-torrance", &[("eta".into(), "1,2".into())])
+    let err = ModelSpec::parse("cook-torrance", &[("eta", "1,2")])
         .err()
         .expect("two numbers are refused")
         .to_string();
     assert!(err.contains("eta") && err.contains("2 given"), "{err}");
+}
+
+#[test]
+fn the_specular_model_is_the_shaded_spec() {
+    let lobe = Specular::new(&ModelSpec::parse("flog", &[("n", "20")]).unwrap()).unwrap();
+    let brdf = lobe.brdf.as_ref().expect("a model's specular has a spec");
+    assert_eq!((lobe.id.as_str(), brdf.id()), ("flog", "blinn-phong"));
+    assert_eq!(brdf.to_string(), "blinn-phong n=20 lobe=flog norm=none");
+    let d = Specular::new(&ModelSpec::parse("ggx", &[("alpha", "0.3")]).unwrap()).unwrap();
+    assert_eq!(
+        d.brdf.as_ref().unwrap().to_string(),
+        "cook-torrance alpha=0.3 d=ggx"
+    );
+    let err = Specular::new(&ModelSpec::parse("smith", &[]).unwrap())
+        .err()
+        .expect("a shadowing term is refused")
+        .to_string();
+    assert!(
+        err.contains("'smith' is a shadowing, not something to shade with"),
+        "{err}"
+    );
 }

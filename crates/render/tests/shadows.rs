@@ -3,6 +3,7 @@
 //! at the light; a lit sphere does not shadow itself (no acne): with shadows on it renders as
 //! with shadows off.
 
+use fastbrdf::ModelSpec;
 use fastbrdf_render::film::Film;
 use fastbrdf_render::render::{Options, Shading, render};
 use fastbrdf_render::scene::{Light, LightKind, Scene, Specular};
@@ -12,12 +13,8 @@ use std::sync::Arc;
 
 fn scene(spec: &SceneSpec) -> Scene {
     let loaded = setup::load(spec).unwrap();
-    let params = vec![("alpha".to_string(), "0.2".to_string())];
-    setup::scene(
-        spec,
-        &loaded,
-        Arc::new(Specular::new("ward", &params).unwrap()),
-    )
+    let ward = ModelSpec::parse("ward", &[("alpha", "0.2")]).unwrap();
+    setup::scene(spec, &loaded, Arc::new(Specular::new(&ward).unwrap()))
 }
 
 fn shoot(scene: &Scene, size: u32) -> Film {
