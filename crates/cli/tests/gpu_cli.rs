@@ -36,8 +36,7 @@ fn shader_prints_every_language_and_matches_the_library() {
         assert!(o.status.success(), "{lang}: {}", stderr(&o));
         let text = stdout(&o);
         let want = fastbrdf_gpu::export::export(
-            "flog-normalized",
-            &[("n", "100")],
+            &fastbrdf::ModelSpec::parse("flog-normalized", &[("n", "100")]).unwrap(),
             fastbrdf_gpu::export::Lang::parse(lang).unwrap(),
         )
         .unwrap();
@@ -62,7 +61,8 @@ fn shader_runtime_params_takes_the_parameters_as_arguments() {
             "--runtime-params",
         ]);
         assert!(o.status.success(), "{lang}: {}", stderr(&o));
-        let want = export_form("cubic", &[], Lang::parse(lang).unwrap(), Form::Runtime).unwrap();
+        let cubic = fastbrdf::ModelSpec::parse("cubic", &[]).unwrap();
+        let want = export_form(&cubic, Lang::parse(lang).unwrap(), Form::Runtime).unwrap();
         assert_eq!(stdout(&o), want, "{lang}");
     }
     let o = fastbrdf(&["shader", "--model", "cubic", "--runtime-params"]);

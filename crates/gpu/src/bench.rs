@@ -25,18 +25,17 @@ fn wait(device: &wgpu::Device) -> Result<(), GpuError> {
         .map_err(|e| GpuError::Readback(e.to_string()))
 }
 
-/// Measures model `id` with parameters `given` over `input` (1 to `compute::CHUNK` elements),
+/// Measures the model of `spec` over `input` (1 to `compute::CHUNK` elements),
 /// spending about `budget` on each figure.
 pub fn measure(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
-    id: &str,
-    given: &[(&str, &str)],
+    spec: &fastbrdf::ModelSpec,
     input: GpuInput,
     budget: Duration,
 ) -> Result<Measured, GpuError> {
     let n = input.len();
-    let k = GpuKernel::from_id(device, id, given)?;
+    let k = GpuKernel::from_spec(device, spec)?;
     let r = k.upload(device, input)?;
     // Warm-up (pipeline compilation happens at the first dispatch on some drivers).
     k.dispatch(device, queue, &r, 1);

@@ -171,14 +171,9 @@ impl GpuKernel {
         })
     }
 
-    /// Shorthand: the instance of `id` with parameters `given` (coefficients in storage),
-    /// compiled.
-    pub fn from_id(
-        device: &wgpu::Device,
-        id: &str,
-        given: &[(&str, &str)],
-    ) -> Result<Self, GpuError> {
-        Self::new(device, Instance::with_storage(id, given)?)
+    /// Shorthand: the instance of `spec` (coefficients in storage), compiled.
+    pub fn from_spec(device: &wgpu::Device, spec: &fastbrdf::ModelSpec) -> Result<Self, GpuError> {
+        Self::new(device, Instance::with_storage(spec)?)
     }
 
     /// The model instance.

@@ -2,7 +2,7 @@
 //!
 //! - [`library`]: the WGSL twins of every model's core formula (in the core crate, each
 //!   family's `.wgsl` file beside its Rust file: `fastbrdf::plan::library_sources`).
-//! - [`spec`]: a model id and parameters as one WGSL function `fb_<id>`.
+//! - [`spec`]: a model spec (`fastbrdf::ModelSpec`) as one WGSL function `fb_<id>`.
 //! - [`context`]: instance, adapter and device set-up; everything else takes `&Device, &Queue`.
 //! - [`compute`]: evaluate any model over a batch (the CPU batch API's inputs).
 //! - [`bench`]: evaluations per second on the GPU (kernel alone, and with transfers).

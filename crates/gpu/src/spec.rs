@@ -1,9 +1,10 @@
-//! Model instances on the GPU: a model id and its parameters become one WGSL function,
+//! Model instances on the GPU: a model spec (`fastbrdf::ModelSpec`: a model and its parameters,
+//! validated once where they arrived) becomes one WGSL function,
 //! `fb_<id>` (dashes as underscores), that calls the library's core functions with the
 //! instance's coefficients, placed as `Emit` says: f32 literals, the storage array `fb_k`, or
 //! expressions of the parameters.
 //!
-//! The body comes from the model's plan (`fastbrdf::registry::plan`): each family writes the
+//! The body comes from the spec's plan (`ModelSpec::plan`, built once): each family writes the
 //! call of its WGSL twin with the plan's coefficients (computed once, in f64, the same numbers
 //! the CPU's scalar models and batch kernels read), or, in the runtime form, with expressions
 //! of the parameters. This module adds only the kind's domain rules and the signature; it
@@ -21,9 +22,9 @@
 
 use crate::library;
 use fastbrdf::model::{Kind, ModelInfo};
-use fastbrdf::params::Value;
+use fastbrdf::params::{Params, Value};
 use fastbrdf::plan::{BrdfForm, DistForm, EnvForm, FresnelForm, LobeForm, Plan, ShadowForm};
-use fastbrdf::{Result, registry};
+use fastbrdf::{ModelSpec, Result};
 
 pub use fastbrdf::wgsl::{Emit, lit};
 
@@ -32,7 +33,9 @@ pub use fastbrdf::wgsl::{Emit, lit};
 pub struct Instance {
     /// The registry entry.
     pub info: &'static ModelInfo,
-    /// Every resolved parameter (given or default), as text.
+    /// The spec it was built from.
+    pub spec: ModelSpec,
+    /// Every resolved parameter (given or default), as text (for display).
     pub params: Vec<(String, String)>,
     /// The generated function's name, `fb_<id>`.
     pub function: String,
@@ -46,49 +49,39 @@ pub struct Instance {
 }
 
 impl Instance {
-    /// Builds the instance of `id` with parameters given as text, validated like
-    /// `fastbrdf::registry::build`, with its coefficients as literals (for exported code).
-    pub fn new(id: &str, given: &[(&str, &str)]) -> Result<Self> {
-        Self::with(id, given, Emit::literals())
+    /// The instance of `spec` (a grey model: one plan) with its coefficients as literals (for
+    /// exported code).
+    pub fn new(spec: &ModelSpec) -> Result<Self> {
+        Self::with(spec, Emit::literals())
     }
 
     /// As `new`, with the coefficients in the storage array
     /// `fb_k: array<f32>` (for the compute and render paths).
-    pub fn with_storage(id: &str, given: &[(&str, &str)]) -> Result<Self> {
-        Self::with(id, given, Emit::storage())
+    pub fn with_storage(spec: &ModelSpec) -> Result<Self> {
+        Self::with(spec, Emit::storage())
     }
 
-    /// Builds the instance with coefficients placed as `emit` says: the model's plan writes
-    /// the body (each family its own WGSL call; no model id is matched here).
-    pub fn with(id: &str, given: &[(&str, &str)], emit: Emit) -> Result<Self> {
-        let e = registry::find(id)?;
-        let p = fastbrdf::params::Params::resolve(e.info.id, e.info.params, given)?;
-        let plan = registry::plan_resolved(e, &p)?;
-        let function = function_name(e.info.id);
-        let body = body(&emit, &plan);
-        let mut signature = e.info.kind.wgsl_signature().to_string();
+    /// Builds the instance with coefficients placed as `emit` says: the spec's plan writes
+    /// the body (each family its own WGSL call; no model id is matched here). A coloured spec
+    /// is an error naming its `R,G,B` parameters (export its `channel_specs` one by one).
+    pub fn with(spec: &ModelSpec, emit: Emit) -> Result<Self> {
+        let (plan, p) = (spec.plan()?, spec.params()?);
+        let info = spec.info();
+        let function = function_name(info.id);
+        let body = body(&emit, plan);
+        let mut signature = info.kind.wgsl_signature().to_string();
         // Runtime parameters: the ones the expressions use become arguments, in registry order.
         let used = emit.used();
-        let sliders: Vec<(String, f64)> = e
-            .info
+        let sliders: Vec<(String, f64)> = info
             .params
             .iter()
-            .filter(|spec| used.contains(spec.name))
-            .map(|spec| (spec.name.to_string(), p.num(spec.name)))
+            .filter(|s| used.contains(s.name))
+            .map(|s| (s.name.to_string(), p.num(s.name)))
             .collect();
         for (name, _) in &sliders {
             signature.push_str(&format!(", p_{name}: f32"));
         }
-        let params: Vec<(String, String)> = p
-            .iter()
-            .map(|(k, v)| {
-                let v = match v {
-                    Value::Num(x) => format!("{x}"),
-                    Value::Text(t) => t.clone(),
-                };
-                (k.to_string(), v)
-            })
-            .collect();
+        let params = resolved_text(p);
         let shown = if emit.is_runtime() {
             let names: Vec<String> = sliders.iter().map(|(n, _)| format!("p_{n}")).collect();
             let fixed: Vec<(String, String)> = params
@@ -103,22 +96,23 @@ impl Instance {
                 } else {
                     names.join(", ")
                 },
-                shown(&fixed)
+                shown_pairs(&fixed)
             )
         } else {
-            shown(&params)
+            shown_pairs(&params)
         };
         let mut wrapper = format!(
             "/// {id}: {formula}\n/// Source: {source}. Instance: {shown}.\nfn {function}({signature}) -> f32 {{\n{body}}}\n",
-            id = e.info.id,
-            formula = e.info.formula,
-            source = e.info.source,
+            id = info.id,
+            formula = info.formula,
+            source = info.source,
         );
-        if e.info.kind == Kind::Shadowing {
+        if info.kind == Kind::Shadowing {
             wrapper.push_str(&v_form(&function, &signature));
         }
         Ok(Self {
-            info: &e.info,
+            info,
+            spec: spec.clone(),
             params,
             function,
             wrapper,
@@ -132,8 +126,8 @@ impl Instance {
     /// model's inputs. Every model has this form; a call of a `fb_rt_*` function that the
     /// library lacks (a new lobe without its normalisation integral) is an error, so no test
     /// skips a model silently.
-    pub fn runtime(id: &str, given: &[(&str, &str)]) -> Result<Self> {
-        let inst = Self::with(id, given, Emit::runtime())?;
+    pub fn runtime(spec: &ModelSpec) -> Result<Self> {
+        let inst = Self::with(spec, Emit::runtime())?;
         let missing: Vec<&str> = inst
             .wrapper
             .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
@@ -142,7 +136,7 @@ impl Instance {
             .collect();
         if let Some(w) = missing.first() {
             return Err(fastbrdf::Error::MissingParam {
-                model: id.into(),
+                model: spec.id().into(),
                 param: format!("the WGSL function {w} (runtime form)"),
             });
         }
@@ -216,8 +210,40 @@ pub fn arguments(kind: Kind) -> String {
         .join(", ")
 }
 
+/// The resolved parameters (given or default) of `spec`, `a = 1, b = x` (a value that differs
+/// between colour channels as `r,g,b`), or `no parameters`.
+pub fn shown(spec: &ModelSpec) -> String {
+    let channels: Vec<Vec<(String, String)>> = spec.channels().iter().map(resolved_text).collect();
+    let pairs: Vec<(String, String)> = channels[0]
+        .iter()
+        .enumerate()
+        .map(|(i, (k, v))| {
+            if channels.iter().all(|c| c[i].1 == *v) {
+                (k.clone(), v.clone())
+            } else {
+                let rgb: Vec<&str> = channels.iter().map(|c| c[i].1.as_str()).collect();
+                (k.clone(), rgb.join(","))
+            }
+        })
+        .collect();
+    shown_pairs(&pairs)
+}
+
+/// Resolved parameters as `(name, text)` pairs, in `Params`' order.
+fn resolved_text(p: &Params) -> Vec<(String, String)> {
+    p.iter()
+        .map(|(k, v)| {
+            let v = match v {
+                Value::Num(x) => format!("{x}"),
+                Value::Text(t) => t.clone(),
+            };
+            (k.to_string(), v)
+        })
+        .collect()
+}
+
 /// `a = 1, b = x`, or `no parameters`.
-pub fn shown(params: &[(String, String)]) -> String {
+fn shown_pairs(params: &[(String, String)]) -> String {
     if params.is_empty() {
         "no parameters".into()
     } else {
@@ -270,5 +296,33 @@ fn body(e: &Emit, plan: &Plan) -> String {
                 hi = fastbrdf::wgsl::lit(hi),
             )
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// An instance is one grey model: a coloured spec is an error naming its `R,G,B`
+    /// parameters, and each of its channels is an instance; `shown` lists resolved values.
+    #[test]
+    fn instances_are_built_from_grey_specs() {
+        let s =
+            ModelSpec::parse("cook-torrance", &[("f0", "0.9,0.6,0.5"), ("alpha", "0.2")]).unwrap();
+        let e = Instance::new(&s).unwrap_err().to_string();
+        assert!(e.contains("f0") && e.contains("R,G,B"), "{e}");
+        let all = shown(&s);
+        assert!(
+            all.contains("f0 = 0.9,0.6,0.5") && all.contains("alpha = 0.2"),
+            "{all}"
+        );
+        let g = Instance::new(&s.channel_specs()[1]).unwrap();
+        assert!(shown(&g.spec).contains("f0 = 0.6"), "{}", shown(&g.spec));
+        assert!(g.wrapper.contains(&shown(&g.spec)), "{}", g.wrapper);
+        assert_eq!(g.spec, s.channel_specs()[1]);
+        assert_eq!(
+            shown(&ModelSpec::parse("lambert", &[]).unwrap()),
+            "albedo = 1"
+        );
     }
 }

@@ -159,9 +159,11 @@ fn gpu_corners_at_the_ends_of_the_ranges_are_measured_and_bounded() {
             .fold(0.0, f64::max);
         for form in ["storage", "literals", "runtime"] {
             let instance = match form {
-                "storage" => Instance::with_storage(c.id, c.params).unwrap(),
-                "literals" => Instance::new(c.id, c.params).unwrap(),
-                _ => Instance::runtime(c.id, c.params).unwrap().runtime_entry(),
+                "storage" => Instance::with_storage(&common::spec(c.id, c.params)).unwrap(),
+                "literals" => Instance::new(&common::spec(c.id, c.params)).unwrap(),
+                _ => Instance::runtime(&common::spec(c.id, c.params))
+                    .unwrap()
+                    .runtime_entry(),
             };
             let kernel = GpuKernel::new(d, instance).unwrap();
             let mut out = vec![0.0f32; rows.len()];

@@ -77,9 +77,11 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
             let peak = exact.eval_row(&row64) as f32;
             for form in ["storage", "literals", "symbolic"] {
                 let instance = match form {
-                    "storage" => Instance::with_storage(info.id, &given).unwrap(),
-                    "literals" => Instance::new(info.id, &given).unwrap(),
-                    _ => Instance::runtime(info.id, &given).unwrap().runtime_entry(),
+                    "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
+                    "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
+                    _ => Instance::runtime(&common::spec(info.id, &given))
+                        .unwrap()
+                        .runtime_entry(),
                 };
                 let rt_norm = instance.wrapper.contains("fb_rt_lobe_integral_");
                 let kernel = GpuKernel::new(d, instance).unwrap();
@@ -159,9 +161,11 @@ fn every_lobe_is_accurate_near_its_peak() {
             let peak = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for form in ["storage", "literals", "symbolic"] {
                 let instance = match form {
-                    "storage" => Instance::with_storage(info.id, &given).unwrap(),
-                    "literals" => Instance::new(info.id, &given).unwrap(),
-                    _ => Instance::runtime(info.id, &given).unwrap().runtime_entry(),
+                    "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
+                    "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
+                    _ => Instance::runtime(&common::spec(info.id, &given))
+                        .unwrap()
+                        .runtime_entry(),
                 };
                 let kernel = GpuKernel::new(d, instance).unwrap();
                 let mut out = vec![0.0f32; cos.len()];

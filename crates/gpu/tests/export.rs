@@ -7,6 +7,8 @@
 //! `FASTBRDF_BLESS=1 cargo test -p fastbrdf-gpu --test export` rewrites the golden files
 //! (review the diff: the files are what users paste).
 
+mod common;
+
 use fastbrdf::model::Kind;
 use fastbrdf::{params, registry};
 use fastbrdf_gpu::export::{Form, Lang, export, export_form, exported_name, validate};
@@ -129,7 +131,7 @@ fn every_model_in_every_language_matches_its_golden_file_and_validates() {
     let mut count = 0;
     for e in registry::all() {
         for lang in Lang::ALL {
-            let text = export(e.info.id, &[], lang)
+            let text = export(&common::spec(e.info.id, &[]), lang)
                 .unwrap_or_else(|err| panic!("{} ({}): {err}", e.info.id, lang.name()));
             check_one(e.info.id, e.info.kind, lang, &text);
             let path = dir.join(format!("{}.{}", e.info.id, lang.extension()));
@@ -168,17 +170,19 @@ fn every_model_in_every_language_matches_its_golden_file_and_validates() {
 
 #[test]
 fn parameters_reach_the_code_and_bad_ones_are_errors() {
-    let a = export("pow", &[("n", "50")], Lang::Wgsl).unwrap();
+    let a = export(&common::spec("pow", &[("n", "50")]), Lang::Wgsl).unwrap();
     assert!(a.contains("fb_lobe_pow(c, 50.0f)"), "{a}");
     assert!(a.contains("this export: n = 50"));
     let b = export(
-        "cook-torrance",
-        &[
-            ("d", "beckmann-power16"),
-            ("g", "v-cavity"),
-            ("f", "schlick"),
-            ("f0", "0.5"),
-        ],
+        &common::spec(
+            "cook-torrance",
+            &[
+                ("d", "beckmann-power16"),
+                ("g", "v-cavity"),
+                ("f", "schlick"),
+                ("f0", "0.5"),
+            ],
+        ),
         Lang::Glsl,
     )
     .unwrap();
@@ -193,7 +197,8 @@ fn parameters_reach_the_code_and_bad_ones_are_errors() {
         ("beckmann", vec![("alpha", "0")]),
     ] {
         assert!(
-            export(id, &given, Lang::Hlsl).is_err(),
+            // Refused where text becomes a model (the CLI's --param, the explorer's query).
+            fastbrdf::ModelSpec::parse(id, &given).is_err(),
             "{id} {given:?} accepted"
         );
     }
@@ -271,7 +276,7 @@ fn brdf_explorer_sliders_reach_their_defaults_and_wide_ranges_are_logarithmic() 
     let mut sliders = 0;
     let mut logs = 0;
     for (id, given) in &cases {
-        let text = export(id, given, Lang::BrdfExplorer).unwrap();
+        let text = export(&common::spec(id, given), Lang::BrdfExplorer).unwrap();
         let what = format!("{id} {given:?}");
         let info = &registry::find(id).unwrap().info;
         // The model BRDF Explorer evaluates: lobes through blinn-phong, distributions through
@@ -392,7 +397,7 @@ fn brdf_explorer_sliders_reach_their_defaults_and_wide_ranges_are_logarithmic() 
 
 /// The runtime parameters of model `id`'s default export (`p_<name>` arguments, in order).
 fn runtime_params(id: &str) -> Vec<String> {
-    fastbrdf_gpu::spec::Instance::runtime(id, &[])
+    fastbrdf_gpu::spec::Instance::runtime(&common::spec(id, &[]))
         .unwrap()
         .sliders
         .into_iter()
@@ -416,7 +421,7 @@ fn every_model_exports_with_runtime_parameters_in_every_language() {
             assert!(!params.is_empty(), "{}: no runtime parameter", e.info.id);
         }
         for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl, Lang::Msl] {
-            let text = export_form(e.info.id, &[], lang, Form::Runtime)
+            let text = export_form(&common::spec(e.info.id, &[]), lang, Form::Runtime)
                 .unwrap_or_else(|err| panic!("{} ({}): {err}", e.info.id, lang.name()));
             check_form(e.info.id, e.info.kind, lang, &text, params.len());
             assert!(
@@ -459,14 +464,19 @@ fn a_runtime_export_does_not_depend_on_the_parameters_it_takes() {
     // The function body is the same whatever the exported parameter values: they only change
     // the header's defaults. Compare the code after the header.
     let code = |n: &str| {
-        let t = export_form("cubic", &[("n", n)], Lang::Wgsl, Form::Runtime).unwrap();
+        let t = export_form(
+            &common::spec("cubic", &[("n", n)]),
+            Lang::Wgsl,
+            Form::Runtime,
+        )
+        .unwrap();
         t.lines()
             .skip_while(|l| l.starts_with("//"))
             .collect::<Vec<_>>()
             .join("\n")
     };
     assert_eq!(code("20"), code("700"));
-    let lit = |n: &str| export("cubic", &[("n", n)], Lang::Wgsl).unwrap();
+    let lit = |n: &str| export(&common::spec("cubic", &[("n", n)]), Lang::Wgsl).unwrap();
     assert_ne!(lit("20"), lit("700"));
 }
 
@@ -495,7 +505,8 @@ fn a_coloured_model_exports_three_channels_and_a_vector() {
     let mut stale = vec![];
     for lang in Lang::ALL {
         let what = format!("gold cook-torrance ({})", lang.name());
-        let text = export("cook-torrance", &given, lang).unwrap_or_else(|e| panic!("{what}: {e}"));
+        let text = export(&common::spec("cook-torrance", &given), lang)
+            .unwrap_or_else(|e| panic!("{what}: {e}"));
         assert!(text.contains("Colour: per-channel parameters"), "{what}");
         match lang {
             Lang::Wgsl => {
@@ -544,18 +555,20 @@ fn a_coloured_model_exports_three_channels_and_a_vector() {
         stale.join("\n")
     );
     // Each channel is the grey export of its parameters.
-    let wgsl = export("cook-torrance", &given, Lang::Wgsl).unwrap();
+    let wgsl = export(&common::spec("cook-torrance", &given), Lang::Wgsl).unwrap();
     for (c, name) in ["r", "g", "b"].iter().enumerate() {
         let (e, kk) = (gold.eta[c].to_string(), gold.k[c].to_string());
         let grey = export(
-            "cook-torrance",
-            &[
-                ("d", "ggx"),
-                ("alpha", "0.2"),
-                ("f", "conductor"),
-                ("eta", &e),
-                ("k", &kk),
-            ],
+            &common::spec(
+                "cook-torrance",
+                &[
+                    ("d", "ggx"),
+                    ("alpha", "0.2"),
+                    ("f", "conductor"),
+                    ("eta", &e),
+                    ("k", &kk),
+                ],
+            ),
             Lang::Wgsl,
         )
         .unwrap();
@@ -565,7 +578,12 @@ fn a_coloured_model_exports_three_channels_and_a_vector() {
         let renamed = body.replacen("fb_cook_torrance(", &format!("fb_cook_torrance_{name}("), 1);
         assert!(wgsl.contains(&renamed), "channel {name}: {renamed}");
     }
-    let err = export_form("cook-torrance", &given, Lang::Glsl, Form::Runtime).unwrap_err();
+    let err = export_form(
+        &common::spec("cook-torrance", &given),
+        Lang::Glsl,
+        Form::Runtime,
+    )
+    .unwrap_err();
     assert!(err.to_string().contains("--runtime-params"), "{err}");
 }
 
@@ -576,7 +594,7 @@ fn a_coloured_model_exports_three_channels_and_a_vector() {
 fn anisotropic_cook_torrance_exports_with_both_slopes() {
     for (d, g) in [("ggx", "smith-ggx-correlated"), ("beckmann", "smith")] {
         let given = [("d", d), ("g", g), ("alpha_x", "0.05"), ("alpha_y", "0.4")];
-        let params = fastbrdf_gpu::spec::Instance::runtime("cook-torrance", &given)
+        let params = fastbrdf_gpu::spec::Instance::runtime(&common::spec("cook-torrance", &given))
             .unwrap()
             .sliders
             .into_iter()
@@ -584,9 +602,10 @@ fn anisotropic_cook_torrance_exports_with_both_slopes() {
             .collect::<Vec<_>>();
         assert_eq!(params, ["alpha_x", "alpha_y"], "{d} {g}");
         for lang in [Lang::Wgsl, Lang::Glsl, Lang::Hlsl, Lang::Msl] {
-            let text = export("cook-torrance", &given, lang).unwrap();
+            let text = export(&common::spec("cook-torrance", &given), lang).unwrap();
             check_one("cook-torrance", Kind::Brdf, lang, &text);
-            let rt = export_form("cook-torrance", &given, lang, Form::Runtime).unwrap();
+            let rt =
+                export_form(&common::spec("cook-torrance", &given), lang, Form::Runtime).unwrap();
             check_form("cook-torrance", Kind::Brdf, lang, &rt, 2);
             assert!(
                 rt.contains("p_alpha_x") && rt.contains("p_alpha_y"),
@@ -605,7 +624,7 @@ fn anisotropic_cook_torrance_exports_with_both_slopes() {
                 lang.name()
             );
         }
-        let wgsl = export("cook-torrance", &given, Lang::Wgsl).unwrap();
+        let wgsl = export(&common::spec("cook-torrance", &given), Lang::Wgsl).unwrap();
         assert!(wgsl.contains("fb_aniso_cos(") && wgsl.contains("fb_aniso_sin2("));
     }
 }
@@ -627,7 +646,7 @@ fn brdf_explorer_n_sliders_stop_where_the_f32_lobe_holds_its_bound() {
     }
     let mut capped = 0;
     for (id, given, lobe) in &cases {
-        let text = export(id, given, Lang::BrdfExplorer).unwrap();
+        let text = export(&common::spec(id, given), Lang::BrdfExplorer).unwrap();
         let line = text
             .lines()
             .find(|l| l.starts_with("float log10_n "))

@@ -138,8 +138,11 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
             let cpu = registry::build::<f32>(info.id, &given).unwrap();
-            let kernel =
-                GpuKernel::new(d, Instance::with_storage(info.id, &given).unwrap()).unwrap();
+            let kernel = GpuKernel::new(
+                d,
+                Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
+            )
+            .unwrap();
             let mut out = vec![0.0f32; rows.len()];
             kernel.eval(d, q, inputs, &mut out).unwrap();
             for (row, got) in rows.iter().zip(&out) {
@@ -208,8 +211,11 @@ fn brdf_twins_are_scale_invariant_in_their_directions() {
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
-            let kernel =
-                GpuKernel::new(d, Instance::with_storage(e.info.id, &given).unwrap()).unwrap();
+            let kernel = GpuKernel::new(
+                d,
+                Instance::with_storage(&common::spec(e.info.id, &given)).unwrap(),
+            )
+            .unwrap();
             let mut out = vec![0.0f32; cols[0].len()];
             let input =
                 GpuInput::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);

@@ -15,6 +15,8 @@
 //! This is a model, not a compiler: it tests the arrangement, where tests/exact.rs runs one real
 //! compiler (lavapipe) on it. It runs without a GPU.
 
+mod common;
+
 use fastbrdf::accuracy::domain_configs;
 use fastbrdf::model::Kind;
 use fastbrdf::registry;
@@ -348,12 +350,15 @@ fn every_lobe_is_exactly_its_peak_at_c_1_under_folding_and_reassociation() {
             let peak = registry::build::<f64>(e.info.id, &given)
                 .unwrap()
                 .eval_row(&[Some(1.0)]) as f32;
-            let mut forms = vec![("literals", Instance::new(e.info.id, &given).unwrap())];
+            let mut forms = vec![(
+                "literals",
+                Instance::new(&common::spec(e.info.id, &given)).unwrap(),
+            )];
             // Runtime forms whose coefficients come from runtime.wgsl's functions (loops,
             // structs) are outside this model: in use their parameters are per-pixel values a
             // compiler cannot fold (`Instance::runtime_entry`); tests/runtime.rs and
             // tests/parity.rs measure them on lavapipe. The closed-form ones are modelled.
-            let sym = Instance::runtime(e.info.id, &given).unwrap();
+            let sym = Instance::runtime(&common::spec(e.info.id, &given)).unwrap();
             if !sym.wrapper.contains("fb_rt_") {
                 forms.push(("symbolic", sym));
             }
@@ -428,7 +433,7 @@ fn every_lobe_stays_within_n_ulp_of_c_near_its_peak_under_folding() {
                 .map(|(_, v)| v.parse().unwrap())
                 .unwrap();
             let exact = registry::build::<f64>(e.info.id, &given).unwrap();
-            let inst = Instance::new(e.info.id, &given).unwrap();
+            let inst = Instance::new(&common::spec(e.info.id, &given)).unwrap();
             let cos: Vec<f32> = (0..=64)
                 .map(|i| (1.0 - i as f64 * 10.0 / (64.0 * n)).max(0.0) as f32)
                 .collect();

@@ -9,6 +9,8 @@
 //! glslang is Debian's `glslang-tools` (`tools/test.sh` installs it). Without it the test
 //! skips with a message, except when `CI` is set: there it fails.
 
+mod common;
+
 use fastbrdf::model::Kind;
 use fastbrdf::params::ParamKind;
 use fastbrdf::registry;
@@ -129,9 +131,12 @@ fn every_hlsl_export_compiles_with_glslang() {
             for form in [Form::Literals, Form::Runtime] {
                 let extra = match form {
                     Form::Literals => 0,
-                    Form::Runtime => Instance::runtime(id, &given).unwrap().sliders.len(),
+                    Form::Runtime => Instance::runtime(&common::spec(id, &given))
+                        .unwrap()
+                        .sliders
+                        .len(),
                 };
-                let text = export_form(id, &given, Lang::Hlsl, form)
+                let text = export_form(&common::spec(id, &given), Lang::Hlsl, form)
                     .unwrap_or_else(|err| panic!("{id} {given:?}: {err}"));
                 tables += usize::from(text.contains("] = { "));
                 let name = format!("{id}-{count}");
@@ -151,14 +156,16 @@ fn every_hlsl_export_compiles_with_glslang() {
     }
     // A coloured export: three grey instances and the vector function.
     let text = export_form(
-        "cook-torrance",
-        &[
-            ("d", "ggx"),
-            ("g", "smith-ggx-correlated"),
-            ("ms", "kulla-conty"),
-            ("f", "schlick"),
-            ("f0", "0.9,0.6,0.3"),
-        ],
+        &common::spec(
+            "cook-torrance",
+            &[
+                ("d", "ggx"),
+                ("g", "smith-ggx-correlated"),
+                ("ms", "kulla-conty"),
+                ("f", "schlick"),
+                ("f0", "0.9,0.6,0.3"),
+            ],
+        ),
         Lang::Hlsl,
         Form::Literals,
     )

@@ -64,7 +64,7 @@ fn scene(copies: usize) -> Scene {
     spec.floor = true;
     let loaded = setup::load(&spec).unwrap();
     let specular =
-        Arc::new(Specular::new("cook-torrance", &[("alpha".into(), "0.3".into())]).unwrap());
+        Arc::new(Specular::new(&common::spec("cook-torrance", &[("alpha", "0.3")])).unwrap());
     let mut s = setup::scene(&spec, &loaded, specular);
     assert!(s.shadows);
     s.objects[0].shape = Shape::Mesh(Arc::new(stacked(copies)));

@@ -341,9 +341,11 @@ fn check(
             // f32 expressions of the parameters (BRDF Explorer's sliders), where they exist.
             for form in ["storage", "literals", "symbolic"] {
                 let instance = match form {
-                    "storage" => Instance::with_storage(info.id, &given).unwrap(),
-                    "literals" => Instance::new(info.id, &given).unwrap(),
-                    _ => Instance::runtime(info.id, &given).unwrap().runtime_entry(),
+                    "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
+                    "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
+                    _ => Instance::runtime(&common::spec(info.id, &given))
+                        .unwrap()
+                        .runtime_entry(),
                 };
                 let kernel = GpuKernel::new(d, instance).unwrap();
                 let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>);
@@ -502,7 +504,7 @@ fn every_shadowing_v_form_is_g_over_four_cosines() {
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
             let exact = registry::build::<f64>(info.id, &given).unwrap();
-            let mut inst = Instance::with_storage(info.id, &given).unwrap();
+            let mut inst = Instance::with_storage(&common::spec(info.id, &given)).unwrap();
             inst.function = fastbrdf_gpu::spec::v_function_name(&inst.function);
             let kernel = GpuKernel::new(d, inst).unwrap();
             let mut out = vec![0.0f32; sh[0].len()];

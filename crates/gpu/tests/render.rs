@@ -60,13 +60,10 @@ fn opts(w: u32, h: u32, spp: u32) -> Options {
 }
 
 fn scene(spec: &SceneSpec, id: &str, params: &[(&str, &str)]) -> Scene {
-    let params: Vec<(String, String)> = params
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect();
+    let model = common::spec(id, params);
     let loaded = setup::load(spec).unwrap();
     // Shadows as the spec says (on in `SceneSpec::new`): both renderers cast shadow rays.
-    setup::scene(spec, &loaded, Arc::new(Specular::new(id, &params).unwrap()))
+    setup::scene(spec, &loaded, Arc::new(Specular::new(&model).unwrap()))
 }
 
 /// How two 8-bit renders differ.

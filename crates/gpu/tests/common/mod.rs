@@ -49,3 +49,9 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
         })
         .collect()
 }
+
+/// The spec of model `id` with parameters given as text (as the CLI parses them); panics with
+/// the error on a bad one.
+pub fn spec(id: &str, given: &[(&str, &str)]) -> fastbrdf::ModelSpec {
+    fastbrdf::ModelSpec::parse(id, given).unwrap_or_else(|e| panic!("{id} {given:?}: {e}"))
+}

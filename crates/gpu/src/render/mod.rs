@@ -1,0 +1,391 @@
+//! The GPU renderer: the CPU renderer's scenes (`fastbrdf_render::scene::Scene`: camera,
+//! lights, spheres, planes, OBJ meshes, textures, micro-relief) rasterised with wgpu and shaded
+//! per sample by any model's WGSL twin (`spec::Instance`), into the CPU's `Film`.
+//!
+//! # Design
+//!
+//! The CPU renderer (`fastbrdf_render::render`) traces one primary ray per stratified sample:
+//! N x N samples per pixel at `(x + (sx + 0.5) / N, y + (sy + 0.5) / N)`. Here the image is
+//! rasterised at (W N) x (H N) into an `Rgba32Float` target with a `Depth32Float` depth
+//! buffer, so that every fragment centre is exactly one of the CPU's sample positions; the
+//! N x N blocks are read back and averaged on the CPU in the CPU's order.
+//!
+//! - Spheres and planes: one triangle covering the tile; the fragment shader intersects the
+//!   sample's primary ray analytically (the formulas of `geometry.rs`) and discards misses.
+//! - Meshes: real triangles (three corners per triangle, so the fragment shader knows its
+//!   triangle through a flat-interpolated index), projected by a matrix built from the
+//!   camera. The rasteriser only decides which triangle covers a sample; the fragment shader
+//!   then runs the CPU's Moller-Trumbore test on that triangle with the sample's primary ray,
+//!   so `t`, the barycentrics, the interpolated normal and uv are the CPU's, not the
+//!   rasteriser's interpolants. Where the two disagree about a sample within rounding of an
+//!   edge, a sample outside a boundary edge (one no other triangle shares: the outline of an
+//!   open mesh like the face) is discarded, as the CPU's ray misses it; a sample outside a
+//!   shared edge is shaded from its barycentrics as they are (the CPU's ray hits the
+//!   neighbour, and shading is continuous across the edge).
+//!   Boundary edges are pushed a quarter sample outward for the rasteriser only
+//!   (`dilate_boundaries`), so that a sample exactly on one (which the CPU's inclusive test
+//!   draws and the top-left rule may skip) still gets a fragment for the exact test to keep.
+//! - Depth: every fragment writes `t * 2^-40` as its depth. The scaling is exact, so the
+//!   depth test (`Less`, objects drawn in scene order) picks the nearest hit exactly as
+//!   `Scene::intersect` does (strictly nearer wins, ties keep the earlier object).
+//! - Shading (`shaders/render.wgsl`): the primary ray rebuilt from the fragment position
+//!   (`Camera::ray`'s arithmetic, with the camera frame computed by glam here), two-sided
+//!   normal, micro-relief (`bump.rs` ported, wrapping u32 hash included), albedo texture
+//!   (linear texels uploaded as `Rgba32Float` and filtered by `texture.rs`'s bilinear rule with
+//!   `textureLoad`),
+//!   sphere uvs with `atan2`/`asin` written out (WGSL's built-ins are too loose: lavapipe's
+//!   moved texels by 6e-4), ambient, and per light `li base cos/pi + li ks brdf(wi, wo) cos`
+//!   in the local frame of glam's `any_orthonormal_pair`, accumulated in the CPU's order.
+//! - Shadows (`scene.shadows`, the CPU's rule and arithmetic): every object goes up once
+//!   more, for the shadow rays (`Occluders`): spheres and planes as records, each mesh as its
+//!   CPU BVH (`TriMesh::bvh`, nodes flattened into one array with rebased indices) and its
+//!   triangles' corners in the BVH's leaf order. Per light the fragment shader casts the CPU's
+//!   shadow ray (`Scene::shadowed`: origin offset along the unbumped normal by
+//!   `SHADOW_EPS (1 + max |p|)`, no ray where only the bumped normal faces the light, a point
+//!   light's ray stopping short of it) and tests it like `Scene::occluded`: the sphere's and
+//!   plane's formulas, and for meshes the CPU's slab test, 64-entry stack (children skipped
+//!   when full, as on the CPU) and Moller-Trumbore test, ending at the first hit. Before its
+//!   first hit the CPU's nearest-hit traversal culls the same nodes with the same `t_max`, so
+//!   any-hit gives the same answer; glam's NaN behaviour of `min`/`max` in the slab test (an
+//!   axis-parallel ray, e.g. a light straight above) is written out. The f32 constants
+//!   (`SHADOW_EPS`, `1 - 1e-5`, `f32::MAX` standing for the infinite reach of a directional
+//!   light: the same decisions under `t < t_max`) come from the CPU in the frame uniform, so no
+//!   WGSL literal rounds differently. Memory: 36 bytes per triangle and 32 per node, checked
+//!   against the device's storage binding limit like the other mesh buffers (128 MiB by
+//!   default: about 3.5 million triangles); a larger mesh is refused with the sizes and the
+//!   hint `--shadows off` (no such buffers then).
+//! - Large images are cut into tiles of at most 2048 x 2048 samples (and at most the device's
+//!   largest texture side), whole pixels each, so the image size is only limited by
+//!   `film::check_size`, like the CPU's.
+//!
+//! # Why rasterise
+//!
+//! Primary visibility is what rasterisers do; only the shadow rays need the scene's BVH on the
+//! GPU. With the ray-triangle test in the fragment shader the
+//! rasteriser adds no interpolation error of its own: it only chooses the triangle. The
+//! shading is where models differ, and that is one fragment per sample.
+//!
+//! # The parity rule
+//!
+//! Every shader function is the twin of the CPU code it names, with the same arrangement of f32
+//! operations. GPU and CPU renders may still differ by what WGSL lets a GPU do differently
+//! (fused multiply-adds; division and `sqrt` within a few ulp), by the model functions' own
+//! differences (`tests/parity.rs`), and, on mesh silhouettes, where a sample lies within
+//! rounding of an edge (measured on lavapipe: about 1 sample in 300,000 of a face render),
+//! and likewise where a shadow ray passes within rounding of an occluder's edge (a shadow's
+//! edge: lit on one side, in shadow on the other).
+//! `tests/render.rs` holds GPU renders of the sphere and the face mesh to their CPU renders
+//! within stated tolerances: 8-bit on any adapter, and 1e-4 linear on software adapters.
+
+mod objects;
+mod passes;
+mod scene_data;
+
+use crate::context::{GpuError, validated};
+use crate::spec::Instance;
+use fastbrdf_render::film::{Film, check_size};
+use fastbrdf_render::render::Options;
+use fastbrdf_render::scene::Scene;
+use glam::Vec3;
+use objects::{Reach, upload_object};
+use passes::{Layouts, Pipelines, ScenePass};
+use scene_data::{Occluders, frame_data, lights_buffer};
+use std::collections::HashMap;
+use wgpu::util::DeviceExt;
+
+/// The shaders (see the file's header); completed by the model library and `rd_brdf`.
+pub const SHADER: &str = include_str!("../shaders/render.wgsl");
+
+/// Largest tile side, in samples: a 2048 x 2048 `Rgba32Float` tile is 64 MiB.
+pub const TILE_SAMPLES: u32 = 2048;
+
+/// The near clipping distance along the view axis for mesh triangles, below the CPU's
+/// smallest ray parameter (1e-4), so that clipping never removes a hit the CPU would find.
+const NEAR: f64 = 1e-5;
+
+const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The visibility pass's target: object index + 1 (0: none), triangle.
+const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
+
+/// Renders `scene` on the GPU: the same image as `fastbrdf_render::render::render` (within
+/// the tolerances of `tests/render.rs`), shadow rays included when `scene.shadows`, as a
+/// linear `Film`.
+///
+/// `opts.shading` is ignored (the GPU evaluates the model per sample); `scene.environment`
+/// is not rendered (the CLI refuses `--env` with `--gpu`). Errors: sizes outside
+/// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
+/// corners, or with shadows its BVH and triangles) or texture larger than the device's limits, a model that is not a BRDF instance, and GPU failures.
+pub fn render(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    opts: &Options,
+) -> Result<Film, GpuError> {
+    render_with_progress(device, queue, scene, opts, &|_, _| {})
+}
+
+/// [`render`], calling `progress(done, total)` after each tile (tiles of at most
+/// 2048 x 2048 samples, each finished on the GPU before the next is drawn), as
+/// `fastbrdf_render::render::render` does with its tiles: the CLI draws its progress bar
+/// from it.
+pub fn render_with_progress(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    opts: &Options,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Film, GpuError> {
+    check_size(opts.width, opts.height).map_err(|e| GpuError::Input(e.to_string()))?;
+    if !(1..=16).contains(&opts.spp) {
+        return Err(GpuError::Input(format!(
+            "--spp {}: must be 1 to 16 (N x N samples per pixel)",
+            opts.spp
+        )));
+    }
+    let limits = device.limits();
+    let (w, h, n) = (opts.width, opts.height, opts.spp);
+    // Tile side in whole pixels.
+    let tile_px = TILE_SAMPLES.min(limits.max_texture_dimension_2d) / n;
+    if tile_px == 0 {
+        return Err(GpuError::Input(format!(
+            "the GPU's largest texture side ({}) is smaller than {n} samples",
+            limits.max_texture_dimension_2d
+        )));
+    }
+
+    let layouts = Layouts::new(device);
+    let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
+    let mut objects = Vec::with_capacity(scene.objects.len());
+    // World length of one sample per unit of distance from the eye (see `dilate_boundaries`).
+    let (_, _, _, th) = scene.camera.frame();
+    let reach = Reach {
+        eye: scene.camera.eye,
+        sample_per_distance: 2.0 * th / (h * n) as f32,
+    };
+    for (i, obj) in scene.objects.iter().enumerate() {
+        let spec = &obj.material.specular;
+        if spec.is_coloured() {
+            return Err(GpuError::Input(format!(
+                "coloured specular ({}: a parameter given as R,G,B, e.g. --metal) is CPU-only for now: drop --gpu",
+                spec.id
+            )));
+        }
+        // The BRDF the CPU renderer shades with, its plan built once with the scene.
+        let Some(brdf) = &spec.brdf else {
+            return Err(GpuError::Input(format!(
+                "'{}' is not a model spec: the GPU renderer shades with model instances",
+                spec.id
+            )));
+        };
+        let instance = Instance::with_storage(brdf)?;
+        let key = format!("{} {:?}", instance.info.id, instance.params);
+        if !pipelines.contains_key(&key) {
+            pipelines.insert(key.clone(), Pipelines::new(device, &layouts, &instance)?);
+        }
+        objects.push(upload_object(
+            device, queue, &layouts, &limits, obj, i, &instance, key, &reach,
+        )?);
+    }
+    let lights = lights_buffer(device, scene);
+    let occluders = Occluders::new(device, &limits, scene)?;
+
+    let (tw_max, th_max) = (w.min(tile_px) * n, h.min(tile_px) * n);
+    let target = |format, label| {
+        device.create_texture(&wgpu::TextureDescriptor {
+            label: Some(label),
+            size: wgpu::Extent3d {
+                width: tw_max,
+                height: th_max,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        })
+    };
+    let color = target(COLOR_FORMAT, "fastbrdf render colour");
+    let depth = target(DEPTH_FORMAT, "fastbrdf render depth");
+    let ids = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("fastbrdf render ids"),
+        size: wgpu::Extent3d {
+            width: tw_max,
+            height: th_max,
+            depth_or_array_layers: 1,
+        },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: ID_FORMAT,
+        usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+    let ids_view = ids.create_view(&Default::default());
+    let ids_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("fastbrdf render ids"),
+        layout: &layouts.ids,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::TextureView(&ids_view),
+        }],
+    });
+    let (color_view, depth_view) = (
+        color.create_view(&Default::default()),
+        depth.create_view(&Default::default()),
+    );
+    let row_bytes = (tw_max * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("fastbrdf render readback"),
+        size: u64::from(row_bytes) * u64::from(th_max),
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    });
+
+    let mut film = Film::try_new(w, h).map_err(|e| GpuError::Input(e.to_string()))?;
+    let inv = 1.0 / (n * n) as f32;
+    let tiles = (w.div_ceil(tile_px) * h.div_ceil(tile_px)) as usize;
+    let mut done = 0;
+    progress(done, tiles);
+    for py0 in (0..h).step_by(tile_px as usize) {
+        for px0 in (0..w).step_by(tile_px as usize) {
+            let (pw, ph) = (tile_px.min(w - px0), tile_px.min(h - py0));
+            let tile = Tile {
+                x0: px0 * n,
+                y0: py0 * n,
+                w: pw * n,
+                h: ph * n,
+            };
+            let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("fastbrdf render frame"),
+                contents: bytemuck::cast_slice(&frame_data(scene, opts, &tile)),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let frame_bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("fastbrdf render frame"),
+                layout: &layouts.frame,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: frame.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: lights.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: occluders.objects.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: occluders.nodes.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: occluders.triangles.as_entire_binding(),
+                    },
+                ],
+            });
+            validated(device, "the GPU render pass", || {
+                let mut enc = device.create_command_encoder(&Default::default());
+                // Visibility: per sample the nearest hit's object and triangle (each fragment
+                // only intersects its primary ray), so that the shading pass below shades one
+                // fragment per sample however many surfaces overlap there: shading every
+                // fragment that passed the depth test so far (it writes its depth, so the test
+                // comes after the shader) cost a shadow ray per overlapping layer, thousands
+                // per sample on a mesh of stacked copies.
+                let bg = scene.background;
+                let passes = [
+                    // The visibility pass: ids into `ids_view`.
+                    ScenePass {
+                        label: "fastbrdf render visibility",
+                        target: &ids_view,
+                        clear: wgpu::Color::TRANSPARENT,
+                        ids: None,
+                        pick: |p: &Pipelines| (&p.analytic_id, &p.mesh_id),
+                    },
+                    // The shading pass. Scene order: with the `Less` depth test, ties keep the
+                    // earlier object (decided by the visibility pass; here only its winner
+                    // passes).
+                    ScenePass {
+                        label: "fastbrdf render",
+                        target: &color_view,
+                        clear: wgpu::Color {
+                            r: f64::from(bg.x),
+                            g: f64::from(bg.y),
+                            b: f64::from(bg.z),
+                            a: 1.0,
+                        },
+                        ids: Some(&ids_bind),
+                        pick: |p: &Pipelines| (&p.analytic, &p.mesh),
+                    },
+                ];
+                for p in &passes {
+                    p.draw(
+                        &mut enc,
+                        &depth_view,
+                        &tile,
+                        &frame_bind,
+                        &objects,
+                        &pipelines,
+                    );
+                }
+                enc.copy_texture_to_buffer(
+                    wgpu::TexelCopyTextureInfo {
+                        texture: &color,
+                        mip_level: 0,
+                        origin: wgpu::Origin3d::ZERO,
+                        aspect: wgpu::TextureAspect::All,
+                    },
+                    wgpu::TexelCopyBufferInfo {
+                        buffer: &readback,
+                        layout: wgpu::TexelCopyBufferLayout {
+                            offset: 0,
+                            bytes_per_row: Some(row_bytes),
+                            rows_per_image: None,
+                        },
+                    },
+                    wgpu::Extent3d {
+                        width: tile.w,
+                        height: tile.h,
+                        depth_or_array_layers: 1,
+                    },
+                );
+                queue.submit([enc.finish()]);
+            })?;
+            crate::compute::map_read(device, &readback, |bytes| {
+                let texels: &[f32] = bytemuck::cast_slice(bytes);
+                let stride = (row_bytes / 4) as usize;
+                for py in 0..ph {
+                    for px in 0..pw {
+                        // The CPU's order: samples row by row within the pixel, then scaled.
+                        let mut sum = Vec3::ZERO;
+                        for sy in 0..n {
+                            for sx in 0..n {
+                                let (x, y) = ((px * n + sx) as usize, (py * n + sy) as usize);
+                                let t = &texels[y * stride + 4 * x..][..3];
+                                sum += Vec3::new(t[0], t[1], t[2]);
+                            }
+                        }
+                        sum *= inv;
+                        film.pixels[((py0 + py) * w + px0 + px) as usize] = sum;
+                    }
+                }
+            })?;
+            done += 1;
+            progress(done, tiles);
+        }
+    }
+    Ok(film)
+}
+
+/// One tile of the sample grid: first sample column and row, size in samples.
+struct Tile {
+    x0: u32,
+    y0: u32,
+    w: u32,
+    h: u32,
+}

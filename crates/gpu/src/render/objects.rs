@@ -1,0 +1,316 @@
+//! One scene object on the GPU: its uniform, albedo texture, mesh buffers (corners dilated at
+//! boundary edges for the rasteriser) and model coefficients, bound together.
+
+use super::passes::Layouts;
+use super::scene_data::{check_binding, storage};
+use crate::context::GpuError;
+use crate::spec::Instance;
+use fastbrdf_render::scene::{Object, Shape};
+use fastbrdf_render::texture::Texture;
+use glam::{Vec2, Vec3};
+use std::collections::HashMap;
+use wgpu::util::DeviceExt;
+
+/// What one object needs on the GPU.
+pub(super) struct GpuObject {
+    pub(super) bind: wgpu::BindGroup,
+    /// The key of its model's pipelines.
+    pub(super) model: String,
+    /// Mesh corners (three per triangle) and their count; none for spheres and planes.
+    pub(super) corners: Option<(wgpu::Buffer, u32)>,
+}
+
+/// The object uniform, its texture, mesh buffers and model coefficients, bound together.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn upload_object(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    layouts: &Layouts,
+    limits: &wgpu::Limits,
+    obj: &Object,
+    index: usize,
+    instance: &Instance,
+    model: String,
+    reach: &Reach,
+) -> Result<GpuObject, GpuError> {
+    let m = &obj.material;
+    let zero4 = [0.0f32; 4];
+    let (mut a, mut normal, mut tu, mut tv) = (zero4, zero4, zero4, zero4);
+    let mut vertices: Vec<f32> = Vec::new();
+    let mut triangles: Vec<u32> = Vec::new();
+    let mut corners = None;
+    let mut has_uvs = 0;
+    let kind = match &obj.shape {
+        Shape::Sphere(s) => {
+            a = [s.center.x, s.center.y, s.center.z, s.radius];
+            0
+        }
+        Shape::Plane(p) => {
+            let (t, b) = p.normal.any_orthonormal_pair();
+            a = [p.point.x, p.point.y, p.point.z, 0.0];
+            normal = [p.normal.x, p.normal.y, p.normal.z, 0.0];
+            tu = [t.x, t.y, t.z, 0.0];
+            tv = [b.x, b.y, b.z, 0.0];
+            1
+        }
+        Shape::Mesh(mesh) => {
+            let nv = mesh.positions.len();
+            if mesh.normals.len() != nv || !(mesh.uvs.is_empty() || mesh.uvs.len() == nv) {
+                return Err(GpuError::Input(format!(
+                    "object {index}: the mesh has {nv} positions, {} normals and {} uvs \
+                     (normals must match the positions; uvs too, or be absent)",
+                    mesh.normals.len(),
+                    mesh.uvs.len()
+                )));
+            }
+            if let Some(bad) = mesh.triangles.iter().flatten().find(|&&i| i as usize >= nv) {
+                return Err(GpuError::Input(format!(
+                    "object {index}: triangle vertex index {bad} is out of range ({nv} vertices)"
+                )));
+            }
+            has_uvs = u32::from(!mesh.uvs.is_empty());
+            vertices.reserve(8 * nv);
+            for i in 0..nv {
+                let (p, nn) = (mesh.positions[i], mesh.normals[i]);
+                let uv = mesh.uvs.get(i).copied().unwrap_or(Vec2::ZERO);
+                vertices.extend([p.x, p.y, p.z, nn.x, nn.y, nn.z, uv.x, uv.y]);
+            }
+            triangles = with_boundary_edges(&mesh.positions, &mesh.triangles);
+            let count = u32::try_from(3 * mesh.triangles.len())
+                .map_err(|_| GpuError::Input(format!("object {index}: too many triangles")))?;
+            let pos = dilate_boundaries(&mesh.positions, &triangles, reach);
+            check_binding(limits, vertices.len() * 4, "the mesh's vertices")?;
+            check_binding(limits, pos.len() * 4, "the mesh's triangle corners")?;
+            let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("fastbrdf render corners"),
+                contents: bytemuck::cast_slice(&pos),
+                usage: wgpu::BufferUsages::VERTEX,
+            });
+            corners = Some((buf, count));
+            2
+        }
+    };
+    let (tex_w, tex_h, texels) = match &m.texture {
+        Some(t) => {
+            let max = limits.max_texture_dimension_2d;
+            if t.width > max || t.height > max {
+                return Err(GpuError::Input(format!(
+                    "the texture is {}x{}, larger than the GPU's largest texture side ({max})",
+                    t.width, t.height
+                )));
+            }
+            (t.width, t.height, linear_texels(t))
+        }
+        None => (1, 1, vec![0.0; 4]),
+    };
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("fastbrdf render albedo"),
+            size: wgpu::Extent3d {
+                width: tex_w,
+                height: tex_h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(&texels),
+    );
+    let (bump_scale, bump_depth) = m.bump.map_or((0.0, 0.0), |b| (b.scale, b.depth));
+    let mut uniform: Vec<u32> = Vec::with_capacity(36);
+    for v in [
+        a,
+        normal,
+        tu,
+        tv,
+        [m.albedo.x, m.albedo.y, m.albedo.z, m.kd],
+        [m.ks, bump_scale, bump_depth, 0.0],
+        [tex_w as f32, tex_h as f32, 0.0, 0.0],
+    ] {
+        uniform.extend(v.map(f32::to_bits));
+    }
+    uniform.extend([
+        kind,
+        u32::from(m.texture.is_some()),
+        u32::from(m.bump.is_some()),
+        has_uvs,
+    ]);
+    // The object's id in the visibility pass: its index plus one (0 is no hit).
+    let id = u32::try_from(index + 1)
+        .map_err(|_| GpuError::Input(format!("object {index}: too many objects")))?;
+    uniform.extend([tex_w, tex_h, id, 0]);
+    let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("fastbrdf render object"),
+        contents: bytemuck::cast_slice(&uniform),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
+    let view = texture.create_view(&Default::default());
+    let vertices = storage(device, "fastbrdf render vertices", &vertices);
+    let triangles = storage(device, "fastbrdf render triangles", &triangles);
+    let coefs = storage(device, "fastbrdf render coefficients", &instance.coefs);
+    let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("fastbrdf render object"),
+        layout: &layouts.object,
+        entries: &[
+            wgpu::BindGroupEntry {
+                binding: 0,
+                resource: uniform.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 1,
+                resource: wgpu::BindingResource::TextureView(&view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: vertices.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: triangles.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: 4,
+                resource: coefs.as_entire_binding(),
+            },
+        ],
+    });
+    Ok(GpuObject {
+        bind,
+        model,
+        corners,
+    })
+}
+
+/// Where the camera is and how long one sample is at unit distance from it (world units).
+pub(super) struct Reach {
+    pub(super) eye: Vec3,
+    pub(super) sample_per_distance: f32,
+}
+
+/// The triangle corners the rasteriser draws (three per triangle, world positions), with every
+/// boundary edge pushed outward in its triangle's plane by a quarter of a sample.
+///
+/// Why: a sample exactly on a boundary edge (an axis-aligned triangle with corners on the
+/// sample grid) is a hit for the CPU's inclusive ray-triangle test, but the rasteriser's
+/// top-left rule may give no fragment there, and the GPU showed the background (up to 188/255
+/// at 1 sample per pixel). Dilated, the rasteriser proposes those samples too; the fragment
+/// shader's exact test (`rd_triangle`) still discards every sample outside a boundary edge, so
+/// only the CPU's hits are drawn. Shared edges are not moved: across them the neighbour covers
+/// the sample, as before. Each corner moves to the meeting point of its two (shifted or not)
+/// edge lines, at most 8 shifts away (a needle's corner is not pushed to infinity).
+fn dilate_boundaries(positions: &[Vec3], triangles: &[u32], reach: &Reach) -> Vec<f32> {
+    let mut out = Vec::with_capacity(9 * triangles.len() / 4);
+    for t in triangles.chunks_exact(4) {
+        let p = [0, 1, 2].map(|k| positions[t[k] as usize]);
+        let mask = t[3];
+        let normal = (p[1] - p[0]).cross(p[2] - p[0]);
+        let area2 = normal.length_squared();
+        let corners = if mask == 0 || area2.is_nan() || area2 <= 0.0 {
+            p
+        } else {
+            // Edge k runs from p[k] to p[k + 1]; bit 1 << k marks it as a boundary edge.
+            let far = p
+                .iter()
+                .map(|q| q.distance(reach.eye))
+                .fold(0.0f32, f32::max);
+            let shift = 0.25 * reach.sample_per_distance * far;
+            let edge = |k: usize| {
+                let (a, b, c) = (p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
+                let mut o = (b - a).cross(normal).normalize_or_zero();
+                if o.dot(c - a) > 0.0 {
+                    o = -o;
+                }
+                let s = if mask & (1 << k) != 0 { shift } else { 0.0 };
+                (o, s)
+            };
+            let e = [edge(0), edge(1), edge(2)];
+            [0, 1, 2].map(|j| {
+                // Corner j joins edge j - 1 (ending at p[j]) and edge j (starting there).
+                let ((o1, s1), (o2, s2)) = (e[(j + 2) % 3], e[j]);
+                let c = o1.dot(o2);
+                let det = 1.0 - c * c;
+                let d = if det > 1e-6 {
+                    o1 * ((s1 - c * s2) / det) + o2 * ((s2 - c * s1) / det)
+                } else {
+                    o1 * s1 + o2 * s2
+                };
+                let cap = 8.0 * shift;
+                let d = if d.length() > cap {
+                    d * (cap / d.length())
+                } else {
+                    d
+                };
+                if d.is_finite() { p[j] + d } else { p[j] }
+            })
+        };
+        out.extend(corners.iter().flat_map(|q| q.to_array()));
+    }
+    out
+}
+
+/// The triangles as `[a, b, c, mask]`, where the mask marks the edges no other triangle
+/// shares (1: a-b, 2: b-c, 4: c-a). Edges are compared by their end points' positions, so
+/// vertices duplicated at texture seams still join.
+fn with_boundary_edges(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<u32> {
+    let key = |i: u32, j: u32| {
+        let (p, q) = (
+            positions[i as usize].to_array().map(f32::to_bits),
+            positions[j as usize].to_array().map(f32::to_bits),
+        );
+        if p <= q { (p, q) } else { (q, p) }
+    };
+    let mut count: HashMap<([u32; 3], [u32; 3]), u32> = HashMap::new();
+    for &[a, b, c] in triangles {
+        for (i, j) in [(a, b), (b, c), (c, a)] {
+            *count.entry(key(i, j)).or_default() += 1;
+        }
+    }
+    let mut out = Vec::with_capacity(4 * triangles.len());
+    for &[a, b, c] in triangles {
+        let mut mask = 0;
+        for (bit, (i, j)) in [(1, (a, b)), (2, (b, c)), (4, (c, a))] {
+            if count[&key(i, j)] == 1 {
+                mask |= bit;
+            }
+        }
+        out.extend([a, b, c, mask]);
+    }
+    out
+}
+
+/// `t`'s linear texels as RGBA rows, top row first (the CPU's storage order).
+fn linear_texels(t: &Texture) -> Vec<f32> {
+    t.texels()
+        .iter()
+        .flat_map(|c| [c.x, c.y, c.z, 1.0])
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Texels go up in the CPU's order, as RGBA.
+    #[test]
+    fn texels_are_uploaded_in_order() {
+        let texels: Vec<Vec3> = (0..6).map(|i| Vec3::new(i as f32, 0.5, 0.25)).collect();
+        let got = linear_texels(&Texture::from_linear(3, 2, texels));
+        assert_eq!(&got[..8], &[0.0, 0.5, 0.25, 1.0, 1.0, 0.5, 0.25, 1.0]);
+        assert_eq!(got.len(), 24);
+    }
+
+    /// Boundary edges: a quad of two triangles has four, its diagonal is shared.
+    #[test]
+    fn boundary_edges_of_a_quad() {
+        let p = vec![Vec3::ZERO, Vec3::X, Vec3::new(1.0, 1.0, 0.0), Vec3::Y];
+        let t = with_boundary_edges(&p, &[[0, 1, 2], [0, 2, 3]]);
+        // a-b and b-c of the first, b-c and c-a of the second; c-a / a-b (0-2) shared.
+        assert_eq!(t, vec![0, 1, 2, 1 | 2, 0, 2, 3, 2 | 4]);
+    }
+}

@@ -1,0 +1,258 @@
+//! The render pipelines of one model (visibility and shading, for analytic shapes and
+//! meshes), the bind group layouts they share, and one pass over the scene's objects.
+
+use super::objects::GpuObject;
+use super::{COLOR_FORMAT, DEPTH_FORMAT, ID_FORMAT, SHADER, Tile};
+use crate::context::{GpuError, validated};
+use crate::spec::Instance;
+use std::collections::HashMap;
+
+/// The pipelines of one specular model: the visibility pass (`_id`: depth and the nearest
+/// hit's object and triangle) and the shading pass (radiance of the visible hit only).
+pub(super) struct Pipelines {
+    pub(super) analytic_id: wgpu::RenderPipeline,
+    pub(super) mesh_id: wgpu::RenderPipeline,
+    pub(super) analytic: wgpu::RenderPipeline,
+    pub(super) mesh: wgpu::RenderPipeline,
+}
+
+/// One pass over the scene's objects into `target` (cleared to `clear`, depth cleared and
+/// discarded): `pick` chooses each model's analytic and mesh pipelines; `ids` (the visibility
+/// pass's result) is bound at group 2 when given.
+pub(super) struct ScenePass<'a> {
+    pub(super) label: &'static str,
+    pub(super) target: &'a wgpu::TextureView,
+    pub(super) clear: wgpu::Color,
+    pub(super) ids: Option<&'a wgpu::BindGroup>,
+    pub(super) pick: fn(&Pipelines) -> (&wgpu::RenderPipeline, &wgpu::RenderPipeline),
+}
+
+impl ScenePass<'_> {
+    pub(super) fn draw(
+        &self,
+        enc: &mut wgpu::CommandEncoder,
+        depth_view: &wgpu::TextureView,
+        tile: &Tile,
+        frame_bind: &wgpu::BindGroup,
+        objects: &[GpuObject],
+        pipelines: &HashMap<String, Pipelines>,
+    ) {
+        let mut pass = enc.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some(self.label),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: self.target,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(self.clear),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                view: depth_view,
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
+                stencil_ops: None,
+            }),
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+        pass.set_viewport(0.0, 0.0, tile.w as f32, tile.h as f32, 0.0, 1.0);
+        pass.set_scissor_rect(0, 0, tile.w, tile.h);
+        pass.set_bind_group(0, frame_bind, &[]);
+        if let Some(ids) = self.ids {
+            pass.set_bind_group(2, ids, &[]);
+        }
+        for o in objects {
+            let (analytic, mesh) = (self.pick)(&pipelines[&o.model]);
+            pass.set_bind_group(1, &o.bind, &[]);
+            match &o.corners {
+                None => {
+                    pass.set_pipeline(analytic);
+                    pass.draw(0..3, 0..1);
+                }
+                Some((buf, count)) => {
+                    pass.set_pipeline(mesh);
+                    pass.set_vertex_buffer(0, buf.slice(..));
+                    pass.draw(0..*count, 0..1);
+                }
+            }
+        }
+    }
+}
+
+/// The bind group layouts shared by every pipeline.
+pub(super) struct Layouts {
+    pub(super) frame: wgpu::BindGroupLayout,
+    pub(super) object: wgpu::BindGroupLayout,
+    /// The visibility pass's ids, read by the shading pass.
+    pub(super) ids: wgpu::BindGroupLayout,
+    /// The shading pass: frame, object, ids.
+    pipeline: wgpu::PipelineLayout,
+    /// The visibility pass: frame, object.
+    visibility: wgpu::PipelineLayout,
+}
+
+impl Layouts {
+    pub(super) fn new(device: &wgpu::Device) -> Self {
+        let entry = |binding, visibility, ty| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility,
+            ty,
+            count: None,
+        };
+        let uniform = wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Uniform,
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let storage = wgpu::BindingType::Buffer {
+            ty: wgpu::BufferBindingType::Storage { read_only: true },
+            has_dynamic_offset: false,
+            min_binding_size: None,
+        };
+        let fragment = wgpu::ShaderStages::FRAGMENT;
+        let frame = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("fastbrdf render frame"),
+            entries: &[
+                entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT, uniform),
+                entry(1, fragment, storage),
+                entry(2, fragment, storage),
+                entry(3, fragment, storage),
+                entry(4, fragment, storage),
+            ],
+        });
+        let object = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("fastbrdf render object"),
+            entries: &[
+                entry(0, fragment, uniform),
+                entry(
+                    1,
+                    fragment,
+                    wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                ),
+                entry(2, fragment, storage),
+                entry(3, fragment, storage),
+                entry(4, fragment, storage),
+            ],
+        });
+        let ids = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("fastbrdf render ids"),
+            entries: &[entry(
+                0,
+                fragment,
+                wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Uint,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
+                },
+            )],
+        });
+        let pipeline = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("fastbrdf render"),
+            bind_group_layouts: &[Some(&frame), Some(&object), Some(&ids)],
+            immediate_size: 0,
+        });
+        let visibility = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("fastbrdf render visibility"),
+            bind_group_layouts: &[Some(&frame), Some(&object)],
+            immediate_size: 0,
+        });
+        Self {
+            frame,
+            object,
+            ids,
+            pipeline,
+            visibility,
+        }
+    }
+}
+
+impl Pipelines {
+    /// Compiles the render shader with the model `instance` (a BRDF) as `rd_brdf`.
+    pub(super) fn new(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        instance: &Instance,
+    ) -> Result<Self, GpuError> {
+        if instance.info.kind != fastbrdf::Kind::Brdf {
+            return Err(GpuError::Input(format!(
+                "'{}' is not a BRDF: the renderer shades with BRDF instances",
+                instance.info.id
+            )));
+        }
+        let glue = format!(
+            "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> f32 {{\n    return {}(wi, wo);\n}}\n",
+            instance.function
+        );
+        let src = format!("{}\n{SHADER}\n{glue}", instance.module_source());
+        let what = format!("render shader of {}", instance.info.id);
+        validated(device, &what, || {
+            let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(&what),
+                source: wgpu::ShaderSource::Wgsl(src.into()),
+            });
+            let pipeline = |vs: &str, fs: &str, buffers: &[Option<wgpu::VertexBufferLayout>]| {
+                let visibility = fs.ends_with("_id");
+                device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                    label: Some(&what),
+                    layout: Some(if visibility {
+                        &layouts.visibility
+                    } else {
+                        &layouts.pipeline
+                    }),
+                    vertex: wgpu::VertexState {
+                        module: &module,
+                        entry_point: Some(vs),
+                        compilation_options: Default::default(),
+                        buffers,
+                    },
+                    primitive: wgpu::PrimitiveState {
+                        topology: wgpu::PrimitiveTopology::TriangleList,
+                        // Two-sided, like the CPU's ray tests.
+                        cull_mode: None,
+                        ..Default::default()
+                    },
+                    depth_stencil: Some(wgpu::DepthStencilState {
+                        format: DEPTH_FORMAT,
+                        depth_write_enabled: Some(true),
+                        depth_compare: Some(wgpu::CompareFunction::Less),
+                        stencil: Default::default(),
+                        bias: Default::default(),
+                    }),
+                    multisample: Default::default(),
+                    fragment: Some(wgpu::FragmentState {
+                        module: &module,
+                        entry_point: Some(fs),
+                        compilation_options: Default::default(),
+                        targets: &[Some(wgpu::ColorTargetState {
+                            format: if visibility { ID_FORMAT } else { COLOR_FORMAT },
+                            blend: None,
+                            write_mask: wgpu::ColorWrites::ALL,
+                        })],
+                    }),
+                    multiview_mask: None,
+                    cache: None,
+                })
+            };
+            let corners = wgpu::VertexBufferLayout {
+                array_stride: 12,
+                step_mode: wgpu::VertexStepMode::Vertex,
+                attributes: &wgpu::vertex_attr_array![0 => Float32x3],
+            };
+            Self {
+                analytic_id: pipeline("rd_vs_full", "rd_fs_analytic_id", &[]),
+                mesh_id: pipeline("rd_vs_mesh", "rd_fs_mesh_id", &[Some(corners.clone())]),
+                analytic: pipeline("rd_vs_full", "rd_fs_analytic", &[]),
+                mesh: pipeline("rd_vs_mesh", "rd_fs_mesh", &[Some(corners)]),
+            }
+        })
+    }
+}
