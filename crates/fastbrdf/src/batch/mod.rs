@@ -19,19 +19,26 @@
 //! Standalone shadowing terms take several cosines: no kernel (an error). Cook-Torrance with
 //! the exact Smith term calls libm's `erfc` per element: `Kernel::simd()` is false and
 //! `Kernel::isa()` is `Isa::Scalar` for it.
+//!
+//! Cook-Torrance (`cook_torrance`): a fused kernel per (D, G, F) only for the combinations of
+//! its rule (each D with its own vectorised Smith terms, any F; the D-free shadowing terms
+//! with `f` = `none` or `schlick`); the others run a generic path of one vectorised pass per
+//! part, with the same values (`Kernel::specialised` says which), so a new part adds kernels
+//! linearly, not one per combination of the others.
 
 /// The vectorisable elementary functions (moved to `crate::math::fast`; kept here by name).
 pub use crate::math::fast as math;
+
+mod cook_torrance;
 
 use crate::brdf::cook_torrance::CookTorrance;
 use crate::brdf::phong::LobeBrdf;
 use crate::error::{Error, Result};
 use crate::math::{Fast, FastFma, Math};
-use crate::microfacet::ms::Ms;
 use crate::model::{Kind, PipeOps};
 use crate::plan::{
-    BrdfForm, BrdfPlan, DistForm, EnvForm, FresnelForm, LobeForm, Plan, ShadowForm, with_brdf,
-    with_dist, with_env, with_fresnel, with_lobe, with_shadow,
+    BrdfForm, BrdfPlan, DistForm, EnvForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist,
+    with_env, with_fresnel, with_lobe,
 };
 use crate::registry;
 use rayon::prelude::*;
@@ -392,6 +399,10 @@ pub trait Imp: Send + Sync {
     fn pipe_ops(&self) -> Option<PipeOps> {
         None
     }
+    /// Whether it is monomorphised for its model's concrete families (`Kernel::specialised`).
+    fn specialised(&self) -> bool {
+        true
+    }
 }
 
 struct Map1<O>(O);
@@ -447,30 +458,11 @@ pub fn brdf_kernel<B: BrdfForm>(b: B) -> Box<dyn Imp> {
     })
 }
 
-/// Cook-Torrance without energy compensation, on the pair set-up of the scalar `Pair::new`:
-/// `CookTorrance::single_scattering`, so the loop holds no branch on `ms`.
-struct CtOp<D, G, F>(CookTorrance<D, G, F>);
-impl<D: DistForm, G: ShadowForm, F: FresnelForm> Op6 for CtOp<D, G, F> {
-    #[inline(always)]
-    fn f<M: Math<f32>>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, p) = crate::vec3::pair_setup(wi, wo);
-        let v = self.0.single_scattering::<f32, M>(&p);
-        if valid { v } else { 0.0 }
-    }
-}
-
-/// Cook-Torrance with its D, G and F as concrete families: one kernel per combination. With
-/// an energy compensation (only GGX with the correlated Smith term; its table reads make it a
-/// scalar fallback anyway) the plan's own parts run, matched per element: one instantiation,
-/// not one per combination.
+/// Cook-Torrance's kernel: specialised (its D, G and F as concrete families, one fused loop)
+/// for the combinations of the rule in `batch::cook_torrance`'s header, the generic path (a
+/// vectorised pass per part) for the others.
 pub fn cook_torrance_kernel(ct: &CookTorrance) -> Box<dyn Imp> {
-    if ct.ms != Ms::None {
-        return brdf_kernel(*ct);
-    }
-    with_dist!(&ct.d, d => with_shadow!(&ct.g, g => with_fresnel!(&ct.f, f => {
-        let ct = CookTorrance { d: *d, g: *g, f: *f, k: ct.k, ms: ct.ms, aniso: ct.aniso };
-        Box::new(Map6 { simd: ct.simd(), op: CtOp(ct) }) as Box<dyn Imp>
-    })))
+    cook_torrance::kernel(ct, CtPath::Rule)
 }
 
 /// Phong or Blinn-Phong with its lobe as a concrete family.
@@ -479,14 +471,16 @@ pub fn lobe_brdf_kernel(b: &LobeBrdf) -> Box<dyn Imp> {
 }
 
 /// The kernel of a plan; `None` for shadowing terms (several cosines per element).
-fn kernel_of(plan: &Plan) -> Option<Box<dyn Imp>> {
+/// `ct` chooses Cook-Torrance's path.
+fn kernel_of(plan: &Plan, ct: CtPath) -> Option<Box<dyn Imp>> {
     Some(match plan {
         Plan::Lobe(l) => with_lobe!(l, x => Box::new(Map1(LobeOp(*x))) as Box<dyn Imp>),
         Plan::Distribution(d) => with_dist!(d, x => Box::new(Map1(DistOp(*x))) as Box<dyn Imp>),
         Plan::Fresnel(f) => with_fresnel!(f, x => Box::new(Map1(FresnelOp(*x))) as Box<dyn Imp>),
-        // Composites are instantiated with their parts' concrete families (a composite not
-        // listed here would run with its parts' plans, matched per element: correct, slower).
-        Plan::Brdf(BrdfPlan::CookTorrance(ct)) => cook_torrance_kernel(ct),
+        // Composites are instantiated with their parts' concrete families (Cook-Torrance
+        // where its rule says, else its generic path; a composite not listed here would run
+        // with its parts' plans, matched per element: correct, slower).
+        Plan::Brdf(BrdfPlan::CookTorrance(c)) => cook_torrance::kernel(c, ct),
         Plan::Brdf(BrdfPlan::LobeBrdf(b)) => lobe_brdf_kernel(b),
         Plan::Brdf(b) => with_brdf!(b, x => brdf_kernel(*x)),
         Plan::Env(e) => {
@@ -495,6 +489,18 @@ fn kernel_of(plan: &Plan) -> Option<Box<dyn Imp>> {
         }
         Plan::Shadowing(_) => return None,
     })
+}
+
+/// How a Cook-Torrance kernel is built ([`Kernel::from_plan_path`]; other models ignore it).
+#[doc(hidden)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CtPath {
+    /// The rule of `batch::cook_torrance`: specialised where it says, else generic.
+    Rule,
+    /// Always the generic path (a vectorised pass per part).
+    Generic,
+    /// The plan's parts matched per element (what runs with an energy compensation).
+    PerElement,
 }
 
 /// The least estimated single-thread time of the remaining work for which `Kernel::eval_par`
@@ -511,6 +517,8 @@ pub struct Kernel {
     ftz: bool,
     /// Whether a SIMD kernel exists (`imp.simd()`, read once).
     simd: bool,
+    /// Whether it is monomorphised for the model's concrete families (`imp.specialised()`).
+    specialised: bool,
     /// The instruction set `eval` and `eval_par` run (`Isa::best()`, or the baseline loop for
     /// a scalar fallback, which ignores it), decided once: a call then does no detection, no
     /// check of a caller's choice and no virtual call before the kernel's own.
@@ -534,7 +542,14 @@ impl Kernel {
 
     /// The kernel of a plan (`id` names it in messages).
     pub fn from_plan(id: &'static str, plan: &Plan) -> Result<Self> {
-        let imp = kernel_of(plan).ok_or_else(|| Error::WrongKind {
+        Self::from_plan_path(id, plan, CtPath::Rule)
+    }
+
+    /// As [`Self::from_plan`], with Cook-Torrance's path chosen (tests hold the paths equal
+    /// bit for bit, `examples/ct_generic.rs` times them).
+    #[doc(hidden)]
+    pub fn from_plan_path(id: &'static str, plan: &Plan, ct: CtPath) -> Result<Self> {
+        let imp = kernel_of(plan, ct).ok_or_else(|| Error::WrongKind {
             model: id.into(),
             expected: "lobe, distribution, fresnel, brdf or env".into(),
             found: "shadowing".into(),
@@ -545,6 +560,7 @@ impl Kernel {
             kind: plan.kind(),
             ftz: imp.ftz(),
             simd,
+            specialised: imp.specialised(),
             run_isa: if simd { Isa::best() } else { Isa::Sse2 },
             imp,
         })
@@ -564,6 +580,14 @@ impl Kernel {
     #[inline]
     pub fn simd(&self) -> bool {
         self.simd
+    }
+
+    /// Whether the kernel is monomorphised for its model's concrete families: every kernel
+    /// but Cook-Torrance's outside the rule of `batch::cook_torrance` (its generic path, one
+    /// vectorised pass per part, the same values) and with an energy compensation (the
+    /// plan's parts matched per element).
+    pub fn specialised(&self) -> bool {
+        self.specialised
     }
 
     /// Whether its calls run with flush-to-zero set (the denormal policy): results below
