@@ -7,6 +7,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 mod commands;
+mod model_args;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -56,6 +57,16 @@ impl From<fastbrdf_io::IoError> for CliError {
 impl From<fastbrdf::Error> for CliError {
     fn from(e: fastbrdf::Error) -> Self {
         Self::input(e.to_string())
+    }
+}
+
+/// A renderer's bad input is exit code 2; an output it could not write is 3.
+impl From<fastbrdf_render::RenderError> for CliError {
+    fn from(e: fastbrdf_render::RenderError) -> Self {
+        match e {
+            fastbrdf_render::RenderError::Output { .. } => CliError::io(e.to_string()),
+            _ => CliError::input(e.to_string()),
+        }
     }
 }
 
@@ -119,11 +130,11 @@ enum Command {
     /// Re-measure every documented bound on this machine (error vs reference, f32 vs f64).
     Check(commands::check::Args),
     /// Max absolute, max relative and RMS error of a model against a reference, per n or m.
-    Errors(commands::analysis::ErrorsArgs),
+    Errors(commands::errors::Args),
     /// Int(n) and coef(n) = 1 / (2 pi Int(n)) of a lobe by quadrature, and closed-form fits.
-    Normalize(commands::analysis::NormalizeArgs),
+    Normalize(commands::normalize::Args),
     /// Directional albedo against incidence angle, with a white-furnace verdict.
-    Albedo(commands::analysis::AlbedoArgs),
+    Albedo(commands::albedo::Args),
     /// Charts as PNG and SVG: lobes, error, max-error, coef, polar, albedo.
     Plot(commands::plot::Args),
     /// Every numeric claim of the three seed papers, measured, with a verdict.
@@ -133,7 +144,7 @@ enum Command {
     /// Render a sphere or an OBJ mesh shaded by one model, to PNG or EXR.
     Render(commands::render::RenderArgs),
     /// Render several models and a reference side by side, with heat maps and RMSE/PSNR/FLIP.
-    Compare(commands::render::CompareArgs),
+    Compare(commands::compare::CompareArgs),
     /// The main job on built-in defaults: every lobe on spheres, the seeds' comparisons,
     /// plots and the reproduction table, in a folder with index.html.
     Demo(commands::demo::Args),
@@ -151,7 +162,7 @@ enum Command {
     Fit(commands::fit::FitArgs),
     /// Every lobe's error against its measured SIMD cost, with the Pareto front (table, plot);
     /// --brdf: every Cook-Torrance configuration against an exact one (BRDF and image error).
-    Pareto(commands::fit::ParetoArgs),
+    Pareto(commands::pareto::Args),
     /// One model as a shader function: WGSL, GLSL, HLSL, MSL, or a BRDF Explorer .brdf file.
     Shader(commands::shader::Args),
     /// The split-sum "DFG" look-up table (scale, bias) of GGX for image-based lighting, as EXR,
@@ -204,21 +215,21 @@ fn main() -> ExitCode {
         Command::Sample(a) => commands::sample::run_sample(&a),
         Command::Chi2(a) => commands::sample::run_chi2(&a),
         Command::Check(a) => commands::check::run(&a),
-        Command::Errors(a) => commands::analysis::errors(&a),
-        Command::Normalize(a) => commands::analysis::normalize(&a),
-        Command::Albedo(a) => commands::analysis::albedo(&a),
+        Command::Errors(a) => commands::errors::run(&a),
+        Command::Normalize(a) => commands::normalize::run(&a),
+        Command::Albedo(a) => commands::albedo::run(&a),
         Command::Plot(a) => commands::plot::run(&a),
         Command::Reproduce(a) => commands::reproduce::run(&a),
         Command::Bench(a) => commands::bench::run(&a),
         Command::Render(a) => commands::render::run_render(&a),
-        Command::Compare(a) => commands::render::run_compare(&a),
+        Command::Compare(a) => commands::compare::run_compare(&a),
         Command::Demo(a) => commands::demo::run(&a),
         Command::Materials(a) => commands::materials::run(&a),
         Command::Metals(a) => commands::metals::run(&a),
         Command::Measured(a) => commands::measured::run(&a),
         Command::FitMeasured(a) => commands::fit_measured::run(&a),
         Command::Fit(a) => commands::fit::run_fit(&a),
-        Command::Pareto(a) => commands::fit::run_pareto(&a),
+        Command::Pareto(a) => commands::pareto::run(&a),
         Command::Shader(a) => commands::shader::run(&a),
         Command::Lut(a) => commands::lut::run(&a),
         Command::View(a) => commands::view::run(&a),

@@ -1,7 +1,7 @@
 //! `fastbrdf bench`: scalar and SIMD throughput of every model, the FMA peak, and the seeds'
 //! speedup claims, in one run (fastbrdf-analysis::speed).
 
-use super::analysis::bar;
+use super::common::progress::bar;
 use crate::CliError;
 use fastbrdf_analysis::speed::{self, Report};
 use std::fmt::Write;
@@ -96,15 +96,9 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
         })
         .collect();
     let pb = bar(configs.len() as u64, "bench --gpu");
-    for (name, params) in &configs {
-        let id = speed::registry_id(name);
-        let given: Vec<(&str, &str)> = params
-            .iter()
-            .map(|(k, v)| (k.as_str(), v.as_str()))
-            .collect();
-        let kind = fastbrdf::registry::find(id)?.info.kind;
-        let input = GpuInput::from(inputs.input(kind, inputs.cos.len()));
-        let m = fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, id, &given, input, budget)?;
+    for (name, spec) in &configs {
+        let input = GpuInput::from(inputs.input(spec.kind(), inputs.cos.len()));
+        let m = fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, spec, input, budget)?;
         for (variant, v) in [
             ("gpu", m.kernel_evals_per_s),
             ("gpu+transfer", m.transfer_evals_per_s),

@@ -3,8 +3,9 @@
 //! embedded face with a procedural skin under the built-in sky), the analysis plots,
 //! the reproduction table, and `index.html` that shows it all.
 
-use super::render::{Entry, Scores, check_compare, compare_models, render_model};
+use super::common::pictures::{Entry, Scores, check_compare, compare_models, render_model};
 use crate::CliError;
+use fastbrdf::{Given, ModelSpec};
 use fastbrdf_analysis::reproduce;
 use fastbrdf_io::OutputSet;
 use fastbrdf_render::bump::Bump;
@@ -45,8 +46,14 @@ struct Section {
     metrics: Vec<Scores>,
 }
 
-fn p(k: &str, v: &str) -> (String, String) {
-    (k.into(), v.into())
+/// Model `id` with typed values, as shading evaluates it (the demo's fixed configurations).
+fn shaded(id: &str, given: &[(&str, Given)]) -> Result<ModelSpec, CliError> {
+    Ok(ModelSpec::new(id, given)?.shaded()?)
+}
+
+/// A comparison entry: model `id` at one value of its parameter `name`.
+fn at(id: &str, name: &str, x: f64) -> Result<Entry, CliError> {
+    Ok(Entry::new(id, shaded(id, &[(name, Given::Num(x))])?))
 }
 
 fn save(set: &mut OutputSet, name: &str, rgb: &[u8], w: u32, h: u32) -> Result<String, CliError> {
@@ -118,12 +125,13 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     };
     let spec = SceneSpec::new();
     let loaded = &plain;
-    for n in ["20", "200"] {
+    for n in [20.0, 200.0] {
         let mut rows: Vec<Vec<Cell>> = vec![];
         for chunk in fastbrdf::registry::ids_of(fastbrdf::Kind::Lobe).chunks(4) {
             let mut row = vec![];
             for id in chunk {
-                let film = render_model(&spec, loaded, &opts, id, &[p("n", n)])?;
+                let model = shaded(id, &[("n", Given::Num(n))])?;
+                let film = render_model(&spec, loaded, &opts, id, &model)?;
                 row.push(Cell {
                     label: (*id).into(),
                     rgb: film.to_srgb8(1.0),
@@ -171,18 +179,18 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         });
         Ok(())
     };
-    let n = "50";
+    let n = 50.0;
     cmp(
         "Seed 001: normalised and original flog, and Schlick",
         "Against cos^n at n = 50. flog-normalized multiplies flog by the seed's coef(n) (energy conserving, so brighter than the unnormalised lobes); flog-normalized-clamped is the seed's GLSL, which clamps to 1 and loses the peak.",
         "seed001-flog.png",
         &SceneSpec::new(),
-        Entry::new("pow", vec![p("n", n)]),
+        at("pow", "n", n)?,
         vec![
-            Entry::new("flog", vec![p("n", n)]),
-            Entry::new("flog-normalized", vec![p("n", n)]),
-            Entry::new("flog-normalized-clamped", vec![p("n", n)]),
-            Entry::new("schlick", vec![p("n", n)]),
+            at("flog", "n", n)?,
+            at("flog-normalized", "n", n)?,
+            at("flog-normalized-clamped", "n", n)?,
+            at("schlick", "n", n)?,
         ],
     )?;
     cmp(
@@ -190,11 +198,11 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         "Against cos^n at n = 100: the seed's cubic (epicentre), rational (fall-off) and the piecewise cubic-rational.",
         "seed003-cubic-rational.png",
         &SceneSpec::new(),
-        Entry::new("pow", vec![p("n", "100")]),
+        at("pow", "n", 100.0)?,
         vec![
-            Entry::new("cubic-rational", vec![p("n", "100")]),
-            Entry::new("cubic", vec![p("n", "100")]),
-            Entry::new("rational", vec![p("n", "100")]),
+            at("cubic-rational", "n", 100.0)?,
+            at("cubic", "n", 100.0)?,
+            at("rational", "n", 100.0)?,
         ],
     )?;
     cmp(
@@ -202,29 +210,33 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         "Against cos^n at n = 40: the power-16 form with its textbook slope n/16 and with the minimax-tuned slope (same operations, half the maximum error), and UE4's exp2 approximation against the tuned exp2 rate (same single exp2).",
         "tuned-vs-untuned.png",
         &SceneSpec::new(),
-        Entry::new("pow", vec![p("n", "40")]),
+        at("pow", "n", 40.0)?,
         vec![
-            Entry::new("power16", vec![p("n", "40")]),
-            Entry::new("power16-tuned", vec![p("n", "40")]),
-            Entry::new("ue4-phong-approx", vec![p("n", "40")]),
-            Entry::new("sg-tuned", vec![p("n", "40")]),
+            at("power16", "n", 40.0)?,
+            at("power16-tuned", "n", 40.0)?,
+            at("ue4-phong-approx", "n", 40.0)?,
+            at("sg-tuned", "n", 40.0)?,
         ],
     )?;
     let object = "a sphere";
-    let ct = |d: &str, label: &str| {
+    let ct = |d: &str, label: &str| -> Result<Entry, CliError> {
+        let choice = |c: &str| Given::Choice(c.into());
         let mut e = Entry::new(
             "cook-torrance",
-            vec![
-                p("alpha", "0.35"),
-                p("d", d),
-                p("g", "v-cavity"),
-                p("f", "schlick"),
-                p("f0", "0.028"),
-                p("denominator", "seed-000"),
-            ],
+            shaded(
+                "cook-torrance",
+                &[
+                    ("alpha", Given::Num(0.35)),
+                    ("d", choice(d)),
+                    ("g", choice("v-cavity")),
+                    ("f", choice("schlick")),
+                    ("f0", Given::Num(0.028)),
+                    ("denominator", choice("seed-000")),
+                ],
+            )?,
         );
         e.label = format!("{label} (d={d})");
-        e
+        Ok(e)
     };
     cmp(
         "Seed 000: Cook-Torrance on skin, exact D against its one-function forms",
@@ -233,10 +245,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         ),
         "seed000-cook-torrance-skin.png",
         &skin,
-        ct("beckmann-ct", "exp D"),
+        ct("beckmann-ct", "exp D")?,
         vec![
-            ct("beckmann-power16", "D16"),
-            ct("beckmann-pow", "one-pow D"),
+            ct("beckmann-power16", "D16")?,
+            ct("beckmann-pow", "one-pow D")?,
         ],
     )?;
     cmp(
@@ -246,10 +258,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         ),
         "seed000-ward-skin.png",
         &skin,
-        Entry::new("ward", vec![p("alpha", "0.35")]),
+        at("ward", "alpha", 0.35)?,
         vec![
-            Entry::new("ward-power16", vec![p("alpha", "0.35")]),
-            Entry::new("ward-pow", vec![p("alpha", "0.35")]),
+            at("ward-power16", "alpha", 0.35)?,
+            at("ward-pow", "alpha", 0.35)?,
         ],
     )?;
     // The same comparisons on the face under the sky.
@@ -272,10 +284,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         ),
         &format!("seed000-cook-torrance-{face_file}.png"),
         &face,
-        ct("beckmann-ct", "exp D"),
+        ct("beckmann-ct", "exp D")?,
         vec![
-            ct("beckmann-power16", "D16"),
-            ct("beckmann-pow", "one-pow D"),
+            ct("beckmann-power16", "D16")?,
+            ct("beckmann-pow", "one-pow D")?,
         ],
     )?;
     cmp(
@@ -288,14 +300,14 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             ks: 0.2,
             ..face.clone()
         },
-        Entry::new("ward", vec![p("alpha", "0.35")]),
+        at("ward", "alpha", 0.35)?,
         vec![
-            Entry::new("ward-power16", vec![p("alpha", "0.35")]),
-            Entry::new("ward-pow", vec![p("alpha", "0.35")]),
+            at("ward-power16", "alpha", 0.35)?,
+            at("ward-pow", "alpha", 0.35)?,
         ],
     )?;
     // 3. Plots and the reproduction table.
-    super::plot::stage_seed_figures(&mut set, "plots")?;
+    super::common::figures::stage_seed_figures(&mut set, "plots")?;
     let report = reproduce::run(&[], &|| {})?;
     let md = reproduce::markdown(&report);
     set.write("REPRODUCTION.md", md.as_bytes())?;

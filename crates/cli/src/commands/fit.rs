@@ -1,12 +1,11 @@
-//! `fastbrdf fit` and `fastbrdf pareto`: coefficients that minimise the error over the whole
-//! lobe, and error against cost for every lobe (fastbrdf-analysis::fit).
+//! `fastbrdf fit`: coefficients that minimise the error over the whole lobe
+//! (fastbrdf-analysis::fit).
 
-use super::analysis::bar;
+use super::common::numbers::num;
+use super::common::progress::bar;
 use crate::CliError;
 use fastbrdf_analysis::fit::{self, Family, Metric};
-use fastbrdf_analysis::plot::save_scatter;
-use fastbrdf_analysis::{pareto, range};
-use std::path::PathBuf;
+use fastbrdf_analysis::range;
 
 #[derive(clap::Args)]
 #[command(
@@ -86,7 +85,7 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     if let Some(bad) = ps.iter().find(|p| !(**p >= lo && **p <= hi)) {
         return Err(CliError::input(format!(
             "--{flag}: {name} = {} is outside [{lo}, {hi}]",
-            super::analysis::num(*bad)
+            num(*bad)
         )));
     }
     let pb = bar(ps.len() as u64, "fitting");
@@ -183,113 +182,6 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
             c.worst_gain,
             c.worst_gain_at
         );
-    }
-    Ok(())
-}
-
-/// Every lobe against `pow` (the energy-normalised flog variants are left out: their scale
-/// differs from `pow` by design and the energy tests cover them).
-#[derive(clap::Args)]
-#[command(
-    after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown --out fastbrdf-out/pareto\n  \
-fastbrdf pareto --brdf --mesh face.obj\n  fastbrdf pareto --brdf --alpha 0.1,0.3,0.6 --reference d=beckmann,g=smith,f=dielectric,eta=1.5 --json\n\n\
-Output: a table on stdout (text, --json or --markdown). The plot (PNG and SVG, written both or\n\
-neither) is written only with --out; nothing is written to disk otherwise. A model whose\n\
-error or throughput is unknown has null in JSON.\n\n\
---brdf: cook-torrance configurations (D x G x F) against --reference at each --alpha: ns per\n\
-evaluation of the batch kernel (4096 direction pairs, one core, measured now) and its ratio to\n\
-the reference's; max |g - g_ref| / max g_ref and the relative L2 error (rms_rel) of\n\
-g = f cos_i cos_o over pairs of hemisphere directions (f64); mean FLIP of a sphere render (and\n\
-of --mesh) against the reference's. JSON: {reference, reference_label, alphas, grid, size, spp,\n\
-mesh, front_on, rows: [{label, d, g, f, denominator, params, alpha, reference, simd,\n\
-ns_per_eval, cost_ratio, max_rel_peak, max_at_deg: [theta_i, theta_o, phi], rms_rel, rms_abs,\n\
-flip_sphere, flip_mesh, pareto}]}."
-)]
-pub struct ParetoArgs {
-    /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1e5, max_abs_8_1e5,
-    /// max_rel_epicentre_8_1e5, pareto}]}.
-    #[arg(long, conflicts_with = "markdown")]
-    json: bool,
-    /// Print the Markdown table README shows.
-    #[arg(long)]
-    markdown: bool,
-    /// Also write the plot as PATH.png and PATH.svg (PATH without extension); no plot without it.
-    #[arg(long, value_name = "PATH")]
-    out: Option<PathBuf>,
-    /// Use this saved `fastbrdf bench --json` run for the SIMD throughput instead of measuring.
-    #[arg(long, value_name = "BENCH.json", conflicts_with = "brdf")]
-    bench: Option<PathBuf>,
-    #[command(flatten)]
-    brdf: super::pareto_brdf::BrdfArgs,
-}
-
-pub fn run_pareto(a: &ParetoArgs) -> Result<(), CliError> {
-    if a.brdf.brdf {
-        return super::pareto_brdf::run(&a.brdf, a.json, a.markdown, a.out.as_deref());
-    }
-    let saved = match &a.bench {
-        None => None,
-        Some(p) => Some(fastbrdf_analysis::speed::Report::load(p)?),
-    };
-    let pb = bar(pareto::lobes().len() as u64, "pareto");
-    let rows = pareto::rows(saved.as_ref(), &|| pb.inc(1));
-    pb.finish_and_clear();
-    if let Some(out) = &a.out {
-        let [png, svg] = save_scatter(
-            "Lobes: max |error| against cos^n (n = 8..1e5) and SIMD cost",
-            "ns per evaluation (SIMD, one core, batch 4096)",
-            "max absolute error, n = 8..1e5",
-            &pareto::front(&rows),
-            &pareto::points(&rows),
-            out,
-        )
-        .map_err(super::plot::save_error)?;
-        eprintln!("wrote {} and {}", png.display(), svg.display());
-    }
-    if a.json {
-        crate::outln!(
-            "{}",
-            serde_json::to_string_pretty(&serde_json::json!({"models": rows}))
-                .expect("serialisable")
-        );
-    } else if a.markdown {
-        crate::outln!(
-            "| model | ops m/a/d/s/t | SIMD evals/s | max abs, n 1..1e5 | max abs, n 8..1e5 | max rel epicentre, n 8..1e5 | Pareto |\n|---|---|---|---|---|---|---|"
-        );
-        for r in &rows {
-            crate::outln!(
-                "| `{}` | {} | {:.2} G | {:.4} | {:.5} | {:.5} | {} |",
-                r.model,
-                r.ops,
-                r.simd_evals_per_s / 1e9,
-                r.max_abs_1_1e5,
-                r.max_abs_8_1e5,
-                r.max_rel_epicentre_8_1e5,
-                if r.pareto { "yes" } else { "" }
-            );
-        }
-    } else {
-        crate::outln!(
-            "{:<26} {:>13} {:>12} {:>12} {:>12} {:>12}  pareto",
-            "lobe",
-            "ops m/a/d/s/t",
-            "SIMD eval/s",
-            "abs n1-1e5",
-            "abs n8-1e5",
-            "rel epi 8+"
-        );
-        for r in &rows {
-            crate::outln!(
-                "{:<26} {:>13} {:>11.2}G {:>12.5} {:>12.5} {:>12.5}  {}",
-                r.model,
-                r.ops,
-                r.simd_evals_per_s / 1e9,
-                r.max_abs_1_1e5,
-                r.max_abs_8_1e5,
-                r.max_rel_epicentre_8_1e5,
-                if r.pareto { "*" } else { "" }
-            );
-        }
     }
     Ok(())
 }

@@ -2,8 +2,10 @@
 //! fitted to a MERL file (`fastbrdf_analysis::measured_fit`), with a picture of the measured
 //! material beside the fit.
 
-use super::eval::parse_params;
-use super::render::{Entry, SceneArgs, check_out, compare_models};
+use super::common::pictures::{Entry, compare_models};
+use super::common::progress::bar;
+use super::common::scene::{SceneArgs, check_out};
+use crate::model_args::{self, ParamArgs, Use};
 use crate::{CliError, outln};
 use fastbrdf::measured::MeasuredBrdf;
 use fastbrdf_analysis::measured_fit::{self, Data, Metric, Options, Problem};
@@ -44,7 +46,8 @@ difference heat map.\n\n\
 not fitted; undetermined: the fitted quantities the data do not determine, rho_d and rho_s\n\
 for the albedos, empty when all are).\n\
 Errors: a malformed file, an unknown model, a non-BRDF or a bad --param is exit 2 naming it,\n\
-with nothing on stdout and no picture written."
+with nothing on stdout and no picture written.",
+    mut_arg("params", |a| a.help("Fix a parameter, NAME=VALUE (a choice such as f=schlick, or a number); repeat"))
 )]
 pub struct Args {
     /// The measured material: a MERL `.binary` file.
@@ -53,9 +56,8 @@ pub struct Args {
     /// The BRDF to fit (a registry id of kind brdf).
     #[arg(long)]
     model: String,
-    /// Fix a parameter, NAME=VALUE (a choice such as f=schlick, or a number); repeat.
-    #[arg(long = "param", value_name = "NAME=VALUE")]
-    params: Vec<String>,
+    #[command(flatten)]
+    params: ParamArgs,
     /// Fit a parameter that is otherwise held at its default (f90); repeat. A NAME that is
     /// fitted already or that the model with these choices does not read is refused (exit 2).
     #[arg(long = "free", value_name = "NAME")]
@@ -89,16 +91,15 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     }
     let (spec, opts) = a.scene.spec()?;
     check_out(&a.out, &["png"])?;
-    let fixed = parse_params(&a.params)?;
-    let problem = Problem::with_free(&a.model, &fixed, true, &a.free).map_err(|e| {
+    let model = fastbrdf_io::shorten(&a.model, 64);
+    let fixed = model_args::spec(&a.model, &a.params.pairs()?, None, None, Use::AsIs)
+        .map_err(|e| CliError::input(format!("--model {model}: {}", e.message)))?;
+    let problem = Problem::with_free(&fixed, true, &a.free).map_err(|e| {
         if e.starts_with("--free ") {
             // Already names the argument at fault.
             return CliError::input(e);
         }
-        CliError::input(format!(
-            "--model {}: {e}",
-            fastbrdf_io::shorten(&a.model, 64)
-        ))
+        CliError::input(format!("--model {model}: {e}"))
     })?;
     let b = MeasuredBrdf::read(&a.data)?;
     let data = Data::from_measured(&b, a.samples);
@@ -110,7 +111,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         )));
     }
     let t = std::time::Instant::now();
-    let pb = super::analysis::bar(1, "fit");
+    let pb = bar(1, "fit");
     let f = measured_fit::fit(
         &problem,
         &data,
@@ -152,7 +153,11 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 t
             }
         };
-        let mut p: Vec<String> = fixed.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let mut p: Vec<String> = fixed
+            .given()
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect();
         p.extend(
             f.problem
                 .free
@@ -218,7 +223,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         f.evaluations,
         seconds
     );
-    for (k, v) in &fixed {
+    for (k, v) in fixed.given() {
         s.push_str(&format!("  {k:<10} {v} (fixed)\n"));
     }
     for (k, v) in &f.problem.held {

@@ -1,7 +1,7 @@
 //! `fastbrdf lut`: the split-sum "DFG" look-up table (scale, bias) of an env model, as EXR,
 //! PNG or CSV (fastbrdf-analysis's `lut`).
 
-use super::analysis::bar;
+use super::common::progress::bar;
 use crate::CliError;
 use fastbrdf_analysis::lut::{self, Axis, MAX_SIZE};
 use fastbrdf_io::shorten;

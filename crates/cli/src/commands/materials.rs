@@ -1,5 +1,5 @@
 //! `fastbrdf materials`: the 86 MERL materials' published fits (Ngan, Matusik and Durand,
-//! EGSR 2005), and `--material NAME` for the commands that take model parameters.
+//! EGSR 2005). `--material NAME` is `crate::model_args`.
 
 use crate::CliError;
 use fastbrdf_analysis::materials::{self, Albedos};
@@ -106,52 +106,5 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         dom("ward", "alpha"),
     );
     crate::out!("{s}");
-    Ok(())
-}
-
-/// `explicit` parameters, followed by those `material` (when given) supplies to model `id`
-/// and that are not given explicitly. An unknown material or a supplied value outside the
-/// model's documented domain is exit code 2.
-pub fn with_material(
-    material: Option<&str>,
-    id: &str,
-    explicit: &[(String, String)],
-) -> Result<Vec<(String, String)>, CliError> {
-    let Some(name) = material else {
-        return Ok(explicit.to_vec());
-    };
-    let m = materials::find(name).map_err(CliError::input)?;
-    if fastbrdf::registry::find(id).is_ok() && materials::supplied(m, id).is_empty() {
-        return Err(CliError::input(format!(
-            "--material {name}: model '{id}' takes none of the fitted parameters (n, alpha, f0)"
-        )));
-    }
-    materials::params_with(m, id, explicit).map_err(CliError::input)
-}
-
-/// With a material: the scene's diffuse colour from the fit that goes with model `id` (its kd:
-/// the fits' Lambert term is kd / pi, as the renderer's) unless `--albedo` is given, and the
-/// diffuse weight 1 unless `--weights` is given. The specular weight is left alone: it is one
-/// number here (the fit's ks is RGB) and lobes shade unnormalised.
-pub fn diffuse(
-    spec: &mut fastbrdf_render::setup::SceneSpec,
-    scene: &super::render::SceneArgs,
-    material: Option<&str>,
-    id: &str,
-) -> Result<(), CliError> {
-    let Some(name) = material else {
-        return Ok(());
-    };
-    let m = materials::find(name).map_err(CliError::input)?;
-    let Some(fit) = materials::fit_for(m, id) else {
-        return Ok(());
-    };
-    if scene.albedo.is_none() {
-        let [r, g, b] = fit.kd.map(|x| x as f32);
-        spec.albedo = glam::Vec3::new(r, g, b);
-    }
-    if scene.weights.is_none() {
-        spec.kd = 1.0;
-    }
     Ok(())
 }

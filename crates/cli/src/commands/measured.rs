@@ -7,7 +7,9 @@
 //! columns then `value_r,value_g,value_b`. A malformed MERL file or CSV is exit code 2 naming
 //! the file (and the CSV's line and field), with nothing on stdout.
 
-use super::eval::{Lines, csv_error, csv_headers, read_input, required_columns};
+use super::common::input::{Lines, csv_error, csv_headers, read_input, required_columns};
+use super::common::pictures::render_rgb;
+use super::common::scene::{SceneArgs, check_out};
 use crate::{CliError, outln};
 use fastbrdf::measured::{self, CHANNELS, MeasuredBrdf};
 use fastbrdf_io::shorten;
@@ -63,7 +65,7 @@ struct RenderArgs {
     /// A MERL `.binary` file.
     file: PathBuf,
     #[command(flatten)]
-    scene: super::render::SceneArgs,
+    scene: SceneArgs,
     /// Output file: .png (8-bit sRGB, --exposure applied) or .exr (linear radiance).
     #[arg(long)]
     out: PathBuf,
@@ -110,12 +112,12 @@ pub fn run(a: &Args) -> Result<(), CliError> {
 
 fn render(a: &RenderArgs) -> Result<(), CliError> {
     let (spec, opts) = a.scene.spec()?;
-    super::render::check_out(&a.out, &["png", "exr"])?;
+    check_out(&a.out, &["png", "exr"])?;
     let b = MeasuredBrdf::read(&a.file)?;
     let loaded = fastbrdf_render::setup::load(&spec)?;
     let t = std::time::Instant::now();
     let label = a.file.display().to_string();
-    let film = super::render::render_rgb(&spec, &loaded, &opts, &label, std::sync::Arc::new(b))?;
+    let film = render_rgb(&spec, &loaded, &opts, &label, std::sync::Arc::new(b))?;
     let rendered = t.elapsed().as_secs_f64();
     film.save(&a.out, a.scene.exposure)?;
     eprintln!(

@@ -1,9 +1,8 @@
-//! `fastbrdf metals`: the named metals (complex index `eta + i k` per R, G, B channel, cited),
-//! and `--metal NAME` for the commands that shade or export a model (render, compare, shader,
-//! eval).
+//! `fastbrdf metals`: the named metals (complex index `eta + i k` per R, G, B channel, cited).
+//! `--metal NAME` (render, compare, shader, eval) is `crate::model_args`.
 
 use crate::CliError;
-use fastbrdf::colour::{self, CHANNELS, METALS, WAVELENGTHS_NM};
+use fastbrdf::colour::{CHANNELS, METALS, WAVELENGTHS_NM};
 use std::fmt::Write;
 
 #[derive(clap::Args)]
@@ -89,60 +88,4 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     );
     crate::out!("{s}");
     Ok(())
-}
-
-/// The parameters of `explicit` with those of `metal` (when given) that are not given
-/// explicitly: `f = conductor` (where the model has a Fresnel choice), `eta = R,G,B`,
-/// `k = R,G,B`. `shaded`: the model is shaded (render, compare, BRDF Explorer), so a
-/// distribution stands for cook-torrance with it. An unknown metal, or a model without the
-/// conductor term's `eta` and `k`, is exit code 2.
-pub fn with_metal(
-    metal: Option<&str>,
-    id: &str,
-    explicit: &[(String, String)],
-    shaded: bool,
-) -> Result<Vec<(String, String)>, CliError> {
-    let Some(name) = metal else {
-        return Ok(explicit.to_vec());
-    };
-    let m = colour::metal(name)?;
-    let takes = takes(id, shaded)?;
-    if !(takes("eta") && takes("k")) {
-        return Err(CliError::input(format!(
-            "--metal {name}: model '{}' has no conductor Fresnel term (parameters eta, k): \
-             metals colour cook-torrance, the distributions (shaded as cook-torrance) and \
-             fresnel-conductor",
-            fastbrdf_io::shorten(id, 40)
-        )));
-    }
-    let mut out = explicit.to_vec();
-    for (k, v) in m.params() {
-        if takes(&k) && !explicit.iter().any(|(e, _)| *e == k) {
-            out.push((k, v));
-        }
-    }
-    Ok(out)
-}
-
-/// Which parameters model `id` takes (`shaded`: a distribution as cook-torrance with it).
-fn takes(id: &str, shaded: bool) -> Result<impl Fn(&str) -> bool, CliError> {
-    let e = fastbrdf::registry::find(id)?;
-    let brdf = match e.info.kind {
-        fastbrdf::Kind::Distribution if shaded => fastbrdf::registry::shading_brdf(id, &[])?.0,
-        _ => e.info.id,
-    };
-    let p = fastbrdf::registry::find(brdf)?.info.params;
-    Ok(move |n: &str| p.iter().any(|s| s.name == n))
-}
-
-/// With a metal: the weights KD,KS 0,1 unless `--weights` is given (a metal has no diffuse
-/// term; the specular colour is the metal's).
-pub fn weights(
-    spec: &mut fastbrdf_render::setup::SceneSpec,
-    scene: &super::render::SceneArgs,
-    metal: Option<&str>,
-) {
-    if metal.is_some() && scene.weights.is_none() {
-        (spec.kd, spec.ks) = (0.0, 1.0);
-    }
 }

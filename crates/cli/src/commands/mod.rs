@@ -1,9 +1,14 @@
-//! One module per subcommand: `Args` (clap) and `run`.
+//! One module per subcommand (`Args` and `run`; `errors` and `pareto` with their modes as
+//! submodules), and `common`, the leaf modules they share. A command module imports
+//! `common`, `crate::model_args` and the libraries, never another command module.
 
-pub mod analysis;
+pub mod albedo;
 pub mod bench;
 pub mod check;
+pub mod common;
+pub mod compare;
 pub mod demo;
+pub mod errors;
 pub mod eval;
 pub mod fit;
 pub mod fit_measured;
@@ -12,8 +17,8 @@ pub mod materials;
 pub mod measured;
 pub mod metals;
 pub mod models;
-pub mod over_materials;
-pub mod pareto_brdf;
+pub mod normalize;
+pub mod pareto;
 pub mod plot;
 pub mod render;
 pub mod reproduce;

@@ -1,9 +1,10 @@
 //! `fastbrdf plot KIND`: charts as PNG and SVG (1200x800), and the seeds' figures for
 //! `fastbrdf reproduce --out DIR`.
 
-use super::analysis::bar;
-use super::eval::parse_params;
+use super::common::figures::{chart_error, drawn};
+use super::common::progress::bar;
 use crate::CliError;
+use crate::model_args::{ParamArgs, Use};
 use fastbrdf::Zone;
 use fastbrdf_analysis::plot::{self as plots, Chart, Drawn};
 use fastbrdf_analysis::{charts, normalize, range};
@@ -27,6 +28,8 @@ pub struct Args {
     #[arg(long, global = true, value_name = "PATH")]
     out: Option<PathBuf>,
 }
+
+const PLOT_PARAM_HELP: &str = "A parameter of the model, NAME=VALUE; repeat for several";
 
 #[derive(clap::Subcommand)]
 enum Kind {
@@ -97,53 +100,31 @@ enum Kind {
     /// A full BRDF in the plane of incidence, as a polar lobe (f cos theta_o along wo).
     #[command(
         after_help = "Example:\n  fastbrdf plot polar --model cook-torrance --param alpha=0.3 --theta-i 45\n\n\
-The incident direction is drawn on the side opposite the mirror direction, at the lobe's peak length."
+The incident direction is drawn on the side opposite the mirror direction, at the lobe's peak length.",
+        mut_arg("params", |a| a.help(PLOT_PARAM_HELP))
     )]
     Polar {
         /// A BRDF id (see `fastbrdf models --kind brdf`).
         #[arg(long)]
         model: String,
-        /// A parameter of the model, NAME=VALUE; repeat for several.
-        #[arg(long = "param", value_name = "NAME=VALUE")]
-        params: Vec<String>,
+        #[command(flatten)]
+        params: ParamArgs,
         /// Incidence angle from the normal, in degrees, in [0, 90).
         #[arg(long, default_value_t = 30.0)]
         theta_i: f64,
     },
     /// Directional albedo against the incidence angle.
-    #[command(after_help = "Example:\n  fastbrdf plot albedo --model ward --param alpha=0.5")]
+    #[command(
+        after_help = "Example:\n  fastbrdf plot albedo --model ward --param alpha=0.5",
+        mut_arg("params", |a| a.help(PLOT_PARAM_HELP))
+    )]
     Albedo {
         /// A BRDF id, or a lobe id (evaluated as an energy-normalised Phong BRDF).
         #[arg(long)]
         model: String,
-        /// A parameter of the model, NAME=VALUE; repeat for several.
-        #[arg(long = "param", value_name = "NAME=VALUE")]
-        params: Vec<String>,
+        #[command(flatten)]
+        params: ParamArgs,
     },
-}
-
-/// A chart that cannot be computed: bad input (exit code 2); the incidence angle is named
-/// by its option.
-fn chart_error(e: charts::ChartError) -> CliError {
-    match e {
-        charts::ChartError::IncidenceAngle(t) => {
-            CliError::input(format!("--theta-i {t} is outside [0, 90) degrees"))
-        }
-        e => CliError::input(e.to_string()),
-    }
-}
-
-/// A chart that could not be saved: an output failure (exit code 3).
-pub fn save_error(e: plots::SaveError) -> CliError {
-    match e {
-        plots::SaveError::Io(e) => e.into(),
-        plots::SaveError::Draw(_) => CliError::io(e.to_string()),
-    }
-}
-
-/// Draws a chart in memory; a drawing failure means no output (exit code 3).
-fn drawn(c: &Chart) -> Result<Drawn, CliError> {
-    plots::render(c).map_err(|e| save_error(plots::SaveError::Draw(e)))
 }
 
 /// Writes every `(base, drawing)` as `base.png` and `base.svg`, all or nothing.
@@ -247,31 +228,18 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             model,
             params,
             theta_i,
-        } => vec![(
-            base,
-            charts::polar(model, &parse_params(params)?, *theta_i).map_err(chart_error)?,
-        )],
-        Kind::Albedo { model, params } => vec![(
-            base,
-            charts::albedo(model, &parse_params(params)?).map_err(chart_error)?,
-        )],
+        } => {
+            let spec = params.spec(model, Use::AsIs)?;
+            vec![(base, charts::polar(&spec, *theta_i).map_err(chart_error)?)]
+        }
+        Kind::Albedo { model, params } => {
+            let spec = params.spec(model, Use::AsIs)?;
+            vec![(base, charts::albedo(&spec).map_err(chart_error)?)]
+        }
     };
     let items = charts
         .iter()
         .map(|(b, c)| Ok((b.clone(), drawn(c)?)))
         .collect::<Result<Vec<_>, CliError>>()?;
     write_drawn(&items)
-}
-
-/// Draws the plots of the seeds' figures and stages them (PNG and SVG) in `set`, in its
-/// subfolder `folder` ("" for its top).
-pub fn stage_seed_figures(set: &mut fastbrdf_io::OutputSet, folder: &str) -> Result<(), CliError> {
-    let pb = bar(charts::seed_figure_steps() as u64, "figures");
-    let figures = charts::seed_figures(&|| pb.inc(1)).map_err(chart_error)?;
-    pb.finish_and_clear();
-    for (stem, chart) in figures {
-        let name = Path::new(folder).join(stem);
-        plots::stage(set, &drawn(&chart)?, &name.to_string_lossy())?;
-    }
-    Ok(())
 }

@@ -2,14 +2,13 @@
 //! chi-square goodness-of-fit test), issue 15. The library samples (`fastbrdf::sample`) and
 //! tests (`fastbrdf::chi2`); this module parses, prints and draws.
 
-use super::eval::{Lines, csv_error, parse_params, read_input};
+use super::common::input::{Lines, QUOTE, csv_error, csv_headers, read_input, required_columns};
 use crate::CliError;
+use crate::model_args::{ParamArgs, Use};
 use fastbrdf::chi2::{self, Config, Outcome};
 use fastbrdf::sample::Strategy;
-use fastbrdf::{Brdf, Model, Real, registry};
+use fastbrdf::{Brdf, Model, ModelSpec, Real};
 use fastbrdf_io::shorten;
-
-const QUOTE: usize = 40;
 
 const STRATEGY_HELP: &str = "Strategies: auto (the model's default), cosine (every BRDF), lobe \
 (closed-form lobe: phong/blinn-phong with pow, power*, sg*; ward-pow; the default there), \
@@ -37,9 +36,8 @@ pub struct SampleArgs {
     /// Model id: a full BRDF (see `fastbrdf models --kind brdf`).
     #[arg(long)]
     model: String,
-    /// A parameter, NAME=VALUE; repeat for several.
-    #[arg(long = "param", value_name = "NAME=VALUE")]
-    params: Vec<String>,
+    #[command(flatten)]
+    params: ParamArgs,
     /// Sampling strategy: auto, cosine, lobe, d-cos, vndf, twin.
     #[arg(long, default_value = "auto", help = STRATEGY_HELP)]
     strategy: String,
@@ -57,17 +55,13 @@ pub struct SampleArgs {
     max_input_mib: u64,
 }
 
-/// The BRDF `id` with `params` in precision `T`, and the strategy resolved for it.
+/// The BRDF of `spec` in precision `T`, and the strategy resolved for it.
 fn brdf<T: Real>(
-    id: &str,
-    params: &[(String, String)],
+    spec: &ModelSpec,
     strategy: &str,
 ) -> Result<(Box<dyn Brdf<T>>, Strategy), CliError> {
-    let given: Vec<(&str, &str)> = params
-        .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
-        .collect();
-    let b = match registry::build::<T>(id, &given)? {
+    let id = spec.id();
+    let b = match spec.model::<T>()? {
         Model::Brdf(b) => b,
         m => {
             return Err(CliError::input(format!(
@@ -90,18 +84,18 @@ fn brdf<T: Real>(
 }
 
 pub fn run_sample(a: &SampleArgs) -> Result<(), CliError> {
-    let params = parse_params(&a.params)?;
-    if fastbrdf::colour::channels(&a.model, &params)?.is_some() {
+    let spec = a.params.spec(&a.model, Use::AsIs)?;
+    if spec.is_coloured() {
         return Err(CliError::input(
             "sample: a coloured parameter (R,G,B) is three models; sample one channel at a time",
         ));
     }
     let (text, source) = read_input(a.input.as_deref(), a.max_input_mib, "sample")?;
     let out = if a.precision == "f64" {
-        let (b, s) = brdf::<f64>(&a.model, &params, &a.strategy)?;
+        let (b, s) = brdf::<f64>(&spec, &a.strategy)?;
         rows(b.as_ref(), s, a.pdf, &text, &source)?
     } else {
-        let (b, s) = brdf::<f32>(&a.model, &params, &a.strategy)?;
+        let (b, s) = brdf::<f32>(&spec, &a.strategy)?;
         rows(b.as_ref(), s, a.pdf, &text, &source)?
     };
     super::write_stdout(out.as_bytes())
@@ -123,8 +117,8 @@ fn rows<T: Real + std::str::FromStr>(
             &["wi_x", "wi_y", "wi_z", "weight", "pdf"],
         )
     };
-    let (mut reader, headers, hline) = super::eval::csv_headers(text, source, outputs)?;
-    let index = super::eval::required_columns(&headers, inputs, source, hline, "sample")?;
+    let (mut reader, headers, hline) = csv_headers(text, source, outputs)?;
+    let index = required_columns(&headers, inputs, source, hline, "sample")?;
     let mut writer = csv::Writer::from_writer(Vec::new());
     let mut header_out: Vec<&str> = headers.iter().collect();
     header_out.extend(outputs);
@@ -209,9 +203,8 @@ pub struct Chi2Args {
     /// Model id: a full BRDF.
     #[arg(long)]
     model: String,
-    /// A parameter, NAME=VALUE; repeat for several.
-    #[arg(long = "param", value_name = "NAME=VALUE")]
-    params: Vec<String>,
+    #[command(flatten)]
+    params: ParamArgs,
     /// Angle of wo from the normal, in degrees, in [0, 90).
     #[arg(long, default_value_t = 45.0, value_name = "DEG")]
     theta_i: f64,
@@ -242,7 +235,7 @@ pub struct Chi2Args {
 }
 
 pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
-    let params = parse_params(&a.params)?;
+    let spec = a.params.spec(&a.model, Use::AsIs)?;
     if !(a.theta_i >= 0.0 && a.theta_i < 90.0) {
         return Err(CliError::input(format!(
             "--theta-i {}: expected degrees in [0, 90)",
@@ -266,11 +259,11 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
         cfg.res_phi = 2 * r;
     }
     cfg.seed = a.seed;
-    let (b64, s) = brdf::<f64>(&a.model, &params, &a.strategy)?;
+    let (b64, s) = brdf::<f64>(&spec, &a.strategy)?;
     let t = a.theta_i.to_radians();
     let wo = [t.sin(), 0.0, t.cos()];
     let b32 = if a.precision == "f32" {
-        Some(brdf::<f32>(&a.model, &params, &a.strategy)?.0)
+        Some(brdf::<f32>(&spec, &a.strategy)?.0)
     } else {
         None
     };
@@ -284,7 +277,7 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
         v["strategy"] = s.name().into();
         v["theta_i"] = a.theta_i.into();
         // Numbers as numbers, choices as their names (issue 27).
-        v["params"] = fastbrdf_analysis::params_json(&params).into();
+        v["params"] = fastbrdf_analysis::params_json(&spec).into();
         format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON"))
     } else {
         format!(

@@ -2,9 +2,14 @@
 //! MSL translated by naga), or as a BRDF Explorer `.brdf` file. Needs no GPU.
 
 use crate::CliError;
-use crate::commands::eval::parse_params;
+use crate::model_args::{ModelArgs, Use};
+use fastbrdf::ModelSpec;
 use fastbrdf_gpu::export::{Form, Lang, export_form};
 use std::path::PathBuf;
+
+const SHADER_METAL_HELP: &str = "A named metal (see `fastbrdf metals`): f = conductor, eta and \
+k per R, G, B channel. A coloured model (this, or any parameter given as R,G,B) exports three \
+channel functions fb_<id>_r/_g/_b and fb_<id>_rgb returning vec3 (literal coefficients only)";
 
 #[derive(clap::Args)]
 #[command(
@@ -22,24 +27,16 @@ BRDFs (wi, wo) in the local frame with the normal along +z. Coefficients are com
 for the given parameters and written as literals; with --runtime-params the model's numeric\n\
 parameters become trailing arguments p_<name> (f32) and the coefficients are computed in the\n\
 shader (for parameters that vary per pixel). --out writes atomically; --all writes every\n\
-file or none. Exit codes: 0 ok, 2 bad model or parameter, 3 a file could not be written."
+file or none. Exit codes: 0 ok, 2 bad model or parameter, 3 a file could not be written.",
+    mut_arg("material", |a| a.conflicts_with("all")),
+    mut_arg("metal", |a| a.help(SHADER_METAL_HELP).conflicts_with("all"))
 )]
 pub struct Args {
     /// Model id (see `fastbrdf models`).
     #[arg(long, required_unless_present = "all", conflicts_with = "all")]
     model: Option<String>,
-    /// A parameter, NAME=VALUE; repeat for several.
-    #[arg(long = "param", value_name = "NAME=VALUE")]
-    params: Vec<String>,
-    /// A MERL material (see `fastbrdf materials`) whose published fit supplies the model's n,
-    /// alpha and f0 (Ngan et al. 2005); --param values win.
-    #[arg(long, value_name = "NAME", conflicts_with = "all")]
-    material: Option<String>,
-    /// A named metal (see `fastbrdf metals`): f = conductor, eta and k per R, G, B channel.
-    /// A coloured model (this, or any parameter given as R,G,B) exports three channel
-    /// functions fb_<id>_r/_g/_b and fb_<id>_rgb returning vec3 (literal coefficients only).
-    #[arg(long, value_name = "NAME", conflicts_with = "all")]
-    metal: Option<String>,
+    #[command(flatten)]
+    model_args: ModelArgs,
     /// Output language.
     #[arg(long, default_value = "wgsl", value_parser = ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"])]
     lang: String,
@@ -64,7 +61,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     };
     if a.all {
         let dir = a.out.as_ref().expect("clap: --all requires --out");
-        if !a.params.is_empty() {
+        if !a.model_args.param.params.is_empty() {
             return Err(CliError::input(
                 "--all exports default parameters: drop --param, or export one --model",
             ));
@@ -72,7 +69,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         // Build everything first: an error leaves no partial folder behind.
         let mut files = vec![];
         for e in fastbrdf::registry::all() {
-            let text = export_form(e.info.id, &[], lang, form)?;
+            let text = export_form(&ModelSpec::new(e.info.id, &[])?, lang, form)?;
             files.push((format!("{}.{}", e.info.id, lang.extension()), text));
         }
         // All or nothing: the files are staged in a hidden folder and moved into place only
@@ -91,15 +88,15 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         return Ok(());
     }
     let id = a.model.as_deref().expect("clap: --model or --all");
-    let params =
-        super::materials::with_material(a.material.as_deref(), id, &parse_params(&a.params)?)?;
-    let params =
-        super::metals::with_metal(a.metal.as_deref(), id, &params, a.lang == "brdf-explorer")?;
-    let given: Vec<(&str, &str)> = params
-        .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
-        .collect();
-    let text = export_form(id, &given, lang, form)?;
+    // A BRDF Explorer file shades the model (a distribution as cook-torrance), so a metal
+    // colours the BRDF it is shaded as; the other languages export the model itself.
+    let use_ = if lang == Lang::BrdfExplorer && a.model_args.metal.metal.is_some() {
+        Use::Shaded
+    } else {
+        Use::AsIs
+    };
+    let spec = a.model_args.spec(id, use_)?;
+    let text = export_form(&spec, lang, form)?;
     match &a.out {
         Some(path) => fastbrdf_io::write_atomic(path, text.as_bytes())?,
         None => super::write_stdout(text.as_bytes())?,

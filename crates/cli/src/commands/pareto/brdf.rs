@@ -1,8 +1,9 @@
 //! `fastbrdf pareto --brdf`: full Cook-Torrance configurations against an exact reference
 //! (fastbrdf-analysis::pareto_brdf): SIMD cost, BRDF-space and image-space error, Pareto front.
 
-use super::analysis::bar;
 use crate::CliError;
+use crate::commands::common::figures::save_error;
+use crate::commands::common::progress::bar;
 use fastbrdf_analysis::pareto_brdf::{self as pb, Config, FrontOn, Grid, Images, Row};
 use fastbrdf_analysis::plot::{Point, save_scatter};
 use fastbrdf_analysis::range;
@@ -188,7 +189,7 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
             &points,
             out,
         )
-        .map_err(super::plot::save_error)?;
+        .map_err(save_error)?;
         eprintln!("wrote {} and {}", png.display(), svg.display());
     }
     let mesh_name = a
@@ -198,7 +199,7 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
         .map(|s| s.to_string_lossy().into_owned());
     if json {
         let v = serde_json::json!({
-            "reference": fastbrdf_analysis::pareto_brdf::params_pairs_json(&o.reference.params),
+            "reference": fastbrdf_analysis::pareto_brdf::params_pairs_json(&o.reference.spec),
             "reference_label": o.reference.label(),
             "alphas": o.alphas,
             "grid": o.grid,

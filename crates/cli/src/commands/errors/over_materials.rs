@@ -2,8 +2,9 @@
 //! material's own fitted parameter (fastbrdf_analysis::materials::over), and how many of the 86
 //! materials each approximation is safe for at a threshold.
 
-use super::analysis::{bar, csv_num};
 use crate::CliError;
+use crate::commands::common::numbers::{csv_num, swept};
+use crate::commands::common::progress::bar;
 use fastbrdf::Zone;
 use fastbrdf_analysis::errors::{self, ErrorRow};
 use fastbrdf_analysis::materials::{self, OverRow, Pair};
@@ -42,14 +43,11 @@ fn pairs(a: &Args) -> Result<Vec<Pair>, CliError> {
             ))
         })?,
     };
-    let param = ["n", "alpha"]
-        .into_iter()
-        .find(|p| super::analysis::takes(e, p))
-        .ok_or_else(|| {
-            CliError::input(format!(
-                "--over materials: model '{model}' takes neither n nor alpha"
-            ))
-        })?;
+    let param = swept(e).ok_or_else(|| {
+        CliError::input(format!(
+            "--over materials: model '{model}' takes neither n nor alpha"
+        ))
+    })?;
     let spec = errors::Spec {
         model: e.info.id.into(),
         reference: reference.into(),

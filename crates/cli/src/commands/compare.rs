@@ -1,0 +1,165 @@
+//! `fastbrdf compare`: several models against a reference (a model or measured data) with
+//! difference heat maps and RMSE / PSNR / FLIP (fastbrdf-render).
+
+use super::common::pictures::{Entry, Scores, check_compare, compare_models};
+use super::common::scene::{SceneArgs, check_out, material_and_metal};
+use crate::CliError;
+use crate::model_args::{ModelArgs, Use};
+use fastbrdf_render::film::write_atomic;
+use fastbrdf_render::setup;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+const COMPARE_MATERIAL_HELP: &str = "A MERL material (see `fastbrdf materials`): each model and \
+the reference take their n, alpha and f0 from its published fit (Ngan et al. 2005; Ward's alpha \
+for ward-*, the Beckmann m for the others); --param values win. The diffuse colour comes from the \
+reference's fit, as in `render`";
+
+const COMPARE_METAL_HELP: &str = "A named metal (see `fastbrdf metals`) for the reference and \
+every model: f = conductor, eta and k per R, G, B channel (coloured pictures). Every compared \
+model must take f, eta and k (cook-torrance, or a distribution shaded as cook-torrance): a model \
+that cannot be gold would be compared grey against gold, so it is an error";
+
+#[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  fastbrdf compare --models flog,schlick,cubic-rational --reference pow --param n=100 --out cmp.png\n  \
+fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0.3 --bump 40,0.6 --json --out ward.png\n  \
+fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png\n  \
+fastbrdf compare --models ggx,beckmann-power16 --reference cook-torrance --param alpha=0.2 --metal gold --out au.png\n  \
+fastbrdf compare --models flog,schlick --reference pow --param n=100 --env sky --out cmp-sky.png\n  \
+fastbrdf compare --models ward,cook-torrance --measured blue-rubber.binary --param alpha=0.29 --weights 0.3,0.05 --out rubber.png",
+    mut_arg("params", |a| a.help("A parameter, NAME=VALUE, given to every model that takes it; repeat for several")),
+    mut_arg("material", |a| a.help(COMPARE_MATERIAL_HELP)),
+    mut_arg("metal", |a| a.help(COMPARE_METAL_HELP))
+)]
+pub struct CompareArgs {
+    /// Models to compare (comma-separated ids).
+    #[arg(long, value_delimiter = ',', required = true)]
+    models: Vec<String>,
+    /// The reference model id.
+    #[arg(
+        long,
+        required_unless_present = "measured",
+        conflicts_with = "measured"
+    )]
+    reference: Option<String>,
+    /// A measured material (MERL .binary, see `fastbrdf measured`) as the reference instead of
+    /// a model. It is the whole BRDF (diffuse included), so it renders with weights 0,1; the
+    /// models render with the scene's --weights and --albedo (give them the material's
+    /// diffuse colour and weights to compare like with like; `fastbrdf fit-measured` fits
+    /// both).
+    #[arg(long, value_name = "FILE")]
+    measured: Option<PathBuf>,
+    #[command(flatten)]
+    model_args: ModelArgs,
+    #[command(flatten)]
+    scene: SceneArgs,
+    /// The grid picture (.png).
+    #[arg(long, default_value = "fastbrdf-out/compare.png")]
+    out: PathBuf,
+    /// Print the metrics as JSON: {"reference", "metrics": [{model, rmse, psnr, flip,
+    /// rmse_linear, psnr_linear, psnr_linear_peak, flip_reinhard}]}. rmse/psnr/flip: on the
+    /// clipped 8-bit sRGB pictures; *_linear: on the linear HDR film (no exposure; PSNR against
+    /// the reference's peak channel value, psnr_linear_peak); flip_reinhard: FLIP after the tone
+    /// map x/(1+x) with the exposure. PSNR is null when infinite.
+    #[arg(long)]
+    json: bool,
+}
+
+pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
+    let (mut spec, opts) = a.scene.spec()?;
+    // With --measured, the first model stands for the reference where one is needed.
+    let ref_id = a.reference.clone().unwrap_or_else(|| a.models[0].clone());
+    material_and_metal(&mut spec, &a.scene, &a.model_args, &ref_id)?;
+    check_out(&a.out, &["png"])?;
+    check_compare(&opts, a.models.len())?;
+    if spec.env.is_some() {
+        // Each environment sample is a pass over every primary sample: the work cap counts them.
+        let samples = (a.models.len() as u64 + 1)
+            * u64::from(opts.width)
+            * u64::from(opts.height)
+            * u64::from(opts.spp).pow(2)
+            * u64::from(spec.env_samples);
+        let cap = fastbrdf_render::compare::MAX_COMPARE_SAMPLES;
+        if samples > cap {
+            return Err(CliError::input(format!(
+                "the comparison would trace {samples} environment samples ({} renders of {}x{} at {}x{} samples per pixel, {} environment samples each): at most {cap}; use a smaller --size, --spp, --env-samples or fewer models",
+                a.models.len() + 1,
+                opts.width,
+                opts.height,
+                opts.spp,
+                opts.spp,
+                spec.env_samples
+            )));
+        }
+    }
+    // One spec per model (each takes the --param values it can use), the reference first.
+    let ids: Vec<&str> = a
+        .reference
+        .iter()
+        .chain(&a.models)
+        .map(String::as_str)
+        .collect();
+    let mut specs = a.model_args.specs(&ids, Use::Shaded)?.into_iter();
+    let reference = match &a.measured {
+        Some(file) => {
+            let b = fastbrdf::measured::MeasuredBrdf::read(file)?;
+            Entry::rgb(&format!("measured {}", file.display()), Arc::new(b))
+        }
+        None => Entry::new(&ref_id, specs.next().expect("one spec per id")),
+    };
+    let ref_name = match &a.measured {
+        Some(file) => file.display().to_string(),
+        None => ref_id.clone(),
+    };
+    let models: Vec<Entry> = a
+        .models
+        .iter()
+        .zip(specs)
+        .map(|(m, s)| Entry::new(m, s))
+        .collect();
+    let loaded = setup::load(&spec)?;
+    let (rgb, gw, gh, metrics) =
+        compare_models(&spec, &loaded, &opts, a.scene.exposure, &reference, &models)?;
+    write_atomic(&a.out, &fastbrdf_render::film::png_bytes(&rgb, gw, gh)?)?;
+    eprintln!("wrote {}", a.out.display());
+    if a.json {
+        let rows: Vec<serde_json::Value> = metrics.iter().map(Scores::json).collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(
+                &serde_json::json!({"reference": ref_name, "metrics": rows})
+            )
+            .expect("serialisable")
+        );
+    } else {
+        println!(
+            "{:<24} {:>10} {:>9} {:>7} | {:>12} {:>9} {:>8}   (against {}; peak {:.4})",
+            "model",
+            "RMSE sRGB",
+            "PSNR dB",
+            "FLIP",
+            "RMSE linear",
+            "PSNR dB",
+            "FLIP rh",
+            ref_name,
+            metrics.first().map_or(0.0, |m| m.linear.peak)
+        );
+        for m in &metrics {
+            println!(
+                "{:<24} {:>10.5} {:>9.2} {:>7.4} | {:>12.5} {:>9.2} {:>8.4}",
+                m.srgb.model,
+                m.srgb.rmse,
+                m.srgb.psnr,
+                m.srgb.flip,
+                m.linear.rmse,
+                m.linear.psnr,
+                m.linear.flip_reinhard
+            );
+        }
+        println!(
+            "sRGB: clipped 8-bit pictures as written; linear: the HDR film (no exposure), PSNR against the reference's peak, FLIP after the Reinhard tone map x/(1+x)"
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,22 @@
+//! The JSON API of `fastbrdf view`: pure functions from a request (path and query) to a
+//! response, so that the server loop, the tests and the benchmark see the same thing. Every
+//! number is computed by the library functions the CLI commands call (`errors::at` as
+//! `fastbrdf errors`, `albedo::curve`/`furnace` as `fastbrdf albedo`, the CPU renderer and
+//! `compare::metrics` as `fastbrdf compare`, `export_form` as `fastbrdf shader`), and every
+//! refusal carries the message the CLI would print for the same input.
+
+//!
+//! The query string is the explorer's text boundary: [`query`] parses it once per request into
+//! the models' specs; the endpoints ([`models`], [`plots`], [`errors`], [`render`]) take them.
+
+mod errors;
+mod models;
+mod plots;
+mod query;
+mod render;
+
+pub use errors::errors_endpoint;
+pub use models::{material, models, shader};
+pub use plots::{albedo_endpoint, plots};
+pub use query::{Query, Response};
+pub use render::render_endpoint;
