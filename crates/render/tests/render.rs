@@ -322,8 +322,7 @@ fn a_coloured_render_is_three_grey_renders() {
         Specular::new(&ModelSpec::parse("cook-torrance", &[("alpha", "0.2")]).unwrap()).unwrap();
     assert!(!grey.is_coloured() && grey.channels.len() == 1);
     let err = ModelSpec::parse("cook-torrance", &[("eta", "1,2")])
-        .err()
-        .expect("two numbers are refused")
+        .expect_err("two numbers are refused")
         .to_string();
     assert!(err.contains("eta") && err.contains("2 given"), "{err}");
 }
