@@ -1,4 +1,4 @@
-"""Type stubs of the native module (python/src/lib.rs). Use the package's public API
+"""Type stubs of the native module (python/src/). Use the package's public API
 (``fastbrdf.Model`` and the functions in ``fastbrdf/__init__.py``): these take arrays of the
 exact dtype, not broadcast (they copy non-contiguous or unaligned ones, and check lengths,
 counts and values themselves)."""
