@@ -25,10 +25,11 @@ fn fast(k: f64, v: f64, l: f64) -> f64 {
 }
 
 fn exact(alpha: f64) -> impl Fn(f64, f64) -> f64 {
-    let a = alpha.to_string();
-    let Ok(Model::Shadowing(g)) =
-        fastbrdf::registry::build::<f64>("smith-ggx-correlated", &[("alpha", a.as_str())])
-    else {
+    let spec = fastbrdf::ModelSpec::new(
+        "smith-ggx-correlated",
+        &[("alpha", fastbrdf::Given::Num(alpha))],
+    );
+    let Ok(Model::Shadowing(g)) = spec.and_then(|s| s.model::<f64>()) else {
         panic!("smith-ggx-correlated is a shadowing term")
     };
     move |v, l| {

@@ -11,7 +11,7 @@
 //! Lobes are evaluated as BRDFs: `phong` (default: the lobe of `reflect(wi) . wo`, the geometry
 //! of the seeds' normalisation) or `blinn-phong`, normalised (`norm = energy`) or not.
 
-use fastbrdf::{Model, Result, registry};
+use fastbrdf::{Given, Model, ModelSpec, Result};
 use serde::Serialize;
 
 /// One incidence angle.
@@ -23,10 +23,11 @@ pub struct AlbedoRow {
     pub error: f64,
 }
 
-/// A BRDF to integrate, described by registry id and parameters.
+/// A BRDF to integrate: its spec (a lobe wrapped as the BRDF [`target`] names) and what its
+/// plan says of its energy.
 pub struct Target {
-    pub id: String,
-    pub params: Vec<(String, String)>,
+    /// The BRDF integrated.
+    pub spec: ModelSpec,
     /// Whether the model claims energy conservation (albedo <= 1).
     pub claims_energy: bool,
     /// How far above 1 its albedo may read (`Plan::furnace_tol`).
@@ -42,56 +43,48 @@ impl Target {
         self.furnace_tol.max(1e-6)
     }
 
-    /// The parameters as a JSON object ([`crate::params_json`]).
+    /// The BRDF's registry id.
+    pub fn id(&self) -> &'static str {
+        self.spec.id()
+    }
+
+    /// The given values as a JSON object ([`crate::params_json`]).
     pub fn params_json(&self) -> serde_json::Map<String, serde_json::Value> {
-        crate::params_json(&self.params)
+        crate::params_json(&self.spec)
     }
 }
 
-/// Builds the BRDF target for any model id: full BRDFs as they are, lobes wrapped as `as_brdf`
-/// (`phong` or `blinn-phong`) with `norm`. Distributions, shadowing and Fresnel terms are not
-/// BRDFs: an error.
-pub fn target(id: &str, params: &[(String, String)], as_brdf: &str, norm: &str) -> Result<Target> {
-    let e = registry::find(id)?;
-    match e.info.kind {
-        fastbrdf::Kind::Brdf => {
-            let given: Vec<(&str, &str)> = params
-                .iter()
-                .map(|(k, v)| (k.as_str(), v.as_str()))
-                .collect();
-            let plan = registry::plan(id, &given)?;
-            Ok(Target {
-                id: id.into(),
-                params: params.to_vec(),
-                // The model's own metadata (`BrdfForm::claims_energy`): normalised models.
-                claims_energy: plan.claims_energy(),
-                furnace_tol: plan.furnace_tol(),
-                view: !plan.reciprocal(),
-            })
-        }
+/// The BRDF target of any (grey) model: full BRDFs as they are, lobes wrapped as `as_brdf`
+/// (`phong` or `blinn-phong`) with `lobe` and `norm` (the lobe's given values passed on).
+/// Distributions, shadowing and Fresnel terms are not BRDFs: an error; so is a coloured spec
+/// (integrate each of [`ModelSpec::channel_specs`]).
+pub fn target(spec: &ModelSpec, as_brdf: &str, norm: &str) -> Result<Target> {
+    let brdf = match spec.kind() {
+        fastbrdf::Kind::Brdf => spec.clone(),
         fastbrdf::Kind::Lobe => {
-            let mut p = vec![
-                ("lobe".to_string(), id.to_string()),
-                ("norm".to_string(), norm.to_string()),
+            let mut given = vec![
+                ("lobe", Given::Choice(spec.id().into())),
+                ("norm", Given::Choice(norm.into())),
             ];
-            p.extend(params.iter().cloned());
-            let given: Vec<(&str, &str)> =
-                p.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
-            let plan = registry::plan(as_brdf, &given)?;
-            Ok(Target {
-                claims_energy: plan.claims_energy(),
-                furnace_tol: plan.furnace_tol(),
-                view: !plan.reciprocal(),
-                id: as_brdf.into(),
-                params: p,
-            })
+            given.extend(spec.given().iter().cloned());
+            ModelSpec::new(as_brdf, &given)?
         }
-        k => Err(fastbrdf::Error::WrongKind {
-            model: id.into(),
-            expected: "brdf or lobe".into(),
-            found: k.name().into(),
-        }),
-    }
+        k => {
+            return Err(fastbrdf::Error::WrongKind {
+                model: spec.id().into(),
+                expected: "brdf or lobe".into(),
+                found: k.name().into(),
+            });
+        }
+    };
+    let plan = brdf.plan()?;
+    Ok(Target {
+        // The model's own metadata (`BrdfForm::claims_energy`): normalised models.
+        claims_energy: plan.claims_energy(),
+        furnace_tol: plan.furnace_tol(),
+        view: !plan.reciprocal(),
+        spec: brdf,
+    })
 }
 
 /// The albedo at each incidence angle (degrees, in [0, 90)).
@@ -134,12 +127,7 @@ fn rows(
     angles_deg: &[f64],
     albedo: impl Fn(&dyn Fn([f64; 3]) -> f64, [f64; 3], &[f64]) -> (f64, f64),
 ) -> Result<Vec<AlbedoRow>> {
-    let given: Vec<(&str, &str)> = t
-        .params
-        .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
-        .collect();
-    let Model::Brdf(b) = registry::build::<f64>(&t.id, &given)? else {
+    let Model::Brdf(b) = t.spec.model::<f64>()? else {
         unreachable!("target() only names BRDFs")
     };
     let breaks = b.mirror_breaks();

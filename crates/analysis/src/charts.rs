@@ -3,7 +3,7 @@
 
 use crate::plot::{Chart, Series};
 use crate::{albedo, errors, normalize, range};
-use fastbrdf::{Lobe, Model, Zone, registry};
+use fastbrdf::{Given, Lobe, Model, ModelSpec, Zone, registry};
 use std::fmt;
 
 /// Why a chart cannot be computed.
@@ -56,7 +56,7 @@ pub fn lobe(id: &str, n: f64) -> Result<Box<dyn Lobe<f64>>, ChartError> {
     if kind != fastbrdf::Kind::Lobe {
         return Err(not_a_lobe(kind));
     }
-    match registry::build::<f64>(id, &[("n", &range::num(n))])? {
+    match ModelSpec::new(id, &[("n", Given::Num(n))])?.model::<f64>()? {
         Model::Lobe(l) => Ok(l),
         m => Err(not_a_lobe(m.kind())),
     }
@@ -233,19 +233,16 @@ pub fn coef(model: &str, ns: &[f64], form: normalize::Form) -> Result<(Chart, Ch
 /// A BRDF in the plane of incidence as a polar lobe: `f(wi, wo) cos theta_o` along `wo` for
 /// theta_o in [-90, 90] degrees (1801 points, the mirror side at x < 0), and the incident
 /// direction (on the opposite side) at the lobe's peak length. `theta_i` in degrees, [0, 90).
-pub fn polar(model: &str, params: &[(String, String)], theta_i: f64) -> Result<Chart, ChartError> {
-    let given: Vec<(&str, &str)> = params
-        .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
-        .collect();
-    let b = match registry::build::<f64>(model, &given)? {
-        Model::Brdf(b) => b,
-        m => {
-            return Err(ChartError::NotABrdf {
-                id: model.into(),
-                kind: m.kind().name(),
-            });
-        }
+/// A grey BRDF (a coloured spec is an error naming its R,G,B parameters).
+pub fn polar(spec: &ModelSpec, theta_i: f64) -> Result<Chart, ChartError> {
+    if spec.kind() != fastbrdf::Kind::Brdf {
+        return Err(ChartError::NotABrdf {
+            id: spec.id().into(),
+            kind: spec.kind().name(),
+        });
+    }
+    let Model::Brdf(b) = spec.model::<f64>()? else {
+        unreachable!("a BRDF's model is a BRDF")
     };
     if !(0.0..90.0).contains(&theta_i) {
         return Err(ChartError::IncidenceAngle(theta_i));
@@ -266,11 +263,11 @@ pub fn polar(model: &str, params: &[(String, String)], theta_i: f64) -> Result<C
         .map(|(x, y)| x.hypot(*y))
         .fold(0.0, f64::max)
         .max(1e-12);
-    let p: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
     Ok(Chart {
         title: format!(
-            "{model} {} in the plane of incidence, theta_i = {theta_i} deg",
-            p.join(" ")
+            "{} {} in the plane of incidence, theta_i = {theta_i} deg",
+            spec.id(),
+            crate::check::fmt_params(spec)
         ),
         x_label: "f cos theta_o along wo (x)".into(),
         y_label: "(z)".into(),
@@ -289,13 +286,16 @@ pub fn polar(model: &str, params: &[(String, String)], theta_i: f64) -> Result<C
 
 /// Directional albedo against the incidence angle (0 to 88 degrees in steps of 2), with the
 /// white-furnace line at 1. A lobe is evaluated as an energy-normalised Phong BRDF.
-pub fn albedo(model: &str, params: &[(String, String)]) -> Result<Chart, ChartError> {
-    let t = albedo::target(model, params, "phong", "energy")?;
+pub fn albedo(spec: &ModelSpec) -> Result<Chart, ChartError> {
+    let t = albedo::target(spec, "phong", "energy")?;
     let angles = range::parse("0..88:2", 1.0).expect("valid range");
     let rows = albedo::curve(&t, &angles, 1e-6)?;
-    let p: Vec<String> = t.params.iter().map(|(k, v)| format!("{k}={v}")).collect();
     Ok(Chart {
-        title: format!("Directional albedo of {} {}", t.id, p.join(" ")),
+        title: format!(
+            "Directional albedo of {} {}",
+            t.id(),
+            crate::check::fmt_params(&t.spec)
+        ),
         x_label: "incidence angle (degrees)".into(),
         y_label: "albedo".into(),
         series: vec![
@@ -415,15 +415,15 @@ pub fn seed_figures(
 /// against theta_h in [0, 50] degrees (501 points), and each form's relative error against
 /// `beckmann-ct` (log y).
 pub fn beckmann_forms(m: f64) -> Result<(Chart, Chart), ChartError> {
-    let m_text = m.to_string();
-    let distribution = |id: &str| match registry::build::<f64>(id, &[("alpha", &m_text)])? {
-        Model::Distribution(d) => Ok(d),
-        other => Err(ChartError::Model(fastbrdf::Error::WrongKind {
-            model: id.into(),
-            expected: fastbrdf::Kind::Distribution.name().into(),
-            found: other.kind().name().into(),
-        })),
-    };
+    let distribution =
+        |id: &str| match ModelSpec::new(id, &[("alpha", Given::Num(m))])?.model::<f64>()? {
+            Model::Distribution(d) => Ok(d),
+            other => Err(ChartError::Model(fastbrdf::Error::WrongKind {
+                model: id.into(),
+                expected: fastbrdf::Kind::Distribution.name().into(),
+                found: other.kind().name().into(),
+            })),
+        };
     let exact = distribution("beckmann-ct")?;
     let mut series = vec![];
     let mut rel = vec![];
@@ -478,10 +478,8 @@ pub fn beckmann_forms(m: f64) -> Result<(Chart, Chart), ChartError> {
 mod tests {
     use super::*;
 
-    fn owned(v: &[(&str, &str)]) -> Vec<(String, String)> {
-        v.iter()
-            .map(|(k, v)| (k.to_string(), v.to_string()))
-            .collect()
+    fn spec(id: &str, v: &[(&str, &str)]) -> ModelSpec {
+        ModelSpec::parse(id, v).unwrap()
     }
 
     /// Issue 11: the incident direction was drawn on the mirror side, on top of the lobe. It
@@ -493,7 +491,7 @@ mod tests {
             ("ward", vec![("alpha", "0.3")], 30.0),
             ("cook-torrance", vec![("alpha", "0.5")], 70.0),
         ] {
-            let c = polar(model, &owned(&params), theta_i).unwrap();
+            let c = polar(&spec(model, &params), theta_i).unwrap();
             let lobe = &c.series[0].points;
             assert_eq!(lobe.len(), 1801);
             let peak = lobe
@@ -527,12 +525,12 @@ mod tests {
     #[test]
     fn polar_refuses_lobes_and_grazing_incidence() {
         assert_eq!(
-            polar("flog", &[], 30.0).unwrap_err().to_string(),
+            polar(&spec("flog", &[]), 30.0).unwrap_err().to_string(),
             "polar needs a BRDF; 'flog' is a lobe"
         );
         for t in [90.0, -1.0, f64::NAN] {
             assert!(matches!(
-                polar("ward", &[], t),
+                polar(&spec("ward", &[]), t),
                 Err(ChartError::IncidenceAngle(_))
             ));
         }
@@ -635,7 +633,7 @@ mod tests {
 
     #[test]
     fn albedo_stays_under_the_furnace_line() {
-        let c = albedo("ward", &owned(&[("alpha", "0.5")])).unwrap();
+        let c = albedo(&spec("ward", &[("alpha", "0.5")])).unwrap();
         let pts = &c.series[0].points;
         assert_eq!(pts.len(), 45);
         assert_eq!((pts[0].0, pts[44].0), (0.0, 88.0));

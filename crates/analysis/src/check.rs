@@ -5,8 +5,8 @@
 //!   parameter as a continuum and the input together (`accuracy::worst_search`); the larger
 //!   maximum counts;
 //! - f32 against f64 on the same inputs over the whole documented domain, mixed metric
-//!   `|v32 - v64| / max(1, |v64|)`: a grid of parameter sets (`accuracy::f32_worst` over
-//!   `accuracy::domain_configs`) and an adversarial search (`accuracy::f32_search`, seeded, so
+//!   `|v32 - v64| / max(1, |v64|)`: a grid of parameter sets (`accuracy::f32_worst_of` over
+//!   `accuracy::domain_specs`) and an adversarial search (`accuracy::f32_search`, seeded, so
 //!   reproducible). The search also fails a model that returns a non-finite or negative
 //!   value in either precision.
 //! - the corners of the domain (issue 27, [`corners`]): every model at its domain
@@ -16,7 +16,7 @@
 //!   points. Its maximum counts in the f32 row like the grid's and the search's.
 
 use fastbrdf::entry::Entry;
-use fastbrdf::{ErrorBound, Metric, Zone, accuracy};
+use fastbrdf::{ErrorBound, Given, Metric, ModelSpec, Zone, accuracy};
 use rayon::prelude::*;
 use serde::Serialize;
 
@@ -101,20 +101,23 @@ pub fn bound(e: &'static Entry, b: &'static ErrorBound, size: accuracy::SearchSi
     }
 }
 
-/// Parameters as `k=v k=v` (how `check` names a configuration).
-pub fn fmt_params(params: &[(String, String)]) -> String {
-    let kv: Vec<String> = params.iter().map(|(k, v)| format!("{k}={v}")).collect();
+/// A spec's given values as `k=v k=v` (how `check` names a configuration; empty when none
+/// is given).
+pub fn fmt_params(spec: &ModelSpec) -> String {
+    let kv: Vec<String> = spec
+        .given()
+        .iter()
+        .map(|(k, v)| format!("{k}={v}"))
+        .collect();
     kv.join(" ")
 }
 
 /// Model `e`'s f32 bound, re-measured: the worst of the grid of parameter sets and the search.
 pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
-    let configs = accuracy::domain_configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
+    let configs = accuracy::domain_specs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
     let mut worst = (0.0, String::new());
     for c in &configs {
-        let given: Vec<(&str, &str)> = c.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
-        let (err, at) =
-            accuracy::f32_worst(e.info.id, &given).expect("domain configurations are valid");
+        let (err, at) = accuracy::f32_worst_of(c).expect("domain configurations are valid");
         if err.is_nan() || err > worst.0 || worst.1.is_empty() {
             worst = (err, format!("{} {at}", fmt_params(c)));
         }
@@ -123,7 +126,11 @@ pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
     if found.err > worst.0 {
         worst = (
             found.err,
-            format!("{} {}", fmt_params(&found.params), found.at),
+            format!(
+                "{} {}",
+                found.spec.as_ref().map(fmt_params).unwrap_or_default(),
+                found.at
+            ),
         );
     }
     let corner = corners(&e.info);
@@ -172,7 +179,7 @@ pub const CORNER_COS: [f32; 19] = [
 /// Decimals near `eta = 1` that f32 does not hold: the f64 model reads them as given, the f32
 /// model their rounding, as `--param eta=1.0001` does (issue 27: the Fresnel terms computed
 /// `eta^2 - 1` from that rounding, 30 times their f32 bound off at grazing).
-pub const CORNER_ETAS: [&str; 4] = ["1.0001", "0.9999", "1.000001", "0.999999"];
+pub const CORNER_ETAS: [f64; 4] = [1.0001, 0.9999, 1.000001, 0.999999];
 
 /// The worst f32-against-f64 error at the corners.
 #[derive(Clone, Debug, Default)]
@@ -184,38 +191,29 @@ pub struct Corners {
     pub evaluations: usize,
 }
 
-/// The parameter sets of the corners: `accuracy::domain_configs`, and each configuration
-/// with an `eta` again at every [`CORNER_ETAS`] value.
-pub fn corner_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
-    let mut out = accuracy::domain_configs(info, info.kind == fastbrdf::Kind::Brdf);
-    let with_eta: Vec<_> = out
+/// The parameter sets of the corners: `accuracy::domain_specs`, and each configuration
+/// with an `eta` again at every [`CORNER_ETAS`] value (once per configuration of its other
+/// values).
+pub fn corner_configs(info: &fastbrdf::ModelInfo) -> Vec<ModelSpec> {
+    let mut out = accuracy::domain_specs(info, info.kind == fastbrdf::Kind::Brdf);
+    let with_eta: Vec<ModelSpec> = out
         .iter()
-        .filter(|c| c.iter().any(|(k, _)| k == "eta"))
+        .filter(|c| c.get("eta").is_some())
         .cloned()
         .collect();
     let mut seen = std::collections::BTreeSet::new();
     for c in with_eta {
-        let mut c = c.clone();
-        for (k, v) in c.iter_mut() {
-            if k == "eta" {
-                *v = String::new();
-            }
-        }
-        if !seen.insert(c.clone()) {
+        // The configuration without its eta: each is given the corner etas once.
+        let others: Vec<(String, String)> =
+            c.pairs().into_iter().filter(|(k, _)| k != "eta").collect();
+        if !seen.insert(others) {
             continue;
         }
         for eta in CORNER_ETAS {
-            let c: Vec<_> = c
-                .iter()
-                .map(|(k, v)| {
-                    if k == "eta" {
-                        (k.clone(), eta.to_string())
-                    } else {
-                        (k.clone(), v.clone())
-                    }
-                })
-                .collect();
-            out.push(c);
+            // A combination the model refuses is not part of its domain.
+            if let Ok(c) = c.with("eta", Given::Num(eta)) {
+                out.push(c);
+            }
         }
     }
     out
@@ -248,7 +246,7 @@ fn corner_pairs() -> Vec<([f32; 3], [f32; 3])> {
 /// shadowing), with `alpha` at its ends (env terms), and [`corner_pairs`] (BRDFs). Mixed metric
 /// `|v32 - v64| / max(1, |v64|)`; a non-finite or negative value is recorded as invalid.
 pub fn corners(info: &fastbrdf::ModelInfo) -> Corners {
-    use fastbrdf::{Model, model::ShadowInput, registry};
+    use fastbrdf::{Model, model::ShadowInput};
     let mut out = Corners::default();
     let note = |out: &mut Corners, v32: f32, v64: f64, at: &dyn Fn() -> String| {
         out.evaluations += 1;
@@ -266,11 +264,7 @@ pub fn corners(info: &fastbrdf::ModelInfo) -> Corners {
     };
     let (alo, ahi) = fastbrdf::params::ALPHA.range();
     for c in corner_configs(info) {
-        let given: Vec<(&str, &str)> = c.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
-        let (Ok(m32), Ok(m64)) = (
-            registry::build::<f32>(info.id, &given),
-            registry::build::<f64>(info.id, &given),
-        ) else {
+        let (Ok(m32), Ok(m64)) = (c.model::<f32>(), c.model::<f64>()) else {
             continue; // a combination the model refuses: not part of its domain
         };
         let p = fmt_params(&c);
@@ -445,7 +439,7 @@ mod tests {
         assert!(
             configs
                 .iter()
-                .any(|c| c == &[("eta".to_string(), "1.0001".to_string())]),
+                .any(|c| c.pairs() == [("eta".to_string(), "1.0001".to_string())]),
             "{configs:?}"
         );
         assert!(CORNER_COS.contains(&0.003_908_168));
@@ -480,11 +474,8 @@ mod tests {
 
     #[test]
     fn configurations_are_named_by_their_parameters() {
-        let p = [
-            ("n".to_string(), "20".to_string()),
-            ("f".into(), "schlick".into()),
-        ];
-        assert_eq!(fmt_params(&p), "n=20 f=schlick");
-        assert_eq!(fmt_params(&[]), "");
+        let p = ModelSpec::parse("blinn-phong", &[("n", "20"), ("norm", "none")]).unwrap();
+        assert_eq!(fmt_params(&p), "n=20 norm=none");
+        assert_eq!(fmt_params(&ModelSpec::parse("flog", &[]).unwrap()), "");
     }
 }

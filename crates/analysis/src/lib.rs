@@ -40,18 +40,24 @@ pub mod speed;
 
 pub use fastbrdf::{Error, Result};
 
-/// `name=value` parameters as a JSON object: numbers as numbers, choices (`f=schlick`) as
-/// their names (the machine outputs of `albedo`, `fit-measured` and the Python package).
-pub fn params_json(params: &[(String, String)]) -> serde_json::Map<String, serde_json::Value> {
-    params
-        .iter()
+/// A spec's given values as a JSON object: numbers as numbers, choices (`f=schlick`) as their
+/// names, `R,G,B` values as their `a,b,c` text (the machine outputs of `albedo`,
+/// `fit-measured`, `sample` and the Python package).
+pub fn params_json(spec: &fastbrdf::ModelSpec) -> serde_json::Map<String, serde_json::Value> {
+    spec.pairs()
+        .into_iter()
         .map(|(k, v)| {
-            let value = v
-                .parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .map_or_else(|| serde_json::json!(v), |x| serde_json::json!(x));
-            (k.clone(), value)
+            let value = text_json(&v);
+            (k, value)
         })
         .collect()
+}
+
+/// A value's text as JSON: a number where it reads as a finite one (a choice named by a
+/// number, `denominator=4`, too, as these outputs always wrote it), else the text.
+pub(crate) fn text_json(v: &str) -> serde_json::Value {
+    v.parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .map_or_else(|| serde_json::json!(v), |x| serde_json::json!(x))
 }

@@ -121,10 +121,13 @@ pub fn kernels(id: &str) -> Result<(Kernel, Kernel)> {
             found: e.info.kind.name().into(),
         });
     }
-    Ok((
-        Kernel::new(e.info.id, &[("term", "scale")])?,
-        Kernel::new(e.info.id, &[("term", "bias")])?,
-    ))
+    let term = |t: &str| {
+        Kernel::from_spec(&fastbrdf::ModelSpec::new(
+            e.info.id,
+            &[("term", fastbrdf::Given::Choice(t.into()))],
+        )?)
+    };
+    Ok((term("scale")?, term("bias")?))
 }
 
 /// Computes the table of env model `id`. `row_done` is called once per finished row (from

@@ -16,7 +16,7 @@
 
 use crate::errors::{self, ErrorRow};
 use fastbrdf::params::ParamKind;
-use fastbrdf::{Result, Zone};
+use fastbrdf::{Given, ModelSpec, Result, Zone};
 use rayon::prelude::*;
 use std::sync::OnceLock;
 
@@ -224,18 +224,15 @@ pub struct Supplied {
     pub source: Source,
 }
 
-/// The parameters `material` supplies to model `id` (an unknown id supplies nothing: the
-/// caller's own lookup reports it).
-pub fn supplied(material: &Material, id: &str) -> Vec<Supplied> {
-    let Ok(e) = fastbrdf::registry::find(id) else {
-        return vec![];
-    };
-    e.info
+/// The numeric parameters `material` supplies to `spec`'s model (given or not: see
+/// [`apply`]), in the model's parameter order.
+pub fn supplied(material: &Material, spec: &ModelSpec) -> Vec<Supplied> {
+    spec.info()
         .params
         .iter()
         .filter(|p| matches!(p.kind, ParamKind::Number { .. }))
         .filter_map(|p| {
-            source(e.info.id, p.name).map(|s| Supplied {
+            source(spec.id(), p.name).map(|s| Supplied {
                 param: p.name,
                 value: s.value(material),
                 source: s,
@@ -260,17 +257,14 @@ pub fn fit_for<'a>(material: &'a Material, id: &str) -> Option<&'a Albedos> {
     }
 }
 
-/// `explicit` (NAME=VALUE pairs, which win) followed by the parameters `material` supplies to
-/// model `id` that are not given explicitly. A supplied value outside the model's documented
-/// domain is an error that says so.
-pub fn params_with(
-    material: &Material,
-    id: &str,
-    explicit: &[(String, String)],
-) -> std::result::Result<Vec<(String, String)>, String> {
-    let mut out = explicit.to_vec();
-    for s in supplied(material, id) {
-        if explicit.iter().any(|(k, _)| k == s.param) {
+/// `spec` with the figures `material` supplies to its model added where no value is given
+/// (given values win: [`ModelSpec::with_defaults`]). A supplied value outside the model's
+/// documented domain is an error that says so (give the parameter to override it).
+pub fn apply(material: &Material, spec: &ModelSpec) -> std::result::Result<ModelSpec, String> {
+    let id = spec.id();
+    let mut defaults = vec![];
+    for s in supplied(material, spec) {
+        if spec.get(s.param).is_some() {
             continue;
         }
         if !inside(id, s.param, s.value) {
@@ -285,9 +279,10 @@ pub fn params_with(
                 s.param
             ));
         }
-        out.push((s.param.to_string(), s.value.to_string()));
+        defaults.push((s.param, Given::Num(s.value)));
     }
-    Ok(out)
+    spec.with_defaults(&defaults)
+        .map_err(|e| format!("material '{}': {e}", material.name))
 }
 
 /// The model families a material's figures fall inside the documented domains of:
@@ -422,26 +417,39 @@ mod tests {
         assert_eq!(names.len(), 86, "names are unique and sorted");
     }
 
+    fn spec(id: &str, given: &[(&str, &str)]) -> ModelSpec {
+        ModelSpec::parse(id, given).unwrap()
+    }
+
     #[test]
     fn a_material_supplies_parameters_by_kind_and_name() {
         let m = find("gold-paint").unwrap();
-        let p = params_with(m, "pow", &[]).unwrap();
-        assert_eq!(p, [("n".to_string(), "36.8".to_string())]);
-        let p = params_with(m, "ward-pow", &[]).unwrap();
-        assert_eq!(p, [("alpha".to_string(), "0.234".to_string())]);
-        let p = params_with(m, "beckmann", &[]).unwrap();
-        assert_eq!(p, [("alpha".to_string(), "0.214".to_string())]);
-        let p = params_with(m, "cook-torrance", &[("f0".into(), "0.5".into())]).unwrap();
+        let pairs = |id: &str, given: &[(&str, &str)]| apply(m, &spec(id, given)).unwrap().pairs();
+        let one = |k: &str, v: &str| vec![(k.to_string(), v.to_string())];
+        assert_eq!(pairs("pow", &[]), one("n", "36.8"));
+        assert_eq!(pairs("ward-pow", &[]), one("alpha", "0.234"));
+        assert_eq!(pairs("beckmann", &[]), one("alpha", "0.214"));
         assert_eq!(
-            p,
+            pairs("cook-torrance", &[("f0", "0.5")]),
             [
                 ("f0".to_string(), "0.5".to_string()),
                 ("alpha".to_string(), "0.214".to_string())
             ]
         );
+        // Given values win; the figures a model takes are supplied whether given or not.
+        assert_eq!(pairs("pow", &[("n", "7")]), one("n", "7"));
+        let s = supplied(m, &spec("cook-torrance", &[]));
+        let names: Vec<&str> = s.iter().map(|s| s.param).collect();
+        assert!(
+            names.contains(&"alpha") && names.contains(&"f0"),
+            "{names:?}"
+        );
+        assert!(supplied(m, &spec("lambert", &[])).is_empty());
         // n = 121,000 stays outside even a widened [1, 1e5].
-        let e = params_with(find("specular-violet-phenolic").unwrap(), "pow", &[]).unwrap_err();
+        let violet = find("specular-violet-phenolic").unwrap();
+        let e = apply(violet, &spec("pow", &[])).unwrap_err();
         assert!(e.contains("outside pow's documented domain n"), "{e}");
+        assert!(apply(violet, &spec("pow", &[("n", "1000")])).is_ok());
         assert!(find("gold-pant").unwrap_err().contains("gold-paint"));
         assert_eq!(fit_for(m, "flog"), Some(&m.blinn_phong));
         assert_eq!(fit_for(m, "ward-power16"), Some(&m.ward));

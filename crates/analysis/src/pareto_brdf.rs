@@ -34,7 +34,8 @@
 
 use crate::speed;
 use fastbrdf::batch::Kernel;
-use fastbrdf::{Kind, Model, registry};
+use fastbrdf::params::Value;
+use fastbrdf::{Given, Kind, Model, ModelSpec, registry};
 use fastbrdf_render::compare;
 use fastbrdf_render::render::{self, Shading};
 use fastbrdf_render::scene::Specular;
@@ -45,33 +46,63 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::Duration;
 
-/// One Cook-Torrance configuration: its parameters except `alpha` (`d`, `g`, `f`, and any of
-/// `f0`, `f90`, `eta`, `k`, `denominator`).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+/// One Cook-Torrance configuration: a `cook-torrance` spec without `alpha` (`d`, `g`, `f`,
+/// and any of `f0`, `f90`, `eta`, `k`, `denominator`), grey; `alpha` is the sweep's
+/// ([`Config::at`]).
+#[derive(Clone, Debug, PartialEq)]
 pub struct Config {
-    pub params: Vec<(String, String)>,
+    pub spec: ModelSpec,
 }
 
 impl Config {
     fn new(d: &str, g: &str, f: &str) -> Self {
-        let mut params = vec![
-            ("d".into(), d.into()),
-            ("g".into(), g.into()),
-            ("f".into(), f.into()),
-        ];
+        let choice = |v: &str| Given::Choice(v.into());
+        let mut given = vec![("d", choice(d)), ("g", choice(g)), ("f", choice(f))];
         if f == "dielectric" {
-            params.push(("eta".into(), "1.5".into()));
+            given.push(("eta", Given::Num(1.5)));
         }
-        Self { params }
+        let spec = ModelSpec::new("cook-torrance", &given)
+            .unwrap_or_else(|e| panic!("a registered cook-torrance configuration: {e}"));
+        Self { spec }
     }
 
-    fn with(mut self, name: &str, value: &str) -> Self {
-        self.params.push((name.into(), value.into()));
-        self
+    fn with(self, name: &str, value: Given) -> Self {
+        let spec = self
+            .spec
+            .with(name, value)
+            .unwrap_or_else(|e| panic!("a registered cook-torrance configuration: {e}"));
+        Self { spec }
     }
 
-    /// `d=ggx,g=smith-ggx-correlated,f=dielectric,eta=1.5`: Cook-Torrance parameters, checked
-    /// by building the model (`alpha` is refused: it is the sweep's).
+    /// A configuration from a spec: `cook-torrance`, grey, without `alpha` (it is the
+    /// sweep's).
+    pub fn from_spec(spec: &ModelSpec) -> fastbrdf::Result<Self> {
+        let bad = |param: &str, value: String, expected: &str| fastbrdf::Error::InvalidParam {
+            model: spec.id().into(),
+            param: param.into(),
+            value,
+            expected: expected.into(),
+        };
+        if spec.id() != "cook-torrance" {
+            return Err(fastbrdf::Error::WrongKind {
+                model: spec.id().into(),
+                expected: "cook-torrance (a configuration is its d, g, f and their values)".into(),
+                found: spec.kind().name().into(),
+            });
+        }
+        if let Some(a) = spec.get("alpha") {
+            return Err(bad(
+                "alpha",
+                a.to_string(),
+                "no alpha in a configuration: --alpha sets it",
+            ));
+        }
+        spec.plan()?;
+        Ok(Self { spec: spec.clone() })
+    }
+
+    /// `d=ggx,g=smith-ggx-correlated,f=dielectric,eta=1.5`: Cook-Torrance parameters, parsed
+    /// and checked as a spec (`alpha` is refused: it is the sweep's).
     pub fn parse(text: &str) -> fastbrdf::Result<Self> {
         let mut params = Vec::new();
         for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
@@ -91,39 +122,28 @@ impl Config {
                     expected: "no alpha in a configuration: --alpha sets it".into(),
                 });
             }
-            params.push((k.trim().to_string(), v.trim().to_string()));
+            params.push((k.trim(), v.trim()));
         }
-        let c = Self { params };
-        registry::build::<f64>("cook-torrance", &c.given("0.3"))?;
-        Ok(c)
+        Self::from_spec(&ModelSpec::parse("cook-torrance", &params)?)
     }
 
-    /// A parameter's value, or cook-torrance's default for it.
+    /// A parameter's value as text, given or cook-torrance's default for it (empty for a
+    /// number without a default).
     pub fn get(&self, name: &str) -> String {
-        self.params
-            .iter()
-            .rev()
-            .find(|(k, _)| k == name)
-            .map(|(_, v)| v.clone())
-            .unwrap_or_else(|| {
-                let info = &registry::find("cook-torrance").expect("registered").info;
-                info.params
-                    .iter()
-                    .find(|p| p.name == name)
-                    .map(|p| match p.kind {
-                        fastbrdf::params::ParamKind::Choice { default, .. } => default.into(),
-                        fastbrdf::params::ParamKind::Number { default, .. } => {
-                            default.map(crate::range::num).unwrap_or_default()
-                        }
-                    })
-                    .unwrap_or_default()
-            })
+        if let Some(v) = self.spec.get(name) {
+            return v.to_string();
+        }
+        match self.spec.channels()[0].get(name) {
+            Some(Value::Num(x)) => crate::range::num(*x),
+            Some(Value::Text(t)) => t.clone(),
+            None => String::new(),
+        }
     }
 
-    /// `d / g / f`, then any other parameter as `name=value`.
+    /// `d / g / f`, then any other parameter given as `name=value`.
     pub fn label(&self) -> String {
         let mut s = format!("{} / {} / {}", self.get("d"), self.get("g"), self.get("f"));
-        for (k, v) in &self.params {
+        for (k, v) in self.spec.pairs() {
             if !matches!(k.as_str(), "d" | "g" | "f") {
                 s.push_str(&format!(" {k}={v}"));
             }
@@ -131,11 +151,9 @@ impl Config {
         s
     }
 
-    /// The parameters with `alpha`, as the registry takes them.
-    fn given<'a>(&'a self, alpha: &'a str) -> Vec<(&'a str, &'a str)> {
-        let mut g: Vec<(&str, &str)> = vec![("alpha", alpha)];
-        g.extend(self.params.iter().map(|(a, b)| (a.as_str(), b.as_str())));
-        g
+    /// The configuration at roughness `alpha`.
+    pub fn at(&self, alpha: f64) -> fastbrdf::Result<ModelSpec> {
+        self.spec.with("alpha", Given::Num(alpha))
     }
 }
 
@@ -143,6 +161,43 @@ impl Config {
 /// Fresnel at eta = 1.5 (f0 = 0.04, what `schlick` and `schlick-sg` take by default).
 pub fn default_reference() -> Config {
     Config::new("ggx", "smith-ggx-correlated", "dielectric")
+}
+
+/// The Fresnel terms `--all` leaves out: `none` (no Fresnel term: not a configuration anyone
+/// shades with) and `conductor` (a metal's complex index; the reference is a dielectric).
+pub const ALL_LEAVES_OUT: [&str; 2] = ["none", "conductor"];
+
+/// The Fresnel terms of `--all`: every one cook-torrance's `f` takes (the registry's Fresnel
+/// terms) but [`ALL_LEAVES_OUT`], in registry order.
+pub fn all_fresnel() -> Vec<&'static str> {
+    registry::ids_of(Kind::Fresnel)
+        .into_iter()
+        .filter_map(|id| id.strip_prefix("fresnel-"))
+        .filter(|f| !ALL_LEAVES_OUT.contains(f))
+        .collect()
+}
+
+/// How many configurations `--all` takes: distributions x shadowing terms x [`all_fresnel`]
+/// (counted from the registry without building them: what `pareto --brdf --help` states).
+pub fn all_count() -> usize {
+    registry::ids_of(Kind::Distribution).len()
+        * registry::ids_of(Kind::Shadowing).len()
+        * all_fresnel().len()
+}
+
+/// The configurations of `--all`: every distribution x every shadowing term x every
+/// [`all_fresnel`] term (`eta = 1.5` with the exact dielectric), denominator 4.
+pub fn all_configurations() -> Vec<Config> {
+    let fs = all_fresnel();
+    let mut v = Vec::new();
+    for d in registry::ids_of(Kind::Distribution) {
+        for g in registry::ids_of(Kind::Shadowing) {
+            for f in &fs {
+                v.push(Config::new(d, g, f));
+            }
+        }
+    }
+    v
 }
 
 /// The configurations of the table. The default list varies one part at a time from the
@@ -156,27 +211,10 @@ pub fn default_reference() -> Config {
 /// - seed 000 as printed (`beckmann-ct` or `beckmann-power16`, V-cavity, Schlick,
 ///   denominator `cos_i cos_o`).
 ///
-/// `all`: every distribution x every shadowing term x {dielectric, schlick, schlick-sg,
-/// schlick-sg-tuned}, denominator 4.
+/// `all`: [`all_configurations`].
 pub fn configurations(all: bool) -> Vec<Config> {
-    let ids = |kind: Kind| -> Vec<&'static str> {
-        registry::all()
-            .iter()
-            .filter(|e| e.info.kind == kind)
-            .map(|e| e.info.id)
-            .collect()
-    };
     if all {
-        let fs = ["dielectric", "schlick", "schlick-sg", "schlick-sg-tuned"];
-        let mut v = Vec::new();
-        for d in ids(Kind::Distribution) {
-            for g in ids(Kind::Shadowing) {
-                for f in fs {
-                    v.push(Config::new(d, g, f));
-                }
-            }
-        }
-        return v;
+        return all_configurations();
     }
     let mut v = Vec::new();
     for f in ["dielectric", "schlick", "schlick-sg", "schlick-sg-tuned"] {
@@ -217,7 +255,10 @@ pub fn configurations(all: bool) -> Vec<Config> {
         }
     }
     for d in ["beckmann-ct", "beckmann-power16"] {
-        v.push(Config::new(d, "v-cavity", "schlick").with("denominator", "seed-000"));
+        v.push(
+            Config::new(d, "v-cavity", "schlick")
+                .with("denominator", Given::Choice("seed-000".into())),
+        );
     }
     v
 }
@@ -240,16 +281,15 @@ impl Grid {
 /// theta_i, theta_o, phi; and the solid-angle weight of each node (`sin theta_i sin theta_o
 /// d theta^2 d phi`, times `2 pi` for `phi_i`; they sum to about `(2 pi)^2`).
 fn cosine_weighted(config: &Config, alpha: f64, grid: Grid) -> fastbrdf::Result<Vec<f64>> {
-    let a = crate::range::num(alpha);
-    let given = config.given(&a);
+    let spec = config.at(alpha)?;
     // Built once to report a bad configuration; each row builds its own (Send-free models).
-    registry::build::<f64>("cook-torrance", &given)?;
+    spec.model::<f64>()?;
     let (nt, np) = (grid.theta, grid.phi.max(2) & !1);
     let dt = std::f64::consts::FRAC_PI_2 / nt as f64;
     let rows: Vec<Vec<f64>> = (0..nt)
         .into_par_iter()
         .map(|i| {
-            let Ok(Model::Brdf(b)) = registry::build::<f64>("cook-torrance", &given) else {
+            let Ok(Model::Brdf(b)) = spec.model::<f64>() else {
                 unreachable!("checked above")
             };
             let ti = (i as f64 + 0.5) * dt;
@@ -360,8 +400,7 @@ pub fn cost(
     inputs: &speed::Inputs,
     budget: Duration,
 ) -> fastbrdf::Result<(f64, bool)> {
-    let a = crate::range::num(alpha);
-    let k = Kernel::new("cook-torrance", &config.given(&a))?;
+    let k = Kernel::from_spec(&config.at(alpha)?)?;
     let n = inputs.dirs[0].len();
     let input = inputs.input(Kind::Brdf, n);
     let mut out = vec![0.0f32; n];
@@ -407,13 +446,7 @@ impl Images {
 
     /// The sRGB 8-bit renders of `config` at `alpha`: the sphere, then the mesh if any.
     pub fn render(&self, config: &Config, alpha: f64) -> fastbrdf_render::Result<Vec<Vec<u8>>> {
-        let a = crate::range::num(alpha);
-        let params: Vec<(String, String)> = config
-            .given(&a)
-            .into_iter()
-            .map(|(k, v)| (k.to_string(), v.to_string()))
-            .collect();
-        let specular = Arc::new(Specular::new("cook-torrance", &params)?);
+        let specular = Arc::new(Specular::new(&config.at(alpha)?)?);
         let opts = render::Options {
             width: self.size,
             height: self.size,
@@ -473,20 +506,22 @@ impl FrontOn {
     }
 }
 
-/// `[[NAME, VALUE], ...]` with each value a JSON number where it is one (`["eta", 1.5]`), else
-/// the choice's name: machine outputs carry numbers (issue 27).
-pub fn params_pairs_json(params: &[(String, String)]) -> serde_json::Value {
-    params
+/// A spec's given values as `[[NAME, VALUE], ...]`, in the order given, each value a JSON
+/// number where it is one (`["eta", 1.5]`), else the choice's name: machine outputs carry
+/// numbers (issue 27).
+pub fn params_pairs_json(spec: &ModelSpec) -> serde_json::Value {
+    pairs_json(&spec.pairs())
+}
+
+fn pairs_json(pairs: &[(String, String)]) -> serde_json::Value {
+    pairs
         .iter()
-        .map(|(k, v)| {
-            let one = crate::params_json(&[(k.clone(), v.clone())]);
-            serde_json::json!([k, one[k]])
-        })
+        .map(|(k, v)| serde_json::json!([k, crate::text_json(v)]))
         .collect()
 }
 
 fn ser_pairs<S: serde::Serializer>(p: &[(String, String)], s: S) -> Result<S::Ok, S::Error> {
-    params_pairs_json(p).serialize(s)
+    pairs_json(p).serialize(s)
 }
 
 /// One configuration at one alpha.
@@ -610,7 +645,7 @@ pub fn run(o: &Options, progress: &dyn Fn()) -> Result<Vec<Row>, String> {
                 g: c.get("g"),
                 f: c.get("f"),
                 denominator: c.get("denominator"),
-                params: c.params.clone(),
+                params: c.spec.pairs(),
                 alpha,
                 reference: *c == o.reference,
                 simd,
@@ -722,13 +757,72 @@ mod tests {
         assert!(list.contains(&default_reference()));
         assert!(list.iter().any(|c| c.get("denominator") == "seed-000"));
         for c in &list {
-            registry::build::<f32>("cook-torrance", &c.given("0.3")).unwrap();
+            c.at(0.3).unwrap().model::<f32>().unwrap();
         }
-        let count = |k: Kind| registry::all().iter().filter(|e| e.info.kind == k).count();
+        assert_eq!(configurations(true), all_configurations());
+    }
+
+    /// `--all`'s count is the registry's, never a number written by hand (issue 28: the help
+    /// said 308 after the Charlie parts made it larger): every distribution x every shadowing
+    /// term x every Fresnel term cook-torrance's `f` takes but `none` and `conductor`, each
+    /// configuration distinct and valid, and [`all_count`] (what the help prints) agrees.
+    #[test]
+    fn all_takes_every_part_of_the_registry_and_counts_it() {
+        let info = &registry::find("cook-torrance").unwrap().info;
+        let choices = |name: &str| -> Vec<&'static str> {
+            let p = info.params.iter().find(|p| p.name == name).unwrap();
+            match p.kind {
+                fastbrdf::params::ParamKind::Choice { options, .. } => options.names().to_vec(),
+                fastbrdf::params::ParamKind::Number { .. } => panic!("{name} is a choice"),
+            }
+        };
+        let ds = registry::ids_of(Kind::Distribution);
+        let gs = registry::ids_of(Kind::Shadowing);
+        let fs: Vec<&str> = choices("f")
+            .into_iter()
+            .filter(|f| !["none", "conductor"].contains(f))
+            .collect();
         assert_eq!(
-            configurations(true).len(),
-            count(Kind::Distribution) * count(Kind::Shadowing) * 4
+            choices("d"),
+            ds,
+            "cook-torrance's d takes every distribution"
         );
+        assert_eq!(
+            choices("g"),
+            gs,
+            "cook-torrance's g takes every shadowing term"
+        );
+        for f in ["dielectric", "schlick", "schlick-sg", "schlick-sg-tuned"] {
+            assert!(fs.contains(&f), "{f} in {fs:?}");
+        }
+        let all = all_configurations();
+        assert_eq!(all.len(), ds.len() * gs.len() * fs.len());
+        assert_eq!(all_count(), all.len());
+        eprintln!(
+            "--all: {} distributions x {} shadowing terms x {} Fresnel terms = {}",
+            ds.len(),
+            gs.len(),
+            fs.len(),
+            all.len()
+        );
+        let mut labels: Vec<String> = all.iter().map(Config::label).collect();
+        labels.sort();
+        labels.dedup();
+        assert_eq!(labels.len(), all.len(), "configurations are distinct");
+        for d in &ds {
+            for g in &gs {
+                for f in &fs {
+                    assert!(
+                        all.iter()
+                            .any(|c| c.get("d") == *d && c.get("g") == *g && c.get("f") == *f),
+                        "{d} {g} {f}"
+                    );
+                }
+            }
+        }
+        for c in &all {
+            c.at(0.3).unwrap().model::<f32>().unwrap();
+        }
     }
 
     #[test]

@@ -10,7 +10,7 @@
 /// The most values a range or list may have.
 pub const MAX_VALUES: usize = 1_000_000;
 
-/// A parameter value as text (for `registry::build` and messages): the shortest round-trip
+/// A parameter value as text (for labels and messages): the shortest round-trip
 /// text, in exponent form when that is long (1e308 rather than 309 digits).
 pub fn num(x: f64) -> String {
     let s = x.to_string();

@@ -24,7 +24,9 @@ fn beckmann_normalisation_to_1e8() {
     for i in 1..=20 {
         let a = 0.05 * f64::from(i);
         let fastbrdf::Model::Distribution(d) =
-            fastbrdf::registry::build::<f64>("beckmann", &[("alpha", &a.to_string())]).unwrap()
+            fastbrdf::ModelSpec::new("beckmann", &[("alpha", fastbrdf::Given::Num(a))])
+                .and_then(|s| s.model::<f64>())
+                .unwrap()
         else {
             panic!()
         };
@@ -167,9 +169,9 @@ fn fits_recover_known_constants_and_report_the_seed_residual() {
 
 #[test]
 fn albedo_verdicts() {
+    let spec = |id: &str, given: &[(&str, &str)]| fastbrdf::ModelSpec::parse(id, given).unwrap();
     let ct = albedo::target(
-        "cook-torrance",
-        &[("alpha".into(), "0.3".into())],
+        &spec("cook-torrance", &[("alpha", "0.3")]),
         "phong",
         "energy",
     )
@@ -177,14 +179,19 @@ fn albedo_verdicts() {
     assert!(ct.claims_energy);
     let rows = albedo::curve(&ct, &[0.0, 45.0, 80.0], 1e-7).unwrap();
     assert!(albedo::furnace(&rows, 1e-6).0);
-    let ward = albedo::target("ward", &[("alpha".into(), "1".into())], "phong", "energy").unwrap();
+    let ward = albedo::target(&spec("ward", &[("alpha", "1")]), "phong", "energy").unwrap();
     let rows = albedo::curve(&ward, &[0.0, 89.9], 1e-7).unwrap();
     let (holds, worst) = albedo::furnace(&rows, 1e-6);
     assert!(!holds && worst.unwrap().theta_deg == 89.9);
-    let lobe = albedo::target("cubic3", &[("n".into(), "7".into())], "phong", "energy").unwrap();
+    let lobe = albedo::target(&spec("cubic3", &[("n", "7")]), "phong", "energy").unwrap();
+    assert_eq!(lobe.spec.to_string(), "phong lobe=cubic3 norm=energy n=7");
     let rows = albedo::curve(&lobe, &[0.0], 1e-9).unwrap();
     assert!((rows[0].albedo - 1.0).abs() < 1e-7, "{rows:?}");
-    assert!(albedo::target("beckmann", &[], "phong", "energy").is_err());
+    assert!(albedo::target(&spec("beckmann", &[]), "phong", "energy").is_err());
+    // A coloured spec is integrated one channel at a time.
+    let rgb = spec("cook-torrance", &[("f0", "0.2,0.4,0.6")]);
+    assert!(albedo::target(&rgb, "phong", "energy").is_err());
+    assert!(albedo::target(&rgb.channel_specs()[1], "phong", "energy").is_ok());
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! model must leave a larger residual.
 
 use fastbrdf::measured::{MeasuredBrdf, from_half_diff, merl_bytes};
-use fastbrdf::{Model, registry};
+use fastbrdf::{Model, ModelSpec};
 use fastbrdf_analysis::materials;
 use fastbrdf_analysis::measured_fit::{Data, Metric, Options, Problem, fit};
 use std::f64::consts::PI;
@@ -11,7 +11,11 @@ use std::path::Path;
 
 /// A MERL table of `kd / pi + ks * model(params)` at the bin centres.
 fn synthetic(id: &str, params: &[(&str, &str)], kd: [f64; 3], ks: [f64; 3]) -> MeasuredBrdf {
-    let Model::Brdf(b) = registry::build::<f64>(id, params).unwrap() else {
+    let Model::Brdf(b) = ModelSpec::parse(id, params)
+        .unwrap()
+        .model::<f64>()
+        .unwrap()
+    else {
         panic!("a BRDF")
     };
     let bytes = merl_bytes(|th, td, pd| {
@@ -23,6 +27,10 @@ fn synthetic(id: &str, params: &[(&str, &str)], kd: [f64; 3], ks: [f64; 3]) -> M
         [0, 1, 2].map(|c| kd[c] / PI + ks[c] * s)
     });
     MeasuredBrdf::from_reader(&bytes[..], Path::new("synthetic.binary")).unwrap()
+}
+
+fn spec(id: &str, given: &[(&str, &str)]) -> ModelSpec {
+    ModelSpec::parse(id, given).unwrap()
 }
 
 fn close(a: f64, b: f64, rel: f64) -> bool {
@@ -41,7 +49,7 @@ fn ward_fit_recovers_the_ward_it_was_made_from() {
     let data = Data::from_measured(&b, 1500);
     assert_eq!(data.len(), 1500);
     assert!(data.eligible > 100_000, "{}", data.eligible);
-    let problem = Problem::new("ward", &[], true).unwrap();
+    let problem = Problem::new(&spec("ward", &[]), true).unwrap();
     assert_eq!(
         problem.free.iter().map(|f| f.name).collect::<Vec<_>>(),
         ["alpha"]
@@ -82,7 +90,7 @@ fn ward_fit_recovers_the_ward_it_was_made_from() {
     assert!(close(log.values[0], alpha, 0.01), "{}", log.values[0]);
     assert!(log.residuals.low_log <= l2.residuals.low_log * 1.0001);
     // A wrong model cannot match: its best residual is much larger.
-    let wrong = Problem::new("blinn-phong", &[], true).unwrap();
+    let wrong = Problem::new(&spec("blinn-phong", &[]), true).unwrap();
     let w = fit(&wrong, &data, &opts, &|_, _| {}).unwrap();
     assert!(
         w.residuals.ngan_l2 > 10.0 * l2.residuals.ngan_l2.max(1e-6),
@@ -108,11 +116,7 @@ fn cook_torrance_fit_with_fixed_choices() {
     let g: Vec<(&str, &str)> = given.iter().map(|(a, b)| (*a, b.as_str())).collect();
     let b = synthetic("cook-torrance", &g, [0.05, 0.04, 0.03], [1.0, 0.8, 0.6]);
     let data = Data::from_measured(&b, 1500);
-    let fixed: Vec<(String, String)> = params
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect();
-    let problem = Problem::new("cook-torrance", &fixed, true).unwrap();
+    let problem = Problem::new(&spec("cook-torrance", &params), true).unwrap();
     let names: Vec<&str> = problem.free.iter().map(|f| f.name).collect();
     assert_eq!(names, ["alpha", "f0"]);
     let r = fit(&problem, &data, &Options::default(), &|_, _| {}).unwrap();
@@ -123,7 +127,9 @@ fn cook_torrance_fit_with_fixed_choices() {
 
 #[test]
 fn only_brdfs_are_fitted() {
-    let e = Problem::new("flog", &[], true).unwrap_err();
+    let e = Problem::new(&spec("flog", &[]), true).unwrap_err();
     assert!(e.contains("BRDF"), "{e}");
-    assert!(Problem::new("ward", &[("alpha".into(), "7".into())], true).is_err());
+    // An invalid value is refused where the text is parsed, once, naming it.
+    let e = ModelSpec::parse("ward", &[("alpha", "7")]).unwrap_err();
+    assert!(e.to_string().contains("alpha"), "{e}");
 }

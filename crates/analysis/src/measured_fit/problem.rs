@@ -4,7 +4,8 @@
 use super::{Data, HELD};
 use fastbrdf::measured;
 use fastbrdf::params::ParamKind;
-use fastbrdf::{Brdf, Kind, Model, registry};
+use fastbrdf::params::Value;
+use fastbrdf::{Brdf, Given, Kind, Model, ModelSpec};
 
 /// A fitted (or searched) numeric parameter and its documented range.
 #[derive(Clone, Debug)]
@@ -41,12 +42,12 @@ impl Free {
     }
 }
 
-/// What is fitted: a registry BRDF, its fixed parameters (choices and values given by the
-/// user) and its free numeric parameters.
+/// What is fitted: a registry BRDF with its fixed parameters (the spec's given values:
+/// choices and values given by the user) and its free numeric parameters.
 #[derive(Clone, Debug)]
 pub struct Problem {
-    pub id: String,
-    pub fixed: Vec<(String, String)>,
+    /// The model and the values fixed (given); a grey BRDF.
+    pub spec: ModelSpec,
     pub free: Vec<Free>,
     /// Parameters of [`HELD`] the model reads that a search left at their default (name,
     /// value): not fitted, and not in `fixed`.
@@ -54,24 +55,20 @@ pub struct Problem {
 }
 
 impl Problem {
-    /// Model `id` (a BRDF) with `fixed` parameters; with `search`, every other numeric
-    /// parameter that has a default and whose required choices hold is free, except those of
-    /// [`HELD`] (left at their default), otherwise none is (defaults are used). Errors: an
-    /// unknown id, a non-BRDF kind, an invalid parameter.
-    pub fn new(id: &str, fixed: &[(String, String)], search: bool) -> Result<Self, String> {
-        Self::with_free(id, fixed, search, &[])
+    /// `spec`'s model (a BRDF) with its given values fixed; with `search`, every other
+    /// numeric parameter that has a default and whose required choices hold is free, except
+    /// those of [`HELD`] (left at their default), otherwise none is (defaults are used).
+    /// Errors: a non-BRDF kind, a coloured spec (the albedos carry the colour).
+    pub fn new(spec: &ModelSpec, search: bool) -> Result<Self, String> {
+        Self::with_free(spec, search, &[])
     }
 
     /// [`Problem::new`], with the [`HELD`] parameters named in `also` fitted too. Errors also:
-    /// a name in `also` that is not one of the model's numeric parameters, or that `fixed`
+    /// a name in `also` that is not one of the model's numeric parameters, or that `spec`
     /// gives.
-    pub fn with_free(
-        id: &str,
-        fixed: &[(String, String)],
-        search: bool,
-        also: &[String],
-    ) -> Result<Self, String> {
-        let e = registry::find(id).map_err(|e| e.to_string())?;
+    pub fn with_free(spec: &ModelSpec, search: bool, also: &[String]) -> Result<Self, String> {
+        let e = spec.entry();
+        let id = spec.id();
         for name in also {
             let short = fastbrdf_io::shorten(name, 40);
             match e.info.params.iter().find(|p| p.name == name) {
@@ -79,7 +76,7 @@ impl Problem {
                 Some(_) => return Err(format!("{short} is a choice, not a number to fit")),
                 None => return Err(format!("{} has no parameter '{short}'", e.info.id)),
             }
-            if fixed.iter().any(|(k, _)| k == name) {
+            if spec.get(name).is_some() {
                 return Err(format!(
                     "{short} is both fixed (--param) and asked to be fitted"
                 ));
@@ -91,30 +88,17 @@ impl Problem {
                 format!("{:?}", e.info.kind).to_lowercase()
             ));
         }
-        let given = |name: &str| {
-            fixed
-                .iter()
-                .find(|(k, _)| k == name)
-                .map(|(_, v)| v.clone())
-        };
         // The choices in force (given or default), for `requires`.
-        let choice = |name: &str| {
-            given(name).or_else(|| {
-                e.info
-                    .params
-                    .iter()
-                    .find(|p| p.name == name)
-                    .and_then(|p| match p.kind {
-                        ParamKind::Choice { default, .. } => Some(default.to_string()),
-                        ParamKind::Number { .. } => None,
-                    })
-            })
+        let resolved = spec.params().map_err(|e| e.to_string())?;
+        let choice = |name: &str| match resolved.get(name) {
+            Some(Value::Text(t)) => Some(t.clone()),
+            _ => None,
         };
         let mut free = Vec::new();
         let mut held = Vec::new();
         if search {
             for p in e.info.params {
-                if given(p.name).is_some() {
+                if spec.get(p.name).is_some() {
                     continue;
                 }
                 let ParamKind::Number {
@@ -143,8 +127,7 @@ impl Problem {
             }
         }
         let mut problem = Self {
-            id: e.info.id.to_string(),
-            fixed: fixed.to_vec(),
+            spec: spec.clone(),
             free,
             held: Vec::new(),
         };
@@ -216,7 +199,8 @@ impl Problem {
                 format!("{short} has no default and range to search from; give it with --param")
             } else if !problem.free.iter().any(|f| f.name == name.as_str()) {
                 let with: Vec<String> = problem
-                    .fixed
+                    .spec
+                    .pairs()
                     .iter()
                     .map(|(k, v)| format!("{k}={v}"))
                     .collect();
@@ -243,23 +227,26 @@ impl Problem {
         Ok(problem)
     }
 
-    /// The parameters as text: the fixed ones, then the free ones at `values`.
-    pub fn params(&self, values: &[f64]) -> Vec<(String, String)> {
-        let mut p = self.fixed.clone();
-        p.extend(
+    /// The model's registry id.
+    pub fn id(&self) -> &'static str {
+        self.spec.id()
+    }
+
+    /// The model at `values` (one per free parameter): the fixed values, then the free ones.
+    pub fn params(&self, values: &[f64]) -> fastbrdf::Result<ModelSpec> {
+        let mut given: Vec<(&str, Given)> = self.spec.given().to_vec();
+        given.extend(
             self.free
                 .iter()
                 .zip(values)
-                .map(|(f, v)| (f.name.to_string(), format!("{v}"))),
+                .map(|(f, &v)| (f.name, Given::Num(v))),
         );
-        p
+        ModelSpec::new(self.id(), &given)
     }
 
     /// The specular model at `values` (one per free parameter).
     pub fn model(&self, values: &[f64]) -> fastbrdf::Result<Box<dyn Brdf<f64>>> {
-        let p = self.params(values);
-        let given: Vec<(&str, &str)> = p.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
-        match registry::build::<f64>(&self.id, &given)? {
+        match self.params(values)?.model::<f64>()? {
             Model::Brdf(b) => Ok(b),
             _ => unreachable!("checked to be a BRDF"),
         }

@@ -100,8 +100,8 @@ pub struct Fit {
 }
 
 impl Fit {
-    /// The model's parameters as text (fixed, then fitted).
-    pub fn params(&self) -> Vec<(String, String)> {
+    /// The fitted model: the fixed values, then the fitted ones.
+    pub fn params(&self) -> fastbrdf::Result<fastbrdf::ModelSpec> {
         self.problem.params(&self.values)
     }
 
@@ -343,7 +343,7 @@ pub fn fit(
 mod tests {
     use super::*;
     use fastbrdf::measured::{self, MeasuredBrdf};
-    use fastbrdf::{Model, registry};
+    use fastbrdf::{Model, ModelSpec};
 
     /// Cook-Torrance (f = schlick, d = ggx) tabulated exactly with f0 0.04, f90 1 and rho_s 1.
     fn schlick_data() -> Data {
@@ -353,7 +353,8 @@ mod tests {
             ("alpha", "0.3"),
             ("f0", "0.04"),
         ];
-        let Model::Brdf(b) = registry::build::<f64>("cook-torrance", &params).unwrap() else {
+        let spec = ModelSpec::parse("cook-torrance", &params).unwrap();
+        let Model::Brdf(b) = spec.model::<f64>().unwrap() else {
             panic!("a BRDF")
         };
         let kd = [0.05, 0.04, 0.03];
@@ -369,10 +370,8 @@ mod tests {
         Data::from_measured(&m, 1500)
     }
 
-    fn fixed(p: &[(&str, &str)]) -> Vec<(String, String)> {
-        p.iter()
-            .map(|(a, b)| (a.to_string(), b.to_string()))
-            .collect()
+    fn fixed(p: &[(&str, &str)]) -> ModelSpec {
+        ModelSpec::parse("cook-torrance", p).unwrap()
     }
 
     /// Issue 27: with f90 free only products of f0, f90 and rho_s were determined (f0 0.0316,
@@ -382,7 +381,7 @@ mod tests {
     fn schlick_f90_is_held_and_a_degenerate_request_is_reported() {
         let data = schlick_data();
         let fx = fixed(&[("f", "schlick"), ("d", "ggx")]);
-        let problem = Problem::new("cook-torrance", &fx, true).unwrap();
+        let problem = Problem::new(&fx, true).unwrap();
         let names: Vec<&str> = problem.free.iter().map(|f| f.name).collect();
         assert_eq!(names, ["alpha", "f0"]);
         assert_eq!(problem.held, [("f90", 1.0)]);
@@ -394,15 +393,25 @@ mod tests {
         }
         assert!(r.undetermined.is_empty(), "{:?}", r.undetermined);
         // Asked for, f90 is fitted, and the fit says what it cannot determine.
-        let free = Problem::with_free("cook-torrance", &fx, true, &["f90".into()]).unwrap();
+        let free = Problem::with_free(&fx, true, &["f90".into()]).unwrap();
         let names: Vec<&str> = free.free.iter().map(|f| f.name).collect();
         assert_eq!(names, ["alpha", "f0", "f90"]);
         let d = fit(&free, &data, &Options::default(), &|_, _| {}).unwrap();
         assert_eq!(d.undetermined, ["f0", "f90", "rho_s"], "{d:?}");
         // Bad requests.
-        assert!(Problem::with_free("cook-torrance", &fx, true, &["nope".into()]).is_err());
-        assert!(Problem::with_free("cook-torrance", &fx, true, &["d".into()]).is_err());
+        assert!(Problem::with_free(&fx, true, &["nope".into()]).is_err());
+        assert!(Problem::with_free(&fx, true, &["d".into()]).is_err());
         let both = fixed(&[("f", "schlick"), ("f90", "1")]);
-        assert!(Problem::with_free("cook-torrance", &both, true, &["f90".into()]).is_err());
+        assert!(Problem::with_free(&both, true, &["f90".into()]).is_err());
+        // The fitted model is a spec: the fixed values, then the fitted ones.
+        let spec = r.params().unwrap();
+        assert_eq!(
+            spec.get("f"),
+            Some(&fastbrdf::Given::Choice("schlick".into()))
+        );
+        assert_eq!(spec.get("f0"), Some(&fastbrdf::Given::Num(r.values[1])));
+        // A coloured spec is refused: the albedos carry the colour.
+        let rgb = fixed(&[("f", "schlick"), ("f0", "0.1,0.2,0.3")]);
+        assert!(Problem::new(&rgb, true).is_err());
     }
 }

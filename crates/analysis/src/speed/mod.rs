@@ -47,7 +47,7 @@ pub use report::{
 pub use speedups::speedups;
 
 use fastbrdf::batch::{Input, Isa, Kernel};
-use fastbrdf::{Kind, Model, registry};
+use fastbrdf::{Given, Kind, Model, ModelSpec, registry};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -139,33 +139,43 @@ fn scalar_eval(m: &Model<f32>, input: &Input, out: &mut [f32]) {
     }
 }
 
-/// The configurations measured: every model at its defaults, and the seed-000 Cook-Torrance
-/// (V-cavity, Schlick, denominator (V.N)(L.N)) with each Beckmann form.
-pub fn configurations() -> Vec<(String, Vec<(String, String)>)> {
-    let mut v: Vec<(String, Vec<(String, String)>)> = registry::all()
+/// The configurations measured, each with its name (the rows' `model`): every model at its
+/// defaults (lobes at n = 200), and the seed-000 Cook-Torrance (V-cavity, Schlick,
+/// denominator (V.N)(L.N)) with each Beckmann form.
+pub fn configurations() -> Vec<(String, ModelSpec)> {
+    let spec = |id: &str, given: &[(&str, Given)]| {
+        ModelSpec::new(id, given).unwrap_or_else(|e| panic!("a benchmark configuration: {e}"))
+    };
+    let mut v: Vec<(String, ModelSpec)> = registry::all()
         .iter()
         // Shadowing terms take several cosines (no batch kernel); `env-brdf` is a quadrature
         // reference (1152 points per value: 16M values would take minutes), not a shading
         // model: engines read it from a table (`fastbrdf lut`).
         .filter(|e| e.info.kind != Kind::Shadowing && e.info.id != "env-brdf")
-        .map(|e| (e.info.id.to_string(), vec![]))
+        .map(|e| {
+            // Lobes at n = 200 (defaults: n = 20 hides nothing, but a sharper lobe is the more
+            // common specular case).
+            let given: &[(&str, Given)] = if e.info.kind == Kind::Lobe {
+                &[("n", Given::Num(200.0))]
+            } else {
+                &[]
+            };
+            (e.info.id.to_string(), spec(e.info.id, given))
+        })
         .collect();
-    // Lobes at n = 200 and distributions at alpha = 0.3 (defaults: n = 20 hides nothing, but a
-    // sharper lobe is the more common specular case).
-    for (id, p) in v.iter_mut() {
-        if registry::find(id).is_ok_and(|e| e.info.kind == Kind::Lobe) {
-            p.push(("n".into(), "200".into()));
-        }
-    }
+    let choice = |v: &str| Given::Choice(v.into());
     for d in ["beckmann-ct", "beckmann-pow", "beckmann-power16"] {
         v.push((
             format!("cook-torrance[seed-000,d={d}]"),
-            vec![
-                ("d".into(), d.into()),
-                ("g".into(), "v-cavity".into()),
-                ("f".into(), "schlick".into()),
-                ("denominator".into(), "seed-000".into()),
-            ],
+            spec(
+                "cook-torrance",
+                &[
+                    ("d", choice(d)),
+                    ("g", choice("v-cavity")),
+                    ("f", choice("schlick")),
+                    ("denominator", choice("seed-000")),
+                ],
+            ),
         ));
     }
     v
@@ -249,15 +259,10 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     );
     kernels.push(speedups::baseline("beckmann-expf-loop", t));
     progress(2, total);
-    for (i, (name, params)) in configs.iter().enumerate() {
-        let id = registry_id(name);
-        let given: Vec<(&str, &str)> = params
-            .iter()
-            .map(|(a, b)| (a.as_str(), b.as_str()))
-            .collect();
-        let info = &registry::find(id)?.info;
-        let kernel = Kernel::new(id, &given)?;
-        let model = registry::build::<f32>(id, &given)?;
+    for (i, (name, spec)) in configs.iter().enumerate() {
+        let info = spec.info();
+        let kernel = Kernel::from_spec(spec)?;
+        let model = spec.model::<f32>()?;
         let slots = fma_slots(info, kernel.isa());
         let frac = |evals: f64| slots.map(|f| evals * f / fma);
         let row = |variant: &str, batch: usize, evals: f64, isa: Isa, fraction: Option<f64>| {

@@ -4,7 +4,7 @@
 
 use super::{Aligned, repeats_for, timed};
 use fastbrdf::batch::{Input, Kernel};
-use fastbrdf::{Model, PipeOps, registry};
+use fastbrdf::{Given, Model, ModelSpec, PipeOps};
 use serde::{Deserialize, Serialize};
 use std::hint::black_box;
 use std::time::Duration;
@@ -55,11 +55,12 @@ enum PeerFn {
     Ggx { a2m1: f32, scale: f32 },
 }
 
-/// One C peer: the model it stands in for (id and parameters) and its loop.
+/// One C peer: the model it stands in for (id and spec) and its loop.
 #[derive(Clone, Debug)]
 pub struct Peer {
     pub id: &'static str,
-    pub params: Vec<(String, String)>,
+    /// The model the loop computes, at the peer's parameter.
+    pub spec: ModelSpec,
     /// The C function's name.
     pub function: &'static str,
     f: PeerFn,
@@ -117,23 +118,16 @@ impl Peer {
         };
         Some(Self {
             id,
-            params: vec![(name.into(), format!("{param}"))],
+            spec: ModelSpec::new(id, &[(name, Given::Num(param))]).ok()?,
             function,
             f,
         })
     }
 
-    /// The model's parameters as `Kernel::new` and `registry::build` take them.
-    pub fn given(&self) -> Vec<(&str, &str)> {
-        self.params
-            .iter()
-            .map(|(a, b)| (a.as_str(), b.as_str()))
-            .collect()
-    }
-
     /// The model's parameters as `name=value` (the CLI's form).
     pub fn params_text(&self) -> String {
-        self.params
+        self.spec
+            .pairs()
             .iter()
             .map(|(k, v)| format!("{k}={v}"))
             .collect::<Vec<_>>()
@@ -357,9 +351,8 @@ pub fn peer_rows(
         if !(models.is_empty() || models.iter().any(|m| m == peer.id)) {
             continue;
         }
-        let given = peer.given();
-        let kernel = Kernel::new(peer.id, &given)?;
-        let m64 = registry::build::<f64>(peer.id, &given)?;
+        let kernel = Kernel::from_spec(&peer.spec)?;
+        let m64 = peer.spec.model::<f64>()?;
         let kernel_max_error = max_mixed_error(&m64, &acc_in, |x, o| {
             kernel.eval(Input::Cos(x), o).expect("shapes match")
         });
@@ -429,9 +422,8 @@ mod tests {
         peers()
             .iter()
             .map(|p| {
-                let given = p.given();
-                let m64 = registry::build::<f64>(p.id, &given).unwrap();
-                let kernel = Kernel::new(p.id, &given).unwrap();
+                let m64 = p.spec.model::<f64>().unwrap();
+                let kernel = Kernel::from_spec(&p.spec).unwrap();
                 let ke = max_mixed_error(&m64, &xs, |x, o| kernel.eval(Input::Cos(x), o).unwrap());
                 (p.id, max_mixed_error(&m64, &xs, |x, o| p.eval(x, o)), ke)
             })
@@ -475,8 +467,8 @@ mod tests {
             ("alpha=0.3", "peer_beckmann")
         );
         for p in peers() {
-            let given = p.given();
-            assert!(registry::build::<f64>(p.id, &given).is_ok(), "{}", p.id);
+            assert_eq!(p.spec.id(), p.id);
+            assert!(p.spec.model::<f64>().is_ok(), "{}", p.id);
             assert_eq!(p.function, format!("peer_{}", p.id));
         }
     }
