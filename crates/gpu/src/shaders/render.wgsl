@@ -1,5 +1,5 @@
 // fastbrdf GPU renderer: the CPU renderer's per-sample work (crates/render/src/render.rs) as
-// vertex and fragment shaders. See crates/gpu/src/render.rs for the design.
+// vertex and fragment shaders. See crates/gpu/src/render/mod.rs for the design.
 //
 // Every function here is the twin of the CPU code named in its comment, with the same
 // arrangement of f32 operations (left-to-right sums, glam's formulas for dot, cross, normalize,
