@@ -139,10 +139,10 @@ fn plans_of(e: &fastbrdf::entry::Entry) -> Vec<Plan> {
     for p in e.info.params {
         if let fastbrdf::params::ParamKind::Choice { options, .. } = p.kind {
             for v in options.names() {
-                if let Ok(spec) = ModelSpec::parse(id, &[(p.name, v)]) {
-                    if let Ok(plan) = spec.plan() {
-                        out.push(*plan);
-                    }
+                if let Ok(spec) = ModelSpec::parse(id, &[(p.name, v)])
+                    && let Ok(plan) = spec.plan()
+                {
+                    out.push(*plan);
                 }
             }
         }
