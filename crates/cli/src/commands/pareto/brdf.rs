@@ -36,9 +36,9 @@ pub struct BrdfArgs {
     /// With --brdf: also compare renders of this OBJ mesh (e.g. the face).
     #[arg(long, value_name = "OBJ", requires = "brdf")]
     pub mesh: Option<PathBuf>,
-    /// With --brdf: every distribution x shadowing term x Fresnel (dielectric, schlick,
-    /// schlick-sg, schlick-sg-tuned): 308 configurations.
-    #[arg(long, requires = "brdf")]
+    // The help's list and count come from the registry (`pareto_brdf::all_fresnel`,
+    // `all_count`): a part added to it is counted, never a number written by hand.
+    #[arg(long, requires = "brdf", help = all_help())]
     pub all: bool,
     /// With --brdf: a few seconds: a coarse BRDF grid (16 x 16 x 32 pairs), 5 ms per timing,
     /// renders of at most 32 x 32 pixels.
@@ -56,6 +56,15 @@ pub struct BrdfArgs {
     /// measuring them (what README's table does, so that a test can keep it current).
     #[arg(long, value_name = "PARETO.json", requires = "brdf")]
     pub costs: Option<PathBuf>,
+}
+
+/// `--all`'s help: the Fresnel terms and the count, from the registry.
+fn all_help() -> String {
+    format!(
+        "With --brdf: every distribution x shadowing term x Fresnel ({}): {} configurations",
+        pb::all_fresnel().join(", "),
+        pb::all_count()
+    )
 }
 
 fn opt(x: Option<f64>, prec: usize) -> String {
