@@ -197,6 +197,14 @@ pub fn spec(
     if use_ == Use::Shaded {
         // The renderer's policy and its message for a term that cannot be shaded.
         spec = fastbrdf_render::scene::shading_brdf(&spec)?;
+        // A value neither the model nor the BRDF it is shaded as takes: name the model chosen.
+        if let Some((k, _)) = rest.iter().find(|(k, _)| !spec.takes(k)) {
+            return Err(fastbrdf::Error::UnknownParam {
+                model: e.info.id.into(),
+                param: shorten(k, QUOTE),
+            }
+            .into());
+        }
         if !rest.is_empty() {
             let mut all = spec.pairs();
             all.extend(rest.iter().map(|(k, v)| (k.to_string(), v.to_string())));

@@ -201,7 +201,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                     mat.name
                 ))
             })?;
-            let given = with_material(mat, &ModelSpec::parse(model, &[])?)?;
+            let given = with_material(mat, &ModelSpec::new(model, &[])?)?;
             from_material = given
                 .get(p)
                 .expect("the material supplies n and alpha")
@@ -226,7 +226,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     // Reject out-of-range parameter values before the sweep, with the registry's message.
     if let (Some(mat), None, None) = (material, &a.n, &a.m) {
         // The reference must hold the material's figure too (a clear message, not the registry's).
-        with_material(mat, &ModelSpec::parse(reference, &[])?)?;
+        with_material(mat, &ModelSpec::new(reference, &[])?)?;
     }
     for e in [model, reference] {
         if fastbrdf::registry::find(e)?.info.kind == fastbrdf::Kind::Env {

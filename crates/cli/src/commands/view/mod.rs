@@ -194,6 +194,9 @@ pub fn run(a: &Args) -> Result<(), CliError> {
 
 #[cfg(test)]
 mod tests {
+    use super::request::MAX_URL;
+    use super::server::{MAX_HEAD, MAX_HEADERS};
+    use super::state::{COMPUTE_WAIT, MAX_WAITING, RENDER_SLOTS};
     use super::*;
 
     /// The numbers `fastbrdf view --help` states are the constants in force.
