@@ -6,6 +6,7 @@
 //! power forms with `n < g`) and `c > 1` the value at 1; NaN gives 0. `n` is in [1, 100000]; error bounds are documented for n in [1, 100000] (and the seeds' narrower ranges).
 
 pub mod cubic;
+pub mod fits;
 pub mod flog;
 pub mod gauss;
 pub mod pow;

@@ -121,10 +121,7 @@ impl<const K: u32> Power<K> {
     /// The tuned lobe at exponent `n` (slope `tuned::power_slope`).
     pub fn tuned(n: f64) -> Result<Self> {
         let n = params::check("power-tuned", &params::N, n)?;
-        Ok(Self::with_slope(
-            super::tuned::power_slope(Self::G, n),
-            true,
-        ))
+        Ok(Self::with_slope(super::fits::power_slope(Self::G, n), true))
     }
 
     fn with_slope(s: f64, tuned: bool) -> Self {
@@ -211,7 +208,7 @@ impl<const K: u32> LobeForm for Power<K> {
         let expr = if self.tuned {
             format!(
                 "select(p_n / {g}.0 * ({}), 1.0, p_n == {g}.0)",
-                super::tuned::poly_expr(super::tuned::power_poly(g))
+                super::fits::poly_expr(super::fits::power_poly(g))
             )
         } else {
             format!("p_n / {g}.0")

@@ -184,7 +184,7 @@ impl CubicRational {
         let n = params::check("cubic-rational-tuned", &params::N, n)?;
         Ok(Self {
             tuned: true,
-            ..Self::at_level(n, super::tuned::cubic_rational_level(n))
+            ..Self::at_level(n, super::fits::cubic_rational_level(n))
         })
     }
 

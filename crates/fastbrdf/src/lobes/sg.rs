@@ -126,7 +126,7 @@ impl Exp2Lobe {
     pub fn tuned(n: f64) -> Result<Self> {
         let n = params::check("sg-tuned", &params::N, n)?;
         Ok(Self {
-            k: K::new(super::tuned::exp2_rate(n)),
+            k: K::new(super::fits::exp2_rate(n)),
             form: Exp2Form::Tuned,
         })
     }
@@ -191,7 +191,7 @@ impl LobeForm for Exp2Lobe {
             Exp2Form::Ue4 => "1.4427 * (p_n + 0.775)".to_string(),
             Exp2Form::Tuned => format!(
                 "p_n * 1.4426950408889634 * ({})",
-                super::tuned::poly_expr(&super::tuned::R_EXP2)
+                super::fits::poly_expr(&super::fits::R_EXP2)
             ),
         };
         format!("fb_lobe_exp2({c}, {})", e.kx(self.k, &expr, &["n"]))
