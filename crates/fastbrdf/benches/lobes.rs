@@ -4,7 +4,7 @@
 
 use divan::{Bencher, counter::ItemsCount};
 use fastbrdf::batch::{Input, Kernel};
-use fastbrdf::{Model, registry};
+use fastbrdf::{Given, Model, ModelSpec};
 
 const N: usize = 4096;
 
@@ -33,7 +33,7 @@ fn powf_loop(b: Bencher) {
 fn simd(b: Bencher, id: &str) {
     let x = cosines();
     let mut out = vec![0.0f32; N];
-    let k = Kernel::new(id, &[("n", "200")]).unwrap();
+    let k = Kernel::from_spec(&lobe(id)).unwrap();
     b.counter(ItemsCount::new(N))
         .bench_local(|| k.eval(Input::Cos(&x), &mut out).unwrap());
 }
@@ -42,7 +42,7 @@ fn simd(b: Bencher, id: &str) {
 fn scalar(b: Bencher, id: &str) {
     let x = cosines();
     let mut out = vec![0.0f32; N];
-    let Model::Lobe(l) = registry::build::<f32>(id, &[("n", "200")]).unwrap() else {
+    let Model::Lobe(l) = lobe(id).model::<f32>().unwrap() else {
         unreachable!()
     };
     b.counter(ItemsCount::new(N)).bench_local(|| {
@@ -51,4 +51,9 @@ fn scalar(b: Bencher, id: &str) {
         }
         divan::black_box(&out);
     });
+}
+
+/// Lobe `id` at n = 200.
+fn lobe(id: &str) -> ModelSpec {
+    ModelSpec::new(id, &[("n", Given::Num(200.0))]).unwrap()
 }

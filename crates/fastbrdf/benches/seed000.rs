@@ -6,7 +6,7 @@
 
 use divan::{Bencher, counter::ItemsCount};
 use fastbrdf::batch::{Input, Kernel};
-use fastbrdf::{Model, registry};
+use fastbrdf::{Model, ModelSpec};
 
 const N: usize = 4096;
 
@@ -32,8 +32,10 @@ const CONFIGS: [&str; 6] = [
     "ward-power16",
 ];
 
-fn params(cfg: &str) -> (&'static str, Vec<(&'static str, &str)>) {
-    match cfg.strip_prefix("ct:") {
+/// The spec a configuration names: `ct:D` is Cook-Torrance with seed 000's terms and
+/// distribution `D`, anything else a model id at its defaults.
+fn spec(cfg: &str) -> ModelSpec {
+    let (id, given) = match cfg.strip_prefix("ct:") {
         Some(d) => (
             "cook-torrance",
             vec![
@@ -43,16 +45,16 @@ fn params(cfg: &str) -> (&'static str, Vec<(&'static str, &str)>) {
                 ("denominator", "seed-000"),
             ],
         ),
-        None => (registry::find(cfg).unwrap().info.id, vec![]),
-    }
+        None => (cfg, vec![]),
+    };
+    ModelSpec::parse(id, &given).unwrap()
 }
 
 #[divan::bench(args = CONFIGS)]
 fn scalar(b: Bencher, cfg: &str) {
     let w = pairs();
     let mut out = vec![0.0f32; N];
-    let (id, p) = params(cfg);
-    let Model::Brdf(m) = registry::build::<f32>(id, &p).unwrap() else {
+    let Model::Brdf(m) = spec(cfg).model::<f32>().unwrap() else {
         unreachable!()
     };
     b.counter(ItemsCount::new(N)).bench_local(|| {
@@ -67,8 +69,7 @@ fn scalar(b: Bencher, cfg: &str) {
 fn simd(b: Bencher, cfg: &str) {
     let w = pairs();
     let mut out = vec![0.0f32; N];
-    let (id, p) = params(cfg);
-    let k = Kernel::new(id, &p).unwrap();
+    let k = Kernel::from_spec(&spec(cfg)).unwrap();
     b.counter(ItemsCount::new(N)).bench_local(|| {
         k.eval(
             Input::Dirs([&w[0], &w[1], &w[2], &w[3], &w[4], &w[5]]),

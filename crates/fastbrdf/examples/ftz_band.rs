@@ -9,6 +9,7 @@
 
 use fastbrdf::batch::{Input, Isa, Kernel};
 use fastbrdf::lobes::power::base_min;
+use fastbrdf::{Given, ModelSpec};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -48,13 +49,13 @@ fn main() {
         ("ggx", 0.3),
         ("beckmann", 0.3),
     ] {
-        let text = format!("{exponent}");
         let name = if id == "ggx" || id == "beckmann" {
             "alpha"
         } else {
             "n"
         };
-        let mut k = Kernel::new(id, &[(name, &text)]).unwrap();
+        let spec = ModelSpec::new(id, &[(name, Given::Num(exponent))]).unwrap();
+        let mut k = Kernel::from_spec(&spec).unwrap();
         let chosen = k.flush_to_zero();
         let band = match id {
             "power4" => Some(base_min(2) as f64 / (exponent / 4.0)),

@@ -4,6 +4,7 @@
 //! single-thread time at which the split starts to win, the number behind `PAR_MIN_WORK`.
 //! Run: `cargo run --release -p fastbrdf --example par_cutoff`.
 
+use fastbrdf::ModelSpec;
 use fastbrdf::batch::{Input, Isa, Kernel};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -17,7 +18,7 @@ fn main() {
     let threads = rayon::current_num_threads();
     println!("threads: {threads}, isa: {}", Isa::best().name());
     for (id, given) in [("power16", vec![("n", "200")]), ("cook-torrance", vec![])] {
-        let k = Kernel::new(id, &given).unwrap();
+        let k = Kernel::from_spec(&ModelSpec::parse(id, &given).unwrap()).unwrap();
         for log2 in 14..=22 {
             let n = 1usize << log2;
             let mut seed = 7u64;

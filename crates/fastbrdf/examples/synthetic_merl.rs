@@ -7,7 +7,7 @@
 //! `... -- ward.binary ward 0.3,0.1,0.05 0.05,0.05,0.05 alpha=0.29`.
 
 use fastbrdf::measured::{from_half_diff, write_merl};
-use fastbrdf::{Model, registry};
+use fastbrdf::{Model, ModelSpec};
 use std::f64::consts::PI;
 
 fn rgb(s: &str) -> [f64; 3] {
@@ -28,7 +28,8 @@ fn main() {
         .iter()
         .map(|p| p.split_once('=').expect("NAME=VALUE"))
         .collect();
-    let Model::Brdf(b) = registry::build::<f64>(&args[1], &given).expect("a valid model") else {
+    let spec = ModelSpec::parse(&args[1], &given).expect("a valid model");
+    let Model::Brdf(b) = spec.model::<f64>().expect("a grey model") else {
         panic!("{} is not a BRDF", args[1]);
     };
     write_merl(std::path::Path::new(&args[0]), |th, td, pd| {

@@ -6,9 +6,11 @@
 //! formula, parameters, source, cost and error bound; [`registry`] lists them all.
 //!
 //! ```
-//! use fastbrdf::{registry, Model};
-//! // A lobe by id, in f32, with its parameter given as text (as the CLI does).
-//! let Model::Lobe(flog) = registry::build::<f32>("flog", &[("n", "20")]).unwrap() else { panic!() };
+//! use fastbrdf::{Model, ModelSpec};
+//! // A lobe by id with its parameter given as text (as the CLI does), parsed and validated
+//! // once into a spec, then built in f32.
+//! let spec = ModelSpec::parse("flog", &[("n", "20")]).unwrap();
+//! let Model::Lobe(flog) = spec.model::<f32>().unwrap() else { panic!() };
 //! assert!((flog.eval(1.0) - 1.0).abs() < 1e-6);
 //! // A plan from a typed constructor (coefficients in f64), evaluated in f64.
 //! let plan = fastbrdf::plan::Plan::Distribution(

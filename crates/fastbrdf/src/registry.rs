@@ -247,28 +247,24 @@ impl Models for Registry {
     }
 }
 
-/// The plan of model `id` from `(name, value)` text pairs; missing parameters take their
-/// defaults. Errors name the model, the parameter and the expected range.
+/// Transitional (issue 28): `ModelSpec::parse(id, given)?.plan()`.
+#[doc(hidden)]
 pub fn plan(id: &str, given: &[(&str, &str)]) -> Result<Plan> {
     let e = find(id)?;
     let p = Params::resolve(e.info.id, e.info.params, given)?;
     plan_resolved(e, &p)
 }
 
-/// The plan from already resolved parameters.
+/// The plan from already resolved parameters (what [`crate::ModelSpec`] builds each
+/// channel's plan with).
 pub fn plan_resolved(e: &Entry, p: &Params) -> Result<Plan> {
     e.build_plan(p, &Registry)
 }
 
-/// Builds model `id` in precision `T` from `(name, value)` text pairs; missing parameters
-/// take their defaults. Errors name the model, the parameter and the expected range.
+/// Transitional (issue 28): `ModelSpec::parse(id, given)?.model::<T>()`.
+#[doc(hidden)]
 pub fn build<T: Real>(id: &str, given: &[(&str, &str)]) -> Result<Model<T>> {
     Ok(plan(id, given)?.model())
-}
-
-/// Builds from already resolved parameters.
-pub fn build_resolved<T: Real>(e: &Entry, p: &Params) -> Result<Model<T>> {
-    Ok(plan_resolved(e, p)?.model())
 }
 
 /// Lobe `id` at exponent `n` in precision `T` (Phong's and Blinn-Phong's `lobe`).
@@ -281,10 +277,8 @@ pub fn lobe_integral(id: &str, n: f64) -> Result<f64> {
     Ok(crate::brdf::phong::lobe_integral(&Registry.lobe(id, n)?))
 }
 
-/// The BRDF (id and parameters) that shading with model `id` evaluates, by its kind's policy
-/// (`Kind::shading`): BRDFs as they are, a lobe as `blinn-phong` with that lobe and
-/// `norm = none`, a distribution as `cook-torrance` with that `d`; shadowing and Fresnel
-/// terms are an error. Used by both renderers and the BRDF Explorer export.
+/// Transitional (issue 28): `ModelSpec::shaded`.
+#[doc(hidden)]
 pub fn shading_brdf(
     id: &str,
     params: &[(String, String)],

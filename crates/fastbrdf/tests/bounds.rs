@@ -4,6 +4,9 @@
 //! measured maxima rounded up at the third significant digit
 //! (`cargo run --release -p fastbrdf --example measure_bounds` prints them).
 
+mod common;
+
+use common::build;
 use fastbrdf::{accuracy, registry};
 
 #[test]
@@ -97,7 +100,7 @@ fn adversarial_search_keeps_every_documented_error_bound() {
 fn two_sided_shadowing_bounds_hold() {
     use fastbrdf::model::ShadowInput;
     use fastbrdf::{Model, microfacet::smith_ggx::TWO_SIDED_BOUNDS};
-    let g = |id: &str, given: &[(&str, &str)]| match registry::build::<f64>(id, given).unwrap() {
+    let g = |id: &str, given: &[(&str, &str)]| match build::<f64>(id, given).unwrap() {
         Model::Shadowing(s) => s,
         _ => unreachable!(),
     };

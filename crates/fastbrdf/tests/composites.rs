@@ -6,7 +6,7 @@
 use fastbrdf::params::{Options, ParamKind, ParamSpec, Value};
 mod common;
 
-use common::{albedo, brdf, wi_at};
+use common::{albedo, brdf, build, plan, wi_at};
 use fastbrdf::{Model, registry};
 
 /// The resolved value of `name` when `cook-torrance` is built from `given`.
@@ -47,7 +47,7 @@ fn every_distribution_with_its_default_g_conserves_energy() {
     assert!(options.names().len() >= 7, "{:?}", options.names());
     for d in options.names() {
         let g = resolved(&[("d", d)], "g");
-        let Ok(fastbrdf::plan::Plan::Distribution(plan)) = registry::plan(d, &[]) else {
+        let Ok(fastbrdf::plan::Plan::Distribution(plan)) = plan(d, &[]) else {
             panic!("{d} is not a distribution")
         };
         let exact = fastbrdf::plan::DistForm::sampler(&plan).exact;
@@ -110,14 +110,14 @@ fn an_explicit_g_wins_and_its_gain_shows() {
 /// comes from `d`.
 #[test]
 fn ms_still_needs_the_correlated_term() {
-    let err = registry::plan("cook-torrance", &[("d", "ggx"), ("ms", "kulla-conty")])
+    let err = plan("cook-torrance", &[("d", "ggx"), ("ms", "kulla-conty")])
         .unwrap_err()
         .to_string();
     assert!(
         err.contains("g = smith-ggx-correlated") && err.contains("given d = ggx, g = smith-ggx"),
         "{err}"
     );
-    registry::plan(
+    plan(
         "cook-torrance",
         &[
             ("d", "ggx"),
@@ -228,7 +228,7 @@ fn every_part_parameter_is_reachable_through_its_composite() {
                 for spec in part.info.params {
                     for v in other_values(spec) {
                         let given = [(choice, option), (spec.name, v.as_str())];
-                        let built = registry::build::<f64>(id, &given).unwrap_or_else(|e| {
+                        let built = build::<f64>(id, &given).unwrap_or_else(|e| {
                             panic!("{id} {choice}={option} {}={v}: {e}", spec.name)
                         });
                         let Model::Brdf(b) = built else {
@@ -244,9 +244,8 @@ fn every_part_parameter_is_reachable_through_its_composite() {
                             None => panic!("{id}: {} not resolved", spec.name),
                         }
                         // Where the part changes, the composite changes.
-                        let part_default = registry::build::<f64>(part_id, &[]).unwrap();
-                        let part_other =
-                            registry::build::<f64>(part_id, &[(spec.name, v.as_str())]).unwrap();
+                        let part_default = build::<f64>(part_id, &[]).unwrap();
+                        let part_other = build::<f64>(part_id, &[(spec.name, v.as_str())]).unwrap();
                         if probe(&part_default) != probe(&part_other) {
                             let b0 = brdf(id, &[(choice, option)]);
                             assert_ne!(
@@ -270,12 +269,12 @@ fn every_part_parameter_is_reachable_through_its_composite() {
 /// declare them (at a value other than the default), naming what they need.
 #[test]
 fn a_part_parameter_needs_its_part() {
-    let err = registry::plan("cook-torrance", &[("remap", "ue4")])
+    let err = plan("cook-torrance", &[("remap", "ue4")])
         .unwrap_err()
         .to_string();
     assert!(
         err.contains("remap") && err.contains("g = schlick-ggx"),
         "{err}"
     );
-    registry::plan("cook-torrance", &[("g", "schlick-ggx"), ("remap", "ue4")]).unwrap();
+    plan("cook-torrance", &[("g", "schlick-ggx"), ("remap", "ue4")]).unwrap();
 }

@@ -4,6 +4,9 @@
 //! written out here).
 
 use fastbrdf::microfacet::ms;
+mod common;
+
+use common::build;
 use fastbrdf::{Model, quad, registry};
 
 /// `n + 1` values from `lo` to `hi`, uniform in `ln`.
@@ -71,7 +74,7 @@ fn ms_table_keeps_the_furnace_promise_at_small_alpha_and_grazing() {
 fn ms_furnace_at_the_issue_point() {
     for ms_name in ["kulla-conty", "filament"] {
         let alpha = ISSUE_ALPHA.to_string();
-        let b = match registry::build::<f64>(
+        let b = match build::<f64>(
             "cook-torrance",
             &[
                 ("alpha", alpha.as_str()),
@@ -141,7 +144,7 @@ fn conductor_ref(cos_i: f64, eta: f64, k: f64) -> f64 {
 }
 
 fn fresnel32(id: &str, given: &[(&str, &str)]) -> Box<dyn fastbrdf::model::Fresnel<f32>> {
-    match registry::build::<f32>(id, given).unwrap() {
+    match build::<f32>(id, given).unwrap() {
         Model::Fresnel(f) => f,
         _ => unreachable!("{id} is a Fresnel term"),
     }
@@ -244,7 +247,7 @@ fn fresnel_dielectric_at_the_issue_point() {
 }
 
 fn vcavity<T: fastbrdf::Real>() -> Box<dyn fastbrdf::model::Shadowing<T>> {
-    match registry::build::<T>("v-cavity", &[]).unwrap() {
+    match build::<T>("v-cavity", &[]).unwrap() {
         Model::Shadowing(g) => g,
         _ => unreachable!("v-cavity is a shadowing term"),
     }

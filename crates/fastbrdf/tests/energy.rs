@@ -3,8 +3,8 @@
 
 mod common;
 
-use common::{albedo, brdf, wi_at};
-use fastbrdf::{Model, quad, registry};
+use common::{albedo, brdf, build, plan, wi_at};
+use fastbrdf::{Model, quad};
 use std::f64::consts::PI;
 
 #[test]
@@ -18,7 +18,7 @@ fn beckmann_integrates_to_one() {
             0.05 + 0.01 * (i - 5) as f64
         };
         let Model::Distribution(d) =
-            registry::build::<f64>("beckmann", &[("alpha", &alpha.to_string())]).unwrap()
+            build::<f64>("beckmann", &[("alpha", &alpha.to_string())]).unwrap()
         else {
             panic!()
         };
@@ -38,8 +38,7 @@ fn beckmann_integrates_to_one() {
 fn ggx_integrates_to_one() {
     for i in 0..=99 {
         let alpha = 0.01 + 0.01 * i as f64;
-        let Model::Distribution(d) =
-            registry::build::<f64>("ggx", &[("alpha", &alpha.to_string())]).unwrap()
+        let Model::Distribution(d) = build::<f64>("ggx", &[("alpha", &alpha.to_string())]).unwrap()
         else {
             panic!()
         };
@@ -99,7 +98,7 @@ fn normalised_phong_has_albedo_one_at_normal_incidence_and_below_elsewhere() {
     // normalised again by `norm = energy`'s coef(n) semantics: skip those.
     for lobe in fastbrdf::registry::ids_of(fastbrdf::Kind::Lobe)
         .iter()
-        .filter(|l| !fastbrdf::registry::plan(l, &[]).unwrap().claims_energy())
+        .filter(|l| !plan(l, &[]).unwrap().claims_energy())
     {
         for n in [1.0, 7.0, 50.0, 400.0, 1e5] {
             let b = brdf("phong", &[("lobe", lobe), ("n", &n.to_string())]);
@@ -320,7 +319,7 @@ fn ms_needs_ggx_and_correlated_smith() {
         ("beckmann", "smith-ggx-correlated"),
     ] {
         for ms in ["kulla-conty", "filament"] {
-            let r = registry::build::<f64>("cook-torrance", &[("d", d), ("g", g), ("ms", ms)]);
+            let r = build::<f64>("cook-torrance", &[("d", d), ("g", g), ("ms", ms)]);
             let msg = r.err().expect("accepted").to_string();
             assert!(
                 msg.contains("d = ggx") && msg.contains("g = smith-ggx-correlated"),
@@ -349,7 +348,7 @@ fn anisotropic_ggx_and_beckmann_integrate_to_one() {
     ] {
         for d in ["ggx", "beckmann"] {
             let (sx, sy) = (ax.to_string(), ay.to_string());
-            let plan = registry::plan(
+            let plan = plan(
                 "cook-torrance",
                 &[("alpha_x", &sx), ("alpha_y", &sy), ("d", d)],
             )
@@ -390,15 +389,15 @@ fn anisotropic_ggx_and_beckmann_integrate_to_one() {
 /// Neumann) and with an energy compensation (its table is isotropic).
 #[test]
 fn anisotropy_needs_both_slopes_a_smith_g_and_no_ms() {
-    let build = |given: &[(&str, &str)]| {
-        registry::build::<f64>("cook-torrance", given)
+    let refused = |given: &[(&str, &str)]| {
+        build::<f64>("cook-torrance", given)
             .err()
             .unwrap_or_else(|| panic!("accepted {given:?}"))
             .to_string()
     };
-    let msg = build(&[("alpha_x", "0.1")]);
+    let msg = refused(&[("alpha_x", "0.1")]);
     assert!(msg.contains("alpha_y"), "{msg}");
-    let msg = build(&[("alpha_y", "0.1"), ("d", "ggx"), ("g", "smith-ggx")]);
+    let msg = refused(&[("alpha_y", "0.1"), ("d", "ggx"), ("g", "smith-ggx")]);
     assert!(msg.contains("alpha_x"), "{msg}");
     let aniso = [("alpha_x", "0.1"), ("alpha_y", "0.4")];
     for (d, g, ms) in [
@@ -412,7 +411,7 @@ fn anisotropy_needs_both_slopes_a_smith_g_and_no_ms() {
     ] {
         let mut given = vec![("d", d), ("g", g), ("ms", ms)];
         given.extend(aniso);
-        let msg = build(&given);
+        let msg = refused(&given);
         assert!(
             msg.contains("alpha_x")
                 && msg.contains("d in {beckmann, beckmann-ct, ggx}")
@@ -427,7 +426,7 @@ fn anisotropy_needs_both_slopes_a_smith_g_and_no_ms() {
         for &g in fastbrdf::brdf::cook_torrance::ANISO_G {
             let mut given = vec![("d", d), ("g", g)];
             given.extend(aniso);
-            registry::build::<f64>("cook-torrance", &given).unwrap();
+            build::<f64>("cook-torrance", &given).unwrap();
         }
     }
 }

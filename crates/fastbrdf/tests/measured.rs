@@ -17,11 +17,14 @@
 //! shadowing term changes fast across a 1-degree bin).
 
 use fastbrdf::measured::{self, MeasuredBrdf};
-use fastbrdf::{Model, registry};
+mod common;
+
+use common::build;
+use fastbrdf::Model;
 use std::path::{Path, PathBuf};
 
 fn model() -> Model<f64> {
-    registry::build::<f64>("cook-torrance", &[("alpha", "0.3")]).unwrap()
+    build::<f64>("cook-torrance", &[("alpha", "0.3")]).unwrap()
 }
 
 /// R, G, B of the test material: the model, 1.5 x the model, 0.5 x the model + 0.05.

@@ -4,7 +4,10 @@
 //! single precision, so the tolerance is relative 2e-4 (its f32 exp and sqrt near narrow
 //! lobes) plus 1e-6 of the row's magnitude scale.
 
-use fastbrdf::{Model, registry};
+mod common;
+
+use common::build;
+use fastbrdf::Model;
 
 #[test]
 fn cook_torrance_matches_mitsuba3_roughconductor() {
@@ -17,7 +20,7 @@ fn cook_torrance_matches_mitsuba3_roughconductor() {
     {
         let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
         let (alpha, eta, k) = (v[0].to_string(), v[1].to_string(), v[2].to_string());
-        let Model::Brdf(ct) = registry::build::<f64>(
+        let Model::Brdf(ct) = build::<f64>(
             "cook-torrance",
             &[
                 ("alpha", &alpha),

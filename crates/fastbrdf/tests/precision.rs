@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{as_refs, configs};
+use common::{build, configs, spec};
 use fastbrdf::{accuracy, registry};
 
 #[test]
@@ -14,7 +14,7 @@ fn f32_tracks_f64_within_the_documented_bound() {
     for e in registry::all() {
         let mut model_worst = (0.0, String::new());
         for cfg in configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf) {
-            let (err, at) = accuracy::f32_worst(e.info.id, &as_refs(&cfg)).unwrap();
+            let (err, at) = accuracy::f32_worst_of(&cfg).unwrap();
             assert!(
                 err.is_finite(),
                 "{}: non-finite f32/f64 difference at {cfg:?} {at}",
@@ -83,8 +83,8 @@ const ETA_NEAR_ONE: &[f32] = &[
 
 fn build_pair(id: &str, given: &[(&str, &str)]) -> (fastbrdf::Model<f32>, fastbrdf::Model<f64>) {
     (
-        registry::build::<f32>(id, given).unwrap(),
-        registry::build::<f64>(id, given).unwrap(),
+        build::<f32>(id, given).unwrap(),
+        build::<f64>(id, given).unwrap(),
     )
 }
 
@@ -243,7 +243,8 @@ fn anisotropic_cook_torrance_f32_tracks_f64() {
                         ("alpha_x", ax),
                         ("alpha_y", ay),
                     ];
-                    let (err, at) = accuracy::f32_worst("cook-torrance", &given).unwrap();
+                    let (err, at) =
+                        accuracy::f32_worst_of(&spec("cook-torrance", &given).unwrap()).unwrap();
                     assert!(err.is_finite(), "{given:?} {at}");
                     if err > worst.0 {
                         worst = (err, format!("{given:?} {at}"));

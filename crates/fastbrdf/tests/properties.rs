@@ -3,10 +3,10 @@
 
 mod common;
 
-use common::{as_refs, configs, direction_pairs};
+use common::{as_refs, build, configs, direction_pairs};
 use fastbrdf::model::{ModelInfo, ShadowInput};
 use fastbrdf::params::ParamKind;
-use fastbrdf::{Model, Real, registry};
+use fastbrdf::{Given, Model, Real, registry};
 use proptest::prelude::*;
 
 /// A strategy for a valid parameter set of `info`: numbers anywhere in their range (edges
@@ -167,9 +167,8 @@ fn finite_and_non_negative_at_the_edges_of_the_domain() {
             if !at_edge {
                 continue;
             }
-            let given = as_refs(&cfg);
-            let m64 = registry::build::<f64>(e.info.id, &given).unwrap();
-            let m32 = registry::build::<f32>(e.info.id, &given).unwrap();
+            let m64 = cfg.model::<f64>().unwrap();
+            let m32 = cfg.model::<f32>().unwrap();
             for (i, &a) in us.iter().enumerate() {
                 for &b in &us[i % 3..] {
                     // Inputs near the peak: cosines and directions from a and b, and 1 - a.
@@ -200,8 +199,8 @@ proptest! {
     #[test]
     fn finite_and_non_negative_on_the_domain((info, params) in any_model(), u in proptest::array::uniform6(0.0f64..=1.0)) {
         let given = as_refs(&params);
-        let m64 = registry::build::<f64>(info.id, &given).unwrap();
-        let m32 = registry::build::<f32>(info.id, &given).unwrap();
+        let m64 = build::<f64>(info.id, &given).unwrap();
+        let m32 = build::<f32>(info.id, &given).unwrap();
         let v64 = eval_in_domain(&m64, u);
         let v32 = eval_in_domain(&m32, u);
         prop_assert!(v64.is_finite() && v64 >= 0.0, "{} {:?} {:?}: f64 {}", info.id, params, u, v64);
@@ -215,7 +214,7 @@ proptest! {
         x in prop_oneof![Just(f64::NAN), Just(f64::INFINITY), Just(f64::NEG_INFINITY), Just(0.0), Just(-0.0), -10.0f64..0.0, 1.0f64..10.0, Just(1.0 + 1e-7)],
         v in proptest::array::uniform3(-1.0f64..1.0)) {
         let given = as_refs(&params);
-        for m in [registry::build::<f64>(info.id, &given).unwrap()] {
+        for m in [build::<f64>(info.id, &given).unwrap()] {
             let vals: Vec<f64> = match &m {
                 Model::Lobe(l) => vec![l.eval(x)],
                 Model::Distribution(d) => vec![d.eval(x)],
@@ -237,7 +236,7 @@ proptest! {
                 prop_assert!(val.is_finite() && val >= 0.0, "{} {:?} x={} v={:?}: {}", info.id, params, x, v, val);
             }
         }
-        let m32 = registry::build::<f32>(info.id, &given).unwrap();
+        let m32 = build::<f32>(info.id, &given).unwrap();
         if let Model::Brdf(b) = &m32 {
             let w = [x as f32, v[1] as f32, v[2] as f32];
             let val = b.eval(w, [0.0, 0.0, 1.0]);
@@ -254,7 +253,7 @@ proptest! {
                 let mut given = params.clone();
                 given.retain(|(k, _)| k != p.name);
                 given.push((p.name.to_string(), bad.to_string()));
-                let r = registry::build::<f32>(info.id, &as_refs(&given));
+                let r = build::<f32>(info.id, &as_refs(&given));
                 prop_assert!(r.is_err(), "{} {}={} was accepted", info.id, p.name, bad);
             }
         }
@@ -269,20 +268,19 @@ fn brdfs_are_reciprocal() {
         .filter(|e| e.info.kind == fastbrdf::Kind::Brdf)
     {
         for cfg in configs(&e.info, true) {
-            let given = as_refs(&cfg);
-            let Model::Brdf(b) = registry::build::<f64>(e.info.id, &given).unwrap() else {
+            let Model::Brdf(b) = cfg.model::<f64>().unwrap() else {
                 panic!()
             };
             if !b.reciprocal() {
                 // The one documented exception: Filament's energy compensation uses wo only.
                 assert!(
-                    cfg.iter().any(|(k, v)| k == "ms" && v == "filament"),
+                    cfg.get("ms") == Some(&Given::Choice("filament".into())),
                     "{} {cfg:?} claims not to be reciprocal",
                     e.info.id
                 );
                 continue;
             }
-            let Model::Brdf(b32) = registry::build::<f32>(e.info.id, &given).unwrap() else {
+            let Model::Brdf(b32) = cfg.model::<f32>().unwrap() else {
                 panic!()
             };
             for (wi, wo) in &pairs {
@@ -310,32 +308,30 @@ fn brdfs_are_reciprocal() {
 #[test]
 fn unknown_ids_and_params_are_errors() {
     assert!(matches!(
-        registry::build::<f32>("phong-fast", &[]),
+        build::<f32>("phong-fast", &[]),
         Err(fastbrdf::Error::UnknownModel(_))
     ));
     assert!(matches!(
-        registry::build::<f32>("pow", &[("m", "3")]),
+        build::<f32>("pow", &[("m", "3")]),
         Err(fastbrdf::Error::UnknownParam { .. })
     ));
     assert!(matches!(
-        registry::build::<f32>("pow", &[("n", "abc")]),
+        build::<f32>("pow", &[("n", "abc")]),
         Err(fastbrdf::Error::InvalidParam { .. })
     ));
     assert!(matches!(
-        registry::build::<f32>("pow", &[("n", "2"), ("n", "3")]),
+        build::<f32>("pow", &[("n", "2"), ("n", "3")]),
         Err(fastbrdf::Error::InvalidParam { .. })
     ));
     assert!(matches!(
-        registry::build::<f32>("cook-torrance", &[("d", "trowbridge-reitz")]),
+        build::<f32>("cook-torrance", &[("d", "trowbridge-reitz")]),
         Err(fastbrdf::Error::InvalidParam { .. })
     ));
     assert!(matches!(
-        registry::build::<f32>("ward", &[("alpha_x", "0.2")]),
+        build::<f32>("ward", &[("alpha_x", "0.2")]),
         Err(fastbrdf::Error::MissingParam { .. })
     ));
-    let e = registry::build::<f32>("beckmann", &[("alpha", "0")])
-        .err()
-        .unwrap();
+    let e = build::<f32>("beckmann", &[("alpha", "0")]).err().unwrap();
     assert_eq!(
         e.to_string(),
         "model 'beckmann': parameter alpha = 0 is invalid: expected a number in [0.005, 1]"
@@ -344,12 +340,12 @@ fn unknown_ids_and_params_are_errors() {
 
 #[test]
 fn strict_evaluation_rejects_out_of_domain_rows() {
-    let m = registry::build::<f64>("pow", &[]).unwrap();
+    let m = build::<f64>("pow", &[]).unwrap();
     assert!(m.try_eval_row(&[Some(0.5)]).is_ok());
     for bad in [f64::NAN, -0.1, 1.5, f64::INFINITY] {
         assert!(m.try_eval_row(&[Some(bad)]).is_err(), "{bad}");
     }
-    let b = registry::build::<f64>("ward", &[]).unwrap();
+    let b = build::<f64>("ward", &[]).unwrap();
     let row = |v: [f64; 6]| v.map(Some);
     assert!(b.try_eval_row(&row([0.0, 0.0, 1.0, 0.3, 0.0, 0.9])).is_ok());
     assert!(
@@ -382,12 +378,10 @@ fn anisotropic_cook_torrance_is_reciprocal_and_finite() {
                     ("alpha_x", ax),
                     ("alpha_y", ay),
                 ];
-                let Model::Brdf(b) = registry::build::<f64>("cook-torrance", &given).unwrap()
-                else {
+                let Model::Brdf(b) = build::<f64>("cook-torrance", &given).unwrap() else {
                     panic!()
                 };
-                let Model::Brdf(b32) = registry::build::<f32>("cook-torrance", &given).unwrap()
-                else {
+                let Model::Brdf(b32) = build::<f32>("cook-torrance", &given).unwrap() else {
                     panic!()
                 };
                 for (wi, wo) in &pairs {

@@ -10,6 +10,9 @@
 
 use fastbrdf::chi2::{self, Config};
 use fastbrdf::sample::{Rng, Strategy};
+mod common;
+
+use common::build;
 use fastbrdf::{Brdf, Kind, Model, quad, registry};
 use rayon::prelude::*;
 
@@ -36,7 +39,7 @@ impl Case {
             .collect()
     }
     fn build<T: fastbrdf::Real>(&self) -> Box<dyn Brdf<T>> {
-        match registry::build::<T>(self.id, &self.refs()).unwrap() {
+        match build::<T>(self.id, &self.refs()).unwrap() {
             Model::Brdf(b) => b,
             _ => panic!("{} is not a BRDF", self.id),
         }

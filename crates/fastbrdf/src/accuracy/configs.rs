@@ -10,7 +10,7 @@ use crate::spec::{Given, ModelSpec};
 /// appears). Optional parameters (`alpha_x`, `alpha_y` of Ward and Cook-Torrance) are given
 /// on odd rows only, where their `requires` hold ([`crate::params::ParamSpec::allowed`]), both
 /// at the same value (the anisotropic code paths at equal slopes; truly anisotropic slopes
-/// have their own tests: `tests/reference.rs`, `tests/precision.rs`, `tests/batch.rs`, the
+/// have their own tests: `tests/reference/`, `tests/precision.rs`, `tests/batch/`, the
 /// GPU crate's `tests/parity.rs`).
 /// `light` keeps about four numeric rows (for the BRDFs, whose choice products are large).
 ///

@@ -1,8 +1,12 @@
-//! Shared test helpers: parameter configurations covering each model's documented domain,
-//! input samples, and a deterministic random generator.
+//! Shared test helpers: model specs from literal parameters (the tests' one text boundary),
+//! the specs covering each model's documented domain, input samples, and a deterministic
+//! random generator.
 #![allow(dead_code)]
 
+use fastbrdf::batch::Kernel;
 use fastbrdf::model::ModelInfo;
+use fastbrdf::plan::Plan;
+use fastbrdf::{Given, Model, ModelSpec, Real};
 
 /// Exponents covering [1, 100000], edges included.
 pub const N_VALUES: &[f64] = &[
@@ -15,22 +19,44 @@ pub const ALPHA_VALUES: &[f64] = &[
     0.005, 0.01, 0.05, 0.1, 0.2, 0.3, 0.5, 0.6, 0.7072, 0.85, 1.0,
 ];
 
-/// Parameter sets covering a model's domain (the library's generator, shared with
-/// `fastbrdf check`).
-pub fn configs(info: &ModelInfo, light: bool) -> Vec<Vec<(String, String)>> {
-    fastbrdf::accuracy::domain_configs(info, light)
+/// The spec of model `id` with parameters given as text (`ModelSpec::parse`): errors are the
+/// parser's.
+pub fn spec(id: &str, given: &[(&str, &str)]) -> fastbrdf::Result<ModelSpec> {
+    ModelSpec::parse(id, given)
 }
 
-/// As `&[(&str, &str)]`.
+/// Model `id` in precision `T` from parameters given as text (through [`spec`]).
+pub fn build<T: Real>(id: &str, given: &[(&str, &str)]) -> fastbrdf::Result<Model<T>> {
+    ModelSpec::parse(id, given)?.model()
+}
+
+/// The plan of model `id` from parameters given as text (through [`spec`]).
+pub fn plan(id: &str, given: &[(&str, &str)]) -> fastbrdf::Result<Plan> {
+    Ok(*ModelSpec::parse(id, given)?.plan()?)
+}
+
+/// The batch kernel of model `id` from parameters given as text (through [`spec`]).
+pub fn kernel(id: &str, given: &[(&str, &str)]) -> fastbrdf::Result<Kernel> {
+    Kernel::from_spec(&ModelSpec::parse(id, given)?)
+}
+
+/// Model specs covering a model's domain (the library's generator, shared with
+/// `fastbrdf check`).
+pub fn configs(info: &ModelInfo, light: bool) -> Vec<ModelSpec> {
+    fastbrdf::accuracy::domain_specs(info, light)
+}
+
+/// Text pairs (a test's generated parameters) as `&[(&str, &str)]`.
 pub fn as_refs(c: &[(String, String)]) -> Vec<(&str, &str)> {
     c.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect()
 }
 
-/// A parameter's numeric value in a configuration.
-pub fn get(c: &[(String, String)], name: &str) -> Option<f64> {
-    c.iter()
-        .find(|(k, _)| k == name)
-        .map(|(_, v)| v.parse().unwrap())
+/// A parameter's numeric value given in a spec.
+pub fn get(c: &ModelSpec, name: &str) -> Option<f64> {
+    match c.get(name) {
+        Some(Given::Num(x)) => Some(*x),
+        _ => None,
+    }
 }
 
 /// A small deterministic generator (SplitMix64).
@@ -80,7 +106,7 @@ pub fn albedo(b: &dyn fastbrdf::Brdf<f64>, wi: [f64; 3]) -> f64 {
 
 /// Model `id` built in f64 from `given`, which must be a BRDF.
 pub fn brdf(id: &str, given: &[(&str, &str)]) -> Box<dyn fastbrdf::Brdf<f64>> {
-    match fastbrdf::registry::build::<f64>(id, given).unwrap() {
+    match build::<f64>(id, given).unwrap() {
         fastbrdf::Model::Brdf(b) => b,
         _ => panic!("{id} is not a BRDF"),
     }
