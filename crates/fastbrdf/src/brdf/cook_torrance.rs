@@ -244,7 +244,9 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, models| {
 
 /// `F D G k / (cos_i cos_o)`, generic over its parts: the plan holds the parts' plans
 /// (`CookTorrance<DistPlan, ShadowPlan, FresnelPlan>`); the batch kernels instantiate it with
-/// the concrete families (one kernel per D, G, F combination).
+/// the concrete families for the combinations of their rule (`batch::cook_torrance`: each D
+/// with its own vectorised Smith terms, the D-free terms with `f = none` or `schlick`) and
+/// run the others through a generic path, one vectorised pass per part.
 #[derive(Clone, Copy, Debug)]
 pub struct CookTorrance<D = DistPlan, G = ShadowPlan, F = FresnelPlan> {
     pub d: D,
@@ -457,9 +459,12 @@ impl<D: DistForm, G: ShadowForm, F: FresnelForm> BrdfForm for CookTorrance<D, G,
 
 impl<D: DistForm, G: ShadowForm, F: FresnelForm> CookTorrance<D, G, F> {
     /// `F D G k / (cos_i cos_o)`, the value without the energy compensation: `at_pair` with
-    /// `ms = none`, and what the batch kernels of `ms = none` run (`batch::CtOp`: with the
-    /// compensation's branch in the loop, even never taken, LLVM no longer vectorised it and
-    /// every Cook-Torrance kernel ran 6-10x slower, issue 13).
+    /// `ms = none`, and what the batch kernels of `ms = none` run (`batch::cook_torrance`'s
+    /// `CtOp`: with the compensation's branch in the loop, even never taken, LLVM no longer
+    /// vectorised it and every Cook-Torrance kernel ran 6-10x slower, issue 13). The batch
+    /// generic path computes the same terms in the same order, one pass each (F, then `*= D`,
+    /// `*= G`, `* k / (cos_i cos_o)`): a change here must be made there too
+    /// (`tests/kernels.rs` holds the two equal bit for bit).
     #[inline(always)]
     pub fn single_scattering<T: Real, M: Math<T>>(&self, p: &Pair<T>) -> T {
         // Anisotropic: D and G of the parts at sqrt(alpha_x alpha_y) on stretched arguments
