@@ -1,6 +1,6 @@
 //! `gauss`: the Gaussian lobe of seed 001, `exp(-n theta^2 / 2)` with `theta = acos(c)`.
 //!
-//! Parameters: `n` in [1, 100000] (default 20). Source: seed 001 (its reference [10]).
+//! Parameters: `n` in [1, 100000] (default 20). Source: seed 001 (its reference \[10\]).
 //! Cost: 2 mul, 1 acos, 1 exp. For small angles `cos^n theta ~ exp(-n theta^2 / 2)`, so it
 //! matches `pow` near the peak and has a lighter tail. Error bounds against `pow`: see `INFO`.
 //! Sampling: no closed-form inverse used; `phong`/`blinn-phong` sample the twin `pow` at the same n (`twin`) and weight by f/pdf.

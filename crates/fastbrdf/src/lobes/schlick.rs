@@ -3,7 +3,7 @@
 //! - `schlick`: `c / (n - n c + c)` (Schlick 1994; seeds 001, 003). Value 1 and slope `n` at
 //!   `c = 1`, like `c^n`, but a much heavier tail. Cost: 2 mul, 2 add, 1 div.
 //! - `schlick-modified`: `2 c / (1.25 (n - n c + 1.25 c)^2)`, exactly as printed in seed 001
-//!   (its reference [15]). Decision: we keep the printed formula although it is not 1 at the
+//!   (its reference \[15\]). Decision: we keep the printed formula although it is not 1 at the
 //!   peak: its value at `c = 1` is `2 / 1.25^3 = 1.024` and its slope there is about `1.64 n`.
 //!   No reading of the OCR text that we found gives a peak of 1 with the printed constants, so
 //!   we implement it as printed and let the error sweeps show its behaviour.
