@@ -285,21 +285,8 @@ fn check_verifies_one_model() {
     }
 }
 
-#[test]
-fn readme_model_table_is_the_output_of_fastbrdf_models() {
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
-    let open = "<!-- models:begin -->\n```text\n";
-    let start = readme.find(open).expect("README has the models block") + open.len();
-    let end = readme
-        .find("```\n<!-- models:end -->")
-        .expect("README closes the models block");
-    let o = fastbrdf(&["models"], "");
-    assert!(
-        readme[start..end] == stdout(&o),
-        "README's table is stale: paste the output of `fastbrdf models` between the markers"
-    );
-}
+// The model reference (docs/book/src/models.md) is `fastbrdf models`' output: tests/docs.rs,
+// generated_models_reference_is_the_registry.
 
 /// Issue 11: eval named the wrong line after blank lines or quoted multi-line fields, no line
 /// for non-UTF-8 input, echoed a 10 MB field whole and read /dev/zero without limit.

@@ -1,6 +1,6 @@
 //! The analysis commands end to end: bad input (exit 2, nothing on stdout), `errors` in JSON
 //! and CSV, `normalize` and `albedo` (with `--ms-compare`), the plots, and `reproduce` with
-//! the README's copy of its output.
+//! REPRODUCTION.md (the book's copy of its output is checked by tests/docs.rs).
 
 mod common;
 
@@ -454,17 +454,7 @@ fn reproduce_has_every_claim_and_readme_shows_its_output() {
         md.contains("| `ct.speedup` | 000 | 4.34 | 1."),
         "speed rows are filled from the saved run"
     );
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
-    let open = "<!-- reproduce:begin -->\n";
-    let start = readme.find(open).expect("README has the reproduce block") + open.len();
-    let end = readme
-        .find("<!-- reproduce:end -->")
-        .expect("README closes the reproduce block");
-    assert!(
-        readme[start..end] == md,
-        "README's reproduction table is stale: paste `fastbrdf reproduce --markdown --speedups docs/bench/bench.json`"
-    );
+    // The book's copy (docs/book/src/reproduction.md): tests/docs.rs, generated_reproduction_table_is_current.
     let doc = std::fs::read_to_string(concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/../../docs/reproduction/REPRODUCTION.md"

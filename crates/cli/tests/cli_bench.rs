@@ -1,4 +1,4 @@
-//! `bench` end to end: the saved run's JSON shape, `--compare`, the peers, README's tables
+//! `bench` end to end: the saved run's JSON shape, `--compare`, the peers (the book's tables: docs.rs)
 //! from the saved run, and saved runs read with a bound and refused when impossible.
 
 mod common;
@@ -297,22 +297,8 @@ fn bench_peers_have_the_documented_shape_and_old_runs_still_load() {
     }
 }
 
-#[test]
-fn readme_benchmark_tables_are_the_saved_run() {
-    let bench = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
-    let md = stdout(&fastbrdf(&["bench", "--from", bench, "--markdown"], ""));
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
-    let open = "<!-- bench:begin -->\n";
-    let start = readme.find(open).expect("README has the bench block") + open.len();
-    let end = readme
-        .find("<!-- bench:end -->")
-        .expect("README closes the bench block");
-    assert!(
-        readme[start..end] == md,
-        "README's benchmark tables are stale: paste `fastbrdf bench --from docs/bench/bench.json --markdown`"
-    );
-}
+// The book's copy of the tables (docs/book/src/speed.md) is the saved run's: tests/docs.rs,
+// generated_bench_tables_are_the_saved_run.
 
 /// Issue 11: saved runs were read with `read_to_string`, without a limit (`/dev/zero` grew
 /// until memory ran out). Every one is read once, at most 64 MiB.

@@ -1,10 +1,9 @@
-//! `fit` and `pareto` end to end (the Pareto table of lobes and of full BRDFs, README's BRDF
-//! table), and how `errors` and `fit` name parameters and refuse empty measurements.
+//! `fit` and `pareto` end to end (the Pareto table of lobes and of full BRDFs; the book's
+//! copies are checked by tests/docs.rs), and how `errors` and `fit` name parameters and refuse empty measurements.
 
 mod common;
 
 use common::{fastbrdf, stderr, stdout};
-use std::process::Command;
 
 #[test]
 fn fit_and_pareto_commands() {
@@ -115,17 +114,8 @@ fn fit_and_pareto_commands() {
     for ext in ["png", "svg"] {
         std::fs::remove_file(out.with_extension(ext)).unwrap();
     }
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
-    let open = "<!-- pareto:begin -->\n";
-    let start = readme.find(open).expect("README has the pareto block") + open.len();
-    let end = readme
-        .find("<!-- pareto:end -->")
-        .expect("README closes the pareto block");
-    assert!(
-        readme[start..end] == md,
-        "README's Pareto table is stale: paste `fastbrdf pareto --bench docs/bench/bench.json --markdown`"
-    );
+    // The book's copy (docs/book/src/tuned.md): tests/docs.rs, generated_pareto_table_is_current.
+    assert!(md.starts_with("| model |"), "{md}");
 }
 
 /// Issue 14: `pareto --brdf`, every Cook-Torrance configuration against an exact one. The quick
@@ -235,38 +225,9 @@ fn pareto_brdf_quick_json_has_every_field_and_a_front() {
     }
 }
 
-/// README's BRDF table is `fastbrdf pareto --brdf --costs docs/bench/pareto-brdf.json --mesh
-/// crates/render/data/canonical_face_model.obj --markdown`: the errors recomputed, the costs from
-/// the saved run (the release build's `--json`).
-#[test]
-fn readme_pareto_brdf_table_is_current() {
-    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/../..");
-    let r = Command::new(env!("CARGO_BIN_EXE_fastbrdf"))
-        .current_dir(root)
-        .args([
-            "pareto",
-            "--brdf",
-            "--costs",
-            "docs/bench/pareto-brdf.json",
-            "--mesh",
-            "crates/render/data/canonical_face_model.obj",
-            "--markdown",
-        ])
-        .output()
-        .unwrap();
-    assert!(r.status.success(), "{}", stderr(&r));
-    let md = stdout(&r);
-    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
-    let open = "<!-- pareto-brdf:begin -->\n";
-    let start = readme.find(open).expect("README has the pareto-brdf block") + open.len();
-    let end = readme
-        .find("<!-- pareto-brdf:end -->")
-        .expect("README closes the pareto-brdf block");
-    assert!(
-        readme[start..end] == md,
-        "README's BRDF Pareto table is stale: paste `fastbrdf pareto --brdf --costs docs/bench/pareto-brdf.json --mesh crates/render/data/canonical_face_model.obj --markdown`"
-    );
-}
+// The book's BRDF table (docs/book/src/pareto-brdf.md) is `fastbrdf pareto --brdf --costs
+// docs/bench/pareto-brdf.json --mesh crates/render/data/canonical_face_model.obj --markdown`:
+// tests/docs.rs, generated_pareto_brdf_table_is_current.
 
 /// Issue 11: one vocabulary for the swept parameter in every format (its own name).
 #[test]

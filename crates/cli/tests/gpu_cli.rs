@@ -288,18 +288,7 @@ fn readme_gpu_table_is_the_saved_run() {
         md.contains("software adapter") || md.contains("GPU"),
         "{md}"
     );
-    let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md")).unwrap();
-    let open = "<!-- bench-gpu:begin -->\n";
-    let start = readme.find(open).expect("README has the GPU bench block") + open.len();
-    let end = readme[start..]
-        .find("<!-- bench-gpu:end -->")
-        .expect("README closes the GPU bench block");
-    assert_eq!(
-        &readme[start..start + end],
-        md,
-        "README's GPU table is stale: paste `fastbrdf bench --from docs/bench/bench-gpu.json --gpu-only --markdown`"
-    );
+    // The book's copy (docs/book/src/gpu.md): tests/docs.rs, generated_gpu_bench_tables_are_the_saved_run.
     // A run without GPU figures cannot print GPU tables.
     let cpu = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/bench/bench.json");
     let o = fastbrdf(&["bench", "--from", cpu, "--gpu-only"]);
