@@ -2,11 +2,13 @@
 //!
 //! Every model returns one number. Colour is three of them: a parameter given as three
 //! comma-separated numbers `R,G,B` (`eta=0.183,0.421,1.373`) makes the model coloured, and
-//! [`channels`] splits such a parameter list into three ordinary (grey) lists, one per
+//! `channels` splits such a parameter list into three ordinary (grey) lists, one per
 //! channel, each an ordinary registry model (three plans, three kernels, three WGSL
-//! functions). A list without such a value is grey ([`channels`] returns `None`): the
-//! existing one-model path, untouched and no slower. The rule lives here once, so the
-//! renderers, `eval` and the exports split the same way and give the same errors.
+//! functions). A list without such a value is grey (`channels` returns `None`): the
+//! existing one-model path, untouched and no slower. The rule lives here once, applied by
+//! [`crate::ModelSpec::parse`] where text becomes a spec, so the renderers, `eval` and the
+//! exports split the same way (through [`crate::ModelSpec::channel_specs`]) and give the
+//! same errors. A metal colours a spec through [`crate::ModelSpec::with_metal`].
 //!
 //! The channels are the wavelengths 650, 550 and 450 nm ([`WAVELENGTHS_NM`]), as in the
 //! published RGB tables of metals' optical constants. [`METALS`] holds six named metals:
@@ -36,7 +38,7 @@ use crate::params::{ParamKind, Params};
 use crate::registry;
 
 /// A parameter list as text pairs (`name`, `value`).
-pub type ParamList = Vec<(String, String)>;
+pub(crate) type ParamList = Vec<(String, String)>;
 
 /// The channel names, in order.
 pub const CHANNELS: [&str; 3] = ["R", "G", "B"];
@@ -126,22 +128,7 @@ pub fn metal(name: &str) -> Result<&'static Metal> {
         })
 }
 
-/// `a,b,c` with each number written so that it parses back to the same f64.
-fn triple(v: [f64; 3]) -> String {
-    format!("{},{},{}", v[0], v[1], v[2])
-}
-
 impl Metal {
-    /// The parameters that shade with this metal: `f = conductor`, `eta = R,G,B`,
-    /// `k = R,G,B` (the form [`channels`] splits).
-    pub fn params(&self) -> Vec<(String, String)> {
-        vec![
-            ("f".into(), "conductor".into()),
-            ("eta".into(), triple(self.eta)),
-            ("k".into(), triple(self.k)),
-        ]
-    }
-
     /// The reflectance at normal incidence per channel: the conductor Fresnel term at
     /// `cos = 1` (f64), which is `((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2)`.
     pub fn f0(&self) -> [f64; 3] {
@@ -156,7 +143,7 @@ impl Metal {
 /// parameter and the channel: two or four numbers, text, a choice given per channel, or a
 /// channel out of its parameter's range. Parameters that `id` does not take are an error,
 /// as they are for a grey model.
-pub fn channels(id: &str, params: &[(String, String)]) -> Result<Option<[ParamList; 3]>> {
+pub(crate) fn channels(id: &str, params: &[(String, String)]) -> Result<Option<[ParamList; 3]>> {
     if !params.iter().any(|(_, v)| v.contains(',')) {
         return Ok(None);
     }
@@ -290,9 +277,17 @@ mod tests {
 
     #[test]
     fn metal_params_split_to_the_table() {
+        use crate::spec::{Given, ModelSpec};
+        let ct = ModelSpec::parse("cook-torrance", &[]).unwrap();
         for m in METALS {
-            let [r, g, b] = channels("cook-torrance", &m.params()).unwrap().unwrap();
-            for (c, list) in [r, g, b].iter().enumerate() {
+            let coloured = ct.with_metal(&m).unwrap();
+            // As text (what `fastbrdf metals` prints and `--param` takes), split again.
+            let text = coloured.pairs();
+            let given: Vec<(&str, &str)> =
+                text.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();
+            let [r, g, b] = channels("cook-torrance", &text).unwrap().unwrap();
+            assert_eq!(ModelSpec::parse("cook-torrance", &given).unwrap(), coloured);
+            for (c, (list, spec)) in [r, g, b].iter().zip(coloured.channel_specs()).enumerate() {
                 let get = |n: &str| -> f64 {
                     list.iter()
                         .find(|(a, _)| a == n)
@@ -303,6 +298,8 @@ mod tests {
                 };
                 assert_eq!(get("eta"), m.eta[c]);
                 assert_eq!(get("k"), m.k[c]);
+                assert_eq!(spec.get("eta"), Some(&Given::Num(m.eta[c])));
+                assert_eq!(spec.get("k"), Some(&Given::Num(m.k[c])));
             }
         }
     }
