@@ -231,7 +231,7 @@ impl ModelSpec {
                     })
                     .collect(),
                 params: vec![self.params[c].clone()],
-                plans: vec![self.plans[c].clone()],
+                plans: vec![self.plans[c]],
             })
             .collect()
     }
