@@ -73,7 +73,7 @@ fn cook_torrance_is_fdg_over_4_cos_cos() {
 fn cook_torrance_with_ggx_is_fdg_over_4_cos_cos() {
     let pairs = direction_pairs(200, 14);
     for &alpha in ALPHA_VALUES {
-        for &(g, remap) in NEW_SHADOWING {
+        for (g, remap) in shadowing_cases() {
             if remap == "ue4" {
                 continue; // cook-torrance cannot choose a part's choice: alpha-half only
             }
@@ -94,7 +94,7 @@ fn cook_torrance_with_ggx_is_fdg_over_4_cos_cos() {
                     let (wi, wo) = (unit(*wi), unit(*wo));
                     let h = unit([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]]);
                     let d = ref_distribution("ggx", alpha, h[2]);
-                    let gv = ref_shadowing(g, alpha, remap, wo[2], Some(wi[2]), dotv(wo, h));
+                    let gv = ref_shadowing(g, alpha, remap, wo[2], Some(wi[2]), h[2], dotv(wo, h));
                     let fv = match f {
                         "none" => 1.0,
                         "schlick" => 0.04 + 0.96 * (1.0 - dotv(wi, h)).powi(5),
@@ -186,7 +186,15 @@ pub(crate) fn ref_aniso_g(g: &str, v: [f64; 3], l: [f64; 3], ax: f64, ay: f64) -
         "smith-ggx" => 1.0 / ((1.0 + lambda_ggx(v)) * (1.0 + lambda_ggx(l))),
         "smith-ggx-correlated" => 1.0 / (1.0 + lambda_ggx(v) + lambda_ggx(l)),
         "smith-rational" => rational(v) * rational(l),
-        _ => ref_shadowing(g, alpha, "alpha-half", cos_eff(v), Some(cos_eff(l)), 0.0),
+        _ => ref_shadowing(
+            g,
+            alpha,
+            "alpha-half",
+            cos_eff(v),
+            Some(cos_eff(l)),
+            0.0,
+            0.0,
+        ),
     }
 }
 

@@ -52,14 +52,16 @@ pub(crate) fn ggx_lambda(alpha: f64, c: f64) -> f64 {
     (-1.0 + (1.0 + alpha * alpha * tan2).sqrt()) / 2.0
 }
 
-/// Every new shadowing id's printed formula, two-sided (`l = Some`) or one-sided; `vh` is
-/// `v.h` (Kelemen only).
+/// Every shadowing id's printed formula, two-sided (`l = Some`) or one-sided; `nh` is `n.h`
+/// (the V-cavity only) and `vh` is `v.h` (the V-cavity and Kelemen). Panics on an id without
+/// one, so a registered term without a reference fails (`shadowing_cases`).
 pub(crate) fn ref_shadowing(
     id: &str,
     alpha: f64,
     remap: &str,
     v: f64,
     l: Option<f64>,
+    nh: f64,
     vh: f64,
 ) -> f64 {
     let g1_ggx = |c: f64| 1.0 / (1.0 + ggx_lambda(alpha, c));
@@ -75,6 +77,14 @@ pub(crate) fn ref_shadowing(
     let a = alpha;
     let mix = |x: f64, y: f64, t: f64| x * (1.0 - t) + y * t;
     match id {
+        "v-cavity" => {
+            let g1 = |c: f64| 2.0 * nh * c / vh;
+            1f64.min(g1(v)).min(l.map_or(f64::INFINITY, g1))
+        }
+        "smith" => smith_g1_exact(alpha, v) * l.map_or(1.0, |l| smith_g1_exact(alpha, l)),
+        "smith-rational" => {
+            smith_g1_rational(alpha, v) * l.map_or(1.0, |l| smith_g1_rational(alpha, l))
+        }
         "smith-ggx" => g1_ggx(v) * l.map_or(1.0, g1_ggx),
         "smith-ggx-correlated" => {
             1.0 / (1.0 + ggx_lambda(alpha, v) + l.map_or(0.0, |l| ggx_lambda(alpha, l)))
@@ -99,19 +109,29 @@ pub(crate) fn ref_shadowing(
     }
 }
 
-/// The shadowing ids `ref_shadowing` covers, with their `remap` choices.
-pub(crate) const NEW_SHADOWING: &[(&str, &str)] = &[
-    ("smith-ggx", ""),
-    ("smith-ggx-correlated", ""),
-    ("smith-beckmann-correlated", ""),
-    ("smith-ggx-correlated-fast", ""),
-    ("smith-ggx-correlated-fast-tuned", ""),
-    ("smith-ggx-joint-approx", ""),
-    ("schlick-ggx", "alpha-half"),
-    ("schlick-ggx", "ue4"),
-    ("kelemen", ""),
-    ("neumann", ""),
-];
+/// Every registered shadowing id (`registry::ids_of`, not a list kept here), with each of
+/// its `remap` choices (`""`: it has none): `ref_shadowing` panics on one it does not cover.
+pub(crate) fn shadowing_cases() -> Vec<(&'static str, &'static str)> {
+    let mut out = Vec::new();
+    for id in registry::ids_of(fastbrdf::Kind::Shadowing) {
+        let remap = registry::find(id)
+            .unwrap()
+            .info
+            .params
+            .iter()
+            .find_map(|p| match p.kind {
+                fastbrdf::params::ParamKind::Choice { options, .. } if p.name == "remap" => {
+                    Some(options.names())
+                }
+                _ => None,
+            });
+        match remap {
+            Some(names) => out.extend(names.iter().map(|r| (id, *r))),
+            None => out.push((id, "")),
+        }
+    }
+    out
+}
 
 pub(crate) fn smith_g1_rational(alpha: f64, c: f64) -> f64 {
     if c >= 1.0 {
@@ -234,16 +254,17 @@ fn shadowing_matches_its_printed_formulas() {
     }
 }
 
-/// issue 14: the GGX Smith terms, their approximations, the correlated Beckmann term and the
-/// parameterless Kelemen and Neumann terms against their printed formulas, on random direction
-/// pairs (two-sided, with the pair's own half vector) and one-sided.
+/// issue 14: every shadowing term (the GGX Smith terms, their approximations, the Beckmann
+/// terms, the V-cavity, Kelemen and Neumann; issue 28: the registry's list) against its
+/// printed formula, on random direction pairs (two-sided, with the pair's own half vector) and
+/// one-sided.
 #[test]
 fn issue14_shadowing_terms_match_their_printed_formulas() {
     let mut rng = Rng(14);
     let pairs: Vec<_> = (0..400)
         .map(|_| (rng.hemisphere(), rng.hemisphere()))
         .collect();
-    for &(id, remap) in NEW_SHADOWING {
+    for (id, remap) in shadowing_cases() {
         let info = registry::find(id).unwrap().info;
         let alphas: &[f64] = if info.params.is_empty() {
             &[0.3]
@@ -272,7 +293,7 @@ fn issue14_shadowing_terms_match_their_printed_formulas() {
                         cos_h: nh,
                         cos_vh: vh,
                     });
-                    let want = ref_shadowing(id, alpha, remap, nv, l, vh);
+                    let want = ref_shadowing(id, alpha, remap, nv, l, nh, vh);
                     // The naive -1 + sqrt(1 + x) loses ~1e-16 / x relative in Lambda: absolute
                     // errors stay near 1e-16 since G is in [0, 1].
                     assert!(
