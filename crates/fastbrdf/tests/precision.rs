@@ -199,7 +199,7 @@ fn adversarial_search_keeps_every_documented_f32_bound() {
         let f = accuracy::f32_search(&e.info, accuracy::SearchSize::CI);
         println!(
             "search {:<24} found {:.3e} (documented {:.0e}, {} evaluations) at {:?} {}",
-            e.info.id, f.err, e.info.f32_bound, f.evaluations, f.params, f.at
+            e.info.id, f.err, e.info.f32_bound, f.evaluations, f.spec, f.at
         );
         if let Some(bad) = &f.invalid {
             failures.push(format!(
@@ -210,7 +210,7 @@ fn adversarial_search_keeps_every_documented_f32_bound() {
         if f.err.is_nan() || f.err > e.info.f32_bound {
             failures.push(format!(
                 "{}: {:.3e} > {:.0e} at {:?} {}",
-                e.info.id, f.err, e.info.f32_bound, f.params, f.at
+                e.info.id, f.err, e.info.f32_bound, f.spec, f.at
             ));
         }
     }
