@@ -235,7 +235,7 @@ fn a_metal_on_a_model_without_eta_and_k_is_refused_alike() {
             "--models",
             "flog",
             "--reference",
-            "pow",
+            "cook-torrance",
             "--metal",
             "gold",
             "--size",
