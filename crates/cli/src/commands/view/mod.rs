@@ -1,46 +1,51 @@
-//! `fastbrdf view`: an interactive explorer in the browser. An HTTP/1.1 server (hyper on a
-//! small tokio runtime, loopback only unless `--allow-remote`) serves one page embedded in the
-//! binary (`page.html`: hand-written HTML, CSS and JavaScript, plots drawn on `<canvas>` from
-//! the JSON numbers; no CDN, works offline; every string from the link, a file name or the
-//! server goes into the page as text, never as HTML) and the JSON API of [`api`] that the page
-//! calls.
+//! `fastbrdf view`: an interactive explorer in the browser. An HTTP/1.1 server (hyper on a small
+//! tokio runtime, loopback only unless `--allow-remote`) serves one page embedded in the binary
+//! (`page.html`: hand-written HTML, CSS and JavaScript, plots drawn on `<canvas>` from the JSON
+//! numbers; no CDN, works offline; every string from the link, a file name or the server goes into
+//! the page as text, never as HTML) and the JSON API of [`api`] that the page calls.
 //!
 //! One client must never take the explorer down. The limits:
 //! - connections: at most [`MAX_CONNECTIONS`] open (`--max-connections`, lowered to leave
-//!   [`FD_RESERVE`] of the open-file limit free); more get a short 503 and are closed, and a
-//!   failed accept (out of file descriptors) is retried after [`ACCEPT_RETRY`], never the end
-//!   of the listener;
-//! - request heads: at most [`MAX_HEAD`] bytes and [`MAX_HEADERS`] fields (431, hyper's), the
-//!   target at most `MAX_URL` bytes (414); a request with a body is refused (413, connection
-//!   closed) without reading it: the API is GET-only;
-//! - time: a connection that sends nothing for [`IDLE_TIMEOUT_S`] seconds (at its start, or
-//!   after an answer: idle keep-alive) is closed, and a request head must be complete within
-//!   as long of its first byte (or of the previous answer); a write the client does not read
-//!   for [`WRITE_TIMEOUT_S`] seconds closes the connection (a client that pipelines and never
-//!   reads stalls only itself);
-//! - `Host` (or an absolute target's authority) must name the bound address (see [`Hosts`]):
-//!   403 otherwise (DNS rebinding);
-//! - HTTP/2 is not spoken: its preface gets an HTTP/2 GOAWAY (HTTP_1_1_REQUIRED), a request
-//!   line of another version hyper's 400;
-//! - work: each request's [`handle`] runs on the runtime's blocking pool. A computation cannot
-//!   be interrupted once it runs, so one client asking and hanging up could pile them up: at
-//!   most [`compute_slots`] (as many as CPUs, at least 2) plots, albedo and errors computations
-//!   run at once, a further one waits at most [`COMPUTE_WAIT`] for a permit, then gets 503;
-//!   renders take one of [`RENDER_SLOTS`] slots (at most [`MAX_WAITING`] wait, the rest get
-//!   503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per axis. The pool
-//!   has a thread for each of these and for each connection, so a quick request (the page,
-//!   `/api/models`) never waits behind computations, and the two runtime workers (accept,
-//!   HTTP) compete with a bounded number of busy threads. A render whose client has gone
-//!   ([`client_gone`]), or has sent a newer generation since (409), is dropped before each
-//!   model's render. Every handler runs under `catch_unwind`: a panic is a 500, never a dead
-//!   server;
-//! - cross-site requests: a page of another site can make the browser send requests to
-//!   127.0.0.1 (its `Host` passes), so `/api/*` refuses (403) a request marked
-//!   `Sec-Fetch-Site: cross-site` or `same-site`, or whose `Origin` is not `http://` (or
-//!   `https://`) and an allowed host (see [`cross_site`]); the page's own requests and tools
-//!   such as curl (no such header) are served;
-//! - stderr: after start-up the server writes to stderr ignoring failures (a closed pipe, as
-//!   in `fastbrdf view 2>&1 | head -1`), so that losing stderr never stops it.
+//!   [`FD_RESERVE`] of the open-file limit free); more get a short 503 and are closed, and a failed
+//!   accept (out of file descriptors) is retried after [`ACCEPT_RETRY`](server::ACCEPT_RETRY),
+//!   never the end of the listener;
+//! - request heads: at most [`MAX_HEAD`](server::MAX_HEAD) bytes and
+//!   [`MAX_HEADERS`](server::MAX_HEADERS) fields (431, hyper's), the target at most `MAX_URL` bytes
+//!   (414); a request with a body is refused (413, connection closed) without reading it: the API
+//!   is GET-only;
+//! - time: a connection that sends nothing for [`IDLE_TIMEOUT_S`] seconds (at its start, or after
+//!   an answer: idle keep-alive) is closed, and a request head must be complete within as long of
+//!   its first byte (or of the previous answer); a write the client does not read for
+//!   [`WRITE_TIMEOUT_S`] seconds closes the connection (a client that pipelines and never reads
+//!   stalls only itself);
+//! - `Host` (or an absolute target's authority) must name the bound address (see
+//!   [`Hosts`](request::Hosts)): 403 otherwise (DNS rebinding);
+//! - HTTP/2 is not spoken: its preface gets an HTTP/2 GOAWAY (HTTP_1_1_REQUIRED), a request line of
+//!   another version hyper's 400;
+//! - work: each request's [`handle`](request::handle) runs on the runtime's blocking pool. A
+//!   computation cannot be interrupted once it runs, so one client asking and hanging up could pile
+//!   them up: at most [`compute_slots`](state::compute_slots) (as many as CPUs, at least 2) plots,
+//!   albedo and errors computations run at once, a further one waits at most
+//!   [`COMPUTE_WAIT`](state::COMPUTE_WAIT) for a permit, then gets 503; renders take one of
+//!   [`RENDER_SLOTS`](state::RENDER_SLOTS) slots (at most [`MAX_WAITING`](state::MAX_WAITING) wait,
+//!   the rest get 503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per axis.
+//!   The pool has a thread for each of these and for each connection, so a quick request (the page,
+//!   `/api/models`) never waits behind computations, and the two runtime workers (accept, HTTP)
+//!   compete with a bounded number of busy threads. A render whose client has gone
+//!   ([`client_gone`](state::client_gone)), or has sent a newer generation since (409), is dropped
+//!   before each model's render. Every handler runs under `catch_unwind`: a panic is a 500, never a
+//!   dead server;
+//! - cross-site requests: a page of another site can make the browser send requests to 127.0.0.1
+//!   (its `Host` passes), so `/api/*` refuses (403) a request marked `Sec-Fetch-Site: cross-site`
+//!   or `same-site`, or whose `Origin` is not `http://` (or `https://`) and an allowed host (see
+//!   [`cross_site`](request::cross_site)); the page's own requests and tools such as curl (no such
+//!   header) are served;
+//! - stderr: after start-up the server writes to stderr ignoring failures (a closed pipe, as in
+//!   `fastbrdf view 2>&1 | head -1`), so that losing stderr never stops it.
+//!
+//! Where it lives: [`state`] (what the handlers share), [`request`] (the checks and
+//! [`handle`](request::handle)), [`server`] (the transport), [`api`] (the endpoints: the query
+//! parsed into model specs once per request), `page.html`, [`cdp`] (the DevTools client).
 
 pub mod api;
 pub mod cdp;

@@ -4,10 +4,10 @@
 //! `fastbrdf errors`, `albedo::curve`/`furnace` as `fastbrdf albedo`, the CPU renderer and
 //! `compare::metrics` as `fastbrdf compare`, `export_form` as `fastbrdf shader`), and every
 //! refusal carries the message the CLI would print for the same input.
-
 //!
 //! The query string is the explorer's text boundary: [`query`] parses it once per request into
-//! the models' specs; the endpoints ([`models`], [`plots`], [`errors`], [`render`]) take them.
+//! the models' specs; the endpoints ([`models`](mod@models), [`plots`](mod@plots), [`errors`],
+//! [`render`]) take them.
 
 mod errors;
 mod models;
