@@ -27,12 +27,13 @@
 //! 5. `out = valid ? t k / (cos_i cos_o) : 0`,
 //!
 //! in the order `single_scattering` multiplies (`F D G k / (cos_i cos_o)`), so each value is
-//! the specialised kernel's. Cost: 1.05-1.09x the specialised kernel's time on the five
-//! specialised configurations of `examples/ct_generic.rs` (geometric mean 1.07; AVX-512, 4099
-//! pairs, one run on a loaded 2-core machine: `cargo run --release -p fastbrdf --example
-//! ct_generic`). Where G calls `erfc` the fused kernel was a scalar loop, and the generic path,
-//! with set-up, D and F vectorised, ran the default `cook-torrance` (`beckmann`, `smith`) in
-//! 63 ns instead of 202 (same machine, builds before and after timed alternately).
+//! the specialised kernel's. Cost: 1.05-1.11x the specialised kernel's time on the five
+//! specialised configurations of `examples/ct_generic.rs` (geometric mean 1.07 and 1.08 in two
+//! runs; AVX-512, 4099 pairs, a 2-core machine under a load of 7-10: `cargo run --release -p
+//! fastbrdf --example ct_generic`). Where G calls `erfc` the fused kernel was a scalar loop;
+//! the generic path, with set-up, D and F vectorised, ran the default `cook-torrance`
+//! (`beckmann`, `smith`) in 65-186 ns against 204-251 ns before (builds before and after
+//! timed alternately on the same load; the new path's time varied from run to run).
 //!
 //! Kernels (loops compiled per instruction set, x3; `tests/kernels.rs` prints the count of
 //! specialised combinations): specialised, (a) 5 Beckmann-family D families x 1 G x 5 F +
