@@ -281,3 +281,93 @@ pub fn unshaded(id: &str, spec: &ModelSpec) -> Result<ModelSpec, CliError> {
         .collect();
     Ok(ModelSpec::new(id, &own)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fastbrdf::Given;
+
+    fn given(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
+        pairs
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect()
+    }
+
+    #[test]
+    fn text_splits_once_and_bad_text_is_exit_2() {
+        assert_eq!(
+            pairs(&[" n = 20 ".into()]).unwrap(),
+            vec![("n".into(), "20".into())]
+        );
+        let e = pairs(&["n".into()]).unwrap_err();
+        assert_eq!(e.code, crate::EXIT_INPUT);
+        assert!(e.message.contains("--param 'n': expected NAME=VALUE"));
+    }
+
+    /// A shaded distribution: its own values checked against it, the others against
+    /// cook-torrance; labels and the explorer name the distribution with the values given.
+    #[test]
+    fn shading_routes_values_and_keeps_the_models_name() {
+        let all = given(&[("alpha", "0.3"), ("g", "smith")]);
+        let s = spec("ggx", &all, None, None, Use::Shaded).unwrap();
+        assert_eq!(s.id(), "cook-torrance");
+        assert_eq!(s.get("d"), Some(&Given::Choice("ggx".into())));
+        assert_eq!(s.get("g"), Some(&Given::Choice("smith".into())));
+        assert_eq!(
+            asked_pairs("ggx", &s),
+            given(&[("alpha", "0.3"), ("g", "smith")])
+        );
+        let own = unshaded("ggx", &s).unwrap();
+        assert_eq!(
+            own,
+            ModelSpec::new("ggx", &[("alpha", Given::Num(0.3))]).unwrap()
+        );
+        // As it is, a distribution takes no g.
+        assert!(spec("ggx", &all, None, None, Use::AsIs).is_err());
+        // A value out of the distribution's range names the distribution.
+        let e = spec("ggx", &given(&[("alpha", "7")]), None, None, Use::Shaded).unwrap_err();
+        assert!(e.message.contains("ggx"), "{}", e.message);
+    }
+
+    #[test]
+    fn metals_follow_shading_and_given_values_win() {
+        let gold = colour::metal("gold").unwrap();
+        let s = spec(
+            "ggx",
+            &given(&[("eta", "1.5")]),
+            None,
+            Some(gold),
+            Use::Shaded,
+        )
+        .unwrap();
+        assert!(s.is_coloured());
+        assert_eq!(s.get("eta"), Some(&Given::Num(1.5)));
+        assert_eq!(s.get("f"), Some(&Given::Choice("conductor".into())));
+        let e = spec("ggx", &[], None, Some(gold), Use::AsIs).unwrap_err();
+        assert!(
+            e.message.contains("--metal gold: model 'ggx'"),
+            "{}",
+            e.message
+        );
+        let e = spec("flog", &[], None, Some(gold), Use::Shaded).unwrap_err();
+        assert!(e.message.contains("model 'flog'"), "{}", e.message);
+    }
+
+    #[test]
+    fn materials_supply_figures_where_none_is_given() {
+        let m = materials::find("gold-paint").unwrap();
+        let s = spec("flog", &[], Some(m), None, Use::AsIs).unwrap();
+        assert!(matches!(s.get("n"), Some(Given::Num(_))));
+        let mine = spec("flog", &given(&[("n", "20")]), Some(m), None, Use::AsIs).unwrap();
+        assert_eq!(mine.get("n"), Some(&Given::Num(20.0)));
+    }
+
+    #[test]
+    fn a_comparison_gives_each_model_what_it_takes() {
+        let all = given(&[("n", "50"), ("f", "schlick")]);
+        assert_eq!(own_pairs("flog", &all).unwrap(), given(&[("n", "50")]));
+        assert_eq!(own_pairs("ggx", &all).unwrap(), given(&[("f", "schlick")]));
+        assert!(takes("ggx", "denominator").unwrap() && !takes("flog", "f").unwrap());
+    }
+}
