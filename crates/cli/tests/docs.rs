@@ -12,6 +12,8 @@
 //!   with `FASTBRDF_DOCS_FULL=1`; one marked `no-run` never runs (the set-up and test commands
 //!   themselves). Either needs its reason in an HTML comment on the line before the fence:
 //!   `<!-- full: why -->`, `<!-- no-run: why -->`.
+//! - A block marked `gpu` needs a Vulkan driver (Mesa's lavapipe serves, chosen here as
+//!   tools/test.sh chooses it): without one it is skipped, except under CI, where it fails.
 //! - In CI mode a skipped block's `cargo run -p fastbrdf --example synthetic_merl -- ...` line
 //!   is done here through the library (`stand_in`), so that the later blocks find its file.
 //! - ```` ```python ```` blocks run from `python/tests/test_docs.py` (the installed package);
@@ -37,8 +39,11 @@ const SHOWN: &[&str] = &[
     "text", "rust", "python", "json", "csv", "toml", "wgsl", "glsl", "hlsl", "msl", "html",
 ];
 const RUN: &[&str] = &["sh", "bash", "console"];
-/// A block that runs longer is stopped and fails (a server left in the foreground).
-const BLOCK_TIMEOUT: Duration = Duration::from_secs(600);
+/// A block that runs longer is stopped and fails (a server left in the foreground); the full
+/// mode's blocks (`check` of every bound in the debug build) get an hour.
+fn block_timeout() -> Duration {
+    Duration::from_secs(if full_mode() { 3600 } else { 600 })
+}
 
 fn root() -> PathBuf {
     std::fs::canonicalize(ROOT).unwrap()
@@ -161,12 +166,18 @@ fn every_block_has_a_known_language_and_its_marks_give_a_reason() {
             ));
         }
         for a in &b.attrs {
-            if !["full", "no-run"].contains(&a.as_str()) {
-                bad.push(format!("{}: unknown mark {a:?} (full, no-run)", b.at()));
+            if !["full", "no-run", "gpu"].contains(&a.as_str()) {
+                bad.push(format!(
+                    "{}: unknown mark {a:?} (full, no-run, gpu)",
+                    b.at()
+                ));
                 continue;
             }
             if !RUN.contains(&b.lang.as_str()) {
                 bad.push(format!("{}: {a} on a block that is not run", b.at()));
+            }
+            if a == "gpu" {
+                continue;
             }
             let reason = b
                 .comment
@@ -209,7 +220,7 @@ struct Ran {
 
 /// Runs `bash` with `args` in `dir`, stdout and stderr into one file (the order a terminal
 /// shows), in a process group of its own, killed when the script ends (a server started with
-/// `&`) or after `BLOCK_TIMEOUT`.
+/// `&`) or after `block_timeout()`.
 fn run_bash(dir: &Path, args: &[&str], full: bool) -> Ran {
     use std::os::unix::process::CommandExt;
     let bin = Path::new(env!("CARGO_BIN_EXE_fastbrdf")).parent().unwrap();
@@ -228,6 +239,22 @@ fn run_bash(dir: &Path, args: &[&str], full: bool) -> Ran {
         .stdout(out.try_clone().unwrap())
         .stderr(out)
         .process_group(0);
+    // As tools/test.sh does: Mesa's software Vulkan driver when it is there and no driver is
+    // chosen, so that `--gpu` blocks run on machines without a GPU.
+    if std::env::var_os("VK_ICD_FILENAMES").is_none()
+        && std::env::var_os("VK_DRIVER_FILES").is_none()
+    {
+        let lvp = format!(
+            "/usr/share/vulkan/icd.d/lvp_icd.{}.json",
+            std::env::consts::ARCH
+        );
+        if Path::new(&lvp).exists() {
+            cmd.env("VK_ICD_FILENAMES", lvp);
+        }
+    }
+    if std::env::var_os("WGPU_BACKEND").is_none() {
+        cmd.env("WGPU_BACKEND", "vulkan");
+    }
     if full {
         // A nested cargo (the `synthetic_merl` example) builds in a folder of its own: the
         // cargo running this test may hold the lock on target/.
@@ -239,7 +266,7 @@ fn run_bash(dir: &Path, args: &[&str], full: bool) -> Ran {
         if let Some(s) = child.try_wait().unwrap() {
             break s.code().or(Some(-1));
         }
-        if started.elapsed() > BLOCK_TIMEOUT {
+        if started.elapsed() > block_timeout() {
             break None;
         }
         std::thread::sleep(Duration::from_millis(20));
@@ -288,7 +315,7 @@ fn run_script(dir: &Path, b: &Block, full: bool) -> Result<(), String> {
         None => Err(format!(
             "{}: the block ran past {} s; its output:\n{}",
             b.at(),
-            BLOCK_TIMEOUT.as_secs(),
+            block_timeout().as_secs(),
             tail(&ran.output, 40)
         )),
     }
@@ -421,6 +448,25 @@ fn stand_in(dir: &Path, b: &Block) -> Result<(), String> {
     Ok(())
 }
 
+/// Is a Vulkan driver there (chosen by the environment, or an ICD file installed)? The GPU
+/// tests' rule: without one a `gpu` block is skipped, except under CI, where it fails.
+fn vulkan_driver() -> bool {
+    if std::env::var_os("VK_ICD_FILENAMES").is_some()
+        || std::env::var_os("VK_DRIVER_FILES").is_some()
+    {
+        return true;
+    }
+    [
+        "/usr/share/vulkan/icd.d",
+        "/etc/vulkan/icd.d",
+        "/usr/local/share/vulkan/icd.d",
+    ]
+    .iter()
+    .filter_map(|d| std::fs::read_dir(d).ok())
+    .flatten()
+    .any(|e| e.is_ok_and(|e| e.path().extension().is_some_and(|x| x == "json")))
+}
+
 fn run_page(page: &Path, blocks: &[Block], full: bool) -> PageRun {
     let name = page.to_string_lossy().replace(['/', '.'], "-");
     let dir = root()
@@ -433,6 +479,22 @@ fn run_page(page: &Path, blocks: &[Block], full: bool) -> PageRun {
         times: Vec::new(),
     };
     for b in blocks.iter().filter(|b| RUN.contains(&b.lang.as_str())) {
+        if b.is("gpu") && !vulkan_driver() {
+            if std::env::var_os("CI").is_some() {
+                run.failures.push(format!(
+                    "{}: a `gpu` block and no Vulkan driver (tools/test.sh installs Mesa's lavapipe)",
+                    b.at()
+                ));
+                continue;
+            } else {
+                eprintln!(
+                    "docs: {}: skipped, no Vulkan driver (CI fails here)",
+                    b.at()
+                );
+                run.times.push((b.at(), 0.0, "never"));
+                continue;
+            }
+        }
         let skipped = b.is("no-run") || (b.is("full") && !full);
         if skipped {
             if let Err(e) = stand_in(&dir, b) {
@@ -535,20 +597,31 @@ struct Generated {
     page: &'static str,
     args: &'static [&'static str],
     fenced: bool,
+    /// Turns the command's output into the section (default: the output as it is).
+    render: Option<fn(&str) -> String>,
 }
 
 const GENERATED: &[Generated] = &[
+    Generated {
+        marker: "models-detail",
+        page: "docs/book/src/models.md",
+        args: &["models", "--json"],
+        fenced: false,
+        render: Some(model_details),
+    },
     Generated {
         marker: "models",
         page: "docs/book/src/models.md",
         args: &["models"],
         fenced: true,
+        render: None,
     },
     Generated {
         marker: "bench",
         page: "docs/book/src/speed.md",
         args: &["bench", "--from", "docs/bench/bench.json", "--markdown"],
         fenced: false,
+        render: None,
     },
     Generated {
         marker: "bench-gpu",
@@ -561,12 +634,14 @@ const GENERATED: &[Generated] = &[
             "--markdown",
         ],
         fenced: false,
+        render: None,
     },
     Generated {
         marker: "pareto",
         page: "docs/book/src/tuned.md",
         args: &["pareto", "--bench", "docs/bench/bench.json", "--markdown"],
         fenced: false,
+        render: None,
     },
     Generated {
         marker: "pareto-brdf",
@@ -581,6 +656,7 @@ const GENERATED: &[Generated] = &[
             "--markdown",
         ],
         fenced: false,
+        render: None,
     },
     Generated {
         marker: "reproduce",
@@ -592,6 +668,7 @@ const GENERATED: &[Generated] = &[
             "docs/bench/bench.json",
         ],
         fenced: false,
+        render: None,
     },
 ];
 
@@ -616,6 +693,10 @@ fn check_generated(marker: &str) {
         String::from_utf8_lossy(&o.stderr)
     );
     let out = String::from_utf8(o.stdout).unwrap();
+    let out = match g.render {
+        Some(render) => render(&out),
+        None => out,
+    };
     let want = if g.fenced {
         format!("```text\n{out}```\n")
     } else {
@@ -652,6 +733,90 @@ fn check_generated(marker: &str) {
 #[test]
 fn generated_models_reference_is_the_registry() {
     check_generated("models");
+    check_generated("models-detail");
+}
+
+/// The model reference's sections, one per model, from `fastbrdf models --json`: formula,
+/// source, note, parameters (range, default, choices), bounds, f32 bound and operation counts.
+fn model_details(json: &str) -> String {
+    use serde_json::Value;
+    use std::fmt::Write;
+    let v: Value = serde_json::from_str(json).unwrap();
+    let num = |x: &Value| match x.as_f64() {
+        Some(f) if f != 0.0 && f.abs() < 1e-3 => format!("{f:e}"),
+        Some(f) => format!("{f}"),
+        None => x.to_string(),
+    };
+    let mut out = String::new();
+    let mut kind = String::new();
+    for m in v["models"].as_array().unwrap() {
+        let k = m["kind"].as_str().unwrap();
+        if k != kind {
+            kind = k.to_string();
+            let _ = write!(out, "\n### Kind `{kind}`\n");
+        }
+        let _ = write!(out, "\n#### `{}`\n\n", m["id"].as_str().unwrap());
+        let _ = writeln!(out, "- formula: `{}`", m["formula"].as_str().unwrap_or(""));
+        let _ = writeln!(out, "- source: {}", m["source"].as_str().unwrap_or(""));
+        if let Some(note) = m["note"].as_str().filter(|s| !s.is_empty()) {
+            let _ = writeln!(out, "- note: {note}");
+        }
+        for p in m["params"].as_array().unwrap() {
+            let name = p["name"].as_str().unwrap();
+            let doc = p["doc"].as_str().unwrap_or("");
+            if p["type"] == "number" {
+                let _ = writeln!(
+                    out,
+                    "- `{name}` in [{}, {}], default {}: {doc}",
+                    num(&p["min"]),
+                    num(&p["max"]),
+                    num(&p["default"])
+                );
+            } else {
+                let options: Vec<String> = p["options"]
+                    .as_array()
+                    .map(|o| {
+                        o.iter()
+                            .map(|x| format!("`{}`", x.as_str().unwrap()))
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                let _ = writeln!(
+                    out,
+                    "- `{name}`, one of {}; default `{}`: {doc}",
+                    options.join(", "),
+                    p["default"].as_str().unwrap_or("")
+                );
+            }
+        }
+        for b in m["bounds"].as_array().unwrap() {
+            let range = &b["param"];
+            let _ = writeln!(
+                out,
+                "- bound against `{}`: {} {} (divided by the {}) <= {}, {} in [{}, {}]",
+                b["reference"].as_str().unwrap_or(""),
+                b["metric"].as_str().unwrap_or(""),
+                b["zone"].as_str().unwrap_or(""),
+                b["divided_by"].as_str().unwrap_or(""),
+                num(&b["bound"]),
+                range[0].as_str().unwrap_or(""),
+                num(&range[1]),
+                num(&range[2])
+            );
+        }
+        let o = &m["ops"];
+        let _ = writeln!(
+            out,
+            "- f32 bound {}; operations (multiplies/adds/divides/square roots/transcendentals) {}/{}/{}/{}/{}",
+            num(&m["f32_bound"]),
+            num(&o["mul"]),
+            num(&o["add"]),
+            num(&o["div"]),
+            num(&o["sqrt"]),
+            num(&o["transcendental"])
+        );
+    }
+    out
 }
 
 #[test]
