@@ -25,7 +25,8 @@
 //! - Every relative link in README.md and the book names a file that exists, and SUMMARY.md
 //!   lists every chapter.
 //!
-//! `cargo test -p fastbrdf-cli --test docs -- --nocapture` prints each block's time.
+//! `cargo test -p fastbrdf-cli --test docs -- --nocapture` prints each block's time;
+//! `FASTBRDF_DOCS_ONLY=commands.md` runs the blocks of the pages whose path contains that text.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -529,7 +530,12 @@ fn run_page(page: &Path, blocks: &[Block], full: bool) -> PageRun {
 fn every_shell_block_runs() {
     let full = full_mode();
     let blocks = all_blocks();
-    let pages = pages();
+    // FASTBRDF_DOCS_ONLY=TEXT: only the pages whose path contains TEXT (one page at a time).
+    let only = std::env::var("FASTBRDF_DOCS_ONLY").unwrap_or_default();
+    let pages: Vec<PathBuf> = pages()
+        .into_iter()
+        .filter(|p| p.to_string_lossy().contains(&only))
+        .collect();
     let queue = Mutex::new(pages.iter());
     let results = Mutex::new(Vec::new());
     let workers = std::thread::available_parallelism()
