@@ -255,22 +255,26 @@ impl ModelSpec {
         Ok(self.plan()?.model())
     }
 
+    /// A coloured spec where one model is needed: refused naming the first value given per
+    /// channel, as text, and its range (the message a grey model's parser gives such text).
     fn grey(&self) -> Result<()> {
-        if !self.is_coloured() {
+        let Some((name, value)) = self.given.iter().find(|(_, v)| matches!(v, Given::Rgb(_)))
+        else {
             return Ok(());
-        }
-        let rgb: Vec<&str> = self
-            .given
+        };
+        let range = self
+            .entry
+            .info
+            .params
             .iter()
-            .filter(|(_, v)| matches!(v, Given::Rgb(_)))
-            .map(|(k, _)| *k)
-            .collect();
+            .find(|s| s.name == *name)
+            .map_or_else(String::new, |s| s.range_text());
         Err(Error::InvalidParam {
             model: self.id().into(),
-            param: rgb.join(", "),
-            value: "R,G,B".into(),
+            param: name.to_string(),
+            value: value.to_string(),
             expected: format!(
-                "one number here (this use takes a grey model; channels {} are evaluated one at a time)",
+                "a number in {range} (this use takes one model, not one per colour channel {})",
                 CHANNELS.join(", ")
             ),
         })
@@ -407,7 +411,10 @@ mod tests {
         assert!(!ch[2].is_coloured());
         let Err(e) = s.model::<f32>() else { panic!() };
         let msg = e.to_string();
-        assert!(msg.contains("f0"), "{msg}");
+        assert!(
+            msg.contains("parameter f0 = 0.9,0.6,0.5 is invalid") && msg.contains("[0, 1]"),
+            "{msg}"
+        );
     }
 
     #[test]
