@@ -4,7 +4,7 @@
 use super::common::progress::bar;
 use crate::CliError;
 use crate::model_args::{self, MaterialArg, ParamArgs, Use};
-use fastbrdf::{Given, ModelSpec};
+use fastbrdf::{Given, Kind, ModelSpec};
 use fastbrdf_analysis::{albedo, range};
 
 #[derive(clap::Args)]
@@ -133,6 +133,18 @@ fn ms_compare(a: &Args, spec: &ModelSpec, angles: &[f64]) -> Result<(), CliError
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
+    // The kind first (`albedo::target`'s message), so that a distribution is refused as one
+    // whatever its values (--ms-compare names its one model itself).
+    let info = fastbrdf::registry::find(&a.model)?.info;
+    let kind = info.kind;
+    if !a.ms_compare && !matches!(kind, Kind::Brdf | Kind::Lobe) {
+        return Err(fastbrdf::Error::WrongKind {
+            model: info.id.into(),
+            expected: "brdf or lobe".into(),
+            found: kind.name().into(),
+        }
+        .into());
+    }
     let spec = model_args::spec(
         &a.model,
         &a.params.pairs()?,

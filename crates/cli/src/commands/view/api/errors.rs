@@ -1,7 +1,7 @@
 //! `/api/errors`: one row of `fastbrdf errors` (a model against a model at one value of its
 //! swept parameter), or the residuals of `fastbrdf errors --measured`.
 
-use super::query::{Query, Reference, Response, check_unused, checked_id, spec_of};
+use super::query::{Query, Reference, Response, check_unused, checked_id, one_model, spec_of};
 use crate::CliError;
 use crate::commands::view::state::{Measured, State};
 use fastbrdf::{Given, ModelSpec};
@@ -56,7 +56,9 @@ pub fn errors_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     if let Some(Reference::Measured(m)) = Reference::from_query(q, state)? {
         let all = q.params();
         check_unused(&[id], &all)?;
-        let mut row = measured_row(id, &spec_of(id, &all)?, m)?;
+        let spec = spec_of(id, &all)?;
+        one_model(id, &spec)?;
+        let mut row = measured_row(id, &spec, m)?;
         row["model"] = json!(id);
         return Ok(Response::json(&row));
     }

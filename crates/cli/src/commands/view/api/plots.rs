@@ -3,7 +3,7 @@
 //! every number from the library functions the CLI commands call.
 
 use super::errors::{errors_row, measured_row};
-use super::query::{Chosen, Query, Reference, Response, chosen, theta_i};
+use super::query::{Chosen, Query, Reference, Response, chosen, one_model, theta_i};
 use crate::CliError;
 use crate::commands::common::numbers::swept;
 use crate::commands::view::state::{Measured, State};
@@ -201,6 +201,9 @@ fn plots_of(
 fn albedo_of(id: &'static str, spec: &ModelSpec, quick: bool) -> Result<Value, CliError> {
     let own = model_args::unshaded(id, spec)?;
     let albedo_v = match albedo::target(&own, "phong", "energy") {
+        // A distribution is not a BRDF on its own: no albedo.
+        Err(fastbrdf::Error::WrongKind { .. }) => Value::Null,
+        Err(e) => return Err(e.into()),
         Ok(t) => {
             // The quick estimate: a fixed quadrature on the same angles (a looser tolerance
             // of the adaptive one is no faster: its initial panels are most of the cost).
@@ -223,7 +226,6 @@ fn albedo_of(id: &'static str, spec: &ModelSpec, quick: bool) -> Result<Value, C
                 "worst_theta_deg": worst.map(|w| w.theta_deg), "worst_albedo": worst.map(|w| w.albedo),
             })
         }
-        Err(_) => Value::Null,
     };
     Ok(json!({"id": id, "albedo": albedo_v}))
 }
@@ -245,6 +247,9 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         }
     };
     let Chosen { models, reference } = chosen(state, q)?;
+    for (id, spec) in &models {
+        one_model(id, spec)?;
+    }
     use rayon::prelude::*;
     let mut out: Vec<Value> = models
         .par_iter()
@@ -268,6 +273,9 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
 pub fn plots(state: &State, q: &Query) -> Result<Response, CliError> {
     let t = Instant::now();
     let Chosen { models, reference } = chosen(state, q)?;
+    for (id, spec) in &models {
+        one_model(id, spec)?;
+    }
     let ti = theta_i(q)?;
     // One model per task: the two cores of a slider move's budget.
     use rayon::prelude::*;

@@ -196,6 +196,32 @@ pub fn spec_of(id: &str, all: &[(String, String)]) -> Result<ModelSpec, CliError
     )
 }
 
+/// Refuses a coloured `spec` (a value per colour channel, R,G,B) where one model is computed:
+/// the plots, the albedo and the errors rows (a render and a shader take one). The core's
+/// message quotes the value and its range; it names `id`, the model chosen, not the BRDF a
+/// lobe or a distribution is shaded as (whose values, such as a distribution's `f0`, are
+/// checked after the model's own).
+pub fn one_model(id: &str, spec: &ModelSpec) -> Result<(), CliError> {
+    // The model's own values first: their ranges are the model's.
+    model_args::unshaded(id, spec)?.params()?;
+    match spec.params() {
+        Ok(_) => Ok(()),
+        Err(fastbrdf::Error::InvalidParam {
+            param,
+            value,
+            expected,
+            ..
+        }) => Err(fastbrdf::Error::InvalidParam {
+            model: id.into(),
+            param,
+            value,
+            expected,
+        }
+        .into()),
+        Err(e) => Err(e.into()),
+    }
+}
+
 /// Every parameter of the query must be taken by at least one chosen model.
 pub fn check_unused(ids: &[&str], all: &[(String, String)]) -> Result<(), CliError> {
     for (k, _) in all {
