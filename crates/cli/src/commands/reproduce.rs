@@ -18,7 +18,8 @@ pub struct Args {
     /// Print JSON (shape below): numbers in `unit`, text in `claimed_text`/`measured_text`.
     #[arg(long)]
     json: bool,
-    /// Print the Markdown table and domains (what README.md and REPRODUCTION.md show).
+    /// Print the Markdown table and domains (what the book's docs/book/src/reproduction.md and
+    /// docs/reproduction/REPRODUCTION.md show).
     #[arg(long, conflicts_with = "json")]
     markdown: bool,
     /// Fill the speed rows (ct.speedup, ward.speedup) from a saved `fastbrdf bench --json` run

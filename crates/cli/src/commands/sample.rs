@@ -30,7 +30,7 @@ sample (the draw fell below the horizon or has density 0: the strategy's missing
 away from the surface. Errors name the file, the line and the field; exit code 2 for bad\n\
 input (nothing on stdout), 3 when stdout cannot be written.\n\n\
 Strategies: auto (the model's default), cosine (every BRDF), lobe, d-cos, vndf, twin (see\n\
-README's \"Sampling\"); an invalid combination is an error naming the valid ones."
+the book's docs/book/src/sampling.md); an invalid combination is an error naming the valid ones."
 )]
 pub struct SampleArgs {
     /// Model id: a full BRDF (see `fastbrdf models --kind brdf`).

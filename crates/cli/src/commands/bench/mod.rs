@@ -54,7 +54,7 @@ pub struct Args {
     /// square root or transcendental makes the count meaningless.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
-    /// Print the Markdown tables that README.md shows.
+    /// Print the Markdown tables the book shows (docs/book/src/speed.md).
     #[arg(long)]
     markdown: bool,
     /// Render a saved `--json` run instead of measuring (read once, at most 64 MiB).

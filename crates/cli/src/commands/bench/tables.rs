@@ -422,7 +422,7 @@ fn peer_table(r: &Report, md: bool) -> String {
     s
 }
 
-/// The Markdown README shows.
+/// The Markdown the book shows (docs/book/src/speed.md).
 pub fn markdown(r: &Report) -> String {
     let mut s = format!(
         "{}.\n\n{}\n{}",
@@ -430,7 +430,7 @@ pub fn markdown(r: &Report) -> String {
         table(r, true),
         speed_table(r, true)
     );
-    // Runs saved before the C peers (README's docs/bench/bench.json) print as they did.
+    // Runs saved before the C peers (the book's docs/bench/bench.json) print as they did.
     if !r.peers.is_empty() {
         let _ = write!(s, "\n{}", peer_table(r, true));
     }

@@ -53,7 +53,8 @@ pub struct BrdfArgs {
     #[arg(long, value_name = "THETAxPHI", requires = "brdf")]
     pub grid: Option<String>,
     /// With --brdf: take the costs from this saved `pareto --brdf --json` output instead of
-    /// measuring them (what README's table does, so that a test can keep it current).
+    /// measuring them (what the book's table in docs/book/src/pareto-brdf.md does, so that a test
+    /// can keep it current).
     #[arg(long, value_name = "PARETO.json", requires = "brdf")]
     pub costs: Option<PathBuf>,
 }

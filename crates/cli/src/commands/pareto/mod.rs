@@ -33,7 +33,7 @@ pub struct Args {
     /// max_rel_epicentre_8_1e5, pareto}]}.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
-    /// Print the Markdown table README shows.
+    /// Print the Markdown table the book shows (docs/book/src/tuned.md).
     #[arg(long)]
     markdown: bool,
     /// Also write the plot as PATH.png and PATH.svg (PATH without extension); no plot without it.

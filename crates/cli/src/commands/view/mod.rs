@@ -71,8 +71,8 @@ fastbrdf view --mesh head.obj --bench bench.json   (your mesh; costs from `fastb
 fastbrdf view --screenshot docs/images/view.png   (headless Chromium, then exit)\n  \
 fastbrdf view --measured gold-metallic-paint.binary   (the MERL file as a reference: #models=ward&ref=gold-metallic-paint.binary)\n  \
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
-The whole view lives in the URL after #, so a link reproduces it. The JSON API (README,\n\
-\"Explorer\"): /api/models, /api/plots, /api/albedo, /api/render, /api/errors, /api/shader, /api/material.\n\
+The whole view lives in the URL after #, so a link reproduces it. The JSON API (the book's\n\
+docs/book/src/explorer.md): /api/models, /api/plots, /api/albedo, /api/render, /api/errors, /api/shader, /api/material.\n\
 Bad requests get HTTP 400 with the message the CLI prints for the same input.\n\n\
 Limits (one client cannot take the server down): HTTP/1.1 only (HTTP/2 is refused with a GOAWAY);\n\
 at most 128 connections (--max-connections; lowered to leave 64 of the open-file limit free),\n\

@@ -98,7 +98,7 @@ fn curve_theta() -> Vec<f64> {
 }
 
 /// The plots of one model `id` (`spec`: as it shades, from [`spec_of`](super::query::spec_of);
-/// see README's API section for the shape).
+/// docs/book/src/explorer.md's JSON API gives the shape).
 fn plots_of(
     id: &'static str,
     spec: &ModelSpec,
