@@ -4,9 +4,9 @@
 //! The rule. A code span (`` `...` ``, outside fenced blocks) of README.md, ARCHITECTURE.md or
 //! the book is a path when it has no spaces and either contains a `/` and ends in `.rs`, `.md`,
 //! `.wgsl`, `.py`, `.sh`, `.toml` or `/`, or starts with `crates/`, `src/`, `tests/`, `docs/`,
-//! `python/` or `tools/` (one `{a,b}` is expanded; spans with `*`, `<`, `$` or `://` are
-//! patterns or addresses and are skipped; a `#anchor` or `:line` suffix is dropped). It names
-//! something when it exists:
+//! `python/` or `tools/`. One `{a,b}` is expanded; spans with `*`, `<`, `$`, `...`, `::` or
+//! `://` are patterns, items or addresses and are skipped; a `#anchor` or `:line` suffix is
+//! dropped. A path names something when it exists:
 //! - from the repository root (`crates/gpu/src/render/`);
 //! - else, for `src/...`, `tests/...`, `benches/...`, `examples/...`, from a crate's root
 //!   (`crates/*/` or `python/`): the core's `src/plan.rs`;
@@ -99,7 +99,7 @@ pub(crate) fn code_spans(text: &str) -> Vec<(usize, String)> {
 pub(crate) fn span_paths(span: &str) -> Vec<String> {
     if span.is_empty()
         || span.contains(char::is_whitespace)
-        || ["*", "<", "$", "://", "::"]
+        || ["*", "<", "$", "...", "://", "::"]
             .iter()
             .any(|p| span.contains(p))
     {
