@@ -77,6 +77,7 @@
 //! `tests/render.rs` holds GPU renders of the sphere and the face mesh to their CPU renders
 //! within stated tolerances: 8-bit on any adapter, and 1e-4 linear on software adapters.
 
+mod layouts;
 mod objects;
 mod passes;
 mod scene_data;
@@ -87,8 +88,9 @@ use fastbrdf_render::film::{Film, check_size};
 use fastbrdf_render::render::Options;
 use fastbrdf_render::scene::Scene;
 use glam::Vec3;
+use layouts::Layouts;
 use objects::{Reach, upload_object};
-use passes::{Layouts, Pipelines, ScenePass};
+use passes::{Pipelines, ScenePass};
 use scene_data::{Occluders, frame_data, lights_buffer};
 use std::collections::HashMap;
 use wgpu::util::DeviceExt;

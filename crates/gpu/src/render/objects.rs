@@ -1,7 +1,7 @@
 //! One scene object on the GPU: its uniform, albedo texture, mesh buffers (corners dilated at
 //! boundary edges for the rasteriser) and model coefficients, bound together.
 
-use super::passes::Layouts;
+use super::layouts::Layouts;
 use super::scene_data::{check_binding, storage};
 use crate::context::GpuError;
 use crate::spec::Instance;
