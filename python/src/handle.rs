@@ -156,7 +156,7 @@ impl Handle {
             let plan = spec.plan().map_err(value_error)?;
             let kernel = match plan.kind() {
                 fastbrdf::Kind::Shadowing => None,
-                _ => Some(Kernel::from_spec(&spec).map_err(value_error)?),
+                _ => Some(Kernel::new(&spec).map_err(value_error)?),
             };
             Ok(Self {
                 id: spec.id(),

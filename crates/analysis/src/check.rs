@@ -5,8 +5,8 @@
 //!   parameter as a continuum and the input together (`accuracy::worst_search`); the larger
 //!   maximum counts;
 //! - f32 against f64 on the same inputs over the whole documented domain, mixed metric
-//!   `|v32 - v64| / max(1, |v64|)`: a grid of parameter sets (`accuracy::f32_worst_of` over
-//!   `accuracy::domain_specs`) and an adversarial search (`accuracy::f32_search`, seeded, so
+//!   `|v32 - v64| / max(1, |v64|)`: a grid of parameter sets (`accuracy::f32_worst` over
+//!   `accuracy::domain_configs`) and an adversarial search (`accuracy::f32_search`, seeded, so
 //!   reproducible). The search also fails a model that returns a non-finite or negative
 //!   value in either precision.
 //! - the corners of the domain (issue 27, [`corners`]): every model at its domain
@@ -114,10 +114,10 @@ pub fn fmt_params(spec: &ModelSpec) -> String {
 
 /// Model `e`'s f32 bound, re-measured: the worst of the grid of parameter sets and the search.
 pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
-    let configs = accuracy::domain_specs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
+    let configs = accuracy::domain_configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
     let mut worst = (0.0, String::new());
     for c in &configs {
-        let (err, at) = accuracy::f32_worst_of(c).expect("domain configurations are valid");
+        let (err, at) = accuracy::f32_worst(c).expect("domain configurations are valid");
         if err.is_nan() || err > worst.0 || worst.1.is_empty() {
             worst = (err, format!("{} {at}", fmt_params(c)));
         }
@@ -191,11 +191,11 @@ pub struct Corners {
     pub evaluations: usize,
 }
 
-/// The parameter sets of the corners: `accuracy::domain_specs`, and each configuration
+/// The parameter sets of the corners: `accuracy::domain_configs`, and each configuration
 /// with an `eta` again at every [`CORNER_ETAS`] value (once per configuration of its other
 /// values).
 pub fn corner_configs(info: &fastbrdf::ModelInfo) -> Vec<ModelSpec> {
-    let mut out = accuracy::domain_specs(info, info.kind == fastbrdf::Kind::Brdf);
+    let mut out = accuracy::domain_configs(info, info.kind == fastbrdf::Kind::Brdf);
     let with_eta: Vec<ModelSpec> = out
         .iter()
         .filter(|c| c.get("eta").is_some())

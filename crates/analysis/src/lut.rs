@@ -122,7 +122,7 @@ pub fn kernels(id: &str) -> Result<(Kernel, Kernel)> {
         });
     }
     let term = |t: &str| {
-        Kernel::from_spec(&fastbrdf::ModelSpec::new(
+        Kernel::new(&fastbrdf::ModelSpec::new(
             e.info.id,
             &[("term", fastbrdf::Given::Choice(t.into()))],
         )?)

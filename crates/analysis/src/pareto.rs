@@ -45,7 +45,7 @@ pub fn throughput(id: &str) -> f64 {
     let x: Vec<f32> = (0..4096).map(|i| (i as f32 + 0.5) / 4096.0).collect();
     let mut out = vec![0.0f32; 4096];
     let spec = fastbrdf::ModelSpec::new(id, &[("n", fastbrdf::Given::Num(200.0))]);
-    let k = Kernel::from_spec(&spec.expect("lobes take n = 200")).expect("lobe kernels build");
+    let k = Kernel::new(&spec.expect("lobes take n = 200")).expect("lobe kernels build");
     let t = speed::time(
         || k.eval(Input::Cos(&x), &mut out).expect("sizes match"),
         Duration::from_millis(60),

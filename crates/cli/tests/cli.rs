@@ -113,7 +113,8 @@ fn eval_answers_for_every_id() {
             "distribution" => &["cos_h"],
             // The half-vector terms (v-cavity, kelemen) also read cos_h and cos_vh.
             "shadowing"
-                if fastbrdf::registry::build::<f64>(id, &[])
+                if fastbrdf::ModelSpec::parse(id, &[])
+                    .and_then(|s| s.model::<f64>())
                     .unwrap()
                     .columns()
                     .0

@@ -6,8 +6,8 @@
 mod common;
 
 use common::{fastbrdf, listing, stderr, stdout, temp_dir};
+use fastbrdf::Model;
 use fastbrdf::measured::{from_half_diff, write_merl};
-use fastbrdf::{Model, registry};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
@@ -18,7 +18,10 @@ const KS: [f64; 3] = [0.0399, 0.0343, 0.0237];
 
 /// A MERL file of `kd / pi + ks * model(params)` at the bin centres.
 fn synthetic(path: &Path, id: &str, params: &[(&str, &str)], kd: [f64; 3], ks: [f64; 3]) {
-    let Model::Brdf(b) = registry::build::<f64>(id, params).unwrap() else {
+    let Model::Brdf(b) = fastbrdf::ModelSpec::parse(id, params)
+        .and_then(|s| s.model::<f64>())
+        .unwrap()
+    else {
         panic!("a BRDF")
     };
     write_merl(path, |th, td, pd| {

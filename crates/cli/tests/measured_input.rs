@@ -15,7 +15,10 @@ use std::process::Output;
 
 /// A MERL file of `kd / pi + ks * model(params)` (-1, missing, below the horizon).
 fn merl(path: &Path, id: &str, params: &[(&str, &str)], kd: [f64; 3], ks: [f64; 3]) {
-    let fastbrdf::Model::Brdf(b) = fastbrdf::registry::build::<f64>(id, params).unwrap() else {
+    let fastbrdf::Model::Brdf(b) = fastbrdf::ModelSpec::parse(id, params)
+        .and_then(|s| s.model::<f64>())
+        .unwrap()
+    else {
         panic!("a BRDF")
     };
     write_merl(path, |th, td, pd| {

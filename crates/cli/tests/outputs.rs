@@ -220,10 +220,11 @@ fn json_outputs_carry_numbers_not_strings() {
     let merl = d.join("ct.binary");
     {
         use fastbrdf::measured::{from_half_diff, write_merl};
-        let fastbrdf::Model::Brdf(b) = fastbrdf::registry::build::<f64>(
+        let fastbrdf::Model::Brdf(b) = fastbrdf::ModelSpec::parse(
             "cook-torrance",
             &[("f", "schlick"), ("alpha", "0.3"), ("f0", "0.04")],
         )
+        .and_then(|s| s.model::<f64>())
         .unwrap() else {
             panic!("a BRDF")
         };

@@ -76,7 +76,7 @@ fn cook_torrance_ggx_without_g_passes_the_furnace() {
 }
 
 /// `render --model ggx` and the explorer shade a distribution as `cook-torrance` with that
-/// `d` (`registry::shading_brdf`): the same default, seen through `eval` of the BRDF.
+/// `d` (`ModelSpec::shaded`): the same default, seen through `eval` of the BRDF.
 #[test]
 fn eval_of_cook_torrance_with_d_only_uses_its_smith_term() {
     let row = "wi_x,wi_y,wi_z,wo_x,wo_y,wo_z\n0.9,0,0.43589,-0.8,0.1,0.59161\n";

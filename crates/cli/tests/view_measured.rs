@@ -42,8 +42,9 @@ fn merl_file() -> MerlFile {
     if m.1.is_none() {
         let dir = temp_dir("view-measured");
         let path = dir.join("ward-view.binary");
-        let fastbrdf::Model::Brdf(b) =
-            fastbrdf::registry::build::<f64>("ward", &[("alpha", "0.25")]).unwrap()
+        let fastbrdf::Model::Brdf(b) = fastbrdf::ModelSpec::parse("ward", &[("alpha", "0.25")])
+            .and_then(|s| s.model::<f64>())
+            .unwrap()
         else {
             panic!("ward is a BRDF")
         };

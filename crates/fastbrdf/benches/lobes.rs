@@ -33,7 +33,7 @@ fn powf_loop(b: Bencher) {
 fn simd(b: Bencher, id: &str) {
     let x = cosines();
     let mut out = vec![0.0f32; N];
-    let k = Kernel::from_spec(&lobe(id)).unwrap();
+    let k = Kernel::new(&lobe(id)).unwrap();
     b.counter(ItemsCount::new(N))
         .bench_local(|| k.eval(Input::Cos(&x), &mut out).unwrap());
 }

@@ -69,7 +69,7 @@ fn scalar(b: Bencher, cfg: &str) {
 fn simd(b: Bencher, cfg: &str) {
     let w = pairs();
     let mut out = vec![0.0f32; N];
-    let k = Kernel::from_spec(&spec(cfg)).unwrap();
+    let k = Kernel::new(&spec(cfg)).unwrap();
     b.counter(ItemsCount::new(N)).bench_local(|| {
         k.eval(
             Input::Dirs([&w[0], &w[1], &w[2], &w[3], &w[4], &w[5]]),

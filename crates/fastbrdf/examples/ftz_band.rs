@@ -55,7 +55,7 @@ fn main() {
             "n"
         };
         let spec = ModelSpec::new(id, &[(name, Given::Num(exponent))]).unwrap();
-        let mut k = Kernel::from_spec(&spec).unwrap();
+        let mut k = Kernel::new(&spec).unwrap();
         let chosen = k.flush_to_zero();
         let band = match id {
             "power4" => Some(base_min(2) as f64 / (exponent / 4.0)),

@@ -18,7 +18,7 @@ fn main() {
     let threads = rayon::current_num_threads();
     println!("threads: {threads}, isa: {}", Isa::best().name());
     for (id, given) in [("power16", vec![("n", "200")]), ("cook-torrance", vec![])] {
-        let k = Kernel::from_spec(&ModelSpec::parse(id, &given).unwrap()).unwrap();
+        let k = Kernel::new(&ModelSpec::parse(id, &given).unwrap()).unwrap();
         for log2 in 14..=22 {
             let n = 1usize << log2;
             let mut seed = 7u64;

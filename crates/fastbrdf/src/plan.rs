@@ -566,7 +566,9 @@ mod tests {
         let library: Vec<&str> = library_sources().iter().map(|(_, s)| *s).collect();
         for e in crate::registry::all() {
             let id = e.info.id;
-            let plan = crate::registry::plan(id, &[]).expect("default plan");
+            let plan = crate::spec::ModelSpec::parse(id, &[])
+                .and_then(|s| s.plan().copied())
+                .expect("default plan");
             for runtime in [false, true] {
                 let emit = if runtime {
                     Emit::runtime()

@@ -6,12 +6,11 @@
 use crate::brdf::{cook_torrance, lambert, phong, ward};
 use crate::entry::Entry;
 use crate::error::{Error, Result};
-use crate::kind::Shading;
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{
     beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
 };
-use crate::model::{Kind, Lobe, Model};
+use crate::model::{Kind, Lobe};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
 use crate::plan::{Models, Plan};
 use crate::real::Real;
@@ -247,24 +246,10 @@ impl Models for Registry {
     }
 }
 
-/// Transitional (issue 28): `ModelSpec::parse(id, given)?.plan()`.
-#[doc(hidden)]
-pub fn plan(id: &str, given: &[(&str, &str)]) -> Result<Plan> {
-    let e = find(id)?;
-    let p = Params::resolve(e.info.id, e.info.params, given)?;
-    plan_resolved(e, &p)
-}
-
 /// The plan from already resolved parameters (what [`crate::ModelSpec`] builds each
 /// channel's plan with).
 pub fn plan_resolved(e: &Entry, p: &Params) -> Result<Plan> {
     e.build_plan(p, &Registry)
-}
-
-/// Transitional (issue 28): `ModelSpec::parse(id, given)?.model::<T>()`.
-#[doc(hidden)]
-pub fn build<T: Real>(id: &str, given: &[(&str, &str)]) -> Result<Model<T>> {
-    Ok(plan(id, given)?.model())
 }
 
 /// Lobe `id` at exponent `n` in precision `T` (Phong's and Blinn-Phong's `lobe`).
@@ -275,29 +260,6 @@ pub fn lobe<T: Real>(id: &str, n: f64) -> Result<Box<dyn Lobe<T>>> {
 /// `Int(n) = integral_0^1 lobe(c) c dc` of lobe `id` (`brdf::phong::lobe_integral`).
 pub fn lobe_integral(id: &str, n: f64) -> Result<f64> {
     Ok(crate::brdf::phong::lobe_integral(&Registry.lobe(id, n)?))
-}
-
-/// Transitional (issue 28): `ModelSpec::shaded`.
-#[doc(hidden)]
-pub fn shading_brdf(
-    id: &str,
-    params: &[(String, String)],
-) -> Result<(&'static str, Vec<(String, String)>)> {
-    let e = find(id)?;
-    let mut p: Vec<(String, String)> = params.to_vec();
-    match e.info.kind.shading() {
-        Shading::AsIs => Ok((e.info.id, p)),
-        Shading::Via { brdf, param, extra } => {
-            p.push((param.into(), e.info.id.into()));
-            p.extend(extra.iter().map(|(k, v)| (k.to_string(), v.to_string())));
-            Ok((brdf, p))
-        }
-        Shading::Not => Err(Error::WrongKind {
-            model: id.into(),
-            expected: "a lobe, a distribution or a BRDF (something to shade with)".into(),
-            found: e.info.kind.name().into(),
-        }),
-    }
 }
 
 #[cfg(test)]

@@ -60,7 +60,10 @@ fn plan(given: &[(&str, &str)]) -> Plan {
 }
 
 fn is_scalar_g(g: &str) -> bool {
-    match registry::plan(g, &[]).unwrap() {
+    match ModelSpec::parse(g, &[])
+        .and_then(|s| s.plan().copied())
+        .unwrap()
+    {
         Plan::Shadowing(p) => !p.simd(),
         _ => panic!("{g} is not a shadowing term"),
     }
@@ -68,7 +71,10 @@ fn is_scalar_g(g: &str) -> bool {
 
 /// A Smith term (a function of the slope distribution's `alpha^2 tan^2 theta`).
 fn is_smith(g: &str) -> bool {
-    match registry::plan(g, &[]).unwrap() {
+    match ModelSpec::parse(g, &[])
+        .and_then(|s| s.plan().copied())
+        .unwrap()
+    {
         Plan::Shadowing(p) => p.aniso(),
         _ => panic!("{g} is not a shadowing term"),
     }
@@ -96,7 +102,10 @@ fn expected(d: &str, g: &str, f: &str) -> bool {
             ],
         ),
     ];
-    let Plan::Distribution(dp) = registry::plan(d, &[]).unwrap() else {
+    let Plan::Distribution(dp) = ModelSpec::parse(d, &[])
+        .and_then(|s| s.plan().copied())
+        .unwrap()
+    else {
         panic!("{d} is not a distribution")
     };
     use fastbrdf::plan::DistForm;
@@ -166,7 +175,7 @@ fn cook_torrance_kernels_follow_the_rule() {
         all.len()
     );
     // Energy compensation: the plan's parts per element, not specialised.
-    let k = Kernel::from_spec(
+    let k = Kernel::new(
         &ModelSpec::parse(
             "cook-torrance",
             &[
@@ -182,7 +191,7 @@ fn cook_torrance_kernels_follow_the_rule() {
     // Every other model's kernel is specialised.
     for e in registry::all() {
         if e.info.kind != Kind::Shadowing && e.info.id != "cook-torrance" {
-            let k = Kernel::from_spec(&ModelSpec::parse(e.info.id, &[]).unwrap()).unwrap();
+            let k = Kernel::new(&ModelSpec::parse(e.info.id, &[]).unwrap()).unwrap();
             assert!(k.specialised(), "{}", e.info.id);
         }
     }

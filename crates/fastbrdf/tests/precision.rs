@@ -14,7 +14,7 @@ fn f32_tracks_f64_within_the_documented_bound() {
     for e in registry::all() {
         let mut model_worst = (0.0, String::new());
         for cfg in configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf) {
-            let (err, at) = accuracy::f32_worst_of(&cfg).unwrap();
+            let (err, at) = accuracy::f32_worst(&cfg).unwrap();
             assert!(
                 err.is_finite(),
                 "{}: non-finite f32/f64 difference at {cfg:?} {at}",
@@ -244,7 +244,7 @@ fn anisotropic_cook_torrance_f32_tracks_f64() {
                         ("alpha_y", ay),
                     ];
                     let (err, at) =
-                        accuracy::f32_worst_of(&spec("cook-torrance", &given).unwrap()).unwrap();
+                        accuracy::f32_worst(&spec("cook-torrance", &given).unwrap()).unwrap();
                     assert!(err.is_finite(), "{given:?} {at}");
                     if err > worst.0 {
                         worst = (err, format!("{given:?} {at}"));

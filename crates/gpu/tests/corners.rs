@@ -16,7 +16,6 @@
 
 mod common;
 
-use fastbrdf::registry;
 use fastbrdf_gpu::compute::{GpuInput, GpuKernel};
 use fastbrdf_gpu::spec::Instance;
 
@@ -125,8 +124,12 @@ fn gpu_corners_at_the_ends_of_the_ranges_are_measured_and_bounded() {
     let (d, q) = (&gpu.device, &gpu.queue);
     let mut failures = vec![];
     for c in &CORNERS {
-        let cpu = registry::build::<f32>(c.id, c.params).unwrap();
-        let exact = registry::build::<f64>(c.id, c.params).unwrap();
+        let cpu = fastbrdf::ModelSpec::parse(c.id, c.params)
+            .and_then(|s| s.model::<f32>())
+            .unwrap();
+        let exact = fastbrdf::ModelSpec::parse(c.id, c.params)
+            .and_then(|s| s.model::<f64>())
+            .unwrap();
         let cos;
         let dirs;
         let (inputs, rows): (GpuInput, Vec<Vec<f32>>) = if c.id.starts_with("fresnel") {

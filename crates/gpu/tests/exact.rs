@@ -73,7 +73,9 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
-            let exact = registry::build::<f64>(info.id, &given).unwrap();
+            let exact = fastbrdf::ModelSpec::parse(info.id, &given)
+                .and_then(|s| s.model::<f64>())
+                .unwrap();
             let peak = exact.eval_row(&row64) as f32;
             for form in ["storage", "literals", "symbolic"] {
                 let instance = match form {
@@ -153,7 +155,9 @@ fn every_lobe_is_accurate_near_its_peak() {
             let cos: Vec<f32> = (0..=512)
                 .map(|i| (1.0 - i as f64 * 10.0 / (512.0 * n)).max(0.0) as f32)
                 .collect();
-            let exact = registry::build::<f64>(info.id, &given).unwrap();
+            let exact = fastbrdf::ModelSpec::parse(info.id, &given)
+                .and_then(|s| s.model::<f64>())
+                .unwrap();
             let want: Vec<f64> = cos
                 .iter()
                 .map(|&c| exact.eval_row(&[Some(c as f64)]))

@@ -99,7 +99,8 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
             Kind::Shadowing => (
                 GpuInput::Shadow([&cols4[0], &cols4[1], &cols4[2], &cols4[3]]),
                 {
-                    let half_vector = registry::build::<f32>(info.id, &[])
+                    let half_vector = fastbrdf::ModelSpec::parse(info.id, &[])
+                        .and_then(|s| s.model::<f32>())
                         .unwrap()
                         .columns()
                         .0
@@ -137,7 +138,9 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
-            let cpu = registry::build::<f32>(info.id, &given).unwrap();
+            let cpu = fastbrdf::ModelSpec::parse(info.id, &given)
+                .and_then(|s| s.model::<f32>())
+                .unwrap();
             let kernel = GpuKernel::new(
                 d,
                 Instance::with_storage(&common::spec(info.id, &given)).unwrap(),

@@ -342,12 +342,13 @@ fn every_lobe_is_exactly_its_peak_at_c_1_under_folding_and_reassociation() {
     let mut failures = vec![];
     let mut checked = 0;
     for e in registry::all().iter().filter(|e| e.info.kind == Kind::Lobe) {
-        for config in domain_configs(&e.info, true) {
+        for config in domain_configs(&e.info, true).iter().map(|s| s.pairs()) {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
-            let peak = registry::build::<f64>(e.info.id, &given)
+            let peak = fastbrdf::ModelSpec::parse(e.info.id, &given)
+                .and_then(|s| s.model::<f64>())
                 .unwrap()
                 .eval_row(&[Some(1.0)]) as f32;
             let mut forms = vec![(
@@ -422,7 +423,7 @@ fn every_lobe_stays_within_n_ulp_of_c_near_its_peak_under_folding() {
     let report = std::env::var_os("FASTBRDF_PARITY_REPORT").is_some();
     let mut failures = vec![];
     for e in registry::all().iter().filter(|e| e.info.kind == Kind::Lobe) {
-        for config in domain_configs(&e.info, true) {
+        for config in domain_configs(&e.info, true).iter().map(|s| s.pairs()) {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
@@ -432,7 +433,9 @@ fn every_lobe_stays_within_n_ulp_of_c_near_its_peak_under_folding() {
                 .find(|(k, _)| *k == "n")
                 .map(|(_, v)| v.parse().unwrap())
                 .unwrap();
-            let exact = registry::build::<f64>(e.info.id, &given).unwrap();
+            let exact = fastbrdf::ModelSpec::parse(e.info.id, &given)
+                .and_then(|s| s.model::<f64>())
+                .unwrap();
             let inst = Instance::new(&common::spec(e.info.id, &given)).unwrap();
             let cos: Vec<f32> = (0..=64)
                 .map(|i| (1.0 - i as f64 * 10.0 / (64.0 * n)).max(0.0) as f32)

@@ -99,7 +99,10 @@ fn choice_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
         .collect();
     let mut seen = BTreeSet::new();
     let mut kept = vec![];
-    for c in fastbrdf::accuracy::domain_configs(info, true) {
+    for c in fastbrdf::accuracy::domain_configs(info, true)
+        .iter()
+        .map(|s| s.pairs())
+    {
         let mut new = kept.is_empty();
         for (k, v) in &c {
             if choices.contains(&k.as_str()) {

@@ -334,8 +334,12 @@ fn check(
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
-            let cpu = registry::build::<f32>(info.id, &given).unwrap();
-            let exact = registry::build::<f64>(info.id, &given).unwrap();
+            let cpu = fastbrdf::ModelSpec::parse(info.id, &given)
+                .and_then(|s| s.model::<f32>())
+                .unwrap();
+            let exact = fastbrdf::ModelSpec::parse(info.id, &given)
+                .and_then(|s| s.model::<f64>())
+                .unwrap();
             // Every form: coefficients in storage (compute and render paths), as literals
             // (exported code), which a compiler may fold into reassociated expressions, and as
             // f32 expressions of the parameters (BRDF Explorer's sliders), where they exist.
@@ -503,7 +507,9 @@ fn every_shadowing_v_form_is_g_over_four_cosines() {
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
                 .collect();
-            let exact = registry::build::<f64>(info.id, &given).unwrap();
+            let exact = fastbrdf::ModelSpec::parse(info.id, &given)
+                .and_then(|s| s.model::<f64>())
+                .unwrap();
             let mut inst = Instance::with_storage(&common::spec(info.id, &given)).unwrap();
             inst.function = fastbrdf_gpu::spec::v_function_name(&inst.function);
             let kernel = GpuKernel::new(d, inst).unwrap();

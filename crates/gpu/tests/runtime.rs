@@ -6,7 +6,7 @@
 //!   16, 1e4, 1e5; c on 257 points of [0, 1], 65 points within 4/n of the peak, 0, 1, and the
 //!   cut and the junction q with their f32 neighbours; n and c are f32 numbers fed to both
 //!   sides. Metric: the mixed error |v_gpu - v64| / max(1, |v64|), v64 from
-//!   `registry::build::<f64>`. The cut is a jump (the cubic's local minimum, up to 0.3 high):
+//!   `ModelSpec::model::<f64>`. The cut is a jump (the cubic's local minimum, up to 0.3 high):
 //!   rows between the CPU's cut and the GPU's (inclusive) are where the two cut differently;
 //!   they are counted and left out of the value metric, and the cut itself is compared in f32
 //!   ulp (`CUT_ULPS`).
@@ -25,7 +25,6 @@ mod common;
 
 use fastbrdf::lobes::cubic::CubicShape;
 use fastbrdf::model::Model;
-use fastbrdf::registry;
 use fastbrdf_gpu::compute::read_buffer;
 use fastbrdf_gpu::context::validated;
 use fastbrdf_gpu::library::closure_source;
@@ -201,7 +200,10 @@ fn rt_main(@builtin(global_invocation_id) gid: vec3<u32>) {{
 }
 
 fn lobe64(id: &str, n: f32) -> Box<dyn fastbrdf::model::Lobe<f64>> {
-    match registry::build::<f64>(id, &[("n", &n.to_string())]).expect("model") {
+    match fastbrdf::ModelSpec::parse(id, &[("n", &n.to_string())])
+        .and_then(|s| s.model::<f64>())
+        .expect("model")
+    {
         Model::Lobe(l) => l,
         _ => unreachable!("{id} is a lobe"),
     }

@@ -237,7 +237,7 @@ pub struct Channel {
 
 impl Channel {
     fn new(spec: ModelSpec) -> Result<Self> {
-        let kernel = Kernel::from_spec(&spec)?;
+        let kernel = Kernel::new(&spec)?;
         let Model::Brdf(scalar) = spec.model::<f32>()? else {
             unreachable!("shaded specs are BRDFs")
         };

@@ -62,7 +62,7 @@ pub fn cost(
     inputs: &speed::Inputs,
     budget: Duration,
 ) -> fastbrdf::Result<(f64, bool)> {
-    let k = Kernel::from_spec(&config.at(alpha)?)?;
+    let k = Kernel::new(&config.at(alpha)?)?;
     let n = inputs.dirs[0].len();
     let input = inputs.input(Kind::Brdf, n);
     let mut out = vec![0.0f32; n];

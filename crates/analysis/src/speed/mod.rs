@@ -261,7 +261,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     progress(2, total);
     for (i, (name, spec)) in configs.iter().enumerate() {
         let info = spec.info();
-        let kernel = Kernel::from_spec(spec)?;
+        let kernel = Kernel::new(spec)?;
         let model = spec.model::<f32>()?;
         let slots = fma_slots(info, kernel.isa());
         let frac = |evals: f64| slots.map(|f| evals * f / fma);

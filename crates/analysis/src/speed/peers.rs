@@ -351,7 +351,7 @@ pub fn peer_rows(
         if !(models.is_empty() || models.iter().any(|m| m == peer.id)) {
             continue;
         }
-        let kernel = Kernel::from_spec(&peer.spec)?;
+        let kernel = Kernel::new(&peer.spec)?;
         let m64 = peer.spec.model::<f64>()?;
         let kernel_max_error = max_mixed_error(&m64, &acc_in, |x, o| {
             kernel.eval(Input::Cos(x), o).expect("shapes match")
@@ -423,7 +423,7 @@ mod tests {
             .iter()
             .map(|p| {
                 let m64 = p.spec.model::<f64>().unwrap();
-                let kernel = Kernel::from_spec(&p.spec).unwrap();
+                let kernel = Kernel::new(&p.spec).unwrap();
                 let ke = max_mixed_error(&m64, &xs, |x, o| kernel.eval(Input::Cos(x), o).unwrap());
                 (p.id, max_mixed_error(&m64, &xs, |x, o| p.eval(x, o)), ke)
             })

@@ -32,7 +32,7 @@ fn library_example() -> Result<(), fastbrdf::Error> {
     assert!(d.eval(1.0) > 0.0);
 
     // The SIMD batch kernel of the same spec.
-    let kernel = fastbrdf::batch::Kernel::from_spec(&ggx)?;
+    let kernel = fastbrdf::batch::Kernel::new(&ggx)?;
     assert!(kernel.simd());
     // doc:library:end
     Ok(())

@@ -17,7 +17,7 @@ use crate::spec::{Given, ModelSpec};
 /// Panics if a configuration is refused (a model whose parameter specs contradict
 /// themselves, or an `info` that is not in the registry): every registry model's
 /// configurations are valid, and the registry-wide tests iterate them all.
-pub fn domain_specs(info: &crate::ModelInfo, light: bool) -> Vec<ModelSpec> {
+pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<ModelSpec> {
     domain_given(info, light)
         .iter()
         .map(|given| {

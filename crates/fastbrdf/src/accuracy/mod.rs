@@ -32,8 +32,8 @@ pub use bounds::{
     ALPHA_STEP_MIN, N_STEP_MAX, PER_DECADE, golden_max, param_values, worst, worst_at,
     worst_at_grid, worst_search,
 };
-pub use configs::domain_specs;
-pub use precision::{Found, f32_search, f32_worst_of};
+pub use configs::domain_configs;
+pub use precision::{Found, f32_search, f32_worst};
 
 use crate::error::Result;
 use crate::model::{Metric, Model, Zone};
@@ -309,19 +309,4 @@ fn param_q(v: f64, min: f64, max: f64) -> f64 {
 /// Whether [`param_at`] maps `[min, max]` logarithmically (positive, two or more octaves).
 fn log_mapped(min: f64, max: f64) -> bool {
     min > 0.0 && max / min >= 4.0
-}
-
-// Transitional (issue 28): the text forms, until every caller takes the specs.
-
-#[doc(hidden)]
-pub fn domain_configs(info: &crate::ModelInfo, light: bool) -> Vec<Vec<(String, String)>> {
-    domain_specs(info, light)
-        .iter()
-        .map(|s| s.pairs())
-        .collect()
-}
-
-#[doc(hidden)]
-pub fn f32_worst(id: &str, given: &[(&str, &str)]) -> Result<(f64, String)> {
-    f32_worst_of(&ModelSpec::parse(id, given)?)
 }

@@ -15,7 +15,7 @@ use crate::spec::{Given, ModelSpec};
 /// The lobe's samples are those of its given `n` (20 if not given), a distribution's those of
 /// its given `alpha` (0.3 if not given). A coloured spec is an error (measure each of
 /// `spec.channel_specs()`).
-pub fn f32_worst_of(spec: &ModelSpec) -> Result<(f64, String)> {
+pub fn f32_worst(spec: &ModelSpec) -> Result<(f64, String)> {
     use crate::model::ShadowInput;
     let m32 = spec.model::<f32>()?;
     let m64 = spec.model::<f64>()?;
@@ -104,9 +104,6 @@ pub struct Found {
     pub err: f64,
     /// The model spec where it occurs (`None` when no configuration was built).
     pub spec: Option<ModelSpec>,
-    /// The same spec's given values as text (kept for callers being migrated).
-    #[doc(hidden)]
-    pub params: Vec<(String, String)>,
     /// The input where it occurs.
     pub at: String,
     /// A non-finite or negative value found, with its parameters and input.
@@ -444,7 +441,6 @@ pub fn f32_search(info: &crate::ModelInfo, size: SearchSize) -> Found {
             // The first restart's result, then the largest (`found.spec` is set by the first).
             if e > found.err || found.spec.is_none() {
                 found.err = e;
-                found.params = spec.pairs();
                 found.spec = Some(spec);
                 found.at = at;
             }

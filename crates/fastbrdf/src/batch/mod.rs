@@ -40,7 +40,6 @@ use crate::plan::{
     BrdfForm, BrdfPlan, DistForm, EnvForm, FresnelForm, LobeForm, Plan, with_brdf, with_dist,
     with_env, with_fresnel, with_lobe,
 };
-use crate::registry;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::sync::OnceLock;
@@ -526,17 +525,10 @@ pub struct Kernel {
 }
 
 impl Kernel {
-    /// Builds the kernel of model `id` with parameters given as text (validated like
-    /// `registry::build`). Shadowing terms take several cosines: they are not batchable and
-    /// are an error here.
-    pub fn new(id: &str, given: &[(&str, &str)]) -> Result<Self> {
-        let e = registry::find(id)?;
-        Self::from_plan(e.info.id, &registry::plan(id, given)?)
-    }
-
     /// The kernel of a grey model spec (a coloured one is an error: build one kernel per
-    /// channel from `spec.channel_specs()`).
-    pub fn from_spec(spec: &crate::spec::ModelSpec) -> Result<Self> {
+    /// channel from `spec.channel_specs()`). Shadowing terms take several cosines: they are
+    /// not batchable and are an error here.
+    pub fn new(spec: &crate::spec::ModelSpec) -> Result<Self> {
         Self::from_plan(spec.id(), spec.plan()?)
     }
 

@@ -560,7 +560,9 @@ mod tests {
         assert_eq!(listed, dists);
         let shadowing = crate::registry::ids_of(Kind::Shadowing);
         for (d, g) in SMITH_OF {
-            let Ok(Plan::Distribution(plan)) = crate::registry::plan(d, &[]) else {
+            let Ok(Plan::Distribution(plan)) =
+                crate::spec::ModelSpec::parse(d, &[]).and_then(|s| s.plan().copied())
+            else {
                 panic!("{d} is not a distribution");
             };
             assert_eq!(plan.smith(), *g, "{d}");
@@ -574,7 +576,7 @@ mod tests {
     fn aniso_lists_agree_with_the_families() {
         for e in crate::registry::all() {
             let id = e.info.id;
-            match crate::registry::plan(id, &[]) {
+            match crate::spec::ModelSpec::parse(id, &[]).and_then(|s| s.plan().copied()) {
                 Ok(Plan::Distribution(d)) => {
                     assert_eq!(d.aniso(), ANISO_D.contains(&id), "{id}")
                 }

@@ -14,7 +14,7 @@ fn every_kernel_matches_its_scalar_model_on_every_isa() {
     {
         let mut worst: f64 = 0.0;
         for cfg in configs(&e.info, true) {
-            let k = Kernel::from_spec(&cfg).unwrap();
+            let k = Kernel::new(&cfg).unwrap();
             let m = cfg.model::<f32>().unwrap();
             let cos;
             let input = if e.info.kind == Kind::Env {

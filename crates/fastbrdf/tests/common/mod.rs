@@ -37,13 +37,13 @@ pub fn plan(id: &str, given: &[(&str, &str)]) -> fastbrdf::Result<Plan> {
 
 /// The batch kernel of model `id` from parameters given as text (through [`spec`]).
 pub fn kernel(id: &str, given: &[(&str, &str)]) -> fastbrdf::Result<Kernel> {
-    Kernel::from_spec(&ModelSpec::parse(id, given)?)
+    Kernel::new(&ModelSpec::parse(id, given)?)
 }
 
 /// Model specs covering a model's domain (the library's generator, shared with
 /// `fastbrdf check`).
 pub fn configs(info: &ModelInfo, light: bool) -> Vec<ModelSpec> {
-    fastbrdf::accuracy::domain_specs(info, light)
+    fastbrdf::accuracy::domain_configs(info, light)
 }
 
 /// Text pairs (a test's generated parameters) as `&[(&str, &str)]`.

@@ -39,7 +39,8 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
     };
     let mut seen = std::collections::BTreeSet::new();
     fastbrdf::accuracy::domain_configs(info, true)
-        .into_iter()
+        .iter()
+        .map(|s| s.pairs())
         .filter(|c| {
             let ms = get(c, "ms");
             if ms.is_empty() || ms == "none" {
