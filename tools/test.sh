@@ -6,7 +6,7 @@
 # wgpu at it, so the tests run the same everywhere. To test a real GPU instead, set
 # VK_ICD_FILENAMES (or WGPU_BACKEND) yourself; this script leaves them alone when set.
 # With CI set, a missing GPU adapter fails the GPU tests; without CI they are skipped with a
-# message. The end-to-end test of `fastbrdf view` (crates/cli/tests/view.rs) needs a headless
+# message. The end-to-end test of `fastbrdf view` (crates/cli/tests/view_page.rs) needs a headless
 # Chromium: this installs Debian's chromium when none is found (~100 MB with its libraries);
 # with CI set a missing Chromium fails that test, without CI it is skipped with a message.
 # Extra arguments go to `cargo test` (e.g. `tools/test.sh -p fastbrdf-gpu`).

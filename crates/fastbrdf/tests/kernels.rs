@@ -13,7 +13,7 @@ use std::collections::BTreeSet;
 use std::mem::discriminant;
 
 /// Direction pairs over several blocks of the generic path and a tail, with the invalid and
-/// awkward inputs of `tests/batch.rs`.
+/// awkward inputs of `tests/batch/`.
 fn dirs() -> [Vec<f32>; 6] {
     let mut cols: [Vec<f32>; 6] = Default::default();
     let mut push = |wi: [f32; 3], wo: [f32; 3]| {

@@ -13,7 +13,7 @@
 //! across threads with rayon (`Kernel::eval_par`).
 //!
 //! Results agree with the scalar models (`Model<f32>`) in meaning, inputs out of the domain
-//! included (tested on every model in `tests/batch.rs`); numerically they differ only by the
+//! included (tested on every model in `tests/batch/`); numerically they differ only by the
 //! fast elementary functions' few ulp.
 //!
 //! Standalone shadowing terms take several cosines: no kernel (an error). Cook-Torrance with

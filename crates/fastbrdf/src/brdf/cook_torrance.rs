@@ -35,7 +35,7 @@
 //!
 //! Refusals name the requirement (`Params::resolve`, from `ALPHA_X`'s `requires`; the
 //! families' `ANISO` constants are checked again when the plan is built). Cost of the stretch:
-//! 14 mul, 5 add, 2 div, 2 sqrt (the ratios are plan constants). Tests: `tests/reference.rs`
+//! 14 mul, 5 add, 2 div, 2 sqrt (the ratios are plan constants). Tests: `tests/reference/`
 //! (the textbook forms through the azimuth; equal slopes give the isotropic model),
 //! `tests/energy.rs` (the anisotropic D integrates to 1; the refusals). f32: the stretch is
 //! computed in the pair's precision from the f64-rounded directions: f32 against f64 1.4e-6
@@ -43,7 +43,7 @@
 //! 0.005/1; documented [`ANISO_F32`] = 1e-5, `tests/precision.rs::
 //! anisotropic_cook_torrance_f32_tracks_f64`); `tests/precision.rs`' adversarial search and
 //! `fastbrdf check` cover the anisotropic configurations within `f32_bound` too. Batch
-//! kernels: 4.9e-7 from the scalar f32 model (`tests/batch.rs`). GPU: the WGSL pair set-up is
+//! kernels: 4.9e-7 from the scalar f32 model (`tests/batch/`). GPU: the WGSL pair set-up is
 //! f32 (the CPU's is f64, rounded once), so for back-to-back pairs near grazing `wi + wo`
 //! cancels in `h_x` or `h_y`, and the stretch weights that component by up to
 //! `alpha_y / alpha_x` = 200: 1.3e-3 against f64 measured at slopes (0.005, 1), bound 2e-3

@@ -1,7 +1,7 @@
 //! Branch-free f32 elementary functions that LLVM vectorises (no libm calls, no branches
 //! that cannot become selects): the fair exact baseline of the SIMD kernels.
 //!
-//! Accuracy against f64 for f32 inputs (measured by `tests/batch.rs`):
+//! Accuracy against f64 for f32 inputs (measured by `tests/batch/`):
 //! - `exp2`: relative error <= 2 ulp (split `x = k + f` exactly, degree-7 Taylor polynomial of
 //!   `2^f` on [-0.5, 0.5], truncation 5e-9). Exactly 0 below -126 (where the result would be
 //!   subnormal: the exponent addition cannot build those), +inf from 128.
@@ -395,7 +395,7 @@ pub fn log2(x: f32) -> f32 {
 /// [2^-1/2, 2^1/2): `t = (m - 1) / (m + 1)`, `|t| <= 0.1716` (`m - 1` exact), `log2 m =
 /// (2 / ln 2)(t + t^3/3 + ... + t^11/11)` (truncation 5e-11 relative), then `e + log2 m` with
 /// 2 / ln 2 as head and tail. At most one f32 epsilon (1.2e-7) absolute below 1 and relative
-/// above (measured 1.0e-7, `tests/batch.rs`). `-inf` for `x < 2^-126` (subnormals as zero,
+/// above (measured 1.0e-7, `tests/batch/`). `-inf` for `x < 2^-126` (subnormals as zero,
 /// as `log2_wide`), NaN for NaN and negative `x`.
 #[inline(always)]
 fn log2_g<const F: bool>(x: f32) -> f32 {
@@ -447,7 +447,7 @@ pub fn pow(x: f32, y: f32) -> f32 {
 /// 1e5: at most 0.74 f32 epsilons relative (1.44 with [`scale2`]'s degree-7 Estrin
 /// polynomial, which cost three more multiply-pipe operations: `pow` 6-8% faster), against
 /// 1.40 for the f64 form (`cargo run --release -p fastbrdf --example pow_ulp`;
-/// `tests/batch.rs` checks 2 on a grid).
+/// `tests/batch/` checks 2 on a grid).
 /// 0 for `x` below 2^-126 (subnormals as zero, as `log2_wide`), NaN for NaN or negative `x`.
 ///
 /// `UNIT`: `x` is in [0, 1] and not NaN and `y >= 1` (`fma::pow_unit`). Then `x = 0` and

@@ -29,7 +29,7 @@
 //!   nodes each, the second piece in `u = u2 - (u2 - u1) t^2`, which removes the square root at
 //!   its end) and `phi` integrated over its live range (24 nodes), so no node straddles the
 //!   horizon. 1152 integrand evaluations. Quadrature error against adaptive Gauss-Kronrod (the
-//!   independent reference in `tests/reference.rs`): see `QUADRATURE_ERROR`. Cost per
+//!   independent reference in `tests/reference/`): see `QUADRATURE_ERROR`. Cost per
 //!   evaluation: 1152 x (27 mul, 18 add, 4 div, 1 sqrt; the cosine of each phi node is a
 //!   polynomial), plus 48 acos; not vectorised.
 //! - `env-brdf-approx`: Karis 2014, "Physically Based Shading on Mobile" (Unreal's
@@ -65,7 +65,7 @@ pub const TERM: ParamSpec = ParamSpec {
 
 /// The largest difference between `env-brdf`'s fixed rule and adaptive Gauss-Kronrod to
 /// 1e-9 over the documented domain, `cos_v >= 0.001` (measured and enforced by
-/// `tests/reference.rs`); below `cos_v = 0.001` the rule degrades gracefully (the albedo's
+/// `tests/reference/`); below `cos_v = 0.001` the rule degrades gracefully (the albedo's
 /// limit at grazing is finite).
 pub const QUADRATURE_ERROR: f64 = 2e-3;
 

@@ -115,7 +115,7 @@ impl DistForm for Ggx {
     /// No flush-to-zero switch (its ~8 ns a call is 4% of a 4096-cosine batch): no step of
     /// the batch form is subnormal (`1 - c^2` is one fused multiply-add or `(1 - c)(1 + c)`,
     /// `alpha^2 <= t <= 1`, so `t t >= 6e-10` and the value is at least `alpha^2 / pi`);
-    /// tested (`tests/batch.rs`: every output 0 or normal).
+    /// tested (`tests/batch/`: every output 0 or normal).
     fn batch_ftz(&self) -> bool {
         false
     }

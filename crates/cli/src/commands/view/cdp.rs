@@ -1,7 +1,7 @@
 //! A minimal Chrome DevTools Protocol client over `--remote-debugging-pipe` (JSON messages
 //! ended by a NUL byte on file descriptors 3 and 4): enough to load a page, run JavaScript,
 //! send mouse events and take a screenshot, with no WebSocket or async runtime to compile.
-//! Used by `fastbrdf view --screenshot` and by the end-to-end test (`tests/view.rs` includes
+//! Used by `fastbrdf view --screenshot` and by the end-to-end test (`tests/explorer/mod.rs` includes
 //! this file).
 
 use serde_json::{Value, json};
