@@ -19,7 +19,7 @@
 //! assert!((l.eval(1.0) - 1.0).abs() < 1e-6);
 //! ```
 
-use crate::colour::{self, CHANNELS, Metal};
+use crate::colour::{self, Metal};
 use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::kind::Shading;
@@ -274,8 +274,7 @@ impl ModelSpec {
             param: name.to_string(),
             value: value.to_string(),
             expected: format!(
-                "a number in {range} (this use takes one model, not one per colour channel {})",
-                CHANNELS.join(", ")
+                "a number in {range} (this use takes one model, not one per colour channel R,G,B)"
             ),
         })
     }
