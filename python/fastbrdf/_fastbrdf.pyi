@@ -11,6 +11,7 @@ import numpy.typing as npt
 F32 = npt.NDArray[np.float32]
 F64 = npt.NDArray[np.float64]
 
+__version__: str
 MAX_VALUES: int
 MAX_ITEMS: int
 MAX_WEIGHT: float

@@ -59,6 +59,7 @@ pub(crate) const MAX_WEIGHT: f64 = 1e3;
 #[pymodule]
 fn _fastbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<handle::Handle>()?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_VALUES", MAX_VALUES)?;
     m.add("MAX_ITEMS", MAX_ITEMS)?;
     m.add("MAX_WEIGHT", MAX_WEIGHT)?;

@@ -154,7 +154,9 @@ def test_example_script_runs():
 def test_docstring_examples():
     import doctest
 
-    import fastbrdf as module
-
-    r = doctest.testmod(module, extraglobs={"np": np, "fastbrdf": fastbrdf}, optionflags=doctest.ELLIPSIS)
-    assert r.attempted >= 10 and r.failed == 0
+    attempted = 0
+    for module in [fastbrdf, *fastbrdf._MODULES]:
+        r = doctest.testmod(module, extraglobs={"np": np, "fastbrdf": fastbrdf}, optionflags=doctest.ELLIPSIS)
+        assert r.failed == 0, module.__name__
+        attempted += r.attempted
+    assert attempted >= 10

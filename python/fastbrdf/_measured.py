@@ -1,0 +1,5 @@
+"""Placeholder: filled by its own change (issue 29)."""
+
+from typing import List
+
+__all__: List[str] = []
