@@ -43,13 +43,62 @@ class Model:
         self._info: Optional[Dict[str, Any]] = None
 
     def __repr__(self) -> str:
+        """``fastbrdf.Model(id, name=value, ...)`` with the parameters as given: evaluating it
+        (with ``fastbrdf`` imported) builds an equal model.
+
+        >>> m = fastbrdf.Model("ggx", alpha=0.3)
+        >>> m
+        fastbrdf.Model('ggx', alpha=0.3)
+        >>> eval(repr(m)) == m
+        True
+        """
         args = "".join(f", {k}={v!r}" for k, v in self._params.items())
-        return f"Model({self.id!r}{args})"
+        return f"fastbrdf.Model({self.id!r}{args})"
+
+    def _key(self) -> Tuple[Any, ...]:
+        return (self.id, tuple(self._handle.values))
+
+    def __eq__(self, other: object) -> bool:
+        """Equal by value: the same model with the same resolved parameters (a default given
+        explicitly equals it left out; ``alpha=0.3`` equals ``alpha=0.30``).
+
+        >>> fastbrdf.Model("flog", n=20) == fastbrdf.Model("flog", n=20.0)
+        True
+        >>> fastbrdf.Model("ggx") == fastbrdf.Model("ggx", alpha=fastbrdf.Model("ggx").values["alpha"])
+        True
+        """
+        if not isinstance(other, Model):
+            return NotImplemented
+        return self._key() == other._key()
+
+    def __hash__(self) -> int:
+        return hash(self._key())
+
+    def __reduce__(self) -> Tuple[Any, ...]:
+        """Pickles by value (id and parameters as given), so ``pickle``, ``copy.deepcopy``,
+        ``multiprocessing``, joblib and dask can ship a model; unpickling validates again.
+
+        >>> import pickle
+        >>> m = fastbrdf.Model("cook-torrance", alpha=0.2, f="schlick")
+        >>> pickle.loads(pickle.dumps(m)) == m
+        True
+        """
+        return (_rebuild, (self.id, dict(self._params)))
 
     @property
     def id(self) -> str:
         """The model id."""
         return str(self._handle.id)
+
+    @property
+    def values(self) -> Dict[str, Any]:
+        """Every parameter resolved: the values given and the defaults of the others
+        (numbers as floats, choices as strings).
+
+        >>> fastbrdf.Model("cook-torrance", alpha=0.2).values["d"]
+        'beckmann'
+        """
+        return dict(self._handle.values)
 
     @property
     def kind(self) -> str:
@@ -163,3 +212,8 @@ class Model:
         return _result(f(wo_a.reshape(-1, 3), wi_a.reshape(-1, 3), strategy), shape)
 
 
+
+
+def _rebuild(id: str, params: Dict[str, Any]) -> Model:
+    """Unpickles a :class:`Model` (see ``Model.__reduce__``)."""
+    return Model(id, **params)

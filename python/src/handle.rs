@@ -21,6 +21,28 @@ pub(crate) struct Handle {
     m32: Model<f32>,
     m64: Model<f64>,
     kernel: Option<Kernel>,
+    /// The resolved parameters (given values and defaults), as numbers or choices: what
+    /// `Model.__eq__` compares.
+    values: Vec<(&'static str, Value)>,
+}
+
+/// A resolved parameter value as Python sees it.
+#[derive(Clone, Debug)]
+enum Value {
+    Num(f64),
+    Text(String),
+}
+
+impl<'py> IntoPyObject<'py> for &Value {
+    type Target = PyAny;
+    type Output = Bound<'py, PyAny>;
+    type Error = std::convert::Infallible;
+    fn into_pyobject(self, py: Python<'py>) -> Result<Self::Output, Self::Error> {
+        Ok(match self {
+            Value::Num(x) => x.into_pyobject(py)?.into_any(),
+            Value::Text(t) => t.into_pyobject(py)?.into_any(),
+        })
+    }
 }
 
 /// `Model::eval_row` over the rows `r` of columns (the lenient shading rules), precision `T`.
@@ -158,7 +180,20 @@ impl Handle {
                 fastbrdf::Kind::Shadowing => None,
                 _ => Some(Kernel::new(&spec).map_err(value_error)?),
             };
+            let values = spec
+                .params()
+                .map_err(value_error)?
+                .iter()
+                .map(|(k, v)| {
+                    let v = match v {
+                        fastbrdf::params::Value::Num(x) => Value::Num(*x),
+                        fastbrdf::params::Value::Text(t) => Value::Text(t.clone()),
+                    };
+                    (k, v)
+                })
+                .collect();
             Ok(Self {
+                values,
                 id: spec.id(),
                 kind: plan.kind(),
                 m32: plan.model::<f32>(),
@@ -171,6 +206,12 @@ impl Handle {
     #[getter]
     fn id(&self) -> &'static str {
         self.id
+    }
+
+    /// Every parameter resolved (given values and defaults), `[(name, number or choice)]`.
+    #[getter]
+    fn values(&self) -> Vec<(&'static str, &Value)> {
+        self.values.iter().map(|(k, v)| (*k, v)).collect()
     }
 
     #[getter]
