@@ -21,8 +21,18 @@ Number = Union[int, float, str]
 
 def _param_text(model: str, name: str, value: Any) -> str:
     """A parameter value as the text the CLI's ``--param NAME=VALUE`` would carry."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()
     if isinstance(value, (bool, np.bool_)):
         raise TypeError(f"model '{model}': parameter {name}: expected a number or a string, got bool")
+    if isinstance(value, (tuple, list)):
+        # (R, G, B): one value per colour channel, as the CLI's ``NAME=R,G,B``.
+        if len(value) != 3:
+            raise ValueError(
+                f"model '{model}': parameter {name}: a sequence is one value per colour channel "
+                f"(R, G, B): expected 3 values, got {len(value)} (per-element values: a numpy array)"
+            )
+        return ",".join(_param_text(model, name, v) for v in value)
     if isinstance(value, (int, np.integer)):
         return str(int(value))
     if isinstance(value, (float, np.floating)):

@@ -4,9 +4,18 @@ over numpy arrays."""
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, List, Optional, Tuple, overload
 
 import numpy as np
+import numpy.typing as npt
+
+try:
+    from typing import Literal
+except ImportError:  # pragma: no cover (Python < 3.8)
+    from typing_extensions import Literal  # type: ignore[assignment]
+
+F32 = npt.NDArray[np.float32]
+F64 = npt.NDArray[np.float64]
 
 from . import _fastbrdf as _native
 from ._arrays import (
@@ -35,11 +44,27 @@ class Model:
     ValueError: model 'flog': parameter n = 0 is invalid: expected ...
     """
 
-    def __init__(self, id: str, **params: Any) -> None:
+    def __init__(
+        self, id: str, *, material: Optional[str] = None, metal: Optional[str] = None, **params: Any
+    ) -> None:
         if not isinstance(id, str):
             raise TypeError(f"model id: expected a string, got {type(id).__name__}")
+        for name, v in (("material", material), ("metal", metal)):
+            if v is not None and not isinstance(v, str):
+                raise TypeError(f"{name}: expected a string, got {type(v).__name__}")
         self._params = dict(params)
-        self._handle = _native.Handle(id, _params(id, params))
+        self._material, self._metal = material, metal
+        scalars = {k: v for k, v in params.items() if not isinstance(v, np.ndarray) or v.ndim == 0}
+        self._arrays: Dict[str, np.ndarray] = {
+            k: _array(v, k) for k, v in params.items() if isinstance(v, np.ndarray) and v.ndim > 0
+        }
+        self._handles = list(_native.Handle.channels(id, _params(id, scalars), material, metal))
+        self._handle = self._handles[0]
+        if self._arrays:
+            from . import _perelement
+
+            for h in self._handles:
+                _perelement.check(h, self._arrays)
         self._info: Optional[Dict[str, Any]] = None
 
     def __repr__(self) -> str:
@@ -52,11 +77,16 @@ class Model:
         >>> eval(repr(m)) == m
         True
         """
-        args = "".join(f", {k}={v!r}" for k, v in self._params.items())
+        given = dict(self._params)
+        given.update((k, v) for k, v in (("material", self._material), ("metal", self._metal)) if v is not None)
+        args = "".join(f", {k}={_repr_value(v)}" for k, v in given.items())
         return f"fastbrdf.Model({self.id!r}{args})"
 
     def _key(self) -> Tuple[Any, ...]:
-        return (self.id, tuple(self._handle.values))
+        arrays = tuple(
+            (k, a.dtype.str, a.shape, a.tobytes()) for k, a in sorted(self._arrays.items())
+        )
+        return (self.id, tuple(tuple(h.values) for h in self._handles), arrays)
 
     def __eq__(self, other: object) -> bool:
         """Equal by value: the same model with the same resolved parameters (a default given
@@ -83,7 +113,7 @@ class Model:
         >>> pickle.loads(pickle.dumps(m)) == m
         True
         """
-        return (_rebuild, (self.id, dict(self._params)))
+        return (_rebuild, (self.id, dict(self._params), self._material, self._metal))
 
     @property
     def id(self) -> str:
@@ -130,20 +160,45 @@ class Model:
             self._info = json.loads(_native.info_json(self.id))
         return dict(self._info)
 
-    def eval(self, *inputs: Any, precision: str = "f32") -> Any:
+    @overload
+    def eval(self, *inputs: F32, precision: None = None, out: Optional[F32] = None) -> F32: ...  # type: ignore[overload-overlap]
+    @overload
+    def eval(self, *inputs: npt.ArrayLike, precision: Literal["f32"], out: Optional[F32] = None) -> F32: ...
+    @overload
+    def eval(self, *inputs: npt.ArrayLike, precision: Literal["f64"], out: Optional[F64] = None) -> F64: ...
+    @overload
+    def eval(self, *inputs: F64, precision: None = None, out: Optional[F64] = None) -> F64: ...
+    @overload
+    def eval(self, *inputs: float, precision: None = None, out: None = None) -> np.float64: ...
+    @overload
+    def eval(self, *inputs: npt.ArrayLike, precision: Optional[str] = None, out: Optional[npt.NDArray[Any]] = None) -> Any: ...
+
+    def eval(self, *inputs: Any, precision: Optional[str] = None, out: Optional[npt.NDArray[Any]] = None) -> Any:
         """Evaluates the model: ``eval(cos)`` for lobes (likewise ``cos_h`` for
         distributions, ``cos_vh`` for Fresnel terms; ``eval(cos_v, alpha)`` for env terms;
         shadowing terms take their inputs in the order of ``inputs``) and ``eval(wi, wo)``
         with arrays of shape (..., 3) for BRDFs (local frame, normal +z, both pointing away
         from the surface, of any length; the value has no cosine factor).
 
-        Returns an array of the broadcast shape (a numpy scalar for scalar inputs), float32
-        for ``precision="f32"`` and float64 for ``"f64"``. The GIL is released while it runs.
+        Returns an array of the broadcast shape of the inputs and of the per-element
+        parameters (a numpy scalar for scalar inputs), with a last axis of 3 (R, G, B) for a
+        coloured model (``channels == 3``). The dtype rule: ``precision=None`` (the default)
+        keeps the inputs' float dtype (float32 inputs evaluate in float32 through the SIMD
+        kernels; float64, integer and Python numbers in float64 through the scalar f64
+        model); ``"f32"`` or ``"f64"`` chooses, converting the inputs. ``out``: an array of
+        the result's shape and dtype, C-contiguous and writeable, written and returned (it
+        may be an input: the result then goes through a temporary). The GIL is released while
+        it runs.
 
-        >>> fastbrdf.Model("pow", n=2).eval([1.0, 0.5])
+        >>> m = fastbrdf.Model("pow", n=2)
+        >>> m.eval(np.array([1.0, 0.5], dtype=np.float32))
         array([1.  , 0.25], dtype=float32)
+        >>> m.eval([1.0, 0.5])
+        array([1.  , 0.25])
+        >>> buf = np.empty(2, dtype=np.float32)
+        >>> m.eval([1.0, 0.5], precision="f32", out=buf) is buf
+        True
         """
-        dtype = _dtype(precision)
         h = self._handle
         if self.kind == "brdf":
             if len(inputs) != 2:
@@ -151,44 +206,78 @@ class Model:
                     f"model '{self.id}' is a brdf: eval(wi, wo) takes two arrays of shape (..., 3), "
                     f"got {len(inputs)} argument(s)"
                 )
-            wi, wo = _vectors(inputs[0], "wi", 3), _vectors(inputs[1], "wo", 3)
-            shape = _broadcast(["wi", "wo"], [wi.shape[:-1], wo.shape[:-1]])
-            wi, wo = _prepare(wi, shape + (3,), dtype), _prepare(wo, shape + (3,), dtype)
-            fd = h.eval_dirs_f32 if precision == "f32" else h.eval_dirs_f64
-            return _result(fd(wi.reshape(-1, 3), wo.reshape(-1, 3)), shape)
-        req, opt = self.inputs
-        if not len(req) <= len(inputs) <= len(req) + len(opt):
-            want = ", ".join(req) + ("" if not opt else f" (optionally {', '.join(opt)})")
-            raise TypeError(
-                f"model '{self.id}' is a {self.kind}: eval takes {want}, got {len(inputs)} argument(s)"
-            )
-        names = (req + opt)[: len(inputs)]
-        arrays = [_array(x, n) for x, n in zip(inputs, names)]
-        shape = _broadcast(names, [a.shape for a in arrays])
-        cols = [_prepare(a, shape, dtype).reshape(-1) for a in arrays]
-        fc = h.eval_f32 if precision == "f32" else h.eval_f64
-        return _result(fc(cols), shape)
+            names = ["wi", "wo"]
+            given = [_vectors(inputs[0], "wi", 3), _vectors(inputs[1], "wo", 3)]
+            lead = [a.shape[:-1] for a in given]
+        else:
+            req, opt = self.inputs
+            if not len(req) <= len(inputs) <= len(req) + len(opt):
+                want = ", ".join(req) + ("" if not opt else f" (optionally {', '.join(opt)})")
+                raise TypeError(
+                    f"model '{self.id}' is a {self.kind}: eval takes {want}, got {len(inputs)} argument(s)"
+                )
+            names = (req + opt)[: len(inputs)]
+            given = [_array(x, n) for x, n in zip(inputs, names)]
+            lead = [a.shape for a in given]
+        pnames = list(self._arrays)
+        parrs = [self._arrays[k] for k in pnames]
+        shape = _broadcast(names + pnames, lead + [a.shape for a in parrs])
+        precision = _precision(precision, given + parrs)
+        dtype = _dtype(precision)
+        channels = len(self._handles)
+        full = shape + ((channels,) if channels > 1 else ())
+        result, target = _output(out, full, dtype, given + parrs)
+        n = int(np.prod(shape, dtype=np.int64))
+        if self.kind == "brdf":
+            wi, wo = (_prepare(a, shape + (3,), dtype).reshape(-1, 3) for a in given)
+        else:
+            cols = [_prepare(a, shape, dtype).reshape(-1) for a in given]
+        params = {k: _prepare(a, shape, dtype).reshape(-1) for k, a in zip(pnames, parrs)}
+        flat = target.reshape(-1) if channels == 1 else np.empty(n, dtype=dtype)
+        for c, hc in enumerate(self._handles):
+            if params:
+                from . import _perelement
+
+                if self.kind == "brdf":
+                    _perelement.eval_dirs(hc, params, wi, wo, precision, flat)
+                else:
+                    _perelement.eval_cols(hc, params, cols, precision, flat)
+            elif self.kind == "brdf":
+                (hc.eval_dirs_f32 if precision == "f32" else hc.eval_dirs_f64)(wi, wo, flat)
+            else:
+                (hc.eval_f32 if precision == "f32" else hc.eval_f64)(cols, flat)
+            if channels > 1:
+                target.reshape(-1, channels)[:, c] = flat
+        if target is not result:
+            result[...] = target
+        if out is not None:
+            return out
+        return _result(result, full)
 
     def strategies(self) -> List[str]:
         """The sampling strategies of a BRDF, its default (``auto``) first."""
         return list(self._handle.strategies())
 
     def sample(
-        self, wo: Any, u: Any, strategy: str = "auto", precision: str = "f32"
-    ) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+        self, wo: Any, u: Any, strategy: str = "auto", precision: Optional[str] = None
+    ) -> Tuple[np.ndarray, Any, Any]:
         """Draws ``wi`` given ``wo`` (..., 3) and ``u`` (..., 2) in [0, 1)^2, as
         ``fastbrdf sample`` (``u`` outside [0, 1) or NaN is a ``ValueError``): returns
         ``(wi (..., 3), weight (...), pdf (...))`` with
         ``weight = f(wi, wo) cos(theta_i) / pdf``. A draw that yields no sample (below the
         horizon, density 0: the strategy's missing mass, or ``wo`` out of the domain) gives
-        ``wi = (0, 0, 0)``, weight 0 and pdf 0. BRDFs only.
+        ``wi = (0, 0, 0)``, weight 0 and pdf 0. BRDFs only. The dtype rule of :meth:`eval`
+        (``u`` does not count: float32 ``wo`` samples in float32). A coloured model samples
+        its first (R) channel's strategy; its weight has a last axis of 3.
 
         >>> wi, w, p = fastbrdf.Model("lambert").sample([0, 0, 1], [0.3, 0.7])
         >>> float(w)
         1.0
         """
-        dtype = _dtype(precision)
+        self._scalar_params("sample")
         wo_a, u_given = _vectors(wo, "wo", 3), _vectors(u, "u", 2)
+        precision = _precision(precision, [wo_a])
+        dtype = _dtype(precision)
         _check_unit_interval(u_given, "u")
         shape = _broadcast(["wo", "u"], [wo_a.shape[:-1], u_given.shape[:-1]])
         wo_a, u_a = _prepare(wo_a, shape + (3,), dtype), _prepare(u_given, shape + (2,), dtype)
@@ -197,23 +286,108 @@ class Model:
             np.minimum(u_a, _BELOW_ONE_F32, out=u_a)
         h = self._handle
         f = h.sample_f32 if precision == "f32" else h.sample_f64
-        wi, weight, pdf = f(wo_a.reshape(-1, 3), u_a.reshape(-1, 2), strategy)
+        wo_f = wo_a.reshape(-1, 3)
+        wi, weight, pdf = f(wo_f, u_a.reshape(-1, 2), strategy)
+        wi = wi.reshape(-1, 3)
+        if len(self._handles) > 1:
+            # The other channels' weights f_c cos / pdf at the first channel's draws.
+            cos = wi[:, 2]
+            ok = pdf > 0
+            ws = [weight]
+            for hc in self._handles[1:]:
+                fc = (hc.eval_dirs_f32 if precision == "f32" else hc.eval_dirs_f64)(wi, wo_f)
+                ws.append(np.where(ok, fc * cos / np.where(ok, pdf, 1), 0).astype(dtype))
+            return wi.reshape(shape + (3,)), np.stack(ws, axis=-1).reshape(shape + (3,)), _result(pdf, shape)
         return wi.reshape(shape + (3,)), _result(weight, shape), _result(pdf, shape)
 
-    def pdf(self, wo: Any, wi: Any, strategy: str = "auto", precision: str = "f32") -> Any:
+    def pdf(self, wo: Any, wi: Any, strategy: str = "auto", precision: Optional[str] = None) -> Any:
         """The solid-angle density with which :meth:`sample` draws ``wi`` given ``wo``
-        (both (..., 3)), as ``fastbrdf sample --pdf``. BRDFs only."""
-        dtype = _dtype(precision)
+        (both (..., 3)), as ``fastbrdf sample --pdf``. BRDFs only; the dtype rule of
+        :meth:`eval`.
+
+        >>> round(float(fastbrdf.Model("lambert").pdf([0, 0, 1], [0, 0, 1])), 6)
+        0.31831
+        """
+        self._scalar_params("pdf")
         wo_a, wi_a = _vectors(wo, "wo", 3), _vectors(wi, "wi", 3)
+        precision = _precision(precision, [wo_a, wi_a])
+        dtype = _dtype(precision)
         shape = _broadcast(["wo", "wi"], [wo_a.shape[:-1], wi_a.shape[:-1]])
         wo_a, wi_a = _prepare(wo_a, shape + (3,), dtype), _prepare(wi_a, shape + (3,), dtype)
         h = self._handle
         f = h.pdf_f32 if precision == "f32" else h.pdf_f64
         return _result(f(wo_a.reshape(-1, 3), wi_a.reshape(-1, 3), strategy), shape)
 
+    def _scalar_params(self, what: str) -> None:
+        if self._arrays:
+            raise ValueError(
+                f"{what}: parameters {', '.join(self._arrays)} are per-element arrays; "
+                f"{what} takes one value per parameter (build a Model per value)"
+            )
+
+    @property
+    def channels(self) -> int:
+        """1 for a grey model, 3 (R, G, B) for a coloured one (``R,G,B`` values, a metal).
+
+        >>> fastbrdf.Model("cook-torrance", alpha=0.2, metal="gold").channels
+        3
+        """
+        return len(self._handles)
+
+    @property
+    def spec(self) -> str:
+        """The model as ``fastbrdf`` names it: ``id k=v ...`` with the values given (and a
+        material's and a metal's), one string per channel joined by ``; `` when coloured.
+
+        >>> fastbrdf.Model("ggx", alpha=0.3).spec
+        'ggx alpha=0.3'
+        """
+        return "; ".join(str(h.spec) for h in self._handles)
 
 
+def _precision(precision: Optional[str], arrays: List[np.ndarray]) -> str:
+    """The dtype rule: ``precision`` when given, else ``f32`` when the inputs' promoted dtype
+    is float32 (or float16), ``f64`` otherwise (float64, integers, Python numbers)."""
+    if precision is not None:
+        _dtype(precision)
+        return precision
+    dt = np.result_type(*[a.dtype for a in arrays], np.float16)
+    return "f32" if dt.itemsize <= 4 else "f64"
 
-def _rebuild(id: str, params: Dict[str, Any]) -> Model:
+
+def _output(
+    out: Optional[np.ndarray], shape: Tuple[int, ...], dtype: Any, inputs: List[np.ndarray]
+) -> Tuple[np.ndarray, np.ndarray]:
+    """``(result, target)``: the array returned and the one written (a temporary when ``out``
+    shares memory with an input). ``out`` is checked: an ndarray (else ``TypeError``) of the
+    result's dtype (``TypeError``) and shape, C-contiguous and writeable (``ValueError``)."""
+    if out is None:
+        r = np.empty(shape, dtype=dtype)
+        return r, r
+    if not isinstance(out, np.ndarray):
+        raise TypeError(f"out: expected a numpy array, got {type(out).__name__}")
+    if out.dtype != np.dtype(dtype):
+        raise TypeError(f"out: dtype {out.dtype}, the result is {np.dtype(dtype)}")
+    if out.shape != shape:
+        raise ValueError(f"out: shape {out.shape}, the result has shape {shape}")
+    if not out.flags.c_contiguous:
+        raise ValueError("out: must be C-contiguous")
+    if not out.flags.writeable:
+        raise ValueError("out: is read-only")
+    if any(np.may_share_memory(out, a) for a in inputs):
+        return out, np.empty(shape, dtype=dtype)
+    return out, out
+
+
+def _rebuild(id: str, params: Dict[str, Any], material: Optional[str] = None, metal: Optional[str] = None) -> Model:
     """Unpickles a :class:`Model` (see ``Model.__reduce__``)."""
-    return Model(id, **params)
+    return Model(id, material=material, metal=metal, **params)
+
+
+def _repr_value(v: Any) -> str:
+    """A parameter value as Python source that rebuilds it (arrays as ``np.array(...)``)."""
+    if isinstance(v, np.ndarray):
+        return f"np.array({v.tolist()!r}, dtype=np.{v.dtype.name})"
+    if isinstance(v, np.generic):
+        return repr(v.item())
+    return repr(v)

@@ -162,6 +162,45 @@ pub(crate) fn grey_spec(id: &str, params: &[(String, String)]) -> PyResult<Model
     Ok(s)
 }
 
+/// Model `id` with `params` (see [`params_arg`]; an `R,G,B` value makes it coloured), then
+/// the figures of MERL material `material` where no value was given (the CLI's `--material`)
+/// and the colour of metal `metal` (`--metal`: `f = conductor`, `eta`, `k` per channel, given
+/// values winning). Every error is a `ValueError` naming the argument.
+pub(crate) fn full_spec(
+    id: &str,
+    params: &[(String, String)],
+    material: Option<&str>,
+    metal: Option<&str>,
+) -> PyResult<ModelSpec> {
+    use fastbrdf_analysis::materials;
+    let mut s = spec(id, params)?;
+    if let Some(name) = material {
+        let m = materials::find(name).map_err(|e| value_error(format!("material: {e}")))?;
+        if materials::supplied(m, &s).is_empty() {
+            return Err(value_error(format!(
+                "material '{}': model '{}' takes none of the fitted parameters (n, alpha, f0)",
+                m.name,
+                s.id()
+            )));
+        }
+        s = materials::apply(m, &s)
+            .map_err(|e| value_error(format!("material '{}': {e}", m.name)))?;
+    }
+    if let Some(name) = metal {
+        let m = fastbrdf::colour::metal(name).map_err(|e| value_error(format!("metal: {e}")))?;
+        if !(s.takes("eta") && s.takes("k")) {
+            return Err(value_error(format!(
+                "metal '{}': model '{}' has no conductor Fresnel term (parameters eta, k): \
+                 metals colour cook-torrance and fresnel-conductor",
+                m.id,
+                s.id()
+            )));
+        }
+        s = s.with_metal(m).map_err(value_error)?;
+    }
+    Ok(s)
+}
+
 /// A weight or albedo channel: finite, from 0 to [`MAX_WEIGHT`] (as the CLI's).
 pub(crate) fn weight_arg(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<f32> {
     let v = float_arg(obj, name)?;

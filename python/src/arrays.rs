@@ -72,6 +72,37 @@ pub(crate) fn empty<T: Element>(py: Python<'_>, n: usize) -> PyResult<Bound<'_, 
         .cast_into::<PyArray1<T>>()?)
 }
 
+/// The output of `n` elements: `out` when given (1-D, C-contiguous, writeable, of `n`
+/// elements: else a `ValueError` naming `out`), else a new one ([`empty`]).
+pub(crate) fn output<'py, T: Element>(
+    py: Python<'py>,
+    n: usize,
+    out: Option<Bound<'py, PyArray1<T>>>,
+) -> PyResult<Bound<'py, PyArray1<T>>> {
+    let Some(o) = out else {
+        return empty(py, n);
+    };
+    if o.len() != n {
+        return Err(value_error(format!(
+            "out: {} elements, the result has {n}",
+            o.len()
+        )));
+    }
+    if !o.is_c_contiguous() {
+        return Err(value_error("out: must be C-contiguous"));
+    }
+    Ok(o)
+}
+
+/// `out` borrowed for writing: a read-only array, or one that overlaps an input borrowed for
+/// reading, is a `ValueError` naming `out`.
+pub(crate) fn writable<'py, T: Element>(
+    out: &Bound<'py, PyArray1<T>>,
+) -> PyResult<numpy::PyReadwriteArray<'py, T, numpy::Ix1>> {
+    out.try_readwrite()
+        .map_err(|e| value_error(format!("out: cannot be written ({e})")))
+}
+
 /// Runs `f` over `0..n` in ranges of [`STEP`], the GIL released during each, and checks for
 /// Ctrl-C (and other signals) between them.
 pub(crate) fn chunked<E: std::fmt::Display + Send>(

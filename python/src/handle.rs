@@ -2,12 +2,12 @@
 //! and evaluated, sampled and its density computed over numpy arrays.
 
 use crate::MAX_ITEMS;
-use crate::args::{grey_spec, params_arg, seq};
-use crate::arrays::{CHUNK, chunked, empty, ready, same_rows, slice, slice2};
+use crate::args::{full_spec, grey_spec, params_arg, seq};
+use crate::arrays::{CHUNK, chunked, empty, output, ready, same_rows, slice, slice2, writable};
 use crate::guard::{guard, value_error};
 use fastbrdf::batch::{Input, Kernel};
 use fastbrdf::sample::Strategy;
-use fastbrdf::{Model, Real};
+use fastbrdf::{Model, ModelSpec, Real};
 use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -21,6 +21,8 @@ pub(crate) struct Handle {
     m32: Model<f32>,
     m64: Model<f64>,
     kernel: Option<Kernel>,
+    /// The grey spec it was built from (one colour channel).
+    spec: ModelSpec,
     /// The resolved parameters (given values and defaults), as numbers or choices: what
     /// `Model.__eq__` compares.
     values: Vec<(&'static str, Value)>,
@@ -169,38 +171,33 @@ type Sampled<'py, T> = (
 
 #[pymethods]
 impl Handle {
-    /// Builds model `id` with parameters given as text (parsed once into its spec; see
+    /// Builds grey model `id` with parameters given as text (parsed once into its spec; see
     /// [`grey_spec`]).
     #[new]
     fn new(id: &str, params: &Bound<'_, PyAny>) -> PyResult<Self> {
+        guard(|| Self::from_spec(&grey_spec(id, &params_arg(params)?)?))
+    }
+
+    /// Model `id` with parameters given as text, a MERL material's fit and a named metal
+    /// ([`full_spec`]): one handle per colour channel (1 or 3).
+    #[staticmethod]
+    #[pyo3(signature = (id, params, material=None, metal=None))]
+    fn channels(
+        id: &str,
+        params: &Bound<'_, PyAny>,
+        material: Option<&str>,
+        metal: Option<&str>,
+    ) -> PyResult<Vec<Self>> {
         guard(|| {
-            let spec = grey_spec(id, &params_arg(params)?)?;
-            let plan = spec.plan().map_err(value_error)?;
-            let kernel = match plan.kind() {
-                fastbrdf::Kind::Shadowing => None,
-                _ => Some(Kernel::new(&spec).map_err(value_error)?),
-            };
-            let values = spec
-                .params()
-                .map_err(value_error)?
-                .iter()
-                .map(|(k, v)| {
-                    let v = match v {
-                        fastbrdf::params::Value::Num(x) => Value::Num(*x),
-                        fastbrdf::params::Value::Text(t) => Value::Text(t.clone()),
-                    };
-                    (k, v)
-                })
-                .collect();
-            Ok(Self {
-                values,
-                id: spec.id(),
-                kind: plan.kind(),
-                m32: plan.model::<f32>(),
-                m64: plan.model::<f64>(),
-                kernel,
-            })
+            let spec = full_spec(id, &params_arg(params)?, material, metal)?;
+            spec.channel_specs().iter().map(Self::from_spec).collect()
         })
+    }
+
+    /// The spec as text, `id k=v ...` (the values given, a material's and a metal's).
+    #[getter]
+    fn spec(&self) -> String {
+        self.spec.to_string()
     }
 
     #[getter]
@@ -233,18 +230,20 @@ impl Handle {
     }
 
     /// f32 over 1-D columns of equal length (not BRDFs).
+    #[pyo3(signature = (cols, out=None))]
     fn eval_f32<'py>(
         &self,
         py: Python<'py>,
         cols: &Bound<'py, PyAny>,
+        out: Option<Bound<'py, PyArray1<f32>>>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         guard(|| {
             let cols = self.columns_arg::<f32>(cols)?;
             let cols: Vec<&[f32]> = cols.iter().map(slice).collect::<PyResult<_>>()?;
             let n = self.check_columns(&cols)?;
-            let out = empty::<f32>(py, n)?;
+            let out = output::<f32>(py, n, out)?;
             {
-                let mut rw = out.try_readwrite()?;
+                let mut rw = writable(&out)?;
                 let o = rw.as_slice_mut().map_err(value_error)?;
                 chunked(py, n, |r| -> fastbrdf::Result<()> {
                     let o = &mut o[r.clone()];
@@ -271,18 +270,20 @@ impl Handle {
     }
 
     /// f64 over 1-D columns of equal length (not BRDFs).
+    #[pyo3(signature = (cols, out=None))]
     fn eval_f64<'py>(
         &self,
         py: Python<'py>,
         cols: &Bound<'py, PyAny>,
+        out: Option<Bound<'py, PyArray1<f64>>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         guard(|| {
             let cols = self.columns_arg::<f64>(cols)?;
             let cols: Vec<&[f64]> = cols.iter().map(slice).collect::<PyResult<_>>()?;
             let n = self.check_columns(&cols)?;
-            let out = empty::<f64>(py, n)?;
+            let out = output::<f64>(py, n, out)?;
             {
-                let mut rw = out.try_readwrite()?;
+                let mut rw = writable(&out)?;
                 let o = rw.as_slice_mut().map_err(value_error)?;
                 chunked(py, n, |r| -> Result<(), String> {
                     rows(&self.m64, &cols, r.clone(), &mut o[r]);
@@ -295,11 +296,13 @@ impl Handle {
 
     /// A BRDF in f32 over (N, 3) `wi`, `wo`: the SIMD kernel, fed in chunks of [`CHUNK`]
     /// deinterleaved elements (the inputs are not copied whole).
+    #[pyo3(signature = (wi, wo, out=None))]
     fn eval_dirs_f32<'py>(
         &self,
         py: Python<'py>,
         wi: Bound<'py, PyArray2<f32>>,
         wo: Bound<'py, PyArray2<f32>>,
+        out: Option<Bound<'py, PyArray1<f32>>>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         guard(|| {
             brdf_of(&self.m32, self.id)?;
@@ -310,9 +313,9 @@ impl Handle {
             let (wi, wo) = (slice2(&wi, 3, "wi")?, slice2(&wo, 3, "wo")?);
             same_rows("wi", wi.len() / 3, "wo", wo.len() / 3)?;
             let n = wi.len() / 3;
-            let out = empty::<f32>(py, n)?;
+            let out = output::<f32>(py, n, out)?;
             {
-                let mut rw = out.try_readwrite()?;
+                let mut rw = writable(&out)?;
                 let o = rw.as_slice_mut().map_err(value_error)?;
                 chunked(py, n, |r| {
                     let span = 3 * r.start..3 * r.end;
@@ -324,11 +327,13 @@ impl Handle {
     }
 
     /// A BRDF in f64 over (N, 3) `wi`, `wo` (the scalar model).
+    #[pyo3(signature = (wi, wo, out=None))]
     fn eval_dirs_f64<'py>(
         &self,
         py: Python<'py>,
         wi: Bound<'py, PyArray2<f64>>,
         wo: Bound<'py, PyArray2<f64>>,
+        out: Option<Bound<'py, PyArray1<f64>>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         guard(|| {
             let b = brdf_of(&self.m64, self.id)?;
@@ -336,9 +341,9 @@ impl Handle {
             let (wi, wo) = (slice2(&wi, 3, "wi")?, slice2(&wo, 3, "wo")?);
             same_rows("wi", wi.len() / 3, "wo", wo.len() / 3)?;
             let n = wi.len() / 3;
-            let out = empty::<f64>(py, n)?;
+            let out = output::<f64>(py, n, out)?;
             {
-                let mut rw = out.try_readwrite()?;
+                let mut rw = writable(&out)?;
                 let o = rw.as_slice_mut().map_err(value_error)?;
                 chunked(py, n, |r| -> Result<(), String> {
                     let span = 3 * r.start..3 * r.end;
@@ -414,6 +419,42 @@ impl Handle {
 }
 
 impl Handle {
+    /// Builds a grey spec's models (both precisions) and its batch kernel.
+    pub(crate) fn from_spec(spec: &ModelSpec) -> PyResult<Self> {
+        let plan = spec.plan().map_err(value_error)?;
+        let kernel = match plan.kind() {
+            fastbrdf::Kind::Shadowing => None,
+            _ => Some(Kernel::new(spec).map_err(value_error)?),
+        };
+        let values = spec
+            .params()
+            .map_err(value_error)?
+            .iter()
+            .map(|(k, v)| {
+                let v = match v {
+                    fastbrdf::params::Value::Num(x) => Value::Num(*x),
+                    fastbrdf::params::Value::Text(t) => Value::Text(t.clone()),
+                };
+                (k, v)
+            })
+            .collect();
+        Ok(Self {
+            values,
+            id: spec.id(),
+            kind: plan.kind(),
+            m32: plan.model::<f32>(),
+            m64: plan.model::<f64>(),
+            kernel,
+            spec: spec.clone(),
+        })
+    }
+
+    /// The grey spec it was built from.
+    #[allow(dead_code)]
+    pub(crate) fn model_spec(&self) -> &ModelSpec {
+        &self.spec
+    }
+
     fn resolve<T: Real>(&self, b: &dyn fastbrdf::Brdf<T>, name: &str) -> PyResult<Strategy> {
         b.resolve(strategy(name)?)
             .map_err(|e| PyValueError::new_err(format!("{}: {e}", self.id)))

@@ -124,6 +124,8 @@ def test_broadcasting():
     # One direction against many; a scalar input gives a numpy scalar.
     assert m.eval([0, 0, 1], wo).shape == (5,)
     s = fastbrdf.Model("pow", n=2).eval(0.5)
+    assert isinstance(s, np.float64) and s == 0.25
+    s = fastbrdf.Model("pow", n=2).eval(np.float32(0.5))
     assert isinstance(s, np.float32) and s == 0.25
     # Two-input kinds broadcast too (env: cos_v, alpha).
     e = fastbrdf.Model("env-brdf-approx")
@@ -169,8 +171,23 @@ def test_non_contiguous_input_is_copied_and_correct():
 def test_dtype_rules():
     m = fastbrdf.Model("pow", n=3)
     assert m.eval(np.array([1, 0], dtype=np.int64)).tolist() == [1.0, 0.0]
-    assert m.eval(np.array([0.5], dtype=np.float64)).dtype == np.float32
+    # precision=None keeps the inputs' float dtype (numpy's promotion; integers give float64).
+    assert m.eval(np.array([0.5], dtype=np.float64)).dtype == np.float64
+    assert m.eval(np.array([0.5], dtype=np.float32)).dtype == np.float32
+    assert m.eval(np.array([0.5], dtype=np.float16)).dtype == np.float32
+    assert m.eval(np.array([1], dtype=np.int32)).dtype == np.float64
+    assert m.eval([0.5]).dtype == np.float64
+    # The f64 path evaluates in float64: a value float32 cannot hold survives.
+    tiny = np.array([1e-20])
+    assert m.eval(tiny)[0] == pytest.approx(1e-60, rel=1e-12)
+    assert m.eval(tiny, precision="f32")[0] == 0
+    # Asked explicitly, the precision wins.
+    assert m.eval(np.array([0.5], dtype=np.float64), precision="f32").dtype == np.float32
     assert m.eval(np.array([0.5], dtype=np.float32), precision="f64").dtype == np.float64
+    b = fastbrdf.Model("lambert")
+    d32 = np.array([[0, 0, 1]], dtype=np.float32)
+    assert b.eval(d32, d32).dtype == np.float32 and b.eval(d32, d32.astype(np.float64)).dtype == np.float64
+    assert b.pdf(d32, d32).dtype == np.float32 and b.sample(d32, [[0.5, 0.5]])[1].dtype == np.float32
     for bad in (np.array([True]), np.array([1j]), np.array(["0.5"]), np.array([None])):
         with pytest.raises(TypeError, match=f"cos: dtype {bad.dtype} is not supported"):
             m.eval(bad)
@@ -225,7 +242,10 @@ def test_parameter_value_types():
     assert fastbrdf.Model("pow", n=np.float32(20)).eval(1.0) == 1.0
     with pytest.raises(TypeError, match="parameter n: expected a number or a string, got bool"):
         fastbrdf.Model("pow", n=True)
-    with pytest.raises(TypeError, match="got list"):
+    with pytest.raises(TypeError, match="got dict"):
+        fastbrdf.Model("pow", n={})
+    # A list or tuple is one value per colour channel (R, G, B), as the CLI's R,G,B.
+    with pytest.raises(ValueError, match=r"parameter n: a sequence is one value per colour channel \(R, G, B\): expected 3 values, got 1"):
         fastbrdf.Model("pow", n=[1])
 
 
