@@ -117,7 +117,11 @@ class Model:
 
     @property
     def id(self) -> str:
-        """The model id."""
+        """The model id.
+
+        >>> fastbrdf.Model("ggx").id
+        'ggx'
+        """
         return str(self._handle.id)
 
     @property
@@ -132,30 +136,50 @@ class Model:
 
     @property
     def kind(self) -> str:
-        """``lobe``, ``distribution``, ``shadowing``, ``fresnel``, ``brdf`` or ``env``."""
+        """``lobe``, ``distribution``, ``shadowing``, ``fresnel``, ``brdf`` or ``env``.
+
+        >>> fastbrdf.Model("smith-ggx").kind
+        'shadowing'
+        """
         return str(self._handle.kind)
 
     @property
     def params(self) -> Dict[str, Any]:
-        """The parameters as given (the rest take their defaults, listed in ``info``)."""
+        """The parameters as given (the rest take their defaults: see ``values``).
+
+        >>> fastbrdf.Model("ggx", alpha=0.3).params
+        {'alpha': 0.3}
+        """
         return dict(self._params)
 
     @property
     def inputs(self) -> Tuple[List[str], List[str]]:
         """The inputs ``eval`` takes, ``(required, optional)``, named as ``fastbrdf eval``'s
-        columns (a BRDF: ``wi_*``, ``wo_*``, given as two (..., 3) arrays)."""
+        columns (a BRDF: ``wi_*``, ``wo_*``, given as two (..., 3) arrays).
+
+        >>> fastbrdf.Model("smith-ggx").inputs
+        (['cos_v'], ['cos_l'])
+        """
         r, o = self._handle.columns
         return list(r), list(o)
 
     @property
     def simd(self) -> bool:
-        """Whether f32 evaluation runs a vectorised kernel (else the scalar f32 model)."""
+        """Whether f32 evaluation runs a vectorised kernel (else the scalar f32 model).
+
+        >>> fastbrdf.Model("ggx").simd, fastbrdf.Model("smith-ggx").simd
+        (True, False)
+        """
         return bool(self._handle.simd)
 
     @property
     def info(self) -> Dict[str, Any]:
         """The model's entry of ``fastbrdf models --json``: id, kind, params (with ranges and
-        defaults), formula, source, ops (cost), bounds, f32_bound, note."""
+        defaults), formula, source, ops (cost), bounds, f32_bound, note.
+
+        >>> fastbrdf.Model("flog").info["kind"]
+        'lobe'
+        """
         if self._info is None:
             self._info = json.loads(_native.info_json(self.id))
         return dict(self._info)
@@ -255,7 +279,11 @@ class Model:
         return _result(result, full)
 
     def strategies(self) -> List[str]:
-        """The sampling strategies of a BRDF, its default (``auto``) first."""
+        """The sampling strategies of a BRDF, its default (``auto``) first.
+
+        >>> fastbrdf.Model("lambert").strategies()
+        ['cosine']
+        """
         return list(self._handle.strategies())
 
     def sample(

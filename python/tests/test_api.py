@@ -160,3 +160,37 @@ def test_docstring_examples():
         assert r.failed == 0, module.__name__
         attempted += r.attempted
     assert attempted >= 10
+
+
+def _public_callables():
+    """Every public function and class of the package, and every public method and property
+    of its classes, as (name, object)."""
+    import inspect
+
+    found = []
+    for name in fastbrdf.__all__:
+        obj = getattr(fastbrdf, name)
+        if inspect.isfunction(obj):
+            found.append((name, obj))
+        elif inspect.isclass(obj):
+            found.append((name, obj))
+            for attr, member in vars(obj).items():
+                if attr.startswith("_") and attr not in ("__init__", "__eq__", "__repr__", "__reduce__"):
+                    continue
+                if isinstance(member, property):
+                    found.append((f"{name}.{attr}", member.fget))
+                elif inspect.isfunction(member) and not attr.startswith("_"):
+                    found.append((f"{name}.{attr}", member))
+    return found
+
+
+def test_every_public_function_has_a_runnable_example():
+    """Issue 29: every function has a docstring with a ``>>>`` example (run by
+    test_docstring_examples); a class's example may sit in the class docstring for its
+    dunder methods."""
+    missing = [
+        name
+        for name, obj in _public_callables()
+        if not (obj.__doc__ and ">>>" in obj.__doc__) and not name.endswith(("__init__", "__eq__"))
+    ]
+    assert missing == [], missing
