@@ -6,20 +6,32 @@ The same vocabulary as the ``fastbrdf`` command line: model ids and parameters a
 
 >>> import numpy as np, fastbrdf
 >>> m = fastbrdf.Model("flog", n=20)
->>> m.eval(np.array([1.0, 0.95], dtype=np.float32))      # f32, SIMD kernel
+>>> m.eval(np.array([1.0, 0.95], dtype=np.float32))      # float32 in: SIMD kernel
 array([1.        , 0.3448...], dtype=float32)
+>>> m.eval([1.0, 0.95])                                   # float64 in: the f64 model
+array([1.        , 0.3448...])
 >>> ct = fastbrdf.Model("cook-torrance", alpha=0.2, f="schlick")
->>> float(ct.eval([0.0, 0.0, 1.0], [0.3, 0.0, 0.95], precision="f64"))
+>>> float(ct.eval([0.0, 0.0, 1.0], [0.3, 0.0, 0.95]))
 0.0482...
+>>> gold = fastbrdf.Model("cook-torrance", alpha=0.2, metal="gold")   # R, G, B channels
+>>> gold.eval([0.0, 0.0, 1.0], [0.3, 0.0, 0.95]).shape
+(3,)
+>>> import pickle; pickle.loads(pickle.dumps(gold)) == gold           # ships to workers
+True
 
 Array rules (every function taking arrays):
 
 - dtypes: float32 and float64 arrays (and anything ``numpy.asarray`` turns into a real or
   integer array: lists, scalars, integer arrays) are accepted; bool, complex, object and
   string arrays are a ``TypeError`` naming the dtype.
-- precision ``"f32"`` (default) evaluates in float32 through the SIMD batch kernels and returns
-  float32; ``"f64"`` evaluates the scalar f64 model and returns float64. Input of another dtype
-  is converted (one copy).
+- the dtype rule: with ``precision=None`` (the default) a call keeps its inputs' float dtype
+  (numpy's promotion of the inputs, per-element parameters included): float32 (or float16)
+  evaluates in float32 through the SIMD batch kernels and returns float32; float64, integers
+  and Python numbers evaluate the scalar f64 model and return float64. ``precision="f32"`` or
+  ``"f64"`` chooses instead; input of another dtype is then converted (one copy).
+- ``out=``: ``Model.eval`` writes into a given array of the result's shape and dtype
+  (C-contiguous, writeable; it may be an input) and returns it, so a loop over large batches
+  allocates nothing.
 - a C-contiguous input of the precision's dtype is read in place (no copy); a non-contiguous
   one (a slice with steps, a transposed view) is copied once into a contiguous array.
 - inputs broadcast against each other like numpy (BRDF directions over their leading
