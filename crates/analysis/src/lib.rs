@@ -14,6 +14,7 @@
 //! - [`plot`]: the charts drawn (PNG and SVG).
 //! - [`measured_fit`]: registry BRDFs fitted to measured (MERL) data: Ngan 2005's L2, Low
 //!   2012's log and the maximum error; argmin's Nelder-Mead with exact albedos for L2.
+//! - [`measured_json`]: the JSON of `measured info` and `fit-measured` (CLI and Python).
 //! - [`materials`]: the 86 MERL materials' published fits (Ngan et al. 2005), embedded.
 //! - [`lut`]: the split-sum "DFG" look-up table of an env model (CSV, EXR, PNG).
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
@@ -29,6 +30,7 @@ pub mod fit;
 pub mod lut;
 pub mod materials;
 pub mod measured_fit;
+pub mod measured_json;
 pub mod normalize;
 pub mod pareto;
 pub mod pareto_brdf;

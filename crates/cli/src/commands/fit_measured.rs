@@ -179,33 +179,18 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     eprintln!("wrote {}", a.out.display());
     let r = &f.residuals;
     if a.json {
-        let fixed = fastbrdf_analysis::params_json(&fixed);
-        let params: serde_json::Map<String, serde_json::Value> = f
-            .problem
-            .free
-            .iter()
-            .zip(&f.values)
-            .map(|(p, v)| (p.name.to_string(), serde_json::json!(v)))
-            .collect();
-        let doc = serde_json::json!({
-            "data": a.data.display().to_string(),
-            "model": a.model,
-            "metric": metric.name(),
-            "samples": f.samples,
-            "eligible": data.eligible,
-            "fixed": fixed,
-            "params": params,
-            "rho_d": f.rho_d,
-            "rho_s": f.rho_s,
-            "residuals": {"ngan-l2": r.ngan_l2, "low-log": r.low_log, "max": r.max},
-            "evaluations": f.evaluations,
-            "runs": f.runs,
-            "fit_seconds": seconds,
-            "picture": a.out.display().to_string(),
-            "held": f.problem.held.iter().map(|(k, v)| (k.to_string(), serde_json::json!(v)))
-                .collect::<serde_json::Map<_, _>>(),
-            "undetermined": f.undetermined,
-        });
+        let picture = a.out.display().to_string();
+        let doc = fastbrdf_analysis::measured_json::fit(
+            &fastbrdf_analysis::measured_json::FitReport {
+                data: &a.data.display().to_string(),
+                model: &a.model,
+                fixed: &fixed,
+                eligible: data.eligible,
+                seconds,
+                picture: Some(&picture),
+            },
+            &f,
+        );
         outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serialisable")

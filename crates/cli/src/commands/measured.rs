@@ -133,41 +133,20 @@ fn render(a: &RenderArgs) -> Result<(), CliError> {
 
 fn info(a: &InfoArgs) -> Result<(), CliError> {
     let b = MeasuredBrdf::read(&a.file)?;
-    let stats = b.stats();
     let dims = [
         measured::RES_THETA_H,
         measured::RES_THETA_D,
         measured::RES_PHI_D,
     ];
     if a.json {
-        let num = |x: f64| x.is_finite().then_some(x);
-        let channels: Vec<serde_json::Value> = stats
-            .iter()
-            .zip(CHANNELS)
-            .map(|(s, name)| {
-                serde_json::json!({
-                    "channel": name,
-                    "min": num(s.min),
-                    "max": num(s.max),
-                    "mean": num(s.mean),
-                    "valid": s.valid,
-                    "missing": s.missing,
-                })
-            })
-            .collect();
-        let doc = serde_json::json!({
-            "file": a.file.display().to_string(),
-            "dims": dims,
-            "samples_per_channel": measured::SAMPLES,
-            "scale": measured::SCALE,
-            "channels": channels,
-        });
+        let doc = fastbrdf_analysis::measured_json::info(&a.file.display().to_string(), &b);
         outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serialisable")
         );
         return Ok(());
     }
+    let stats = b.stats();
     let mut s = format!(
         "{}: MERL BRDF, {} x {} x {} (theta_h x theta_d x phi_d), {} samples per channel\n\
          {:<6} {:>12} {:>12} {:>12} {:>9}\n",
