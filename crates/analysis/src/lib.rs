@@ -15,6 +15,9 @@
 //! - [`measured_fit`]: registry BRDFs fitted to measured (MERL) data: Ngan 2005's L2, Low
 //!   2012's log and the maximum error; argmin's Nelder-Mead with exact albedos for L2.
 //! - [`measured_json`]: the JSON of `measured info` and `fit-measured` (CLI and Python).
+//! - [`model_spec`]: parameter text, a material and a metal as one validated spec (CLI and
+//!   Python).
+//! - [`render_json`]: the JSON of `compare`, `materials` and `metals` (CLI and Python).
 //! - [`materials`]: the 86 MERL materials' published fits (Ngan et al. 2005), embedded.
 //! - [`lut`]: the split-sum "DFG" look-up table of an env model (CSV, EXR, PNG).
 //! - [`range`]: parsing of `1..1000`, `1..1000:10`, `1,2,5` parameter lists.
@@ -31,11 +34,13 @@ pub mod lut;
 pub mod materials;
 pub mod measured_fit;
 pub mod measured_json;
+pub mod model_spec;
 pub mod normalize;
 pub mod pareto;
 pub mod pareto_brdf;
 pub mod plot;
 pub mod range;
+pub mod render_json;
 pub mod reproduce;
 pub mod simplex;
 pub mod speed;

@@ -9,10 +9,10 @@
 //! A leaf module: it imports no command.
 
 use crate::CliError;
+use fastbrdf::ModelSpec;
 use fastbrdf::colour::{self, Metal};
-use fastbrdf::kind::Shading;
-use fastbrdf::{Kind, ModelSpec};
 use fastbrdf_analysis::materials::{self, Material};
+use fastbrdf_analysis::model_spec::{self, SpecError};
 use fastbrdf_io::shorten;
 
 /// The most characters of a given value quoted in a message.
@@ -55,20 +55,9 @@ pub struct ModelArgs {
     pub metal: MetalArg,
 }
 
-/// What the model is used for: that decides whether it is shaded before a metal colours it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Use {
-    /// As it is (eval, sample, albedo, shader export, analysis).
-    AsIs,
-    /// Shaded (render, compare, demo, the explorer, BRDF Explorer export): a lobe as
-    /// blinn-phong, a distribution as cook-torrance ([`ModelSpec::shaded`]); `--param` values
-    /// the model itself does not take go to the BRDF it is shaded as.
-    Shaded,
-}
-
-/// The parameters of the shading BRDF a distribution may also be given in a comparison (where
-/// each model takes the `--param` values it can use; see [`ModelArgs::specs`]).
-const SHADED_DISTRIBUTION: [&str; 6] = ["g", "f", "f0", "eta", "k", "denominator"];
+/// What the model is used for: that decides whether it is shaded before a metal colours it
+/// (the library's: [`fastbrdf_analysis::model_spec::Use`]).
+pub use fastbrdf_analysis::model_spec::Use;
 
 /// `NAME=VALUE` texts as pairs, split once (names and values trimmed).
 pub fn pairs(texts: &[String]) -> Result<Vec<(String, String)>, CliError> {
@@ -134,47 +123,46 @@ impl ModelArgs {
     pub fn specs(&self, ids: &[&str], use_: Use) -> Result<Vec<ModelSpec>, CliError> {
         let all = self.param.pairs()?;
         let (material, metal) = (self.material.get()?, self.metal.get()?);
-        for (k, _) in &all {
-            let mut used = false;
-            for id in ids {
-                used |= takes(id, k)?;
-            }
-            if !used {
-                return Err(CliError::input(format!(
-                    "--param {k}: none of the models takes it"
-                )));
-            }
-        }
-        ids.iter()
-            .map(|id| spec(id, &own_pairs(id, &all)?, material, metal, use_))
-            .collect()
+        Ok(model_spec::specs(ids, &all, material, metal, use_)?)
     }
 }
 
 /// Whether model `id` takes parameter `name` in a comparison: its own parameters, and for a
 /// distribution the shading Cook-Torrance's `g`, `f`, `f0`, `eta`, `k` and `denominator`.
 pub fn takes(id: &str, name: &str) -> Result<bool, CliError> {
-    let e = fastbrdf::registry::find(id)?;
-    Ok(e.info.params.iter().any(|p| p.name == name)
-        || (e.info.kind == Kind::Distribution && SHADED_DISTRIBUTION.contains(&name)))
+    Ok(model_spec::takes(id, name)?)
 }
 
 /// The pairs of `all` that model `id` takes (see [`takes`]).
 pub fn own_pairs(id: &str, all: &[(String, String)]) -> Result<Vec<(String, String)>, CliError> {
-    let mut out = Vec::new();
-    for (k, v) in all {
-        if takes(id, k)? {
-            out.push((k.clone(), v.clone()));
+    Ok(model_spec::own_pairs(id, all)?)
+}
+
+/// A library spec error as the CLI's: exit code 2, the material's and the metal's messages
+/// prefixed by their flag (`--material NAME: `, `--metal NAME: `).
+impl From<SpecError> for CliError {
+    fn from(e: SpecError) -> Self {
+        match e {
+            SpecError::Model(e) => e.into(),
+            SpecError::Render(e) => e.into(),
+            SpecError::NoFittedParams { ref material, .. } => {
+                CliError::input(format!("--material {material}: {e}"))
+            }
+            SpecError::MaterialValue(m) => CliError::input(m),
+            SpecError::NoConductor { ref metal, .. } => {
+                CliError::input(format!("--metal {metal}: {e}"))
+            }
+            SpecError::Unused { ref param } => CliError::input(format!("--param {param}: {e}")),
         }
     }
-    Ok(out)
 }
 
 /// The one place a model's parameter text becomes a [`ModelSpec`] (the CLI's options and the
-/// explorer's query): `given` validated against model `id` (with [`Use::Shaded`], the values
-/// the model does not take against the BRDF it is shaded as), the material's figures
-/// ([`with_material`]) and the metal's ([`with_metal`], after shading) added where no value
-/// was given. Every error is exit code 2 and names the model, the parameter and the value.
+/// explorer's query): the library's [`model_spec::spec`] (Python calls it too): `given`
+/// validated against model `id` (with [`Use::Shaded`], the values the model does not take
+/// against the BRDF it is shaded as), the material's figures ([`with_material`]) and the
+/// metal's ([`with_metal`], after shading) added where no value was given. Every error is
+/// exit code 2 and names the model, the parameter and the value.
 pub fn spec(
     id: &str,
     given: &[(String, String)],
@@ -182,89 +170,19 @@ pub fn spec(
     metal: Option<&Metal>,
     use_: Use,
 ) -> Result<ModelSpec, CliError> {
-    let e = fastbrdf::registry::find(id)?;
-    let via = use_ == Use::Shaded && matches!(e.info.kind.shading(), Shading::Via { .. });
-    // The model's own values first, so that a message names the model chosen (not the BRDF a
-    // lobe or a distribution is shaded as).
-    let (own, rest): (Vec<_>, Vec<_>) = given
-        .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
-        .partition(|(k, _)| !via || e.info.params.iter().any(|p| p.name == *k));
-    let mut spec = ModelSpec::parse(id, &own)?;
-    if let Some(m) = material {
-        spec = with_material(m, &spec)?;
-    }
-    if use_ == Use::Shaded {
-        // The renderer's policy and its message for a term that cannot be shaded.
-        spec = fastbrdf_render::scene::shading_brdf(&spec)?;
-        // A value neither the model nor the BRDF it is shaded as takes: name the model chosen.
-        if let Some((k, _)) = rest.iter().find(|(k, _)| !spec.takes(k)) {
-            return Err(fastbrdf::Error::UnknownParam {
-                model: e.info.id.into(),
-                param: shorten(k, QUOTE),
-            }
-            .into());
-        }
-        if !rest.is_empty() {
-            let mut all = spec.pairs();
-            all.extend(rest.iter().map(|(k, v)| (k.to_string(), v.to_string())));
-            let all: Vec<(&str, &str)> =
-                all.iter().map(|(k, v)| (k.as_str(), v.as_str())).collect();
-            spec = ModelSpec::parse(spec.id(), &all)?;
-        }
-    }
-    if let Some(m) = metal {
-        spec = with_metal(m, &spec, id)?;
-    }
-    Ok(spec)
+    Ok(model_spec::spec(id, given, material, metal, use_)?)
 }
 
 /// `spec` with the figures material `m` supplies to its model where no value was given. A
 /// model that takes none of them, or a figure outside the model's documented domain, is exit
 /// code 2.
 pub fn with_material(m: &Material, spec: &ModelSpec) -> Result<ModelSpec, CliError> {
-    let id = spec.id();
-    if materials::supplied(m, spec).is_empty() {
-        return Err(CliError::input(format!(
-            "--material {}: model '{id}' takes none of the fitted parameters (n, alpha, f0)",
-            m.name
-        )));
-    }
-    materials::apply(m, spec).map_err(CliError::input)
+    Ok(model_spec::with_material(m, spec)?)
 }
 
-/// `spec` coloured by metal `m` (`f = conductor`, `eta`, `k` per channel, given values
-/// winning); a model without the conductor term's `eta` and `k` is exit code 2 naming `asked`,
-/// the model the user gave.
-pub fn with_metal(m: &Metal, spec: &ModelSpec, asked: &str) -> Result<ModelSpec, CliError> {
-    if !(spec.takes("eta") && spec.takes("k")) {
-        return Err(CliError::input(format!(
-            "--metal {}: model '{}' has no conductor Fresnel term (parameters eta, k): \
-             metals colour cook-torrance, the distributions (shaded as cook-torrance) and \
-             fresnel-conductor",
-            m.id,
-            shorten(asked, QUOTE)
-        )));
-    }
-    Ok(spec.with_metal(m)?)
-}
-
-/// The values of `spec` as given to model `id` (the user's values, a material's and a
-/// metal's), less those that shading `id` added (a lobe's `lobe` and `norm`, a distribution's
-/// `d`): for labels and the explorer's answers, which name the model chosen.
-pub fn asked_pairs(id: &str, spec: &ModelSpec) -> Vec<(String, String)> {
-    let added: Vec<&str> = match fastbrdf::registry::find(id).map(|e| e.info.kind.shading()) {
-        Ok(Shading::Via { param, extra, .. }) if spec.id() != id => std::iter::once(param)
-            .chain(extra.iter().map(|(k, _)| *k))
-            .collect(),
-        _ => vec![],
-    };
-    spec.given()
-        .iter()
-        .filter(|(k, _)| !added.contains(k))
-        .map(|(k, v)| (k.to_string(), v.to_string()))
-        .collect()
-}
+/// The values of `spec` as given to model `id`, less those that shading `id` added (the
+/// library's [`model_spec::asked_pairs`]).
+pub use fastbrdf_analysis::model_spec::asked_pairs;
 
 /// Model `id` itself, from `spec` (a spec of `id`, or of the BRDF `id` is shaded as): the
 /// values given that `id` takes, typed (no text is parsed again).

@@ -127,9 +127,9 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
         let rows: Vec<serde_json::Value> = metrics.iter().map(Scores::json).collect();
         println!(
             "{}",
-            serde_json::to_string_pretty(
-                &serde_json::json!({"reference": ref_name, "metrics": rows})
-            )
+            serde_json::to_string_pretty(&fastbrdf_analysis::render_json::comparison(
+                &ref_name, rows
+            ))
             .expect("serialisable")
         );
     } else {

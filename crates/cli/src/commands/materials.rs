@@ -2,7 +2,7 @@
 //! EGSR 2005). `--material NAME` is `crate::model_args`.
 
 use crate::CliError;
-use fastbrdf_analysis::materials::{self, Albedos};
+use fastbrdf_analysis::materials;
 use std::fmt::Write;
 
 #[derive(clap::Args)]
@@ -29,28 +29,10 @@ pub struct Args {
     json: bool,
 }
 
-fn albedos_json(a: &Albedos) -> (serde_json::Value, serde_json::Value) {
-    (serde_json::json!(a.kd), serde_json::json!(a.ks))
-}
-
 pub fn run(a: &Args) -> Result<(), CliError> {
     let all = materials::all();
     if a.json {
-        let rows: Vec<serde_json::Value> = all
-            .iter()
-            .map(|m| {
-                let (bkd, bks) = albedos_json(&m.blinn_phong);
-                let (ckd, cks) = albedos_json(&m.cook_torrance);
-                let (wkd, wks) = albedos_json(&m.ward);
-                serde_json::json!({
-                    "name": m.name,
-                    "blinn_phong": {"n": m.blinn_phong_n, "kd": bkd, "ks": bks},
-                    "cook_torrance": {"m": m.cook_torrance_m, "f0": m.cook_torrance_f0, "kd": ckd, "ks": cks},
-                    "ward": {"alpha": m.ward_alpha, "kd": wkd, "ks": wks},
-                    "inside": materials::families(m),
-                })
-            })
-            .collect();
+        let rows = fastbrdf_analysis::render_json::materials();
         crate::outln!(
             "{}",
             serde_json::to_string_pretty(&rows).expect("serialisable")

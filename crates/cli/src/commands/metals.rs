@@ -32,20 +32,7 @@ pub struct Args {
 
 pub fn run(a: &Args) -> Result<(), CliError> {
     if a.json {
-        let rows: Vec<serde_json::Value> = METALS
-            .iter()
-            .map(|m| {
-                serde_json::json!({
-                    "id": m.id,
-                    "symbol": m.symbol,
-                    "eta": m.eta,
-                    "k": m.k,
-                    "f0": m.f0(),
-                    "source": m.source,
-                })
-            })
-            .collect();
-        let doc = serde_json::json!({"wavelengths_nm": WAVELENGTHS_NM, "metals": rows});
+        let doc = fastbrdf_analysis::render_json::metals();
         crate::outln!(
             "{}",
             serde_json::to_string_pretty(&doc).expect("serialisable")

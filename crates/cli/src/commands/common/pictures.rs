@@ -4,7 +4,6 @@
 
 use super::progress::bar;
 use crate::CliError;
-use crate::model_args::asked_pairs;
 use fastbrdf::ModelSpec;
 use fastbrdf_render::compare::{self, Cell};
 use fastbrdf_render::film::Film;
@@ -114,14 +113,8 @@ impl Entry {
 }
 
 /// `id k=v ...`: model `id` and the values `spec` was given, less those shading `id` adds
-/// (a lobe's `lobe` and `norm`, a distribution's `d`).
-pub fn label(id: &str, spec: &ModelSpec) -> String {
-    let mut s = id.to_string();
-    for (k, v) in asked_pairs(id, spec) {
-        s.push_str(&format!(" {k}={v}"));
-    }
-    s
-}
+/// (the library's, which Python's `compare` labels with too).
+pub use fastbrdf_analysis::model_spec::label;
 
 /// The scores of one model: on the clipped 8-bit sRGB pictures and on the linear film.
 pub struct Scores {
@@ -132,17 +125,7 @@ pub struct Scores {
 impl Scores {
     /// The JSON object: numbers only, PSNR null when infinite; field names say the space.
     pub fn json(&self) -> serde_json::Value {
-        let finite = |x: f64| x.is_finite().then_some(x);
-        serde_json::json!({
-            "model": self.srgb.model,
-            "rmse": self.srgb.rmse,
-            "psnr": finite(self.srgb.psnr),
-            "flip": self.srgb.flip,
-            "rmse_linear": self.linear.rmse,
-            "psnr_linear": finite(self.linear.psnr),
-            "psnr_linear_peak": self.linear.peak,
-            "flip_reinhard": self.linear.flip_reinhard,
-        })
+        fastbrdf_analysis::render_json::scores(&self.srgb, &self.linear)
     }
 }
 

@@ -215,21 +215,13 @@ pub fn material_and_metal(
     model: &ModelArgs,
     id: &str,
 ) -> Result<(), CliError> {
-    if let Some(fit) = model
-        .material
-        .get()?
-        .and_then(|m| fastbrdf_analysis::materials::fit_for(m, id))
-    {
-        if scene.albedo.is_none() {
-            let [r, g, b] = fit.kd.map(|x| x as f32);
-            spec.albedo = Vec3::new(r, g, b);
-        }
-        if scene.weights.is_none() {
-            spec.kd = 1.0;
-        }
-    }
-    if model.metal.metal.is_some() && scene.weights.is_none() {
-        (spec.kd, spec.ks) = (0.0, 1.0);
-    }
+    fastbrdf_analysis::model_spec::scene_colour(
+        spec,
+        id,
+        model.material.get()?,
+        model.metal.metal.is_some(),
+        scene.albedo.is_some(),
+        scene.weights.is_some(),
+    );
     Ok(())
 }
