@@ -1,131 +1,199 @@
-//! The CPU renderer (`render`): a scene as the CLI's `render` builds it, the film's linear
-//! radiance as float32.
+//! The renderer from Python: `render` (a model on the built-in sphere or a mesh, CPU or GPU,
+//! as the CLI's `render`), `compare_json` (the CLI's `compare --json`), `materials_json` and
+//! `metals_json` (`materials --json`, `metals --json`). The scene's options arrive as one dict
+//! ([`scene::scene_arg`]); the model's text, material and metal become a spec through the
+//! library's `model_spec::spec`, the one the CLI calls.
 
-use crate::MAX_ITEMS;
-use crate::MAX_WEIGHT;
-use crate::args::{params_arg, seq, shown, spec, u32_arg, weight_arg};
+mod compare;
+mod scene;
+
+use crate::args::params_arg;
 use crate::arrays::empty;
 use crate::guard::{guard, interruptible, value_error};
 use fastbrdf::ModelSpec;
+use fastbrdf_analysis::model_spec::{self, Use};
+use fastbrdf_render::film::Film;
+use fastbrdf_render::scene::Specular;
+use fastbrdf_render::setup;
 use numpy::{PyArray1, PyArrayMethods};
-use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyRuntimeError};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
-/// A CPU render as a flat linear float32 array (H * W * 3, row-major, top row first). Runs on
-/// a worker that Ctrl-C stops.
+pub(crate) use scene::{Colour, scene_arg, spec_error};
+
+/// A CPU (or, with `gpu`, GPU) render of `model` as a flat linear float32 array (H * W * 3,
+/// row-major, top row first). `scene` holds the scene's options (see [`scene_arg`]);
+/// `material` and `metal` are the CLI's `--material` and `--metal`. Runs on a worker that
+/// Ctrl-C stops (the CPU renderer at its next row; the GPU one after its frame).
 #[pyfunction]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (model, params, material, metal, scene, gpu=false))]
 pub(crate) fn render<'py>(
     py: Python<'py>,
     model: &str,
     params: &Bound<'py, PyAny>,
-    width: &Bound<'py, PyAny>,
-    height: &Bound<'py, PyAny>,
-    spp: &Bound<'py, PyAny>,
-    kd: &Bound<'py, PyAny>,
-    ks: &Bound<'py, PyAny>,
-    albedo: &Bound<'py, PyAny>,
-    lights: &Bound<'py, PyAny>,
-    floor: bool,
-    shadows: bool,
-    env: Option<String>,
-    env_samples: &Bound<'py, PyAny>,
+    material: Option<String>,
+    metal: Option<String>,
+    scene: &Bound<'py, PyDict>,
+    gpu: bool,
 ) -> PyResult<Bound<'py, PyArray1<f32>>> {
-    use fastbrdf_render::render::{Options, Shading};
-    use fastbrdf_render::scene::{Light, Specular};
-    use fastbrdf_render::setup::{self, SceneSpec};
     guard(|| {
         let params = params_arg(params)?;
-        let (width, height) = (u32_arg(width, "width")?, u32_arg(height, "height")?);
-        let (spp, env_samples) = (u32_arg(spp, "spp")?, u32_arg(env_samples, "env_samples")?);
-        let rgb = seq(albedo, "albedo", 3, |x| weight_arg(x, "albedo"))
-            .and_then(|v| <[f32; 3]>::try_from(v).map_err(|_| value_error("too few")))
-            .map_err(|e| {
-                if e.is_instance_of::<PyValueError>(py)
-                    && !e.value(py).to_string().starts_with("albedo[")
-                {
-                    value_error(format!(
-                        "albedo {}: expected 3 numbers from 0 to {MAX_WEIGHT}",
-                        shown(albedo)
-                    ))
-                } else {
-                    e
-                }
-            })?;
-        let mut spec = SceneSpec::new();
-        spec.kd = weight_arg(kd, "kd")?;
-        spec.ks = weight_arg(ks, "ks")?;
-        spec.albedo = glam::Vec3::from_array(rgb);
-        spec.floor = floor;
-        spec.shadows = shadows;
-        spec.env = env;
-        if !(1..=fastbrdf_render::env::MAX_ENV_SAMPLES).contains(&env_samples) {
-            return Err(value_error(format!(
-                "env_samples {env_samples}: must be 1 to {}",
-                fastbrdf_render::env::MAX_ENV_SAMPLES
-            )));
+        let mut sc = scene_arg(scene)?;
+        let colour = Colour::new(material.as_deref(), metal.as_deref())?;
+        colour.apply(&mut sc, model);
+        let spec = model_spec::spec(model, &params, colour.material, colour.metal, Use::Shaded)
+            .map_err(spec_error)?;
+        if gpu {
+            gpu_refusals(model, &spec, &sc)?;
         }
-        spec.env_samples = env_samples;
-        spec.lights = seq(lights, "lights", MAX_ITEMS, |l| l.extract::<String>())?
-            .iter()
-            .map(|l| Light::parse(l))
-            .collect::<Result<_, _>>()
-            .map_err(value_error)?;
-        fastbrdf_render::film::check_size(width, height).map_err(value_error)?;
-        if !(1..=16).contains(&spp) {
-            return Err(value_error(format!(
-                "spp {spp}: must be 1 to 16 (N x N samples per pixel)"
-            )));
-        }
-        let opts = Options {
-            width,
-            height,
-            spp,
-            shading: Shading::Batch,
-        };
-        let specular = Arc::new(Specular::new(&shaded_spec(model, &params)?).map_err(value_error)?);
+        let (w, h) = (sc.opts.width, sc.opts.height);
         // The output first: a size the process cannot have is numpy's MemoryError before any
         // work (the film below is allocated fallibly too).
-        let out = empty::<f32>(py, 3 * width as usize * height as usize)?;
-        let film = interruptible(py, |cancel| -> fastbrdf_render::Result<_> {
-            let loaded = setup::load(&spec)?;
-            let scene = setup::scene(&spec, &loaded, specular);
-            let stop = || cancel.load(Ordering::Relaxed);
-            let film = fastbrdf_render::render::render_until(&scene, &opts, &|_, _| (), &stop)?;
-            if let Some(film) = &film {
-                film.check_finite()?;
-            }
-            Ok(film)
-        })?
-        .map_err(|e| match e {
-            fastbrdf_render::RenderError::Memory(m) => PyMemoryError::new_err(m),
-            e => value_error(e),
-        })?
-        .ok_or_else(|| PyKeyboardInterrupt::new_err(()))?;
+        let out = empty::<f32>(py, 3 * w as usize * h as usize)?;
+        let film = if gpu {
+            render_gpu(py, &sc, model, &spec)?
+        } else {
+            let mut specular = Specular::new(&spec).map_err(value_error)?;
+            specular.id = model.into();
+            render_cpu(py, &sc, Arc::new(specular))?
+        };
         {
             let mut rw = out.try_readwrite()?;
-            let o = rw.as_slice_mut().map_err(value_error)?;
-            for (o, p) in o.chunks_exact_mut(3).zip(&film.pixels) {
-                o.copy_from_slice(&p.to_array());
-            }
+            film_into(&film, rw.as_slice_mut().map_err(value_error)?);
         }
         Ok(out)
     })
 }
 
-/// The spec `render` shades with: every value of `params` validated against the BRDF that
-/// shading with `model` evaluates (a lobe's `blinn-phong`, a distribution's `cook-torrance`:
-/// `ModelSpec::shaded`), so a distribution takes that BRDF's `f`, `g`, ... too, as `render`
-/// always has; `R,G,B` values make it coloured. A term that cannot be shaded is refused with
-/// the renderer's message.
-fn shaded_spec(model: &str, params: &[(String, String)]) -> PyResult<ModelSpec> {
-    // The model with its defaults, for its shading policy (an unknown id: the registry's
-    // message).
-    let bare = spec(model, &[])?;
-    let shaded = fastbrdf_render::scene::shading_brdf(&bare).map_err(value_error)?;
-    let mut all = params.to_vec();
-    all.extend(shaded.pairs());
-    spec(shaded.id(), &all)
+/// What the GPU renderer cannot draw, refused before an adapter is looked for (the answer
+/// does not depend on the machine): the CLI's `--gpu` refusals, named as Python's arguments.
+fn gpu_refusals(model: &str, spec: &ModelSpec, sc: &scene::Scene) -> PyResult<()> {
+    if spec.is_coloured() {
+        return Err(value_error(format!(
+            "gpu=True: coloured specular ({model} with a parameter given as R,G,B, e.g. by metal=) is CPU-only for now: drop gpu=True"
+        )));
+    }
+    if sc.spec.env.is_some() {
+        return Err(value_error(
+            "gpu=True: environment lighting (env=) is CPU-only: drop gpu=True (the GPU renderer is a rasteriser without rays to sample the map with)",
+        ));
+    }
+    Ok(())
+}
+
+/// The film of one specular model on the CPU, on a worker that Ctrl-C stops.
+pub(crate) fn render_cpu(
+    py: Python<'_>,
+    sc: &scene::Scene,
+    specular: Arc<Specular>,
+) -> PyResult<Film> {
+    let id = specular.id.clone();
+    interruptible(py, |cancel| -> fastbrdf_render::Result<_> {
+        let loaded = setup::load(&sc.spec)?;
+        let scene = setup::scene(&sc.spec, &loaded, specular);
+        let stop = || cancel.load(Ordering::Relaxed);
+        fastbrdf_render::render::render_until(&scene, &sc.opts, &|_, _| (), &stop)
+    })?
+    .map_err(render_error)?
+    .ok_or_else(|| PyKeyboardInterrupt::new_err(()))
+    .and_then(|film| {
+        film.check_finite()
+            .map_err(|e| value_error(format!("model '{id}': {e}")))?;
+        Ok(film)
+    })
+}
+
+/// The film on the GPU (fastbrdf-gpu, as `render --gpu`). No adapter (no GPU and no software
+/// one such as Mesa's lavapipe) is a `RuntimeError`: the machine, not the arguments, is
+/// missing something; bad input is a `ValueError`.
+fn render_gpu(py: Python<'_>, sc: &scene::Scene, id: &str, spec: &ModelSpec) -> PyResult<Film> {
+    let mut specular = Specular::new(spec).map_err(value_error)?;
+    specular.id = id.into();
+    let specular = Arc::new(specular);
+    interruptible(py, |_| -> Result<Film, PyErrText> {
+        let loaded = setup::load(&sc.spec).map_err(PyErrText::render)?;
+        let scene = setup::scene(&sc.spec, &loaded, specular);
+        let gpu = fastbrdf_gpu::Gpu::new().map_err(PyErrText::gpu)?;
+        fastbrdf_gpu::render::render(&gpu.device, &gpu.queue, &scene, &sc.opts)
+            .map_err(PyErrText::gpu)
+    })?
+    .map_err(|e| match e {
+        PyErrText::Value(m) => value_error(m),
+        PyErrText::Memory(m) => PyMemoryError::new_err(m),
+        PyErrText::Runtime(m) => PyRuntimeError::new_err(m),
+    })
+    .and_then(|film| {
+        film.check_finite()
+            .map_err(|e| value_error(format!("model '{id}': {e}")))?;
+        Ok(film)
+    })
+}
+
+/// An error made on a worker thread (a `PyErr` is made on the caller's).
+enum PyErrText {
+    Value(String),
+    Memory(String),
+    Runtime(String),
+}
+
+impl PyErrText {
+    fn render(e: fastbrdf_render::RenderError) -> Self {
+        match e {
+            fastbrdf_render::RenderError::Memory(m) => PyErrText::Memory(m),
+            e => PyErrText::Value(e.to_string()),
+        }
+    }
+
+    fn gpu(e: fastbrdf_gpu::GpuError) -> Self {
+        use fastbrdf_gpu::GpuError as G;
+        match e {
+            G::Input(_) | G::Model(_) => PyErrText::Value(e.to_string()),
+            _ => PyErrText::Runtime(e.to_string()),
+        }
+    }
+}
+
+/// A renderer's error as Python's: `MemoryError` for a film that could not be allocated,
+/// else `ValueError`.
+pub(crate) fn render_error(e: fastbrdf_render::RenderError) -> PyErr {
+    match e {
+        fastbrdf_render::RenderError::Memory(m) => PyMemoryError::new_err(m),
+        e => value_error(e),
+    }
+}
+
+/// Copies a film into a flat slice of its size (H * W * 3).
+pub(crate) fn film_into(film: &Film, out: &mut [f32]) {
+    for (o, p) in out.chunks_exact_mut(3).zip(&film.pixels) {
+        o.copy_from_slice(&p.to_array());
+    }
+}
+
+/// `fastbrdf materials --json`'s document (the library's, as the CLI prints it).
+#[pyfunction]
+pub(crate) fn materials_json() -> PyResult<String> {
+    guard(|| {
+        serde_json::to_string_pretty(&fastbrdf_analysis::render_json::materials())
+            .map_err(value_error)
+    })
+}
+
+/// `fastbrdf metals --json`'s document (the library's, as the CLI prints it).
+#[pyfunction]
+pub(crate) fn metals_json() -> PyResult<String> {
+    guard(|| {
+        serde_json::to_string_pretty(&fastbrdf_analysis::render_json::metals()).map_err(value_error)
+    })
+}
+
+/// Registers `render`, `compare_json`, `materials_json` and `metals_json`.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(compare::compare_json, m)?)?;
+    m.add_function(wrap_pyfunction!(materials_json, m)?)?;
+    m.add_function(wrap_pyfunction!(metals_json, m)?)?;
+    Ok(())
 }

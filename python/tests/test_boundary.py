@@ -267,21 +267,25 @@ def test_the_private_module_checks_lengths_and_counts():
             native.errors_json("flog", "pow", "n", [10.0, z], "all")
 
 
-RENDER_ARGS = dict(
-    model="pow", params=[], width=8, height=8, spp=1, kd=0.6, ks=0.4, albedo=(0.8, 0.8, 0.8), lights=[],
-    floor=False, shadows=False, env=None, env_samples=1,
+RENDER_SCENE = dict(
+    width=8, height=8, spp=1, weights=(0.6, 0.4), albedo=(0.8, 0.8, 0.8), lights=[], floor=False, shadows=False,
+    env=None, env_samples=1, mesh=None, texture=None, bump=None,
 )
+RENDER_ARGS = dict(model="pow", params=[], material=None, metal=None, gpu=False, **RENDER_SCENE)
 
 
 def render_native(**change):
+    """The private render with the public defaults, `change` applied (scene keys go into the
+    scene dict)."""
     args = {**RENDER_ARGS, **change}
-    return native.render(*args.values())
+    scene = {k: args.pop(k) for k in RENDER_SCENE}
+    return native.render(args["model"], args["params"], args["material"], args["metal"], scene, args["gpu"])
 
 
 def test_the_private_render_checks_its_numbers():
     assert render_native().shape == (8 * 8 * 3,)
-    for name, bad in [("albedo", (-1.0, 0.5, 0.5)), ("albedo", (0.5, float("nan"), 0.5)), ("kd", -0.5),
-                      ("ks", float("inf")), ("kd", 1e4)]:
+    for name, bad in [("albedo", (-1.0, 0.5, 0.5)), ("albedo", (0.5, float("nan"), 0.5)), ("weights", (-0.5, 1)),
+                      ("weights", (1, float("inf"))), ("weights", (1e4, 0)), ("bump", (1, -1)), ("bump", (0, 1))]:
         with pytest.raises(ValueError, match=f"^{name}"):
             render_native(**{name: bad})
     for name in ("width", "height", "spp", "env_samples"):
@@ -289,6 +293,10 @@ def test_the_private_render_checks_its_numbers():
             render_native(**{name: -1})
         with pytest.raises(ValueError, match=f"^{name}"):
             render_native(**{name: 10**30})
+    with pytest.raises(TypeError, match="scene: unknown key 'size'"):
+        native.render("pow", [], None, None, {**RENDER_SCENE, "size": 1})
+    with pytest.raises(TypeError, match="scene: no 'bump'"):
+        native.render("pow", [], None, None, {k: v for k, v in RENDER_SCENE.items() if k != "bump"})
 
 
 # ---------------------------------------------------------------------------------------------
@@ -422,9 +430,13 @@ def fuzz_calls():
         ]
         for k in ("width", "height", "spp", "env_samples"):
             out.append((f"render {k} #{j}", lambda s=s, k=k: fastbrdf.render("pow", **{"width": 4, "height": 4, k: s})))
-        for k in ("lights", "env", "floor", "shadows"):
+        for k in ("lights", "env", "floor", "shadows", "mesh", "texture", "bump", "material", "metal", "size"):
             out.append((f"render {k} #{j}", lambda s=s, k=k: fastbrdf.render("pow", width=4, height=4, **{k: s})))
-        for k in RENDER_ARGS:
+        for k in ("models", "reference", "measured", "exposure", "mesh", "material", "metal"):
+            kw = {"models": ["flog"], "reference": "pow", "size": "4x4", "spp": 1}
+            out.append((f"compare {k} #{j}", lambda s=s, k=k, kw=kw: fastbrdf.compare(**{**kw, k: s})))
+        # (gpu: True would look for an adapter, whose absence is a RuntimeError by design.)
+        for k in [k for k in RENDER_ARGS if k != "gpu"]:
             out.append((f"native render {k} #{j}", lambda s=s, k=k: render_native(**{k: s})))
     # Huge and endless inputs.
     out += [
