@@ -69,6 +69,12 @@ impl CheckReport {
         self.bounds.iter().all(|r| r.ok) && self.f32.iter().all(|r| r.ok)
     }
 
+    /// `fastbrdf check --json`'s object, `{"ok", "bounds", "f32"}` (the CLI and the Python
+    /// package print this one value).
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({ "ok": self.ok(), "bounds": self.bounds, "f32": self.f32 })
+    }
+
     /// How many bounds hold, of how many.
     pub fn holding(&self) -> (usize, usize) {
         let held =

@@ -29,6 +29,15 @@ pub enum Metric {
 }
 
 impl Metric {
+    /// The metric's name, as [`parse`](Self::parse) reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::MaxAbs => "max-abs",
+            Self::MaxRelEpicentre => "max-rel-epicentre",
+            Self::Rms => "rms",
+        }
+    }
+
     /// Parses `max-abs`, `max-rel-epicentre`, `rms`.
     pub fn parse(s: &str) -> Option<Self> {
         match s {
@@ -424,6 +433,39 @@ pub fn closed_form(family: Family, metric: Metric, rows: &[FitRow]) -> ClosedFor
         worst_gain: gain,
         worst_gain_at: at,
     }
+}
+
+/// The closed form of a fit's rows, when there is one: lobe families with at least 5 rows.
+pub fn closed_form_of(family: Family, metric: Metric, rows: &[FitRow]) -> Option<ClosedForm> {
+    (!family.is_microfacet() && rows.len() >= 5).then(|| closed_form(family, metric, rows))
+}
+
+/// `fastbrdf fit --json`'s object: `{"family", "metric", "normalized", "param": "n"|"alpha",
+/// "rows": [{n or alpha, coefficient, error, untuned_coefficient, untuned_error}],
+/// "closed_form"}` (the CLI and the Python package print this one value).
+pub fn json(
+    family: Family,
+    metric: Metric,
+    normalized: bool,
+    rows: &[FitRow],
+    closed: Option<&ClosedForm>,
+) -> serde_json::Value {
+    let name = if family.is_microfacet() { "alpha" } else { "n" };
+    let rows: Vec<serde_json::Value> = rows
+        .iter()
+        .map(|r| {
+            let mut v = serde_json::to_value(r).expect("serialisable");
+            if let Some(o) = v.as_object_mut() {
+                // One vocabulary: the parameter's own name (n or alpha), as in CSV.
+                if let Some(p) = o.remove("param") {
+                    o.insert(name.into(), p);
+                }
+            }
+            v
+        })
+        .collect();
+    serde_json::json!({"family": family.name(), "metric": metric.name(), "normalized": normalized,
+        "param": name, "rows": rows, "closed_form": closed})
 }
 
 #[cfg(test)]

@@ -246,3 +246,9 @@ pub fn fit(form: Form, rows: &[NormRow]) -> Fit {
         energy_residual_max: max_rel.0,
     }
 }
+
+/// `fastbrdf normalize --json`'s object: `{"model", "rows": [{n, int, coef, int_err}], "fit"}`
+/// (the CLI and the Python package print this one value).
+pub fn json(model: &str, rows: &[NormRow], fit: Option<&Fit>) -> serde_json::Value {
+    serde_json::json!({"model": model, "rows": rows, "fit": fit})
+}

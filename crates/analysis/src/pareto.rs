@@ -5,6 +5,7 @@ use crate::plot::Point;
 use crate::speed;
 use fastbrdf::batch::{Input, Kernel};
 use fastbrdf::{ErrorBound, Kind, Metric, ModelInfo, Zone, registry};
+use rayon::prelude::*;
 use serde::Serialize;
 use std::time::Duration;
 
@@ -65,6 +66,21 @@ pub fn saved_throughput(run: &speed::Report, id: &str) -> f64 {
 /// The row of one lobe, its throughput taken from `saved` when given, else measured (not yet
 /// marked on the front).
 pub fn row(info: &'static ModelInfo, saved: Option<&speed::Report>) -> ParetoRow {
+    let mut r = error_row(info);
+    r.simd_evals_per_s = speed_of(info.id, saved);
+    r
+}
+
+/// The throughput of lobe `id`: from `saved` when given, else measured.
+fn speed_of(id: &str, saved: Option<&speed::Report>) -> f64 {
+    match saved {
+        Some(r) => saved_throughput(r, id),
+        None => throughput(id),
+    }
+}
+
+/// The row of one lobe without its throughput (NaN).
+fn error_row(info: &'static ModelInfo) -> ParetoRow {
     let worst = |lo: f64, metric, zone| {
         let b = ErrorBound {
             reference: "pow",
@@ -84,10 +100,7 @@ pub fn row(info: &'static ModelInfo, saved: Option<&speed::Report>) -> ParetoRow
             "{}/{}/{}/{}/{}",
             o.mul, o.add, o.div, o.sqrt, o.transcendental
         ),
-        simd_evals_per_s: match saved {
-            Some(r) => saved_throughput(r, info.id),
-            None => throughput(info.id),
-        },
+        simd_evals_per_s: f64::NAN,
         max_abs_1_1e5: worst(1.0, Metric::MaxAbs, Zone::All),
         max_abs_8_1e5: worst(8.0, Metric::MaxAbs, Zone::All),
         max_rel_epicentre_8_1e5: worst(8.0, Metric::MaxRel, Zone::Epicentre),
@@ -110,15 +123,20 @@ pub fn mark_front(rows: &mut [ParetoRow]) {
 }
 
 /// Every lobe's row, on the front or not, fastest first. `progress` is called once per lobe.
-pub fn rows(saved: Option<&speed::Report>, progress: &dyn Fn()) -> Vec<ParetoRow> {
+/// The errors are measured in parallel (they do not depend on the order), then the
+/// throughputs one lobe at a time, alone on the machine.
+pub fn rows(saved: Option<&speed::Report>, progress: &(dyn Fn() + Sync)) -> Vec<ParetoRow> {
     let mut rows: Vec<ParetoRow> = lobes()
-        .into_iter()
+        .into_par_iter()
         .map(|info| {
-            let r = row(info, saved);
+            let r = error_row(info);
             progress();
             r
         })
         .collect();
+    for r in &mut rows {
+        r.simd_evals_per_s = speed_of(r.model, saved);
+    }
     mark_front(&mut rows);
     rows
 }
@@ -145,6 +163,12 @@ pub fn points(rows: &[ParetoRow]) -> Vec<Point> {
             highlight: r.pareto,
         })
         .collect()
+}
+
+/// `fastbrdf pareto --json`'s object: `{"models": [...]}` (the CLI and the Python package print
+/// this one value).
+pub fn json(rows: &[ParetoRow]) -> serde_json::Value {
+    serde_json::json!({ "models": rows })
 }
 
 #[cfg(test)]

@@ -279,6 +279,45 @@ pub fn mark_front(rows: &mut [Row], on: FrontOn) {
     rows.sort_by(|a, b| a.ns_per_eval.total_cmp(&b.ns_per_eval));
 }
 
+impl Grid {
+    /// `THETAxPHI` (`48x96`): theta midpoints (2 to 512) and even azimuth counts (2 to 1024).
+    /// The message starts with the text (the caller names the argument before it).
+    pub fn parse(text: &str) -> Result<Grid, String> {
+        let bad = || {
+            format!(
+                "{}: expected THETAxPHI, theta 2 to 512, phi even, 2 to 1024",
+                fastbrdf_io::shorten(text, 40)
+            )
+        };
+        let (t, p) = text.split_once('x').ok_or_else(bad)?;
+        let (theta, phi): (usize, usize) = (
+            t.trim().parse().map_err(|_| bad())?,
+            p.trim().parse().map_err(|_| bad())?,
+        );
+        if !(2..=512).contains(&theta) || !(2..=1024).contains(&phi) || phi % 2 != 0 {
+            return Err(bad());
+        }
+        Ok(Grid { theta, phi })
+    }
+}
+
+/// `fastbrdf pareto --brdf --json`'s object: `{reference, reference_label, alphas, grid, size,
+/// spp, mesh, front_on, rows}` (the CLI and the Python package print this one value). `size`
+/// is the render side used (0: no renders), `mesh` the mesh file as given.
+pub fn json(o: &Options, rows: &[Row], size: u32, mesh: Option<&str>) -> serde_json::Value {
+    serde_json::json!({
+        "reference": params_pairs_json(&o.reference.spec),
+        "reference_label": o.reference.label(),
+        "alphas": o.alphas,
+        "grid": o.grid,
+        "size": size,
+        "spp": 1,
+        "mesh": mesh,
+        "front_on": o.front_on.name(),
+        "rows": rows,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -58,10 +58,9 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let (bounds, f32_rows) = (&report.bounds, &report.f32);
     let ok = report.ok();
     if a.json {
-        let v = serde_json::json!({ "ok": ok, "bounds": bounds, "f32": f32_rows });
         println!(
             "{}",
-            serde_json::to_string_pretty(&v).expect("serialisable")
+            serde_json::to_string_pretty(&report.json()).expect("serialisable")
         );
     } else {
         println!("Error against the reference (documented bound vs measured maximum)");

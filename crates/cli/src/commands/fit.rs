@@ -94,23 +94,9 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     }
     let rows = fit::fit_with(family, metric, &ps, a.normalized, &|| pb.inc(1));
     pb.finish_and_clear();
-    let closed = (!family.is_microfacet() && rows.len() >= 5)
-        .then(|| fit::closed_form(family, metric, &rows));
+    let closed = fit::closed_form_of(family, metric, &rows);
     if a.json {
-        let rows: Vec<serde_json::Value> = rows
-            .iter()
-            .map(|r| {
-                let mut v = serde_json::to_value(r).expect("serialisable");
-                if let Some(o) = v.as_object_mut() {
-                    // One vocabulary: the parameter's own name (n or alpha), as in CSV.
-                    if let Some(p) = o.remove("param") {
-                        o.insert(name.into(), p);
-                    }
-                }
-                v
-            })
-            .collect();
-        let v = serde_json::json!({"family": family.name(), "metric": a.metric, "normalized": a.normalized, "param": name, "rows": rows, "closed_form": closed});
+        let v = fit::json(family, metric, a.normalized, &rows, closed.as_ref());
         crate::outln!(
             "{}",
             serde_json::to_string_pretty(&v).expect("serialisable")

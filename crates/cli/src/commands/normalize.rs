@@ -52,10 +52,8 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     if a.json {
         crate::outln!(
             "{}",
-            serde_json::to_string_pretty(
-                &serde_json::json!({"model": a.model, "rows": rows, "fit": fit})
-            )
-            .expect("serialisable")
+            serde_json::to_string_pretty(&normalize::json(&a.model, &rows, fit.as_ref()))
+                .expect("serialisable")
         );
         return Ok(());
     }

@@ -5,9 +5,10 @@
 use super::common::input::{Lines, QUOTE, csv_error, csv_headers, read_input, required_columns};
 use crate::CliError;
 use crate::model_args::{ParamArgs, Use};
-use fastbrdf::chi2::{self, Config, Outcome};
+use fastbrdf::chi2;
 use fastbrdf::sample::Strategy;
 use fastbrdf::{Brdf, Model, ModelSpec, Real};
+use fastbrdf_analysis::chi2 as analysis_chi2;
 use fastbrdf_io::shorten;
 
 const STRATEGY_HELP: &str = "Strategies: auto (the model's default), cosine (every BRDF), lobe \
@@ -242,23 +243,8 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
             a.theta_i
         )));
     }
-    let mut cfg = if a.full { Config::full() } else { Config::ci() };
-    if let Some(n) = a.samples {
-        if n == 0 || n > 100_000_000 {
-            return Err(CliError::input(format!(
-                "--samples {n}: expected 1 to 100000000"
-            )));
-        }
-        cfg.samples = n;
-    }
-    if let Some(r) = a.res {
-        if !(1..=1000).contains(&r) {
-            return Err(CliError::input(format!("--res {r}: expected 1 to 1000")));
-        }
-        cfg.res_theta = r;
-        cfg.res_phi = 2 * r;
-    }
-    cfg.seed = a.seed;
+    let cfg = analysis_chi2::config(a.full, a.samples, a.res, a.seed)
+        .map_err(|e| CliError::input(format!("--{e}")))?;
     let (b64, s) = brdf::<f64>(&spec, &a.strategy)?;
     let t = a.theta_i.to_radians();
     let wo = [t.sin(), 0.0, t.cos()];
@@ -269,15 +255,10 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
     };
     let out = chi2::run_brdf(b64.as_ref(), b32.as_deref(), wo, s, &cfg, 1);
     if let Some(path) = &a.out {
-        fastbrdf_io::write_atomic(path, &picture(&out)?)?;
+        fastbrdf_io::write_atomic(path, &analysis_chi2::picture(&out).map_err(CliError::io)?)?;
     }
     let report = if a.json {
-        let mut v = serde_json::to_value(&out).expect("numbers serialise");
-        v["model"] = a.model.clone().into();
-        v["strategy"] = s.name().into();
-        v["theta_i"] = a.theta_i.into();
-        // Numbers as numbers, choices as their names (issue 27).
-        v["params"] = fastbrdf_analysis::params_json(&spec).into();
+        let v = analysis_chi2::json(&out, &a.model, s, a.theta_i, &spec);
         format!("{}\n", serde_json::to_string_pretty(&v).expect("JSON"))
     } else {
         format!(
@@ -315,67 +296,4 @@ pub fn run_chi2(a: &Chi2Args) -> Result<(), CliError> {
             message: format!("chi-square test failed: p = {:.3e}", out.p_value),
         })
     }
-}
-
-/// Observed | expected | difference (red: more observed, blue: fewer, scaled by the
-/// expected count's standard deviation, saturating at 4), theta down, phi across, each bin a
-/// block of pixels, each panel labelled (the renderer's labelled grid, `compare::grid`).
-fn picture(o: &Outcome) -> Result<Vec<u8>, CliError> {
-    let (rt, rp) = (o.res_theta, o.res_phi);
-    let scale = (600 / rp).clamp(1, 16);
-    let (pw, ph) = (rp * scale, rt * scale);
-    let max = o
-        .observed
-        .iter()
-        .chain(o.expected.iter())
-        .fold(0.0f64, |m, v| m.max(*v))
-        .max(1e-300);
-    let heat = |v: f64| -> [u8; 3] {
-        // A dark-to-bright ramp (black, purple, orange, yellow).
-        let t = (v / max).clamp(0.0, 1.0).sqrt();
-        let r = (255.0 * (1.5 * t).min(1.0)) as u8;
-        let g = (255.0 * (2.0 * t - 1.0).clamp(0.0, 1.0)) as u8;
-        let b = (255.0 * (0.6 - (t - 0.3).abs() * 2.0).clamp(0.0, 0.6)) as u8;
-        [r, g, b]
-    };
-    let mut panels = vec![vec![0u8; pw * ph * 3]; 3];
-    for i in 0..rt {
-        for j in 0..rp {
-            let k = i * rp + j;
-            let (ob, ex) = (o.observed[k], o.expected[k]);
-            let d = ((ob - ex) / ex.max(1.0).sqrt() / 4.0).clamp(-1.0, 1.0);
-            let diff = if d >= 0.0 {
-                [255, (255.0 * (1.0 - d)) as u8, (255.0 * (1.0 - d)) as u8]
-            } else {
-                [(255.0 * (1.0 + d)) as u8, (255.0 * (1.0 + d)) as u8, 255]
-            };
-            for (panel, c) in panels.iter_mut().zip([heat(ob), heat(ex), diff]) {
-                for y in i * scale..(i + 1) * scale {
-                    for x in j * scale..(j + 1) * scale {
-                        let p = (y * pw + x) * 3;
-                        panel[p..p + 3].copy_from_slice(&c);
-                    }
-                }
-            }
-        }
-    }
-    let labels = ["observed", "expected", "difference (red +, blue -)"];
-    let cells: Vec<fastbrdf_render::compare::Cell> = labels
-        .iter()
-        .zip(panels)
-        .map(|(l, rgb)| fastbrdf_render::compare::Cell {
-            label: l.to_string(),
-            rgb,
-        })
-        .collect();
-    let (rgb, w, h) = fastbrdf_render::compare::grid(&[cells], pw as u32, ph as u32, None)
-        .map_err(|e| CliError::io(format!("chi-square picture: {e}")))?;
-    let mut png = Vec::new();
-    {
-        use image::ImageEncoder;
-        image::codecs::png::PngEncoder::new(&mut png)
-            .write_image(&rgb, w, h, image::ExtendedColorType::Rgb8)
-            .map_err(|e| CliError::io(format!("PNG encoding: {e}")))?;
-    }
-    Ok(png)
 }

@@ -86,25 +86,6 @@ fn f_col(r: &Row) -> String {
     s
 }
 
-/// `48x96`: theta midpoints (2 to 512) and even azimuth counts (2 to 1024).
-fn parse_grid(text: &str) -> Result<Grid, CliError> {
-    let bad = || {
-        CliError::input(format!(
-            "--grid {}: expected THETAxPHI, theta 2 to 512, phi even, 2 to 1024",
-            fastbrdf_io::shorten(text, 40)
-        ))
-    };
-    let (t, p) = text.split_once('x').ok_or_else(bad)?;
-    let (theta, phi): (usize, usize) = (
-        t.trim().parse().map_err(|_| bad())?,
-        p.trim().parse().map_err(|_| bad())?,
-    );
-    if !(2..=512).contains(&theta) || !(2..=1024).contains(&phi) || phi % 2 != 0 {
-        return Err(bad());
-    }
-    Ok(Grid { theta, phi })
-}
-
 pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Result<(), CliError> {
     let alphas =
         range::parse(&a.alpha, 0.05).map_err(|e| CliError::input(format!("--alpha: {e}")))?;
@@ -150,7 +131,7 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
         configs: pb::configurations(a.all),
         alphas,
         grid: match &a.grid {
-            Some(g) => parse_grid(g)?,
+            Some(g) => Grid::parse(g).map_err(|e| CliError::input(format!("--grid {e}")))?,
             None if a.quick => Grid::QUICK,
             None => Grid::DEFAULT,
         },
@@ -208,17 +189,8 @@ pub fn run(a: &BrdfArgs, json: bool, markdown: bool, out: Option<&Path>) -> Resu
         .and_then(|m| m.file_stem())
         .map(|s| s.to_string_lossy().into_owned());
     if json {
-        let v = serde_json::json!({
-            "reference": fastbrdf_analysis::pareto_brdf::params_pairs_json(&o.reference.spec),
-            "reference_label": o.reference.label(),
-            "alphas": o.alphas,
-            "grid": o.grid,
-            "size": size,
-            "spp": 1,
-            "mesh": a.mesh.as_ref().map(|m| m.display().to_string()),
-            "front_on": o.front_on.name(),
-            "rows": rows,
-        });
+        let mesh = a.mesh.as_ref().map(|m| m.display().to_string());
+        let v = pb::json(&o, &rows, size, mesh.as_deref());
         crate::outln!(
             "{}",
             serde_json::to_string_pretty(&v).expect("serialisable")

@@ -72,8 +72,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     if a.json {
         crate::outln!(
             "{}",
-            serde_json::to_string_pretty(&serde_json::json!({"models": rows}))
-                .expect("serialisable")
+            serde_json::to_string_pretty(&pareto::json(&rows)).expect("serialisable")
         );
     } else if a.markdown {
         crate::outln!(
