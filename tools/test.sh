@@ -11,14 +11,22 @@
 # with CI set a missing Chromium fails that test, without CI it is skipped with a message.
 # Extra arguments go to `cargo test` (e.g. `tools/test.sh -p fastbrdf-gpu`).
 #
-# Then the Python package (python/, issue 17): with no arguments (the whole suite) or with
-# `--python` alone (only this step), it makes a virtual environment target/python-venv if
-# missing (installing Debian's python3-venv when `python3 -m venv` cannot), installs maturin,
-# pytest and numpy into it, `pip install ./python` (in cargo's dev profile, so it reuses what
-# `cargo test` just built; a plain `pip install ./python` builds the release profile), and
-# runs `pytest python/tests`. With extra cargo arguments the Python step is left out. Under CI
-# a missing piece (python3, the venv, a package) fails the script; without CI it is skipped
-# with a message.
+# Then the Python package (python/, issues 17 and 29), with no arguments (the whole suite) or
+# with `--python` alone (only this step). It builds a wheel with maturin (from a virtual
+# environment target/python-venv that holds maturin) into target/python-wheels/, in cargo's dev
+# profile, which reuses what `cargo test` just built; then it makes a fresh virtual environment
+# target/python-wheel-venv with no Rust toolchain on PATH, installs the test dependencies from
+# PyPI as binary wheels (numpy, pytest, mypy, mitsuba, dask[distributed], joblib) and the wheel
+# alone from target/python-wheels/ (--no-index), and runs `pytest python/tests` there.
+# FASTBRDF_WHEEL_RELEASE=1 builds the wheel in the release profile instead (the wheel one
+# ships). Why not release in CI: on the project's 2-core machine `maturin build --release` from
+# an empty target folder took 512 s of CPU (487 user, 25 system; 15.7 min of wall clock at a
+# load of 2 to 8 from other builds), over 4 minutes even on two free cores, while CI's budget
+# for this step is about 3 minutes; the dev wheel after `cargo test` compiles only the
+# fastbrdf-python crate. The fresh environment's packages took 32 to 35 s to install (load 6,
+# pip's cache warm; 57 s with no cache, 431 MB installed). With extra cargo arguments the
+# Python step is left out. Under CI a missing piece (python3, a virtual environment, a package
+# from PyPI) fails the script; without CI it is skipped with a message.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -93,34 +101,81 @@ python_missing() {
     echo "test.sh: $1; skipping the Python tests" >&2
 }
 
+# PATH without the folders that hold a Rust toolchain (cargo, rustc, rustup): the wheel's
+# virtual environment is made, filled and tested with it, so nothing there can build Rust.
+path_without_rust() {
+    local d out="" IFS=:
+    for d in $PATH; do
+        if [ -z "$d" ] || [ -e "$d/cargo" ] || [ -e "$d/rustc" ] || [ -e "$d/rustup" ]; then continue; fi
+        out="${out:+$out:}$d"
+    done
+    printf '%s' "$out"
+}
+
+# Makes the virtual environment $1 with python3 (installing Debian's python3-venv when
+# `python3 -m venv` cannot); returns 1 when it cannot.
+make_venv() {
+    if python3 -m venv "$1" > /dev/null 2>&1; then return 0; fi
+    rm -rf "$1"
+    echo "test.sh: python3 -m venv failed: installing python3-venv" >&2
+    if command -v apt-get > /dev/null; then
+        apt_install python3-venv || { $sudo apt-get update -qq > /dev/null && apt_install python3-venv; } || true
+    fi
+    python3 -m venv "$1" || { rm -rf "$1"; return 1; }
+}
+
 python_tests() {
-    local venv=target/python-venv
+    local build=target/python-venv wheels=target/python-wheels venv=target/python-wheel-venv
+    local profile=dev t0=$SECONDS t
+    if [ -n "${FASTBRDF_WHEEL_RELEASE:-}" ]; then profile=release; fi
     if ! command -v python3 > /dev/null; then
         python_missing "no python3"
         return 0
     fi
-    if [ ! -x "$venv/bin/python" ]; then
-        if ! python3 -m venv "$venv" > /dev/null 2>&1; then
-            rm -rf "$venv"
-            echo "test.sh: python3 -m venv failed: installing python3-venv" >&2
-            if command -v apt-get > /dev/null; then
-                apt_install python3-venv || { $sudo apt-get update -qq > /dev/null && apt_install python3-venv; } || true
-            fi
-            if ! python3 -m venv "$venv"; then
-                rm -rf "$venv"
-                python_missing "cannot create a virtual environment (python3-venv)"
-                return 0
-            fi
-        fi
-    fi
-    if ! "$venv/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.9,<2" pytest numpy; then
-        python_missing "cannot install maturin, pytest and numpy into $venv"
+    if [ ! -x "$build/bin/python" ] && ! make_venv "$build"; then
+        python_missing "cannot create a virtual environment (python3-venv)"
         return 0
     fi
-    echo "test.sh: pip install ./python (dev profile) and pytest python/tests" >&2
-    MATURIN_PEP517_ARGS="--profile dev" "$venv/bin/python" -m pip install -q --disable-pip-version-check \
-        --force-reinstall --no-deps ./python
-    "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
+    if ! "$build/bin/python" -m pip install -q --disable-pip-version-check "maturin>=1.9,<2"; then
+        python_missing "cannot install maturin into $build"
+        return 0
+    fi
+    # 1. The wheel, built by maturin with cargo (the dev profile reuses `cargo test`'s artifacts).
+    echo "test.sh: maturin build --profile $profile (python/) into $wheels" >&2
+    rm -rf "$wheels"
+    t=$SECONDS
+    "$build/bin/maturin" build --quiet --locked --profile "$profile" -m python/Cargo.toml \
+        -i "$build/bin/python" --out "$wheels"
+    echo "test.sh: wheel $(cd "$wheels" && ls) built in $((SECONDS - t)) s" >&2
+    # 2. A fresh virtual environment with no Rust toolchain on PATH: the test dependencies from
+    # PyPI (binary wheels only, no bytecode compiled at install), then the wheel alone from
+    # $wheels (--no-index). Nothing can compile there: the wheel is all it takes.
+    local norust
+    norust="$(path_without_rust)"
+    if env PATH="$norust" bash -c 'command -v cargo || command -v rustc' > /dev/null; then
+        echo "test.sh: cargo or rustc still on PATH after removing their folders" >&2
+        exit 1
+    fi
+    rm -rf "$venv"
+    if ! make_venv "$venv"; then
+        python_missing "cannot create a virtual environment (python3-venv)"
+        return 0
+    fi
+    t=$SECONDS
+    if ! env -u CARGO -u RUSTC PATH="$norust" "$venv/bin/python" -m pip install -q --no-compile \
+        --disable-pip-version-check --only-binary :all: numpy pytest mypy mitsuba "dask[distributed]" joblib; then
+        python_missing "cannot install numpy, pytest, mypy, mitsuba, dask[distributed] and joblib into $venv"
+        return 0
+    fi
+    env -u CARGO -u RUSTC PATH="$norust" "$venv/bin/python" -m pip install -q --no-compile \
+        --disable-pip-version-check --only-binary :all: --no-index --find-links "$wheels" fastbrdf
+    echo "test.sh: $venv made with the wheel and its test dependencies in $((SECONDS - t)) s" >&2
+    # 3. The tests, against the installed wheel (not python/fastbrdf: it is not on sys.path).
+    env -u CARGO -u RUSTC PATH="$PWD/$venv/bin:$norust" "$venv/bin/python" -c \
+        'import fastbrdf, sys; f = fastbrdf.__file__; assert "/python-wheel-venv/" in f, f'
+    t=$SECONDS
+    env -u CARGO -u RUSTC PATH="$PWD/$venv/bin:$norust" "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
+    echo "test.sh: pytest in $((SECONDS - t)) s; the Python step in $((SECONDS - t0)) s" >&2
 }
 
 if [ "$#" -eq 1 ] && [ "$1" = "--python" ]; then
