@@ -13,7 +13,7 @@ import numpy as np
 from . import _fastbrdf as _native
 from ._arrays import _params, _values
 
-__all__ = ["check", "chi2", "fit", "lut", "normalize", "pareto", "reproduce"]
+__all__ = ["FIT_FAMILIES", "check", "chi2", "fit", "lut", "normalize", "pareto", "reproduce"]
 
 #: A file path: text or ``os.PathLike``.
 PathArg = Union[str, "os.PathLike[str]"]
@@ -119,6 +119,8 @@ def fit(
         _str(reference, "reference"),
         _str(metric, "metric"),
     )
+    if family not in FIT_FAMILIES:
+        raise ValueError(f"family '{family[:40]}': expected one of {', '.join(FIT_FAMILIES)}")
     if n is not None and m is not None:
         raise ValueError("give n=... (lobe families) or m=... (beckmann-power16), not both")
     arg, x, step = ("m", m, 0.01) if m is not None else ("n", n, 1.0)

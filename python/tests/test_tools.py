@@ -126,6 +126,12 @@ def test_fit_equals_the_cli(cli, flags, kwargs):
 def test_fit_errors_name_the_argument():
     with pytest.raises(ValueError, match="family 'power3'"):
         fastbrdf.fit("power3", "pow", n=10)
+    with pytest.raises(ValueError, match="family 'power3'"):
+        fastbrdf.fit("power3", "pow")
+    # Every listed family is one the library fits (its name comes back).
+    for f in fastbrdf.FIT_FAMILIES:
+        ref, kw = ("beckmann-ct", {"m": 0.3}) if f == "beckmann-power16" else ("pow", {"n": 20})
+        assert fastbrdf.fit(f, ref, **kw)["family"] == f
     with pytest.raises(ValueError, match="reference beckmann-ct: the power16 family approximates pow"):
         fastbrdf.fit("power16", "beckmann-ct", n=10)
     with pytest.raises(ValueError, match=r"n: n = 0\.5 is outside"):
