@@ -48,6 +48,16 @@ def _opt_path(name: str, p: Any) -> Optional[str]:
     return os.fsdecode(s) if isinstance(s, bytes) else s
 
 
+def _flag(name: str, v: Any, on_off: bool = False) -> bool:
+    """A switch: a bool (numpy's too), or with ``on_off`` the CLI's ``"on"``/``"off"``."""
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if on_off and v in ("on", "off"):
+        return bool(v == "on")
+    allowed = "a bool or 'on'/'off'" if on_off else "a bool"
+    raise TypeError(f"{name}: expected {allowed}, got {type(v).__name__}")
+
+
 def _opt_str(name: str, s: Any) -> Optional[str]:
     if s is not None and not isinstance(s, str):
         raise TypeError(f"{name}: expected a string, got {type(s).__name__}")
@@ -83,7 +93,7 @@ def _scene(
     albedo: Any,
     lights: Any,
     floor: bool,
-    shadows: bool,
+    shadows: Union[bool, str],
     env: Any,
     env_samples: int,
     mesh: Any,
@@ -101,8 +111,8 @@ def _scene(
         "weights": _numbers("weights", weights, 2),
         "albedo": _numbers("albedo", albedo, 3),
         "lights": list(lights),
-        "floor": bool(floor),
-        "shadows": bool(shadows),
+        "floor": _flag("floor", floor),
+        "shadows": _flag("shadows", shadows, on_off=True),
         "env": _opt_str("env", env),
         "env_samples": _int("env_samples", env_samples),
         "mesh": _opt_path("mesh", mesh),
@@ -136,7 +146,7 @@ def render(
     bump: Optional[Numbers] = None,
     weights: Optional[Numbers] = None,
     albedo: Optional[Numbers] = None,
-    shadows: bool = True,
+    shadows: Union[bool, str] = True,
     floor: bool = False,
     env: Optional[str] = None,
     env_samples: int = 16,
@@ -153,7 +163,8 @@ def render(
     face) with ``texture`` (a PNG or JPEG albedo map, or ``"skin"``); ``lights``: the CLI's
     ``--light`` specs (``dir:X,Y,Z[:R,G,B[:I]]``, ``point:...``; default one key light);
     ``env``: ``"sky"``, ``"white"`` or a latitude-longitude ``.hdr``/``.exr`` map, sampled
-    ``env_samples`` times per primary ray; ``floor``, ``shadows``; ``bump`` (SCALE, DEPTH);
+    ``env_samples`` times per primary ray; ``floor``; ``shadows`` (a bool, or the CLI's
+    ``"on"``/``"off"``); ``bump`` (SCALE, DEPTH);
     ``weights`` (KD, KS), default (0.6, 0.4); ``albedo`` (R, G, B), default 0.8 grey.
     ``size`` is ``"WxH"`` or (W, H), or give ``width`` and ``height`` (default 256 each; the
     CLI's default is 512x512); ``spp`` N gives N x N samples per pixel.
@@ -184,7 +195,7 @@ def render(
         _opt_str("material", material),
         _opt_str("metal", metal),
         scene,
-        bool(gpu),
+        _flag("gpu", gpu),
     )
     return flat.reshape(scene["height"], scene["width"], 3)
 
@@ -205,7 +216,7 @@ def compare(
     weights: Optional[Numbers] = None,
     albedo: Optional[Numbers] = None,
     exposure: float = 1.0,
-    shadows: bool = True,
+    shadows: Union[bool, str] = True,
     floor: bool = False,
     env: Optional[str] = None,
     env_samples: int = 16,
@@ -251,7 +262,7 @@ def compare(
         _opt_str("metal", metal),
         scene,
         float(exposure),
-        bool(films),
+        _flag("films", films),
     )
     out: Dict[str, Any] = json.loads(doc)
     if flat is not None:

@@ -92,7 +92,7 @@ CASES = [
      ["--model", "cook-torrance", "--param", "f=schlick", "--param", "f0=0.95,0.64,0.54", "--param", "alpha=0.25",
       "--weights", "0.2,1", "--albedo", "0.1,0.2,0.3"]),
     ("the built-in face and skin, bump, no shadows",
-     dict(model="flog", n=40, mesh="face", texture="skin", bump=(40, 0.6), shadows=False, size=(24, 32)),
+     dict(model="flog", n=40, mesh="face", texture="skin", bump=(40, 0.6), shadows="off", size=(24, 32)),
      ["--model", "flog", "--param", "n=40", "--mesh", "face", "--texture", "skin", "--bump", "40,0.6",
       "--shadows", "off"]),
     ("the sky, a metal's weights given",
@@ -163,12 +163,18 @@ def test_bad_options_name_the_argument():
         (ValueError, "spp 17: must be 1 to 16", dict(spp=17)),
         (ValueError, "env_samples 0", dict(env_samples=0)),
         (TypeError, "mesh: expected a path", dict(mesh=3)),
+        (TypeError, "shadows: expected a bool or 'on'/'off', got str", dict(shadows="no")),
+        (TypeError, "floor: expected a bool, got int", dict(floor=1)),
         (TypeError, "metal: expected a string", dict(metal=3)),
     ]
     for kind, msg, kw in cases:
         kw = {"model": "cook-torrance", "size": "8x8", "spp": 1, **kw}
         with pytest.raises(kind, match=msg):
             fastbrdf.render(kw.pop("model"), **kw)
+    # shadows as a bool or as the CLI's on/off: the same picture.
+    lit = dict(size="16x16", spp=1, floor=True, lights=["point:2,3,3:1,1,1:20"])
+    np.testing.assert_array_equal(fastbrdf.render("ward", shadows=False, **lit), fastbrdf.render("ward", shadows="off", **lit))
+    assert not np.array_equal(fastbrdf.render("ward", shadows="on", **lit), fastbrdf.render("ward", shadows="off", **lit))
     with pytest.raises(ValueError, match="nosuch.obj"):
         fastbrdf.render("pow", size="8x8", mesh="nosuch.obj")
 
