@@ -22,9 +22,10 @@
 # ships). Why not release in CI: on the project's 2-core machine `maturin build --release` from
 # an empty target folder took 512 s of CPU (487 user, 25 system; 15.7 min of wall clock at a
 # load of 2 to 8 from other builds), over 4 minutes even on two free cores, while CI's budget
-# for this step is about 3 minutes; the dev wheel after `cargo test` compiles only the
-# fastbrdf-python crate. The fresh environment's packages took 32 to 35 s to install (load 6,
-# pip's cache warm; 57 s with no cache, 431 MB installed). With extra cargo arguments the
+# for this step is about 3 minutes; the dev wheel after `cargo test` reuses the workspace's
+# crates and compiles only what `cargo test` does not build (pyo3, the numpy bindings and the
+# fastbrdf-python crate). The fresh environment's packages took 14 to 35 s to install (pip's
+# cache warm, load 6; 57 s with no cache, 431 MB installed). With extra cargo arguments the
 # Python step is left out. Under CI a missing piece (python3, a virtual environment, a package
 # from PyPI) fails the script; without CI it is skipped with a message.
 set -euo pipefail

@@ -17,6 +17,7 @@ Only fastbrdf, numpy and dask[distributed] are needed (on the workers too).
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from typing import Any, Dict, List, Sequence, Tuple
 
@@ -111,11 +112,27 @@ def main() -> None:
     p.add_argument("--scheduler", help="a running scheduler's address (tcp://host:8786) instead of a LocalCluster")
     args = p.parse_args()
 
+    import dask
     from dask.distributed import Client, LocalCluster
+
+    # Two of dask's worker defaults cost this sweep's short, numpy-heavy tasks (measured on a
+    # busy 2-core machine): the sampling profiler, which takes the GIL every 10 ms (tasks took
+    # twice as long), and MALLOC_TRIM_THRESHOLD_=65536 in the workers' environment, which
+    # makes glibc map and unmap every large array (a third more time, most of it system time).
+    # Both off for the LocalCluster's workers; on a real cluster, give `dask worker` the same
+    # settings (DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False, and the config file's
+    # distributed.nanny.pre-spawn-environ).
+    dask.config.set(
+        {
+            "distributed.worker.profile.enabled": False,
+            "distributed.nanny.pre-spawn-environ": {"OMP_NUM_THREADS": 1, "MKL_NUM_THREADS": 1, "OPENBLAS_NUM_THREADS": 1},
+        }
+    )
 
     pairs = grid(args.alphas)
     dirs = directions(args.directions)
-    print(f"{len(pairs)} configurations x {args.directions} direction pairs")
+    load = os.getloadavg()[0]
+    print(f"{len(pairs)} configurations x {args.directions} direction pairs; {os.cpu_count()} cores, load {load:.1f}")
 
     t = time.perf_counter()
     serial = errors(pairs, dirs)
