@@ -92,3 +92,41 @@ def eval_dirs(
     names, values = _params(params)
     f = _native.perelement_eval_dirs_f32 if precision == "f32" else _native.perelement_eval_dirs_f64
     f(handle, names, values, wi, wo, out)
+
+
+def sample(
+    handle: Any, params: Dict[str, np.ndarray], wo: np.ndarray, u: np.ndarray, strategy: str, precision: str
+) -> Tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Samples a BRDF with per-element ``params`` (flat, one value per element) given (N, 3)
+    ``wo`` and (N, 2) ``u`` in [0, 1) of the precision's dtype: ``(wi (N*3), weight (N), pdf
+    (N))``, each element as ``Model.sample`` of the model built for its values (the hook of
+    ``Model.sample`` for array parameters).
+
+    >>> h = fastbrdf.Model("cook-torrance")._handle
+    >>> wo, u = np.array([[0.0, 0.6, 0.8]] * 2), np.array([[0.3, 0.7]] * 2)
+    >>> wi, w, p = fastbrdf._perelement.sample(h, {"alpha": np.array([0.1, 0.5])}, wo, u, "auto", "f64")
+    >>> wi.shape, bool(p[0] > p[1])
+    ((6,), True)
+    """
+    names, values = _params(params)
+    f = _native.perelement_sample_f32 if precision == "f32" else _native.perelement_sample_f64
+    wi, weight, pdf_ = f(handle, names, values, wo, u, strategy)
+    return wi, weight, pdf_
+
+
+def pdf(
+    handle: Any, params: Dict[str, np.ndarray], wo: np.ndarray, wi: np.ndarray, strategy: str, precision: str
+) -> np.ndarray:
+    """The density of ``wi`` given ``wo`` (both (N, 3)) with per-element ``params`` (the hook
+    of ``Model.pdf`` for array parameters).
+
+    >>> h = fastbrdf.Model("cook-torrance")._handle
+    >>> w = np.array([[0.0, 0.0, 1.0]] * 2)
+    >>> p = fastbrdf._perelement.pdf(h, {"alpha": np.array([0.1, 0.5])}, w, w, "auto", "f64")
+    >>> bool(p[0] > p[1] > 0)
+    True
+    """
+    names, values = _params(params)
+    f = _native.perelement_pdf_f32 if precision == "f32" else _native.perelement_pdf_f64
+    out: np.ndarray = f(handle, names, values, wo, wi, strategy)
+    return out

@@ -8,11 +8,12 @@
 
 use crate::MAX_ITEMS;
 use crate::args::seq;
-use crate::arrays::{STEP, ready, same_rows, slice, slice2, writable};
+use crate::arrays::{STEP, empty, ready, same_rows, slice, slice2, writable};
 use crate::guard::{guard, value_error};
 use crate::handle::Handle;
-use fastbrdf::Real;
 use fastbrdf::batch::per_element::{PerElement, Rows, numeric};
+use fastbrdf::sample::Strategy;
+use fastbrdf::{Model, Real};
 use numpy::{Element, PyArray1, PyArray2, PyReadonlyArray1, PyUntypedArrayMethods};
 use pyo3::exceptions::PyTypeError;
 use pyo3::prelude::*;
@@ -265,11 +266,219 @@ fn perelement_eval_dirs_f64<'py>(
     })
 }
 
+/// An error message of a per-element step (the library's, or a strategy's).
+struct Msg(String);
+
+impl From<fastbrdf::Error> for Msg {
+    fn from(e: fastbrdf::Error) -> Self {
+        Msg(e.to_string())
+    }
+}
+
+impl std::fmt::Display for Msg {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+/// The BRDF of a per-element model (`ValueError` for another kind).
+fn brdf_of<T: Real>(m: &Model<T>) -> Result<&dyn fastbrdf::Brdf<T>, String> {
+    match m {
+        Model::Brdf(b) => Ok(b.as_ref()),
+        m => Err(format!(
+            "a {} cannot be sampled (BRDFs only)",
+            m.kind().name()
+        )),
+    }
+}
+
+/// `strategy_name` parsed (`ValueError` listing the strategies), as `Handle`'s.
+fn strategy(name: &str) -> PyResult<Strategy> {
+    Strategy::parse(name).ok_or_else(|| {
+        value_error(format!(
+            "strategy '{}': expected one of {}",
+            fastbrdf_io::shorten(name, 40),
+            Strategy::ALL.map(|s| s.name()).join(", ")
+        ))
+    })
+}
+
+/// Element `i`'s 3-vector of a flat (N, 3) array.
+fn v3<T: Real>(a: &[T], i: usize) -> [T; 3] {
+    [a[3 * i], a[3 * i + 1], a[3 * i + 2]]
+}
+
+type Sampled<'py, T> = (
+    Bound<'py, PyArray1<T>>,
+    Bound<'py, PyArray1<T>>,
+    Bound<'py, PyArray1<T>>,
+);
+
+/// Samples `wi` given (N, 3) `wo` and (N, 2) `u` in [0, 1) with per-element parameters:
+/// `(wi (N*3), weight, pdf)`, each element as `Model.sample` of the model built for its
+/// values (no sample: zeros).
+fn sample<'py, T: Real + Element>(
+    py: Python<'py>,
+    handle: &Handle,
+    names: Vec<String>,
+    params: &Bound<'py, PyAny>,
+    (wo, u): (Bound<'py, PyArray2<T>>, Bound<'py, PyArray2<T>>),
+    strategy_name: &str,
+) -> PyResult<Sampled<'py, T>> {
+    let pe = per_element(handle, &names)?;
+    let s = strategy(strategy_name)?;
+    let (wo, u) = (ready(wo)?, ready(u)?);
+    let (wo, u) = (slice2(&wo, 3, "wo")?, slice2(&u, 2, "u")?);
+    let n = wo.len() / 3;
+    same_rows("wo", n, "u", u.len() / 2)?;
+    if let Some(i) = u.iter().position(|x| !(*x >= T::zero() && *x < T::one())) {
+        return Err(value_error(format!(
+            "u: {} (row {}, column {}) is outside [0, 1)",
+            u[i],
+            i / 2,
+            i % 2
+        )));
+    }
+    let p = params_of(&names, params, n)?;
+    let p: Vec<&[f64]> = p.iter().map(slice).collect::<PyResult<_>>()?;
+    let (wi_out, weight_out, pdf_out) = (
+        empty::<T>(py, 3 * n)?,
+        empty::<T>(py, n)?,
+        empty::<T>(py, n)?,
+    );
+    {
+        let (mut a, mut w, mut q) = (
+            writable(&wi_out)?,
+            writable(&weight_out)?,
+            writable(&pdf_out)?,
+        );
+        let a = a.as_slice_mut().map_err(value_error)?;
+        let w = w.as_slice_mut().map_err(value_error)?;
+        let q = q.as_slice_mut().map_err(value_error)?;
+        steps(py, n, |r| {
+            let ps: Vec<&[f64]> = p.iter().map(|p| &p[r.clone()]).collect();
+            pe.each_model::<T, Msg>(&ps, r.len(), |j, m| {
+                let i = r.start + j;
+                let b = brdf_of(m).map_err(Msg)?;
+                let st = b
+                    .resolve(s)
+                    .map_err(|e| Msg(format!("{}: {e}", handle.model_spec().id())))?;
+                match b.sample(v3(wo, i), [u[2 * i], u[2 * i + 1]], st) {
+                    Some(x) => {
+                        a[3 * i..3 * i + 3].copy_from_slice(&x.wi);
+                        (w[i], q[i]) = (x.weight, x.pdf);
+                    }
+                    None => {
+                        a[3 * i..3 * i + 3].fill(T::zero());
+                        (w[i], q[i]) = (T::zero(), T::zero());
+                    }
+                }
+                Ok(())
+            })
+        })?;
+    }
+    Ok((wi_out, weight_out, pdf_out))
+}
+
+/// The density of `wi` given `wo` (both (N, 3)) with per-element parameters.
+fn pdf<'py, T: Real + Element>(
+    py: Python<'py>,
+    handle: &Handle,
+    names: Vec<String>,
+    params: &Bound<'py, PyAny>,
+    (wo, wi): (Bound<'py, PyArray2<T>>, Bound<'py, PyArray2<T>>),
+    strategy_name: &str,
+) -> PyResult<Bound<'py, PyArray1<T>>> {
+    let pe = per_element(handle, &names)?;
+    let s = strategy(strategy_name)?;
+    let (wo, wi) = (ready(wo)?, ready(wi)?);
+    let (wo, wi) = (slice2(&wo, 3, "wo")?, slice2(&wi, 3, "wi")?);
+    let n = wo.len() / 3;
+    same_rows("wo", n, "wi", wi.len() / 3)?;
+    let p = params_of(&names, params, n)?;
+    let p: Vec<&[f64]> = p.iter().map(slice).collect::<PyResult<_>>()?;
+    let out = empty::<T>(py, n)?;
+    {
+        let mut rw = writable(&out)?;
+        let o = rw.as_slice_mut().map_err(value_error)?;
+        steps(py, n, |r| {
+            let ps: Vec<&[f64]> = p.iter().map(|p| &p[r.clone()]).collect();
+            pe.each_model::<T, Msg>(&ps, r.len(), |j, m| {
+                let i = r.start + j;
+                let b = brdf_of(m).map_err(Msg)?;
+                let st = b
+                    .resolve(s)
+                    .map_err(|e| Msg(format!("{}: {e}", handle.model_spec().id())))?;
+                o[i] = b.pdf(v3(wo, i), v3(wi, i), st);
+                Ok(())
+            })
+        })?;
+    }
+    Ok(out)
+}
+
+/// Runs `f` over `0..n` in GIL-released steps of [`STEP_MIN`] elements (sampling runs per
+/// element: a step is at most a few tens of milliseconds, all-distinct values included),
+/// Ctrl-C checked between them.
+fn steps(
+    py: Python<'_>,
+    n: usize,
+    mut f: impl FnMut(std::ops::Range<usize>) -> Result<(), Msg> + Send,
+) -> PyResult<()> {
+    let mut lo = 0;
+    while lo < n {
+        let hi = n.min(lo + STEP_MIN);
+        py.detach(|| f(lo..hi)).map_err(value_error)?;
+        py.check_signals()?;
+        lo = hi;
+    }
+    Ok(())
+}
+
+macro_rules! sample_fns {
+    ($sample:ident, $pdf:ident, $t:ty) => {
+        /// Samples with per-element parameters (see [`sample`]).
+        #[pyfunction]
+        fn $sample<'py>(
+            py: Python<'py>,
+            handle: PyRef<'py, Handle>,
+            names: Vec<String>,
+            params: &Bound<'py, PyAny>,
+            wo: Bound<'py, PyArray2<$t>>,
+            u: Bound<'py, PyArray2<$t>>,
+            strategy_name: &str,
+        ) -> PyResult<Sampled<'py, $t>> {
+            guard(|| sample(py, &handle, names, params, (wo, u), strategy_name))
+        }
+
+        /// The density with per-element parameters (see [`pdf`]).
+        #[pyfunction]
+        fn $pdf<'py>(
+            py: Python<'py>,
+            handle: PyRef<'py, Handle>,
+            names: Vec<String>,
+            params: &Bound<'py, PyAny>,
+            wo: Bound<'py, PyArray2<$t>>,
+            wi: Bound<'py, PyArray2<$t>>,
+            strategy_name: &str,
+        ) -> PyResult<Bound<'py, PyArray1<$t>>> {
+            guard(|| pdf(py, &handle, names, params, (wo, wi), strategy_name))
+        }
+    };
+}
+
+sample_fns!(perelement_sample_f32, perelement_pdf_f32, f32);
+sample_fns!(perelement_sample_f64, perelement_pdf_f64, f64);
+
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(perelement_check, m)?)?;
     m.add_function(wrap_pyfunction!(perelement_eval_f32, m)?)?;
     m.add_function(wrap_pyfunction!(perelement_eval_f64, m)?)?;
     m.add_function(wrap_pyfunction!(perelement_eval_dirs_f32, m)?)?;
     m.add_function(wrap_pyfunction!(perelement_eval_dirs_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(perelement_sample_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(perelement_sample_f64, m)?)?;
+    m.add_function(wrap_pyfunction!(perelement_pdf_f32, m)?)?;
+    m.add_function(wrap_pyfunction!(perelement_pdf_f64, m)?)?;
     Ok(())
 }

@@ -231,3 +231,32 @@ def test_blocks_with_one_value(precision):
         per_value("cook-torrance", {"alpha": alpha}, [wi, wo], precision, d="ggx"),
     )
     np.testing.assert_array_equal(fastbrdf.Model("ggx", alpha=alpha).eval(c), per_value("ggx", {"alpha": alpha}, [c], precision))
+
+
+@pytest.mark.parametrize("precision", ["f32", "f64"])
+def test_sample_and_pdf_hooks_equal_a_model_per_value(precision):
+    # The hooks Model.sample / Model.pdf call with array parameters (_perelement.sample, pdf).
+    from fastbrdf import _perelement
+
+    dt = np.float32 if precision == "f32" else np.float64
+    n = 3000
+    alpha = levels(n, 6, 0.05, 0.8, dt)
+    wo = dirs((n,), dt)
+    wo /= np.linalg.norm(wo, axis=-1, keepdims=True)
+    u = RNG.uniform(0, 1, (n, 2)).astype(dt)
+    h = fastbrdf.Model("cook-torrance", d="ggx")._handle
+    wi, w, p = _perelement.sample(h, {"alpha": alpha.astype(np.float64)}, wo, u, "auto", precision)
+    wi = wi.reshape(n, 3)
+    q = _perelement.pdf(h, {"alpha": alpha.astype(np.float64)}, wo, wi, "auto", precision)
+    for v in np.unique(alpha):
+        sel = alpha == v
+        m = fastbrdf.Model("cook-torrance", d="ggx", alpha=float(v))
+        rwi, rw, rp = m.sample(wo[sel], u[sel])
+        np.testing.assert_array_equal(wi[sel], rwi)
+        np.testing.assert_array_equal(w[sel], rw)
+        np.testing.assert_array_equal(p[sel], rp)
+        np.testing.assert_array_equal(q[sel], m.pdf(wo[sel], wi[sel]))
+    with pytest.raises(ValueError, match=r"u: 1 \(row 0, column 0\) is outside \[0, 1\)"):
+        _perelement.sample(h, {"alpha": np.full(1, 0.3)}, wo[:1], np.ones((1, 2), dt), "auto", precision)
+    with pytest.raises(ValueError, match="strategy 'nope'"):
+        _perelement.pdf(h, {"alpha": np.full(1, 0.3)}, wo[:1], wo[:1], "nope", precision)

@@ -112,3 +112,28 @@ fn checks_name_the_first_refused_element_and_the_parameter() {
             .is_err()
     );
 }
+
+#[test]
+fn each_model_visits_every_element_with_its_values_model() {
+    let spec = ModelSpec::parse("flog", &[]).unwrap();
+    let pe = PerElement::new(&spec, &["n"]).unwrap();
+    let n = BLOCK + 10;
+    let vals: Vec<f64> = (0..n).map(|i| [2.0, 20.0, 200.0][i % 3]).collect();
+    let mut seen = 0;
+    pe.each_model::<f64, fastbrdf::Error>(&[&vals], n, |i, m| {
+        let Model::Lobe(l) = m else { panic!() };
+        let one = spec.with("n", Given::Num(vals[i])).unwrap();
+        let Model::Lobe(r) = one.model::<f64>().unwrap() else {
+            panic!()
+        };
+        assert_eq!(l.eval(0.7).to_bits(), r.eval(0.7).to_bits(), "element {i}");
+        seen += 1;
+        Ok(())
+    })
+    .unwrap();
+    assert_eq!(seen, n);
+    assert!(
+        pe.each_model::<f64, fastbrdf::Error>(&[&vals[..3]], n, |_, _| Ok(()))
+            .is_err()
+    );
+}

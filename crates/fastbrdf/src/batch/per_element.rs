@@ -265,6 +265,41 @@ impl PerElement {
         })
     }
 
+    /// Calls `f(i, model)` for every element `i` of `0..n` in order, `model` the scalar model
+    /// in precision `T` built for element `i`'s values (one build per distinct value set in a
+    /// block of [`BLOCK`], kept between blocks): for what runs per element anyway (sampling,
+    /// densities), on this thread. Stops at `f`'s first error.
+    pub fn each_model<T: Real, E: From<Error>>(
+        &self,
+        params: &[&[f64]],
+        n: usize,
+        mut f: impl FnMut(usize, &Model<T>) -> std::result::Result<(), E>,
+    ) -> std::result::Result<(), E> {
+        let bad = self.names.iter().zip(params).find(|(_, p)| p.len() != n);
+        if params.len() != self.names.len() || bad.is_some() {
+            return Err(E::from(Error::Domain {
+                input: "per-element".into(),
+                reason: format!(
+                    "{} parameter arrays of {n} values expected",
+                    self.names.len()
+                ),
+            }));
+        }
+        let mut cache = Cache::<Model<T>>::default();
+        let mut g = Groups::default();
+        let mut lo = 0;
+        while lo < n {
+            let hi = n.min(lo + BLOCK);
+            g.group(params, lo, hi);
+            let which = cache.indices(self, params, lo, &g, |s| s.model::<T>())?;
+            for (j, &id) in g.ids.iter().enumerate() {
+                f(lo + j, &cache.built[which[id as usize]])?;
+            }
+            lo = hi;
+        }
+        Ok(())
+    }
+
     fn check_lengths<T>(&self, params: &[&[f64]], rows: &Rows<'_, T>, n: usize) -> Result<()> {
         let bad = |what: String| {
             Err(Error::Domain {
