@@ -71,7 +71,9 @@ def directions(n: int, seed: int = 1) -> Tuple[np.ndarray, np.ndarray]:
 def errors(pairs: Sequence[Pair], dirs: Tuple[np.ndarray, np.ndarray]) -> List[Dict[str, Any]]:
     """One row per pair: the largest and the RMS error of f cos(theta_i) and the relative
     error of its mean (the albedo's bias), both models evaluated in f64."""
-    wi, wo = dirs
+    # Arrays that dask deserialises can be unaligned (here the first one was): fastbrdf copies
+    # such an input on every call (its array rules), so realign them once per task.
+    wi, wo = (np.require(a, np.float64, ["C", "A"]) for a in dirs)
     rows = []
     for approx, exact in pairs:
         fa = approx.eval(wi, wo, precision="f64") * wi[:, 2]
@@ -115,13 +117,12 @@ def main() -> None:
     import dask
     from dask.distributed import Client, LocalCluster
 
-    # Two of dask's worker defaults cost this sweep's short, numpy-heavy tasks (measured on a
-    # busy 2-core machine): the sampling profiler, which takes the GIL every 10 ms (tasks took
-    # twice as long), and MALLOC_TRIM_THRESHOLD_=65536 in the workers' environment, which
-    # makes glibc map and unmap every large array (a third more time, most of it system time).
-    # Both off for the LocalCluster's workers; on a real cluster, give `dask worker` the same
-    # settings (DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False, and the config file's
-    # distributed.nanny.pre-spawn-environ).
+    # Two of dask's worker defaults cost these short, numpy-heavy tasks: the sampling profiler
+    # (a thread that takes the GIL every 10 ms) and MALLOC_TRIM_THRESHOLD_=65536 in the
+    # workers' environment (glibc then maps and unmaps every large array: system time). With
+    # both off a task took 15 to 20% less time here (2 cores, load 2.7). On a real cluster give
+    # `dask worker` the same settings (DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False, and
+    # distributed.nanny.pre-spawn-environ in its config file).
     dask.config.set(
         {
             "distributed.worker.profile.enabled": False,
