@@ -25,7 +25,8 @@ Array rules (every function taking arrays):
   integer array: lists, scalars, integer arrays) are accepted; bool, complex, object and
   string arrays are a ``TypeError`` naming the dtype.
 - the dtype rule: with ``precision=None`` (the default) a call keeps its inputs' float dtype
-  (numpy's promotion of the inputs, per-element parameters included): float32 (or float16)
+  (numpy's promotion of the inputs; per-element parameter arrays do not count: their values
+  are always used exactly, as float64): float32 (or float16)
   evaluates in float32 through the SIMD batch kernels and returns float32; float64, integers
   and Python numbers evaluate the scalar f64 model and return float64. ``precision="f32"`` or
   ``"f64"`` chooses instead; input of another dtype is then converted (one copy).
@@ -57,7 +58,7 @@ from __future__ import annotations
 
 from typing import List
 
-from . import _analysis, _measured, _model, _render, _tools
+from . import _analysis, _measured, _model, _perelement, _render, _tools
 from . import _fastbrdf as _native
 from ._analysis import *  # noqa: F401,F403
 from ._arrays import MAX_VALUES
@@ -70,7 +71,7 @@ from ._tools import *  # noqa: F401,F403
 __version__: str = str(_native.__version__)
 
 #: The modules whose public names make up the package (each lists them in ``__all__``).
-_MODULES = (_analysis, _measured, _model, _render, _tools)
+_MODULES = (_analysis, _measured, _model, _perelement, _render, _tools)
 
 __all__: List[str] = sorted(
     ["MAX_VALUES", "__version__"] + [name for m in _MODULES for name in m.__all__]

@@ -84,7 +84,7 @@ class Model:
 
     def _key(self) -> Tuple[Any, ...]:
         arrays = tuple(
-            (k, a.dtype.str, a.shape, a.tobytes()) for k, a in sorted(self._arrays.items())
+            (k, a.shape, a.astype(np.float64).tobytes()) for k, a in sorted(self._arrays.items())
         )
         return (self.id, tuple(tuple(h.values) for h in self._handles), arrays)
 
@@ -246,7 +246,7 @@ class Model:
         pnames = list(self._arrays)
         parrs = [self._arrays[k] for k in pnames]
         shape = _broadcast(names + pnames, lead + [a.shape for a in parrs])
-        precision = _precision(precision, given + parrs)
+        precision = _precision(precision, given)
         dtype = _dtype(precision)
         channels = len(self._handles)
         full = shape + ((channels,) if channels > 1 else ())
@@ -256,7 +256,9 @@ class Model:
             wi, wo = (_prepare(a, shape + (3,), dtype).reshape(-1, 3) for a in given)
         else:
             cols = [_prepare(a, shape, dtype).reshape(-1) for a in given]
-        params = {k: _prepare(a, shape, dtype).reshape(-1) for k, a in zip(pnames, parrs)}
+        # Parameter values stay float64 whatever the precision: each element's model is built
+        # from the exact value, as ``Model(id, name=value)`` builds it.
+        params = {k: _prepare(a, shape, np.float64).reshape(-1) for k, a in zip(pnames, parrs)}
         flat = target.reshape(-1) if channels == 1 else np.empty(n, dtype=dtype)
         for c, hc in enumerate(self._handles):
             if params:
@@ -302,12 +304,15 @@ class Model:
         >>> float(w)
         1.0
         """
-        self._scalar_params("sample")
         wo_a, u_given = _vectors(wo, "wo", 3), _vectors(u, "u", 2)
         precision = _precision(precision, [wo_a])
         dtype = _dtype(precision)
         _check_unit_interval(u_given, "u")
-        shape = _broadcast(["wo", "u"], [wo_a.shape[:-1], u_given.shape[:-1]])
+        pnames = list(self._arrays)
+        shape = _broadcast(
+            ["wo", "u"] + pnames, [wo_a.shape[:-1], u_given.shape[:-1]] + [self._arrays[k].shape for k in pnames]
+        )
+        params = self._flat_params(shape)
         wo_a, u_a = _prepare(wo_a, shape + (3,), dtype), _prepare(u_given, shape + (2,), dtype)
         if u_a.dtype != u_given.dtype and dtype is np.float32:
             # A fresh copy: keep float64 values just below 1 below 1 in float32.
@@ -315,7 +320,12 @@ class Model:
         h = self._handle
         f = h.sample_f32 if precision == "f32" else h.sample_f64
         wo_f = wo_a.reshape(-1, 3)
-        wi, weight, pdf = f(wo_f, u_a.reshape(-1, 2), strategy)
+        if params:
+            from . import _perelement
+
+            wi, weight, pdf = _perelement.sample(h, params, wo_f, u_a.reshape(-1, 2), strategy, precision)
+        else:
+            wi, weight, pdf = f(wo_f, u_a.reshape(-1, 2), strategy)
         wi = wi.reshape(-1, 3)
         if len(self._handles) > 1:
             # The other channels' weights f_c cos / pdf at the first channel's draws.
@@ -323,7 +333,11 @@ class Model:
             ok = pdf > 0
             ws = [weight]
             for hc in self._handles[1:]:
-                fc = (hc.eval_dirs_f32 if precision == "f32" else hc.eval_dirs_f64)(wi, wo_f)
+                if params:
+                    fc = np.empty(len(wi), dtype=dtype)
+                    _perelement.eval_dirs(hc, params, wi, wo_f, precision, fc)
+                else:
+                    fc = (hc.eval_dirs_f32 if precision == "f32" else hc.eval_dirs_f64)(wi, wo_f)
                 ws.append(np.where(ok, fc * cos / np.where(ok, pdf, 1), 0).astype(dtype))
             return wi.reshape(shape + (3,)), np.stack(ws, axis=-1).reshape(shape + (3,)), _result(pdf, shape)
         return wi.reshape(shape + (3,)), _result(weight, shape), _result(pdf, shape)
@@ -336,22 +350,45 @@ class Model:
         >>> round(float(fastbrdf.Model("lambert").pdf([0, 0, 1], [0, 0, 1])), 6)
         0.31831
         """
-        self._scalar_params("pdf")
         wo_a, wi_a = _vectors(wo, "wo", 3), _vectors(wi, "wi", 3)
         precision = _precision(precision, [wo_a, wi_a])
         dtype = _dtype(precision)
-        shape = _broadcast(["wo", "wi"], [wo_a.shape[:-1], wi_a.shape[:-1]])
+        pnames = list(self._arrays)
+        shape = _broadcast(
+            ["wo", "wi"] + pnames, [wo_a.shape[:-1], wi_a.shape[:-1]] + [self._arrays[k].shape for k in pnames]
+        )
+        params = self._flat_params(shape)
         wo_a, wi_a = _prepare(wo_a, shape + (3,), dtype), _prepare(wi_a, shape + (3,), dtype)
         h = self._handle
+        if params:
+            from . import _perelement
+
+            return _result(_perelement.pdf(h, params, wo_a.reshape(-1, 3), wi_a.reshape(-1, 3), strategy, precision), shape)
         f = h.pdf_f32 if precision == "f32" else h.pdf_f64
         return _result(f(wo_a.reshape(-1, 3), wi_a.reshape(-1, 3), strategy), shape)
 
-    def _scalar_params(self, what: str) -> None:
-        if self._arrays:
-            raise ValueError(
-                f"{what}: parameters {', '.join(self._arrays)} are per-element arrays; "
-                f"{what} takes one value per parameter (build a Model per value)"
-            )
+    def _flat_params(self, shape: Tuple[int, ...]) -> Dict[str, np.ndarray]:
+        """The per-element parameters broadcast to ``shape``, flat and float64 (each element's
+        model is built from the exact value)."""
+        return {k: _prepare(a, shape, np.float64).reshape(-1) for k, a in self._arrays.items()}
+
+    @property
+    def material(self) -> Optional[str]:
+        """The MERL material whose published fit supplied parameters, if one was given.
+
+        >>> fastbrdf.Model("pow", material="gold-metallic-paint").material
+        'gold-metallic-paint'
+        """
+        return self._material
+
+    @property
+    def metal(self) -> Optional[str]:
+        """The named metal that colours the model, if one was given.
+
+        >>> fastbrdf.Model("cook-torrance", metal="gold").metal
+        'gold'
+        """
+        return self._metal
 
     @property
     def channels(self) -> int:

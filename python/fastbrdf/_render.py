@@ -12,6 +12,7 @@ import numpy as np
 
 from . import _fastbrdf as _native
 from ._arrays import _params, _triple
+from ._model import Model
 
 __all__ = ["compare", "materials", "metals", "render"]
 
@@ -134,7 +135,7 @@ def _bump(bump: Any) -> Tuple[float, float]:
 
 
 def render(
-    model: str,
+    model: Union[str, Model],
     *,
     size: Union[str, Tuple[int, int], None] = None,
     width: Optional[int] = None,
@@ -180,11 +181,26 @@ def render(
     The CPU film equals the CLI's exactly (deterministic). Ctrl-C stops it.
 
     >>> img = fastbrdf.render("ggx", alpha=0.3, size="32x24", metal="gold", env="sky", env_samples=2)
+    >>> ct = fastbrdf.Model("cook-torrance", d="ggx", alpha=0.3, metal="gold")
+    >>> same = fastbrdf.render(ct, size="32x24", env="sky", env_samples=2)
+    >>> bool((same == img).all())                      # a Model renders as its id and values
+    True
     >>> img.shape, img.dtype
     ((24, 32, 3), dtype('float32'))
     >>> bool(img[12, 16, 0] > img[12, 16, 2])          # gold: more red than blue
     True
     """
+    if isinstance(model, Model):
+        # A Model: its id, parameters, material and metal (keywords given here win).
+        if model._arrays:
+            raise ValueError(
+                f"model: per-element parameters ({', '.join(model._arrays)}) cannot be rendered; "
+                "give one value per parameter"
+            )
+        params = {**model.params, **params}
+        material = material if material is not None else model.material
+        metal = metal if metal is not None else model.metal
+        model = model.id
     scene = _scene(
         size, width, height, spp, weights, albedo, lights, floor, shadows, env, env_samples,
         mesh, texture, bump,

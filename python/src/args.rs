@@ -172,33 +172,17 @@ pub(crate) fn full_spec(
     material: Option<&str>,
     metal: Option<&str>,
 ) -> PyResult<ModelSpec> {
-    use fastbrdf_analysis::materials;
-    let mut s = spec(id, params)?;
-    if let Some(name) = material {
-        let m = materials::find(name).map_err(|e| value_error(format!("material: {e}")))?;
-        if materials::supplied(m, &s).is_empty() {
-            return Err(value_error(format!(
-                "material '{}': model '{}' takes none of the fitted parameters (n, alpha, f0)",
-                m.name,
-                s.id()
-            )));
-        }
-        s = materials::apply(m, &s)
-            .map_err(|e| value_error(format!("material '{}': {e}", m.name)))?;
-    }
-    if let Some(name) = metal {
-        let m = fastbrdf::colour::metal(name).map_err(|e| value_error(format!("metal: {e}")))?;
-        if !(s.takes("eta") && s.takes("k")) {
-            return Err(value_error(format!(
-                "metal '{}': model '{}' has no conductor Fresnel term (parameters eta, k): \
-                 metals colour cook-torrance and fresnel-conductor",
-                m.id,
-                s.id()
-            )));
-        }
-        s = s.with_metal(m).map_err(value_error)?;
-    }
-    Ok(s)
+    // The library's `model_spec::spec`, the CLI's too (errors named as Python's arguments).
+    use fastbrdf_analysis::model_spec::{self, Use};
+    let material = material
+        .map(|n| {
+            fastbrdf_analysis::materials::find(n).map_err(|e| value_error(format!("material: {e}")))
+        })
+        .transpose()?;
+    let metal = metal
+        .map(|n| fastbrdf::colour::metal(n).map_err(|e| value_error(format!("metal: {e}"))))
+        .transpose()?;
+    model_spec::spec(id, params, material, metal, Use::AsIs).map_err(crate::render::spec_error)
 }
 
 /// A weight or albedo channel: finite, from 0 to [`MAX_WEIGHT`] (as the CLI's).

@@ -30,17 +30,22 @@
 //! ([`args::spec`]); everything past the boundary takes the spec.
 //!
 //! Modules: [`args`] (Python arguments and the spec), [`arrays`] (numpy in and out,
-//! GIL-released steps), [`guard`] (errors, panics, Ctrl-C), [`handle`] (`Handle`: eval,
-//! sample, pdf), [`models`] (registry, shader export), [`analysis`] (errors, ranges, albedo),
-//! [`render`].
+//! GIL-released steps), [`guard`] (errors, panics, Ctrl-C), [`handle`] (`Handle`: one colour
+//! channel's model: eval, sample, pdf), [`perelement`] (per-element parameter arrays),
+//! [`models`] (registry, shader export), [`analysis`] (errors, ranges, albedo), [`tools`] (check,
+//! reproduce, fit, normalize, lut, pareto, chi2), [`measured`] (MERL data, fit-measured),
+//! [`render`] (render, compare, materials, metals). Each module registers its own functions.
 
 mod analysis;
 mod args;
 mod arrays;
 mod guard;
 mod handle;
+mod measured;
 mod models;
+mod perelement;
 mod render;
+mod tools;
 
 use pyo3::prelude::*;
 
@@ -68,7 +73,10 @@ fn _fastbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(analysis::errors_json, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::parse_range, m)?)?;
     m.add_function(wrap_pyfunction!(analysis::albedo_json, m)?)?;
-    m.add_function(wrap_pyfunction!(render::render, m)?)?;
+    render::register(m)?;
     m.add_function(wrap_pyfunction!(models::shader, m)?)?;
+    measured::register(m)?;
+    perelement::register(m)?;
+    tools::register(m)?;
     Ok(())
 }

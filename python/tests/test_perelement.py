@@ -145,9 +145,15 @@ def test_dtype_rule_out_and_empty():
     c32 = np.array([0.5, 0.7, 0.9], dtype=np.float32)
     m = fastbrdf.Model("ggx", alpha=alpha)
     assert m.eval(c32).dtype == np.float32
-    # The parameter arrays count in the dtype rule: float64 values evaluate in f64.
-    m64 = fastbrdf.Model("ggx", alpha=alpha.astype(np.float64))
-    assert m64.eval(c32).dtype == np.float64
+    # The parameter arrays do not count in the dtype rule (their values are used exactly):
+    # float32 directions with a float64 map evaluate in f32, each element's model built from
+    # the exact float64 value.
+    a64 = np.array([0.1, 0.2, 0.3])
+    m64 = fastbrdf.Model("ggx", alpha=a64)
+    v = m64.eval(c32)
+    assert v.dtype == np.float32
+    for i, a in enumerate(a64):
+        assert v[i] == fastbrdf.Model("ggx", alpha=float(a)).eval(c32[i])
     assert m.eval(c32, precision="f64").dtype == np.float64
     out = np.empty(3, dtype=np.float32)
     assert m.eval(c32, out=out) is out
@@ -168,15 +174,29 @@ def test_pickle_equality_and_repr():
     w = dirs((2, 2), np.float32)
     np.testing.assert_array_equal(back.eval(w, w), m.eval(w, w))
     assert fastbrdf.Model("ggx", alpha=a) != fastbrdf.Model("ggx", alpha=a + np.float32(0.1))
-    assert fastbrdf.Model("ggx", alpha=a) != fastbrdf.Model("ggx", alpha=a.astype(np.float64))
+    # Equal by value: the same values in another dtype are the same model.
+    assert fastbrdf.Model("ggx", alpha=a) == fastbrdf.Model("ggx", alpha=a.astype(np.float64))
     r = eval(repr(m), {"fastbrdf": fastbrdf, "np": np})
     assert r == m
 
 
-def test_sample_and_pdf_refuse_arrays():
-    m = fastbrdf.Model("cook-torrance", alpha=np.array([0.1, 0.2]))
-    with pytest.raises(ValueError, match="per-element"):
-        m.sample([0, 0, 1], [0.3, 0.5])
+def test_model_sample_and_pdf_take_arrays():
+    """Model.sample and Model.pdf with a per-element alpha equal a Model per value (the hook
+    of _model.py), the other colour channels' weights included."""
+    alpha = np.array([0.1, 0.3, 0.6])
+    wo = dirs((3,), np.float64)
+    u = np.random.default_rng(3).random((3, 2))
+    for metal in (None, "gold"):
+        m = fastbrdf.Model("cook-torrance", d="ggx", alpha=alpha, metal=metal)
+        wi, w, p = m.sample(wo, u)
+        assert p.shape == (3,) and w.shape == ((3,) if metal is None else (3, 3))
+        np.testing.assert_allclose(m.pdf(wo, wi), p, rtol=1e-12)  # pdf() recomputes: rounding
+        for i, a in enumerate(alpha):
+            one = fastbrdf.Model("cook-torrance", d="ggx", alpha=float(a), metal=metal)
+            wi1, w1, p1 = one.sample(wo[i], u[i])
+            np.testing.assert_allclose(wi[i], wi1, rtol=1e-12)
+            np.testing.assert_allclose(p[i], p1, rtol=1e-12)
+            np.testing.assert_allclose(w[i], w1, rtol=1e-12)
 
 
 def test_native_checks_lengths():
