@@ -145,7 +145,7 @@ def main() -> None:
         cluster = None
     else:
         t = time.perf_counter()
-        cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0")
         client = Client(cluster)
         print(f"LocalCluster of {args.workers} workers started in {time.perf_counter() - t:.2f} s")
     try:

@@ -46,7 +46,9 @@ def test_a_local_cluster_gives_the_single_process_rows(small, monkeypatch):
     # The workers import dask_sweep by name: they start with this sys.path.
     monkeypatch.syspath_prepend(str(EXAMPLES))
     with LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        # A free port for the HTTP server: dashboard_address=None still takes 8787 (a warning
+        # when another cluster, another test run's, holds it).
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address="127.0.0.1:0"
     ) as cluster, Client(cluster) as client:
         assert len(client.scheduler_info()["workers"]) == 2
         rows = dask_sweep.sweep_dask(client, pairs, dirs, chunk=5)
