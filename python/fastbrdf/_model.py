@@ -4,15 +4,10 @@ over numpy arrays."""
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, List, Optional, Tuple, overload
+from typing import Any, Dict, List, Literal, Optional, Tuple, overload
 
 import numpy as np
 import numpy.typing as npt
-
-try:
-    from typing import Literal
-except ImportError:  # pragma: no cover (Python < 3.8)
-    from typing_extensions import Literal  # type: ignore[assignment]
 
 F32 = npt.NDArray[np.float32]
 F64 = npt.NDArray[np.float64]

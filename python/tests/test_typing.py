@@ -36,3 +36,10 @@ def test_a_wrong_annotation_is_caught():
     text = bad.read_text().replace("assert_type(m.eval(x32), npt.NDArray[np.float32])", "assert_type(m.eval(x32), npt.NDArray[np.float64])")
     p = _mypy("-c", text)
     assert p.returncode == 1 and "[assert-type]" in p.stdout, p.stdout + p.stderr
+
+
+def test_the_package_type_checks_strictly():
+    """The installed package itself (its modules and the native module's stubs) passes
+    ``mypy --strict``: the annotations users rely on are consistent with the code."""
+    p = _mypy("-p", "fastbrdf")
+    assert p.returncode == 0 and "no issues found in" in p.stdout, p.stdout + p.stderr
