@@ -4,8 +4,9 @@ Checked against Mitsuba's own ``roughconductor`` (GGX, Smith, conductor Fresnel)
 eval and pdf, and rendered images compared by a statistical test whose noise is estimated from
 independent seeds (and which is shown to reject a 10% brighter BSDF and a wrong alpha); the
 sampling routine by Mitsuba's chi-square test. ``scalar_rgb`` always runs; the ``llvm_ad_rgb``
-part needs a libLLVM of version 16 or newer that Dr.Jit finds (Debian: ``libllvm19``; or
-DRJIT_LIBLLVM_PATH) and is skipped without one, also under CI. Mitsuba itself missing: skipped,
+part needs a libLLVM of version 16 or newer that Dr.Jit finds (Debian: ``libllvm19``, which
+tools/test.sh installs; or DRJIT_LIBLLVM_PATH) and is skipped without one, unless
+FASTBRDF_NEED_LLVM is set (tools/test.sh sets it under CI): then it fails. Mitsuba itself missing: skipped,
 except under CI (CI=true), where it fails.
 """
 
@@ -55,11 +56,14 @@ def scalar():
 
 @pytest.fixture
 def llvm():
+    # tools/test.sh installs libllvm19 and, under CI, sets FASTBRDF_NEED_LLVM: then a missing
+    # LLVM fails instead of skipping.
+    missing = pytest.fail if os.environ.get("FASTBRDF_NEED_LLVM") else pytest.skip
     if not dr.has_backend(dr.JitBackend.LLVM):
-        pytest.skip("Dr.Jit found no libLLVM (install libllvm19 or set DRJIT_LIBLLVM_PATH)")
+        missing("Dr.Jit found no libLLVM (install libllvm19 or set DRJIT_LIBLLVM_PATH)")
     if tuple(dr.detail.llvm_version()) < (16,):
         # LLVM 15 loads but aborts the process on Mitsuba's kernels (fmaximum).
-        pytest.skip(f"libLLVM {dr.detail.llvm_version()} is too old for Mitsuba (16 or newer)")
+        missing(f"libLLVM {dr.detail.llvm_version()} is too old for Mitsuba (16 or newer)")
     fm.register("llvm_ad_rgb")
 
 
