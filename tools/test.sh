@@ -174,7 +174,8 @@ python_tests() {
     # Mitsuba's llvm_* variants (the plug-in's wavefront tests) need a libLLVM of version 16 or
     # newer that Dr.Jit finds: Debian's libllvm19 (~30 MB), installed when missing. Under CI
     # the llvm tests then fail instead of skipping when none is found (FASTBRDF_NEED_LLVM).
-    if ! ls /usr/lib/*/libLLVM-1[6-9]*.so* /usr/lib/*/libLLVM-[2-9][0-9]*.so* > /dev/null 2>&1 \
+    if ! compgen -G "/usr/lib/*/libLLVM-1[6-9]*.so*" > /dev/null \
+        && ! compgen -G "/usr/lib/*/libLLVM-[2-9][0-9]*.so*" > /dev/null \
         && [ -z "${DRJIT_LIBLLVM_PATH:-}" ] && command -v apt-get > /dev/null; then
         echo "test.sh: no libLLVM 16+ for Mitsuba's llvm variants: installing libllvm19" >&2
         apt_install libllvm19 || { $sudo apt-get update -qq > /dev/null && apt_install libllvm19; } ||
