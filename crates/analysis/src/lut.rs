@@ -42,6 +42,21 @@ impl Axis {
     }
 }
 
+/// The file format of a table written to `out`: `format` when given, else the extension of
+/// `out` (either case); `None` when neither names exr, png or csv.
+pub fn format_of(out: &std::path::Path, format: Option<&str>) -> Option<&'static str> {
+    let by_ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    match format.or(by_ext.as_deref()) {
+        Some("exr") => Some("exr"),
+        Some("png") => Some("png"),
+        Some("csv") => Some("csv"),
+        _ => None,
+    }
+}
+
 /// The smallest `alpha` evaluated (`params::ALPHA`'s lower bound), as the f32 the kernels see.
 pub fn alpha_min() -> f32 {
     fastbrdf::params::ALPHA.range().0 as f32

@@ -24,19 +24,12 @@ fn format_of(out: &Path, format: Option<&str>) -> PyResult<&'static str> {
             fastbrdf_io::shorten(f, 40)
         )));
     }
-    let by_ext = out
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match format.or(by_ext.as_deref()) {
-        Some("exr") => Ok("exr"),
-        Some("png") => Ok("png"),
-        Some("csv") => Ok("csv"),
-        _ => Err(value_error(format!(
+    table_of::format_of(out, format).ok_or_else(|| {
+        value_error(format!(
             "out {}: the file must end in .exr, .png or .csv (or give format)",
             fastbrdf_io::shorten(&out.display().to_string(), 80)
-        ))),
-    }
+        ))
+    })
 }
 
 /// The table of env model `model`: `(metadata JSON, scale, bias)`, `scale` and `bias` float32

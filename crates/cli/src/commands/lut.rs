@@ -59,19 +59,12 @@ pub struct Args {
 
 /// The output format: `--format`, else the extension of `out`.
 fn format_of(out: &Path, format: Option<&str>) -> Result<&'static str, CliError> {
-    let by_ext = out
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    match format.or(by_ext.as_deref()) {
-        Some("exr") => Ok("exr"),
-        Some("png") => Ok("png"),
-        Some("csv") => Ok("csv"),
-        _ => Err(CliError::input(format!(
+    fastbrdf_analysis::lut::format_of(out, format).ok_or_else(|| {
+        CliError::input(format!(
             "--out {}: the file must end in .exr, .png or .csv (or give --format)",
             shorten(&out.display().to_string(), 80)
-        ))),
-    }
+        ))
+    })
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
