@@ -19,6 +19,7 @@ import numpy as np
 
 from . import _fastbrdf as _native
 from ._arrays import _broadcast, _dtype, _params, _prepare, _result, _vectors
+from ._render import _flag, _size
 
 __all__ = ["Measured", "fit_measured", "write_merl"]
 
@@ -202,12 +203,13 @@ class Measured:
     def render(
         self,
         *,
-        width: int = 256,
-        height: int = 256,
+        size: Union[str, Sequence[int], None] = None,
+        width: Optional[int] = None,
+        height: Optional[int] = None,
         spp: int = 2,
         lights: Sequence[str] = (),
         floor: bool = False,
-        shadows: bool = True,
+        shadows: Union[bool, str] = True,
         env: Optional[str] = None,
         env_samples: int = 16,
         mesh: Optional[PathLike] = None,
@@ -215,7 +217,9 @@ class Measured:
         """Renders the measured material on the built-in sphere (or ``mesh``: ``"face"``, the
         built-in face, or an OBJ file) on the CPU, as ``fastbrdf measured render --out
         FILE.exr``: the linear radiance film, float32 of shape (height, width, 3), top row
-        first (no exposure, no sRGB). ``lights`` are the CLI's ``--light`` specs
+        first (no exposure, no sRGB). ``size`` is ``"WxH"`` or (W, H) (or give ``width`` and
+        ``height``; 256 each by default); ``floor`` a bool, ``shadows`` a bool or the CLI's
+        ``"on"``/``"off"``. ``lights`` are the CLI's ``--light`` specs
         (``dir:X,Y,Z[:R,G,B[:I]]``, ``point:...``), ``env`` ``sky``, ``white`` or a map
         file; ``env_samples`` as ``--env-samples`` (only the map is sampled: the data has no
         importance sampling, so it needs more than a model). The file is the whole BRDF: no
@@ -226,7 +230,9 @@ class Measured:
         >>> img.shape, img.dtype
         ((24, 32, 3), dtype('float32'))
         """
-        sizes = {n: _int(n, v) for n, v in (("width", width), ("height", height), ("spp", spp), ("env_samples", env_samples))}
+        w, h = _size(size, width, height)
+        sizes = {"width": w, "height": h}
+        sizes.update({n: _int(n, v) for n, v in (("spp", spp), ("env_samples", env_samples))})
         if isinstance(lights, str):
             lights = [lights]
         if env is not None and not isinstance(env, str):
@@ -237,8 +243,8 @@ class Measured:
             sizes["height"],
             sizes["spp"],
             list(lights),
-            bool(floor),
-            bool(shadows),
+            _flag("floor", floor),
+            _flag("shadows", shadows, on_off=True),
             env,
             sizes["env_samples"],
             mesh_path,

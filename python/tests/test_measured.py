@@ -231,6 +231,21 @@ def test_render_refuses_bad_options(files):
         m.render(width=8, height=8, mesh="nosuch.obj")
     with pytest.raises(ValueError, match="light"):
         m.render(width=8, height=8, lights=["sun:1,2"])
+    # Switches are strict: "off" is the CLI's word, any other text is refused (bool("no") is
+    # True, which rendered shadows and a floor the caller had turned off).
+    with pytest.raises(TypeError, match="shadows: expected a bool or 'on'/'off', got str"):
+        m.render(width=8, height=8, shadows="no")
+    with pytest.raises(TypeError, match="floor: expected a bool, got str"):
+        m.render(width=8, height=8, floor="no")
+
+
+def test_render_size_and_switches_as_the_cli_spells_them(files):
+    m = fastbrdf.Measured(files["shiny"])
+    lit = dict(spp=1, floor=True, lights=["point:2,3,3:1,1,1:20"])
+    off = m.render(size="24x16", shadows="off", **lit)
+    np.testing.assert_array_equal(off, m.render(width=24, height=16, shadows=False, **lit))
+    np.testing.assert_array_equal(off, m.render(size=(24, 16), shadows=False, **lit))
+    assert not np.array_equal(off, m.render(size="24x16", shadows="on", **lit))
 
 
 def fit_cli(cli, tmp_path, path, model, *flags):
