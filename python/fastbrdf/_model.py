@@ -47,12 +47,15 @@ class Model:
         for name, v in (("material", material), ("metal", metal)):
             if v is not None and not isinstance(v, str):
                 raise TypeError(f"{name}: expected a string, got {type(v).__name__}")
-        self._params = dict(params)
         self._material, self._metal = material, metal
         scalars = {k: v for k, v in params.items() if not isinstance(v, np.ndarray) or v.ndim == 0}
+        # Per-element values are copied and frozen: a model is a value, so the caller's array
+        # changing later (or an ``out=`` aliasing it) must not change the model, its hash or
+        # its repr.
         self._arrays: Dict[str, np.ndarray] = {
-            k: _array(v, k) for k, v in params.items() if isinstance(v, np.ndarray) and v.ndim > 0
+            k: _frozen(_array(v, k)) for k, v in params.items() if isinstance(v, np.ndarray) and v.ndim > 0
         }
+        self._params = {k: self._arrays.get(k, v) for k, v in params.items()}
         self._handles = list(_native.Handle.channels(id, _params(id, scalars), material, metal))
         self._handle = self._handles[0]
         if self._arrays:
@@ -442,6 +445,13 @@ def _output(
 def _rebuild(id: str, params: Dict[str, Any], material: Optional[str] = None, metal: Optional[str] = None) -> Model:
     """Unpickles a :class:`Model` (see ``Model.__reduce__``)."""
     return Model(id, material=material, metal=metal, **params)
+
+
+def _frozen(a: np.ndarray) -> np.ndarray:
+    """A read-only copy of ``a``."""
+    c = np.array(a, copy=True)
+    c.flags.writeable = False
+    return c
 
 
 def _repr_value(v: Any) -> str:

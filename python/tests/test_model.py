@@ -170,3 +170,18 @@ def test_out_reused_over_a_large_input_allocates_nothing_new():
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     assert peak < x.nbytes // 10, peak
+
+
+def test_per_element_values_are_copied_and_frozen():
+    """A model is a value: changing the caller's array afterwards changes neither its results
+    nor its hash; ``out=`` cannot write into its parameters."""
+    a = np.array([0.1, 0.3])
+    m = fastbrdf.Model("ggx", alpha=a)
+    before = m.eval([0.9, 0.9])
+    seen = {m}
+    a[0] = 0.5
+    np.testing.assert_array_equal(m.eval([0.9, 0.9]), before)
+    assert m in seen and m == fastbrdf.Model("ggx", alpha=np.array([0.1, 0.3]))
+    assert not m.params["alpha"].flags.writeable
+    with pytest.raises(ValueError, match="out: is read-only"):
+        m.eval([0.9, 0.9], out=m.params["alpha"])
