@@ -51,7 +51,9 @@ raises ``MemoryError`` (the output is allocated by numpy, as numpy's own). Long 
 evaluation runs in chunks of about a million elements, the others on a worker thread that
 stops at its next step. Wrong values raise ``ValueError`` and wrong types ``TypeError``, each
 naming the argument; nothing else is raised for bad input (an internal error, a bug, is a
-``RuntimeError``).
+``RuntimeError``). Outside the arguments: an output file that cannot be written (``out=``,
+``write_merl``) is an ``OSError`` naming the path, and ``render(gpu=True)`` without a GPU
+adapter a ``RuntimeError``.
 """
 
 from __future__ import annotations

@@ -97,6 +97,9 @@ def write_merl(
             f.write(np.array(_DIMS, dtype="<i4").tobytes())
             f.write(body.tobytes())
         os.replace(tmp, p)
+    except OSError as e:
+        # Name the path given, not the temporary file beside it.
+        raise type(e)(e.errno, f"cannot write {p}: {e.strerror}") from e
     finally:
         if os.path.exists(tmp):
             os.remove(tmp)
