@@ -62,36 +62,56 @@ def albedo(
     angles: Any = "0..85:5",
     as_brdf: str = "phong",
     norm: str = "energy",
+    material: Optional[str] = None,
     **params: Any,
 ) -> Dict[str, Any]:
     """Directional albedo against the incidence angle (degrees, in [0, 90)) and the
     white-furnace verdict, as ``fastbrdf albedo --json``: ``{model, brdf, params,
     claims_energy, conserves, rows: [{theta_deg, albedo, error}]}``. A lobe is evaluated as
     ``as_brdf`` (``phong`` or ``blinn-phong``) normalised by ``norm`` (``energy`` or ``none``).
-    ``angles``: a number, a sequence (1 to ``MAX_VALUES`` values) or a range text. Ctrl-C stops
+    ``material``: a MERL material's published fit supplies the parameters (the CLI's
+    ``--material``). ``angles``: a number, a sequence (1 to ``MAX_VALUES`` values) or a range text. Ctrl-C stops
     it.
 
     >>> r = fastbrdf.albedo("lambert", angles=[0, 60])
     >>> [round(row["albedo"], 6) for row in r["rows"]]
     [1.0, 1.0]
     """
+    if material is not None and not isinstance(material, str):
+        raise TypeError(f"material: expected a string, got {type(material).__name__}")
     for k, v in (("as_brdf", as_brdf), ("norm", norm)):
         if not isinstance(v, str):
             raise TypeError(f"{k}: expected a string, got {type(v).__name__}")
     return dict(
         json.loads(
-            _native.albedo_json(model, _params(model, params), _values(angles, "angles", 5.0), as_brdf, norm)
+            _native.albedo_json(
+                model, _params(model, params), _values(angles, "angles", 5.0), as_brdf, norm, material
+            )
         )
     )
 
 
-def shader(model: str, *, lang: str = "wgsl", runtime_params: bool = False, **params: Any) -> str:
+def shader(
+    model: str,
+    *,
+    lang: str = "wgsl",
+    runtime_params: bool = False,
+    material: Optional[str] = None,
+    metal: Optional[str] = None,
+    **params: Any,
+) -> str:
     """The model as a self-contained shader function ``fb_<id>`` (dashes as underscores), as
     ``fastbrdf shader``: ``lang`` is ``wgsl``, ``glsl``, ``hlsl``, ``msl`` or
     ``brdf-explorer``; ``runtime_params`` takes the numeric parameters as trailing arguments
-    ``p_<name>``. Needs no GPU.
+    ``p_<name>``. ``material`` and ``metal`` as for :class:`Model` (a coloured model exports
+    three channel functions and ``fb_<id>_rgb``). Needs no GPU.
 
     >>> "fn fb_flog(" in fastbrdf.shader("flog", n=20)
     True
+    >>> "fb_cook_torrance_rgb" in fastbrdf.shader("cook-torrance", d="ggx", metal="gold")
+    True
     """
-    return str(_native.shader(model, _params(model, params), lang, bool(runtime_params)))
+    for k, v in (("material", material), ("metal", metal)):
+        if v is not None and not isinstance(v, str):
+            raise TypeError(f"{k}: expected a string, got {type(v).__name__}")
+    return str(_native.shader(model, _params(model, params), lang, bool(runtime_params), material, metal))

@@ -1,7 +1,7 @@
 //! The analysis crate's error sweeps (`errors_json`), ranges (`parse_range`) and albedo
 //! curves (`albedo_json`), checked as the CLI checks and returned as its JSON.
 
-use crate::args::{float_arg, grey_spec, params_arg, values_arg};
+use crate::args::{float_arg, full_spec, grey_spec, params_arg, values_arg};
 use crate::guard::{guard, interruptible, stop_if, value_error};
 use fastbrdf::{ModelSpec, registry};
 use pyo3::exceptions::PyRuntimeError;
@@ -103,6 +103,7 @@ pub(crate) fn parse_range(text: &str, default_step: &Bound<'_, PyAny>) -> PyResu
 
 /// `fastbrdf albedo --json`'s object, as JSON. Runs on a worker that Ctrl-C stops.
 #[pyfunction]
+#[pyo3(signature = (model, params, angles, as_brdf, norm, material=None))]
 pub(crate) fn albedo_json(
     py: Python<'_>,
     model: &str,
@@ -110,6 +111,7 @@ pub(crate) fn albedo_json(
     angles: &Bound<'_, PyAny>,
     as_brdf: &str,
     norm: &str,
+    material: Option<&str>,
 ) -> PyResult<String> {
     use fastbrdf_analysis::albedo;
     guard(|| {
@@ -120,7 +122,11 @@ pub(crate) fn albedo_json(
                 "angles: {bad} is outside [0, 90) degrees"
             )));
         }
-        let t = albedo::target(&grey_spec(model, &params)?, as_brdf, norm).map_err(value_error)?;
+        let spec = match material {
+            None => grey_spec(model, &params)?,
+            Some(_) => full_spec(model, &params, material, None)?,
+        };
+        let t = albedo::target(&spec, as_brdf, norm).map_err(value_error)?;
         let rows = interruptible(py, |cancel| -> fastbrdf::Result<_> {
             let mut rows = Vec::with_capacity(angles.len());
             for a in &angles {

@@ -1,6 +1,6 @@
 //! The registry (`models_json`, `info_json`) and shader export (`shader`).
 
-use crate::args::{params_arg, spec};
+use crate::args::{full_spec, params_arg};
 use crate::guard::{guard, value_error};
 use fastbrdf::registry;
 use pyo3::exceptions::PyRuntimeError;
@@ -27,11 +27,14 @@ pub(crate) fn info_json(id: &str) -> PyResult<String> {
 
 /// `fastbrdf shader`'s text for one model.
 #[pyfunction]
+#[pyo3(signature = (model, params, lang, runtime_params, material=None, metal=None))]
 pub(crate) fn shader(
     model: &str,
     params: &Bound<'_, PyAny>,
     lang: &str,
     runtime_params: bool,
+    material: Option<&str>,
+    metal: Option<&str>,
 ) -> PyResult<String> {
     use fastbrdf_gpu::export::{Form, Lang, export_form};
     guard(|| {
@@ -47,6 +50,6 @@ pub(crate) fn shader(
         } else {
             Form::Literals
         };
-        export_form(&spec(model, &params)?, l, form).map_err(value_error)
+        export_form(&full_spec(model, &params, material, metal)?, l, form).map_err(value_error)
     })
 }

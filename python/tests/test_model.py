@@ -185,3 +185,14 @@ def test_per_element_values_are_copied_and_frozen():
     assert not m.params["alpha"].flags.writeable
     with pytest.raises(ValueError, match="out: is read-only"):
         m.eval([0.9, 0.9], out=m.params["alpha"])
+
+
+def test_albedo_and_shader_take_material_and_metal_as_the_cli(cli):
+    rc, out, _ = cli("albedo", "--model", "cook-torrance", "--material", "gold-metallic-paint",
+                     "--param", "f=schlick", "--angles", "0,60", "--json")
+    assert rc == 0
+    assert fastbrdf.albedo("cook-torrance", material="gold-metallic-paint", f="schlick", angles=[0, 60]) == json.loads(out)
+    rc, out, _ = cli("shader", "--model", "cook-torrance", "--param", "d=ggx", "--metal", "gold", "--lang", "glsl")
+    assert rc == 0 and fastbrdf.shader("cook-torrance", d="ggx", metal="gold", lang="glsl") == out
+    rc, out, _ = cli("shader", "--model", "pow", "--material", "gold-metallic-paint")
+    assert rc == 0 and fastbrdf.shader("pow", material="gold-metallic-paint") == out
