@@ -10,10 +10,18 @@ plug-ins per variant: register again after switching). Importing registers nothi
     bsdf = mi.load_dict({"type": "fastbrdf", "model": "cook-torrance", "d": "ggx", "alpha": 0.2})
 
 Properties: ``model`` (a BRDF id of ``fastbrdf.models("brdf")``), every parameter of that model
-by its fastbrdf name (numbers and choices, validated by :class:`fastbrdf.Model`, whose
-``ValueError`` comes out of ``mi.load_dict`` with fastbrdf's message), ``strategy`` (a sampling
-strategy of the model, ``auto`` by default), ``precision`` (``f32``, the default, or ``f64``)
-and ``reflectance`` (a texture or a number multiplying the grey model, 1 by default).
+by its fastbrdf name (numbers, choices, R,G,B strings such as ``"0.9,0.6,0.3"`` or Mitsuba's
+``{"type": "rgb", "value": [...]}``, validated by :class:`fastbrdf.Model`, whose ``ValueError`` comes out of ``mi.load_dict`` with fastbrdf's
+message), ``metal`` and ``material`` (passed to :class:`fastbrdf.Model` as its keywords),
+``strategy`` (a sampling strategy of the model, ``auto`` by default), ``precision`` (``f32``,
+the default, or ``f64``) and ``reflectance`` (a texture or a number multiplying the model, 1 by
+default). Per-element arrays (a list or numpy array, which Mitsuba stores as a vector) are
+refused: the plug-in has one model.
+
+Colour: a coloured model (``fastbrdf.Model.channels == 3``: ``metal="gold"``, an R,G,B value)
+gives a ``Color3f`` per call in the RGB variants (eval's f, sample's weight, per channel; one
+pdf, that of fastbrdf's draw, which follows the R channel's strategy); the spectral and mono
+variants refuse a coloured model (fastbrdf's colours are R, G, B values, not spectra).
 
 Conventions: Mitsuba's local shading frame is fastbrdf's (normal +z, both directions pointing
 away from the surface). Mitsuba's ``si.wi`` (the given direction, towards the viewer) is
@@ -28,13 +36,12 @@ needs evaluated arrays: render inside :func:`evaluated_mode` (or turn Dr.Jit's
 plug-in raises a ``RuntimeError`` saying so. There, ``mi.traverse`` lists ``reflectance`` and
 the numbers given (``alpha``, ...), and changing one rebuilds the model (validated again). The
 plug-in is not differentiable (no gradient flows through numpy); polarized variants are
-refused; spectral and mono variants get the grey value on every channel.
+refused; spectral and mono variants get a grey model's value on every channel.
 """
 
 from __future__ import annotations
 
 import contextlib
-import math
 from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 import numpy as np
@@ -124,7 +131,7 @@ def bsdf_class() -> Any:
     if name is None:
         raise ValueError("variant: no Mitsuba variant is set (call mi.set_variant first)")
     if name not in _CLASSES:
-        _CLASSES[name] = _make_class(mi, dr, name.startswith("scalar"))
+        _CLASSES[name] = _make_class(mi, dr, name.startswith("scalar"), "rgb" in name)
     return _CLASSES[name]
 
 
@@ -137,6 +144,17 @@ def _property(props: Any, key: str) -> Any:
         return float(value)
     if isinstance(value, str):
         return value
+    _, dr = _mi()
+    if type(value).__name__ in ("Color3f", "Color3d"):
+        # {"type": "rgb", "value": [r, g, b]} for a number: fastbrdf's R,G,B string (one
+        # number when grey, which keeps the model grey).
+        rgb = [float(x) for x in value]
+        return rgb[0] if rgb[0] == rgb[1] == rgb[2] else ",".join(map(repr, rgb))
+    if isinstance(value, (np.ndarray, list, tuple)) or dr.is_array_v(value):
+        raise TypeError(
+            f"fastbrdf: property '{key}': per-element arrays are not supported (one model per "
+            "BSDF); give one number, or a colour as an R,G,B string such as \"0.9,0.6,0.3\""
+        )
     try:
         return float(value)
     except (TypeError, ValueError):
@@ -150,7 +168,7 @@ def _unit(x: float, below_one: float) -> float:
     return min(max(float(x), 0.0), below_one) if x == x else 0.0
 
 
-def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
+def _make_class(mi: Any, dr: Any, scalar: bool, rgb: bool) -> Any:
     glossy = mi.BSDFFlags.GlossyReflection
     flags = glossy | mi.BSDFFlags.FrontSide
     below_one = float(np.float32(1.0 - 2.0**-24))
@@ -166,6 +184,23 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
 
     def floats(a: np.ndarray) -> Any:
         return mi.Float(np.ascontiguousarray(a, dtype=np.float32))
+
+    def spectrum(a: np.ndarray) -> Any:
+        """(N,) grey values as a Float (it multiplies a Spectrum), (N, 3) as a Color3f."""
+        if a.ndim == 1:
+            return floats(a)
+        return mi.Color3f(*(floats(a[:, c]) for c in range(a.shape[1])))
+
+    def scalar_spectrum(v: np.ndarray) -> Any:
+        """A scalar call's value: a float (grey) or (3,) R, G, B as a Color3f."""
+        v = np.asarray(v, np.float64)
+        if v.ndim == 0:
+            return float(v)
+        return mi.Color3f(*(float(x) for x in v.reshape(-1)))
+
+    def lanes(mask: np.ndarray, like: np.ndarray) -> np.ndarray:
+        """An (N,) mask or factor shaped to broadcast against (N,) or (N, channels)."""
+        return mask if like.ndim == 1 else mask[:, None]
 
     class FastbrdfBSDF(mi.BSDF):  # type: ignore[misc]
         """fastbrdf's BRDF model as a Mitsuba BSDF (see fastbrdf.mitsuba)."""
@@ -189,6 +224,8 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
                     f"fastbrdf: property 'precision': expected 'f32' or 'f64', got {self.precision!r}"
                 )
             self.model_id = model_id
+            # The properties given (metal and material included), for rebuilding.
+            self.params = params
             self.model = self._build(model_id, params)
             self.reflectance = props.get_texture("reflectance", 1.0)
             # The numbers given, as Dr.Jit values that mi.traverse can change (JIT variants).
@@ -205,6 +242,11 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
                     f"fastbrdf: property 'model': '{model_id}' is a {model.kind}, not a brdf "
                     "(see fastbrdf.models('brdf'))"
                 )
+            if model.channels != 1 and not rgb:
+                raise ValueError(
+                    f"fastbrdf: the model {model!r} is coloured (R, G, B) and the variant "
+                    f"'{mi.variant()}' is not an RGB one: use an *_rgb variant or a grey model"
+                )
             if self.strategy != "auto" and self.strategy not in model.strategies():
                 raise ValueError(
                     f"fastbrdf: property 'strategy': '{self.strategy}' is not one of "
@@ -218,7 +260,8 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
             """f(fastbrdf wi = Mitsuba wo, fastbrdf wo = Mitsuba wi) cos(Mitsuba wo); 0 below
             either horizon."""
             f = np.asarray(self.model.eval(wo, wi, precision=self.precision), np.float64)
-            return np.where((wi[:, 2] > 0) & (wo[:, 2] > 0), f * wo[:, 2], 0.0)
+            up = (wi[:, 2] > 0) & (wo[:, 2] > 0)
+            return np.where(lanes(up, f), f * lanes(wo[:, 2], f), 0.0)
 
         def _pdf(self, wi: np.ndarray, wo: np.ndarray) -> np.ndarray:
             p = self.model.pdf(wi, wo, strategy=self.strategy, precision=self.precision)
@@ -229,9 +272,11 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
             u = np.clip(np.nan_to_num(u, nan=0.0), 0.0, below_one).astype(np.float32)
             d, w, p = self.model.sample(wi, u, strategy=self.strategy, precision=self.precision)
             d = np.asarray(d, np.float32).reshape(-1, 3)
-            w, p = np.asarray(w, np.float64).reshape(-1), np.asarray(p, np.float64).reshape(-1)
-            ok = (wi[:, 2] > 0) & (p > 0) & (d[:, 2] > 0) & np.isfinite(w)
-            return d, np.where(ok, w, 0.0), np.where(ok, p, 0.0)
+            p = np.asarray(p, np.float64).reshape(-1)
+            w = np.asarray(w, np.float64).reshape(len(p), -1)  # (N, channels)
+            ok = (wi[:, 2] > 0) & (p > 0) & (d[:, 2] > 0) & np.all(np.isfinite(w), axis=1)
+            w = np.where(ok[:, None], w, 0.0)
+            return d, (w[:, 0] if self.model.channels == 1 else w), np.where(ok, p, 0.0)
 
         def _scalar_pair(self, si: Any, wo: Any) -> Tuple[np.ndarray, np.ndarray]:
             a, b = si.wi, wo
@@ -240,9 +285,10 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
                 np.array([b[0], b[1], b[2]], np.float32),
             )
 
-        def _scalar_f_cos(self, wi: np.ndarray, wo: np.ndarray) -> float:
+        def _scalar_f_cos(self, wi: np.ndarray, wo: np.ndarray) -> Any:
             # The callers checked both directions above the horizon.
-            return float(self.model.eval(wo, wi, precision=self.precision)) * float(wo[2])
+            f = np.asarray(self.model.eval(wo, wi, precision=self.precision), np.float64)
+            return scalar_spectrum(f * float(wo[2]))
 
         def _scalar_pdf(self, wi: np.ndarray, wo: np.ndarray) -> float:
             return float(self.model.pdf(wi, wo, strategy=self.strategy, precision=self.precision))
@@ -263,7 +309,7 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
                     return mi.Spectrum(0.0)
                 wi_a, wo_a = self._scalar_pair(si, wo)
                 return self.reflectance.eval(si, active) * self._scalar_f_cos(wi_a, wo_a)
-            value = floats(self._f_cos(*self._wave_pair(si, wo)))
+            value = spectrum(self._f_cos(*self._wave_pair(si, wo)))
             return dr.select(active, self.reflectance.eval(si, active) * value, 0.0)
 
         def pdf(self, ctx: Any, si: Any, wo: Any, active: Any = True) -> Any:
@@ -286,7 +332,7 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
                 value = self._scalar_f_cos(wi_a, wo_a)
                 return self.reflectance.eval(si, active) * value, self._scalar_pdf(wi_a, wo_a)
             wi_a, wo_a = self._wave_pair(si, wo)
-            value, pdf = floats(self._f_cos(wi_a, wo_a)), floats(self._pdf(wi_a, wo_a))
+            value, pdf = spectrum(self._f_cos(wi_a, wo_a)), floats(self._pdf(wi_a, wo_a))
             r = self.reflectance.eval(si, active)
             return dr.select(active, r * value, 0.0), dr.select(active, pdf, 0.0)
 
@@ -304,15 +350,15 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
                 d, w_a, p_a = self.model.sample(
                     wi_a, u, strategy=self.strategy, precision=self.precision
                 )
-                p, w = float(p_a), float(w_a)
-                if not p > 0 or not d[2] > 0 or not math.isfinite(w):
+                p, w = float(p_a), np.asarray(w_a, np.float64)
+                if not p > 0 or not d[2] > 0 or not np.all(np.isfinite(w)):
                     return bs, mi.Spectrum(0.0)
                 bs.wo = mi.Vector3f(float(d[0]), float(d[1]), float(d[2]))
                 bs.pdf = p
                 bs.eta = 1.0
                 bs.sampled_type = +glossy
                 bs.sampled_component = 0
-                return bs, self.reflectance.eval(si, active) * w
+                return bs, self.reflectance.eval(si, active) * scalar_spectrum(w)
             if dr.flag(dr.JitFlag.SymbolicScope):
                 raise RuntimeError(_SYMBOLIC)
             wi_a, u = widen(rows(si.wi), rows(sample2))
@@ -328,7 +374,7 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
             bs.sampled_component = mi.UInt32(0)
             active = active & (bs.pdf > 0)
             bs.pdf = dr.select(active, bs.pdf, 0.0)
-            weight = self.reflectance.eval(si, active) * floats(weights)
+            weight = self.reflectance.eval(si, active) * spectrum(weights)
             return bs, dr.select(active, weight, 0.0)
 
         def traverse(self, callback: Any) -> None:
@@ -339,11 +385,13 @@ def _make_class(mi: Any, dr: Any, scalar: bool) -> Any:
         def parameters_changed(self, keys: List[str] = []) -> None:  # noqa: B006
             changed = [k for k in keys if k in self.numbers] if keys else list(self.numbers)
             if changed:
-                params = self.model.params
+                # From the properties given: Model.params leaves metal and material out.
+                params = dict(self.params)
                 for k in changed:
                     # Through float32 (the Float it was stored as): 0.1 stays 0.1.
                     params[k] = float(str(np.float32(np.asarray(self.numbers[k]).reshape(-1)[0])))
                 self.model = self._build(self.model_id, params)
+                self.params = params
 
         def to_string(self) -> str:
             return (

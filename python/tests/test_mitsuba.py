@@ -217,10 +217,110 @@ def test_disabled_component_and_reflectance(scalar):
     assert np.all(np.array(weight) == 0)
 
 
+# -- colour: R, G, B models ------------------------------------------------------------------
+
+
+GOLD = next(m for m in fastbrdf.metals()["metals"] if m["id"] == "gold")
+
+
+def gold(alpha, **extra):
+    return {"type": "fastbrdf", "model": "cook-torrance", "d": "ggx", "g": "smith-ggx",
+            "f": "conductor", "metal": "gold", "alpha": alpha, **extra}
+
+
+def native_gold(alpha):
+    # roughconductor with fastbrdf's gold eta and k per channel (not Mitsuba's spectral "Au").
+    return {"type": "roughconductor", "distribution": "ggx", "alpha": alpha, "sample_visible": True,
+            "eta": {"type": "rgb", "value": GOLD["eta"]}, "k": {"type": "rgb", "value": GOLD["k"]}}
+
+
+def test_gold_equals_roughconductor_per_channel(scalar):
+    ours, theirs = mi.load_dict(gold(0.3)), mi.load_dict(native_gold(0.3))
+    assert ours.model.channels == 3 and ours.model.metal == "gold"
+    ctx = mi.BSDFContext()
+    rng = np.random.default_rng(17)
+    for wi, wo in zip(unit(rng, 40), unit(rng, 40)):
+        si, w = si_with(wi), mi.Vector3f(*map(float, wo))
+        e1, e2 = np.array(ours.eval(ctx, si, w)), np.array(theirs.eval(ctx, si, w))
+        p1, p2 = ours.pdf(ctx, si, w), theirs.pdf(ctx, si, w)
+        assert e1.shape == (3,) and np.allclose(e1, e2, rtol=2e-4, atol=1e-7), (wi, wo, e1, e2)
+        assert math.isclose(p1, p2, rel_tol=2e-4, abs_tol=1e-7), (wi, wo, p1, p2)
+        e3, p3 = ours.eval_pdf(ctx, si, w)
+        assert np.array_equal(np.array(e3), e1) and p3 == p1
+    # Gold is coloured: the channels differ (R well above B at normal incidence).
+    e = np.array(ours.eval(ctx, si_with([0, 0, 1]), mi.Vector3f(0, 0, 1)))
+    assert e[0] > 1.5 * e[2] > 0
+    # sample: the weight per channel is eval / pdf at the drawn direction.
+    for wi in unit(rng, 20):
+        si = si_with(wi)
+        bs, w = ours.sample(ctx, si, 0.5, mi.Point2f(*map(float, rng.random(2))))
+        if bs.pdf == 0:
+            continue
+        e, p = ours.eval_pdf(ctx, si, bs.wo)
+        assert math.isclose(bs.pdf, p, rel_tol=1e-4)
+        assert np.allclose(np.array(w), np.array(e) / p, rtol=1e-4), (np.array(w), np.array(e) / p)
+
+
+@pytest.mark.parametrize("name, rgb", [("f0", (0.9, 0.6, 0.3)), ("alpha", (0.1, 0.2, 0.3))])
+def test_rgb_value_is_each_channels_grey_model(scalar, name, rgb):
+    # Channel c of the plug-in is the grey fastbrdf model with that channel's value.
+    base = {"d": "ggx", "f": "schlick", "f0": 0.9, "alpha": 0.2}
+    tint = [0.25, 0.5, 1.0]
+    b = mi.load_dict({"type": "fastbrdf", "model": "cook-torrance", **base,
+                      name: ",".join(map(str, rgb)), "reflectance": {"type": "rgb", "value": tint}})
+    greys = [fastbrdf.Model("cook-torrance", **{**base, name: v}) for v in rgb]
+    ctx = mi.BSDFContext()
+    rng = np.random.default_rng(5)
+    for wi, wo in zip(unit(rng, 10), unit(rng, 10)):
+        got = np.array(b.eval(ctx, si_with(wi), mi.Vector3f(*map(float, wo))))
+        want = [t * float(g.eval(wo, wi, precision="f64")) * wo[2] for t, g in zip(tint, greys)]
+        assert np.allclose(got, want, rtol=1e-5, atol=1e-8), (name, got, want)
+
+
+def test_mitsubas_rgb_value_is_an_rgb_string(scalar):
+    rgb = mi.load_dict({"type": "fastbrdf", "model": "cook-torrance", "f": "schlick",
+                        "f0": {"type": "rgb", "value": [0.9, 0.6, 0.3]}})
+    assert rgb.model == fastbrdf.Model("cook-torrance", f="schlick", f0="0.9,0.6,0.3")
+    grey = mi.load_dict({"type": "fastbrdf", "model": "cook-torrance", "f": "schlick",
+                         "f0": {"type": "rgb", "value": 0.9}})
+    assert grey.model.channels == 1 and grey.model.params["f0"] == 0.9
+
+
+def test_metal_and_material_pass_through(scalar):
+    b = mi.load_dict(gold(0.2))
+    want = {k: v for k, v in gold(0.2).items() if k != "type"}
+    assert b.model == fastbrdf.Model(want.pop("model"), **want)
+    b = mi.load_dict({"type": "fastbrdf", "model": "ward", "material": "gold-metallic-paint"})
+    m = fastbrdf.Model("ward", material="gold-metallic-paint")
+    assert b.model == m and b.model.material == "gold-metallic-paint"
+    wi, wo = np.array([0.6, 0.0, 0.8]), np.array([-0.3, 0.1, 0.9])
+    wo /= np.linalg.norm(wo)
+    got = np.array(b.eval(mi.BSDFContext(), si_with(wi), mi.Vector3f(*map(float, wo))))
+    assert np.allclose(got, float(m.eval(wo, wi, precision="f64")) * wo[2], rtol=1e-5)
+    with pytest.raises(RuntimeError, match="metal: unknown"):
+        mi.load_dict(gold(0.2, metal="unobtainium"))
+
+
+@pytest.mark.parametrize("value", [[0.1, 0.2, 0.3], np.array([0.1, 0.2, 0.3])])
+def test_per_element_arrays_are_refused(scalar, value):
+    with pytest.raises(RuntimeError, match="property 'alpha': per-element arrays are not supported"):
+        mi.load_dict({"type": "fastbrdf", "model": "cook-torrance", "alpha": value})
+
+
+def test_coloured_model_refused_outside_rgb_variants():
+    fm.register("scalar_spectral")
+    try:
+        with pytest.raises(RuntimeError, match="is not an RGB one"):
+            mi.load_dict(gold(0.2))
+        mi.load_dict(ct(0.2))  # a grey model loads
+    finally:
+        fm.register("scalar_rgb")
+
+
 # -- images: agreement with roughconductor ---------------------------------------------------
 
 
-def scene(bsdf, res, spp):
+def scene(bsdf, res, spp, pixel_format="luminance"):
     """A sphere filling the frame (no silhouette pixels), lit by a spherical lamp and a dim
     constant environment; the path tracer at depth 2 is direct lighting with MIS (the BSDF's
     eval, pdf and sample all count); emitters hidden, so every pixel is BSDF-reflected light."""
@@ -231,7 +331,7 @@ def scene(bsdf, res, spp):
             "type": "perspective", "fov": 30,
             "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0, 2.2], target=[0, 0, 0], up=[0, 1, 0]),
             "film": {"type": "hdrfilm", "width": res, "height": res, "rfilter": {"type": "box"},
-                     "pixel_format": "luminance"},
+                     "pixel_format": pixel_format},
             "sampler": {"type": "independent", "sample_count": spp},
         },
         "sphere": {"type": "sphere", "bsdf": bsdf},
@@ -245,6 +345,12 @@ def renders(bsdf, res, spp, seeds):
     s = scene(bsdf, res, spp)
     with fm.evaluated_mode():
         return [np.array(mi.render(s, seed=seed), dtype=np.float64)[..., 0] for seed in seeds]
+
+
+def renders_rgb(bsdf, res, spp, seeds):
+    s = scene(bsdf, res, spp, "rgb")
+    with fm.evaluated_mode():
+        return [np.array(mi.render(s, seed=seed), dtype=np.float64) for seed in seeds]
 
 
 def agreement(a, b, block=4):
@@ -306,6 +412,20 @@ def test_render_agrees_with_roughconductor_llvm(llvm):
         assert not ok, (alpha, wrong, stats)
 
 
+def test_gold_render_agrees_per_channel_llvm(llvm):
+    # A coloured model through the whole renderer: each of R, G, B against roughconductor with
+    # fastbrdf's gold eta and k, by the same statistics as above.
+    res, spp = 64, 64
+    ours = renders_rgb(gold(0.3), res, spp, [1, 2])
+    theirs = renders_rgb(native_gold(0.3), res, spp, [3, 4])
+    for c in range(3):
+        ok, stats = agrees([x[..., c] for x in ours], [x[..., c] for x in theirs])
+        assert ok, (c, stats)
+    # The test tells the channels apart: our R is not their B.
+    ok, stats = agrees([x[..., 0] for x in ours], [x[..., 2] for x in theirs])
+    assert not ok and abs(stats[0]) > 4.5, stats
+
+
 # -- wavefronts (llvm) ----------------------------------------------------------------------
 
 
@@ -334,6 +454,31 @@ def test_wavefront_eval_pdf_sample(llvm):
     assert np.all(w[:, ~live] == 0)
 
 
+def test_wavefront_gold_per_channel(llvm):
+    ours, theirs = mi.load_dict(gold(0.3)), mi.load_dict(native_gold(0.3))
+    ctx = mi.BSDFContext()
+    rng = np.random.default_rng(13)
+    n = 2000
+    si = dr.zeros(mi.SurfaceInteraction3f, n)
+    si.wi = mi.Vector3f(unit(rng, n).T.astype(np.float32))
+    wo = mi.Vector3f(unit(rng, n).T.astype(np.float32))
+    with fm.evaluated_mode():
+        e1, e2 = np.array(ours.eval(ctx, si, wo)), np.array(theirs.eval(ctx, si, wo))
+        p1, p2 = np.array(ours.pdf(ctx, si, wo)), np.array(theirs.pdf(ctx, si, wo))
+        e3, p3 = (np.array(x) for x in ours.eval_pdf(ctx, si, wo))
+        bs, w = ours.sample(ctx, si, mi.Float(rng.random(n)), mi.Point2f(rng.random((2, n)).astype(np.float32)))
+        es, ps = (np.array(x) for x in ours.eval_pdf(ctx, si, bs.wo))
+    assert e1.shape == (3, n) and not np.allclose(e1[0], e1[2])
+    assert np.allclose(e1, e2, rtol=2e-4, atol=1e-6) and np.allclose(p1, p2, rtol=2e-4, atol=1e-6)
+    assert np.array_equal(e1, e3) and np.array_equal(p1, p3)
+    w, pdf = np.array(w), np.array(bs.pdf)
+    live = pdf > 0
+    assert live.mean() > 0.9 and w.shape == (3, n)
+    assert np.allclose(pdf[live], ps[live], rtol=1e-4)
+    assert np.allclose(w[:, live], es[:, live] / ps[live], rtol=1e-4)
+    assert np.all(w[:, ~live] == 0)
+
+
 def test_symbolic_scope_is_refused_with_advice(llvm):
     s = scene(ct(0.3), 8, 1)
     with pytest.raises(RuntimeError) as e:
@@ -353,6 +498,16 @@ def test_traverse_changes_the_model(llvm):
     params["alpha"] = 5.0
     with pytest.raises(ValueError, match="parameter alpha = 5.0 is invalid"):
         params.update()
+
+
+def test_traverse_keeps_the_metal(llvm):
+    # A rebuild starts from the properties given: metal (not in Model.params) stays.
+    b = mi.load_dict(gold(0.3))
+    params = mi.traverse(b)
+    params["alpha"] = 0.1
+    params.update()
+    want = {k: v for k, v in gold(0.1).items() if k != "type"}
+    assert b.model == fastbrdf.Model(want.pop("model"), **want) and b.model.channels == 3
 
 
 # -- sampling: Mitsuba's chi-square test (llvm) ----------------------------------------------
