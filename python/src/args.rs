@@ -5,6 +5,7 @@ use crate::guard::value_error;
 use crate::{MAX_ITEMS, MAX_VALUES, MAX_WEIGHT};
 use fastbrdf::ModelSpec;
 use fastbrdf::params::Params;
+use fastbrdf_analysis::model_spec::SpecError;
 use pyo3::exceptions::{PyOverflowError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyByteArray, PyBytes, PyComplex, PyFloat, PyInt, PyString};
@@ -182,7 +183,7 @@ pub(crate) fn full_spec(
     let metal = metal
         .map(|n| fastbrdf::colour::metal(n).map_err(|e| value_error(format!("metal: {e}"))))
         .transpose()?;
-    model_spec::spec(id, params, material, metal, Use::AsIs).map_err(crate::render::spec_error)
+    model_spec::spec(id, params, material, metal, Use::AsIs).map_err(spec_error)
 }
 
 /// A weight or albedo channel: finite, from 0 to [`MAX_WEIGHT`] (as the CLI's).
@@ -195,4 +196,17 @@ pub(crate) fn weight_arg(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<f32> {
         )));
     }
     Ok(v as f32)
+}
+
+/// A spec error as a `ValueError`, a material's and a metal's named as Python's arguments
+/// (`material 'NAME': `, `metal 'NAME': `), as `fastbrdf.Model` names them.
+pub(crate) fn spec_error(e: SpecError) -> PyErr {
+    match &e {
+        SpecError::NoFittedParams { material, .. } => {
+            value_error(format!("material '{material}': {e}"))
+        }
+        SpecError::NoConductor { metal, .. } => value_error(format!("metal '{metal}': {e}")),
+        SpecError::Unused { param } => value_error(format!("parameter {param}: {e}")),
+        _ => value_error(e),
+    }
 }

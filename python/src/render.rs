@@ -22,7 +22,8 @@ use pyo3::types::PyDict;
 use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
-pub(crate) use scene::{Colour, scene_arg, spec_error};
+pub(crate) use crate::args::spec_error;
+pub(crate) use scene::{Colour, scene_arg};
 
 /// A CPU (or, with `gpu`, GPU) render of `model` as a flat linear float32 array (H * W * 3,
 /// row-major, top row first). `scene` holds the scene's options (see [`scene_arg`]);

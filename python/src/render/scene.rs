@@ -6,7 +6,7 @@ use crate::args::{seq, shown, u32_arg, weight_arg};
 use crate::guard::value_error;
 use fastbrdf::colour::Metal;
 use fastbrdf_analysis::materials::Material;
-use fastbrdf_analysis::model_spec::{self, SpecError};
+use fastbrdf_analysis::model_spec;
 use fastbrdf_render::bump::Bump;
 use fastbrdf_render::render::{Options, Shading};
 use fastbrdf_render::scene::Light;
@@ -225,18 +225,5 @@ impl Colour {
             sc.albedo_given,
             sc.weights_given,
         );
-    }
-}
-
-/// A spec error as a `ValueError`, a material's and a metal's named as Python's arguments
-/// (`material 'NAME': `, `metal 'NAME': `), as `fastbrdf.Model` names them.
-pub(crate) fn spec_error(e: SpecError) -> PyErr {
-    match &e {
-        SpecError::NoFittedParams { material, .. } => {
-            value_error(format!("material '{material}': {e}"))
-        }
-        SpecError::NoConductor { metal, .. } => value_error(format!("metal '{metal}': {e}")),
-        SpecError::Unused { param } => value_error(format!("parameter {param}: {e}")),
-        _ => value_error(e),
     }
 }
