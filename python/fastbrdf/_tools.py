@@ -255,7 +255,7 @@ def chi2(
     ``{samples, res_theta, res_phi, chi2, dof, p_value, threshold, passed, pooled,
     pdf_integral, missing_observed, missing_expected, impossible, observed, expected, model,
     strategy, theta_i, params}``; a failed test is ``passed: False`` (nothing is raised).
-    ``out``: also write the picture (PNG) of the histograms.
+    ``out``: also write the picture (PNG) of the histograms. Ctrl-C stops it (within 4096 draws).
 
     >>> r = fastbrdf.chi2("phong", n=100, samples=20000)
     >>> r["passed"], r["strategy"]

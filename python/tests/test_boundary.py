@@ -142,6 +142,8 @@ else:
         ("", "fastbrdf.errors('flog', 'pow', n=np.full(1_000_000, 10.0))"),
         ("", "fastbrdf.albedo('ward', alpha=0.02, angles=np.linspace(0, 89, 100_000))"),
         ("", "fastbrdf.render('ggx', alpha=0.3, width=2048, height=2048, spp=16)"),
+        # 1e8 draws (the cap): the core's chi-square test checks its hook every 4096 draws.
+        ("", "fastbrdf.chi2('cook-torrance', alpha=0.3, samples=100_000_000)"),
     ],
 )
 def test_ctrl_c_stops_a_long_call(setup, call):

@@ -175,27 +175,64 @@ pub fn run_brdf(
     cfg: &Config,
     tests: usize,
 ) -> Outcome {
+    run_brdf_with(b64, f32, wo, s, cfg, tests, &|| ())
+}
+
+/// [`run_brdf`] with a cancellation hook: `check` is called every [`CHECK_EVERY`] samples and
+/// at every density evaluation (from rayon's threads too), so a caller can stop the test by
+/// unwinding from it (the Python package's Ctrl-C). It must not change the outcome.
+pub fn run_brdf_with(
+    b64: &dyn crate::model::Brdf<f64>,
+    f32: Option<&dyn crate::model::Brdf<f32>>,
+    wo: [f64; 3],
+    s: crate::sample::Strategy,
+    cfg: &Config,
+    tests: usize,
+    check: &(dyn Fn() + Sync),
+) -> Outcome {
+    let drawn = std::sync::atomic::AtomicUsize::new(0);
+    let tick = || {
+        if drawn
+            .fetch_add(1, std::sync::atomic::Ordering::Relaxed)
+            .is_multiple_of(CHECK_EVERY)
+        {
+            check();
+        }
+    };
     match f32 {
         Some(b32) => {
             let wo32 = wo.map(|x| x as f32);
             run(
                 |u| {
+                    tick();
                     b32.sample(wo32, [u[0] as f32, u[1] as f32], s)
                         .map(|x| x.wi.map(f64::from))
                 },
-                |wi| b64.pdf(wo32.map(f64::from), wi, s),
+                |wi| {
+                    check();
+                    b64.pdf(wo32.map(f64::from), wi, s)
+                },
                 cfg,
                 tests,
             )
         }
         None => run(
-            |u| b64.sample(wo, u, s).map(|x| x.wi),
-            |wi| b64.pdf(wo, wi, s),
+            |u| {
+                tick();
+                b64.sample(wo, u, s).map(|x| x.wi)
+            },
+            |wi| {
+                check();
+                b64.pdf(wo, wi, s)
+            },
             cfg,
             tests,
         ),
     }
 }
+
+/// How many samples [`run_brdf_with`] draws between two calls of its hook.
+pub const CHECK_EVERY: usize = 4096;
 
 /// Runs one test: `sample` maps `u` in [0, 1)^2 to a direction or no sample, `pdf` is the
 /// density claimed for it; `tests` is the number of tests the significance is shared by

@@ -3,7 +3,7 @@
 
 use super::to_json;
 use crate::args::{float_arg, params_arg, spec};
-use crate::guard::{guard, interruptible, value_error};
+use crate::guard::{guard, interruptible, stop_if, value_error};
 use fastbrdf::sample::Strategy;
 use fastbrdf::{Brdf, Model, ModelSpec, Real};
 use fastbrdf_analysis::chi2 as analysis_chi2;
@@ -99,9 +99,10 @@ pub(crate) fn chi2_json(
         };
         let t = theta.to_radians();
         let wo = [t.sin(), 0.0, t.cos()];
-        // The test has no cancellation point: Ctrl-C is raised when it returns.
-        let outcome = interruptible(py, |_| {
-            fastbrdf::chi2::run_brdf(b64.as_ref(), b32.as_deref(), wo, s, &cfg, 1)
+        // Ctrl-C stops the test at its next draw batch or density evaluation.
+        let outcome = interruptible(py, |cancel| {
+            let check = || stop_if(cancel);
+            fastbrdf::chi2::run_brdf_with(b64.as_ref(), b32.as_deref(), wo, s, &cfg, 1, &check)
         })?;
         if let Some(path) = &out {
             let png = analysis_chi2::picture(&outcome).map_err(PyOSError::new_err)?;
