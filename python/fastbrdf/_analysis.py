@@ -7,7 +7,7 @@ import json
 from typing import Any, Dict, List, Optional
 
 from . import _fastbrdf as _native
-from ._arrays import _params, _values
+from ._arrays import _opt_str, _params, _str, _values
 
 __all__ = ["KINDS", "LANGS", "albedo", "errors", "models", "shader"]
 
@@ -77,11 +77,9 @@ def albedo(
     >>> [round(row["albedo"], 6) for row in r["rows"]]
     [1.0, 1.0]
     """
-    if material is not None and not isinstance(material, str):
-        raise TypeError(f"material: expected a string, got {type(material).__name__}")
-    for k, v in (("as_brdf", as_brdf), ("norm", norm)):
-        if not isinstance(v, str):
-            raise TypeError(f"{k}: expected a string, got {type(v).__name__}")
+    _opt_str(material, "material")
+    _str(as_brdf, "as_brdf")
+    _str(norm, "norm")
     return dict(
         json.loads(
             _native.albedo_json(
@@ -111,7 +109,6 @@ def shader(
     >>> "fb_cook_torrance_rgb" in fastbrdf.shader("cook-torrance", d="ggx", metal="gold")
     True
     """
-    for k, v in (("material", material), ("metal", metal)):
-        if v is not None and not isinstance(v, str):
-            raise TypeError(f"{k}: expected a string, got {type(v).__name__}")
+    _opt_str(material, "material")
+    _opt_str(metal, "metal")
     return str(_native.shader(model, _params(model, params), lang, bool(runtime_params), material, metal))

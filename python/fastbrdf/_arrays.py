@@ -3,7 +3,7 @@ text, dtypes, shapes and broadcasting, as the rules of ``fastbrdf``'s docstring 
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Sequence, Tuple, Union
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -18,6 +18,18 @@ _DTYPES = {"f32": np.float32, "f64": np.float64}
 _BELOW_ONE_F32 = np.nextafter(np.float32(1), np.float32(0))
 
 Number = Union[int, float, str]
+
+def _str(x: Any, name: str) -> str:
+    """``x``, a string (else ``TypeError`` naming ``name``)."""
+    if not isinstance(x, str):
+        raise TypeError(f"{name}: expected a string, got {type(x).__name__}")
+    return x
+
+
+def _opt_str(x: Any, name: str) -> Optional[str]:
+    """``x``, ``None`` or a string (else ``TypeError`` naming ``name``)."""
+    return None if x is None else _str(x, name)
+
 
 def _param_text(model: str, name: str, value: Any) -> str:
     """A parameter value as the text the CLI's ``--param NAME=VALUE`` would carry."""

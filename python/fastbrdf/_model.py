@@ -19,6 +19,7 @@ from ._arrays import (
     _broadcast,
     _check_unit_interval,
     _dtype,
+    _opt_str,
     _params,
     _prepare,
     _result,
@@ -44,10 +45,7 @@ class Model:
     ) -> None:
         if not isinstance(id, str):
             raise TypeError(f"model id: expected a string, got {type(id).__name__}")
-        for name, v in (("material", material), ("metal", metal)):
-            if v is not None and not isinstance(v, str):
-                raise TypeError(f"{name}: expected a string, got {type(v).__name__}")
-        self._material, self._metal = material, metal
+        self._material, self._metal = _opt_str(material, "material"), _opt_str(metal, "metal")
         scalars = {k: v for k, v in params.items() if not isinstance(v, np.ndarray) or v.ndim == 0}
         # Per-element values are copied and frozen: a model is a value, so the caller's array
         # changing later (or an ``out=`` aliasing it) must not change the model, its hash or
@@ -256,7 +254,7 @@ class Model:
             cols = [_prepare(a, shape, dtype).reshape(-1) for a in given]
         # Parameter values stay float64 whatever the precision: each element's model is built
         # from the exact value, as ``Model(id, name=value)`` builds it.
-        params = {k: _prepare(a, shape, np.float64).reshape(-1) for k, a in zip(pnames, parrs)}
+        params = self._flat_params(shape)
         flat = target.reshape(-1) if channels == 1 else np.empty(n, dtype=dtype)
         for c, hc in enumerate(self._handles):
             if params:

@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _fastbrdf as _native
-from ._arrays import _params, _triple
+from ._arrays import _opt_str, _params, _triple
 from ._model import Model
 
 __all__ = ["compare", "materials", "metals", "render"]
@@ -57,12 +57,6 @@ def _flag(name: str, v: Any, on_off: bool = False) -> bool:
         return bool(v == "on")
     allowed = "a bool or 'on'/'off'" if on_off else "a bool"
     raise TypeError(f"{name}: expected {allowed}, got {type(v).__name__}")
-
-
-def _opt_str(name: str, s: Any) -> Optional[str]:
-    if s is not None and not isinstance(s, str):
-        raise TypeError(f"{name}: expected a string, got {type(s).__name__}")
-    return s
 
 
 def _size(size: Any, width: Optional[int], height: Optional[int]) -> Tuple[int, int]:
@@ -114,7 +108,7 @@ def _scene(
         "lights": list(lights),
         "floor": _flag("floor", floor),
         "shadows": _flag("shadows", shadows, on_off=True),
-        "env": _opt_str("env", env),
+        "env": _opt_str(env, "env"),
         "env_samples": _int("env_samples", env_samples),
         "mesh": _opt_path("mesh", mesh),
         "texture": _opt_path("texture", texture),
@@ -208,8 +202,8 @@ def render(
     flat = _native.render(
         model,
         _params(model, params),
-        _opt_str("material", material),
-        _opt_str("metal", metal),
+        _opt_str(material, "material"),
+        _opt_str(metal, "metal"),
         scene,
         _flag("gpu", gpu),
     )
@@ -271,11 +265,11 @@ def compare(
         measured = _path(measured, "measured")
     doc, flat = _native.compare_json(
         [m.strip() for m in models],
-        _opt_str("reference", reference),
+        _opt_str(reference, "reference"),
         measured,
         _params(reference or (models[0] if models else ""), params),
-        _opt_str("material", material),
-        _opt_str("metal", metal),
+        _opt_str(material, "material"),
+        _opt_str(metal, "metal"),
         scene,
         float(exposure),
         _flag("films", films),

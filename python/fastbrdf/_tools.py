@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Union
 import numpy as np
 
 from . import _fastbrdf as _native
-from ._arrays import _params, _values
+from ._arrays import _opt_str, _params, _str, _values
 
 __all__ = ["FIT_FAMILIES", "check", "chi2", "fit", "lut", "normalize", "pareto", "reproduce"]
 
@@ -26,16 +26,6 @@ def _bool(x: Any, name: str) -> bool:
     if not isinstance(x, (bool, np.bool_)):
         raise TypeError(f"{name}: expected a bool, got {type(x).__name__}")
     return bool(x)
-
-
-def _str(x: Any, name: str) -> str:
-    if not isinstance(x, str):
-        raise TypeError(f"{name}: expected a string, got {type(x).__name__}")
-    return x
-
-
-def _opt_str(x: Any, name: str) -> Optional[str]:
-    return None if x is None else _str(x, name)
 
 
 def _path(x: Any, name: str) -> Optional[str]:
