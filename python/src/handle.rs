@@ -23,28 +23,6 @@ pub(crate) struct Handle {
     kernel: Option<Kernel>,
     /// The grey spec it was built from (one colour channel).
     spec: ModelSpec,
-    /// The resolved parameters (given values and defaults), as numbers or choices: what
-    /// `Model.__eq__` compares.
-    values: Vec<(&'static str, Value)>,
-}
-
-/// A resolved parameter value as Python sees it.
-#[derive(Clone, Debug)]
-enum Value {
-    Num(f64),
-    Text(String),
-}
-
-impl<'py> IntoPyObject<'py> for &Value {
-    type Target = PyAny;
-    type Output = Bound<'py, PyAny>;
-    type Error = std::convert::Infallible;
-    fn into_pyobject(self, py: Python<'py>) -> Result<Self::Output, Self::Error> {
-        Ok(match self {
-            Value::Num(x) => x.into_pyobject(py)?.into_any(),
-            Value::Text(t) => t.into_pyobject(py)?.into_any(),
-        })
-    }
 }
 
 /// `Model::eval_row` over the rows `r` of columns (the lenient shading rules), precision `T`.
@@ -205,10 +183,22 @@ impl Handle {
         self.id
     }
 
-    /// Every parameter resolved (given values and defaults), `[(name, number or choice)]`.
+    /// Every parameter resolved (given values and defaults), `[(name, number or choice)]`:
+    /// what `Model.__eq__` compares, read from the spec.
     #[getter]
-    fn values(&self) -> Vec<(&'static str, &Value)> {
-        self.values.iter().map(|(k, v)| (*k, v)).collect()
+    fn values<'py>(&self, py: Python<'py>) -> PyResult<Vec<(&'static str, Bound<'py, PyAny>)>> {
+        use fastbrdf::params::Value;
+        let params = self.spec.params().map_err(value_error)?;
+        params
+            .iter()
+            .map(|(k, v)| {
+                let v = match v {
+                    Value::Num(x) => x.into_pyobject(py)?.into_any(),
+                    Value::Text(t) => t.into_pyobject(py)?.into_any(),
+                };
+                Ok((k, v))
+            })
+            .collect()
     }
 
     #[getter]
@@ -426,20 +416,7 @@ impl Handle {
             fastbrdf::Kind::Shadowing => None,
             _ => Some(Kernel::new(spec).map_err(value_error)?),
         };
-        let values = spec
-            .params()
-            .map_err(value_error)?
-            .iter()
-            .map(|(k, v)| {
-                let v = match v {
-                    fastbrdf::params::Value::Num(x) => Value::Num(*x),
-                    fastbrdf::params::Value::Text(t) => Value::Text(t.clone()),
-                };
-                (k, v)
-            })
-            .collect();
         Ok(Self {
-            values,
             id: spec.id(),
             kind: plan.kind(),
             m32: plan.model::<f32>(),
@@ -450,7 +427,6 @@ impl Handle {
     }
 
     /// The grey spec it was built from.
-    #[allow(dead_code)]
     pub(crate) fn model_spec(&self) -> &ModelSpec {
         &self.spec
     }
