@@ -167,6 +167,7 @@ impl MeasuredData {
                 height,
                 spp,
                 shading: Shading::Batch,
+                sampler: fastbrdf_render::render::Sampler::default(),
             };
             let label = self.path.display().to_string();
             let brdf = Arc::clone(&self.brdf) as Arc<dyn RgbBrdf>;

@@ -77,6 +77,7 @@ fn opts() -> Options {
         height: 64,
         spp: 1,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     }
 }
 

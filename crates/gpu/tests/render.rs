@@ -56,6 +56,7 @@ fn opts(w: u32, h: u32, spp: u32) -> Options {
         height: h,
         spp,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     }
 }
 

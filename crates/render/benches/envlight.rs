@@ -44,6 +44,7 @@ fn run(bencher: divan::Bencher, subject: &str, env: bool, threads: usize) {
         height: 512,
         spp: 4,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

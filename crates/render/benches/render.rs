@@ -31,6 +31,7 @@ fn run(id: &str, shading: Shading, threads: usize) {
         height: 1024,
         spp: 1,
         shading,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

@@ -22,6 +22,30 @@ pub enum Shading {
     Scalar,
 }
 
+/// Where the environment light's random numbers come from (direct light uses none: its
+/// primary rays lie on a fixed N x N grid per pixel).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Sampler {
+    /// Owen-scrambled Sobol points (Burley 2020, the `sobol_burley` crate): per primary sample,
+    /// pass `k` of the environment light takes point `k` of a sequence seeded by the sample, so
+    /// that its passes are stratified in every pair of dimensions they use.
+    #[default]
+    Sobol,
+    /// Independent uniforms (a PCG hash of the sample and the pass): the renderer before
+    /// issue 30, kept to measure what stratification buys.
+    Independent,
+}
+
+impl Sampler {
+    /// `sobol` or `independent`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Sampler::Sobol => "sobol",
+            Sampler::Independent => "independent",
+        }
+    }
+}
+
 /// Render options.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
@@ -30,6 +54,8 @@ pub struct Options {
     /// Samples per pixel along each axis (N x N per pixel), 1..=16.
     pub spp: u32,
     pub shading: Shading,
+    /// The environment light's sampler.
+    pub sampler: Sampler,
 }
 
 const TILE: u32 = 16;

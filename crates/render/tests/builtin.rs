@@ -90,6 +90,7 @@ fn the_face_with_the_skin_texture_renders_under_the_sky() {
         height: 64,
         spp: 1,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     let film = render(&scene, &opts, &|_, _| {}).unwrap();
     // The centre (the nose) is lit skin: finite, warm (red over blue).

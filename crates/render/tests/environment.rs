@@ -23,6 +23,7 @@ fn shoot(spec: &SceneSpec, id: &str, params: &[(&str, &str)], size: u32, spp: u3
         height: size,
         spp,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     render(&scene, &o, &|_, _| {}).unwrap()
 }
@@ -185,6 +186,7 @@ fn progress_counts_every_pass() {
         height: 20,
         spp: 1,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     let seen = std::sync::Mutex::new(vec![]);
     render(&scene, &o, &|d, t| seen.lock().unwrap().push((d, t))).unwrap();

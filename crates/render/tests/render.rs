@@ -42,6 +42,7 @@ fn opts(w: u32, h: u32, spp: u32) -> Options {
         height: h,
         spp,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     }
 }
 
@@ -186,6 +187,7 @@ fn batch_and_scalar_shading_agree() {
             &[p],
             Options {
                 shading: Shading::Scalar,
+                sampler: fastbrdf_render::render::Sampler::default(),
                 ..opts(96, 96, 1)
             },
         );

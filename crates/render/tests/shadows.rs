@@ -23,6 +23,7 @@ fn shoot(scene: &Scene, size: u32) -> Film {
         height: size,
         spp: 1,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     render(scene, &o, &|_, _| {}).unwrap()
 }

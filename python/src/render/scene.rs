@@ -186,6 +186,7 @@ pub(crate) fn scene_arg(d: &Bound<'_, PyDict>) -> PyResult<Scene> {
             height,
             spp,
             shading: Shading::Batch,
+            sampler: fastbrdf_render::render::Sampler::default(),
         },
         weights_given,
         albedo_given,

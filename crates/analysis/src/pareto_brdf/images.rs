@@ -53,6 +53,7 @@ impl Images {
             height: self.size,
             spp: 1,
             shading: Shading::Batch,
+            sampler: fastbrdf_render::render::Sampler::default(),
         };
         let mut out = Vec::new();
         for (spec, loaded) in std::iter::once(&self.sphere).chain(self.mesh.as_ref()) {

@@ -76,6 +76,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             height: a.size,
             spp: 3,
             shading: Shading::Batch,
+            sampler: fastbrdf_render::render::Sampler::default(),
         },
         4,
     )?;
@@ -122,6 +123,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         height: cell,
         spp: 2,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     let spec = SceneSpec::new();
     let loaded = &plain;
@@ -154,6 +156,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         height: a.size,
         spp: 3,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     // The face renders sample the environment per primary sample: 2 x 2 of them per pixel.
     let face_opts = Options { spp: 2, ..opts };

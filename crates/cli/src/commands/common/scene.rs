@@ -180,6 +180,7 @@ impl SceneArgs {
                 height,
                 spp: self.spp,
                 shading: Shading::Batch,
+                sampler: fastbrdf_render::render::Sampler::default(),
             },
         ))
     }

@@ -73,6 +73,7 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         height: size,
         spp,
         shading: Shading::Batch,
+        sampler: fastbrdf_render::render::Sampler::default(),
     };
     let Some(_slot) = state.render_slot() else {
         return Ok(Response::error(503, "too many renders waiting; try again"));
