@@ -1,0 +1,100 @@
+"""tools/equal_error.py (issue 30's time-to-equal-error benchmark): its smoke run on two small
+scenes (fastbrdf only) writes the JSON it documents, and each ladder's error falls as the
+samples rise. No timing is asserted: the times are the benchmark's output, not a property."""
+
+import json
+import math
+import os
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+TOOL = ROOT / "tools" / "equal_error.py"
+sys.path.insert(0, str(ROOT / "tools"))
+import equal_error  # noqa: E402
+
+
+def binary():
+    return pathlib.Path(os.environ.get("FASTBRDF_BIN", ROOT / "target" / "debug" / "fastbrdf"))
+
+
+@pytest.fixture(scope="module")
+def smoke(cli, tmp_path_factory):
+    """The --quick run at 24x24 on the sphere under the key light and under the sky."""
+    out = tmp_path_factory.mktemp("equal-error") / "r.json"
+    p = subprocess.run(
+        [sys.executable, str(TOOL), "--quick", "--no-mitsuba", "--size", "24", "--scenes",
+         "sphere-directional", "sphere-sky", "--fastbrdf", str(binary()), "--out-json", str(out)],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert p.returncode == 0, p.stderr
+    return json.loads(out.read_text()), p.stdout
+
+
+def test_the_json_holds_ladders_targets_and_times(smoke):
+    res, stdout = smoke
+    assert res["size"] == [24, 24] and res["cpu"] and res["metric"].startswith("relMSE")
+    assert set(res["scenes"]) == {"sphere-directional", "sphere-sky"}
+    for name, e in res["scenes"].items():
+        d = e["fastbrdf_default"]
+        assert d["samples"] == (64 if name == "sphere-sky" else 4)
+        base = e["renderers"][d["renderer"]]
+        # The target is fastbrdf's own error at its defaults, reached in its measured time.
+        point = next(p for p in base["ladder"] if p["samples"] == d["samples"])
+        assert point["error"] == e["target_error"] > 0
+        assert base["ratio_vs_fastbrdf"] == 1.0
+        for r in e["renderers"].values():
+            for p in r["ladder"]:
+                assert p["time_s"] > 0 and len(p["times_s"]) == res["repeats"]
+                assert math.isfinite(p["error"]) and p["error"] > 0
+        # One row per scene in the table, and the CPU named above it.
+        assert f"| {e['label']} | {d['samples']} spp" in stdout
+    assert res["cpu"] in res["table_markdown"]
+
+
+def test_errors_fall_as_samples_rise(smoke):
+    res, _ = smoke
+    for name, e in res["scenes"].items():
+        for rname, r in e["renderers"].items():
+            lad = sorted(r["ladder"], key=lambda p: p["samples"])
+            assert len(lad) >= 2, (name, rname)
+            errs = [p["error"] for p in lad]
+            assert all(b < a for a, b in zip(errs, errs[1:])), (name, rname, errs)
+            # Roughly 1/samples or faster from the first point to the last (a renderer whose
+            # error stalled against its reference would fail this).
+            assert errs[-1] / errs[0] < 2 * lad[0]["samples"] / lad[-1]["samples"], (name, rname, errs)
+
+
+def test_time_to_error_interpolates_log_log():
+    # error = 0.5 / t exactly: any target's time is 0.5 / target, between points and beyond.
+    ladder = [{"samples": n, "time_s": t, "error": 0.5 / t} for n, t in [(1, 0.1), (4, 0.4), (16, 1.6)]]
+    t, how = equal_error.time_to_error(ladder, 0.5 / 0.8)
+    assert how == "interpolated" and t == pytest.approx(0.8, rel=1e-12)
+    t, how = equal_error.time_to_error(ladder, 0.5 / 5.0)
+    assert how == "extrapolated" and t == pytest.approx(5.0, rel=1e-12)
+    flat = [{"samples": n, "time_s": n, "error": 1.0} for n in (1, 2)]
+    assert equal_error.time_to_error(flat, 0.5)[0] is None
+
+
+def test_rel_mse_and_the_exr_reader(cli, tmp_path):
+    ref = np.full((2, 2, 3), 0.1)
+    x = ref + 0.1
+    assert equal_error.rel_mse(x, ref) == pytest.approx(0.01 / (0.01 + 0.01))
+    # The reader on a 5 x 3 EXR of the renderer's (the sphere in the middle, the background
+    # 0.015 in the corners), and against Mitsuba's reader where it is installed.
+    out = tmp_path / "x.exr"
+    code, _, err = cli("render", "--model", "lambert", "--size", "5x3", "--spp", "1", "--out", str(out))
+    assert code == 0, err
+    img = equal_error.read_exr(out)
+    assert img.shape == (3, 5, 3) and img.dtype == np.float32
+    # The centre pixel sees the sphere lit by the key light, the corners the background 0.015.
+    assert img[0, 0] == pytest.approx([0.015] * 3) and img[1, 2].min() > 0.015
+    try:
+        import mitsuba as mi
+    except ImportError:
+        return
+    np.testing.assert_array_equal(img, np.array(mi.Bitmap(str(out)))[..., :3])
