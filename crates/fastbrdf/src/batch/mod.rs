@@ -31,6 +31,7 @@ pub use crate::math::fast as math;
 
 mod cook_torrance;
 pub mod per_element;
+pub mod sample;
 
 use crate::brdf::cook_torrance::CookTorrance;
 use crate::brdf::phong::LobeBrdf;

@@ -1,0 +1,261 @@
+//! Batched sampling and densities of one BRDF with fixed parameters, in f32, over
+//! structure-of-arrays slices ([`Sampler`]).
+//!
+//! Generic path (every BRDF): the per-element loop is monomorphised over the plan's concrete
+//! family (`plan::with_brdf`, dispatched once per batch, as [`super::Kernel`] does): each
+//! element runs exactly `forms::Scalar::<B>`'s `Brdf::<f32>::sample` / `pdf`, so the values
+//! are the scalar model's bit for bit (tested), without a virtual call per element.
+//!
+//! `u` outside [0, 1): every strategy first clamps it as the scalar sampler does
+//! (`sample::unit_interval`: negative and NaN act as 0, 1 and above as `1 - eps`), so no
+//! value of `u` is an error or gives NaN.
+
+use crate::error::{Error, Result};
+use crate::forms::{BrdfForm, Scalar};
+use crate::model::{self, Kind};
+use crate::plan::{BrdfPlan, Plan, with_brdf};
+use crate::sample::Strategy;
+use rayon::prelude::*;
+
+/// The outputs of [`Sampler::sample`]: `wi` (unit, components x, y, z), the weight
+/// `f(wi, wo) cos_i / pdf` and the solid-angle density of `wi`.
+pub struct SampleOut<'a> {
+    pub wi: [&'a mut [f32]; 3],
+    pub weight: &'a mut [f32],
+    pub pdf: &'a mut [f32],
+}
+
+impl SampleOut<'_> {
+    fn len_ok(&self, n: usize) -> bool {
+        self.wi.iter().all(|s| s.len() == n) && self.weight.len() == n && self.pdf.len() == n
+    }
+}
+
+/// A batch implementation, monomorphised per family.
+trait Imp: Send + Sync {
+    /// `s` is resolved (one of the BRDF's strategies); lengths are checked.
+    fn sample(&self, s: Strategy, wo: [&[f32]; 3], u: [&[f32]; 2], out: SampleOut<'_>);
+    fn pdf(&self, s: Strategy, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]);
+}
+
+/// The generic path: the scalar model's code per element, with the concrete family.
+struct Generic<B>(Scalar<B>);
+
+impl<B: BrdfForm> Imp for Generic<B> {
+    fn sample(&self, s: Strategy, wo: [&[f32]; 3], u: [&[f32]; 2], out: SampleOut<'_>) {
+        let n = out.weight.len();
+        let SampleOut { wi, weight, pdf } = out;
+        let [wx, wy, wz] = wi;
+        let (wx, wy, wz) = (&mut wx[..n], &mut wy[..n], &mut wz[..n]);
+        let (ox, oy, oz, u0, u1) = (
+            &wo[0][..n],
+            &wo[1][..n],
+            &wo[2][..n],
+            &u[0][..n],
+            &u[1][..n],
+        );
+        let pdf = &mut pdf[..n];
+        for i in 0..n {
+            let r = model::Brdf::<f32>::sample(&self.0, [ox[i], oy[i], oz[i]], [u0[i], u1[i]], s);
+            let (w, f, p) = match r {
+                Some(r) => (r.wi, r.weight, r.pdf),
+                None => ([0.0; 3], 0.0, 0.0),
+            };
+            wx[i] = w[0];
+            wy[i] = w[1];
+            wz[i] = w[2];
+            weight[i] = f;
+            pdf[i] = p;
+        }
+    }
+
+    fn pdf(&self, s: Strategy, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]) {
+        let n = out.len();
+        let (ox, oy, oz) = (&wo[0][..n], &wo[1][..n], &wo[2][..n]);
+        let (ix, iy, iz) = (&wi[0][..n], &wi[1][..n], &wi[2][..n]);
+        for i in 0..n {
+            out[i] =
+                model::Brdf::<f32>::pdf(&self.0, [ox[i], oy[i], oz[i]], [ix[i], iy[i], iz[i]], s);
+        }
+    }
+}
+
+fn generic<B: BrdfForm>(b: B) -> Box<dyn Imp> {
+    Box::new(Generic(Scalar(b)))
+}
+
+/// Elements per chunk of the threaded calls (fixed, so the split does not depend on the
+/// thread count; the values would not either: every element is computed alone).
+const PAR_CHUNK: usize = 4096;
+
+/// Batched sampling and densities of one BRDF with fixed parameters, in f32, over
+/// structure-of-arrays slices.
+pub struct Sampler {
+    id: &'static str,
+    plan: BrdfPlan,
+    imp: Box<dyn Imp>,
+}
+
+impl Sampler {
+    /// A BRDF spec (kind brdf; anything else: an error naming the kind, as `Kernel::new`
+    /// does; a coloured spec: an error, build one sampler per channel).
+    pub fn new(spec: &crate::spec::ModelSpec) -> Result<Self> {
+        Self::from_plan(spec.id(), spec.plan()?)
+    }
+
+    /// The sampler of a plan (`id` names it in messages).
+    pub fn from_plan(id: &'static str, plan: &Plan) -> Result<Self> {
+        let Plan::Brdf(b) = plan else {
+            return Err(Error::WrongKind {
+                model: id.into(),
+                expected: Kind::Brdf.name().into(),
+                found: plan.kind().name().into(),
+            });
+        };
+        Ok(Self {
+            id,
+            plan: *b,
+            imp: with_brdf!(b, x => generic(*x)),
+        })
+    }
+
+    /// The model id.
+    pub fn id(&self) -> &'static str {
+        self.id
+    }
+
+    /// The strategies the BRDF supports, its default first (as `Brdf::strategies`).
+    pub fn strategies(&self) -> &'static [Strategy] {
+        self.plan.strategies()
+    }
+
+    /// `s` with `auto` replaced by the default, or `Brdf::resolve`'s message as an error.
+    fn resolve(&self, s: Strategy) -> Result<Strategy> {
+        model::Brdf::<f32>::resolve(&Scalar(self.plan), s).map_err(|reason| Error::Domain {
+            input: "strategy".into(),
+            reason: format!("{reason} ({})", self.id),
+        })
+    }
+
+    fn lengths(n: usize, ins: &[&[f32]], outs_ok: bool) -> Result<()> {
+        if outs_ok && ins.iter().all(|s| s.len() == n) {
+            Ok(())
+        } else {
+            Err(Error::Domain {
+                input: "batch".into(),
+                reason: format!(
+                    "slice lengths differ (inputs {:?}, output {n})",
+                    ins.iter().map(|s| s.len()).collect::<Vec<_>>()
+                ),
+            })
+        }
+    }
+
+    fn check_sample(
+        &self,
+        s: Strategy,
+        wo: &[&[f32]; 3],
+        u: &[&[f32]; 2],
+        out: &SampleOut<'_>,
+    ) -> Result<Strategy> {
+        let n = out.weight.len();
+        Self::lengths(n, &[wo[0], wo[1], wo[2], u[0], u[1]], out.len_ok(n))?;
+        self.resolve(s)
+    }
+
+    fn check_pdf(
+        &self,
+        s: Strategy,
+        wo: &[&[f32]; 3],
+        wi: &[&[f32]; 3],
+        out: &[f32],
+    ) -> Result<Strategy> {
+        Self::lengths(out.len(), &[wo[0], wo[1], wo[2], wi[0], wi[1], wi[2]], true)?;
+        self.resolve(s)
+    }
+
+    /// Per element `i`: draws `wi` given `wo = (wo[0][i], wo[1][i], wo[2][i])` and
+    /// `u = (u[0][i], u[1][i])` by `s` (`Strategy::Auto`: the default), with the meaning of
+    /// `Brdf::<f32>::sample`; no sample there (`None`: `wo` zero, NaN or below `COS_MIN`, or
+    /// the draw below the horizon or of density 0) gives `wi = 0`, `weight = 0`, `pdf = 0`.
+    /// `u` outside [0, 1) is clamped as the scalar sampler does (NaN as 0). Errors: unequal
+    /// lengths, or a strategy the BRDF does not support (`Brdf::resolve`'s message).
+    pub fn sample(
+        &self,
+        s: Strategy,
+        wo: [&[f32]; 3],
+        u: [&[f32]; 2],
+        out: SampleOut<'_>,
+    ) -> Result<()> {
+        let s = self.check_sample(s, &wo, &u, &out)?;
+        self.imp.sample(s, wo, u, out);
+        Ok(())
+    }
+
+    /// Per element: `Brdf::<f32>::pdf(wo, wi, s)` (0 out of the domain). Errors as
+    /// [`Self::sample`].
+    pub fn pdf(
+        &self,
+        s: Strategy,
+        wo: [&[f32]; 3],
+        wi: [&[f32]; 3],
+        out: &mut [f32],
+    ) -> Result<()> {
+        let s = self.check_pdf(s, &wo, &wi, out)?;
+        self.imp.pdf(s, wo, wi, out);
+        Ok(())
+    }
+
+    /// [`Self::sample`] split over rayon's threads in fixed chunks of 4096 elements: the
+    /// same values, bit for bit, whatever the thread count.
+    pub fn sample_par(
+        &self,
+        s: Strategy,
+        wo: [&[f32]; 3],
+        u: [&[f32]; 2],
+        out: SampleOut<'_>,
+    ) -> Result<()> {
+        let s = self.check_sample(s, &wo, &u, &out)?;
+        let SampleOut { wi, weight, pdf } = out;
+        let [wx, wy, wz] = wi;
+        let c = PAR_CHUNK;
+        wx.par_chunks_mut(c)
+            .zip(wy.par_chunks_mut(c))
+            .zip(wz.par_chunks_mut(c))
+            .zip(weight.par_chunks_mut(c))
+            .zip(pdf.par_chunks_mut(c))
+            .enumerate()
+            .for_each(|(k, ((((x, y), z), f), p))| {
+                let (lo, hi) = (k * c, k * c + x.len());
+                let out = SampleOut {
+                    wi: [x, y, z],
+                    weight: f,
+                    pdf: p,
+                };
+                self.imp
+                    .sample(s, wo.map(|w| &w[lo..hi]), u.map(|w| &w[lo..hi]), out);
+            });
+        Ok(())
+    }
+
+    /// [`Self::pdf`] split over rayon's threads in fixed chunks of 4096 elements: the same
+    /// values, bit for bit, whatever the thread count.
+    pub fn pdf_par(
+        &self,
+        s: Strategy,
+        wo: [&[f32]; 3],
+        wi: [&[f32]; 3],
+        out: &mut [f32],
+    ) -> Result<()> {
+        let s = self.check_pdf(s, &wo, &wi, out)?;
+        out.par_chunks_mut(PAR_CHUNK)
+            .enumerate()
+            .for_each(|(k, o)| {
+                let lo = k * PAR_CHUNK;
+                let hi = lo + o.len();
+                self.imp
+                    .pdf(s, wo.map(|x| &x[lo..hi]), wi.map(|x| &x[lo..hi]), o);
+            });
+        Ok(())
+    }
+}
