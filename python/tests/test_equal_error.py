@@ -98,3 +98,31 @@ def test_rel_mse_and_the_exr_reader(cli, tmp_path):
     except ImportError:
         return
     np.testing.assert_array_equal(img, np.array(mi.Bitmap(str(out)))[..., :3])
+
+
+def test_mitsuba_renders_the_same_scenes(cli, tmp_path):
+    """The matched Mitsuba scenes (scalar_rgb: no LLVM needed) converge to fastbrdf's pictures:
+    the key light, camera and material under direct light, and the sky's orientation (half a
+    turn off, the image means differed by 30%)."""
+    try:
+        import mitsuba  # noqa: F401
+    except ImportError:
+        pytest.skip("Mitsuba is not installed (pip install mitsuba==3.9.1)")
+    out = tmp_path / "r.json"
+    p = subprocess.run(
+        [sys.executable, str(TOOL), "--quick", "--size", "24", "--mitsuba-variant", "scalar_rgb",
+         "--scenes", "sphere-directional", "sphere-sky", "--fastbrdf", str(binary()),
+         "--out-json", str(out)],
+        capture_output=True, text=True, timeout=300,
+    )
+    assert p.returncode == 0, p.stderr
+    res = json.loads(out.read_text())
+    assert res["mitsuba"] == f"mitsuba {mitsuba.__version__} scalar_rgb", res["mitsuba"]
+    for name, e in res["scenes"].items():
+        v = e["validation"]
+        # Mitsuba's 1024-sample reference keeps about 1% of noise per pixel under the sky.
+        assert v["rel_diff_of_means"] < 0.01 and v["mean_rel_diff"] < 0.05, (name, v)
+        for smp in ("independent", "multijitter"):
+            lad = e["renderers"][f"mitsuba-{smp}"]["ladder"]
+            errs = [q["error"] for q in sorted(lad, key=lambda q: q["samples"])]
+            assert len(errs) >= 2 and errs[-1] < errs[0] / 4, (name, smp, errs)
