@@ -28,6 +28,7 @@ excluded), the median of --repeats runs, renderers interleaved.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import math
 import os
@@ -202,6 +203,10 @@ class Fastbrdf:
         if scene["env"]:
             a += ["--env", "sky"]
         return a
+
+    def render_seeded(self, scene: Dict[str, Any], extra: List[str], gpu: bool, seed: int) -> Tuple[np.ndarray, float]:
+        """`render` for the ladders, which pass a seed: fastbrdf's renders are deterministic."""
+        return self.render(scene, extra, gpu)
 
     def render(self, scene: Dict[str, Any], extra: List[str], gpu: bool = False) -> Tuple[np.ndarray, float]:
         out = self.tmp / "fastbrdf.exr"
@@ -539,15 +544,20 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
         # The ladders: per renderer, its points in rising sample counts.
         jobs: Dict[str, List[Tuple[int, Callable[[int], Tuple[np.ndarray, float]]]]] = {}
         for cname, pts, samples in configs:
-            jobs[cname] = [(n, lambda seed, a=a: fb.render(sc, a)) for a, n in zip(pts, samples)]
+            jobs[cname] = [(n, functools.partial(fb.render_seeded, sc, a, False)) for a, n in zip(pts, samples)]
         if not sc["env"] and gpu_ok:
             jobs["fastbrdf-gpu"] = [
-                (n * n, lambda seed, n=n: fb.render(sc, ["--spp", str(n)], gpu=True)) for n in L["fb_spp"]
+                (n * n, functools.partial(fb.render_seeded, sc, ["--spp", str(n)], True)) for n in L["fb_spp"]
             ]
         for smp in mi_samplers:
-            jobs[f"mitsuba-{smp}"] = [
-                (n, lambda seed, smp=smp, n=n: mi_obj.render(name, smp, n, seed)) for n in L["mi_spp"]
-            ]
+            assert mi_obj is not None
+            jobs[f"mitsuba-{smp}"] = [(n, functools.partial(mi_obj.render, name, smp, n)) for n in L["mi_spp"]]
+
+        def ref_of(cname: str) -> np.ndarray:
+            r = mi_ref if cname.startswith("mitsuba") else fb_ref
+            assert r is not None
+            return r
+
         # The target: fastbrdf's error at its defaults (spp 2, env-samples 16, default sampler).
         default_name = "fastbrdf-sobol" if (sc["env"] and fb.has_sampler) else "fastbrdf-cpu"
         default_samples = 64 if sc["env"] else 4
@@ -571,8 +581,7 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
                         log(result["gpu_note"])
                         break
                     raise
-                ref = mi_ref if cname.startswith("mitsuba") else fb_ref
-                err = rel_mse(img, ref)
+                err = rel_mse(img, ref_of(cname))
                 meas[(cname, n)] = {"times": [], "errors": [err] if cname.startswith("mitsuba") else []}
                 order.append((cname, n, fn))
                 log(f"{name}: {cname} {n} spp: error {err:.4g}")
@@ -582,9 +591,8 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
         for r in range(repeats):
             for cname, n, fn in order:
                 img, dt = fn(r + 1)
-                ref = mi_ref if cname.startswith("mitsuba") else fb_ref
                 meas[(cname, n)]["times"].append(dt)
-                meas[(cname, n)]["errors"].append(rel_mse(img, ref))
+                meas[(cname, n)]["errors"].append(rel_mse(img, ref_of(cname)))
         renderers: Dict[str, Any] = {}
         for (cname, n), m in meas.items():
             lad = renderers.setdefault(cname, {"ladder": []})["ladder"]
