@@ -620,6 +620,9 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
             log(f"{name}: {cname}: time to target {t if t is None else round(t, 4)} s ({how})")
         entry["renderers"] = renderers
         result["scenes"][name] = entry
+        if opts.out_json:  # after every scene, so that an interrupted run keeps what it measured
+            result["table_markdown"] = table(result)
+            pathlib.Path(opts.out_json).write_text(json.dumps(result, indent=1) + "\n")
     result["table_markdown"] = table(result)
     return result
 
