@@ -173,7 +173,9 @@ fn strategies(s: &Sampler) -> Vec<Strategy> {
 fn sample_and_pdf_are_the_scalar_models_bit_for_bit() {
     let mut checked = 0;
     for (case, (id, p)) in cases().into_iter().enumerate() {
-        let (b, sampler) = build(id, &p);
+        let (b, simd) = build(id, &p);
+        let (_, mut sampler) = build(id, &p);
+        sampler.set_simd(false);
         assert_eq!(sampler.strategies(), b.strategies(), "{id} {p:?}");
         let (wo, u) = inputs(case as u64, 600);
         let n = wo[0].len();
@@ -189,12 +191,21 @@ fn sample_and_pdf_are_the_scalar_models_bit_for_bit() {
             });
             let mut pdf_drawn = vec![-7.0; n];
             let mut pdf_rand = vec![-7.0; n];
+            // The densities of the SIMD path too: the scalar values bit for bit.
+            simd.pdf(s, refs(&wo), refs(&o.wi), &mut pdf_drawn).unwrap();
+            let mut pdf_generic = vec![-7.0; n];
             sampler
-                .pdf(s, refs(&wo), refs(&o.wi), &mut pdf_drawn)
+                .pdf(s, refs(&wo), refs(&wi_rand), &mut pdf_generic)
                 .unwrap();
-            sampler
-                .pdf(s, refs(&wo), refs(&wi_rand), &mut pdf_rand)
+            simd.pdf(s, refs(&wo), refs(&wi_rand), &mut pdf_rand)
                 .unwrap();
+            assert!(
+                pdf_generic
+                    .iter()
+                    .zip(&pdf_rand)
+                    .all(|(a, b)| a.to_bits() == b.to_bits()),
+                "{id} {s}"
+            );
             let got_all = o.bits();
             for i in 0..n {
                 let w = [wo[0][i], wo[1][i], wo[2][i]];
@@ -317,4 +328,212 @@ fn errors_name_the_problem() {
         .err()
         .unwrap();
     assert!(e.to_string().contains("distribution"), "{e}");
+}
+
+/// Cook-Torrance with GGX: the SIMD path of `vndf`.
+fn ggx_cases() -> Vec<Vec<(&'static str, &'static str)>> {
+    vec![
+        vec![("d", "ggx"), ("alpha", "0.3")],
+        vec![("d", "ggx"), ("alpha", "0.005")],
+        vec![("d", "ggx"), ("alpha", "1")],
+        vec![("d", "ggx"), ("alpha_x", "0.1"), ("alpha_y", "0.4")],
+        vec![("d", "ggx"), ("f", "schlick"), ("alpha", "0.2")],
+        vec![
+            ("d", "ggx"),
+            ("g", "smith-ggx-correlated"),
+            ("ms", "kulla-conty"),
+        ],
+    ]
+}
+
+fn brdf_plan(spec: &ModelSpec) -> fastbrdf::plan::BrdfPlan {
+    match spec.plan().unwrap() {
+        fastbrdf::plan::Plan::Brdf(b) => *b,
+        _ => panic!("not a BRDF"),
+    }
+}
+
+/// The SIMD path draws where the scalar f32 sampler draws; its density is the scalar density
+/// at its own `wi` bit for bit, its weight `f cos_i / pdf` there within the eval kernel's
+/// few ulp (1e-5, mixed); its directions and weights are as close to the f64 sampler's as
+/// the scalar f32 sampler's are (within 3 times its largest error plus 2e-6 / 2e-5: the
+/// polynomial `sincos_2pi` in place of libm's, amplified as the f32 path amplifies its own
+/// rounding near the edge of the visible-normal disk).
+#[test]
+fn ggx_vndf_simd_tracks_the_scalar_sampler() {
+    use fastbrdf::plan::BrdfForm;
+    for p in ggx_cases() {
+        let spec = ModelSpec::parse("cook-torrance", &p).unwrap();
+        let (b, sampler) = build("cook-torrance", &p);
+        let Model::Brdf(b64) = spec.model::<f64>().unwrap() else {
+            panic!()
+        };
+        let plan = brdf_plan(&spec);
+        assert!(
+            sampler.simd(Strategy::Auto) && sampler.simd(Strategy::Vndf),
+            "{p:?}"
+        );
+        assert!(!sampler.simd(Strategy::DCos) && !sampler.simd(Strategy::Cosine));
+        let (wo, u) = inputs(5, 60_000);
+        let n = wo[0].len();
+        let mut o = Outs::new(n);
+        sampler
+            .sample(Strategy::Auto, refs(&wo), refs(&u), o.out())
+            .unwrap();
+        // Largest errors against f64: directions and weights, SIMD and scalar f32.
+        let mut worst = [0f64; 4];
+        let mut drawn = 0;
+        for i in 0..n {
+            let w = [wo[0][i], wo[1][i], wo[2][i]];
+            let uu = [u[0][i], u[1][i]];
+            let got = [o.wi[0][i], o.wi[1][i], o.wi[2][i]];
+            let r = b.sample(w, uu, Strategy::Vndf);
+            assert_eq!(
+                r.is_some(),
+                o.pdf[i] != 0.0,
+                "{p:?} wo {w:?} u {uu:?}: {r:?}"
+            );
+            let Some(r) = r else {
+                assert_eq!([got[0], got[1], got[2], o.weight[i]], [0.0; 4]);
+                continue;
+            };
+            drawn += 1;
+            let won = fastbrdf::vec3::normalize(w).unwrap();
+            let pdf = plan.pdf_wi(won, got, Strategy::Vndf);
+            assert_eq!(o.pdf[i].to_bits(), pdf.to_bits(), "{p:?} wo {w:?} u {uu:?}");
+            let want = b.eval(got, won) * got[2] / pdf;
+            let err = (o.weight[i] - want).abs() / want.abs().max(1.0);
+            assert!(
+                err <= 1e-5,
+                "{p:?} wo {w:?} u {uu:?}: weight {} vs {want}",
+                o.weight[i]
+            );
+            let r64 = b64
+                .sample(w.map(f64::from), uu.map(f64::from), Strategy::Vndf)
+                .unwrap();
+            let dir = |x: [f32; 3]| {
+                (0..3)
+                    .map(|k| (x[k] as f64 - r64.wi[k]).abs())
+                    .fold(0.0, f64::max)
+            };
+            for (k, e) in [
+                dir(got),
+                dir(r.wi),
+                (o.weight[i] as f64 - r64.weight).abs(),
+                (r.weight as f64 - r64.weight).abs(),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                worst[k] = worst[k].max(e);
+            }
+        }
+        assert!(drawn > n / 3, "{p:?}: {drawn} of {n}");
+        let [dir_simd, dir32, w_simd, w32] = worst;
+        assert!(
+            dir_simd <= 3.0 * dir32 + 2e-6,
+            "{p:?}: directions {dir_simd:.2e} vs scalar f32 {dir32:.2e}"
+        );
+        assert!(
+            w_simd <= 3.0 * w32 + 2e-5,
+            "{p:?}: weights {w_simd:.2e} vs scalar f32 {w32:.2e}"
+        );
+    }
+}
+
+/// The vectorised `sin(2 pi u)`, `cos(2 pi u)` against f64 on [0, 1].
+#[test]
+fn sincos_2pi_is_within_its_bound() {
+    let mut worst = 0f64;
+    let n = 1 << 20;
+    let mut us: Vec<f32> = (0..=n).map(|i| i as f32 / n as f32).collect();
+    us.extend([
+        0.125,
+        0.25,
+        0.375,
+        0.5,
+        0.625,
+        0.75,
+        0.875,
+        1.0,
+        0.999_999_94,
+        1e-30,
+    ]);
+    us.extend((1..1000).map(|i| 0.25 * (i % 5) as f32 + (i as f32) * 1e-9));
+    for u in us {
+        let (s, c) = fastbrdf::batch::sample::sincos_2pi(u);
+        let (s64, c64) = (std::f64::consts::TAU * u as f64).sin_cos();
+        worst = worst
+            .max((s as f64 - s64).abs())
+            .max((c as f64 - c64).abs());
+        if (4.0 * u).fract() == 0.0 {
+            // Quarter turns are exact.
+            assert!(
+                s == s64.round() as f32 && c == c64.round() as f32,
+                "{u}: {s} {c}"
+            );
+        }
+    }
+    println!("sincos_2pi: largest error {worst:.2e}");
+    assert!(worst <= 1.2e-7, "{worst:e}");
+}
+
+/// The SIMD path's draws follow its density: chi-square against the f64 model's `pdf`
+/// (`chi2::run`, the CI sizes of `tests/sampling.rs`), draws made in one batch.
+#[test]
+fn ggx_vndf_simd_passes_chi_square() {
+    use fastbrdf::chi2::{self, Config};
+    use std::cell::Cell;
+    let cfg = Config::ci();
+    let runs: Vec<(Vec<(&str, &str)>, f64)> = vec![
+        (vec![("d", "ggx"), ("alpha", "0.3")], 0.0),
+        (vec![("d", "ggx"), ("alpha", "0.3")], 45.0),
+        (vec![("d", "ggx"), ("alpha", "0.3")], 80.0),
+        (vec![("d", "ggx"), ("alpha", "0.05")], 45.0),
+        (vec![("d", "ggx"), ("alpha", "1")], 80.0),
+        (
+            vec![("d", "ggx"), ("alpha_x", "0.1"), ("alpha_y", "0.4")],
+            60.0,
+        ),
+    ];
+    let tests = runs.len();
+    for (p, theta) in runs {
+        let spec = ModelSpec::parse("cook-torrance", &p).unwrap();
+        let sampler = Sampler::new(&spec).unwrap();
+        let Model::Brdf(b64) = spec.model::<f64>().unwrap() else {
+            panic!()
+        };
+        let t = f64::to_radians(theta);
+        let wo64 = [t.sin() * 0.5f64.cos(), t.sin() * 0.5f64.sin(), t.cos()];
+        // The same uniform pairs `chi2::run` would pass, in its order.
+        let mut rng = Rng::new(cfg.seed);
+        let n = cfg.samples;
+        let mut u: [Vec<f32>; 2] = [vec![], vec![]];
+        for _ in 0..n {
+            let [a, b] = rng.pair();
+            u[0].push(a as f32);
+            u[1].push(b as f32);
+        }
+        let wo = wo64.map(|c| vec![c as f32; n]);
+        let mut o = Outs::new(n);
+        sampler
+            .sample(Strategy::Vndf, refs(&wo), refs(&u), o.out())
+            .unwrap();
+        let next = Cell::new(0);
+        let out = chi2::run(
+            |_| {
+                let i = next.get();
+                next.set(i + 1);
+                (o.pdf[i] > 0.0).then(|| [0, 1, 2].map(|k| o.wi[k][i] as f64))
+            },
+            |w| b64.pdf(wo64, w, Strategy::Vndf),
+            &cfg,
+            tests,
+        );
+        assert!(
+            out.passed,
+            "{p:?} at {theta} degrees: p = {:.3e}",
+            out.p_value
+        );
+    }
 }

@@ -10,10 +10,15 @@
 //! (`sample::unit_interval`: negative and NaN act as 0, 1 and above as `1 - eps`), so no
 //! value of `u` is an error or gives NaN.
 
+mod ggx;
+
+pub use ggx::sincos_2pi;
+
+use super::{Input, Isa, Kernel};
 use crate::error::{Error, Result};
 use crate::forms::{BrdfForm, Scalar};
 use crate::model::{self, Kind};
-use crate::plan::{BrdfPlan, Plan, with_brdf};
+use crate::plan::{BrdfPlan, DistForm, DistPlan, Plan, with_brdf};
 use crate::sample::Strategy;
 use rayon::prelude::*;
 
@@ -94,7 +99,21 @@ pub struct Sampler {
     id: &'static str,
     plan: BrdfPlan,
     imp: Box<dyn Imp>,
+    /// The SIMD path of `vndf` (Cook-Torrance with GGX), where it applies.
+    simd: Option<Simd>,
+    /// Whether `simd` is used (`set_simd`).
+    simd_on: bool,
 }
+
+/// Cook-Torrance with GGX, `vndf`: the vectorised sampler and the eval kernel of the weight.
+struct Simd {
+    vndf: ggx::Vndf,
+    kernel: Kernel,
+    isa: Isa,
+}
+
+/// Elements per block of the SIMD path (its scratch, the normalised `wo`, stays in L1).
+const BLOCK: usize = 512;
 
 impl Sampler {
     /// A BRDF spec (kind brdf; anything else: an error naming the kind, as `Kernel::new`
@@ -112,16 +131,104 @@ impl Sampler {
                 found: plan.kind().name().into(),
             });
         };
+        let simd = match b {
+            BrdfPlan::CookTorrance(ct) if matches!(ct.d, DistPlan::Ggx(_)) => {
+                // `CookTorrance::micro`: D's slopes, stretched when anisotropic.
+                let mut m = ct.d.sampler().micro;
+                if let Some(a) = &ct.aniso {
+                    m.ax *= a.x_over_y.x.sqrt();
+                    m.ay *= a.y_over_x.x.sqrt();
+                }
+                Some(Simd {
+                    vndf: ggx::Vndf::new(&m),
+                    kernel: Kernel::from_plan(id, plan)?,
+                    isa: Isa::best(),
+                })
+            }
+            _ => None,
+        };
         Ok(Self {
             id,
             plan: *b,
             imp: with_brdf!(b, x => generic(*x)),
+            simd,
+            simd_on: true,
         })
     }
 
     /// The model id.
     pub fn id(&self) -> &'static str {
         self.id
+    }
+
+    /// Whether strategy `s` runs a SIMD path (Cook-Torrance with GGX and `vndf`, or `auto`
+    /// there): its directions and weights then agree with the scalar sampler within the
+    /// documented tolerance instead of bit for bit (module header). Else the generic path.
+    pub fn simd(&self, s: Strategy) -> bool {
+        self.simd_on && self.simd.is_some() && self.resolve(s).ok() == Some(Strategy::Vndf)
+    }
+
+    /// Turns the SIMD path off (the generic path everywhere: the scalar values bit for bit)
+    /// or back on; for tests and measurements.
+    #[doc(hidden)]
+    pub fn set_simd(&mut self, on: bool) {
+        self.simd_on = on;
+    }
+
+    /// The SIMD path for the resolved `s`, if it runs.
+    fn simd_for(&self, s: Strategy) -> Option<&Simd> {
+        self.simd
+            .as_ref()
+            .filter(|_| self.simd_on && s == Strategy::Vndf)
+    }
+
+    /// `sample` on this thread with the resolved strategy, lengths checked.
+    fn sample_seq(&self, s: Strategy, wo: [&[f32]; 3], u: [&[f32]; 2], out: SampleOut<'_>) {
+        let Some(simd) = self.simd_for(s) else {
+            return self.imp.sample(s, wo, u, out);
+        };
+        let n = out.weight.len();
+        let SampleOut { wi, weight, pdf } = out;
+        let [wx, wy, wz] = wi;
+        let mut won = [[0.0f32; BLOCK]; 3];
+        for lo in (0..n).step_by(BLOCK) {
+            let hi = (lo + BLOCK).min(n);
+            let m = hi - lo;
+            let [nx, ny, nz] = &mut won;
+            ggx::sample_block(
+                simd.isa,
+                &simd.vndf,
+                ggx::SampleBlock {
+                    wo: wo.map(|x| &x[lo..hi]),
+                    u: u.map(|x| &x[lo..hi]),
+                    won: [&mut nx[..m], &mut ny[..m], &mut nz[..m]],
+                    wi: [&mut wx[lo..hi], &mut wy[lo..hi], &mut wz[lo..hi]],
+                    pdf: &mut pdf[lo..hi],
+                },
+            );
+            let f = &mut weight[lo..hi];
+            let input = Input::Dirs([
+                &wx[lo..hi],
+                &wy[lo..hi],
+                &wz[lo..hi],
+                &won[0][..m],
+                &won[1][..m],
+                &won[2][..m],
+            ]);
+            // Lengths are equal by construction: the kernel cannot refuse them.
+            if simd.kernel.eval(input, f).is_err() {
+                f.fill(0.0);
+            }
+            ggx::weight_block(simd.isa, &wz[lo..hi], &pdf[lo..hi], f);
+        }
+    }
+
+    /// `pdf` on this thread with the resolved strategy, lengths checked.
+    fn pdf_seq(&self, s: Strategy, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]) {
+        match self.simd_for(s) {
+            Some(simd) => ggx::pdf_block(simd.isa, &simd.vndf, wo, wi, out),
+            None => self.imp.pdf(s, wo, wi, out),
+        }
     }
 
     /// The strategies the BRDF supports, its default first (as `Brdf::strategies`).
@@ -188,7 +295,7 @@ impl Sampler {
         out: SampleOut<'_>,
     ) -> Result<()> {
         let s = self.check_sample(s, &wo, &u, &out)?;
-        self.imp.sample(s, wo, u, out);
+        self.sample_seq(s, wo, u, out);
         Ok(())
     }
 
@@ -202,7 +309,7 @@ impl Sampler {
         out: &mut [f32],
     ) -> Result<()> {
         let s = self.check_pdf(s, &wo, &wi, out)?;
-        self.imp.pdf(s, wo, wi, out);
+        self.pdf_seq(s, wo, wi, out);
         Ok(())
     }
 
@@ -232,8 +339,7 @@ impl Sampler {
                     weight: f,
                     pdf: p,
                 };
-                self.imp
-                    .sample(s, wo.map(|w| &w[lo..hi]), u.map(|w| &w[lo..hi]), out);
+                self.sample_seq(s, wo.map(|w| &w[lo..hi]), u.map(|w| &w[lo..hi]), out);
             });
         Ok(())
     }
