@@ -3,20 +3,29 @@
 //!
 //! The rule. A combination gets its own kernel (`CookTorrance<D, G, F>` with the concrete
 //! families, one fused loop per instruction set) when its shadowing term vectorises
-//! (`ShadowForm::SIMD`; the exact Beckmann Smith terms call libm's `erfc` per lane, so a
-//! kernel of their own would be a scalar loop anyway) and
-//! - (a) G is one of D's own Smith terms, the vectorised forms of the Smith term of D's slope
-//!   distribution (`DistForm::smith` names the exact one): the Beckmann family (`beckmann`,
+//! (`ShadowForm::SIMD`) and
+//! - (a) G is one of D's own Smith terms, the forms of the Smith term of D's slope
+//!   distribution (`DistForm::smith` names the exact one) but the exact Beckmann ones
+//!   (below): the Beckmann family (`beckmann`,
 //!   `beckmann-ct`, `beckmann-pow`, `beckmann-power4/8/16`) with `smith-rational`; `ggx` with
 //!   `smith-ggx`, `smith-ggx-correlated`, `smith-ggx-correlated-fast(-tuned)`,
 //!   `smith-ggx-joint-approx`, `schlick-ggx`; with every Fresnel term; or
 //! - (b) G has no slope distribution (`v-cavity`, `kelemen`, `neumann`: not a Smith term,
 //!   `ShadowForm::ANISO` false), with every D and `f` = `none` or `schlick`.
 //!
+//! The exact Beckmann Smith terms (`smith`, `smith-beckmann-correlated`) vectorise since
+//! issue 30 (`math::fast::erfc`, branch-free, over the `Fast` backends) but take the generic
+//! path: their `erfc` and `exp` dominate, and fused kernels for them (built and timed, the
+//! Beckmann family x both terms x 5 F, 50 more combinations) ran at the generic path's
+//! speed: 8.35 / 8.33 ns (default `cook-torrance`), 8.71 / 8.52 (`smith-beckmann-correlated`),
+//! 8.61 / 8.71 (`f = schlick`) fused / generic, against 346-377 per element (`cargo run
+//! --release -p fastbrdf --example smith_simd`; AVX-512, 4099 pairs, one thread, a 2-core
+//! machine under a load of 6-8).
+//!
 //! That holds every configuration the benches (`benches/seed000.rs`, `fastbrdf bench`'s seed
-//! 000 rows) and `pareto --brdf`'s default table time on a SIMD kernel, its exact reference
-//! (`ggx`, `smith-ggx-correlated`, `dielectric`) and the engines' forms (GGX with its Smith
-//! terms, Schlick or the spherical-Gaussian Schlick). Every other combination (a D with
+//! 000 rows) and `pareto --brdf`'s default table time on a specialised kernel, its exact
+//! reference (`ggx`, `smith-ggx-correlated`, `dielectric`) and the engines' forms (GGX with its
+//! Smith terms, Schlick or the spherical-Gaussian Schlick). Every other combination (a D with
 //! another distribution's Smith term, the exact Beckmann Smith terms, the D-free terms with
 //! the costlier Fresnel forms) runs the generic path: the same formulas, bit for bit
 //! (`tests/kernels.rs`), as vectorised passes over blocks of [`BLOCK`] pairs, each part
@@ -30,10 +39,9 @@
 //! the specialised kernel's. Cost: 1.05-1.11x the specialised kernel's time on the five
 //! specialised configurations of `examples/ct_generic.rs` (geometric mean 1.07 and 1.08 in two
 //! runs; AVX-512, 4099 pairs, a 2-core machine under a load of 7-10: `cargo run --release -p
-//! fastbrdf --example ct_generic`). Where G calls `erfc` the fused kernel was a scalar loop;
-//! the generic path, with set-up, D and F vectorised, ran the default `cook-torrance`
-//! (`beckmann`, `smith`) in 65-186 ns against 204-251 ns before (builds before and after
-//! timed alternately on the same load; the new path's time varied from run to run).
+//! fastbrdf --example ct_generic`). Before issue 30, where G called libm's `erfc`, the
+//! generic path's G pass was a scalar loop (the default `cook-torrance` in 65-186 ns); now
+//! every pass vectorises (above).
 //!
 //! Kernels (loops compiled per instruction set, x3; `tests/kernels.rs` prints the count of
 //! specialised combinations): specialised, (a) 5 Beckmann-family D families x 1 G x 5 F +
@@ -110,8 +118,9 @@ fn specialised(ct: &CookTorrance) -> Option<Box<dyn Imp>> {
     use FresnelPlan as F;
     use ShadowPlan as G;
     Some(match (&ct.d, &ct.g, &ct.f) {
-        // (a) The Beckmann family with its vectorised Smith term (the exact `smith` and
-        // `smith-beckmann-correlated` call `erfc`: generic).
+        // (a) The Beckmann family with its rational Smith term (the exact `smith` and
+        // `smith-beckmann-correlated` vectorise too, but run the generic path at the same
+        // speed: module header).
         (D::Beckmann(d), G::SmithRational(g), _) => every_f!(ct, d, g),
         (D::BeckmannPow(d), G::SmithRational(g), _) => every_f!(ct, d, g),
         (D::BeckmannPower4(d), G::SmithRational(g), _) => every_f!(ct, d, g),

@@ -28,8 +28,8 @@ pub trait Math<T: Real> {
     fn exp2(x: T) -> T;
     fn log2(x: T) -> T;
     fn acos(x: T) -> T;
-    /// The complementary error function (no vectorised version: `Fast` calls libm, so a
-    /// family that needs it says so with `ShadowForm::SIMD = false`).
+    /// The complementary error function (`Fast`: the branch-free [`fast::erfc`], which
+    /// vectorises; `Exact`: libm's).
     fn erfc(x: T) -> T;
     /// `exp2(x)` for `x <= 0` (a NaN gives NaN or 0): the vector backends skip the overflow
     /// and NaN branches.
@@ -119,7 +119,7 @@ impl Math<f32> for Fast {
     }
     #[inline(always)]
     fn erfc(x: f32) -> f32 {
-        libm::erfcf(x)
+        math::erfc(x)
     }
     #[inline(always)]
     fn madd(a: f32, b: f32, c: f32) -> f32 {
@@ -177,7 +177,7 @@ impl Math<f32> for FastFma {
     }
     #[inline(always)]
     fn erfc(x: f32) -> f32 {
-        libm::erfcf(x)
+        fast::fma::erfc(x)
     }
     #[inline(always)]
     fn madd(a: f32, b: f32, c: f32) -> f32 {

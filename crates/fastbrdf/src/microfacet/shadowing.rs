@@ -9,14 +9,20 @@
 //!   (Walter et al. 2007, eq. 25-27). We compute `erf(a) - 1 = -erfc(a)` to avoid cancellation.
 //!   Two-sided (with `cos_l`): the separable `G1(v) G1(l)` (Mitsuba 3's convention).
 //!   Cost per G1: 3 mul, 2 add, 3 div, 1 sqrt, 2 transcendental (erfc, exp).
+//!   Batch kernels (issue 30): the same formula over the `Fast` backend, whose branch-free
+//!   `erfc` (`math::fast::erfc`, <= 4 f32 epsilons) vectorises, so both exact Beckmann terms
+//!   run SIMD. No cancellation matters there: for large `a` the two terms of `Lambda` cancel,
+//!   but `Lambda < 3e-3` from `a = 2` and G1 = 1 / (1 + Lambda) needs only its absolute
+//!   error (<= 4 epsilons of `erfc(a) / 2`); G1 against f64 over `a`: see
+//!   `tests/batch_smith.rs`.
 //! - `smith-rational`: Walter's rational fit, `G1 = (3.535 a + 2.181 a^2) / (1 + 2.276 a +
 //!   2.577 a^2)` for `a < 1.6`, else 1 (Walter et al. 2007, eq. 27; Mitsuba 3 uses it for
 //!   Beckmann). Documented error against `smith`: see `INFO_RATIONAL`. Cost per G1: 6 mul,
 //!   3 add, 2 div, 1 sqrt.
 //! - `smith-beckmann-correlated`: the height-correlated Smith term for Beckmann,
 //!   `G = 1 / (1 + Lambda(v) + Lambda(l))` with `smith`'s exact `Lambda` (Heitz 2014, eq. 99);
-//!   one-sided (no `cos_l`): `G1`, as `smith`'s (`Lambda = 0` at `cos >= 1`). Not vectorised
-//!   (libm's `erfc`, as `smith`). Cost: 8 mul, 8 add, 5 div, 2 sqrt, 4 transcendental.
+//!   one-sided (no `cos_l`): `G1`, as `smith`'s (`Lambda = 0` at `cos >= 1`). Cost: 8 mul,
+//!   8 add, 5 div, 2 sqrt, 4 transcendental.
 //!   Exact model: no error bound; f32 against f64 1.5e-7 measured (documented 1e-6).
 //!
 //! Parameters: `alpha` in [0.005, 1] (default 0.3) for the Smith terms; the V-cavity has none.
@@ -171,17 +177,32 @@ impl Smith {
 impl ShadowForm for Smith {
     const ANISO: bool = true;
     const WGSL: &'static str = include_str!("shadowing.wgsl");
-    const SIMD: bool = false;
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
-        separable(cos_v, cos_l, |c| {
-            T::one() / (T::one() + beckmann_lambda::<T, M>(self.alpha.t::<T>(), c))
-        })
+        // `separable`'s operations, without its closures: LLVM left these (erfc's polynomial
+        // inside) out of line, outside the kernels' instruction sets, calling `fmaf`.
+        let alpha = self.alpha.t::<T>();
+        smith_g1_side::<T, M>(alpha, cos_v) * smith_g1_side::<T, M>(alpha, cos_l)
     }
     fn wgsl(&self, v: &str, l: &str, _h: &str, _vh: &str, e: &Emit) -> String {
         let a = e.kx(self.alpha, "p_alpha", &["alpha"]);
         format!("fb_g1_smith({v}, {a}) * fb_g1_smith({l}, {a})")
     }
+}
+
+/// One side of `smith`: `1 / (1 + Lambda)`, 1 at `cos >= 1` (as `separable`'s side).
+#[inline(always)]
+fn smith_g1_side<T: Real, M: Math<T>>(alpha: T, cos: T) -> T {
+    let g = T::one() / (T::one() + beckmann_lambda::<T, M>(alpha, cos));
+    if cos >= T::one() { T::one() } else { g }
+}
+
+/// `Lambda` of one side of `smith-beckmann-correlated`: 0 at `cos >= 1` (normal incidence,
+/// and the one-sided term's +inf).
+#[inline(always)]
+fn lambda_side<T: Real, M: Math<T>>(alpha: T, cos: T) -> T {
+    let x = beckmann_lambda::<T, M>(alpha, cos);
+    if cos >= T::one() { T::zero() } else { x }
 }
 
 /// Beckmann's exact Smith `Lambda` at `cos` in (0, 1): `(exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2`,
@@ -214,17 +235,16 @@ impl SmithBeckmannCorrelated {
 impl ShadowForm for SmithBeckmannCorrelated {
     const ANISO: bool = true;
     const WGSL: &'static str = include_str!("shadowing.wgsl");
-    const SIMD: bool = false;
     #[inline(always)]
     fn g_pair<T: Real, M: Math<T>>(&self, cos_v: T, cos_l: T, _cos_h: T, _cos_vh: T) -> T {
         let alpha = self.alpha.t::<T>();
-        // Lambda = 0 at cos >= 1 (normal incidence, and the one-sided term's +inf).
-        let lambda = |c: T| {
-            let x = beckmann_lambda::<T, M>(alpha, c);
-            if c >= T::one() { T::zero() } else { x }
-        };
         // 1 + (Lv + Ll): symmetric to the last bit, so Cook-Torrance stays exactly reciprocal.
-        T::one() / (T::one() + (lambda(cos_v) + lambda(cos_l)))
+        // (Functions, not closures: see `Smith::g_pair`.)
+        let (lv, ll) = (
+            lambda_side::<T, M>(alpha, cos_v),
+            lambda_side::<T, M>(alpha, cos_l),
+        );
+        T::one() / (T::one() + (lv + ll))
     }
     fn wgsl(&self, v: &str, l: &str, _h: &str, _vh: &str, e: &Emit) -> String {
         let a = e.kx(self.alpha, "p_alpha", &["alpha"]);
