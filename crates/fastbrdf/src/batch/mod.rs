@@ -17,8 +17,8 @@
 //! fast elementary functions' few ulp.
 //!
 //! Standalone shadowing terms take several cosines: no kernel (an error). Cook-Torrance with
-//! the exact Smith term calls libm's `erfc` per element: `Kernel::simd()` is false and
-//! `Kernel::isa()` is `Isa::Scalar` for it.
+//! the exact Beckmann Smith terms vectorises too: their `erfc` is `math::fast::erfc`
+//! (branch-free, <= 4 f32 epsilons; issue 30).
 //!
 //! Cook-Torrance (`cook_torrance`): a fused kernel per (D, G, F) only for the combinations of
 //! its rule (each D with its own vectorised Smith terms, any F; the D-free shadowing terms
