@@ -111,17 +111,32 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
     nodes: Vec<Node>,
     order: Vec<u32>,
+    /// Per triangle in `order`'s order: the first vertex and the two edges from it
+    /// (Moller-Trumbore's inputs), so a leaf's triangles are read contiguously instead of
+    /// through two indirections (`order`, then `triangles` and `positions`).
+    tris: Vec<[Vec3; 3]>,
 }
 
-/// Entries of the traversal stack (`TriMesh::hit`, and the GPU renderer's shadow rays, which
-/// use the same size). A depth-first walk holds at most depth + 1 entries, and the median
-/// split's depth is at most ceil(log2(ceil(n / LEAF))) + 1 whatever the triangles (it halves
-/// the count, so coincident or overlapping triangles cannot make it deeper): 31 for 2^32
-/// triangles, so the stack never fills.
+/// Entries of the traversal stack (`TriMesh::hit` and `TriMesh::occluded`, and the GPU
+/// renderer's shadow rays, which use the same size). A depth-first walk that pushes both
+/// children of a popped node (the GPU's) holds at most depth + 1 entries; the ordered walk
+/// (`TriMesh::hit`, which pushes only the farther child) at most depth. The build keeps the
+/// depth (edges from the root to a leaf) at most [`MAX_DEPTH`] = 62 for ANY input of up to
+/// 2^32 triangles, so the stack never fills; see [`TriMesh::new`] for the argument.
 pub const BVH_STACK: usize = 64;
+
+/// Largest depth of the BVH (edges from the root to the deepest leaf): depth + 1 entries fit
+/// in [`BVH_STACK`].
+pub const MAX_DEPTH: usize = BVH_STACK - 2;
 
 /// Most triangles in a leaf.
 pub const LEAF: usize = 4;
+
+/// SAH bins along the longest axis of a node's triangle centroids.
+const BINS: usize = 16;
+
+/// Cost of visiting an inner node (its two slab tests), relative to one triangle test.
+const TRAVERSAL_COST: f32 = 1.0;
 
 /// A BVH node (public for the GPU renderer, which uploads the tree for its shadow rays).
 #[derive(Clone, Copy, Debug)]
@@ -133,59 +148,171 @@ pub struct Node {
     pub count: u32,
 }
 
-impl TriMesh {
-    /// Builds the BVH (median split on the longest axis of the node's bounds, by centroid,
-    /// leaves of up to [`LEAF`] triangles). The split is at the median index, not a position,
-    /// so each child holds half the triangles even when their centroids coincide (stacked
-    /// copies): the depth is logarithmic in the count (see [`BVH_STACK`]).
-    pub fn new(
-        positions: Vec<Vec3>,
-        normals: Vec<Vec3>,
-        uvs: Vec<Vec2>,
-        triangles: Vec<[u32; 3]>,
-    ) -> Self {
-        let mut m = Self {
-            positions,
-            normals,
-            uvs,
-            triangles,
-            nodes: Vec::new(),
-            order: Vec::new(),
-        };
-        m.order = (0..m.triangles.len() as u32).collect();
-        let n = m.order.len();
-        m.nodes.push(Node {
-            lo: Vec3::ZERO,
-            hi: Vec3::ZERO,
-            start: 0,
-            count: 0,
-        });
-        m.build(0, 0, n);
-        m
-    }
+const EMPTY: Node = Node {
+    lo: Vec3::ZERO,
+    hi: Vec3::ZERO,
+    start: 0,
+    count: 0,
+};
 
-    fn tri_bounds(&self, t: u32) -> (Vec3, Vec3) {
-        let [a, b, c] = self.triangles[t as usize].map(|i| self.positions[i as usize]);
-        (a.min(b).min(c), a.max(b).max(c))
-    }
+/// The median split's height (edges) over `n` triangles: 0 for a leaf (n <= LEAF), else
+/// ceil(log2(ceil(n / LEAF))), as each split leaves at most ceil(n / 2) on either side
+/// (ceil(ceil(n / LEAF) / 2) = ceil(ceil(n / 2) / LEAF), so each level lowers the log by one).
+fn median_height(n: usize) -> usize {
+    let leaves = n.div_ceil(LEAF).max(1);
+    leaves.next_power_of_two().trailing_zeros() as usize
+}
 
-    fn build(&mut self, node: usize, start: usize, end: usize) {
+/// Surface area of a box (half of it; only ratios matter).
+fn half_area(lo: Vec3, hi: Vec3) -> f32 {
+    let e = (hi - lo).max(Vec3::ZERO);
+    e.x * e.y + e.y * e.z + e.z * e.x
+}
+
+/// Builder state: per-triangle bounds and centroids, indexed by triangle.
+struct Build<'a> {
+    bounds: &'a [(Vec3, Vec3)],
+    centroids: &'a [Vec3],
+    order: &'a mut [u32],
+    nodes: Vec<Node>,
+    /// [`MAX_DEPTH`] (smaller in a unit test of the cap).
+    max_depth: usize,
+}
+
+impl Build<'_> {
+    fn build(&mut self, node: usize, start: usize, end: usize, depth: usize) {
         let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        for i in start..end {
-            let (a, b) = self.tri_bounds(self.order[i]);
+        let (mut clo, mut chi) = (lo, hi);
+        for &t in &self.order[start..end] {
+            let (a, b) = self.bounds[t as usize];
             lo = lo.min(a);
             hi = hi.max(b);
+            let c = self.centroids[t as usize];
+            clo = clo.min(c);
+            chi = chi.max(c);
         }
-        if end - start <= LEAF {
-            self.nodes[node] = Node {
-                lo,
-                hi,
-                start: start as u32,
-                count: (end - start) as u32,
-            };
+        let n = end - start;
+        let leaf = Node {
+            lo,
+            hi,
+            start: start as u32,
+            count: n as u32,
+        };
+        if n <= 1 {
+            self.nodes[node] = leaf;
             return;
         }
-        let ext = hi - lo;
+        // SAH only while both children could still finish by median splits within MAX_DEPTH
+        // (each holds at most n - 1 triangles); otherwise the median split, which keeps
+        // depth + median_height(n) <= MAX_DEPTH (see `TriMesh::new`).
+        let sah = depth + 1 + median_height(n - 1) <= self.max_depth;
+        let mid = match sah
+            .then(|| self.sah(start, end, lo, hi, clo, chi))
+            .flatten()
+        {
+            Some(Some(mid)) => mid,
+            // A leaf is cheaper, the centroids coincide, or SAH is off: a leaf if allowed.
+            _ if n <= LEAF => {
+                self.nodes[node] = leaf;
+                return;
+            }
+            _ => self.median(start, end, clo, chi),
+        };
+        let left = self.nodes.len();
+        self.nodes.push(EMPTY);
+        self.nodes.push(EMPTY);
+        self.nodes[node] = Node {
+            lo,
+            hi,
+            start: left as u32,
+            count: 0,
+        };
+        self.build(left, start, mid, depth + 1);
+        self.build(left + 1, mid, end, depth + 1);
+    }
+
+    /// The binned SAH decision for `order[start..end]` (bounds `lo..hi`, centroid bounds
+    /// `clo..chi`): `Some(Some(mid))` after partitioning at the cheapest bin boundary,
+    /// `Some(None)` when a leaf is cheaper than any split, `None` when the centroids coincide
+    /// (no bin boundary separates them).
+    fn sah(
+        &mut self,
+        start: usize,
+        end: usize,
+        lo: Vec3,
+        hi: Vec3,
+        clo: Vec3,
+        chi: Vec3,
+    ) -> Option<Option<usize>> {
+        let ext = chi - clo;
+        let axis = if ext.x >= ext.y && ext.x >= ext.z {
+            0
+        } else if ext.y >= ext.z {
+            1
+        } else {
+            2
+        };
+        if !(ext[axis] > 0.0) {
+            return None;
+        }
+        let (base, scale) = (clo[axis], BINS as f32 / ext[axis]);
+        // `as` saturates (and maps NaN to 0), so every centroid lands in 0..BINS.
+        let bin = |c: Vec3| (((c[axis] - base) * scale) as usize).min(BINS - 1);
+        let empty = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+        let mut bins = [(0usize, empty); BINS];
+        for &t in &self.order[start..end] {
+            let b = &mut bins[bin(self.centroids[t as usize])];
+            let (a, z) = self.bounds[t as usize];
+            b.0 += 1;
+            b.1 = (b.1.0.min(a), b.1.1.max(z));
+        }
+        // Right-to-left sweep: area and count right of each boundary.
+        let mut right = [(0usize, 0.0f32); BINS];
+        let (mut count, mut bx) = (0, empty);
+        for i in (1..BINS).rev() {
+            count += bins[i].0;
+            bx = (bx.0.min(bins[i].1.0), bx.1.max(bins[i].1.1));
+            right[i] = (count, half_area(bx.0, bx.1));
+        }
+        let (mut count, mut bx) = (0, empty);
+        let mut best = (f32::INFINITY, 0);
+        for i in 0..BINS - 1 {
+            count += bins[i].0;
+            bx = (bx.0.min(bins[i].1.0), bx.1.max(bins[i].1.1));
+            let (rc, ra) = right[i + 1];
+            if count == 0 || rc == 0 {
+                continue;
+            }
+            let cost = count as f32 * half_area(bx.0, bx.1) + rc as f32 * ra;
+            if cost < best.0 {
+                best = (cost, i);
+            }
+        }
+        let n = end - start;
+        let area = half_area(lo, hi);
+        if !(best.0 < f32::INFINITY) {
+            return None;
+        }
+        if n <= LEAF && n as f32 * area <= TRAVERSAL_COST * area + best.0 {
+            return Some(None);
+        }
+        // Partition: bins 0..=best.1 to the left.
+        let (mut i, mut j) = (start, end);
+        while i < j {
+            if bin(self.centroids[self.order[i] as usize]) <= best.1 {
+                i += 1;
+            } else {
+                j -= 1;
+                self.order.swap(i, j);
+            }
+        }
+        Some(Some(i))
+    }
+
+    /// Splits `order[start..end]` at its middle index, by centroid along the centroid bounds'
+    /// longest axis: each side gets half the triangles whatever their positions.
+    fn median(&mut self, start: usize, end: usize, clo: Vec3, chi: Vec3) -> usize {
+        let ext = chi - clo;
         let axis = if ext.x >= ext.y && ext.x >= ext.z {
             0
         } else if ext.y >= ext.z {
@@ -194,40 +321,118 @@ impl TriMesh {
             2
         };
         let mid = (start + end) / 2;
-        let centroid = |m: &Self, t: u32| {
-            let (a, b) = m.tri_bounds(t);
-            (a + b)[axis]
-        };
-        let mut slice: Vec<u32> = self.order[start..end].to_vec();
-        slice.sort_by(|&a, &b| centroid(self, a).total_cmp(&centroid(self, b)));
-        self.order[start..end].copy_from_slice(&slice);
-        let left = self.nodes.len();
-        self.nodes.push(Node {
-            lo: Vec3::ZERO,
-            hi: Vec3::ZERO,
-            start: 0,
-            count: 0,
+        let c = self.centroids;
+        self.order[start..end].select_nth_unstable_by(mid - start, |&a, &b| {
+            c[a as usize][axis].total_cmp(&c[b as usize][axis])
         });
-        self.nodes.push(Node {
-            lo: Vec3::ZERO,
-            hi: Vec3::ZERO,
-            start: 0,
-            count: 0,
-        });
-        self.nodes[node] = Node {
-            lo,
-            hi,
-            start: left as u32,
-            count: 0,
+        mid
+    }
+}
+
+/// Entry and exit distances of `r` (with `inv` = 1 / r.d) through a node's box, clipped to
+/// (t_min, t_max); `None` when it misses. The exit is widened by 2 gamma(3) (PBRT's bound on
+/// the slab test's rounding), so a box is never missed where a triangle inside it is hit.
+#[inline(always)]
+fn slab(n: &Node, o: Vec3, inv: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
+    const WIDEN: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+    let t0 = (n.lo - o) * inv;
+    let t1 = (n.hi - o) * inv;
+    let tn = t0.min(t1).max_element().max(t_min);
+    let tf = (t0.max(t1).min_element() * WIDEN).min(t_max);
+    (tn <= tf).then_some(tn)
+}
+
+impl TriMesh {
+    /// Builds the BVH: binned SAH (16 bins along the longest axis of the node's triangle
+    /// centroids, leaves of up to [`LEAF`] triangles where a leaf is cheaper than any split),
+    /// falling back to a median split near the depth limit.
+    ///
+    /// Depth bound, for ANY input (coincident triangles, stacked copies, up to 2^32
+    /// triangles): let h(n) = ceil(log2(ceil(n / LEAF))) (0 for n <= LEAF) be the height of
+    /// a median split of n triangles (split at the middle index, not a position, so each side
+    /// holds at most ceil(n / 2) even where centroids coincide, and h(ceil(n / 2)) = h(n) - 1).
+    /// Invariant: a node at depth d with n triangles has d + h(n) <= MAX_DEPTH = 62. At the
+    /// root d = 0 and h(n) <= 30. A node takes a SAH split only if d + 1 + h(n - 1) <=
+    /// MAX_DEPTH (each non-empty side holds at most n - 1); otherwise the median split gives
+    /// children d + 1 + h(n) - 1. So every leaf is at depth <= 62 and a walk's stack holds at
+    /// most 63 <= [`BVH_STACK`] entries. SAH stops only on pathological inputs (a 2^23-triangle
+    /// mesh has h = 21, so SAH runs to depth 41). Building costs O(n) per level: O(n log n)
+    /// for balanced splits, O(n * 62) at worst.
+    pub fn new(
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        uvs: Vec<Vec2>,
+        triangles: Vec<[u32; 3]>,
+    ) -> Self {
+        Self::with_max_depth(positions, normals, uvs, triangles, MAX_DEPTH)
+    }
+
+    /// [`TriMesh::new`] with the depth limit `max_depth` (>= h(n), see there).
+    fn with_max_depth(
+        positions: Vec<Vec3>,
+        normals: Vec<Vec3>,
+        uvs: Vec<Vec2>,
+        triangles: Vec<[u32; 3]>,
+        max_depth: usize,
+    ) -> Self {
+        let mut m = Self {
+            positions,
+            normals,
+            uvs,
+            triangles,
+            nodes: Vec::new(),
+            order: Vec::new(),
+            tris: Vec::new(),
         };
-        self.build(left, start, mid);
-        self.build(left + 1, mid, end);
+        let n = m.triangles.len();
+        let bounds: Vec<(Vec3, Vec3)> = (0..n as u32).map(|t| m.tri_bounds(t)).collect();
+        let centroids: Vec<Vec3> = bounds.iter().map(|&(a, b)| 0.5 * (a + b)).collect();
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        let mut b = Build {
+            bounds: &bounds,
+            centroids: &centroids,
+            order: &mut order,
+            nodes: vec![EMPTY],
+            max_depth,
+        };
+        b.build(0, 0, n, 0);
+        m.nodes = b.nodes;
+        m.order = order;
+        m.tris = m
+            .order
+            .iter()
+            .map(|&t| {
+                let [a, b, c] = m.triangles[t as usize].map(|i| m.positions[i as usize]);
+                [a, b - a, c - a]
+            })
+            .collect();
+        m
+    }
+
+    fn tri_bounds(&self, t: u32) -> (Vec3, Vec3) {
+        let [a, b, c] = self.triangles[t as usize].map(|i| self.positions[i as usize]);
+        (a.min(b).min(c), a.max(b).max(c))
     }
 
     /// The BVH's nodes (the root first; see [`Node`]) and the triangle order its leaves index
     /// into, as [`TriMesh::hit`] traverses them (the GPU renderer's shadow rays use them too).
     pub fn bvh(&self) -> (&[Node], &[u32]) {
         (&self.nodes, &self.order)
+    }
+
+    /// The BVH's depth: edges from the root to the deepest leaf (at most [`MAX_DEPTH`]).
+    pub fn depth(&self) -> usize {
+        let mut depth = 0;
+        let mut todo = vec![(0usize, 0usize)];
+        while let Some((i, d)) = todo.pop() {
+            depth = depth.max(d);
+            let n = self.nodes[i];
+            if n.count == 0 && !self.triangles.is_empty() {
+                todo.push((n.start as usize, d + 1));
+                todo.push((n.start as usize + 1, d + 1));
+            }
+        }
+        depth
     }
 
     /// Axis-aligned bounds of the mesh.
@@ -241,37 +446,66 @@ impl TriMesh {
     }
 
     /// [`TriMesh::intersect`], with the texture coordinates interpolated only when `uv` is set
-    /// (zero otherwise).
+    /// (zero otherwise). Ordered traversal: of an inner node's children the nearer box is
+    /// visited first and the farther one pushed with its entry distance, skipped when popped
+    /// if a hit nearer than that entry was found meanwhile.
     pub fn hit(&self, r: &Ray, t_min: f32, mut t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
+        if self.triangles.is_empty() {
+            return None;
+        }
         let inv = r.d.recip();
-        let mut best: Option<(f32, u32, f32, f32)> = None;
-        let mut stack = [0u32; BVH_STACK];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let node = self.nodes[stack[sp] as usize];
-            // Slab test.
-            let t0 = (node.lo - r.o) * inv;
-            let t1 = (node.hi - r.o) * inv;
-            let tn = t0.min(t1).max_element().max(t_min);
-            let tf = t0.max(t1).min_element().min(t_max);
-            if tn > tf {
-                continue;
-            }
-            if node.count > 0 {
-                for &tri in &self.order[node.start as usize..(node.start + node.count) as usize] {
-                    if let Some((t, u, v)) = self.hit_triangle(tri, r, t_min, t_max) {
+        slab(&self.nodes[0], r.o, inv, t_min, t_max)?;
+        let mut best: Option<(f32, usize, f32, f32)> = None;
+        let mut stack = [(0u32, 0.0f32); BVH_STACK];
+        let mut sp = 0;
+        let mut node = 0u32;
+        'walk: loop {
+            let nd = &self.nodes[node as usize];
+            if nd.count > 0 {
+                let first = nd.start as usize;
+                for i in first..first + nd.count as usize {
+                    if let Some((t, u, v)) = hit_triangle(&self.tris[i], r, t_min, t_max) {
                         t_max = t;
-                        best = Some((t, tri, u, v));
+                        best = Some((t, i, u, v));
                     }
                 }
-            } else if sp + 2 <= stack.len() {
-                stack[sp] = node.start;
-                stack[sp + 1] = node.start + 1;
-                sp += 2;
+            } else {
+                let (l, rt) = (nd.start, nd.start + 1);
+                let hl = slab(&self.nodes[l as usize], r.o, inv, t_min, t_max);
+                let hr = slab(&self.nodes[rt as usize], r.o, inv, t_min, t_max);
+                match (hl, hr) {
+                    (Some(a), Some(b)) => {
+                        let (near, far, t_far) = if a <= b { (l, rt, b) } else { (rt, l, a) };
+                        if sp < BVH_STACK {
+                            stack[sp] = (far, t_far);
+                            sp += 1;
+                        }
+                        node = near;
+                        continue;
+                    }
+                    (Some(_), None) => {
+                        node = l;
+                        continue;
+                    }
+                    (None, Some(_)) => {
+                        node = rt;
+                        continue;
+                    }
+                    (None, None) => {}
+                }
             }
+            while sp > 0 {
+                sp -= 1;
+                let (n, t_near) = stack[sp];
+                if t_near <= t_max {
+                    node = n;
+                    continue 'walk;
+                }
+            }
+            break;
         }
-        let (t, tri, u, v) = best?;
+        let (t, i, u, v) = best?;
+        let tri = self.order[i];
         let [a, b, c] = self.triangles[tri as usize];
         let w = 1.0 - u - v;
         let n = (self.normals[a as usize] * w
@@ -293,34 +527,143 @@ impl TriMesh {
         Some((t, n, uv))
     }
 
+    /// Whether any triangle is hit with t in (t_min, t_max): a shadow ray, which stops at the
+    /// first hit found rather than the nearest.
+    pub fn occluded(&self, r: &Ray, t_min: f32, t_max: f32) -> bool {
+        if self.triangles.is_empty() {
+            return false;
+        }
+        let inv = r.d.recip();
+        if slab(&self.nodes[0], r.o, inv, t_min, t_max).is_none() {
+            return false;
+        }
+        let mut stack = [0u32; BVH_STACK];
+        let mut sp = 0;
+        let mut node = 0u32;
+        loop {
+            let nd = &self.nodes[node as usize];
+            if nd.count > 0 {
+                let first = nd.start as usize;
+                let tris = &self.tris[first..first + nd.count as usize];
+                if tris
+                    .iter()
+                    .any(|t| hit_triangle(t, r, t_min, t_max).is_some())
+                {
+                    return true;
+                }
+            } else {
+                let (l, rt) = (nd.start, nd.start + 1);
+                let hl = slab(&self.nodes[l as usize], r.o, inv, t_min, t_max).is_some();
+                let hr = slab(&self.nodes[rt as usize], r.o, inv, t_min, t_max).is_some();
+                if hl || hr {
+                    if hl && hr && sp < BVH_STACK {
+                        stack[sp] = rt;
+                        sp += 1;
+                    }
+                    node = if hl { l } else { rt };
+                    continue;
+                }
+            }
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            node = stack[sp];
+        }
+    }
+
     /// The unit geometric normal of triangle `tri` (by its winding).
     pub fn face_normal(&self, tri: u32) -> Vec3 {
         let [a, b, c] = self.triangles[tri as usize].map(|i| self.positions[i as usize]);
         (b - a).cross(c - a).normalize_or_zero()
     }
+}
 
-    /// Moller-Trumbore.
-    fn hit_triangle(&self, tri: u32, r: &Ray, t_min: f32, t_max: f32) -> Option<(f32, f32, f32)> {
-        let [a, b, c] = self.triangles[tri as usize].map(|i| self.positions[i as usize]);
-        let e1 = b - a;
-        let e2 = c - a;
-        let p = r.d.cross(e2);
-        let det = e1.dot(p);
-        if det.abs() < 1e-12 {
-            return None;
+/// Moller-Trumbore on a triangle stored as (first vertex, b - a, c - a): (t, u, v) with t in
+/// (t_min, t_max).
+#[inline(always)]
+fn hit_triangle(tri: &[Vec3; 3], r: &Ray, t_min: f32, t_max: f32) -> Option<(f32, f32, f32)> {
+    let [a, e1, e2] = *tri;
+    let p = r.d.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-12 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let s = r.o - a;
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = r.d.dot(q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(q) * inv;
+    (t > t_min && t < t_max).then_some((t, u, v))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Clusters of stacked triangles at sizes and positions growing by 1.5: SAH splits off a
+    /// few clusters per level, so its tree is deeper than a median split's.
+    fn nested() -> TriMesh {
+        let mut positions = Vec::new();
+        for g in 0..60 {
+            let s = 1.5f32.powi(g);
+            for _ in 0..8 {
+                positions.extend([Vec3::new(s, 0.0, 0.0), Vec3::new(2.0 * s, 0.0, 0.1 * s)]);
+                positions.push(Vec3::new(s, s, 0.0));
+            }
         }
-        let inv = 1.0 / det;
-        let s = r.o - a;
-        let u = s.dot(p) * inv;
-        if !(0.0..=1.0).contains(&u) {
-            return None;
+        let n = positions.len() as u32 / 3;
+        let triangles = (0..n).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+        let normals = vec![Vec3::Z; positions.len()];
+        TriMesh::with_max_depth(positions, normals, Vec::new(), triangles, 1 << 20)
+    }
+
+    /// The depth cap holds where SAH alone goes deeper, and the capped tree finds the same
+    /// hits.
+    #[test]
+    fn the_depth_cap_bounds_a_deeper_sah_tree() {
+        let free = nested();
+        let n = free.triangles.len();
+        let cap = median_height(n) + 2;
+        assert!(free.depth() > cap, "SAH depth {} <= {cap}", free.depth());
+        let m = TriMesh::with_max_depth(
+            free.positions.clone(),
+            free.normals.clone(),
+            Vec::new(),
+            free.triangles.clone(),
+            cap,
+        );
+        assert!(m.depth() <= cap, "depth {} > cap {cap}", m.depth());
+        let mut order = m.order.clone();
+        order.sort_unstable();
+        assert_eq!(order, (0..n as u32).collect::<Vec<_>>());
+        let mut hits = 0;
+        for k in 0..200 {
+            let [a, b, c] = m.triangles[k * 7 % n].map(|i| m.positions[i as usize]);
+            let (u, v) = ((k % 10) as f32 * 0.09, (k / 10 % 10) as f32 * 0.05);
+            // Points on a triangle, and some beside it.
+            let target = a + u * (b - a) + v * (c - a) + (k % 3) as f32 * 0.3 * (a - c);
+            let o = target + Vec3::new(0.1, 0.2, 10.0) * (1.0 + target.x);
+            let r = Ray {
+                o,
+                d: (target - o).normalize(),
+            };
+            let (a, b) = (
+                free.intersect(&r, 0.0, f32::INFINITY),
+                m.intersect(&r, 0.0, f32::INFINITY),
+            );
+            assert_eq!(a.map(|h| h.0), b.map(|h| h.0), "ray {k}");
+            assert_eq!(free.occluded(&r, 0.0, f32::INFINITY), a.is_some());
+            assert_eq!(m.occluded(&r, 0.0, f32::INFINITY), a.is_some());
+            hits += usize::from(a.is_some());
         }
-        let q = s.cross(e1);
-        let v = r.d.dot(q) * inv;
-        if v < 0.0 || u + v > 1.0 {
-            return None;
-        }
-        let t = e2.dot(q) * inv;
-        (t > t_min && t < t_max).then_some((t, u, v))
+        assert!(hits > 50, "{hits} of 200 rays hit");
     }
 }

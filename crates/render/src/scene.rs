@@ -393,7 +393,7 @@ impl Scene {
         self.objects.iter().any(|o| match &o.shape {
             Shape::Sphere(s) => s.hit(ray, t_min, t_max, false).is_some(),
             Shape::Plane(p) => p.hit(ray, t_min, t_max, false).is_some(),
-            Shape::Mesh(m) => m.hit(ray, t_min, t_max, false).is_some(),
+            Shape::Mesh(m) => m.occluded(ray, t_min, t_max),
         })
     }
 
