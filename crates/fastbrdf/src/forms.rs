@@ -189,7 +189,8 @@ pub trait ShadowForm: Copy + Debug + Send + Sync + 'static {
     /// (`include_str!`), or `""` where there is none. Families sharing a file give it each
     /// (the library takes it once). See `plan::library_sources`.
     const WGSL: &'static str;
-    /// Whether its batch kernel vectorises (the exact Smith term calls libm's `erfc`).
+    /// Whether its batch kernel vectorises (every term now: the exact Beckmann Smith terms'
+    /// `erfc` is `math::fast::erfc` since issue 30).
     const SIMD: bool = true;
     /// Whether it uses `cos_h` and `cos_vh` (the V-cavity, Kelemen).
     const HALF_VECTOR: bool = false;
