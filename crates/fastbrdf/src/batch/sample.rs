@@ -359,8 +359,7 @@ impl Sampler {
             .for_each(|(k, o)| {
                 let lo = k * PAR_CHUNK;
                 let hi = lo + o.len();
-                self.imp
-                    .pdf(s, wo.map(|x| &x[lo..hi]), wi.map(|x| &x[lo..hi]), o);
+                self.pdf_seq(s, wo.map(|x| &x[lo..hi]), wi.map(|x| &x[lo..hi]), o);
             });
         Ok(())
     }
