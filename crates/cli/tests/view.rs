@@ -363,6 +363,26 @@ fn renders_and_their_metrics_equal_fastbrdf_compare() {
     for f in ["rmse", "psnr", "flip"] {
         assert_eq!(v["metrics"][0][f], c["metrics"][0][f], "{f}");
     }
+    // The page's way: the pictures with RMSE and PSNR at once, FLIP from the pool after.
+    let later = ok_json(
+        &s.addr,
+        "/api/render?models=flog&ref=pow&n=100&size=64&spp=1&flip=later",
+    );
+    assert_eq!(later["images"], v["images"]);
+    assert!(
+        later["metrics"][0]["flip"].is_null(),
+        "{}",
+        later["metrics"]
+    );
+    let job = later["flip_job"].as_u64().expect("flip_job");
+    let f = ok_json(&s.addr, &format!("/api/flip?job={job}"));
+    for f_ in ["rmse", "psnr"] {
+        assert_eq!(later["metrics"][0][f_], c["metrics"][0][f_], "{f_}");
+    }
+    assert_eq!(f["metrics"][0]["model"], "flog");
+    for f_ in ["rmse", "psnr", "flip"] {
+        assert_eq!(f["metrics"][0][f_], c["metrics"][0][f_], "{f_}");
+    }
     // The light and the object change the picture.
     let moved = ok_json(
         &s.addr,
@@ -472,6 +492,18 @@ fn bad_requests_get_4xx_with_the_cli_message_and_the_server_survives() {
             Some("mesh=mesh: the server was started without --mesh"),
         ),
         ("/api/render?models=flog&mesh=/etc/passwd", 400, None),
+        (
+            "/api/render?models=flog&flip=soon",
+            400,
+            Some("flip 'soon': expected wait, later or none"),
+        ),
+        ("/api/flip", 400, Some("missing query parameter 'job'")),
+        (
+            "/api/flip?job=-1",
+            400,
+            Some("job '-1': not a whole number"),
+        ),
+        ("/api/flip?job=987654321", 404, None),
         ("/api/shader?model=flog&lang=cobol", 400, None),
         ("/api/material?name=unobtainium&model=flog", 400, None),
         ("/api/plots?models=%ff%fe&n=%zz", 400, None),
@@ -501,6 +533,19 @@ fn stale_renders_are_dropped() {
     let s = serve(&[]);
     ok_json(&s.addr, "/api/render?models=flog&size=16&client=c1&gen=5");
     let (status, v) = get_json(&s.addr, "/api/render?models=flog&size=16&client=c1&gen=3");
+    assert_eq!(status, 409, "{v}");
+    // A FLIP job's answer after its client's newer request is a 409 too, whether its FLIP was
+    // computed by then or not.
+    let later = ok_json(
+        &s.addr,
+        "/api/render?models=flog&ref=pow&size=32&client=c1&gen=6&flip=later",
+    );
+    let job = later["flip_job"].as_u64().unwrap();
+    ok_json(
+        &s.addr,
+        "/api/render?models=flog&size=16&client=c1&gen=7&flip=none",
+    );
+    let (status, v) = get_json(&s.addr, &format!("/api/flip?job={job}"));
     assert_eq!(status, 409, "{v}");
     // Another client is not affected; many at once get an answer each (200, or 503 when the
     // queue is full), never a dead server.

@@ -251,6 +251,7 @@ fn page_chooses_the_measured_reference_in_headless_chromium() {
             &page,
             r##"JSON.stringify({
               status: document.getElementById("status").className,
+              status_text: document.getElementById("status").textContent,
               ngan: document.querySelector("#numbers tr[data-model=ward] .ngan-l2").dataset.value,
               images: [...document.querySelectorAll("img.render")].map(i => i.dataset.model),
               verdicts: document.getElementById("verdicts").textContent,
@@ -261,7 +262,7 @@ fn page_chooses_the_measured_reference_in_headless_chromium() {
         .unwrap(),
     )
     .unwrap();
-    assert_eq!(v["status"], "", "the page shows an error");
+    assert_eq!(v["status"], "", "the page shows an error: {}", v["status_text"]);
     let c = cli_measured_errors(fs, "ward", Some("0.3"));
     assert_eq!(
         v["ngan"].as_str().unwrap().parse::<f64>().unwrap(),

@@ -18,7 +18,8 @@ const SNAPSHOT: &str = r##"JSON.stringify({
   n: document.getElementById("text-n").value,
   rows: Object.fromEntries([...document.querySelectorAll("#numbers tr[data-model]")].map(r => [r.dataset.model,
      {abs: r.querySelector(".max-abs").dataset.value, abs_text: r.querySelector(".max-abs").textContent,
-      rel: r.querySelector(".max-rel").dataset.value, psnr: r.querySelector(".psnr").textContent}])),
+      rel: r.querySelector(".max-rel").dataset.value, psnr: r.querySelector(".psnr").textContent,
+      flip: r.querySelector(".flip").dataset.value, flip_text: r.querySelector(".flip").textContent}])),
   status: document.getElementById("status").className,
   albedo_estimate: document.getElementById("albedo").dataset.estimate,
   verdicts: document.getElementById("verdicts").textContent,
@@ -73,6 +74,14 @@ fn check_numbers(v: &Value, model: &str) {
     assert!(
         row["psnr"].as_str().unwrap().parse::<f64>().is_ok(),
         "PSNR shown: {row}"
+    );
+    // FLIP comes after the pictures (a second request): once the page is ready it is shown.
+    let flip: f64 = row["flip"].as_str().unwrap().parse().unwrap();
+    assert!(flip > 0.0 && flip <= 1.0, "FLIP shown: {row}");
+    let text: f64 = row["flip_text"].as_str().unwrap().parse().unwrap();
+    assert!(
+        (text - flip).abs() <= 1e-3 * flip,
+        "{text} shown for {flip}"
     );
 }
 

@@ -28,7 +28,10 @@
 //!   albedo and errors computations run at once, a further one waits at most
 //!   [`COMPUTE_WAIT`](state::COMPUTE_WAIT) for a permit, then gets 503; renders take one of
 //!   [`RENDER_SLOTS`](state::RENDER_SLOTS) slots (at most [`MAX_WAITING`](state::MAX_WAITING) wait,
-//!   the rest get 503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per axis.
+//!   the rest get 503), each at most `api::MAX_SIZE` square and `api::MAX_SPP` samples per axis;
+//!   their FLIP runs in [`flip`]'s pool (a thread per CPU, lower priority, the pictures of at
+//!   most [`FLIP_JOBS`](flip::FLIP_JOBS) renders held; a render that finds them taken computes
+//!   FLIP in its slot), so the pictures answer before it (`flip=later`, then `/api/flip`).
 //!   The pool has a thread for each of these and for each connection, so a quick request (the page,
 //!   `/api/models`) never waits behind computations, and the two runtime workers (accept, HTTP)
 //!   compete with a bounded number of busy threads. A render whose client has gone
@@ -43,12 +46,14 @@
 //! - stderr: after start-up the server writes to stderr ignoring failures (a closed pipe, as in
 //!   `fastbrdf view 2>&1 | head -1`), so that losing stderr never stops it.
 //!
-//! Where it lives: [`state`] (what the handlers share), [`request`] (the checks and
+//! Where it lives: [`state`] (what the handlers share), [`flip`] (FLIP off the requests'
+//! critical path), [`request`] (the checks and
 //! [`handle`](request::handle)), [`server`] (the transport), [`api`] (the endpoints: the query
 //! parsed into model specs once per request), `page.html`, [`cdp`] (the DevTools client).
 
 pub mod api;
 pub mod cdp;
+mod flip;
 mod request;
 mod server;
 mod state;
@@ -72,7 +77,7 @@ fastbrdf view --screenshot docs/images/view.png   (headless Chromium, then exit)
 fastbrdf view --measured gold-metallic-paint.binary   (the MERL file as a reference: #models=ward&ref=gold-metallic-paint.binary)\n  \
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
 The whole view lives in the URL after #, so a link reproduces it. The JSON API (the book's\n\
-docs/book/src/explorer.md): /api/models, /api/plots, /api/albedo, /api/render, /api/errors, /api/shader, /api/material.\n\
+docs/book/src/explorer.md): /api/models, /api/plots, /api/albedo, /api/render, /api/flip, /api/errors, /api/shader, /api/material.\n\
 Bad requests get HTTP 400 with the message the CLI prints for the same input.\n\n\
 Limits (one client cannot take the server down): HTTP/1.1 only (HTTP/2 is refused with a GOAWAY);\n\
 at most 128 connections (--max-connections; lowered to leave 64 of the open-file limit free),\n\
@@ -83,7 +88,8 @@ client that does not read an answer for 30 s is dropped; Host must name the boun
 refuses cross-site requests (Sec-Fetch-Site cross-site or same-site, or an Origin that is not\n\
 an allowed host) with 403; as many plots/albedo/errors computations at once as CPUs (at least\n\
 2), one more waits 1 s then gets 503; 2 renders at once and 8 waiting (503 beyond), 1024x1024\n\
-and 4x4 samples at most."
+and 4x4 samples at most; FLIP on a thread per CPU at a lower priority, for at most 4 renders'\n\
+pictures at once (a render beyond computes it itself)."
 )]
 pub struct Args {
     /// TCP port (0: any free port; the address is printed on stderr).
@@ -220,6 +226,7 @@ mod tests {
             format!("within {IDLE_TIMEOUT_S} s"),
             format!("for {WRITE_TIMEOUT_S} s"),
             format!("{RENDER_SLOTS} renders at once and {MAX_WAITING} waiting"),
+            format!("at most {} renders' pictures at once", super::flip::FLIP_JOBS),
             "as many plots/albedo/errors computations at once as CPUs (at least 2)".into(),
             format!("waits {} s then gets 503", COMPUTE_WAIT.as_secs()),
             "refuses cross-site requests".into(),

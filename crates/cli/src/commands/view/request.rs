@@ -195,6 +195,7 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
             "/api/plots" => api::plots(state, &q),
             "/api/albedo" => api::albedo_endpoint(state, &q),
             "/api/render" => api::render_endpoint(state, &q),
+            "/api/flip" => api::flip_endpoint(state, &q),
             "/api/errors" => api::errors_endpoint(state, &q),
             "/api/shader" => api::shader(&q),
             "/api/material" => api::material(&q),

@@ -1,7 +1,8 @@
 //! What the explorer's handlers share: the measured reference, the loaded scenes, the bench
-//! run, the render slots and per-client generations, the computation cap, and whether the
-//! client of the request being handled has gone.
+//! run, the render slots and per-client generations, the FLIP pool, the computation cap, and
+//! whether the client of the request being handled has gone.
 
+use super::flip::Flips;
 use crate::CliError;
 use fastbrdf_render::setup::{self, Loaded, SceneSpec};
 use std::collections::HashMap;
@@ -105,6 +106,8 @@ pub struct State {
     bench: Option<fastbrdf_analysis::speed::Report>,
     pub bench_source: Option<String>,
     generations: Mutex<HashMap<String, u64>>,
+    /// FLIP of the pictures, off the requests' critical path ([`super::flip`]).
+    pub flips: Arc<Flips>,
     slots: Mutex<(usize, usize)>,
     freed: Condvar,
 }
@@ -121,11 +124,21 @@ impl Drop for Slot<'_> {
 }
 
 impl State {
-    /// The state for a server with an optional mesh and bench run.
+    /// The state for a server with an optional mesh and bench run; a FLIP thread per CPU.
     pub fn new(
         mesh: Option<PathBuf>,
         bench: Option<PathBuf>,
         measured: Option<PathBuf>,
+    ) -> Result<Self, CliError> {
+        Self::with_flip_threads(mesh, bench, measured, compute_slots())
+    }
+
+    /// [`State::new`] with `flip_threads` FLIP threads (tests: 0, and run the pool by hand).
+    pub fn with_flip_threads(
+        mesh: Option<PathBuf>,
+        bench: Option<PathBuf>,
+        measured: Option<PathBuf>,
+        flip_threads: usize,
     ) -> Result<Self, CliError> {
         let measured = measured.as_deref().map(Measured::load).transpose()?;
         let loaded_sphere = setup::load(&SceneSpec::new())?;
@@ -150,6 +163,7 @@ impl State {
             bench: report,
             bench_source: bench.map(|b| b.display().to_string()),
             generations: Mutex::new(HashMap::new()),
+            flips: Flips::new(flip_threads),
             slots: Mutex::new((0, 0)),
             freed: Condvar::new(),
         })
@@ -176,7 +190,8 @@ impl State {
         (!best.is_empty()).then_some(serde_json::Value::Object(best))
     }
 
-    /// Records `generation` as the newest of `client` (if it is newer).
+    /// Records `generation` as the newest of `client` (if it is newer); the client's FLIP
+    /// jobs of older generations end (superseded).
     pub fn note_generation(&self, client: &str, generation: u64) {
         if client.is_empty() {
             return;
@@ -189,6 +204,8 @@ impl State {
             .entry(fastbrdf_io::shorten(client, 64))
             .or_insert(generation);
         *e = (*e).max(generation);
+        drop(g);
+        self.flips.supersede(client, generation);
     }
 
     /// Whether `client` has asked for something newer than `generation`.
@@ -221,5 +238,11 @@ impl State {
         s.1 -= 1;
         s.0 += 1;
         Some(Slot(self))
+    }
+}
+
+impl Drop for State {
+    fn drop(&mut self) {
+        self.flips.stop();
     }
 }

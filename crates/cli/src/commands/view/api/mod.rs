@@ -19,4 +19,4 @@ pub use errors::errors_endpoint;
 pub use models::{material, models, shader};
 pub use plots::{albedo_endpoint, plots};
 pub use query::{Query, Response};
-pub use render::render_endpoint;
+pub use render::{flip_endpoint, render_endpoint};

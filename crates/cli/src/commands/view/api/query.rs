@@ -54,9 +54,9 @@ pub const MAX_SIZE: u32 = 1024;
 pub const MAX_SPP: u32 = 4;
 pub const MAX_MODELS: usize = 6;
 /// Keys of the query that are not model parameters.
-const RESERVED: [&str; 12] = [
+const RESERVED: [&str; 13] = [
     "models", "ref", "theta", "lang", "size", "spp", "mesh", "light", "client", "gen", "model",
-    "quick",
+    "quick", "flip",
 ];
 
 /// The decoded query string, in order.
