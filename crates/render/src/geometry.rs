@@ -252,7 +252,7 @@ impl Build<'_> {
         } else {
             2
         };
-        if !(ext[axis] > 0.0) {
+        if ext[axis].is_nan() || ext[axis] <= 0.0 {
             return None;
         }
         let (base, scale) = (clo[axis], BINS as f32 / ext[axis]);
@@ -290,7 +290,7 @@ impl Build<'_> {
         }
         let n = end - start;
         let area = half_area(lo, hi);
-        if !(best.0 < f32::INFINITY) {
+        if best.0 == f32::INFINITY {
             return None;
         }
         if n <= LEAF && n as f32 * area <= TRAVERSAL_COST * area + best.0 {
@@ -331,14 +331,25 @@ impl Build<'_> {
 
 /// Entry and exit distances of `r` (with `inv` = 1 / r.d) through a node's box, clipped to
 /// (t_min, t_max); `None` when it misses. The exit is widened by 2 gamma(3) (PBRT's bound on
-/// the slab test's rounding), so a box is never missed where a triangle inside it is hit.
+/// the slab test's rounding), so a box is never missed where a triangle inside it is hit. An
+/// axis whose distances are NaN (0 * inf: the ray runs parallel to that axis's slabs, in the
+/// plane of one) constrains nothing (the comparisons below ignore a NaN first operand), so
+/// such a box is kept.
 #[inline(always)]
 fn slab(n: &Node, o: Vec3, inv: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
     const WIDEN: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
-    let t0 = (n.lo - o) * inv;
-    let t1 = (n.hi - o) * inv;
-    let tn = t0.min(t1).max_element().max(t_min);
-    let tf = (t0.max(t1).min_element() * WIDEN).min(t_max);
+    #[inline(always)]
+    fn axis(lo: f32, hi: f32, o: f32, inv: f32, near: f32, far: f32) -> (f32, f32) {
+        let (a, b) = ((lo - o) * inv, (hi - o) * inv);
+        let (a, b) = if a < b { (a, b) } else { (b, a) };
+        (
+            if a > near { a } else { near },
+            if b * WIDEN < far { b * WIDEN } else { far },
+        )
+    }
+    let (tn, tf) = axis(n.lo.x, n.hi.x, o.x, inv.x, t_min, t_max);
+    let (tn, tf) = axis(n.lo.y, n.hi.y, o.y, inv.y, tn, tf);
+    let (tn, tf) = axis(n.lo.z, n.hi.z, o.z, inv.z, tn, tf);
     (tn <= tf).then_some(tn)
 }
 
