@@ -207,6 +207,14 @@ fn sample_and_pdf_are_the_scalar_models_bit_for_bit() {
                 "{id} {s}"
             );
             let got_all = o.bits();
+            // No value of `u` (NaN, infinite, out of [0, 1)) gives a NaN or infinity.
+            assert!(
+                got_all
+                    .iter()
+                    .flatten()
+                    .all(|b| f32::from_bits(*b).is_finite()),
+                "{id} {s}"
+            );
             for i in 0..n {
                 let w = [wo[0][i], wo[1][i], wo[2][i]];
                 let want = match b.sample(w, [u[0][i], u[1][i]], s) {
