@@ -249,7 +249,7 @@ class Model:
         result, target = _output(out, full, dtype, given + parrs)
         n = int(np.prod(shape, dtype=np.int64))
         if self.kind == "brdf":
-            wi, wo = (_prepare(a, shape + (3,), dtype).reshape(-1, 3) for a in given)
+            wi, wo = (_rows(a, shape + (3,), dtype) for a in given)
         else:
             cols = [_prepare(a, shape, dtype).reshape(-1) for a in given]
         # Parameter values stay float64 whatever the precision: each element's model is built
@@ -285,7 +285,8 @@ class Model:
         return list(self._handle.strategies())
 
     def sample(
-        self, wo: Any, u: Any, strategy: str = "auto", precision: Optional[str] = None
+        self, wo: Any, u: Any, strategy: str = "auto", precision: Optional[str] = None,
+        out: Optional[Tuple[np.ndarray, np.ndarray, np.ndarray]] = None,
     ) -> Tuple[np.ndarray, Any, Any]:
         """Draws ``wi`` given ``wo`` (..., 3) and ``u`` (..., 2) in [0, 1)^2, as
         ``fastbrdf sample`` (``u`` outside [0, 1) or NaN is a ``ValueError``): returns
@@ -294,54 +295,75 @@ class Model:
         horizon, density 0: the strategy's missing mass, or ``wo`` out of the domain) gives
         ``wi = (0, 0, 0)``, weight 0 and pdf 0. BRDFs only. The dtype rule of :meth:`eval`
         (``u`` does not count: float32 ``wo`` samples in float32). A coloured model samples
-        its first (R) channel's strategy; its weight has a last axis of 3.
+        its first (R) channel's strategy; its weight has a last axis of 3. ``out``: a tuple
+        of three arrays ``(wi, weight, pdf)`` of the results' shapes and dtype, C-contiguous
+        and writeable, written and returned (as :meth:`eval`'s ``out``). The GIL is released
+        while it runs, and large batches run on every core.
 
         >>> wi, w, p = fastbrdf.Model("lambert").sample([0, 0, 1], [0.3, 0.7])
         >>> float(w)
         1.0
+        >>> bufs = (np.empty((2, 3)), np.empty(2), np.empty(2))
+        >>> fastbrdf.Model("lambert").sample([0, 0, 1], [[0.3, 0.7], [0.1, 0.2]], out=bufs) is bufs
+        True
         """
         wo_a, u_given = _vectors(wo, "wo", 3), _vectors(u, "u", 2)
         precision = _precision(precision, [wo_a])
         dtype = _dtype(precision)
         _check_unit_interval(u_given, "u")
         pnames = list(self._arrays)
-        shape = _broadcast(
-            ["wo", "u"] + pnames, [wo_a.shape[:-1], u_given.shape[:-1]] + [self._arrays[k].shape for k in pnames]
-        )
+        parrs = [self._arrays[k] for k in pnames]
+        shape = _broadcast(["wo", "u"] + pnames, [wo_a.shape[:-1], u_given.shape[:-1]] + [a.shape for a in parrs])
+        channels = len(self._handles)
+        wshape = shape + ((channels,) if channels > 1 else ())
+        results, targets = _outputs(out, [shape + (3,), wshape, shape], dtype, [wo_a, u_given] + parrs)
         params = self._flat_params(shape)
-        wo_a, u_a = _prepare(wo_a, shape + (3,), dtype), _prepare(u_given, shape + (2,), dtype)
-        if u_a.dtype != u_given.dtype and dtype is np.float32:
+        u_c = u_given.astype(dtype) if u_given.dtype != dtype else u_given
+        if u_c is not u_given and dtype is np.float32:
             # A fresh copy: keep float64 values just below 1 below 1 in float32.
-            np.minimum(u_a, _BELOW_ONE_F32, out=u_a)
+            np.minimum(u_c, _BELOW_ONE_F32, out=u_c)
+        wo_f, u_f = _rows(wo_a, shape + (3,), dtype), _rows(u_c, shape + (2,), dtype)
         h = self._handle
-        f = h.sample_f32 if precision == "f32" else h.sample_f64
-        wo_f = wo_a.reshape(-1, 3)
+        wi_t, w_t, p_t = targets
+        n = int(np.prod(shape, dtype=np.int64))
+        wi = wi_t.reshape(-1, 3)
+        w0 = w_t.reshape(-1) if channels == 1 else np.empty(n, dtype=dtype)
         if params:
             from . import _perelement
 
-            wi, weight, pdf = _perelement.sample(h, params, wo_f, u_a.reshape(-1, 2), strategy, precision)
+            got = _perelement.sample(h, params, np.ascontiguousarray(wo_f), np.ascontiguousarray(u_f), strategy, precision)
+            wi[...], w0[...], p_t.reshape(-1)[...] = got[0].reshape(-1, 3), got[1], got[2]
         else:
-            wi, weight, pdf = f(wo_f, u_a.reshape(-1, 2), strategy)
-        wi = wi.reshape(-1, 3)
-        if len(self._handles) > 1:
+            f = h.sample_f32 if precision == "f32" else h.sample_f64
+            f(wo_f, u_f, strategy, (wi.reshape(-1), w0, p_t.reshape(-1)))
+        if channels > 1:
             # The other channels' weights f_c cos / pdf at the first channel's draws.
-            cos = wi[:, 2]
-            ok = pdf > 0
-            ws = [weight]
-            for hc in self._handles[1:]:
+            pdf = p_t.reshape(-1)
+            cos, ok = wi[:, 2], pdf > 0
+            ws = w_t.reshape(-1, channels)
+            ws[:, 0] = w0
+            fc = np.empty(n, dtype=dtype)
+            for c, hc in enumerate(self._handles[1:], 1):
                 if params:
-                    fc = np.empty(len(wi), dtype=dtype)
-                    _perelement.eval_dirs(hc, params, wi, wo_f, precision, fc)
+                    _perelement.eval_dirs(hc, params, wi, np.ascontiguousarray(wo_f), precision, fc)
                 else:
-                    fc = (hc.eval_dirs_f32 if precision == "f32" else hc.eval_dirs_f64)(wi, wo_f)
-                ws.append(np.where(ok, fc * cos / np.where(ok, pdf, 1), 0).astype(dtype))
-            return wi.reshape(shape + (3,)), np.stack(ws, axis=-1).reshape(shape + (3,)), _result(pdf, shape)
-        return wi.reshape(shape + (3,)), _result(weight, shape), _result(pdf, shape)
+                    (hc.eval_dirs_f32 if precision == "f32" else hc.eval_dirs_f64)(wi, wo_f, fc)
+                ws[:, c] = np.where(ok, fc * cos / np.where(ok, pdf, 1), 0)
+        for res, t in zip(results, targets):
+            if res is not t:
+                res[...] = t
+        if out is not None:
+            return out
+        wi_r, w_r, p_r = results
+        return wi_r, _result(w_r, wshape), _result(p_r, shape)
 
-    def pdf(self, wo: Any, wi: Any, strategy: str = "auto", precision: Optional[str] = None) -> Any:
+    def pdf(
+        self, wo: Any, wi: Any, strategy: str = "auto", precision: Optional[str] = None,
+        out: Optional[npt.NDArray[Any]] = None,
+    ) -> Any:
         """The solid-angle density with which :meth:`sample` draws ``wi`` given ``wo``
-        (both (..., 3)), as ``fastbrdf sample --pdf``. BRDFs only; the dtype rule of
-        :meth:`eval`.
+        (both (..., 3)), as ``fastbrdf sample --pdf``. BRDFs only; the dtype rule and ``out``
+        of :meth:`eval`.
 
         >>> round(float(fastbrdf.Model("lambert").pdf([0, 0, 1], [0, 0, 1])), 6)
         0.31831
@@ -350,18 +372,26 @@ class Model:
         precision = _precision(precision, [wo_a, wi_a])
         dtype = _dtype(precision)
         pnames = list(self._arrays)
-        shape = _broadcast(
-            ["wo", "wi"] + pnames, [wo_a.shape[:-1], wi_a.shape[:-1]] + [self._arrays[k].shape for k in pnames]
-        )
+        parrs = [self._arrays[k] for k in pnames]
+        shape = _broadcast(["wo", "wi"] + pnames, [wo_a.shape[:-1], wi_a.shape[:-1]] + [a.shape for a in parrs])
+        result, target = _output(out, shape, dtype, [wo_a, wi_a] + parrs)
         params = self._flat_params(shape)
-        wo_a, wi_a = _prepare(wo_a, shape + (3,), dtype), _prepare(wi_a, shape + (3,), dtype)
+        wo_f, wi_f = _rows(wo_a, shape + (3,), dtype), _rows(wi_a, shape + (3,), dtype)
         h = self._handle
+        flat = target.reshape(-1)
         if params:
             from . import _perelement
 
-            return _result(_perelement.pdf(h, params, wo_a.reshape(-1, 3), wi_a.reshape(-1, 3), strategy, precision), shape)
-        f = h.pdf_f32 if precision == "f32" else h.pdf_f64
-        return _result(f(wo_a.reshape(-1, 3), wi_a.reshape(-1, 3), strategy), shape)
+            flat[...] = _perelement.pdf(
+                h, params, np.ascontiguousarray(wo_f), np.ascontiguousarray(wi_f), strategy, precision
+            )
+        else:
+            (h.pdf_f32 if precision == "f32" else h.pdf_f64)(wo_f, wi_f, strategy, flat)
+        if target is not result:
+            result[...] = target
+        if out is not None:
+            return out
+        return _result(result, shape)
 
     def _flat_params(self, shape: Tuple[int, ...]) -> Dict[str, np.ndarray]:
         """The per-element parameters broadcast to ``shape``, flat and float64 (each element's
@@ -417,7 +447,7 @@ def _precision(precision: Optional[str], arrays: List[np.ndarray]) -> str:
 
 
 def _output(
-    out: Optional[np.ndarray], shape: Tuple[int, ...], dtype: Any, inputs: List[np.ndarray]
+    out: Optional[np.ndarray], shape: Tuple[int, ...], dtype: Any, inputs: List[np.ndarray], name: str = "out"
 ) -> Tuple[np.ndarray, np.ndarray]:
     """``(result, target)``: the array returned and the one written (a temporary when ``out``
     shares memory with an input). ``out`` is checked: an ndarray (else ``TypeError``) of the
@@ -426,18 +456,49 @@ def _output(
         r = np.empty(shape, dtype=dtype)
         return r, r
     if not isinstance(out, np.ndarray):
-        raise TypeError(f"out: expected a numpy array, got {type(out).__name__}")
+        raise TypeError(f"{name}: expected a numpy array, got {type(out).__name__}")
     if out.dtype != np.dtype(dtype):
-        raise TypeError(f"out: dtype {out.dtype}, the result is {np.dtype(dtype)}")
+        raise TypeError(f"{name}: dtype {out.dtype}, the result is {np.dtype(dtype)}")
     if out.shape != shape:
-        raise ValueError(f"out: shape {out.shape}, the result has shape {shape}")
+        raise ValueError(f"{name}: shape {out.shape}, the result has shape {shape}")
     if not out.flags.c_contiguous:
-        raise ValueError("out: must be C-contiguous")
+        raise ValueError(f"{name}: must be C-contiguous")
     if not out.flags.writeable:
-        raise ValueError("out: is read-only")
+        raise ValueError(f"{name}: is read-only")
     if any(np.may_share_memory(out, a) for a in inputs):
         return out, np.empty(shape, dtype=dtype)
     return out, out
+
+
+def _outputs(
+    out: Any, shapes: List[Tuple[int, ...]], dtype: Any, inputs: List[np.ndarray]
+) -> Tuple[List[np.ndarray], List[np.ndarray]]:
+    """:func:`_output` for a tuple of outputs (``out[0]``, ``out[1]``, ...), none sharing
+    memory with an input or with another."""
+    if out is None:
+        fresh = [np.empty(s, dtype=dtype) for s in shapes]
+        return fresh, fresh
+    if not isinstance(out, (tuple, list)) or len(out) != len(shapes):
+        raise TypeError(f"out: expected a tuple of {len(shapes)} numpy arrays, got {type(out).__name__}")
+    results: List[np.ndarray] = []
+    targets: List[np.ndarray] = []
+    for i, (o, s) in enumerate(zip(out, shapes)):
+        r, t = _output(o, s, dtype, inputs + results, f"out[{i}]")
+        results.append(r)
+        targets.append(t)
+    return results, targets
+
+
+def _rows(a: np.ndarray, shape: Tuple[int, ...], dtype: Any) -> np.ndarray:
+    """``a`` broadcast to ``shape`` (..., k) as (N, k) rows of ``dtype`` for the native side,
+    which reads any strides: a view of ``a`` (C-contiguous, transposed, a broadcast row)
+    where one exists, no copy; else one copy (another dtype, or a broadcast the flat view
+    cannot express)."""
+    if a.dtype != dtype:
+        a = a.astype(dtype)
+    if a.shape != shape:
+        a = np.broadcast_to(a, shape)
+    return a.reshape(-1, shape[-1])
 
 
 def _rebuild(id: str, params: Dict[str, Any], material: Optional[str] = None, metal: Optional[str] = None) -> Model:

@@ -30,6 +30,35 @@ pub(crate) fn ready<'py, T: Element, D: Dimension>(
     Ok(a.try_readonly()?)
 }
 
+/// `a` itself when it is aligned, whatever its strides (a transposed or broadcast array is
+/// read in place), else numpy's C-ordered copy of it, borrowed read-only.
+pub(crate) fn aligned<'py, T: Element, D: Dimension>(
+    a: Bound<'py, PyArray<T, D>>,
+) -> PyResult<PyReadonlyArray<'py, T, D>> {
+    let a = if a.is_aligned() {
+        a
+    } else {
+        a.call_method1("copy", ("C",))?
+            .cast_into::<PyArray<T, D>>()?
+    };
+    Ok(a.try_readonly()?)
+}
+
+/// An aligned (N, `cols`) array's rows, any strides (see [`aligned`]).
+pub(crate) fn rows2<'a, T: Element>(
+    a: &'a PyReadonlyArray<'_, T, numpy::Ix2>,
+    cols: usize,
+    name: &str,
+) -> PyResult<numpy::ndarray::ArrayView2<'a, T>> {
+    if a.shape()[1] != cols {
+        return Err(PyValueError::new_err(format!(
+            "{name}: expected shape (N, {cols}), got {:?}",
+            a.shape()
+        )));
+    }
+    Ok(a.as_array())
+}
+
 /// A ready array's elements.
 pub(crate) fn slice<'a, T: Element, D: Dimension>(
     a: &'a PyReadonlyArray<'_, T, D>,

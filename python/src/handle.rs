@@ -3,15 +3,19 @@
 
 use crate::MAX_ITEMS;
 use crate::args::{full_spec, grey_spec, params_arg, seq};
-use crate::arrays::{CHUNK, chunked, empty, output, ready, same_rows, slice, slice2, writable};
+use crate::arrays::{aligned, chunked, output, ready, rows2, same_rows, slice, writable};
 use crate::guard::{guard, value_error};
+use fastbrdf::batch::sample::{SampleOut, Sampler};
 use fastbrdf::batch::{Input, Kernel};
 use fastbrdf::sample::Strategy;
-use fastbrdf::{Model, ModelSpec, Real};
-use numpy::{Element, PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray};
+use fastbrdf::{Brdf, Model, ModelSpec, Real};
+use numpy::{Element, PyArray1, PyArray2, PyReadonlyArray};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
+use rows::{Outs3, Rows, Soa, for_chunks, for_chunks3};
 use std::ops::Range;
+
+mod rows;
 
 /// One model, built once in both precisions (and its batch kernel when it has one).
 #[pyclass(frozen, module = "fastbrdf._fastbrdf")]
@@ -21,6 +25,8 @@ pub(crate) struct Handle {
     m32: Model<f32>,
     m64: Model<f64>,
     kernel: Option<Kernel>,
+    /// A BRDF's batched f32 sampler.
+    sampler: Option<Sampler>,
     /// The grey spec it was built from (one colour channel).
     spec: ModelSpec,
 }
@@ -36,37 +42,46 @@ fn rows<T: Real>(m: &Model<T>, cols: &[&[T]], r: Range<usize>, out: &mut [T]) {
     }
 }
 
-/// The BRDF over (N, 3) pairs, scalar model in precision `T`.
-fn brdf_rows<T: Real>(b: &dyn fastbrdf::Brdf<T>, wi: &[T], wo: &[T], out: &mut [T]) {
-    for ((o, a), w) in out
-        .iter_mut()
-        .zip(wi.chunks_exact(3))
-        .zip(wo.chunks_exact(3))
-    {
-        *o = b.eval([a[0], a[1], a[2]], [w[0], w[1], w[2]]);
-    }
+/// The f32 kernel over rows `r` of (N, 3) `wi`, `wo` (any strides), deinterleaved and run
+/// [`CHUNK`](crate::arrays::CHUNK) rows at a time over rayon's threads.
+fn brdf_kernel(k: &Kernel, (wi, wo): Pairs<f32>, r: Range<usize>, out: &mut [f32]) -> Res {
+    for_chunks(r.start, (out, 1), soa2::<3, 3, f32>, |(a, b), r, o| {
+        let (i, w) = (a.load(&wi, r.clone()), b.load(&wo, r));
+        k.eval(Input::Dirs([i[0], i[1], i[2], w[0], w[1], w[2]]), o)
+    })
 }
 
-/// The f32 kernel over (N, 3) pairs, deinterleaved [`CHUNK`] at a time.
-fn brdf_kernel(k: &Kernel, wi: &[f32], wo: &[f32], out: &mut [f32]) -> fastbrdf::Result<()> {
-    let mut soa = vec![[0.0f32; CHUNK]; 6];
-    for ((o, wi), wo) in out
-        .chunks_mut(CHUNK)
-        .zip(wi.chunks(3 * CHUNK))
-        .zip(wo.chunks(3 * CHUNK))
-    {
-        let len = o.len();
-        for (j, (a, w)) in wi.chunks_exact(3).zip(wo.chunks_exact(3)).enumerate() {
-            (soa[0][j], soa[1][j], soa[2][j]) = (a[0], a[1], a[2]);
-            (soa[3][j], soa[4][j], soa[5][j]) = (w[0], w[1], w[2]);
+/// The scalar BRDF in precision `T` over rows `r` of (N, 3) `wi`, `wo`, threaded as
+/// [`brdf_kernel`].
+fn brdf_rows<T: Real>(b: &dyn Brdf<T>, (wi, wo): Pairs<T>, r: Range<usize>, out: &mut [T]) -> Res {
+    for_chunks(r.start, (out, 1), soa2::<3, 3, T>, |(x, y), r, o| {
+        let (i, w) = (x.load(&wi, r.clone()), y.load(&wo, r));
+        for (j, o) in o.iter_mut().enumerate() {
+            *o = b.eval([i[0][j], i[1][j], i[2][j]], [w[0][j], w[1][j], w[2][j]]);
         }
-        let s: [&[f32]; 6] = std::array::from_fn(|a| &soa[a][..len]);
-        k.eval(Input::Dirs(s), o)?;
-    }
-    Ok(())
+        Ok(())
+    })
 }
 
-fn brdf_of<'a, T: Real>(m: &'a Model<T>, id: &str) -> PyResult<&'a dyn fastbrdf::Brdf<T>> {
+/// `Model::eval_row` over rows `r` of 1-D columns, threaded as [`brdf_kernel`].
+fn rows_par<T: Real>(m: &Model<T>, cols: &[&[T]], r: Range<usize>, out: &mut [T]) -> Res {
+    for_chunks(
+        r.start,
+        (out, 1),
+        || (),
+        |_, r, o| {
+            rows(m, cols, r, o);
+            Ok(())
+        },
+    )
+}
+
+/// Two per-thread buffers of `A` and `B` columns.
+fn soa2<const A: usize, const B: usize, T: Copy + Default>() -> (Soa<T, A>, Soa<T, B>) {
+    (Soa::new(), Soa::new())
+}
+
+fn brdf_of<'a, T: Real>(m: &'a Model<T>, id: &str) -> PyResult<&'a dyn Brdf<T>> {
     match m {
         Model::Brdf(b) => Ok(b.as_ref()),
         m => Err(value_error(fastbrdf::Error::WrongKind {
@@ -87,59 +102,141 @@ fn strategy(name: &str) -> PyResult<Strategy> {
     })
 }
 
-/// Every `u` in [0, 1) (NaN is not): the rows from `first` on, two per row.
-fn check_u<T: Real>(u: &[T], first: usize) -> Result<(), String> {
-    match u.iter().position(|x| !(*x >= T::zero() && *x < T::one())) {
+/// Every `u` of rows `r` in [0, 1) (NaN is not), else the first one outside, named by row
+/// and column.
+fn check_u<T: Real>(u: &Rows<'_, T>, r: Range<usize>) -> Result<(), String> {
+    let bad = |x: T| !(x >= T::zero() && x < T::one());
+    let first = match u.as_slice() {
+        Some(all) => all[2 * r.start..2 * r.end]
+            .iter()
+            .position(|x| bad(*x))
+            .map(|i| (r.start + i / 2, i % 2)),
+        None => r.clone().find_map(|i| {
+            let row = u.row(i);
+            (0..2).find(|c| bad(row[*c])).map(|c| (i, c))
+        }),
+    };
+    match first {
         None => Ok(()),
-        Some(i) => Err(format!(
-            "u: {} (row {}, column {}) is outside [0, 1)",
-            u[i],
-            first + i / 2,
-            i % 2
+        Some((i, c)) => Err(format!(
+            "u: {} (row {i}, column {c}) is outside [0, 1)",
+            u[[i, c]]
         )),
     }
 }
 
-/// Samples rows `r`: `wi` (3 per row), weight, pdf; no sample gives zeros.
+/// Samples rows `r` per element with the scalar model in precision `T`, threaded: `wi`
+/// (3 per row), weight, pdf; no sample gives zeros. `u` is checked first ([`check_u`]).
 fn sample_rows<T: Real>(
-    b: &dyn fastbrdf::Brdf<T>,
+    b: &dyn Brdf<T>,
     s: Strategy,
-    (wo, u): (&[T], &[T]),
+    (wo, u): Pairs<T>,
     r: Range<usize>,
-    (wi, weight, pdf): (&mut [T], &mut [T], &mut [T]),
+    outs: Outs3<'_, T>,
 ) -> Result<(), String> {
-    let (lo, hi) = (r.start, r.end);
-    let u = &u[2 * lo..2 * hi];
-    check_u(u, lo)?;
-    let rows = wo[3 * lo..3 * hi].chunks_exact(3).zip(u.chunks_exact(2));
-    let outs = wi[3 * lo..3 * hi]
-        .chunks_exact_mut(3)
-        .zip(&mut weight[lo..hi])
-        .zip(&mut pdf[lo..hi]);
-    for ((o, u), ((wi, weight), pdf)) in rows.zip(outs) {
-        match b.sample([o[0], o[1], o[2]], [u[0], u[1]], s) {
-            Some(x) => {
-                wi.copy_from_slice(&x.wi);
-                (*weight, *pdf) = (x.weight, x.pdf);
+    let run = for_chunks3(
+        r.start,
+        outs,
+        [3, 1, 1],
+        soa2::<3, 2, T>,
+        |(x, y), r, outs| {
+            check_u(&u, r.clone()).map_err(|_| ())?;
+            let (wo, u) = (x.load(&wo, r.clone()), y.load(&u, r));
+            let (wi, weight, pdf) = outs;
+            let rows = wi.chunks_exact_mut(3).zip(weight).zip(pdf);
+            for (j, ((wi, weight), pdf)) in rows.enumerate() {
+                match b.sample([wo[0][j], wo[1][j], wo[2][j]], [u[0][j], u[1][j]], s) {
+                    Some(x) => {
+                        wi.copy_from_slice(&x.wi);
+                        (*weight, *pdf) = (x.weight, x.pdf);
+                    }
+                    None => {
+                        wi.fill(T::zero());
+                        (*weight, *pdf) = (T::zero(), T::zero());
+                    }
+                }
             }
-            None => {
-                wi.fill(T::zero());
-                (*weight, *pdf) = (T::zero(), T::zero());
-            }
-        }
-    }
-    Ok(())
+            Ok(())
+        },
+    );
+    // A chunk saw a `u` outside [0, 1): name the first one in order, whatever the threads.
+    run.or_else(|()| check_u(&u, r))
 }
 
-fn pdf_rows<T: Real>(b: &dyn fastbrdf::Brdf<T>, s: Strategy, wo: &[T], wi: &[T], out: &mut [T]) {
-    for ((p, o), i) in out
-        .iter_mut()
-        .zip(wo.chunks_exact(3))
-        .zip(wi.chunks_exact(3))
-    {
-        *p = b.pdf([o[0], o[1], o[2]], [i[0], i[1], i[2]], s);
+/// Samples rows `r` in f32 with the batched [`Sampler`] (the scalar model's values, bit for
+/// bit), threaded as [`sample_rows`].
+fn sampler_rows(
+    sp: &Sampler,
+    s: Strategy,
+    (wo, u): Pairs<f32>,
+    r: Range<usize>,
+    outs: Outs3<'_, f32>,
+) -> Result<(), String> {
+    let init = || {
+        (
+            Soa::<f32, 3>::new(),
+            Soa::<f32, 2>::new(),
+            Soa::<f32, 3>::new(),
+        )
+    };
+    let run = for_chunks3(r.start, outs, [3, 1, 1], init, |(x, y, z), r, outs| {
+        check_u(&u, r.clone()).map_err(|_| None)?;
+        let (wo, u) = (x.load(&wo, r.clone()), y.load(&u, r));
+        let (wi, weight, pdf) = outs;
+        let wi_soa = z.cols_mut(weight.len());
+        let out = SampleOut {
+            wi: wi_soa,
+            weight,
+            pdf,
+        };
+        sp.sample(s, wo, u, out).map_err(|e| Some(e.to_string()))?;
+        z.store(wi);
+        Ok(())
+    });
+    match run {
+        Ok(()) => Ok(()),
+        Err(Some(e)) => Err(e),
+        Err(None) => check_u(&u, r),
     }
 }
+
+/// The f32 density over rows `r` with the batched [`Sampler`], threaded.
+fn sampler_pdf_rows(
+    sp: &Sampler,
+    s: Strategy,
+    (wo, wi): Pairs<f32>,
+    r: Range<usize>,
+    out: &mut [f32],
+) -> Res {
+    for_chunks(r.start, (out, 1), soa2::<3, 3, f32>, |(x, y), r, o| {
+        sp.pdf(s, x.load(&wo, r.clone()), y.load(&wi, r), o)
+    })
+}
+
+/// The density per element over rows `r` with the scalar model in precision `T`, threaded.
+fn pdf_rows<T: Real>(
+    b: &dyn Brdf<T>,
+    s: Strategy,
+    (wo, wi): Pairs<T>,
+    r: Range<usize>,
+    out: &mut [T],
+) -> Res {
+    for_chunks(r.start, (out, 1), soa2::<3, 3, T>, |(x, y), r, o| {
+        let (wo, wi) = (x.load(&wo, r.clone()), y.load(&wi, r));
+        for (j, o) in o.iter_mut().enumerate() {
+            *o = b.pdf(
+                [wo[0][j], wo[1][j], wo[2][j]],
+                [wi[0][j], wi[1][j], wi[2][j]],
+                s,
+            );
+        }
+        Ok(())
+    })
+}
+
+/// Two (N, k) inputs read in place.
+type Pairs<'a, T> = (Rows<'a, T>, Rows<'a, T>);
+type Res = fastbrdf::Result<()>;
 
 type Sampled<'py, T> = (
     Bound<'py, PyArray1<T>>,
@@ -248,10 +345,7 @@ impl Handle {
                             | fastbrdf::Kind::Fresnel,
                             [c],
                         ) => k.eval_par(Input::Cos(&c[r]), o),
-                        _ => {
-                            rows(&self.m32, &cols, r, o);
-                            Ok(())
-                        }
+                        _ => rows_par(&self.m32, &cols, r, o),
                     }
                 })?;
             }
@@ -275,17 +369,15 @@ impl Handle {
             {
                 let mut rw = writable(&out)?;
                 let o = rw.as_slice_mut().map_err(value_error)?;
-                chunked(py, n, |r| -> Result<(), String> {
-                    rows(&self.m64, &cols, r.clone(), &mut o[r]);
-                    Ok(())
-                })?;
+                chunked(py, n, |r| rows_par(&self.m64, &cols, r.clone(), &mut o[r]))?;
             }
             Ok(out)
         })
     }
 
-    /// A BRDF in f32 over (N, 3) `wi`, `wo`: the SIMD kernel, fed in chunks of [`CHUNK`]
-    /// deinterleaved elements (the inputs are not copied whole).
+    /// A BRDF in f32 over (N, 3) `wi`, `wo` of any strides (read in place): the SIMD
+    /// kernel, fed [`CHUNK`](crate::arrays::CHUNK) deinterleaved elements at a time, over
+    /// rayon's threads.
     #[pyo3(signature = (wi, wo, out=None))]
     fn eval_dirs_f32<'py>(
         &self,
@@ -299,24 +391,13 @@ impl Handle {
             let k = self.kernel.as_ref().ok_or_else(|| {
                 PyRuntimeError::new_err("internal error in fastbrdf: a BRDF without a kernel")
             })?;
-            let (wi, wo) = (ready(wi)?, ready(wo)?);
-            let (wi, wo) = (slice2(&wi, 3, "wi")?, slice2(&wo, 3, "wo")?);
-            same_rows("wi", wi.len() / 3, "wo", wo.len() / 3)?;
-            let n = wi.len() / 3;
-            let out = output::<f32>(py, n, out)?;
-            {
-                let mut rw = writable(&out)?;
-                let o = rw.as_slice_mut().map_err(value_error)?;
-                chunked(py, n, |r| {
-                    let span = 3 * r.start..3 * r.end;
-                    brdf_kernel(k, &wi[span.clone()], &wo[span], &mut o[r])
-                })?;
-            }
-            Ok(out)
+            let (wi, wo) = (aligned(wi)?, aligned(wo)?);
+            let dirs = pairs((&wi, "wi", 3), (&wo, "wo", 3))?;
+            self.eval_dirs(py, dirs, out, |d, r, o| brdf_kernel(k, d, r, o))
         })
     }
 
-    /// A BRDF in f64 over (N, 3) `wi`, `wo` (the scalar model).
+    /// A BRDF in f64 over (N, 3) `wi`, `wo` of any strides (the scalar model, threaded).
     #[pyo3(signature = (wi, wo, out=None))]
     fn eval_dirs_f64<'py>(
         &self,
@@ -327,75 +408,84 @@ impl Handle {
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         guard(|| {
             let b = brdf_of(&self.m64, self.id)?;
-            let (wi, wo) = (ready(wi)?, ready(wo)?);
-            let (wi, wo) = (slice2(&wi, 3, "wi")?, slice2(&wo, 3, "wo")?);
-            same_rows("wi", wi.len() / 3, "wo", wo.len() / 3)?;
-            let n = wi.len() / 3;
-            let out = output::<f64>(py, n, out)?;
-            {
-                let mut rw = writable(&out)?;
-                let o = rw.as_slice_mut().map_err(value_error)?;
-                chunked(py, n, |r| -> Result<(), String> {
-                    let span = 3 * r.start..3 * r.end;
-                    brdf_rows(b, &wi[span.clone()], &wo[span], &mut o[r]);
-                    Ok(())
-                })?;
-            }
-            Ok(out)
+            let (wi, wo) = (aligned(wi)?, aligned(wo)?);
+            let dirs = pairs((&wi, "wi", 3), (&wo, "wo", 3))?;
+            self.eval_dirs(py, dirs, out, |d, r, o| brdf_rows(b, d, r, o))
         })
     }
 
-    /// Samples `wi` given (N, 3) `wo` and (N, 2) `u` in [0, 1): `(wi (N*3), weight, pdf)`.
+    /// Samples `wi` given (N, 3) `wo` and (N, 2) `u` in [0, 1), both of any strides:
+    /// `(wi (N*3), weight, pdf)`, written into `out` when given (three C-contiguous
+    /// writeable 1-D arrays of 3N, N and N elements).
+    #[pyo3(signature = (wo, u, strategy_name, out=None))]
     fn sample_f32<'py>(
         &self,
         py: Python<'py>,
         wo: Bound<'py, PyArray2<f32>>,
         u: Bound<'py, PyArray2<f32>>,
         strategy_name: &str,
+        out: Option<Sampled<'py, f32>>,
     ) -> PyResult<Sampled<'py, f32>> {
         guard(|| {
             let b = brdf_of(&self.m32, self.id)?;
-            self.sample(py, b, wo, u, strategy_name)
+            let sp = self.sampler()?;
+            self.sample(py, b, (wo, u), strategy_name, out, |s, d, r, o| {
+                sampler_rows(sp, s, d, r, o)
+            })
         })
     }
 
+    #[pyo3(signature = (wo, u, strategy_name, out=None))]
     fn sample_f64<'py>(
         &self,
         py: Python<'py>,
         wo: Bound<'py, PyArray2<f64>>,
         u: Bound<'py, PyArray2<f64>>,
         strategy_name: &str,
+        out: Option<Sampled<'py, f64>>,
     ) -> PyResult<Sampled<'py, f64>> {
         guard(|| {
             let b = brdf_of(&self.m64, self.id)?;
-            self.sample(py, b, wo, u, strategy_name)
+            self.sample(py, b, (wo, u), strategy_name, out, |s, d, r, o| {
+                sample_rows(b, s, d, r, o)
+            })
         })
     }
 
-    /// The solid-angle density of `wi` given `wo`, both (N, 3).
+    /// The solid-angle density of `wi` given `wo`, both (N, 3) of any strides (into `out`
+    /// when given).
+    #[pyo3(signature = (wo, wi, strategy_name, out=None))]
     fn pdf_f32<'py>(
         &self,
         py: Python<'py>,
         wo: Bound<'py, PyArray2<f32>>,
         wi: Bound<'py, PyArray2<f32>>,
         strategy_name: &str,
+        out: Option<Bound<'py, PyArray1<f32>>>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         guard(|| {
             let b = brdf_of(&self.m32, self.id)?;
-            self.pdf(py, b, wo, wi, strategy_name)
+            let sp = self.sampler()?;
+            self.pdf(py, b, (wo, wi), strategy_name, out, |s, d, r, o| {
+                sampler_pdf_rows(sp, s, d, r, o)
+            })
         })
     }
 
+    #[pyo3(signature = (wo, wi, strategy_name, out=None))]
     fn pdf_f64<'py>(
         &self,
         py: Python<'py>,
         wo: Bound<'py, PyArray2<f64>>,
         wi: Bound<'py, PyArray2<f64>>,
         strategy_name: &str,
+        out: Option<Bound<'py, PyArray1<f64>>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         guard(|| {
             let b = brdf_of(&self.m64, self.id)?;
-            self.pdf(py, b, wo, wi, strategy_name)
+            self.pdf(py, b, (wo, wi), strategy_name, out, |s, d, r, o| {
+                pdf_rows(b, s, d, r, o)
+            })
         })
     }
 
@@ -416,13 +506,25 @@ impl Handle {
             fastbrdf::Kind::Shadowing => None,
             _ => Some(Kernel::new(spec).map_err(value_error)?),
         };
+        let sampler = match plan.kind() {
+            fastbrdf::Kind::Brdf => Some(Sampler::from_plan(spec.id(), plan).map_err(value_error)?),
+            _ => None,
+        };
         Ok(Self {
             id: spec.id(),
             kind: plan.kind(),
             m32: plan.model::<f32>(),
             m64: plan.model::<f64>(),
             kernel,
+            sampler,
             spec: spec.clone(),
+        })
+    }
+
+    /// A BRDF's f32 sampler (every BRDF has one).
+    fn sampler(&self) -> PyResult<&Sampler> {
+        self.sampler.as_ref().ok_or_else(|| {
+            PyRuntimeError::new_err("internal error in fastbrdf: a BRDF without a sampler")
         })
     }
 
@@ -472,29 +574,54 @@ impl Handle {
         Ok(n)
     }
 
+    /// A BRDF's value over two (N, 3) inputs into `out` (or a new array): `f` over steps of
+    /// rows (the GIL released, Ctrl-C checked between them).
+    fn eval_dirs<'py, T: Element + Sync>(
+        &self,
+        py: Python<'py>,
+        dirs: Pairs<'_, T>,
+        out: Option<Bound<'py, PyArray1<T>>>,
+        f: impl Fn(Pairs<'_, T>, Range<usize>, &mut [T]) -> Res + Send + Sync,
+    ) -> PyResult<Bound<'py, PyArray1<T>>> {
+        let n = dirs.0.nrows();
+        let out = output::<T>(py, n, out)?;
+        {
+            let mut rw = writable(&out)?;
+            let o = rw.as_slice_mut().map_err(value_error)?;
+            chunked(py, n, |r| f(dirs, r.clone(), &mut o[r]))?;
+        }
+        Ok(out)
+    }
+
     fn sample<'py, T: Real + Element>(
         &self,
         py: Python<'py>,
-        b: &dyn fastbrdf::Brdf<T>,
-        wo: Bound<'py, PyArray2<T>>,
-        u: Bound<'py, PyArray2<T>>,
+        b: &dyn Brdf<T>,
+        (wo, u): (Bound<'py, PyArray2<T>>, Bound<'py, PyArray2<T>>),
         strategy_name: &str,
+        out: Option<Sampled<'py, T>>,
+        rows: impl Fn(Strategy, Pairs<'_, T>, Range<usize>, Outs3<'_, T>) -> Result<(), String>
+        + Send
+        + Sync,
     ) -> PyResult<Sampled<'py, T>> {
         let s = self.resolve(b, strategy_name)?;
-        let (wo, u) = (ready(wo)?, ready(u)?);
-        let (wo, u) = (slice2(&wo, 3, "wo")?, slice2(&u, 2, "u")?);
-        let n = wo.len() / 3;
-        same_rows("wo", n, "u", u.len() / 2)?;
+        let (wo, u) = (aligned(wo)?, aligned(u)?);
+        let (wo, u) = pairs((&wo, "wo", 3), (&u, "u", 2))?;
+        let n = wo.nrows();
+        let (a, w, p) = match out {
+            Some((a, w, p)) => (Some(a), Some(w), Some(p)),
+            None => (None, None, None),
+        };
         let (wi_out, weight_out, pdf_out) = (
-            empty::<T>(py, 3 * n)?,
-            empty::<T>(py, n)?,
-            empty::<T>(py, n)?,
+            output::<T>(py, 3 * n, a)?,
+            output::<T>(py, n, w)?,
+            output::<T>(py, n, p)?,
         );
         {
             let (mut a, mut w, mut p) = (
-                wi_out.try_readwrite()?,
-                weight_out.try_readwrite()?,
-                pdf_out.try_readwrite()?,
+                writable(&wi_out)?,
+                writable(&weight_out)?,
+                writable(&pdf_out)?,
             );
             let (a, w, p) = (
                 a.as_slice_mut().map_err(value_error)?,
@@ -502,7 +629,12 @@ impl Handle {
                 p.as_slice_mut().map_err(value_error)?,
             );
             chunked(py, n, |r| {
-                sample_rows(b, s, (wo, u), r, (&mut *a, &mut *w, &mut *p))
+                let outs = (
+                    &mut a[3 * r.start..3 * r.end],
+                    &mut w[r.clone()],
+                    &mut p[r.clone()],
+                );
+                rows(s, (wo, u), r, outs)
             })?;
         }
         Ok((wi_out, weight_out, pdf_out))
@@ -511,26 +643,26 @@ impl Handle {
     fn pdf<'py, T: Real + Element>(
         &self,
         py: Python<'py>,
-        b: &dyn fastbrdf::Brdf<T>,
-        wo: Bound<'py, PyArray2<T>>,
-        wi: Bound<'py, PyArray2<T>>,
+        b: &dyn Brdf<T>,
+        (wo, wi): (Bound<'py, PyArray2<T>>, Bound<'py, PyArray2<T>>),
         strategy_name: &str,
+        out: Option<Bound<'py, PyArray1<T>>>,
+        rows: impl Fn(Strategy, Pairs<'_, T>, Range<usize>, &mut [T]) -> Res + Send + Sync,
     ) -> PyResult<Bound<'py, PyArray1<T>>> {
         let s = self.resolve(b, strategy_name)?;
-        let (wo, wi) = (ready(wo)?, ready(wi)?);
-        let (wo, wi) = (slice2(&wo, 3, "wo")?, slice2(&wi, 3, "wi")?);
-        let n = wo.len() / 3;
-        same_rows("wo", n, "wi", wi.len() / 3)?;
-        let out = empty::<T>(py, n)?;
-        {
-            let mut rw = out.try_readwrite()?;
-            let o = rw.as_slice_mut().map_err(value_error)?;
-            chunked(py, n, |r| -> Result<(), String> {
-                let span = 3 * r.start..3 * r.end;
-                pdf_rows(b, s, &wo[span.clone()], &wi[span], &mut o[r]);
-                Ok(())
-            })?;
-        }
-        Ok(out)
+        let (wo, wi) = (aligned(wo)?, aligned(wi)?);
+        let dirs = pairs((&wo, "wo", 3), (&wi, "wi", 3))?;
+        self.eval_dirs(py, dirs, out, |d, r, o| rows(s, d, r, o))
     }
+}
+
+/// Two aligned (N, k) arrays as rows, their widths and row counts checked (the second
+/// named against the first).
+fn pairs<'a, T: Element>(
+    (a, an, ak): (&'a PyReadonlyArray<'_, T, numpy::Ix2>, &str, usize),
+    (b, bn, bk): (&'a PyReadonlyArray<'_, T, numpy::Ix2>, &str, usize),
+) -> PyResult<Pairs<'a, T>> {
+    let (a, b) = (rows2(a, ak, an)?, rows2(b, bk, bn)?);
+    same_rows(an, a.nrows(), bn, b.nrows())?;
+    Ok((a, b))
 }

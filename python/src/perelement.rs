@@ -12,6 +12,7 @@ use crate::arrays::{STEP, empty, ready, same_rows, slice, slice2, writable};
 use crate::guard::{guard, value_error};
 use crate::handle::Handle;
 use fastbrdf::batch::per_element::{PerElement, Rows, numeric};
+use fastbrdf::batch::sample::{SampleOut, Sampler};
 use fastbrdf::sample::Strategy;
 use fastbrdf::{Model, Real};
 use numpy::{Element, PyArray1, PyArray2, PyReadonlyArray1, PyUntypedArrayMethods};
@@ -314,10 +315,74 @@ type Sampled<'py, T> = (
     Bound<'py, PyArray1<T>>,
 );
 
+/// Element draws as `Model.sample` draws them: the scalar model in f64, the batched
+/// `Sampler` of the element's value set in f32 (built once per value set in a step).
+trait Draw: Real + Element {
+    type Cache: Default;
+    fn draw(
+        cache: &mut Self::Cache,
+        at: (&PerElement, Vec<f64>),
+        b: &dyn fastbrdf::Brdf<Self>,
+        wo_u: ([Self; 3], [Self; 2]),
+        s: Strategy,
+    ) -> Result<Option<fastbrdf::sample::Sample<Self>>, Msg>;
+}
+
+impl Draw for f64 {
+    type Cache = ();
+    fn draw(
+        _: &mut (),
+        _: (&PerElement, Vec<f64>),
+        b: &dyn fastbrdf::Brdf<f64>,
+        (wo, u): ([f64; 3], [f64; 2]),
+        s: Strategy,
+    ) -> Result<Option<fastbrdf::sample::Sample<f64>>, Msg> {
+        Ok(b.sample(wo, u, s))
+    }
+}
+
+impl Draw for f32 {
+    type Cache = std::collections::HashMap<Vec<u64>, Sampler>;
+    fn draw(
+        cache: &mut Self::Cache,
+        (pe, values): (&PerElement, Vec<f64>),
+        _: &dyn fastbrdf::Brdf<f32>,
+        (wo, u): ([f32; 3], [f32; 2]),
+        s: Strategy,
+    ) -> Result<Option<fastbrdf::sample::Sample<f32>>, Msg> {
+        let key: Vec<u64> = values.iter().map(|v| v.to_bits()).collect();
+        let sp = match cache.entry(key) {
+            std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
+            std::collections::hash_map::Entry::Vacant(e) => {
+                let spec = pe.spec_at(&values)?;
+                e.insert(Sampler::from_plan(spec.id(), spec.plan()?)?)
+            }
+        };
+        let (mut wi, mut weight, mut pdf) = ([[0.0f32]; 3], [0.0f32], [0.0f32]);
+        let [x, y, z] = &mut wi;
+        let out = SampleOut {
+            wi: [x, y, z],
+            weight: &mut weight,
+            pdf: &mut pdf,
+        };
+        sp.sample(
+            s,
+            wo.each_ref().map(std::slice::from_ref),
+            u.each_ref().map(std::slice::from_ref),
+            out,
+        )?;
+        Ok((pdf[0] > 0.0).then(|| fastbrdf::sample::Sample {
+            wi: wi.map(|w| w[0]),
+            weight: weight[0],
+            pdf: pdf[0],
+        }))
+    }
+}
+
 /// Samples `wi` given (N, 3) `wo` and (N, 2) `u` in [0, 1) with per-element parameters:
 /// `(wi (N*3), weight, pdf)`, each element as `Model.sample` of the model built for its
 /// values (no sample: zeros).
-fn sample<'py, T: Real + Element>(
+fn sample<'py, T: Draw>(
     py: Python<'py>,
     handle: &Handle,
     names: Vec<String>,
@@ -357,13 +422,16 @@ fn sample<'py, T: Real + Element>(
         let q = q.as_slice_mut().map_err(value_error)?;
         steps(py, n, |r| {
             let ps: Vec<&[f64]> = p.iter().map(|p| &p[r.clone()]).collect();
+            let mut cache = T::Cache::default();
             pe.each_model::<T, Msg>(&ps, r.len(), |j, m| {
                 let i = r.start + j;
                 let b = brdf_of(m).map_err(Msg)?;
                 let st = b
                     .resolve(s)
                     .map_err(|e| Msg(format!("{}: {e}", handle.model_spec().id())))?;
-                match b.sample(v3(wo, i), [u[2 * i], u[2 * i + 1]], st) {
+                let values = ps.iter().map(|p| p[j]).collect();
+                let draw = (v3(wo, i), [u[2 * i], u[2 * i + 1]]);
+                match T::draw(&mut cache, (&pe, values), b, draw, st)? {
                     Some(x) => {
                         a[3 * i..3 * i + 3].copy_from_slice(&x.wi);
                         (w[i], q[i]) = (x.weight, x.pdf);

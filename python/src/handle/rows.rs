@@ -1,0 +1,108 @@
+//! Batches over the rows of numpy arrays, spread over rayon's threads.
+//!
+//! Inputs are (N, k) arrays read in place whatever their strides (C-contiguous rows, a
+//! transposed (k, N) array, a broadcast row of stride 0), deinterleaved [`CHUNK`] rows at a
+//! time into per-thread structure-of-arrays buffers ([`Soa`]). Outputs are C-contiguous and
+//! written in disjoint chunks ([`for_chunks`], [`for_chunks3`]). The chunks are fixed by the
+//! row count alone, never by the thread count, and each element's value depends only on its
+//! own inputs: results do not depend on the number of threads.
+
+use crate::arrays::CHUNK;
+use numpy::ndarray::{ArrayView2, s};
+use rayon::prelude::*;
+use std::ops::Range;
+
+/// (N, k) rows of any strides.
+pub(crate) type Rows<'a, T> = ArrayView2<'a, T>;
+
+/// One thread's buffers: `K` columns of [`CHUNK`] values.
+pub(crate) struct Soa<T, const K: usize>([Vec<T>; K]);
+
+impl<T: Copy + Default, const K: usize> Soa<T, K> {
+    pub(crate) fn new() -> Self {
+        Self(std::array::from_fn(|_| vec![T::default(); CHUNK]))
+    }
+
+    /// The `K` columns of rows `r` of `v` (at most [`CHUNK`] rows), copied into the buffers.
+    pub(crate) fn load(&mut self, v: &Rows<'_, T>, r: Range<usize>) -> [&[T]; K] {
+        let len = r.len();
+        if let Some(all) = v.as_slice() {
+            // C-contiguous: one pass over the rows.
+            let mut cols: [&mut [T]; K] = self.0.each_mut().map(|c| &mut c[..len]);
+            for (j, row) in all[K * r.start..K * r.end].chunks_exact(K).enumerate() {
+                for (c, col) in cols.iter_mut().enumerate() {
+                    col[j] = row[c];
+                }
+            }
+        } else {
+            for (c, col) in self.0.iter_mut().enumerate() {
+                for (d, x) in col[..len].iter_mut().zip(v.slice(s![r.clone(), c])) {
+                    *d = *x;
+                }
+            }
+        }
+        self.0.each_ref().map(|c| &c[..len])
+    }
+
+    /// The buffers as `len` writable values each (outputs of a structure-of-arrays kernel).
+    pub(crate) fn cols_mut(&mut self, len: usize) -> [&mut [T]; K] {
+        self.0.each_mut().map(|c| &mut c[..len])
+    }
+
+    /// The first `len` values of the buffers interleaved into `out` (`K` values a row).
+    pub(crate) fn store(&self, out: &mut [T]) {
+        let len = out.len() / K;
+        let cols = self.0.each_ref().map(|c| &c[..len]);
+        for (j, row) in out.chunks_exact_mut(K).enumerate() {
+            for (c, x) in row.iter_mut().enumerate() {
+                *x = cols[c][j];
+            }
+        }
+    }
+}
+
+/// Runs `f(scratch, rows, out)` over `out` cut into chunks of [`CHUNK`] rows of `w` values,
+/// `rows` counted from `first`: on this thread when there is one chunk, else over rayon's
+/// threads, `init` making each worker's scratch. The first error (of any chunk) is returned.
+pub(crate) fn for_chunks<T: Send, S, E: Send>(
+    first: usize,
+    (out, w): (&mut [T], usize),
+    init: impl Fn() -> S + Sync + Send,
+    f: impl Fn(&mut S, Range<usize>, &mut [T]) -> Result<(), E> + Sync + Send,
+) -> Result<(), E> {
+    let n = out.len() / w;
+    if n <= CHUNK {
+        return f(&mut init(), first..first + n, out);
+    }
+    out.par_chunks_mut(w * CHUNK)
+        .enumerate()
+        .try_for_each_init(init, |s, (i, o)| {
+            let lo = first + i * CHUNK;
+            f(s, lo..lo + o.len() / w, o)
+        })
+}
+
+/// Three outputs of widths `w` (rows counted as by the first), as [`for_chunks`].
+pub(crate) type Outs3<'a, T> = (&'a mut [T], &'a mut [T], &'a mut [T]);
+
+/// [`for_chunks`] over three outputs of the same row count (widths `w`).
+pub(crate) fn for_chunks3<T: Send, S, E: Send>(
+    first: usize,
+    (a, b, c): Outs3<'_, T>,
+    w: [usize; 3],
+    init: impl Fn() -> S + Sync + Send,
+    f: impl Fn(&mut S, Range<usize>, Outs3<'_, T>) -> Result<(), E> + Sync + Send,
+) -> Result<(), E> {
+    let n = a.len() / w[0];
+    if n <= CHUNK {
+        return f(&mut init(), first..first + n, (a, b, c));
+    }
+    a.par_chunks_mut(w[0] * CHUNK)
+        .zip(b.par_chunks_mut(w[1] * CHUNK))
+        .zip(c.par_chunks_mut(w[2] * CHUNK))
+        .enumerate()
+        .try_for_each_init(init, |s, (i, ((a, b), c))| {
+            let lo = first + i * CHUNK;
+            f(s, lo..lo + b.len() / w[1], (a, b, c))
+        })
+}
