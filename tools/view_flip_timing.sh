@@ -5,9 +5,10 @@
 # OLD: /api/render computes FLIP before answering (pictures and metrics arrive together).
 # NEW: /api/render?flip=later answers with the pictures, RMSE and PSNR, then /api/flip?job=ID
 #      answers FLIP (the page's way); also flip=wait (one request, FLIP from the pool).
-# Scenes: the sphere and the embedded face (--mesh face), one model (flog, n=100) against its
-# reference (pow), as the page opens, at the page's full size (512 x 512, 2 x 2 samples) and
-# the largest (1024 x 1024, 4 x 4). Prints the median seconds over REPS (default 3) of each.
+# Scenes: the sphere and the embedded face (--mesh face), one model (flog, n=100; MODELS=a,b,c
+# for others) against its reference (pow), as the page opens, at the page's full size (512 x 512, 2 x 2 samples) and
+# the largest (1024 x 1024, 4 x 4; SIZES=512x2 for the first only). Prints the median
+# seconds over REPS (default 3) of each, and every run's.
 set -euo pipefail
 old=$1 new=$2 reps=${3:-3}
 port_old=${PORT_OLD:-8751} port_new=${PORT_NEW:-8752}
@@ -19,13 +20,13 @@ trap 'kill $pid_old $pid_new 2>/dev/null' EXIT
 for p in "$port_old" "$port_new"; do
   curl -s --retry 30 --retry-delay 1 --retry-connrefused -o /dev/null "http://127.0.0.1:$p/"
 done
-q='models=flog&ref=pow&n=100&theta=30&light=0.5,0.7,0.6'
+q="models=${MODELS:-flog}&ref=pow&n=100&theta=30&light=0.5,0.7,0.6"
 t() { curl -s -o "$2" -w '%{time_total}' "$1"; }
 out=$(mktemp -d)
 for rep in $(seq "$reps"); do
   for mesh in sphere mesh; do
-    for ss in "512 2" "1024 4"; do
-      set -- $ss
+    for ss in $(echo "${SIZES:-512x2,1024x4}" | tr ',x' '  ' | xargs -n2 | tr ' ' 'x'); do
+      set -- ${ss/x/ }
       base="$q&mesh=$mesh&size=$1&spp=$2"
       key="$mesh ${1}x$1 ${2}x$2"
       # Alternate which server goes first.
