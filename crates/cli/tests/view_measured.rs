@@ -262,7 +262,11 @@ fn page_chooses_the_measured_reference_in_headless_chromium() {
         .unwrap(),
     )
     .unwrap();
-    assert_eq!(v["status"], "", "the page shows an error: {}", v["status_text"]);
+    assert_eq!(
+        v["status"], "",
+        "the page shows an error: {}",
+        v["status_text"]
+    );
     let c = cli_measured_errors(fs, "ward", Some("0.3"));
     assert_eq!(
         v["ngan"].as_str().unwrap().parse::<f64>().unwrap(),

@@ -21,6 +21,7 @@ const SNAPSHOT: &str = r##"JSON.stringify({
       rel: r.querySelector(".max-rel").dataset.value, psnr: r.querySelector(".psnr").textContent,
       flip: r.querySelector(".flip").dataset.value, flip_text: r.querySelector(".flip").textContent}])),
   status: document.getElementById("status").className,
+  status_text: document.getElementById("status").textContent,
   albedo_estimate: document.getElementById("albedo").dataset.estimate,
   verdicts: document.getElementById("verdicts").textContent,
   hash: location.hash,
@@ -34,7 +35,11 @@ fn snapshot(b: &mut cdp::Browser, s: &str) -> Value {
     )
     .unwrap();
     let v: Value = serde_json::from_str(b.eval(s, SNAPSHOT).unwrap().as_str().unwrap()).unwrap();
-    assert_eq!(v["status"], "", "the page shows an error");
+    assert_eq!(
+        v["status"], "",
+        "the page shows an error: {}",
+        v["status_text"]
+    );
     // Once everything has arrived, the precise albedo has replaced the quick estimate, and the
     // verdict shown is the precise computation's.
     assert_eq!(

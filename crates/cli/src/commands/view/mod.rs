@@ -226,7 +226,10 @@ mod tests {
             format!("within {IDLE_TIMEOUT_S} s"),
             format!("for {WRITE_TIMEOUT_S} s"),
             format!("{RENDER_SLOTS} renders at once and {MAX_WAITING} waiting"),
-            format!("at most {} renders' pictures at once", super::flip::FLIP_JOBS),
+            format!(
+                "at most {} renders' pictures at once",
+                super::flip::FLIP_JOBS
+            ),
             "as many plots/albedo/errors computations at once as CPUs (at least 2)".into(),
             format!("waits {} s then gets 503", COMPUTE_WAIT.as_secs()),
             "refuses cross-site requests".into(),
