@@ -1,0 +1,161 @@
+"""fastbrdf against Mitsuba 3 end to end from numpy: eval, sample and pdf of a GGX BRDF over N
+float32 direction pairs, in millions of elements per second, measured interleaved in one run.
+
+    DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so \\
+        target/python-wheel-venv/bin/python python/examples/sample_cost.py [--n 1e6,1e7] [--repeats 5]
+        [--variant llvm_ad_rgb] [--mitsuba-max-n 1e7] [--no-mitsuba]
+
+fastbrdf: ``Model("cook-torrance", d="ggx", alpha=0.3)`` on (N, 3) and (N, 2) float32 arrays,
+with fresh outputs and with ``out=`` buffers reused from call to call. Mitsuba:
+``roughconductor`` (GGX, alpha 0.3, its default visible-normal sampling) through
+``bsdf.eval/sample/pdf`` on ``mi.Vector3f`` built from the same values given as float32 numpy
+columns (its own layout, made outside the timing), the results converted back to numpy arrays
+(after ``dr.eval``); its ``eval`` includes the cosine factor and its weight is RGB, as its
+variant computes them. Mitsuba's first call per operation and size (which JIT-compiles the
+kernel) and a second warm-up call are excluded from the figures; the first call's time is
+printed apart. Each figure is the best of --repeats rounds, every method timed once per round
+(interleaved, so that a busy machine slows all of them alike). Prints the CPU's name, the
+thread counts and a markdown table, with ns per element (to see any super-linear cost at large
+N; 1e8 needs about 6 GB of memory for fastbrdf's arrays, which is why Mitsuba stops at
+--mitsuba-max-n).
+"""
+
+import argparse
+import os
+import time
+
+import numpy as np
+
+import fastbrdf
+
+
+def cpu_name():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    import platform
+
+    return platform.processor() or "unknown CPU"
+
+
+def hemisphere(rng, n):
+    """Unit float32 vectors above the horizon, made in pieces (1e8 of them fit in memory)."""
+    out = np.empty((n, 3), np.float32)
+    for lo in range(0, n, 1 << 22):
+        hi = min(n, lo + (1 << 22))
+        v = rng.normal(size=(hi - lo, 3))
+        v[:, 2] = np.abs(v[:, 2])
+        out[lo:hi] = v / np.linalg.norm(v, axis=1, keepdims=True)
+    return out
+
+
+def fastbrdf_ops(n, wi, wo, u):
+    m = fastbrdf.Model("cook-torrance", d="ggx", alpha=0.3)
+    f, p = np.empty(n, np.float32), np.empty(n, np.float32)
+    bufs = (np.empty((n, 3), np.float32), np.empty(n, np.float32), np.empty(n, np.float32))
+    return {
+        ("eval", "fastbrdf"): lambda: m.eval(wi, wo),
+        ("eval", "fastbrdf out="): lambda: m.eval(wi, wo, out=f),
+        ("sample", "fastbrdf"): lambda: m.sample(wo, u),
+        ("sample", "fastbrdf out="): lambda: m.sample(wo, u, out=bufs),
+        ("pdf", "fastbrdf"): lambda: m.pdf(wo, wi),
+        ("pdf", "fastbrdf out="): lambda: m.pdf(wo, wi, out=p),
+    }
+
+
+def mitsuba_ops(variant, n, wi, wo, u):
+    """Mitsuba's calls, or a reason they cannot run. Returns (ops, first-call seconds)."""
+    try:
+        import drjit as dr
+        import mitsuba as mi
+
+        mi.set_variant(variant)
+    except Exception as e:  # not installed, or no libLLVM for llvm_* variants
+        return f"{variant} unavailable ({type(e).__name__}: {str(e).splitlines()[0][:120]})", {}
+    bsdf = mi.load_dict({"type": "roughconductor", "distribution": "ggx", "alpha": 0.3})
+    ctx = mi.BSDFContext()
+    # Mitsuba's own layout: one contiguous float32 column per component.
+    woc, wic, uc = ([np.ascontiguousarray(a[:, k]) for k in range(a.shape[1])] for a in (wo, wi, u))
+
+    def si():
+        s = dr.zeros(mi.SurfaceInteraction3f, n)
+        s.wi = mi.Vector3f(*woc)
+        return s
+
+    def ev():
+        v = bsdf.eval(ctx, si(), mi.Vector3f(*wic))
+        dr.eval(v)
+        return np.asarray(v)
+
+    def sa():
+        bs, w = bsdf.sample(ctx, si(), mi.Float(uc[0]), mi.Point2f(uc[0], uc[1]))
+        dr.eval(bs.wo, w, bs.pdf)
+        return np.asarray(bs.wo), np.asarray(w), np.asarray(bs.pdf)
+
+    def pd():
+        v = bsdf.pdf(ctx, si(), mi.Vector3f(*wic))
+        dr.eval(v)
+        return np.asarray(v)
+
+    ops = {("eval", variant): ev, ("sample", variant): sa, ("pdf", variant): pd}
+    first = {}
+    for k, f in ops.items():
+        t0 = time.perf_counter()
+        f()  # JIT compilation
+        first[k[0]] = time.perf_counter() - t0
+        f()  # second warm-up
+    return ops, first
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--n", default="1e6,1e7", help="comma-separated sizes")
+    ap.add_argument("--repeats", type=int, default=5)
+    ap.add_argument("--variant", default="llvm_ad_rgb")
+    ap.add_argument("--mitsuba-max-n", type=float, default=1e7)
+    ap.add_argument("--no-mitsuba", action="store_true")
+    a = ap.parse_args()
+    sizes = [int(float(x)) for x in a.n.split(",")]
+    print(f"CPU: {cpu_name()}, {os.cpu_count()} logical cores; "
+          f"RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset (all cores)')}")
+    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds; float32 inputs\n")
+    rows = []
+    for n in sizes:
+        rng = np.random.default_rng(1)
+        wi, wo = hemisphere(rng, n), hemisphere(rng, n)
+        u = rng.random((n, 2), dtype=np.float32)
+        ops = fastbrdf_ops(n, wi, wo, u)
+        first = {}
+        if not a.no_mitsuba and n <= a.mitsuba_max_n:
+            mops, first = mitsuba_ops(a.variant, n, wi, wo, u)
+            if isinstance(mops, str):
+                print(mops)
+            else:
+                ops.update(mops)
+        for f in ops.values():
+            f()  # warm-up (fastbrdf: page in the out= buffers)
+        best = dict.fromkeys(ops, float("inf"))
+        for _ in range(a.repeats):
+            for k, f in ops.items():
+                t0 = time.perf_counter()
+                r = f()
+                best[k] = min(best[k], time.perf_counter() - t0)
+                del r
+        for (op, who), t in best.items():
+            mit = best.get((op, a.variant))
+            ratio = f"{mit / t:.2f}x" if mit and not who.startswith(a.variant) else ""
+            rows.append((op, n, who, n / t / 1e6, t / n * 1e9, ratio, first.get(op) if who == a.variant else None))
+        del ops, wi, wo, u
+    print("| op | N | who | M elements/s | ns/element | vs Mitsuba | Mitsuba's first (JIT) call |")
+    print("|---|---|---|---|---|---|---|")
+    for op, n, who, rate, ns, ratio, jit in sorted(rows, key=lambda r: (["eval", "sample", "pdf"].index(r[0]), r[1])):
+        jit_s = f"{jit:.2f} s" if jit is not None else ""
+        print(f"| {op} | {n:.0e} | {who} | {rate:.1f} | {ns:.2f} | {ratio} | {jit_s} |")
+
+
+if __name__ == "__main__":
+    main()
