@@ -168,6 +168,7 @@ impl MeasuredData {
                 spp,
                 shading: Shading::Batch,
                 sampler: fastbrdf_render::render::Sampler::default(),
+                aa: fastbrdf_render::render::Antialias::default(),
             };
             let label = self.path.display().to_string();
             let brdf = Arc::clone(&self.brdf) as Arc<dyn RgbBrdf>;

@@ -78,6 +78,7 @@ fn opts() -> Options {
         spp: 1,
         shading: Shading::Batch,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::Grid,
     }
 }
 

@@ -57,6 +57,7 @@ fn opts(w: u32, h: u32, spp: u32) -> Options {
         spp,
         shading: Shading::Batch,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::Grid,
     }
 }
 

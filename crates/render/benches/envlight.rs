@@ -45,6 +45,7 @@ fn run(bencher: divan::Bencher, subject: &str, env: bool, threads: usize) {
         spp: 4,
         shading: Shading::Batch,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::default(),
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

@@ -32,6 +32,7 @@ fn run(id: &str, shading: Shading, threads: usize) {
         spp: 1,
         shading,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::default(),
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

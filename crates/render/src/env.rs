@@ -67,6 +67,9 @@ pub struct EnvMap {
     conditional: Vec<f32>,
     /// Per texel, its probability mass (sums to 1).
     mass: Vec<f32>,
+    /// Guide tables ([`guide_of`]) of `marginal` and of each row of `conditional`.
+    marginal_guide: Vec<u32>,
+    conditional_guide: Vec<u32>,
 }
 
 fn lum(c: Vec3) -> f32 {
@@ -89,10 +92,12 @@ pub fn uv_to_dir(u: f32, v: f32) -> (Vec3, f32) {
 }
 
 /// The index in `cdf` (n + 1 entries from 0 to 1) of the bin holding `u`, and where in it.
-fn sample_cdf(cdf: &[f32], u: f32) -> (usize, f32) {
+/// `guide` ([`guide_of`] of `cdf`) narrows the binary search to the few entries around `u`:
+/// the same index as a search of the whole table, to the bit.
+fn sample_cdf(cdf: &[f32], guide: &[u32], u: f32) -> (usize, f32) {
     let n = cdf.len() - 1;
     let u = u.clamp(0.0, 1.0 - f32::EPSILON) * cdf[n];
-    let i = (cdf.partition_point(|&c| c <= u).max(1) - 1).min(n - 1);
+    let i = (search(cdf, guide, u).max(1) - 1).min(n - 1);
     let width = cdf[i + 1] - cdf[i];
     let frac = if width > 0.0 {
         ((u - cdf[i]) / width).clamp(0.0, 1.0 - f32::EPSILON)
@@ -100,6 +105,41 @@ fn sample_cdf(cdf: &[f32], u: f32) -> (usize, f32) {
         0.5
     };
     (i, frac)
+}
+
+/// `cdf.partition_point(|&c| c <= u)`, searched only between the guide entries of the bucket
+/// `u` falls in and its neighbours.
+///
+/// Why a guide table (Chen and Asau 1974), not an alias table: a binary search of the sky's
+/// 512 rows and 1024 columns took 28% of an environment render (19 unpredictable branches per
+/// sample). An alias table draws in O(1) too, but it maps neighbouring `u` to unrelated texels,
+/// which would undo the stratification of the Sobol sampler; inverting the CDF keeps it, and
+/// the guide makes the inversion about as cheap.
+#[inline]
+fn search(cdf: &[f32], guide: &[u32], u: f32) -> usize {
+    let n = cdf.len() - 1;
+    let total = cdf[n];
+    let g = guide.len() - 1;
+    if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || g == 0 {
+        return cdf.partition_point(|&c| c <= u);
+    }
+    // guide[k] = the partition point of k / g x total; u lies in bucket k up to rounding, so
+    // the buckets k - 1 to k + 1 hold its partition point for certain.
+    let k = ((u as f64 / total as f64) * g as f64) as usize;
+    let lo = guide[k.saturating_sub(1).min(g)] as usize;
+    let hi = guide[(k + 2).min(g)] as usize;
+    lo + cdf[lo..hi].partition_point(|&c| c <= u)
+}
+
+/// The guide table of `cdf` (n + 1 entries, non-decreasing): n + 1 entries, entry k the
+/// partition point of `k / n x cdf[n]` (compared in f64, so that each entry bounds the f32
+/// searches of its bucket).
+fn guide_of(cdf: &[f32]) -> Vec<u32> {
+    let n = cdf.len() - 1;
+    let total = cdf[n] as f64;
+    (0..=n)
+        .map(|k| cdf.partition_point(|&c| c as f64 <= k as f64 / n as f64 * total) as u32)
+        .collect()
 }
 
 impl EnvMap {
@@ -169,6 +209,8 @@ impl EnvMap {
             marginal.push((acc / total) as f32);
         }
         let mass = weights.iter().map(|x| (x / total) as f32).collect();
+        let marginal_guide = guide_of(&marginal);
+        let conditional_guide = conditional.chunks_exact(w + 1).flat_map(guide_of).collect();
         Ok(Self {
             width,
             height,
@@ -176,6 +218,8 @@ impl EnvMap {
             marginal,
             conditional,
             mass,
+            marginal_guide,
+            conditional_guide,
         })
     }
 
@@ -297,9 +341,14 @@ impl EnvMap {
     /// A direction drawn from the map's distribution by two uniform numbers in [0, 1):
     /// (unit direction, radiance, solid-angle density); density 0 at the poles (skip it).
     pub fn sample(&self, u1: f32, u2: f32) -> (Vec3, Vec3, f32) {
-        let (r, fr) = sample_cdf(&self.marginal, u1);
+        let (r, fr) = sample_cdf(&self.marginal, &self.marginal_guide, u1);
         let w = self.width as usize;
-        let (c, fc) = sample_cdf(&self.conditional[r * (w + 1)..(r + 1) * (w + 1)], u2);
+        let row = r * (w + 1)..(r + 1) * (w + 1);
+        let (c, fc) = sample_cdf(
+            &self.conditional[row.clone()],
+            &self.conditional_guide[row],
+            u2,
+        );
         let u = (c as f32 + fc) / self.width as f32;
         let v = (r as f32 + fr) / self.height as f32;
         let (d, st) = uv_to_dir(u, v);
@@ -461,6 +510,47 @@ mod tests {
         assert_eq!(power_heuristic(0.0, 0.0), 0.0);
         assert_eq!(specular_light_weight(2.0, None), 1.0);
         assert!((specular_light_weight(1.0, Some(1.0)) - 0.5).abs() < 1e-7);
+    }
+
+    /// The guided search finds the index a search of the whole table finds, to the bit, on
+    /// the sky (a tiny bright sun: long flat stretches and a steep step), a random map and a
+    /// map with black rows, for uniform numbers everywhere including the ends.
+    #[test]
+    fn the_guide_tables_change_no_sample() {
+        let plain = |cdf: &[f32], u: f32| {
+            let n = cdf.len() - 1;
+            let u = u.clamp(0.0, 1.0 - f32::EPSILON) * cdf[n];
+            cdf.partition_point(|&c| c <= u)
+        };
+        let mut rng = Rng::new(3, 1);
+        let random: Vec<Vec3> = (0..64 * 32)
+            .map(|i| {
+                let x = rng.uniform();
+                if i / 64 % 5 == 0 {
+                    Vec3::ZERO
+                } else {
+                    Vec3::splat(x * x * x * 100.0)
+                }
+            })
+            .collect();
+        for map in [EnvMap::sky(), EnvMap::from_texels(64, 32, random).unwrap()] {
+            let w = map.width as usize;
+            let mut tables = vec![(&map.marginal[..], &map.marginal_guide[..])];
+            for r in (0..map.height as usize).step_by(7) {
+                let row = r * (w + 1)..(r + 1) * (w + 1);
+                tables.push((&map.conditional[row.clone()], &map.conditional_guide[row]));
+            }
+            for (cdf, guide) in tables {
+                let mut us: Vec<f32> = (0..20_000).map(|_| rng.uniform()).collect();
+                us.extend([0.0, 1.0 - f32::EPSILON, 0.5, 1e-9]);
+                us.extend(cdf.iter().copied()); // bin edges
+                for u in us {
+                    let n = cdf.len() - 1;
+                    let uu = u.clamp(0.0, 1.0 - f32::EPSILON) * cdf[n];
+                    assert_eq!(search(cdf, guide, uu), plain(cdf, u), "u = {u}");
+                }
+            }
+        }
     }
 
     #[test]

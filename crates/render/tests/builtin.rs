@@ -91,6 +91,7 @@ fn the_face_with_the_skin_texture_renders_under_the_sky() {
         spp: 1,
         shading: Shading::Batch,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::default(),
     };
     let film = render(&scene, &opts, &|_, _| {}).unwrap();
     // The centre (the nose) is lit skin: finite, warm (red over blue).

@@ -24,6 +24,7 @@ fn shoot(scene: &Scene, size: u32) -> Film {
         spp: 1,
         shading: Shading::Batch,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::default(),
     };
     render(scene, &o, &|_, _| {}).unwrap()
 }

@@ -187,6 +187,7 @@ pub(crate) fn scene_arg(d: &Bound<'_, PyDict>) -> PyResult<Scene> {
             spp,
             shading: Shading::Batch,
             sampler: fastbrdf_render::render::Sampler::default(),
+            aa: fastbrdf_render::render::Antialias::default(),
         },
         weights_given,
         albedo_given,

@@ -54,6 +54,7 @@ impl Images {
             spp: 1,
             shading: Shading::Batch,
             sampler: fastbrdf_render::render::Sampler::default(),
+            aa: fastbrdf_render::render::Antialias::default(),
         };
         let mut out = Vec::new();
         for (spec, loaded) in std::iter::once(&self.sphere).chain(self.mesh.as_ref()) {

@@ -77,6 +77,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             spp: 3,
             shading: Shading::Batch,
             sampler: fastbrdf_render::render::Sampler::default(),
+            aa: fastbrdf_render::render::Antialias::default(),
         },
         4,
     )?;
@@ -124,6 +125,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         spp: 2,
         shading: Shading::Batch,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::default(),
     };
     let spec = SceneSpec::new();
     let loaded = &plain;
@@ -157,6 +159,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         spp: 3,
         shading: Shading::Batch,
         sampler: fastbrdf_render::render::Sampler::default(),
+        aa: fastbrdf_render::render::Antialias::default(),
     };
     // The face renders sample the environment per primary sample: 2 x 2 of them per pixel.
     let face_opts = Options { spp: 2, ..opts };

@@ -121,17 +121,22 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     film.save(&a.out, a.scene.exposure)?;
     let total = t.elapsed().as_secs_f64();
     let env = match &spec.env {
-        Some(e) => format!(", environment {e} x {} samples", spec.env_samples),
+        Some(e) => format!(
+            ", environment {e} x {} samples, {} sampler",
+            spec.env_samples,
+            opts.sampler.name()
+        ),
         None => String::new(),
     };
     eprintln!(
-        "wrote {} ({}x{}, {} samples/pixel ({}x{}{env}), {:.3} s: render {:.3} s, encode and write {:.3} s{on})",
+        "wrote {} ({}x{}, {} samples/pixel ({}x{} {}{env}), {:.3} s: render {:.3} s, encode and write {:.3} s{on})",
         a.out.display(),
         opts.width,
         opts.height,
         opts.spp * opts.spp,
         opts.spp,
         opts.spp,
+        opts.aa.name(),
         total,
         rendered,
         total - rendered

@@ -74,6 +74,49 @@ pub struct SceneArgs {
     /// (1..4096); times N x N of --spp per pixel.
     #[arg(long, default_value_t = 16)]
     pub env_samples: u32,
+    /// Where the environment light's random numbers come from: sobol (Owen-scrambled Sobol
+    /// points, each primary sample's passes stratified) or independent (a hash per sample and
+    /// pass: the renderer before 0.2; same expected picture, more noise).
+    #[arg(long, value_enum, default_value_t = SamplerArg::Sobol)]
+    pub sampler: SamplerArg,
+    /// Antialiasing: adaptive (one sample at each pixel's centre, the N x N grid of --spp only
+    /// where the neighbourhood shows an edge: an object's outline, a normal or depth step, an
+    /// albedo or light contrast; with --env a centre-only pixel takes N x N times the passes)
+    /// or grid (N x N samples in every pixel, as the GPU renderer)
+    #[arg(long, value_enum, default_value_t = AaArg::Adaptive)]
+    pub aa: AaArg,
+}
+
+/// `--aa`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AaArg {
+    Adaptive,
+    Grid,
+}
+
+impl From<AaArg> for fastbrdf_render::render::Antialias {
+    fn from(a: AaArg) -> Self {
+        match a {
+            AaArg::Adaptive => Self::Adaptive,
+            AaArg::Grid => Self::Grid,
+        }
+    }
+}
+
+/// `--sampler`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SamplerArg {
+    Sobol,
+    Independent,
+}
+
+impl From<SamplerArg> for fastbrdf_render::render::Sampler {
+    fn from(s: SamplerArg) -> Self {
+        match s {
+            SamplerArg::Sobol => Self::Sobol,
+            SamplerArg::Independent => Self::Independent,
+        }
+    }
 }
 
 /// A switch given as `on` or `off`.
@@ -180,7 +223,8 @@ impl SceneArgs {
                 height,
                 spp: self.spp,
                 shading: Shading::Batch,
-                sampler: fastbrdf_render::render::Sampler::default(),
+                sampler: self.sampler.into(),
+                aa: self.aa.into(),
             },
         ))
     }
