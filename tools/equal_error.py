@@ -245,6 +245,8 @@ def import_mitsuba(variant: str) -> Tuple[Any, Any, str]:
             f"Mitsuba's {variant} variant is unusable ({e}); llvm variants need Debian's "
             f"libllvm19 and DRJIT_LIBLLVM_PATH={LLVM}"
         )
+    # Multijitter's "sample count rounded up" warnings would land in the table on stdout.
+    mi.set_log_level(mi.LogLevel.Error)
     return mi, dr, ""
 
 
@@ -627,6 +629,10 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
     return result
 
 
+def ms(t: float) -> str:
+    return f"{t * 1e3:.3g} ms" if t < 1 else f"{t:.3g} s"
+
+
 def ratio_text(r: Optional[float], how: str) -> str:
     if r is None:
         return f"n/a ({how})"
@@ -647,7 +653,7 @@ def table(res: Dict[str, Any]) -> str:
     for name, e in res["scenes"].items():
         d = e["fastbrdf_default"]
         rr = e["renderers"]
-        cells = [e["label"], f"{d['samples']} spp, {d['time_s'] * 1e3:.3g} ms"]
+        cells = [e["label"], f"{d['samples']} spp, {ms(d['time_s'])}"]
         extra = ""
         if "fastbrdf-independent" in rr:
             x = rr["fastbrdf-independent"]
@@ -657,7 +663,7 @@ def table(res: Dict[str, Any]) -> str:
             if k in rr:
                 x = rr[k]
                 t = x["time_to_target_s"]
-                cells.append(ratio_text(x["ratio_vs_fastbrdf"], x["how"]) + (f" ({t * 1e3:.3g} ms)" if t else ""))
+                cells.append(ratio_text(x["ratio_vs_fastbrdf"], x["how"]) + (f" ({ms(t)})" if t else ""))
             else:
                 cells.append("-")
         lines.append("| " + " | ".join(cells) + " |")
