@@ -123,8 +123,10 @@ def main():
     print(f"CPU: {cpu_name()}, {os.cpu_count()} logical cores; "
           f"RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset (all cores)')}")
     print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds; float32 inputs\n")
-    rows = []
+    print("| op | N | who | M elements/s | ns/element | vs Mitsuba | Mitsuba's first (JIT) call |")
+    print("|---|---|---|---|---|---|---|", flush=True)
     for n in sizes:
+        rows = []
         rng = np.random.default_rng(1)
         wi, wo = hemisphere(rng, n), hemisphere(rng, n)
         u = rng.random((n, 2), dtype=np.float32)
@@ -150,11 +152,10 @@ def main():
             ratio = f"{mit / t:.2f}x" if mit and not who.startswith(a.variant) else ""
             rows.append((op, n, who, n / t / 1e6, t / n * 1e9, ratio, first.get(op) if who == a.variant else None))
         del ops, wi, wo, u
-    print("| op | N | who | M elements/s | ns/element | vs Mitsuba | Mitsuba's first (JIT) call |")
-    print("|---|---|---|---|---|---|---|")
-    for op, n, who, rate, ns, ratio, jit in sorted(rows, key=lambda r: (["eval", "sample", "pdf"].index(r[0]), r[1])):
-        jit_s = f"{jit:.2f} s" if jit is not None else ""
-        print(f"| {op} | {n:.0e} | {who} | {rate:.1f} | {ns:.2f} | {ratio} | {jit_s} |")
+        rows.sort(key=lambda r: ["eval", "sample", "pdf"].index(r[0]))
+        for op, n, who, rate, ns, ratio, jit in rows:  # one size's rows, printed as it ends
+            jit_s = f"{jit:.2f} s" if jit is not None else ""
+            print(f"| {op} | {n:.0e} | {who} | {rate:.1f} | {ns:.2f} | {ratio} | {jit_s} |", flush=True)
 
 
 if __name__ == "__main__":
