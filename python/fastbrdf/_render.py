@@ -11,7 +11,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _fastbrdf as _native
-from ._arrays import _opt_str, _params, _triple
+from ._arrays import _opt_str, _params, _str, _triple
 from ._model import Model
 
 __all__ = ["compare", "materials", "metals", "render"]
@@ -94,6 +94,8 @@ def _scene(
     mesh: Any,
     texture: Any,
     bump: Any,
+    sampler: str = "sobol",
+    aa: str = "adaptive",
 ) -> Dict[str, Any]:
     """The scene options as the native ``render`` and ``compare_json`` take them."""
     w, h = _size(size, width, height)
@@ -113,6 +115,8 @@ def _scene(
         "mesh": _opt_path("mesh", mesh),
         "texture": _opt_path("texture", texture),
         "bump": None if bump is None else _bump(bump),
+        "sampler": _str(sampler, "sampler"),
+        "aa": _str(aa, "aa"),
     }
 
 
@@ -145,6 +149,8 @@ def render(
     floor: bool = False,
     env: Optional[str] = None,
     env_samples: int = 16,
+    sampler: str = "sobol",
+    aa: str = "adaptive",
     material: Optional[str] = None,
     metal: Optional[str] = None,
     gpu: bool = False,
@@ -162,7 +168,9 @@ def render(
     ``"on"``/``"off"``); ``bump`` (SCALE, DEPTH);
     ``weights`` (KD, KS), default (0.6, 0.4); ``albedo`` (R, G, B), default 0.8 grey.
     ``size`` is ``"WxH"`` or (W, H), or give ``width`` and ``height`` (default 256 each; the
-    CLI's default is 512x512); ``spp`` N gives N x N samples per pixel.
+    CLI's default is 512x512); ``spp`` N gives up to N x N samples per pixel: ``aa``
+    ``"adaptive"`` (the default: the grid only at edges) or ``"grid"`` (every pixel), as
+    ``--aa``; ``sampler`` ``"sobol"`` (default) or ``"independent"``, as ``--sampler``.
 
     Colour: ``material`` (a MERL material's published fit, see ``materials()``: its n, alpha,
     f0, and its diffuse colour with weight 1 unless ``albedo``/``weights`` are given),
@@ -197,7 +205,7 @@ def render(
         model = model.id
     scene = _scene(
         size, width, height, spp, weights, albedo, lights, floor, shadows, env, env_samples,
-        mesh, texture, bump,
+        mesh, texture, bump, sampler, aa,
     )
     flat = _native.render(
         model,
@@ -230,6 +238,8 @@ def compare(
     floor: bool = False,
     env: Optional[str] = None,
     env_samples: int = 16,
+    sampler: str = "sobol",
+    aa: str = "adaptive",
     material: Optional[str] = None,
     metal: Optional[str] = None,
     films: bool = False,
@@ -255,7 +265,7 @@ def compare(
         raise TypeError("models: expected model ids (a list of strings or 'a,b,...')")
     scene = _scene(
         size, width, height, spp, weights, albedo, lights, floor, shadows, env, env_samples,
-        mesh, texture, bump,
+        mesh, texture, bump, sampler, aa,
     )
     if isinstance(exposure, bool) or not isinstance(exposure, (int, float, np.integer, np.floating)):
         raise TypeError(f"exposure: expected a number, got {type(exposure).__name__}")

@@ -99,6 +99,16 @@ CASES = [
      dict(model="beckmann", alpha=0.3, metal="copper", weights=(0.3, 0.7), env="sky", env_samples=2),
      ["--model", "beckmann", "--param", "alpha=0.3", "--metal", "copper", "--weights", "0.3,0.7",
       "--env", "sky", "--env-samples", "2"]),
+    ("adaptive antialiasing on the face, 3x3 at edges",
+     dict(model="ggx", alpha=0.3, mesh="face", spp=3, size=(24, 32)),
+     ["--model", "ggx", "--param", "alpha=0.3", "--mesh", "face"]),
+    ("the sky, independent numbers, grid antialiasing",
+     dict(model="ggx", alpha=0.3, env="sky", env_samples=2, spp=2, sampler="independent", aa="grid"),
+     ["--model", "ggx", "--param", "alpha=0.3", "--env", "sky", "--env-samples", "2",
+      "--sampler", "independent", "--aa", "grid"]),
+    ("the sky, Sobol numbers, adaptive antialiasing",
+     dict(model="ggx", alpha=0.3, env="sky", env_samples=2, spp=2, sampler="sobol", aa="adaptive"),
+     ["--model", "ggx", "--param", "alpha=0.3", "--env", "sky", "--env-samples", "2"]),
     ("the furnace",
      dict(model="pow", env="white", env_samples=1, weights=(1, 0), albedo=(1, 1, 1)),
      ["--model", "pow", "--env", "white", "--env-samples", "1", "--weights", "1,0", "--albedo", "1,1,1"]),
@@ -166,6 +176,9 @@ def test_bad_options_name_the_argument():
         (TypeError, "shadows: expected a bool or 'on'/'off', got str", dict(shadows="no")),
         (TypeError, "floor: expected a bool, got int", dict(floor=1)),
         (TypeError, "metal: expected a string", dict(metal=3)),
+        (ValueError, "sampler 'halton': expected sobol or independent", dict(sampler="halton")),
+        (ValueError, "aa 'msaa': expected adaptive or grid", dict(aa="msaa")),
+        (TypeError, "aa: expected a string", dict(aa=2)),
     ]
     for kind, msg, kw in cases:
         kw = {"model": "cook-torrance", "size": "8x8", "spp": 1, **kw}

@@ -20,7 +20,7 @@ use std::path::PathBuf;
 const MAX_BUMP_SCALE: f64 = 1e4;
 
 /// The keys of the scene dict.
-const KEYS: [&str; 13] = [
+const KEYS: [&str; 15] = [
     "width",
     "height",
     "spp",
@@ -34,6 +34,8 @@ const KEYS: [&str; 13] = [
     "mesh",
     "texture",
     "bump",
+    "sampler",
+    "aa",
 ];
 
 /// A scene and its render options, with whether the weights and albedo were given (a material
@@ -101,7 +103,9 @@ fn flag(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<bool> {
 /// `spp`, `env_samples` integers; `weights` (KD, KS) and `albedo` (R, G, B) sequences or
 /// None (the defaults); `lights` a sequence of the CLI's `--light` specs; `floor`, `shadows`
 /// booleans; `env` None or text; `mesh`, `texture` None or a path (`face`, `skin`: the
-/// built-ins); `bump` None or (SCALE, DEPTH). Checked as the CLI checks its options.
+/// built-ins); `bump` None or (SCALE, DEPTH); `sampler` (`sobol`, `independent`) and `aa`
+/// (`adaptive`, `grid`) absent or None for the defaults. Checked as the CLI checks its
+/// options.
 pub(crate) fn scene_arg(d: &Bound<'_, PyDict>) -> PyResult<Scene> {
     for k in d.keys() {
         let k: String = k.extract()?;
@@ -173,6 +177,31 @@ pub(crate) fn scene_arg(d: &Bound<'_, PyDict>) -> PyResult<Scene> {
             depth: v[1] as f32,
         });
     }
+    let choice = |key: &str, options: &[&str]| -> PyResult<Option<String>> {
+        let v = match d.get_item(key)? {
+            Some(v) if !v.is_none() => v,
+            _ => return Ok(None),
+        };
+        let t: String = v
+            .extract()
+            .map_err(|_| PyTypeError::new_err(format!("{key}: expected a string")))?;
+        if !options.contains(&t.as_str()) {
+            return Err(value_error(format!(
+                "{key} '{}': expected {}",
+                fastbrdf_io::shorten(&t, 64),
+                options.join(" or ")
+            )));
+        }
+        Ok(Some(t))
+    };
+    let sampler = match choice("sampler", &["sobol", "independent"])?.as_deref() {
+        Some("independent") => fastbrdf_render::render::Sampler::Independent,
+        _ => fastbrdf_render::render::Sampler::Sobol,
+    };
+    let aa = match choice("aa", &["adaptive", "grid"])?.as_deref() {
+        Some("grid") => fastbrdf_render::render::Antialias::Grid,
+        _ => fastbrdf_render::render::Antialias::Adaptive,
+    };
     fastbrdf_render::film::check_size(width, height).map_err(value_error)?;
     if !(1..=16).contains(&spp) {
         return Err(value_error(format!(
@@ -186,8 +215,8 @@ pub(crate) fn scene_arg(d: &Bound<'_, PyDict>) -> PyResult<Scene> {
             height,
             spp,
             shading: Shading::Batch,
-            sampler: fastbrdf_render::render::Sampler::default(),
-            aa: fastbrdf_render::render::Antialias::default(),
+            sampler,
+            aa,
         },
         weights_given,
         albedo_given,
