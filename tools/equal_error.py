@@ -193,6 +193,7 @@ class Fastbrdf:
             [str(binary), "render", "--help"], capture_output=True, text=True, check=True
         ).stdout
         self.has_sampler = "--sampler" in helptext
+        self.has_aa = "--aa" in helptext
         v = subprocess.run([str(binary), "--version"], capture_output=True, text=True)
         self.version = v.stdout.strip()
 
@@ -502,20 +503,27 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
         # fastbrdf: the configurations of the ladder; direct light uses no random numbers (a
         # fixed N x N grid per pixel), so the sampler only matters under the sky.
         configs: List[Tuple[str, List[List[str]], List[int]]] = []
+        # With issue 30's flags, the ladders run the defaults and, as "fastbrdf-before", the
+        # renderer's settings before it (independent numbers, every pixel on the N x N grid):
+        # the target error is the latter's at its defaults, the issue's target; the reference
+        # is a grid render (the pixel's area, as Mitsuba's box filter integrates it).
+        before = ["--sampler", "independent"] if fb.has_sampler else []
+        before += ["--aa", "grid"] if fb.has_aa else []
+        grid = ["--aa", "grid"] if fb.has_aa else []
         if sc["env"]:
             r_spp, r_env = L["fb_env_ref"]
-            ref_args = ["--spp", str(r_spp), "--env-samples", str(r_env)]
+            ref_args = ["--spp", str(r_spp), "--env-samples", str(r_env), *grid]
             if fb.has_sampler:
                 ref_args += ["--sampler", "sobol"]
-            for smp in samplers:
-                extra = ["--sampler", smp] if smp else []
+            for cname, extra in [("fastbrdf-cpu", []), ("fastbrdf-before", before)] if before else [("fastbrdf-cpu", [])]:
                 pts = [["--env-samples", str(n), *extra] for n in L["fb_env"]]
-                configs.append((f"fastbrdf-{smp or 'cpu'}", pts, [4 * n for n in L["fb_env"]]))
+                configs.append((cname, pts, [4 * n for n in L["fb_env"]]))
             default_args = ["--env-samples", "16"]
         else:
-            ref_args = ["--spp", str(L["fb_ref_spp"])]
-            pts = [["--spp", str(n)] for n in L["fb_spp"]]
-            configs.append(("fastbrdf-cpu", pts, [n * n for n in L["fb_spp"]]))
+            ref_args = ["--spp", str(L["fb_ref_spp"]), *grid]
+            for cname, extra in [("fastbrdf-cpu", []), ("fastbrdf-before", before)] if before else [("fastbrdf-cpu", [])]:
+                pts = [["--spp", str(n), *extra] for n in L["fb_spp"]]
+                configs.append((cname, pts, [n * n for n in L["fb_spp"]]))
             default_args = []
         fb_ref, t_ref = fb.render(sc, ref_args)
         log(f"{name}: fastbrdf reference {' '.join(ref_args)} in {t_ref:.2f} s")
@@ -560,13 +568,15 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
             assert r is not None
             return r
 
-        # The target: fastbrdf's error at its defaults (spp 2, env-samples 16, default sampler).
-        default_name = "fastbrdf-sobol" if (sc["env"] and fb.has_sampler) else "fastbrdf-cpu"
+        # The target: fastbrdf's error at its defaults (spp 2, env-samples 16), with the
+        # renderer's settings before issue 30 where the binary has them (the issue's target).
+        default_name = "fastbrdf-cpu"
+        target_name = "fastbrdf-before" if "fastbrdf-before" in jobs else default_name
         default_samples = 64 if sc["env"] else 4
-        fn = dict(jobs[default_name])[default_samples]
+        fn = dict(jobs[target_name])[default_samples]
         img, _ = fn(0)
         target = rel_mse(img, fb_ref)
-        log(f"{name}: target error {target:.4g} (fastbrdf at its defaults, {default_samples} spp)")
+        log(f"{name}: target error {target:.4g} ({target_name} at its defaults, {default_samples} spp)")
         # Exploration, which is also the warm-up (Mitsuba's JIT compiles each kernel here):
         # each ladder is climbed until its error is below STOP x the target, so that the target
         # is bracketed without rendering the long tail; the points kept are then timed.
@@ -587,7 +597,7 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
                 meas[(cname, n)] = {"times": [], "errors": [err] if cname.startswith("mitsuba") else []}
                 order.append((cname, n, fn))
                 log(f"{name}: {cname} {n} spp: error {err:.4g}")
-                if err < STOP * target and not (cname == default_name and n < default_samples):
+                if err < STOP * target and not (cname in (default_name, target_name) and n < default_samples):
                     break
         log(f"{name}: timing {len(order)} ladder points x {repeats} repeats, interleaved")
         for r in range(repeats):
@@ -607,15 +617,25 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
                 # its seeds.
                 "error": float(np.mean(m["errors"])),
             })
-        base = next(p for p in renderers[default_name]["ladder"] if p["samples"] == default_samples)
-        t_base = base["time_s"]
+        base = next(p for p in renderers[target_name]["ladder"] if p["samples"] == default_samples)
         entry["target_error"] = target
+        entry["target_from"] = f"{target_name} at {default_samples} spp"
+        # fastbrdf's time: at its defaults where they set the target, else interpolated along
+        # its ladder to the target.
+        if target_name == default_name:
+            t_base, how_base = base["time_s"], "measured at the defaults"
+        else:
+            t_fb, how_base = time_to_error(renderers[default_name]["ladder"], target)
+            t_base = t_fb if t_fb else base["time_s"]
         entry["fastbrdf_default"] = {"renderer": default_name, "samples": default_samples, "time_s": t_base,
-                                     "args": " ".join(default_args) or "(defaults)"}
+                                     "how": how_base, "args": " ".join(default_args) or "(defaults)",
+                                     "target_time_s": base["time_s"]}
         for cname, rr in renderers.items():
             t, how = time_to_error(rr["ladder"], target)
-            if cname == default_name:
-                t, how = t_base, "measured at the defaults"
+            if cname == target_name:
+                t, how = base["time_s"], "measured at the defaults"
+            elif cname == default_name:
+                t, how = t_base, how_base
             rr["time_to_target_s"] = t
             rr["how"] = how
             rr["ratio_vs_fastbrdf"] = (t / t_base) if t else None
@@ -643,7 +663,8 @@ def ratio_text(r: Optional[float], how: str) -> str:
 def table(res: Dict[str, Any]) -> str:
     mitsuba = "Mitsuba " + res["mitsuba"][len("mitsuba "):] if res["mitsuba"].startswith("mitsuba ") else "Mitsuba"
     lines = [
-        f"Time to fastbrdf's default error, {res['size'][0]}x{res['size'][1]}, on {res['cpu']} "
+        f"Time to fastbrdf's default error (before issue 30: --spp 2, --env-samples 16, independent numbers, "
+        f"every pixel on the grid), {res['size'][0]}x{res['size'][1]}, on {res['cpu']} "
         f"({res['cores']} threads); each renderer against its own converged reference; "
         "\"Nx slower\" = N times fastbrdf CPU's time.",
         "",
@@ -653,12 +674,14 @@ def table(res: Dict[str, Any]) -> str:
     for name, e in res["scenes"].items():
         d = e["fastbrdf_default"]
         rr = e["renderers"]
-        cells = [e["label"], f"{d['samples']} spp, {ms(d['time_s'])}"]
-        extra = ""
-        if "fastbrdf-independent" in rr:
-            x = rr["fastbrdf-independent"]
-            extra = f" (independent: {ratio_text(x['ratio_vs_fastbrdf'], x['how'])})"
-        cells[1] += extra
+        if d.get("how", "measured at the defaults") == "measured at the defaults":
+            cells = [e["label"], f"{d['samples']} spp, {ms(d['time_s'])}"]
+        else:
+            pre = "~" if d["how"] == "extrapolated" else ""
+            cells = [e["label"], f"{pre}{ms(d['time_s'])}"]
+        if "fastbrdf-before" in rr:
+            x = rr["fastbrdf-before"]
+            cells[1] += f" (before issue 30: {d['samples']} spp, {ms(d['target_time_s'])}, {ratio_text(x['ratio_vs_fastbrdf'], x['how'])})"
         for k in ["mitsuba-independent", "mitsuba-multijitter", "fastbrdf-gpu"]:
             if k in rr:
                 x = rr[k]
