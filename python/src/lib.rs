@@ -6,7 +6,9 @@
 //! when it must. This module still checks everything it is given (issue 27), as a user can call
 //! it directly:
 //!
-//! - arrays that are not C-contiguous or not aligned are copied (by numpy) before reading;
+//! - BRDF inputs ((N, 3) directions, (N, 2) `u`) are read in place whatever their strides
+//!   (`handle/rows.rs`); other arrays that are not C-contiguous or not aligned are copied (by
+//!   numpy) before reading;
 //!   lengths must agree, column counts must fit the model, `u` must lie in [0, 1);
 //! - outputs are allocated by numpy (`numpy.empty`), so a size the address space cannot hold
 //!   is numpy's `MemoryError`, never an abort;
