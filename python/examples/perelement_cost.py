@@ -1,8 +1,9 @@
 """The cost of per-element parameters (``fastbrdf.Model(..., alpha=array)``): millions of
 elements per second, float32, for a scalar ``alpha`` and for ``alpha`` arrays with 1, 256 and
 all-distinct values, on the GGX distribution (``eval(cos_h)``) and on Cook-Torrance
-(``eval(wi, wo)``; with ``d=ggx``, a SIMD kernel, and by default, Beckmann with the exact
-Smith term, whose ``erfc`` runs per element), with numpy evaluating the GGX formula on the same arrays for scale.
+(``eval(wi, wo)``; with ``d=ggx`` and by default, Beckmann with the exact Smith term, both SIMD
+kernels since issue 30 vectorised its ``erfc``), with numpy evaluating the GGX formula on the
+same arrays for scale.
 
     target/python-venv/bin/python python/examples/perelement_cost.py [--n 1048576] [--repeats 5]
 
