@@ -60,17 +60,31 @@ pub struct Environment {
 pub struct EnvMap {
     pub width: u32,
     pub height: u32,
-    texels: Vec<Vec3>,
+    /// Per texel (row-major), its radiance and its probability mass (the masses sum to 1),
+    /// side by side: a look-up or a draw reads one 16-byte cell (two arrays cost two cache
+    /// misses per sample on a large map).
+    cells: Vec<Cell>,
     /// Cumulative distribution over rows (height + 1 entries, 0 to 1).
     marginal: Vec<f32>,
     /// Per row, the cumulative distribution over its columns (width + 1 entries each).
     conditional: Vec<f32>,
-    /// Per texel, its probability mass (sums to 1).
-    mass: Vec<f32>,
-    /// Guide tables ([`guide_of`]) of `marginal` and of each row of `conditional`.
+    /// Guide tables ([`guide_of`]) of `marginal` (one bucket per row) and of each row of
+    /// `conditional` ([`ROW_GUIDE`] buckets per row, so that they stay in cache: the rows'
+    /// own tables are what a draw misses).
     marginal_guide: Vec<u32>,
     conditional_guide: Vec<u32>,
 }
+
+/// A texel's radiance and probability mass.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+struct Cell {
+    rgb: Vec3,
+    mass: f32,
+}
+
+/// Buckets of each row's guide table (at most the row's width).
+const ROW_GUIDE: usize = 32;
 
 fn lum(c: Vec3) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
@@ -131,14 +145,14 @@ fn search(cdf: &[f32], guide: &[u32], u: f32) -> usize {
     lo + cdf[lo..hi].partition_point(|&c| c <= u)
 }
 
-/// The guide table of `cdf` (n + 1 entries, non-decreasing): n + 1 entries, entry k the
-/// partition point of `k / n x cdf[n]` (compared in f64, so that each entry bounds the f32
-/// searches of its bucket).
-fn guide_of(cdf: &[f32]) -> Vec<u32> {
+/// The guide table of `cdf` (n + 1 entries, non-decreasing) with `g` buckets: g + 1 entries,
+/// entry k the partition point of `k / g x cdf[n]` (compared in f64, so that each entry
+/// bounds the f32 searches of its bucket).
+fn guide_of(cdf: &[f32], g: usize) -> Vec<u32> {
     let n = cdf.len() - 1;
     let total = cdf[n] as f64;
-    (0..=n)
-        .map(|k| cdf.partition_point(|&c| c as f64 <= k as f64 / n as f64 * total) as u32)
+    (0..=g)
+        .map(|k| cdf.partition_point(|&c| c as f64 <= k as f64 / g as f64 * total) as u32)
         .collect()
 }
 
@@ -208,16 +222,25 @@ impl EnvMap {
             acc += sum;
             marginal.push((acc / total) as f32);
         }
-        let mass = weights.iter().map(|x| (x / total) as f32).collect();
-        let marginal_guide = guide_of(&marginal);
-        let conditional_guide = conditional.chunks_exact(w + 1).flat_map(guide_of).collect();
+        let cells = texels
+            .iter()
+            .zip(&weights)
+            .map(|(&rgb, x)| Cell {
+                rgb,
+                mass: (x / total) as f32,
+            })
+            .collect();
+        let marginal_guide = guide_of(&marginal, h);
+        let conditional_guide = conditional
+            .chunks_exact(w + 1)
+            .flat_map(|row| guide_of(row, ROW_GUIDE.min(w)))
+            .collect();
         Ok(Self {
             width,
             height,
-            texels,
+            cells,
             marginal,
             conditional,
-            mass,
             marginal_guide,
             conditional_guide,
         })
@@ -316,7 +339,7 @@ impl EnvMap {
     /// The radiance arriving from unit direction `d`.
     pub fn radiance(&self, d: Vec3) -> Vec3 {
         let (u, v) = dir_to_uv(d);
-        self.texels[self.texel(u, v)]
+        self.cells[self.texel(u, v)].rgb
     }
 
     /// The solid-angle density of [`EnvMap::sample`] at unit direction `d`.
@@ -332,10 +355,11 @@ impl EnvMap {
         // sin theta = sqrt(1 - y^2), without a sin of the acos.
         let st = (1.0 - d.y * d.y).max(0.0).sqrt();
         if st <= 0.0 {
-            return (self.texels[i], 0.0);
+            return (self.cells[i].rgb, 0.0);
         }
-        let m = self.mass[i] * (self.width * self.height) as f32;
-        (self.texels[i], m / (2.0 * PI * PI * st))
+        let Cell { rgb, mass } = self.cells[i];
+        let m = mass * (self.width * self.height) as f32;
+        (rgb, m / (2.0 * PI * PI * st))
     }
 
     /// A direction drawn from the map's distribution by two uniform numbers in [0, 1):
@@ -343,10 +367,10 @@ impl EnvMap {
     pub fn sample(&self, u1: f32, u2: f32) -> (Vec3, Vec3, f32) {
         let (r, fr) = sample_cdf(&self.marginal, &self.marginal_guide, u1);
         let w = self.width as usize;
-        let row = r * (w + 1)..(r + 1) * (w + 1);
+        let g = ROW_GUIDE.min(w) + 1;
         let (c, fc) = sample_cdf(
-            &self.conditional[row.clone()],
-            &self.conditional_guide[row],
+            &self.conditional[r * (w + 1)..(r + 1) * (w + 1)],
+            &self.conditional_guide[r * g..(r + 1) * g],
             u2,
         );
         let u = (c as f32 + fc) / self.width as f32;
@@ -354,10 +378,11 @@ impl EnvMap {
         let (d, st) = uv_to_dir(u, v);
         let i = r * w + c;
         if st <= 0.0 {
-            return (d, self.texels[i], 0.0);
+            return (d, self.cells[i].rgb, 0.0);
         }
-        let pdf = self.mass[i] * (self.width * self.height) as f32 / (2.0 * PI * PI * st);
-        (d, self.texels[i], pdf)
+        let Cell { rgb, mass } = self.cells[i];
+        let pdf = mass * (self.width * self.height) as f32 / (2.0 * PI * PI * st);
+        (d, rgb, pdf)
     }
 }
 
@@ -536,9 +561,12 @@ mod tests {
         for map in [EnvMap::sky(), EnvMap::from_texels(64, 32, random).unwrap()] {
             let w = map.width as usize;
             let mut tables = vec![(&map.marginal[..], &map.marginal_guide[..])];
+            let g = ROW_GUIDE.min(w) + 1;
             for r in (0..map.height as usize).step_by(7) {
-                let row = r * (w + 1)..(r + 1) * (w + 1);
-                tables.push((&map.conditional[row.clone()], &map.conditional_guide[row]));
+                tables.push((
+                    &map.conditional[r * (w + 1)..(r + 1) * (w + 1)],
+                    &map.conditional_guide[r * g..(r + 1) * g],
+                ));
             }
             for (cdf, guide) in tables {
                 let mut us: Vec<f32> = (0..20_000).map(|_| rng.uniform()).collect();
