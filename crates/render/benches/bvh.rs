@@ -2,7 +2,8 @@
 //! the embedded face (`--mesh face`, 898 triangles) and a generated wavy torus (200k
 //! triangles): the build, 65536 primary rays (a grid over the mesh's bounds, from the front,
 //! `TriMesh::hit`), and from each hit point a shadow ray towards the default key light's
-//! direction (`TriMesh::occluded`, any hit). One thread.
+//! direction (`TriMesh::occluded`, any hit). One thread. The `*_binary` variants walk the
+//! binary SAH tree (the GPU's layout) instead of the CPU's 4-wide BVH collapsed from it.
 //! Run: `cargo bench -p fastbrdf-render --bench bvh`.
 
 use fastbrdf_render::geometry::{Ray, TriMesh};
@@ -94,7 +95,32 @@ fn nearest(bencher: divan::Bencher, name: &str) {
 }
 
 #[divan::bench(args = NAMES, sample_count = 20)]
+fn nearest_binary(bencher: divan::Bencher, name: &str) {
+    let m = mesh(name);
+    let rays = primary(&m);
+    bencher.bench(|| {
+        rays.iter()
+            .filter_map(|r| m.hit_binary(r, 1e-4, f32::INFINITY, false))
+            .map(|h| h.0)
+            .sum::<f32>()
+    });
+}
+
+#[divan::bench(args = NAMES, sample_count = 20)]
 fn shadow(bencher: divan::Bencher, name: &str) {
+    shadow_with(bencher, name, TriMesh::occluded);
+}
+
+#[divan::bench(args = NAMES, sample_count = 20)]
+fn shadow_binary(bencher: divan::Bencher, name: &str) {
+    shadow_with(bencher, name, TriMesh::occluded_binary);
+}
+
+fn shadow_with(
+    bencher: divan::Bencher,
+    name: &str,
+    occluded: fn(&TriMesh, &Ray, f32, f32) -> bool,
+) {
     let m = mesh(name);
     let l = Vec3::new(0.4, 0.8, 0.45).normalize();
     let rays: Vec<Ray> = primary(&m)
@@ -109,7 +135,7 @@ fn shadow(bencher: divan::Bencher, name: &str) {
         .collect();
     bencher.bench(|| {
         rays.iter()
-            .filter(|r| m.occluded(r, 1e-4, f32::INFINITY))
+            .filter(|r| occluded(&m, r, 1e-4, f32::INFINITY))
             .count()
     });
 }

@@ -1,5 +1,6 @@
 //! Rays, analytic spheres and planes, and triangle meshes with a bounding volume hierarchy.
 
+use crate::bvh4::Bvh4;
 use glam::{Vec2, Vec3};
 
 /// A ray `o + t d`, `d` unit.
@@ -111,6 +112,8 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
     nodes: Vec<Node>,
     order: Vec<u32>,
+    /// The CPU's traversal structure, collapsed from `nodes` (see [`crate::bvh4`]).
+    bvh4: Bvh4,
 }
 
 /// Entries of the traversal stack (`TriMesh::hit` and `TriMesh::occluded`, and the GPU
@@ -160,7 +163,7 @@ fn median_height(n: usize) -> usize {
 }
 
 /// Surface area of a box (half of it; only ratios matter).
-fn half_area(lo: Vec3, hi: Vec3) -> f32 {
+pub(crate) fn half_area(lo: Vec3, hi: Vec3) -> f32 {
     let e = (hi - lo).max(Vec3::ZERO);
     e.x * e.y + e.y * e.z + e.z * e.x
 }
@@ -389,6 +392,7 @@ impl TriMesh {
             triangles,
             nodes: Vec::new(),
             order: Vec::new(),
+            bvh4: Bvh4::default(),
         };
         let n = m.triangles.len();
         let bounds: Vec<(Vec3, Vec3)> = (0..n as u32).map(|t| m.tri_bounds(t)).collect();
@@ -404,6 +408,7 @@ impl TriMesh {
         b.build(0, 0, n, 0);
         m.nodes = b.nodes;
         m.order = order;
+        m.bvh4 = Bvh4::new(&m.nodes, &m.order, &m.positions, &m.triangles);
         m
     }
 
@@ -453,10 +458,35 @@ impl TriMesh {
     }
 
     /// [`TriMesh::intersect`], with the texture coordinates interpolated only when `uv` is set
-    /// (zero otherwise). Ordered traversal: of an inner node's children the nearer box is
-    /// visited first and the farther one pushed with its entry distance, skipped when popped
-    /// if a hit nearer than that entry was found meanwhile.
-    pub fn hit(&self, r: &Ray, t_min: f32, mut t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
+    /// (zero otherwise). Through the 4-wide BVH ([`crate::bvh4`]): the same hit as
+    /// [`TriMesh::hit_binary`], to the bit.
+    #[inline]
+    pub fn hit(&self, r: &Ray, t_min: f32, t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
+        self.shade(self.bvh4.hit(r, t_min, t_max)?, uv)
+    }
+
+    /// [`TriMesh::hit`] through the binary tree (the GPU's layout; kept to compare against
+    /// and to time in benches/bvh.rs). Ordered traversal: of an inner node's children the
+    /// nearer box is visited first and the farther one pushed with its entry distance,
+    /// skipped when popped if a hit nearer than that entry was found meanwhile.
+    #[doc(hidden)]
+    pub fn hit_binary(
+        &self,
+        r: &Ray,
+        t_min: f32,
+        t_max: f32,
+        uv: bool,
+    ) -> Option<(f32, Vec3, Vec2)> {
+        self.shade(self.nearest_binary(r, t_min, t_max)?, uv)
+    }
+
+    /// The nearest hit through the binary tree: (t, position in `order`, u, v).
+    fn nearest_binary(
+        &self,
+        r: &Ray,
+        t_min: f32,
+        mut t_max: f32,
+    ) -> Option<(f32, usize, f32, f32)> {
         if self.triangles.is_empty() {
             return None;
         }
@@ -511,7 +541,12 @@ impl TriMesh {
             }
             break;
         }
-        let (t, i, u, v) = best?;
+        best
+    }
+
+    /// The normal and texture coordinates at a hit (t, position in `order`, u, v).
+    #[inline]
+    fn shade(&self, (t, i, u, v): (f32, usize, f32, f32), uv: bool) -> Option<(f32, Vec3, Vec2)> {
         let tri = self.order[i];
         let [a, b, c] = self.triangles[tri as usize];
         let w = 1.0 - u - v;
@@ -535,8 +570,15 @@ impl TriMesh {
     }
 
     /// Whether any triangle is hit with t in (t_min, t_max): a shadow ray, which stops at the
-    /// first hit found rather than the nearest.
+    /// first hit found rather than the nearest (through the 4-wide BVH, [`crate::bvh4`]).
+    #[inline]
     pub fn occluded(&self, r: &Ray, t_min: f32, t_max: f32) -> bool {
+        self.bvh4.occluded(r, t_min, t_max)
+    }
+
+    /// [`TriMesh::occluded`] through the binary tree (see [`TriMesh::hit_binary`]).
+    #[doc(hidden)]
+    pub fn occluded_binary(&self, r: &Ray, t_min: f32, t_max: f32) -> bool {
         if self.triangles.is_empty() {
             return false;
         }

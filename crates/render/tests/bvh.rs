@@ -246,6 +246,66 @@ fn nearest_hits_and_shadow_rays_are_the_brute_force_ones() {
     check_against_brute_force("strip", &mesh(&strip(1000)), 600, 5);
     check_against_brute_force("nested", &mesh(&nested(40, 20)), 600, 6);
     check_against_brute_force("one triangle", &mesh(&[FEW[1]]), 300, 7);
+    check_against_brute_force("two triangles", &mesh(&FEW[..2]), 300, 8);
+    check_against_brute_force("three triangles", &mesh(&FEW), 300, 9);
+}
+
+/// The CPU's 4-wide BVH (`hit`, `occluded`) against the binary tree it is collapsed from
+/// (`hit_binary`, `occluded_binary`): the same t, normal and uv to the bit, on meshes whose
+/// 4-wide nodes have 1 to 4 children (1 to 9 triangles, whose leaves hold 1 to 4) and on the
+/// larger ones above, rays as in `check_against_brute_force` plus rays from inside.
+#[test]
+fn the_4_wide_bvh_finds_the_binary_trees_hits_to_the_bit() {
+    let mut cases: Vec<(String, TriMesh)> = (1..=9)
+        .map(|n| (format!("{n} random"), mesh(&soup(n, 100 * n))))
+        .collect();
+    cases.push(("face".into(), fastbrdf_render::mesh::face()));
+    cases.push(("soup".into(), mesh(&soup(3000, 11))));
+    cases.push(("strip".into(), mesh(&strip(700))));
+    cases.push(("nested".into(), mesh(&nested(30, 7))));
+    let stacked: Vec<[Vec3; 3]> = (0..500).map(|i| FEW[i % 3]).collect();
+    cases.push(("stacked".into(), mesh(&stacked)));
+    for (what, m) in &cases {
+        let (lo, hi) = m.bounds();
+        let ext = (hi - lo).max(Vec3::splat(1e-3));
+        let mut hits = 0;
+        for k in 0..2000u32 {
+            let o = lo + (rand3(7 * k) * 3.0 - 1.0) * ext;
+            let d = if k % 5 == 0 {
+                let mut d = Vec3::ZERO;
+                d[(k / 5 % 3) as usize] = if k % 2 == 0 { 1.0 } else { -1.0 };
+                d
+            } else {
+                (lo + rand3(7 * k + 3) * ext - o).normalize()
+            };
+            let r = Ray { o, d };
+            let (t_min, t_max) = match k % 3 {
+                0 => (1e-4, f32::INFINITY),
+                1 => (0.0, ext.max_element() * rand(7 * k + 6) * 2.0),
+                _ => (ext.max_element() * rand(7 * k + 6), f32::INFINITY),
+            };
+            let want = m.hit_binary(&r, t_min, t_max, true);
+            let got = m.hit(&r, t_min, t_max, true);
+            let bits = |h: Option<(f32, Vec3, Vec2)>| {
+                h.map(|(t, n, uv)| {
+                    (
+                        t.to_bits(),
+                        n.to_array().map(f32::to_bits),
+                        uv.to_array().map(f32::to_bits),
+                    )
+                })
+            };
+            assert_eq!(bits(got), bits(want), "{what}: ray {k} {r:?}");
+            assert_eq!(
+                m.occluded(&r, t_min, t_max),
+                m.occluded_binary(&r, t_min, t_max),
+                "{what}: ray {k} occluded"
+            );
+            hits += usize::from(got.is_some());
+        }
+        eprintln!("{what}: {hits} of 2000 rays hit");
+        assert!(hits > 100, "{what}: too few rays hit to test anything");
+    }
 }
 
 /// Nearest hits through a stack of coincident and overlapping triangles: the brute-force

@@ -1,0 +1,461 @@
+//! The CPU's 4-wide BVH: the binary SAH tree of [`TriMesh`](crate::geometry::TriMesh)
+//! collapsed so each node holds up to four children's boxes as structure of arrays (one slab
+//! test of four boxes in SSE2, the x86-64 baseline; a scalar fallback elsewhere), and each
+//! leaf its up to four triangles as (vertex a, b - a, c - a) per lane (one Moller-Trumbore of
+//! four triangles). The binary tree stays as it is (the GPU uploads it); this one is built
+//! from it, so every box is one of its boxes and every leaf one of its leaves, and the lane
+//! arithmetic is the scalar code's, operation for operation: the same boxes are entered and
+//! the same t, u, v come out, to the bit.
+
+use crate::geometry::{MAX_DEPTH, Node, Ray, half_area};
+use glam::Vec3;
+use std::mem::MaybeUninit;
+
+/// Child reference: inner node index, or with [`LEAF_BIT`] a leaf block index (bits 0..29)
+/// and its triangle count minus one (bits 29..31).
+const LEAF_BIT: u32 = 1 << 31;
+
+/// Stack entries: every node on the path from the root pushes at most 3 of its children, and
+/// a path holds at most MAX_DEPTH nodes (each node of this tree is an inner node of the binary
+/// tree, whose inner nodes lie at depth < MAX_DEPTH), so 3 * MAX_DEPTH <= 186 entries suffice
+/// for any input.
+const STACK: usize = 3 * MAX_DEPTH + 6;
+
+/// Up to four children: boxes per axis and lane, and references.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+struct Node4 {
+    lo: [[f32; 4]; 3],
+    hi: [[f32; 4]; 3],
+    child: [u32; 4],
+    /// Lanes in use: bits 0..n.
+    lanes: u32,
+}
+
+/// Up to four triangles: (a, b - a, c - a) per axis and lane, and each one's position in the
+/// binary tree's `order`.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
+struct Leaf4 {
+    a: [[f32; 4]; 3],
+    e1: [[f32; 4]; 3],
+    e2: [[f32; 4]; 3],
+    index: [u32; 4],
+}
+
+/// The 4-wide BVH (empty for an empty mesh).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Bvh4 {
+    nodes: Vec<Node4>,
+    leaves: Vec<Leaf4>,
+}
+
+#[cfg(target_arch = "x86_64")]
+mod lanes {
+    use std::arch::x86_64::*;
+
+    /// Four f32 lanes.
+    #[derive(Clone, Copy)]
+    pub struct F4(__m128);
+
+    // SAFETY (every `unsafe` below): SSE2 is part of the x86-64 baseline, and loads read a
+    // whole `[f32; 4]`.
+    impl F4 {
+        #[inline(always)]
+        pub fn splat(x: f32) -> Self {
+            Self(unsafe { _mm_set1_ps(x) })
+        }
+        #[inline(always)]
+        pub fn load(a: &[f32; 4]) -> Self {
+            Self(unsafe { _mm_loadu_ps(a.as_ptr()) })
+        }
+        #[inline(always)]
+        pub fn store(self) -> [f32; 4] {
+            let mut a = [0.0; 4];
+            unsafe { _mm_storeu_ps(a.as_mut_ptr(), self.0) };
+            a
+        }
+        #[inline(always)]
+        pub fn add(self, b: Self) -> Self {
+            Self(unsafe { _mm_add_ps(self.0, b.0) })
+        }
+        #[inline(always)]
+        pub fn sub(self, b: Self) -> Self {
+            Self(unsafe { _mm_sub_ps(self.0, b.0) })
+        }
+        #[inline(always)]
+        pub fn mul(self, b: Self) -> Self {
+            Self(unsafe { _mm_mul_ps(self.0, b.0) })
+        }
+        #[inline(always)]
+        pub fn div(self, b: Self) -> Self {
+            Self(unsafe { _mm_div_ps(self.0, b.0) })
+        }
+        /// `if self < b { self } else { b }` per lane (MINPS).
+        #[inline(always)]
+        pub fn min_first(self, b: Self) -> Self {
+            Self(unsafe { _mm_min_ps(self.0, b.0) })
+        }
+        /// `if self > b { self } else { b }` per lane (MAXPS).
+        #[inline(always)]
+        pub fn max_first(self, b: Self) -> Self {
+            Self(unsafe { _mm_max_ps(self.0, b.0) })
+        }
+        #[inline(always)]
+        pub fn abs(self) -> Self {
+            Self(unsafe { _mm_andnot_ps(_mm_set1_ps(-0.0), self.0) })
+        }
+        /// Bit k set where lane k satisfies `self < b` (ordered).
+        #[inline(always)]
+        pub fn lt(self, b: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmplt_ps(self.0, b.0)) as u32 }
+        }
+        #[inline(always)]
+        pub fn le(self, b: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmple_ps(self.0, b.0)) as u32 }
+        }
+        #[inline(always)]
+        pub fn gt(self, b: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmpgt_ps(self.0, b.0)) as u32 }
+        }
+        #[inline(always)]
+        pub fn ge(self, b: Self) -> u32 {
+            unsafe { _mm_movemask_ps(_mm_cmpge_ps(self.0, b.0)) as u32 }
+        }
+    }
+}
+
+#[cfg(not(target_arch = "x86_64"))]
+mod lanes {
+    /// Four f32 lanes.
+    #[derive(Clone, Copy)]
+    pub struct F4([f32; 4]);
+
+    impl F4 {
+        #[inline(always)]
+        fn map(self, b: Self, f: impl Fn(f32, f32) -> f32) -> Self {
+            Self(std::array::from_fn(|k| f(self.0[k], b.0[k])))
+        }
+        #[inline(always)]
+        fn bits(self, b: Self, f: impl Fn(f32, f32) -> bool) -> u32 {
+            (0..4).map(|k| u32::from(f(self.0[k], b.0[k])) << k).sum()
+        }
+        pub fn splat(x: f32) -> Self {
+            Self([x; 4])
+        }
+        pub fn load(a: &[f32; 4]) -> Self {
+            Self(*a)
+        }
+        pub fn store(self) -> [f32; 4] {
+            self.0
+        }
+        pub fn add(self, b: Self) -> Self {
+            self.map(b, |x, y| x + y)
+        }
+        pub fn sub(self, b: Self) -> Self {
+            self.map(b, |x, y| x - y)
+        }
+        pub fn mul(self, b: Self) -> Self {
+            self.map(b, |x, y| x * y)
+        }
+        pub fn div(self, b: Self) -> Self {
+            self.map(b, |x, y| x / y)
+        }
+        pub fn min_first(self, b: Self) -> Self {
+            self.map(b, |x, y| if x < y { x } else { y })
+        }
+        pub fn max_first(self, b: Self) -> Self {
+            self.map(b, |x, y| if x > y { x } else { y })
+        }
+        pub fn abs(self) -> Self {
+            Self(self.0.map(f32::abs))
+        }
+        pub fn lt(self, b: Self) -> u32 {
+            self.bits(b, |x, y| x < y)
+        }
+        pub fn le(self, b: Self) -> u32 {
+            self.bits(b, |x, y| x <= y)
+        }
+        pub fn gt(self, b: Self) -> u32 {
+            self.bits(b, |x, y| x > y)
+        }
+        pub fn ge(self, b: Self) -> u32 {
+            self.bits(b, |x, y| x >= y)
+        }
+    }
+}
+
+use lanes::F4;
+
+/// A ray splatted across lanes, with 1 / d.
+struct Ray4 {
+    o: [F4; 3],
+    d: [F4; 3],
+    inv: [F4; 3],
+}
+
+impl Ray4 {
+    #[inline(always)]
+    fn new(r: &Ray) -> Self {
+        let inv = r.d.recip();
+        let s = |v: Vec3| [F4::splat(v.x), F4::splat(v.y), F4::splat(v.z)];
+        Self {
+            o: s(r.o),
+            d: s(r.d),
+            inv: s(inv),
+        }
+    }
+}
+
+/// `geometry::slab` on four boxes: (lanes entered, entry distances).
+#[inline(always)]
+fn slab4(n: &Node4, r: &Ray4, t_min: F4, t_max: F4) -> (u32, F4) {
+    const WIDEN: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+    let (mut near, mut far) = (t_min, t_max);
+    for k in 0..3 {
+        let a = F4::load(&n.lo[k]).sub(r.o[k]).mul(r.inv[k]);
+        let b = F4::load(&n.hi[k]).sub(r.o[k]).mul(r.inv[k]);
+        // `if a < b { (a, b) } else { (b, a) }`
+        let (a, b) = (a.min_first(b), b.max_first(a));
+        near = a.max_first(near);
+        far = b.mul(F4::splat(WIDEN)).min_first(far);
+    }
+    (near.le(far) & n.lanes, near)
+}
+
+/// `geometry::hit_triangle` on four triangles: (lanes hit, t, u, v).
+#[inline(always)]
+fn hit4(l: &Leaf4, r: &Ray4, t_min: F4, t_max: F4) -> (u32, F4, F4, F4) {
+    let v3 = |a: &[[f32; 4]; 3]| [F4::load(&a[0]), F4::load(&a[1]), F4::load(&a[2])];
+    let cross = |a: [F4; 3], b: [F4; 3]| {
+        [
+            a[1].mul(b[2]).sub(b[1].mul(a[2])),
+            a[2].mul(b[0]).sub(b[2].mul(a[0])),
+            a[0].mul(b[1]).sub(b[0].mul(a[1])),
+        ]
+    };
+    let dot = |a: [F4; 3], b: [F4; 3]| a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]));
+    let (a, e1, e2) = (v3(&l.a), v3(&l.e1), v3(&l.e2));
+    let p = cross(r.d, e2);
+    let det = dot(e1, p);
+    let mut ok = !det.abs().lt(F4::splat(1e-12)) & 0xf;
+    let inv = F4::splat(1.0).div(det);
+    let s = [r.o[0].sub(a[0]), r.o[1].sub(a[1]), r.o[2].sub(a[2])];
+    let u = dot(s, p).mul(inv);
+    ok &= u.ge(F4::splat(0.0)) & u.le(F4::splat(1.0));
+    let q = cross(s, e1);
+    let v = dot(r.d, q).mul(inv);
+    ok &= !(v.lt(F4::splat(0.0)) | u.add(v).gt(F4::splat(1.0)));
+    let t = dot(e2, q).mul(inv);
+    ok &= t.gt(t_min) & t.lt(t_max);
+    (ok, t, u, v)
+}
+
+impl Bvh4 {
+    /// Collapses the binary tree `nodes` (leaves indexing `order`): each node takes its
+    /// binary children and repeatedly replaces the inner one of largest area by its two
+    /// children, in place (so lanes keep the binary tree's left-to-right order), up to four.
+    pub(crate) fn new(
+        nodes: &[Node],
+        order: &[u32],
+        positions: &[Vec3],
+        triangles: &[[u32; 3]],
+    ) -> Self {
+        let mut b = Self::default();
+        if triangles.is_empty() {
+            return b;
+        }
+        let tri = |i: usize| triangles[order[i] as usize].map(|v| positions[v as usize]);
+        b.collapse(nodes, &tri, 0);
+        b
+    }
+
+    /// Adds the node for binary node `i` (inner, or the root leaf of a small mesh, then
+    /// the single lane) and its subtree; returns its index.
+    fn collapse(&mut self, nodes: &[Node], tri: &impl Fn(usize) -> [Vec3; 3], i: usize) -> u32 {
+        let mut kids = if nodes[i].count > 0 {
+            vec![i]
+        } else {
+            let l = nodes[i].start as usize;
+            vec![l, l + 1]
+        };
+        while kids.len() < 4 {
+            let widest = (0..kids.len())
+                .filter(|&k| nodes[kids[k]].count == 0)
+                .max_by(|&a, &b| {
+                    let area = |k: usize| half_area(nodes[kids[k]].lo, nodes[kids[k]].hi);
+                    area(a).total_cmp(&area(b))
+                });
+            let Some(k) = widest else { break };
+            let l = nodes[kids[k]].start as usize;
+            kids.splice(k..k + 1, [l, l + 1]);
+        }
+        let at = self.nodes.len();
+        self.nodes.push(Node4 {
+            lo: [[0.0; 4]; 3],
+            hi: [[0.0; 4]; 3],
+            child: [0; 4],
+            lanes: (1 << kids.len()) - 1,
+        });
+        for (lane, &c) in kids.iter().enumerate() {
+            let n = nodes[c];
+            let child = if n.count > 0 {
+                let mut leaf = Leaf4 {
+                    a: [[0.0; 4]; 3],
+                    e1: [[0.0; 4]; 3],
+                    e2: [[0.0; 4]; 3],
+                    index: [0; 4],
+                };
+                for k in 0..n.count as usize {
+                    let i = n.start as usize + k;
+                    let [a, b, c] = tri(i);
+                    let (e1, e2) = (b - a, c - a);
+                    for ax in 0..3 {
+                        leaf.a[ax][k] = a[ax];
+                        leaf.e1[ax][k] = e1[ax];
+                        leaf.e2[ax][k] = e2[ax];
+                    }
+                    leaf.index[k] = i as u32;
+                }
+                self.leaves.push(leaf);
+                LEAF_BIT | (n.count - 1) << 29 | (self.leaves.len() - 1) as u32
+            } else {
+                self.collapse(nodes, tri, c)
+            };
+            let node = &mut self.nodes[at];
+            for ax in 0..3 {
+                node.lo[ax][lane] = n.lo[ax];
+                node.hi[ax][lane] = n.hi[ax];
+            }
+            node.child[lane] = child;
+        }
+        at as u32
+    }
+
+    /// The leaf block and its lanes in use of a leaf reference.
+    #[inline(always)]
+    fn leaf(&self, c: u32) -> (&Leaf4, u32) {
+        let lanes = (2 << ((c >> 29) & 3)) - 1;
+        (&self.leaves[(c & ((1 << 29) - 1)) as usize], lanes)
+    }
+
+    /// The nearest hit with t in (t_min, t_max) as (t, position in `order`, u, v): of a
+    /// node's children entered, the nearest entry is visited first and the others pushed
+    /// farthest first, each skipped when popped if a hit nearer than its entry was found
+    /// meanwhile; ties in entry or in t go to the binary tree's left-to-right order.
+    pub(crate) fn hit(
+        &self,
+        r: &Ray,
+        t_min: f32,
+        mut t_max: f32,
+    ) -> Option<(f32, usize, f32, f32)> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let r4 = Ray4::new(r);
+        let tmin4 = F4::splat(t_min);
+        let mut best = None;
+        // Not zeroed (the zeroing showed at 5% of a face render): entries below `sp` are
+        // written before they are read.
+        let mut stack = [MaybeUninit::<(u32, f32)>::uninit(); STACK];
+        let mut sp = 0;
+        let mut c = 0u32;
+        'walk: loop {
+            if c & LEAF_BIT != 0 {
+                let (leaf, lanes) = self.leaf(c);
+                let (mut ok, t, u, v) = hit4(leaf, &r4, tmin4, F4::splat(t_max));
+                ok &= lanes;
+                if ok != 0 {
+                    let t = t.store();
+                    let mut k = ok.trailing_zeros() as usize;
+                    let mut rest = ok & (ok - 1);
+                    while rest != 0 {
+                        let j = rest.trailing_zeros() as usize;
+                        if t[j] < t[k] {
+                            k = j;
+                        }
+                        rest &= rest - 1;
+                    }
+                    t_max = t[k];
+                    best = Some((t[k], leaf.index[k] as usize, u.store()[k], v.store()[k]));
+                }
+            } else {
+                let node = &self.nodes[c as usize];
+                let (mut hit, tn) = slab4(node, &r4, tmin4, F4::splat(t_max));
+                if hit != 0 {
+                    let tn = tn.store();
+                    // Entered lanes sorted by entry (stable: ties keep lane order).
+                    let mut near = [(0u32, 0.0f32); 4];
+                    let mut m = 0;
+                    while hit != 0 {
+                        let k = hit.trailing_zeros() as usize;
+                        hit &= hit - 1;
+                        let e = (node.child[k], tn[k]);
+                        let mut j = m;
+                        while j > 0 && near[j - 1].1 > e.1 {
+                            near[j] = near[j - 1];
+                            j -= 1;
+                        }
+                        near[j] = e;
+                        m += 1;
+                    }
+                    for &e in near[1..m].iter().rev() {
+                        stack[sp].write(e);
+                        sp += 1;
+                    }
+                    c = near[0].0;
+                    continue;
+                }
+            }
+            while sp > 0 {
+                sp -= 1;
+                // SAFETY: entry `sp` < the entries pushed was written by a push.
+                let (n, t_near) = unsafe { stack[sp].assume_init() };
+                if t_near <= t_max {
+                    c = n;
+                    continue 'walk;
+                }
+            }
+            return best;
+        }
+    }
+
+    /// Whether any triangle is hit with t in (t_min, t_max): stops at the first found.
+    pub(crate) fn occluded(&self, r: &Ray, t_min: f32, t_max: f32) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let r4 = Ray4::new(r);
+        let (tmin4, tmax4) = (F4::splat(t_min), F4::splat(t_max));
+        let mut stack = [MaybeUninit::<u32>::uninit(); STACK];
+        let mut sp = 0;
+        let mut c = 0u32;
+        loop {
+            if c & LEAF_BIT != 0 {
+                let (leaf, lanes) = self.leaf(c);
+                if hit4(leaf, &r4, tmin4, tmax4).0 & lanes != 0 {
+                    return true;
+                }
+            } else {
+                let node = &self.nodes[c as usize];
+                let mut hit = slab4(node, &r4, tmin4, tmax4).0;
+                if hit != 0 {
+                    c = node.child[hit.trailing_zeros() as usize];
+                    hit &= hit - 1;
+                    while hit != 0 {
+                        stack[sp].write(node.child[hit.trailing_zeros() as usize]);
+                        sp += 1;
+                        hit &= hit - 1;
+                    }
+                    continue;
+                }
+            }
+            if sp == 0 {
+                return false;
+            }
+            sp -= 1;
+            // SAFETY: entry `sp` < the entries pushed was written by a push.
+            c = unsafe { stack[sp].assume_init() };
+        }
+    }
+}
