@@ -271,24 +271,49 @@ impl Bvh4 {
     }
 
     /// Adds the node for binary node `i` (inner, or the root leaf of a small mesh, then
-    /// the single lane) and its subtree; returns its index.
+    /// the single lane) and its subtree; returns its index. Lanes: the binary children, the
+    /// inner one of largest area replaced by its two children while fewer than four, and
+    /// neighbouring leaves of at most four triangles together merged into one (their
+    /// triangles are neighbours in `order`, as lanes keep the binary tree's left-to-right
+    /// order; the lane's box is the union of theirs).
     fn collapse(&mut self, nodes: &[Node], tri: &impl Fn(usize) -> [Vec3; 3], i: usize) -> u32 {
+        // (box lo, box hi, binary node if inner, leaf start, leaf count).
+        let kid = |c: usize| {
+            let n = nodes[c];
+            (n.lo, n.hi, (n.count == 0).then_some(c), n.start, n.count)
+        };
         let mut kids = if nodes[i].count > 0 {
-            vec![i]
+            vec![kid(i)]
         } else {
             let l = nodes[i].start as usize;
-            vec![l, l + 1]
+            vec![kid(l), kid(l + 1)]
         };
-        while kids.len() < 4 {
-            let widest = (0..kids.len())
-                .filter(|&k| nodes[kids[k]].count == 0)
-                .max_by(|&a, &b| {
-                    let area = |k: usize| half_area(nodes[kids[k]].lo, nodes[kids[k]].hi);
-                    area(a).total_cmp(&area(b))
-                });
-            let Some(k) = widest else { break };
-            let l = nodes[kids[k]].start as usize;
-            kids.splice(k..k + 1, [l, l + 1]);
+        loop {
+            while kids.len() < 4 {
+                let widest = (0..kids.len())
+                    .filter(|&k| kids[k].2.is_some())
+                    .max_by(|&a, &b| {
+                        let area = |k: usize| half_area(kids[k].0, kids[k].1);
+                        area(a).total_cmp(&area(b))
+                    });
+                let Some(k) = widest else { break };
+                let l = nodes[kids[k].2.unwrap_or_default()].start as usize;
+                kids.splice(k..k + 1, [kid(l), kid(l + 1)]);
+            }
+            let before = kids.len();
+            let mut merged: Vec<(Vec3, Vec3, Option<usize>, u32, u32)> = Vec::new();
+            for k in kids {
+                match merged.last_mut() {
+                    Some(m) if m.2.is_none() && k.2.is_none() && m.4 + k.4 <= 4 => {
+                        *m = (m.0.min(k.0), m.1.max(k.1), None, m.3, m.4 + k.4);
+                    }
+                    _ => merged.push(k),
+                }
+            }
+            kids = merged;
+            if kids.len() == before || !kids.iter().any(|k| k.2.is_some()) {
+                break;
+            }
         }
         let at = self.nodes.len();
         self.nodes.push(Node4 {
@@ -297,17 +322,18 @@ impl Bvh4 {
             child: [0; 4],
             lanes: (1 << kids.len()) - 1,
         });
-        for (lane, &c) in kids.iter().enumerate() {
-            let n = nodes[c];
-            let child = if n.count > 0 {
+        for (lane, &(lo, hi, inner, start, count)) in kids.iter().enumerate() {
+            let child = if let Some(c) = inner {
+                self.collapse(nodes, tri, c)
+            } else {
                 let mut leaf = Leaf4 {
                     a: [[0.0; 4]; 3],
                     e1: [[0.0; 4]; 3],
                     e2: [[0.0; 4]; 3],
                     index: [0; 4],
                 };
-                for k in 0..n.count as usize {
-                    let i = n.start as usize + k;
+                for k in 0..count as usize {
+                    let i = start as usize + k;
                     let [a, b, c] = tri(i);
                     let (e1, e2) = (b - a, c - a);
                     for ax in 0..3 {
@@ -318,14 +344,12 @@ impl Bvh4 {
                     leaf.index[k] = i as u32;
                 }
                 self.leaves.push(leaf);
-                LEAF_BIT | (n.count - 1) << 29 | (self.leaves.len() - 1) as u32
-            } else {
-                self.collapse(nodes, tri, c)
+                LEAF_BIT | (count - 1) << 29 | (self.leaves.len() - 1) as u32
             };
             let node = &mut self.nodes[at];
             for ax in 0..3 {
-                node.lo[ax][lane] = n.lo[ax];
-                node.hi[ax][lane] = n.hi[ax];
+                node.lo[ax][lane] = lo[ax];
+                node.hi[ax][lane] = hi[ax];
             }
             node.child[lane] = child;
         }
