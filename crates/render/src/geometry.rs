@@ -113,7 +113,7 @@ pub struct TriMesh {
     nodes: Vec<Node>,
     order: Vec<u32>,
     /// The CPU's traversal structure, collapsed from `nodes` (see [`crate::bvh4`]).
-    bvh4: Bvh4,
+    pub(crate) bvh4: Bvh4,
 }
 
 /// Entries of the traversal stack (`TriMesh::hit` and `TriMesh::occluded`, and the GPU

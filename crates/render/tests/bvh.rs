@@ -144,6 +144,26 @@ fn adversarial_inputs_keep_the_depth_within_the_stack() {
         assert!(leaf <= LEAF, "{what}: a leaf of {leaf}");
         assert!(depth <= MAX_DEPTH, "{what}: depth {depth} > {MAX_DEPTH}");
         assert!(depth < BVH_STACK, "{what}: depth {depth} fills the stack");
+        // The 4-wide BVH collapsed from these trees (its stack bound is 3 * MAX_DEPTH) finds
+        // the binary tree's hits.
+        let (lo, hi) = m.bounds();
+        for k in 0..64u32 {
+            let o = lo + (rand3(k) * 3.0 - 1.0) * (hi - lo).max(Vec3::splat(1e-3));
+            let r = Ray {
+                o,
+                d: (lo + rand3(k + 99) * (hi - lo) - o).normalize_or(Vec3::Z),
+            };
+            let bits = |h: Option<(f32, Vec3, Vec2)>| h.map(|h| (h.0.to_bits(), h.1.to_array()));
+            assert_eq!(
+                bits(m.hit(&r, 0.0, f32::INFINITY, true)),
+                bits(m.hit_binary(&r, 0.0, f32::INFINITY, true)),
+                "{what}: ray {k}"
+            );
+            assert_eq!(
+                m.occluded(&r, 0.0, f32::INFINITY),
+                m.occluded_binary(&r, 0.0, f32::INFINITY)
+            );
+        }
     }
     let empty = mesh(&[]);
     assert_eq!(empty.depth(), 0);
