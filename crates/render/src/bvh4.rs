@@ -390,7 +390,8 @@ impl Bvh4 {
     /// The nearest hit with t in (t_min, t_max) as (t, position in `order`, u, v): of a
     /// node's children entered, the nearest entry is visited first and the others pushed
     /// farthest first, each skipped when popped if a hit nearer than its entry was found
-    /// meanwhile; ties in entry, and in t within a leaf, go to the binary tree's left-to-right order.
+    /// meanwhile; ties in entry, and in t within a leaf, go to the binary tree's left-to-right
+    /// order.
     pub(crate) fn hit(
         &self,
         r: &Ray,
