@@ -1,0 +1,236 @@
+//! The environment light's pass ([`env_pass`]): per object a wavefront of map, cosine and
+//! BRDF directions, the BRDF's densities and draws batched, every specular term evaluated in
+//! one batch; and the random numbers of each primary sample and pass ([`uniforms`]).
+
+use super::{Ctx, Sample, Sampler, Spec, Tile, add_specular};
+use crate::scene::Scene;
+use glam::Vec3;
+
+/// Whether light from `l` reaches sample `s` (see the shadow rule in [`super::direct`]).
+fn visible(scene: &Scene, s: &Sample, l: Vec3) -> bool {
+    !scene.shadows || s.g.dot(l) <= 0.0 || !scene.shadowed(s.p, s.g, l, f32::INFINITY)
+}
+
+/// The environment pass's queries to the specular BRDF, batched per object: the densities of
+/// the map's directions (`map_*`) and the draws of the BRDF's own (`draw_*`), each with the
+/// sample it belongs to, as structures of arrays for [`BrdfSampler`].
+#[derive(Default)]
+pub(super) struct EnvScratch {
+    /// Per map direction: its sample, radiance x 1 / (pdf x samples), density; then `wo`
+    /// x, y, z, `wi` x, y, z and the BRDF's density there.
+    map_i: Vec<usize>,
+    map_le: Vec<Vec3>,
+    map_pdf: Vec<f32>,
+    map_dirs: [Vec<f32>; 6],
+    map_brdf_pdf: Vec<f32>,
+    /// Per BRDF draw: its sample, the frame (t, b) of its shading normal; `wo` x, y, z and
+    /// `u` 1, 2; then the drawn `wi` x, y, z, weight (unused) and density.
+    draw_i: Vec<usize>,
+    draw_frame: Vec<(Vec3, Vec3)>,
+    draw_in: [Vec<f32>; 5],
+    draw_out: [Vec<f32>; 5],
+}
+
+impl EnvScratch {
+    fn clear(&mut self) {
+        self.map_i.clear();
+        self.map_le.clear();
+        self.map_pdf.clear();
+        self.map_dirs.iter_mut().for_each(Vec::clear);
+        self.draw_i.clear();
+        self.draw_frame.clear();
+        self.draw_in.iter_mut().for_each(Vec::clear);
+    }
+}
+
+/// The six uniform numbers of one primary sample's environment pass: (map direction),
+/// (cosine direction), (BRDF direction).
+fn uniforms(sampler: Sampler, id: u32, pass: u32) -> [f32; 6] {
+    match sampler {
+        Sampler::Independent => {
+            let mut rng = crate::env::Rng::new(id, pass);
+            let (u1, u2, u3, u4) = (rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
+            let (u5, u6) = (rng.uniform(), rng.uniform());
+            [u1, u2, u3, u4, u5, u6]
+        }
+        Sampler::Sobol => {
+            // Pass k takes point k of two Owen-scrambled Sobol sequences seeded by the sample:
+            // its first four dimensions (the map's pair and the cosine pair) and, from a
+            // second seed, the first two again (the BRDF's pair), so that each pair the pass
+            // uses is stratified over the passes and the pairs are independent. The crate
+            // holds 2^16 points per seed: passes beyond (at most 4096 x 256 with adaptive
+            // antialiasing) continue in sequences of further seeds.
+            let seed = crate::hash::pcg(id ^ crate::hash::pcg(pass >> 16));
+            let k = pass & 0xffff;
+            let a = sobol_burley::sample_4d(k, 0, seed);
+            let b = sobol_burley::sample_4d(k, 0, crate::hash::pcg(seed ^ 0x68bc_21eb));
+            [a[0], a[1], a[2], a[3], b[0], b[1]]
+        }
+    }
+}
+
+/// One progressive pass of the environment light: per primary hit, one direction drawn from
+/// the map (`EnvMap::sample`), one cosine-weighted about the shading normal and, where the
+/// material has a specular term, one drawn from the specular BRDF (its default strategy:
+/// VNDF for GGX and Beckmann, the closed-form lobe or its twin for Phong-like models), each
+/// times `1 / samples`. The diffuse term combines the map and cosine directions by the
+/// balance heuristic, so each contribution is `L kd albedo cos / pi / (pdf_map + cos / pi)`.
+/// The specular term combines the map and BRDF directions by the power heuristic (Veach
+/// 1997): the map's direction weighted by `power(pdf_map, pdf_brdf) / pdf_map`, the BRDF's by
+/// `power(pdf_brdf, pdf_map) / pdf_brdf`, both evaluated through the batch kernels as for
+/// direct light. The BRDF's density does not depend on the Fresnel term, so a coloured model
+/// samples and weighs with its first channel.
+///
+/// A wavefront per object: a first loop over the hits draws the map's and the cosine
+/// directions (diffuse term, shadow rays) and collects the specular queries; the BRDF's
+/// densities at the map's directions and its own draws then go through the batch sampler
+/// (`fastbrdf::batch::sample`) in one call each; a last loop traces the drawn directions'
+/// shadow rays and queues every specular term, in the order of the hits (map direction
+/// first), for one batch evaluation.
+///
+/// Random numbers ([`uniforms`]): per primary sample, id `(pixel y * width + pixel x) * N^2 +
+/// subsample`, and pass; deterministic whatever the threads.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn env_pass(
+    ctx: &Ctx,
+    env: &crate::env::Environment,
+    at: &Tile,
+    pass: u32,
+    samples: &[Sample],
+    radiance: &mut [Vec3],
+    es: &mut EnvScratch,
+    spec: &mut Spec,
+) {
+    use crate::env::{cosine_sample, power_heuristic, specular_light_weight};
+    use fastbrdf::sample::Strategy;
+    use std::f32::consts::PI;
+    let scene = ctx.scene;
+    let map = &env.map;
+    let nn = ctx.opts.spp * ctx.opts.spp;
+    for (oi, obj) in scene.objects.iter().enumerate() {
+        let m = &obj.material;
+        let sampler = ctx.samplers[oi].as_ref();
+        es.clear();
+        for (i, s) in samples.iter().enumerate() {
+            if s.object != Some(oi) || pass >= s.passes {
+                continue;
+            }
+            let inv = 1.0 / s.passes as f32;
+            let (px, py) = (at.x0 + s.pixel % at.tw, at.y0 + s.pixel / at.tw);
+            let id = (py.wrapping_mul(at.w).wrapping_add(px))
+                .wrapping_mul(nn)
+                .wrapping_add(s.sub);
+            let [u1, u2, u3, u4, u5, u6] = uniforms(ctx.opts.sampler, id, pass);
+            // The specular term's local frame and view direction, once per hit.
+            let frame = (m.ks > 0.0).then(|| {
+                let (t, b) = s.n.any_orthonormal_pair();
+                (t, b, [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)])
+            });
+            // The map's direction: diffuse (MIS with the cosine strategy) and specular.
+            let (l, le, pdf_l) = map.sample(u1, u2);
+            let cos_i = s.n.dot(l);
+            if pdf_l > 0.0 && cos_i > 0.0 && le != Vec3::ZERO && visible(scene, s, l) {
+                radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
+                if let Some((t, b, wo)) = frame {
+                    let wi = [l.dot(t), l.dot(b), cos_i];
+                    es.map_i.push(i);
+                    es.map_le.push(le);
+                    es.map_pdf.push(pdf_l);
+                    for k in 0..3 {
+                        es.map_dirs[k].push(wo[k]);
+                        es.map_dirs[k + 3].push(wi[k]);
+                    }
+                }
+            }
+            // The BRDF's direction: specular only (MIS with the map's direction); drawn below.
+            if let (Some((t, b, wo)), Some(_)) = (frame, sampler) {
+                es.draw_i.push(i);
+                es.draw_frame.push((t, b));
+                for (col, x) in es.draw_in.iter_mut().zip([wo[0], wo[1], wo[2], u5, u6]) {
+                    col.push(x);
+                }
+            }
+            // The cosine-weighted direction: diffuse only.
+            if s.base != Vec3::ZERO {
+                let l = cosine_sample(s.n, u3, u4);
+                let cos_i = s.n.dot(l);
+                if cos_i > 0.0 {
+                    let (le, pdf_l) = map.lookup(l);
+                    if le != Vec3::ZERO && visible(scene, s, l) {
+                        radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
+                    }
+                }
+            }
+        }
+        if es.map_i.is_empty() && es.draw_i.is_empty() {
+            continue;
+        }
+        // The BRDF's densities at the map's directions, and its own draws: one batch each.
+        let nm = es.map_i.len();
+        es.map_brdf_pdf.resize(nm, 0.0);
+        let nd = es.draw_i.len();
+        es.draw_out.iter_mut().for_each(|c| c.resize(nd, 0.0));
+        if let Some(sm) = sampler {
+            let d = &es.map_dirs;
+            sm.pdf(
+                Strategy::Auto,
+                [&d[0], &d[1], &d[2]],
+                [&d[3], &d[4], &d[5]],
+                &mut es.map_brdf_pdf,
+            )
+            .expect("equal lengths, the default strategy");
+            let (di, [wx, wy, wz, weight, pdf]) = (&es.draw_in, &mut es.draw_out);
+            sm.sample(
+                Strategy::Auto,
+                [&di[0], &di[1], &di[2]],
+                [&di[3], &di[4]],
+                fastbrdf::batch::sample::SampleOut {
+                    wi: [wx, wy, wz],
+                    weight,
+                    pdf,
+                },
+            )
+            .expect("equal lengths, the default strategy");
+        }
+        // Every specular term in the order of the hits, each hit's map direction first.
+        spec.clear();
+        let (mut a, mut b) = (0, 0);
+        while a < nm || b < nd {
+            if a < nm && (b >= nd || es.map_i[a] <= es.draw_i[b]) {
+                let d = &es.map_dirs;
+                let wo = [d[0][a], d[1][a], d[2][a]];
+                let wi = [d[3][a], d[4][a], d[5][a]];
+                let inv = 1.0 / samples[es.map_i[a]].passes as f32;
+                let pdf_b = sampler.map(|_| es.map_brdf_pdf[a]);
+                let w = specular_light_weight(es.map_pdf[a], pdf_b);
+                spec.push(
+                    es.map_i[a],
+                    wi,
+                    wo,
+                    es.map_le[a] * (w / es.map_pdf[a] * inv),
+                );
+                a += 1;
+            } else {
+                let i = es.draw_i[b];
+                let s = &samples[i];
+                let (t, bt) = es.draw_frame[b];
+                let o = &es.draw_out;
+                let (wi, pdf) = ([o[0][b], o[1][b], o[2][b]], o[4][b]);
+                if pdf > 0.0 {
+                    let inv = 1.0 / s.passes as f32;
+                    let l = t * wi[0] + bt * wi[1] + s.n * wi[2];
+                    let (le, pdf_l) = map.lookup(l);
+                    if le != Vec3::ZERO && visible(scene, s, l) {
+                        let w = power_heuristic(pdf, pdf_l);
+                        let di = &es.draw_in;
+                        spec.push(i, wi, [di[0][b], di[1][b], di[2][b]], le * (w / pdf * inv));
+                    }
+                }
+                b += 1;
+            }
+        }
+        if !spec.idx.is_empty() {
+            add_specular(m, ctx.opts.shading, spec, radiance);
+        }
+    }
+}
