@@ -10,22 +10,12 @@ use fastbrdf::ModelSpec;
 use fastbrdf::batch::{CtPath, Input, Isa, Kernel};
 use std::time::Instant;
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.total_cmp(b));
-    v[v.len() / 2]
-}
+mod common;
+use common::median;
 
 fn main() {
-    let pairs = fastbrdf::accuracy::direction_pairs(4096, 3);
-    let n = pairs.len();
-    let cols: Vec<Vec<f32>> = (0..6)
-        .map(|k| {
-            pairs
-                .iter()
-                .map(|(a, b)| if k < 3 { a[k] } else { b[k - 3] } as f32)
-                .collect()
-        })
-        .collect();
+    let cols = common::pair_columns(4096, 3);
+    let n = cols[0].len();
     let input = Input::Dirs([&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]]);
     println!(
         "isa: {}, {n} pairs, ns per evaluation (median of 41)",
