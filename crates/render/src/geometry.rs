@@ -1,6 +1,7 @@
 //! Rays, analytic spheres and planes, and triangle meshes with a bounding volume hierarchy.
 
-use crate::bvh4::Bvh4;
+mod bvh4;
+use bvh4::Bvh4;
 use glam::{Vec2, Vec3};
 
 /// A ray `o + t d`, `d` unit.
@@ -112,13 +113,13 @@ pub struct TriMesh {
     pub triangles: Vec<[u32; 3]>,
     nodes: Vec<Node>,
     order: Vec<u32>,
-    /// The CPU's traversal structure, collapsed from `nodes` (see `crate::bvh4`).
+    /// The CPU's traversal structure, collapsed from `nodes` (see `geometry::bvh4`).
     pub(crate) bvh4: Bvh4,
 }
 
 /// Entries of the binary tree's traversal stack (`TriMesh::hit_binary` and
 /// `TriMesh::occluded_binary`, and the GPU renderer's shadow rays, which use the same size;
-/// the CPU's 4-wide walk, `crate::bvh4`, holds 3 * [`MAX_DEPTH`]). A depth-first walk that
+/// the CPU's 4-wide walk, `geometry::bvh4`, holds 3 * [`MAX_DEPTH`]). A depth-first walk that
 /// pushes both children of a popped node (the GPU's) holds at most depth + 1 entries; the
 /// ordered walk (`hit_binary`, which pushes only the farther child) at most depth. The build keeps the
 /// depth (edges from the root to a leaf) at most [`MAX_DEPTH`] = 62 for ANY input of up to
@@ -460,7 +461,7 @@ impl TriMesh {
     }
 
     /// [`TriMesh::intersect`], with the texture coordinates interpolated only when `uv` is set
-    /// (zero otherwise). Through the 4-wide BVH (`crate::bvh4`): the same hit as
+    /// (zero otherwise). Through the 4-wide BVH (`geometry::bvh4`): the same hit as
     /// [`TriMesh::hit_binary`], to the bit.
     #[inline]
     pub fn hit(&self, r: &Ray, t_min: f32, t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
@@ -572,7 +573,7 @@ impl TriMesh {
     }
 
     /// Whether any triangle is hit with t in (t_min, t_max): a shadow ray, which stops at the
-    /// first hit found rather than the nearest (through the 4-wide BVH, `crate::bvh4`).
+    /// first hit found rather than the nearest (through the 4-wide BVH, `geometry::bvh4`).
     #[inline]
     pub fn occluded(&self, r: &Ray, t_min: f32, t_max: f32) -> bool {
         self.bvh4.occluded(r, t_min, t_max)

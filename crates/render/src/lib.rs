@@ -17,7 +17,6 @@
 //! pictures), distributions inside `cook-torrance` with that `d`.
 
 pub mod bump;
-mod bvh4;
 pub mod compare;
 mod decode;
 pub mod env;

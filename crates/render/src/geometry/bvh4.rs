@@ -14,7 +14,7 @@
 //! Memory: a node (up to four boxes) is 128 bytes, a leaf (up to four triangles) 160: on
 //! the face 72 bytes a triangle, beside the binary tree's 32 a node and 4 a triangle.
 
-use crate::geometry::{MAX_DEPTH, Node, Ray, half_area};
+use super::{MAX_DEPTH, Node, Ray, half_area};
 use glam::Vec3;
 use std::mem::MaybeUninit;
 
