@@ -284,6 +284,9 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
     let (x0, y0) = (tx * TILE, ty * TILE);
     let (tw, th) = (TILE.min(w - x0), TILE.min(h - y0));
     let at = Tile { x0, y0, tw, w };
+    if (ctx.stop)() {
+        return None;
+    }
     // The pixels' sample counts and the radiance of pass 0 already known (from the probe).
     let known = primary(ctx, &at, th, scratch);
     let Scratch {
