@@ -50,6 +50,7 @@ pub mod real;
 pub mod registry;
 pub mod sample;
 pub mod spec;
+pub mod user;
 pub mod vec3;
 pub mod wgsl;
 
