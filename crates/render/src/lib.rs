@@ -29,5 +29,6 @@ pub mod render;
 pub mod scene;
 pub mod setup;
 pub mod texture;
+pub mod user;
 
 pub use error::{RenderError, Result};

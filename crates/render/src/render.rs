@@ -639,13 +639,14 @@ fn add_specular(
         out,
     } = spec;
     if let Some(rgb) = &m.specular.rgb {
-        // An RGB BRDF (measured data, a fitted model): scalar lookups, one per direction pair,
-        // weighted as the coloured path weights its three channels.
-        for (j, (&i, &li)) in idx.iter().zip(lis.iter()).enumerate() {
-            let [r, g, b] = rgb.eval_rgb(
-                [cols[0][j], cols[1][j], cols[2][j]],
-                [cols[3][j], cols[4][j], cols[5][j]],
-            );
+        // An RGB BRDF (measured data, a fitted model, a user's model): one batch call (scalar
+        // lookups by default), weighted as the coloured path weights its three channels.
+        let mut values = Vec::new();
+        rgb.eval_rgb_batch(
+            [&cols[0], &cols[1], &cols[2], &cols[3], &cols[4], &cols[5]],
+            &mut values,
+        );
+        for (j, ((&i, &li), &[r, g, b])) in idx.iter().zip(lis.iter()).zip(&values).enumerate() {
             let (ks, cos) = (m.ks, cols[2][j]);
             radiance[i] += li * Vec3::new(ks * r * cos, ks * g * cos, ks * b * cos);
         }

@@ -254,6 +254,23 @@ impl Channel {
 /// in the local frame (normal +z), no cosine factor; values are linear R, G, B.
 pub trait RgbBrdf: Send + Sync {
     fn eval_rgb(&self, wi: [f32; 3], wo: [f32; 3]) -> [f32; 3];
+    /// Row `j` of `cols` (`wi` x, y, z, `wo` x, y, z) into `out[j]` (`out` is cleared first):
+    /// the renderer's one call per batch, for evaluators that work in batches (a user's shader
+    /// on the GPU, [`crate::user::UserRgb`]). By default [`Self::eval_rgb`] per row.
+    fn eval_rgb_batch(&self, cols: [&[f32]; 6], out: &mut Vec<[f32; 3]>) {
+        out.clear();
+        out.extend((0..cols[0].len()).map(|j| {
+            self.eval_rgb(
+                [cols[0][j], cols[1][j], cols[2][j]],
+                [cols[3][j], cols[4][j], cols[5][j]],
+            )
+        }));
+    }
+    /// The first evaluation failure (a GPU evaluator's lost device), which the batch methods
+    /// cannot return: a caller asks after rendering and fails with it. `None` by default.
+    fn failure(&self) -> Option<String> {
+        None
+    }
 }
 
 /// MERL's nearest-bin lookup: the bin is found in f64 (`eval_rgb_f32`), the value rounded to

@@ -50,13 +50,20 @@ pub fn render_specular(
     specular: Arc<Specular>,
 ) -> Result<Film, CliError> {
     let id = specular.id.clone();
-    let scene = setup::scene(spec, loaded, specular);
+    let scene = setup::scene(spec, loaded, Arc::clone(&specular));
     let pb = bar(1, "render");
     let film = render(&scene, opts, &|d, t| {
         pb.set_length(t as u64);
         pb.set_position(d as u64);
     })?;
     pb.finish_and_clear();
+    if let Some(e) = specular.rgb.as_ref().and_then(|b| b.failure()) {
+        // A user's model evaluated on the GPU failed mid-render (its device was lost).
+        return Err(CliError {
+            code: crate::EXIT_CHECK_FAILED,
+            message: format!("--model {id}: {e}"),
+        });
+    }
     film.check_finite()
         .map_err(|e| CliError::input(format!("--model {id}: {e}")))?;
     Ok(film)
