@@ -84,6 +84,18 @@ if ! command -v glslangValidator > /dev/null; then
         echo "test.sh: no apt-get; install glslang (glslangValidator) to run the HLSL export test" >&2
     fi
 fi
+# spirv-opt counts every shader's instructions after an optimising compiler
+# (crates/gpu/tests/cost.rs); with CI set a missing spirv-opt fails that test, without CI it is
+# skipped with a message.
+if ! command -v spirv-opt > /dev/null; then
+    echo "test.sh: no spirv-opt: installing spirv-tools (the instruction-count test)" >&2
+    if command -v apt-get > /dev/null; then
+        apt_install spirv-tools || { $sudo apt-get update -qq > /dev/null && apt_install spirv-tools; } ||
+            echo "test.sh: could not install spirv-tools; the instruction-count test will skip (or fail under CI)" >&2
+    else
+        echo "test.sh: no apt-get; install SPIRV-Tools (spirv-opt) to run the instruction-count test" >&2
+    fi
+fi
 if [ -e "$icd" ] && [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}" ]; then
     export VK_ICD_FILENAMES="$icd"
 fi

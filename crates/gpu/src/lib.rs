@@ -9,10 +9,13 @@
 //! - [`render`]: the CPU renderer's scenes, rasterised on the GPU, shaded by any model.
 //! - [`export`]: a model as a self-contained function in WGSL, GLSL, HLSL, MSL (through
 //!   naga) or a BRDF Explorer `.brdf` file.
+//! - [`cost`]: a shader's instruction count after `spirv-opt -O`, by class of operation
+//!   (committed for the built-ins: `src/shader_costs.csv`).
 
 pub mod bench;
 pub mod compute;
 pub mod context;
+pub mod cost;
 pub mod export;
 pub mod library;
 pub mod render;
