@@ -21,6 +21,7 @@ pub mod library;
 pub mod render;
 pub mod runtime_fits;
 pub mod spec;
+pub mod user;
 
 pub use compute::GpuKernel;
 pub use context::{Gpu, GpuError};
