@@ -55,6 +55,136 @@ pub struct ModelArgs {
     pub metal: MetalArg,
 }
 
+/// The one spelling of a model outside the registry, wherever a command takes a model id:
+/// `file:PATH`, a BRDF Explorer `.brdf` file or a shader function in `.wgsl` or `.glsl`
+/// (issue 31; the format: the book's user-shaders page). It is evaluated on the GPU (Mesa's
+/// lavapipe without one), with the `--param` values checked against the ranges the file
+/// declares.
+pub const USER_PREFIX: &str = "file:";
+
+/// Whether `id` names a user's model ([`USER_PREFIX`]).
+pub fn is_user(id: &str) -> bool {
+    id.starts_with(USER_PREFIX)
+}
+
+/// The user's model `id` (`file:PATH`) with the `--param` values `given`, compiled on the GPU;
+/// `None` when `id` is a registry id. A bad file, a compile error (the compiler's message
+/// with the file, line and column) or a bad value is exit 2, a GPU failure exit 1.
+pub fn user(
+    id: &str,
+    given: &[(String, String)],
+) -> Result<Option<std::sync::Arc<dyn fastbrdf::user::UserBrdf>>, CliError> {
+    let Some(path) = id.strip_prefix(USER_PREFIX) else {
+        return Ok(None);
+    };
+    if path.is_empty() {
+        return Err(CliError::input(
+            "--model file:: no path after 'file:' (e.g. --model file:my.brdf)",
+        ));
+    }
+    match fastbrdf_gpu::user::load(std::path::Path::new(path), given) {
+        Ok(b) => Ok(Some(std::sync::Arc::new(b))),
+        Err(e) => Err(CliError {
+            code: match e.kind {
+                fastbrdf_gpu::user::UserErrorKind::Input => crate::EXIT_INPUT,
+                fastbrdf_gpu::user::UserErrorKind::Gpu => crate::EXIT_CHECK_FAILED,
+            },
+            message: e.message,
+        }),
+    }
+}
+
+impl ModelArgs {
+    /// [`user`] with these `--param` values; a user's model takes no `--material` or
+    /// `--metal` (exit 2).
+    pub fn user(
+        &self,
+        id: &str,
+    ) -> Result<Option<std::sync::Arc<dyn fastbrdf::user::UserBrdf>>, CliError> {
+        if is_user(id) {
+            if let Some(m) = &self.material.material {
+                return Err(CliError::input(format!(
+                    "--material {}: a user's model ({}) takes its values from --param only",
+                    shorten(m, QUOTE),
+                    shorten(id, QUOTE)
+                )));
+            }
+            if let Some(m) = &self.metal.metal {
+                return Err(CliError::input(format!(
+                    "--metal {}: a user's model ({}) takes its values from --param only",
+                    shorten(m, QUOTE),
+                    shorten(id, QUOTE)
+                )));
+            }
+        }
+        user(id, &self.param.pairs()?)
+    }
+}
+
+/// One model of a comparison: a registry spec or a user's model.
+pub enum Chosen {
+    Spec(ModelSpec),
+    User(std::sync::Arc<dyn fastbrdf::user::UserBrdf>),
+}
+
+impl ModelArgs {
+    /// [`ModelArgs::specs`] for ids that may name users' models (`file:PATH`): each user's
+    /// model takes the `--param` values its file declares, the registry models the rest as
+    /// `specs` gives them; a value no model takes is exit 2.
+    pub fn chosen(&self, ids: &[&str], use_: Use) -> Result<Vec<Chosen>, CliError> {
+        if !ids.iter().any(|id| is_user(id)) {
+            return Ok(self
+                .specs(ids, use_)?
+                .into_iter()
+                .map(Chosen::Spec)
+                .collect());
+        }
+        let all = self.param.pairs()?;
+        let mut declared: Vec<Vec<String>> = Vec::new();
+        for id in ids.iter().filter(|id| is_user(id)) {
+            let path = std::path::Path::new(&id[USER_PREFIX.len()..]);
+            let shader = fastbrdf_gpu::user::UserShader::load(path)
+                .map_err(|e| CliError::input(e.message))?;
+            declared.push(shader.params().iter().map(|p| p.name.clone()).collect());
+        }
+        let registry: Vec<&str> = ids.iter().copied().filter(|id| !is_user(id)).collect();
+        let users_take = |k: &str| declared.iter().any(|d| d.iter().any(|n| n == k));
+        // The registry models get the values that one of them takes or no user's model does
+        // (the latter then fail as unused, naming the value).
+        let mut to_registry = Vec::new();
+        for (k, v) in &all {
+            let mut taken = false;
+            for id in &registry {
+                taken |= takes(id, k)?;
+            }
+            if taken || !users_take(k) {
+                to_registry.push((k.clone(), v.clone()));
+            }
+        }
+        let (material, metal) = (self.material.get()?, self.metal.get()?);
+        let mut specs =
+            model_spec::specs(&registry, &to_registry, material, metal, use_)?.into_iter();
+        let mut users = declared.iter();
+        let mut out = Vec::new();
+        for id in ids {
+            if is_user(id) {
+                let names = users.next().expect("one list per user's model");
+                let own: Vec<(String, String)> = all
+                    .iter()
+                    .filter(|(k, _)| names.contains(k))
+                    .cloned()
+                    .collect();
+                out.push(Chosen::User(user(id, &own)?.expect("a user's id")));
+            } else {
+                out.push(Chosen::Spec(
+                    specs.next().expect("one spec per registry id"),
+                ));
+            }
+        }
+        Ok(out)
+    }
+}
+
 /// What the model is used for: that decides whether it is shaded before a metal colours it
 /// (the library's: [`fastbrdf_analysis::model_spec::Use`]).
 pub use fastbrdf_analysis::model_spec::Use;

@@ -4,9 +4,10 @@
 use super::common::pictures::{Entry, Scores, check_compare, compare_models};
 use super::common::scene::{SceneArgs, check_out, material_and_metal};
 use crate::CliError;
-use crate::model_args::{ModelArgs, Use};
+use crate::model_args::{Chosen, ModelArgs, Use};
 use fastbrdf_render::film::write_atomic;
 use fastbrdf_render::setup;
+use fastbrdf_render::user::UserRgb;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -100,13 +101,17 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
         .chain(&a.models)
         .map(String::as_str)
         .collect();
-    let mut specs = a.model_args.specs(&ids, Use::Shaded)?.into_iter();
+    let mut chosen = a.model_args.chosen(&ids, Use::Shaded)?.into_iter();
+    let entry = |id: &str, c: Chosen| match c {
+        Chosen::Spec(s) => Entry::new(id, s),
+        Chosen::User(u) => Entry::rgb(id, Arc::new(UserRgb::new(u))),
+    };
     let reference = match &a.measured {
         Some(file) => {
             let b = fastbrdf::measured::MeasuredBrdf::read(file)?;
             Entry::rgb(&format!("measured {}", file.display()), Arc::new(b))
         }
-        None => Entry::new(&ref_id, specs.next().expect("one spec per id")),
+        None => entry(&ref_id, chosen.next().expect("one model per id")),
     };
     let ref_name = match &a.measured {
         Some(file) => file.display().to_string(),
@@ -115,8 +120,8 @@ pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     let models: Vec<Entry> = a
         .models
         .iter()
-        .zip(specs)
-        .map(|(m, s)| Entry::new(m, s))
+        .zip(chosen)
+        .map(|(m, c)| entry(m, c))
         .collect();
     let loaded = setup::load(&spec)?;
     let (rgb, gw, gh, metrics) =

@@ -14,6 +14,8 @@ use crate::model_args::{ModelArgs, Use};
 use fastbrdf::{Model, Real};
 use fastbrdf_io::shorten;
 
+mod user;
+
 const EVAL_METAL_HELP: &str = "A named metal (see `fastbrdf metals`): f = conductor, eta and k \
 per R, G, B channel; the output then has value_r, value_g, value_b instead of value";
 
@@ -30,7 +32,8 @@ written.",
     mut_arg("metal", |a| a.help(EVAL_METAL_HELP))
 )]
 pub struct Args {
-    /// Model id (see `fastbrdf models`).
+    /// Model id (see `fastbrdf models`), or a user's model `file:PATH` (a BRDF Explorer
+    /// `.brdf` file, a `.wgsl` or `.glsl` function; evaluated on the GPU, in f32).
     #[arg(long)]
     model: String,
     #[command(flatten)]
@@ -47,6 +50,11 @@ pub struct Args {
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
+    if let Some(user) = a.model_args.user(&a.model)? {
+        let (text, source) = read_input(a.input.as_deref(), a.max_input_mib, "eval")?;
+        let out = user::evaluate(&*user, &text, &source)?;
+        return super::write_stdout(out.as_bytes());
+    }
     let spec = a.model_args.spec(&a.model, Use::AsIs)?;
     let (text, source) = read_input(a.input.as_deref(), a.max_input_mib, "eval")?;
     // A coloured model (a parameter given as R,G,B) is three channel models.

@@ -1,7 +1,7 @@
 //! `fastbrdf render`: a picture of one model (fastbrdf-render on the CPU, fastbrdf-gpu with
 //! `--gpu`).
 
-use super::common::pictures::render_model;
+use super::common::pictures::{render_model, render_rgb};
 use super::common::progress::bar;
 use super::common::scene::{SceneArgs, check_out, material_and_metal};
 use crate::CliError;
@@ -11,6 +11,7 @@ use fastbrdf_render::film::Film;
 use fastbrdf_render::render::Options;
 use fastbrdf_render::scene::Specular;
 use fastbrdf_render::setup::{self, SceneSpec};
+use fastbrdf_render::user::UserRgb;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -42,7 +43,9 @@ fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlat
     mut_arg("metal", |a| a.help(RENDER_METAL_HELP))
 )]
 pub struct RenderArgs {
-    /// Specular model id (a lobe, a distribution or a BRDF).
+    /// Specular model id (a lobe, a distribution or a BRDF), or a user's model `file:PATH` (a
+    /// BRDF Explorer `.brdf` file, a `.wgsl` or `.glsl` function: the whole BRDF, rendered
+    /// with weights 0,1, its values from the GPU evaluator).
     #[arg(long)]
     model: String,
     #[command(flatten)]
@@ -107,6 +110,24 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     check_out(&a.out, &["png", "exr"])?;
     let loaded = setup::load(&spec)?;
     let t = std::time::Instant::now();
+    if a.gpu && crate::model_args::is_user(&a.model) {
+        return Err(CliError::input(format!(
+            "--gpu: a user's model ({}) renders on the CPU for now (its values still come from the GPU evaluator): drop --gpu",
+            a.model
+        )));
+    }
+    if let Some(user) = a.model_args.user(&a.model)? {
+        // A user's model: the whole BRDF (weights 0, 1), shaded by the CPU renderer with its
+        // values from the GPU evaluator, one dispatch per batch of hits.
+        let film = render_rgb(
+            &spec,
+            &loaded,
+            &opts,
+            &a.model,
+            Arc::new(UserRgb::new(user)),
+        )?;
+        return finish(a, &spec, &opts, film, t, String::new());
+    }
     let model = a.model_args.spec(&a.model, Use::Shaded)?;
     let (film, on) = if a.gpu {
         let (film, label) = render_model_gpu(&spec, &loaded, &opts, &a.model, &model)?;
@@ -117,6 +138,18 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
             String::new(),
         )
     };
+    finish(a, &spec, &opts, film, t, on)
+}
+
+/// Writes the picture and reports what was rendered, how and how long it took.
+fn finish(
+    a: &RenderArgs,
+    spec: &SceneSpec,
+    opts: &Options,
+    film: Film,
+    t: std::time::Instant,
+    on: String,
+) -> Result<(), CliError> {
     let rendered = t.elapsed().as_secs_f64();
     film.save(&a.out, a.scene.exposure)?;
     let total = t.elapsed().as_secs_f64();
