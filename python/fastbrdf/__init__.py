@@ -60,10 +60,11 @@ from __future__ import annotations
 
 from typing import List
 
-from . import _analysis, _measured, _model, _perelement, _render, _tools
+from . import _analysis, _conform, _measured, _model, _perelement, _render, _tools
 from . import _fastbrdf as _native
 from ._analysis import *  # noqa: F401,F403
 from ._arrays import MAX_VALUES
+from ._conform import *  # noqa: F401,F403
 from ._measured import *  # noqa: F401,F403
 from ._model import *  # noqa: F401,F403
 from ._render import *  # noqa: F401,F403
@@ -73,7 +74,7 @@ from ._tools import *  # noqa: F401,F403
 __version__: str = str(_native.__version__)
 
 #: The modules whose public names make up the package (each lists them in ``__all__``).
-_MODULES = (_analysis, _measured, _model, _perelement, _render, _tools)
+_MODULES = (_analysis, _conform, _measured, _model, _perelement, _render, _tools)
 
 __all__: List[str] = sorted(
     ["MAX_VALUES", "__version__"] + [name for m in _MODULES for name in m.__all__]

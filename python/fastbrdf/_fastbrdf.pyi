@@ -121,6 +121,10 @@ def chi2_json(
     out: Optional[str],
 ) -> str: ...
 
+# Conformance checks (python/src/conform.rs): a registry model is (id, params, material, metal),
+# anything else an object with eval (and maybe sample and pdf).
+def conform_json(model: object, reference: Optional[object], full: bool, strategy: str) -> str: ...
+
 # MERL measured data (python/src/measured.rs).
 class MeasuredData:
     def __init__(self, path: str) -> None: ...

@@ -41,6 +41,7 @@
 mod analysis;
 mod args;
 mod arrays;
+mod conform;
 mod guard;
 mod handle;
 mod measured;
@@ -80,5 +81,6 @@ fn _fastbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     measured::register(m)?;
     perelement::register(m)?;
     tools::register(m)?;
+    conform::register(m)?;
     Ok(())
 }
