@@ -11,6 +11,7 @@
 //! - [`reproduce`]: every numeric claim of the three seed papers, measured.
 //! - [`check`]: every documented bound of the registry re-measured.
 //! - [`chi2`]: the chi-square sampling test's sizes, JSON and picture (CLI and Python).
+//! - [`conform`]: the checks a renderer's BSDF must pass, on any `UserBrdf` (`fastbrdf conform`).
 //! - [`charts`]: the data of every chart and of the seeds' figures.
 //! - [`plot`]: the charts drawn (PNG and SVG).
 //! - [`measured_fit`]: registry BRDFs fitted to measured (MERL) data: Ngan 2005's L2, Low
@@ -30,6 +31,7 @@ pub mod albedo;
 pub mod charts;
 pub mod check;
 pub mod chi2;
+pub mod conform;
 pub mod errors;
 pub mod fit;
 pub mod lut;
