@@ -89,6 +89,7 @@ pub struct GpuBrdf {
     eval: wgpu::ComputePipeline,
     sample: Option<(wgpu::ComputePipeline, wgpu::ComputePipeline)>,
     max_groups_x: u32,
+    chunk_rows: usize,
 }
 
 impl GpuBrdf {
@@ -187,6 +188,7 @@ impl GpuBrdf {
             eval,
             sample,
             max_groups_x: device.limits().max_compute_workgroups_per_dimension,
+            chunk_rows: CHUNK,
             shader,
         })
     }
@@ -201,11 +203,13 @@ impl GpuBrdf {
         &self.values
     }
 
-    /// Caps the workgroups of a dispatch's x dimension (tests: a small cap exercises the 2-D
-    /// dispatch on small batches).
+    /// Caps the workgroups of a dispatch's x dimension and the rows of a chunk (tests: small
+    /// caps exercise the 2-D dispatch and the chunking on small batches).
     #[doc(hidden)]
-    pub fn set_max_groups_x(&mut self, n: u32) {
-        self.max_groups_x = n.clamp(1, self.device.limits().max_compute_workgroups_per_dimension);
+    pub fn set_limits(&mut self, max_groups_x: u32, chunk_rows: usize) {
+        let most = self.device.limits().max_compute_workgroups_per_dimension;
+        self.max_groups_x = max_groups_x.clamp(1, most);
+        self.chunk_rows = chunk_rows.clamp(1, CHUNK);
     }
 
     /// Runs `pipeline` over `rows` rows of `stride_in` inputs, `stride_out` outputs each.
@@ -220,7 +224,7 @@ impl GpuBrdf {
         let mut out = vec![0.0f32; rows * stride_out];
         let mut lo = 0;
         while lo < rows {
-            let hi = (lo + CHUNK).min(rows);
+            let hi = (lo + self.chunk_rows).min(rows);
             self.chunk(
                 pipeline,
                 &input[lo * stride_in..hi * stride_in],
