@@ -4,24 +4,22 @@ a BSDF written in Python, as the CLI's ``fastbrdf conform``."""
 from __future__ import annotations
 
 import json
-from typing import Any, Dict, Optional, Tuple
+from typing import Any, Dict, Optional
 
 from . import _fastbrdf as _native
-from ._arrays import _params, _str
+from ._arrays import _opt_str, _params, _str
 from ._model import Model
 
 __all__ = ["conform"]
 
-#: A registry model as the native ``conform_json`` takes it: (id, params, material, metal).
-_Registry = Tuple[str, Any, Optional[str], Optional[str]]
 
-
-def _source(x: Any, name: str, params: Dict[str, Any]) -> Any:
+def _source(x: Any, name: str, params: Dict[str, Any], material: Optional[str] = None, metal: Optional[str] = None) -> Any:
     """``x`` as the native function takes it: a registry model as a tuple, an object as itself."""
     if isinstance(x, str):
-        return (x, _params(x, params), None, None)
-    if params:
-        raise TypeError(f"{name}: parameters ({', '.join(params)}) apply to a registry id, not to a {type(x).__name__}")
+        return (x, _params(x, params), _opt_str(material, "material"), _opt_str(metal, "metal"))
+    given = list(params) + [k for k, v in (("material", material), ("metal", metal)) if v is not None]
+    if given:
+        raise TypeError(f"{name}: parameters ({', '.join(given)}) apply to a registry id, not to a {type(x).__name__}")
     if isinstance(x, Model):
         arrays = [k for k, v in x.params.items() if getattr(v, "ndim", 0) > 0]
         if arrays:
@@ -39,6 +37,8 @@ def conform(
     reference: Any = None,
     full: bool = False,
     strategy: str = "auto",
+    material: Optional[str] = None,
+    metal: Optional[str] = None,
     **params: Any,
 ) -> Dict[str, Any]:
     """Checks a BSDF as a renderer needs it (``fastbrdf conform --json``): ``f`` finite and
@@ -50,7 +50,9 @@ def conform(
     False`` (nothing is raised).
 
     ``model`` (and ``reference``, compared against it: the ``reference`` check) is a registry
-    id (with its parameters as keywords), a :class:`Model`, or any object with
+    id (with its parameters as keywords, and ``material`` and ``metal`` as for :class:`Model`;
+    a ``reference`` id takes its defaults: give a :class:`Model` for others), a :class:`Model`,
+    or any object with
     ``eval(wi, wo)`` and, optionally, ``sample(wo, u)`` and ``pdf(wo, wi)`` on numpy arrays, in
     fastbrdf's conventions (local frame, normal +z, both directions pointing away from the
     surface, ``f`` without the cosine):
@@ -84,7 +86,7 @@ def conform(
     return dict(
         json.loads(
             _native.conform_json(
-                _source(model, "model", params),
+                _source(model, "model", params, material, metal),
                 None if reference is None else _source(reference, "reference", {}),
                 bool(full),
                 strategy,

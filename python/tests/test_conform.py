@@ -221,15 +221,21 @@ def test_without_sample_and_pdf_the_sampling_checks_skip():
     assert r["passed"] and all(status(r)[c] == "skip" for c in CHECKS[5:])
 
 
-def test_a_registry_id_passes_and_matches_the_cli(cli):
+def test_a_registry_id_passes():
     r = fastbrdf.conform("cook-torrance", alpha=0.3, d="ggx")
     assert r["passed"], failed(r)
-    assert r["model"].startswith("cook-torrance")
+    assert r["model"] == "cook-torrance alpha=0.3 d=ggx"
     assert fastbrdf.conform(fastbrdf.Model("cook-torrance", alpha=0.3, d="ggx")) == r
-    code, out, err = cli("conform", "cook-torrance", "--param", "alpha=0.3", "--param", "d=ggx", "--json")
-    assert code == 0, err
+    gold = fastbrdf.conform("cook-torrance", alpha=0.3, d="ggx", metal="gold", strategy="d-cos")
+    assert gold["passed"], failed(gold)
+
+
+def test_the_record_is_the_cli_s(cli):
     import json
 
+    r = fastbrdf.conform("cook-torrance", alpha=0.3, d="ggx")
+    code, out, err = cli("conform", "cook-torrance", "--param", "alpha=0.3", "--param", "d=ggx", "--json")
+    assert code == 0, err
     assert json.loads(out) == r
 
 
@@ -309,6 +315,29 @@ def test_keyboard_interrupt_propagates():
         fastbrdf.conform(Interrupted())
 
 
+def test_ctrl_c_stops_it():
+    # SIGINT (Ctrl-C) while the checks wait on a slow evaluator: KeyboardInterrupt within a
+    # call or two, not after the whole run (about 100 calls of 50 ms).
+    import signal
+    import threading
+    import time
+
+    class Slow(Lambert):
+        def eval(self, wi, wo):
+            time.sleep(0.05)
+            return super().eval(wi, wo)
+
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    t = time.perf_counter()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            fastbrdf.conform(Slow())
+    finally:
+        timer.cancel()
+    assert time.perf_counter() - t < 2.0
+
+
 def test_wrong_arguments_raise():
     with pytest.raises(TypeError, match="object with eval"):
         fastbrdf.conform(3)
@@ -326,6 +355,8 @@ def test_wrong_arguments_raise():
         fastbrdf.conform("flog")  # a lobe, not a BRDF
     with pytest.raises(TypeError, match="reference"):
         fastbrdf.conform(Lambert(), reference=3)
+    with pytest.raises(ValueError, match="per-element"):
+        fastbrdf.conform(fastbrdf.Model("cook-torrance", alpha=np.array([0.1, 0.2])))
 
 
 # -- Mitsuba's roughconductor --------------------------------------------------------------
