@@ -4,6 +4,7 @@
 use super::{Param, ParamKind, UserError};
 
 /// A shader file split into its parameters and its code.
+#[derive(Debug)]
 pub(crate) struct Parsed {
     pub params: Vec<Param>,
     /// The code naga reads (a `.brdf` file's shader block; a function file whole).
@@ -69,10 +70,8 @@ pub(crate) fn brdf_file(text: &str, origin: &str) -> Result<Parsed, UserError> {
             continue;
         }
         match block.as_ref().map(|(n, _)| n.as_str()) {
-            Some("parameters") => {
-                if !t.is_empty() && !t.starts_with('#') {
-                    params.push(brdf_param(t, line).map_err(|m| err(line, m))?);
-                }
+            Some("parameters") if !t.is_empty() && !t.starts_with('#') => {
+                params.push(brdf_param(t, line).map_err(|m| err(line, m))?);
             }
             Some("shader") => {
                 shader.push_str(raw);

@@ -327,8 +327,7 @@ fn inspect(
     let v3 = if glsl { "vec3" } else { "vec3<f32>" };
     let fl = if glsl { "float" } else { "f32" };
     let brdf = names.brdf;
-    let channels;
-    if lang == Language::Brdf {
+    let channels = if lang == Language::Brdf {
         let want = "vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y)";
         let Some(f) = func(brdf) else {
             return Err(UserError::input(format!(
@@ -341,7 +340,7 @@ fn inspect(
                 place(brdf)
             )));
         }
-        channels = 3;
+        3
     } else {
         let args = if glsl {
             "vec3 wi, vec3 wo"
@@ -359,7 +358,7 @@ fn inspect(
             )));
         };
         let (a, r) = sig(f);
-        channels = match (a == vec![vec(VectorSize::Tri); 2], r) {
+        match (a == vec![vec(VectorSize::Tri); 2], r) {
             (true, Some(t)) if t == f32_ => 1,
             (true, Some(t)) if t == vec(VectorSize::Tri) => 3,
             _ => {
@@ -368,8 +367,8 @@ fn inspect(
                     place(brdf)
                 )));
             }
-        };
-    }
+        }
+    };
     let check = |name: &str, args: Vec<TypeInner>, ret: TypeInner, text: String| match func(name) {
         None => Ok(false),
         Some(f) if sig(f) == (args, Some(ret)) => Ok(true),
