@@ -127,6 +127,9 @@ enum Command {
     Sample(commands::sample::SampleArgs),
     /// Chi-square goodness of fit of a BRDF's sampling against its pdf, with a picture.
     Chi2(commands::sample::Chi2Args),
+    /// The checks a renderer's BSDF must pass (finite, reciprocal, energy, sampling against
+    /// its pdf), on a registry BRDF or a user's model, with a verdict per check.
+    Conform(commands::conform::Args),
     /// Re-measure every documented bound on this machine (error vs reference, f32 vs f64).
     Check(commands::check::Args),
     /// Max absolute, max relative and RMS error of a model against a reference, per n or m.
@@ -214,6 +217,7 @@ fn main() -> ExitCode {
         Command::Eval(a) => commands::eval::run(&a),
         Command::Sample(a) => commands::sample::run_sample(&a),
         Command::Chi2(a) => commands::sample::run_chi2(&a),
+        Command::Conform(a) => commands::conform::run(&a),
         Command::Check(a) => commands::check::run(&a),
         Command::Errors(a) => commands::errors::run(&a),
         Command::Normalize(a) => commands::normalize::run(&a),

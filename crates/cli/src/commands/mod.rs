@@ -7,6 +7,7 @@ pub mod bench;
 pub mod check;
 pub mod common;
 pub mod compare;
+pub mod conform;
 pub mod demo;
 pub mod errors;
 pub mod eval;
