@@ -6,7 +6,11 @@ use std::fmt::Write;
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Print JSON: {"models": [{id, kind, params, formula, source, ops, bounds, f32_bound, note}]}.
+    /// Print JSON: {"models": [{id, kind, params, formula, source, ops, bounds, f32_bound, note,
+    /// instructions}]}. `instructions`: the model's exported shader at its defaults, counted
+    /// after an optimising compiler (SPIR-V through `spirv-opt -O`), {arithmetic,
+    /// transcendental, division_sqrt, branches, select, other, total}; the same on every
+    /// machine (fastbrdf_gpu::cost; its committed table, so no spirv-opt is needed here).
     #[arg(long)]
     json: bool,
     /// Only models of this kind.
@@ -21,7 +25,8 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .filter(|i| a.kind.as_deref().is_none_or(|k| i.kind.name() == k))
         .collect();
     if a.json {
-        let v = serde_json::json!({ "models": models });
+        let list: Vec<serde_json::Value> = models.iter().map(|m| with_instructions(m)).collect();
+        let v = serde_json::json!({ "models": list });
         crate::outln!(
             "{}",
             serde_json::to_string_pretty(&v).expect("registry serialises")
@@ -30,6 +35,17 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     }
     crate::out!("{}", table(&models));
     Ok(())
+}
+
+/// A model's JSON with `instructions`: its committed instruction counts at its defaults
+/// (`fastbrdf_gpu::cost::lookup`; null for a model the table lacks, which its test forbids).
+fn with_instructions(m: &fastbrdf::ModelInfo) -> serde_json::Value {
+    let mut v = serde_json::to_value(m).expect("registry serialises");
+    let counts = fastbrdf::ModelSpec::parse(m.id, &[])
+        .ok()
+        .and_then(|s| fastbrdf_gpu::cost::lookup(&s));
+    v["instructions"] = serde_json::to_value(counts).expect("counts serialise");
+    v
 }
 
 /// A bound as `abs|abs/peak|rel [zone] BOUND (PARAM LO..HI)`: the label says what the error

@@ -78,6 +78,33 @@ fn eng(x: f64) -> String {
     }
 }
 
+/// The instruction counts of the benchmark's configurations by name (`speed::configurations`),
+/// from the committed table (`fastbrdf_gpu::cost`: SPIR-V after `spirv-opt -O`, the same on
+/// every machine): `total (transcendental/division-sqrt/branches)`, or `-` for a name the
+/// table lacks (a saved run's model that no longer exists).
+fn instructions() -> impl Fn(&str) -> String {
+    let table: Vec<(String, Option<fastbrdf_gpu::cost::Counts>)> = speed::configurations()
+        .into_iter()
+        .map(|(name, spec)| (name, fastbrdf_gpu::cost::lookup(&spec)))
+        .collect();
+    move |model: &str| {
+        table
+            .iter()
+            .find(|(n, _)| n == model)
+            .and_then(|(_, c)| *c)
+            .map(|c| {
+                format!(
+                    "{} ({}/{}/{})",
+                    c.total, c.transcendental, c.division_sqrt, c.branches
+                )
+            })
+            .unwrap_or_else(|| "-".into())
+    }
+}
+
+/// What the instruction column holds (printed under the tables that have it).
+const INSTRUCTIONS_NOTE: &str = "instr: SPIR-V instructions of the model's shader after spirv-opt -O, total (transcendental/division-sqrt/branches); the same on every machine (fastbrdf_gpu::cost).";
+
 fn table(r: &Report, md: bool) -> String {
     let mut s = String::new();
     let large = r
@@ -106,11 +133,12 @@ fn table(r: &Report, md: bool) -> String {
             .iter()
             .find(|k| k.model == m && k.variant == variant && k.batch == batch)
     };
+    let instr = instructions();
     let (gpu_md, gpu_md_rule, gpu_txt) = match gpu_batch {
         Some(b) => (
-            format!(" GPU ({b}) | GPU with transfers ({b}) |"),
-            "---|---|",
-            format!(" {:>12} {:>12}", "gpu", "gpu+xfer"),
+            format!(" GPU ({b}) | GPU with transfers ({b}) | instructions |"),
+            "---|---|---|",
+            format!(" {:>12} {:>12} {:>13}", "gpu", "gpu+xfer", "instr"),
         ),
         None => (String::new(), "", String::new()),
     };
@@ -147,8 +175,18 @@ fn table(r: &Report, md: bool) -> String {
             .unwrap_or_else(|| "scalar".into());
         let (g_md, g_txt) = match gpu_batch {
             Some(b) => (
-                format!(" {} | {} |", c("gpu", b), c("gpu+transfer", b)),
-                format!(" {:>12} {:>12}", c("gpu", b), c("gpu+transfer", b)),
+                format!(
+                    " {} | {} | {} |",
+                    c("gpu", b),
+                    c("gpu+transfer", b),
+                    instr(m)
+                ),
+                format!(
+                    " {:>12} {:>12} {:>13}",
+                    c("gpu", b),
+                    c("gpu+transfer", b),
+                    instr(m)
+                ),
             ),
             None => (String::new(), String::new()),
         };
@@ -173,6 +211,9 @@ fn table(r: &Report, md: bool) -> String {
                 c("simd-threads", large)
             );
         }
+    }
+    if gpu_batch.is_some() {
+        let _ = writeln!(s, "{}{INSTRUCTIONS_NOTE}", if md { "\n" } else { "  " });
     }
     s
 }
@@ -216,17 +257,18 @@ pub fn gpu_tables(r: &Report, md: bool) -> String {
         );
         let _ = writeln!(
             s,
-            "| model | CPU SIMD, {} threads ({large}) | GPU ({batch}) | GPU with transfers ({batch}) | GPU / CPU |\n|---|---|---|---|---|",
+            "| model | CPU SIMD, {} threads ({large}) | GPU ({batch}) | GPU with transfers ({batch}) | GPU / CPU | instructions |\n|---|---|---|---|---|---|",
             r.threads
         );
     } else {
         let _ = writeln!(s, "GPU: {gpu}\nCPU: {} ({} threads)\n", r.cpu, r.threads);
         let _ = writeln!(
             s,
-            "  {:<40} {:>14} {:>12} {:>12} {:>9}",
-            "model (evals/s)", "cpu all simd", "gpu", "gpu+xfer", "gpu/cpu"
+            "  {:<40} {:>14} {:>12} {:>12} {:>9} {:>13}",
+            "model (evals/s)", "cpu all simd", "gpu", "gpu+xfer", "gpu/cpu", "instr"
         );
     }
+    let instr = instructions();
     for m in models {
         let cpu = get(m, "simd-threads").map(|k| k.0);
         let g = get(m, "gpu").map(|k| k.0);
@@ -237,19 +279,28 @@ pub fn gpu_tables(r: &Report, md: bool) -> String {
             _ => "-".into(),
         };
         if md {
-            let _ = writeln!(s, "| `{m}` | {} | {} | {} | {ratio} |", f(cpu), f(g), f(x));
+            let _ = writeln!(
+                s,
+                "| `{m}` | {} | {} | {} | {ratio} | {} |",
+                f(cpu),
+                f(g),
+                f(x),
+                instr(m)
+            );
         } else {
             let _ = writeln!(
                 s,
-                "  {:<40} {:>14} {:>12} {:>12} {:>9}",
+                "  {:<40} {:>14} {:>12} {:>12} {:>9} {:>13}",
                 m,
                 f(cpu),
                 f(g),
                 f(x),
-                ratio
+                ratio,
+                instr(m)
             );
         }
     }
+    let _ = writeln!(s, "{}{INSTRUCTIONS_NOTE}", if md { "\n" } else { "  " });
     let gpu_rows = Report {
         speedups: r
             .speedups
@@ -435,4 +486,30 @@ pub fn markdown(r: &Report) -> String {
         let _ = write!(s, "\n{}", peer_table(r, true));
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every configuration the benchmark times has committed instruction counts (a new model
+    /// or configuration needs `FASTBRDF_BLESS=1 cargo test -p fastbrdf-gpu --test cost`).
+    #[test]
+    fn every_benchmark_configuration_has_instruction_counts() {
+        let instr = instructions();
+        let configs = speed::configurations();
+        assert!(configs.len() >= 40, "{} configurations", configs.len());
+        for (name, spec) in &configs {
+            let c = fastbrdf_gpu::cost::lookup(spec)
+                .unwrap_or_else(|| panic!("{name} ({spec}) has no instruction counts"));
+            assert_eq!(
+                instr(name),
+                format!(
+                    "{} ({}/{}/{})",
+                    c.total, c.transcendental, c.division_sqrt, c.branches
+                )
+            );
+        }
+        assert_eq!(instr("no-such-model"), "-");
+    }
 }
