@@ -138,6 +138,22 @@ fn every_brdf_explorer_sample_evaluates_on_the_gpu() {
         let finite = out.iter().filter(|v| v.is_finite()).count();
         assert!(finite > out.len() / 2, "{}: {finite} finite", f.display());
     }
+    // The file's own `reflect` (the mirror direction 2 (L.N) N - L), not GLSL's built-in
+    // (L - 2 (N.L) N, pointing into the surface): at the mirror pair modifiedphong.brdf is
+    // (n + 2) / (2 pi) with n = 1.
+    let m = compile(gpu, &data("brdf-explorer/modifiedphong.brdf"), &[]);
+    let mut out = [0.0; 3];
+    m.eval(&[[0.6, 0.0, 0.8]], &[[-0.6, 0.0, 0.8]], &mut out)
+        .unwrap();
+    assert!((out[0] - 3.0 / (2.0 * PI)).abs() < 1e-6, "{out:?}");
+    // A local named like a function, initialised by calling it: `float G = G(NdotL, m) *
+    // G(NdotV, m)` in g_schlick.brdf, with the parameter m shadowed by G's argument.
+    let m = compile(gpu, &data("brdf-explorer/g_schlick.brdf"), &[("m", "0.5")]);
+    m.eval(&[[0.6, 0.0, 0.8]], &[[0.0, 0.0, 1.0]], &mut out)
+        .unwrap();
+    let k = (2.0 * 0.25 / PI).sqrt();
+    let g = |v: f64| v / (v - k * v + k);
+    assert!((out[0] - g(0.8) * g(1.0)).abs() < 1e-6, "{out:?}");
     // lambert.brdf is reflectance / 3.14159265 everywhere, in f32.
     let m = compile(
         gpu,
