@@ -612,6 +612,27 @@ fn compile_errors_name_the_users_file_line_and_column() {
             .contains("d.brdf: error: the shader block defines no function vec3 BRDF"),
         "{e}"
     );
+    // A resource of the shader's own (BRDF Explorer's template uniforms are not declared).
+    let e = UserShader::parse(
+        "analytic\n::begin shader\nuniform vec3 incidentVector;\n\
+         vec3 BRDF(vec3 L, vec3 V, vec3 N, vec3 X, vec3 Y) { return incidentVector; }\n\
+         ::end shader\n",
+        "f.brdf",
+        Language::Brdf,
+    )
+    .unwrap_err();
+    assert!(e.message.starts_with("f.brdf:3:"), "{e}");
+    // naga's own words: "uniform/buffer blocks require layout(binding=X)".
+    assert!(e.message.contains("binding"), "{e}");
+    let e = UserShader::parse(
+        "@group(0) @binding(0) var<uniform> k: f32;\n\
+         fn brdf(wi: vec3<f32>, wo: vec3<f32>) -> f32 { return k; }\n",
+        "g.wgsl",
+        Language::Wgsl,
+    )
+    .unwrap_err();
+    assert!(e.message.starts_with("g.wgsl:1:"), "{e}");
+    assert!(e.message.contains("'k' is a resource"), "{e}");
     // A type error the validator finds, past the front end, still in the user's lines (naga
     // points at the returned argument's declaration: line 3, column 9).
     let e = UserShader::parse(

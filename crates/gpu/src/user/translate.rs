@@ -75,6 +75,7 @@ pub(crate) fn translate(p: &Parsed, origin: &str, lang: Language) -> Result<Tran
     // Pass 1: the user's code with the parameter declarations, to see what it defines.
     let first = layout(p, origin, lang, None);
     let m = front(&first, lang)?;
+    no_bindings(&m, &first)?;
     let found = inspect(&m, p, origin, lang, &names)?;
     // Pass 2: with the wrapper functions, checked.
     let full = layout(p, origin, lang, Some(&found));
@@ -268,6 +269,22 @@ fn validation_message(l: &Layout, e: &naga::WithSpan<naga::valid::ValidationErro
         .map(|(s, _)| *s)
         .unwrap_or_default();
     l.at(span, &msg)
+}
+
+/// A user shader reads its parameters only: a resource of its own (a uniform, a buffer, a
+/// texture) would have nothing bound to it.
+fn no_bindings(m: &naga::Module, l: &Layout) -> Result<(), UserError> {
+    for (h, g) in m.global_variables.iter() {
+        let name = g.name.as_deref().unwrap_or("");
+        if g.binding.is_some() && name != "fb_user_params" {
+            let msg = format!(
+                "'{name}' is a resource (a uniform, buffer, texture or sampler), which nothing \
+                 would bind: a shader's inputs are its directions and its declared parameters"
+            );
+            return Err(UserError::input(l.at(m.global_variables.get_span(h), &msg)));
+        }
+    }
+    Ok(())
 }
 
 /// The user's functions: the BRDF's signature decides the channels; `brdf_sample` and
