@@ -702,3 +702,40 @@ fn the_wgsl_splices_under_the_documented_contract() {
     let block = s.param_block(&s.values(&given("alpha", "0.5")).unwrap());
     assert_eq!(block, [0.5, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0]);
 }
+
+#[test]
+fn function_files_tolerate_a_version_line_and_their_own_entry_points() {
+    // A GLSL file's `#version` is dropped (line numbers stay the file's).
+    let s = UserShader::parse(
+        "#version 410\n// param float k 0 2 1\nfloat brdf(vec3 wi, vec3 wo) { return k * wi.z; }\n",
+        "v.glsl",
+        Language::Glsl,
+    )
+    .unwrap();
+    assert_eq!((s.channels(), s.params().len()), (1, 1));
+    let e = UserShader::parse(
+        "#version 410\nfloat brdf(vec3 wi, vec3 wo) { return kk; }\n",
+        "v.glsl",
+        Language::Glsl,
+    )
+    .unwrap_err();
+    assert!(e.message.starts_with("v.glsl:2:39: error: "), "{e}");
+    // A WGSL file's own entry point is left out of the module.
+    let s = UserShader::parse(
+        "fn brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> { return wi; }\n\
+         @compute @workgroup_size(1) fn main() {}\n",
+        "e.wgsl",
+        Language::Wgsl,
+    )
+    .unwrap();
+    assert_eq!(s.channels(), 3);
+    assert!(!s.wgsl().unwrap().contains("@compute"));
+    assert_eq!(
+        Language::from_path(Path::new("a/B.BRDF")),
+        Some(Language::Brdf)
+    );
+    assert_eq!(
+        Language::from_path(Path::new("m.frag")),
+        Some(Language::Glsl)
+    );
+}
