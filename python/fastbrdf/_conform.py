@@ -65,7 +65,8 @@ def conform(
 
     Inputs are passed as the checks make them (not normalised; NaN and infinite components
     included: a BSDF must return finite values for them). Calls come in batches of thousands
-    of rows, one at a time, the GIL held. What a method returns is checked: a wrong dtype or
+    of rows, from several threads, each holding the GIL (calls overlap only where a method's
+    code releases it, as numpy's does). What a method returns is checked: a wrong dtype or
     shape is a ``TypeError``/``ValueError`` naming the method (``eval returned shape (10,) for
     12 rows; ...``), and an exception it raises propagates with a note naming the call.
     ``strategy`` samples a registry model (``auto``, ``cosine``, ``lobe``, ``d-cos``,

@@ -57,13 +57,13 @@ pub(crate) fn conform_json(
         } else {
             conform::Config::ci()
         };
-        let error = Mutex::new(None);
+        let shared = Shared::default();
         let result = interruptible(py, |cancel| {
             let (m_cb, r_cb);
             let m: &dyn UserBrdf = match &model {
                 Source::Builtin(b) => b,
                 Source::Object(o) => {
-                    m_cb = Callbacks::new(o, &error, cancel);
+                    m_cb = Callbacks::new(o, &shared, cancel);
                     &m_cb
                 }
             };
@@ -71,14 +71,14 @@ pub(crate) fn conform_json(
                 None => None,
                 Some(Source::Builtin(b)) => Some(b),
                 Some(Source::Object(o)) => {
-                    r_cb = Callbacks::new(o, &error, cancel);
+                    r_cb = Callbacks::new(o, &shared, cancel);
                     Some(&r_cb)
                 }
             };
             conform::run(m, r, &cfg, &|_check| stop_if(cancel))
         })?;
         // A callback's Python error first: conform's message only repeats it.
-        if let Some(e) = error.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        if let Some(e) = shared.error.into_inner().unwrap_or_else(|p| p.into_inner()) {
             return Err(e);
         }
         let report = result.map_err(value_error)?;
@@ -295,17 +295,27 @@ fn numbers(
     Ok((c, v))
 }
 
-/// An [`Object`] as a [`UserBrdf`] for one run: each call takes the GIL; the first Python
-/// error goes to `error` (and every later call fails at once), a set `cancel` fails them too.
+/// What the callbacks of one run share.
+#[derive(Default)]
+struct Shared {
+    /// The first Python error of a callback.
+    error: Mutex<Option<PyErr>>,
+}
+
+/// An [`Object`] as a [`UserBrdf`] for one run: each call takes the GIL (and nothing else: a
+/// lock held across the call would deadlock when the object's code runs rayon work, as
+/// fastbrdf's own functions do, and that work steals another chunk of the checks); the first
+/// Python error goes to [`Shared::error`] (and every later call fails at once), a set `cancel`
+/// fails them too. Calls may overlap where the object's code releases the GIL.
 struct Callbacks<'a> {
     o: &'a Object,
-    error: &'a Mutex<Option<PyErr>>,
+    shared: &'a Shared,
     cancel: &'a AtomicBool,
 }
 
 impl<'a> Callbacks<'a> {
-    fn new(o: &'a Object, error: &'a Mutex<Option<PyErr>>, cancel: &'a AtomicBool) -> Self {
-        Self { o, error, cancel }
+    fn new(o: &'a Object, shared: &'a Shared, cancel: &'a AtomicBool) -> Self {
+        Self { o, shared, cancel }
     }
 
     /// Runs `f` with the GIL on the object; a Python error is kept and becomes the message.
@@ -317,7 +327,7 @@ impl<'a> Callbacks<'a> {
         if self.cancel.load(Ordering::Relaxed) {
             return Err("interrupted".into());
         }
-        let slot = || self.error.lock().unwrap_or_else(|p| p.into_inner());
+        let slot = || self.shared.error.lock().unwrap_or_else(|p| p.into_inner());
         if slot().is_some() {
             return Err(format!("{method}: not called after an earlier error"));
         }

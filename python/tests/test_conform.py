@@ -212,6 +212,27 @@ def test_each_broken_bsdf_fails_exactly_its_check(cls, check):
     assert not r["passed"]
 
 
+def test_a_bsdf_built_on_fastbrdf_passes():
+    # Its methods run fastbrdf's own rayon work inside the callbacks (which run on rayon's
+    # threads): nothing deadlocks.
+    lam = fastbrdf.Model("lambert")
+
+    class OnFastbrdf:
+        def eval(self, wi, wo):
+            ok = np.isfinite(wi).all(axis=1) & np.isfinite(wo).all(axis=1)
+            wi, wo = np.where(ok[:, None], wi, [0.0, 0.0, 1.0]), np.where(ok[:, None], wo, [0.0, 0.0, 1.0])
+            return np.where(ok, lam.eval(wi, wo), 0.0)
+
+        def sample(self, wo, u):
+            return lam.sample(wo, u)
+
+        def pdf(self, wo, wi):
+            return lam.pdf(wo, wi)
+
+    r = fastbrdf.conform(OnFastbrdf())
+    assert r["passed"], failed(r)
+
+
 def test_without_sample_and_pdf_the_sampling_checks_skip():
     class EvalOnly:
         def eval(self, wi, wo):
