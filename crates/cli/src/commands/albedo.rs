@@ -7,6 +7,8 @@ use crate::model_args::{self, MaterialArg, ParamArgs, Use};
 use fastbrdf::{Given, Kind, ModelSpec};
 use fastbrdf_analysis::{albedo, range};
 
+mod user;
+
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf albedo --model cook-torrance --param alpha=0.3\n  \
@@ -14,7 +16,8 @@ fastbrdf albedo --model flog-normalized --param n=50 --norm none\n  fastbrdf alb
 fastbrdf albedo --model cook-torrance --material gold-paint --param f=schlick"
 )]
 pub struct Args {
-    /// A BRDF id, or a lobe id (evaluated as --as phong|blinn-phong).
+    /// A BRDF id, or a lobe id (evaluated as --as phong|blinn-phong), or a user's model
+    /// `file:PATH` (a .brdf, .wgsl or .glsl file, evaluated on the GPU).
     #[arg(long)]
     model: String,
     #[command(flatten)]
@@ -40,6 +43,17 @@ pub struct Args {
     /// albedo for the reciprocal none and kulla-conty).
     #[arg(long)]
     ms_compare: bool,
+}
+
+/// The `--angles` text as degrees in [0, 90).
+fn angles(text: &str) -> Result<Vec<f64>, CliError> {
+    let angles = range::parse(text, 5.0).map_err(|e| CliError::input(format!("--angles: {e}")))?;
+    if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
+        return Err(CliError::input(format!(
+            "--angles: {bad} is outside [0, 90) degrees"
+        )));
+    }
+    Ok(angles)
 }
 
 /// `fastbrdf albedo --ms-compare`.
@@ -133,6 +147,17 @@ fn ms_compare(a: &Args, spec: &ModelSpec, angles: &[f64]) -> Result<(), CliError
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
+    if model_args::is_user(&a.model) {
+        let angles = angles(&a.angles)?;
+        if a.material.material.is_some() || a.ms_compare {
+            return Err(CliError::input(format!(
+                "{}: a user's model takes neither --material nor --ms-compare",
+                fastbrdf_io::shorten(&a.model, 64)
+            )));
+        }
+        let brdf = model_args::user(&a.model, &a.params.pairs()?)?.expect("a user's id");
+        return user::run(&*brdf, &angles, a.json);
+    }
     // The kind first (`albedo::target`'s message), so that a distribution is refused as one
     // whatever its values (--ms-compare names its one model itself).
     let info = fastbrdf::registry::find(&a.model)?.info;
@@ -152,13 +177,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         None,
         Use::AsIs,
     )?;
-    let angles =
-        range::parse(&a.angles, 5.0).map_err(|e| CliError::input(format!("--angles: {e}")))?;
-    if let Some(bad) = angles.iter().find(|t| !(**t >= 0.0 && **t < 90.0)) {
-        return Err(CliError::input(format!(
-            "--angles: {bad} is outside [0, 90) degrees"
-        )));
-    }
+    let angles = angles(&a.angles)?;
     if a.ms_compare {
         return ms_compare(a, &spec, &angles);
     }
