@@ -103,7 +103,16 @@ fn instructions() -> impl Fn(&str) -> String {
 }
 
 /// What the instruction column holds (printed under the tables that have it).
-const INSTRUCTIONS_NOTE: &str = "instr: SPIR-V instructions of the model's shader after spirv-opt -O, total (transcendental/division-sqrt/branches); the same on every machine (fastbrdf_gpu::cost).";
+const INSTRUCTIONS_NOTE: &str = concat!(
+    "SPIR-V instructions of the model's shader after spirv-opt -O, total ",
+    "(transcendental/division-sqrt/branches); the same on every machine (fastbrdf_gpu::cost)."
+);
+
+/// The note under a table with the instruction column.
+fn instructions_note(md: bool) -> String {
+    let label = if md { "\ninstructions: " } else { "  instr: " };
+    format!("{label}{INSTRUCTIONS_NOTE}")
+}
 
 fn table(r: &Report, md: bool) -> String {
     let mut s = String::new();
@@ -213,7 +222,7 @@ fn table(r: &Report, md: bool) -> String {
         }
     }
     if gpu_batch.is_some() {
-        let _ = writeln!(s, "{}{INSTRUCTIONS_NOTE}", if md { "\n" } else { "  " });
+        let _ = writeln!(s, "{}", instructions_note(md));
     }
     s
 }
@@ -300,7 +309,7 @@ pub fn gpu_tables(r: &Report, md: bool) -> String {
             );
         }
     }
-    let _ = writeln!(s, "{}{INSTRUCTIONS_NOTE}", if md { "\n" } else { "  " });
+    let _ = writeln!(s, "{}", instructions_note(md));
     let gpu_rows = Report {
         speedups: r
             .speedups
