@@ -57,6 +57,7 @@ mod flip;
 mod request;
 mod server;
 mod state;
+mod users;
 
 use crate::CliError;
 use request::host_name;
@@ -75,6 +76,7 @@ fastbrdf view --mesh face              (the embedded face beside the sphere)\n  
 fastbrdf view --mesh head.obj --bench bench.json   (your mesh; costs from `fastbrdf bench --json`)\n  \
 fastbrdf view --screenshot docs/images/view.png   (headless Chromium, then exit)\n  \
 fastbrdf view --measured gold-metallic-paint.binary   (the MERL file as a reference: #models=ward&ref=gold-metallic-paint.binary)\n  \
+fastbrdf view --model file:walter.brdf --param alphaG=0.2   (your BRDF beside the built-ins: #models=walter.brdf,cook-torrance)\n  \
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
 The whole view lives in the URL after #, so a link reproduces it. The JSON API (the book's\n\
 docs/book/src/explorer.md): /api/models, /api/plots, /api/albedo, /api/render, /api/flip, /api/errors, /api/shader, /api/material.\n\
@@ -128,6 +130,16 @@ pub struct Args {
     /// compare --measured`. A malformed file is exit 2 at start-up.
     #[arg(long, value_name = "FILE")]
     measured: Option<PathBuf>,
+    /// A user's model, file:PATH (a BRDF Explorer .brdf file, or a .wgsl or .glsl function; the
+    /// book's user-shaders page), listed beside the registry's models, as a model or a
+    /// reference, evaluated on the GPU (Mesa's lavapipe without one); repeatable. A bad file or
+    /// a compile error is exit 2 at start-up, naming the file, line and column.
+    #[arg(long = "model", value_name = "file:PATH")]
+    model: Vec<String>,
+    /// A value of a --model file's parameter, NAME=VALUE (its start-up value; the page's
+    /// sliders change it), checked against the range the file declares; repeatable.
+    #[arg(long = "param", value_name = "NAME=VALUE")]
+    param: Vec<String>,
     /// Take a screenshot of the page in headless Chromium to this PNG file, then exit.
     #[arg(long, value_name = "FILE.png")]
     screenshot: Option<PathBuf>,
@@ -147,11 +159,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             a.host
         )));
     }
-    let state = Arc::new(State::new(
-        a.mesh.clone(),
-        a.bench.clone(),
-        a.measured.clone(),
-    )?);
+    let state = State::new(a.mesh.clone(), a.bench.clone(), a.measured.clone())?;
+    let taken: Vec<&str> = state.measured.iter().map(|m| m.name.as_str()).collect();
+    let users = users::load(&a.model, &a.param, &taken)?;
+    let state = Arc::new(state.with_users(users));
     let port = if a.screenshot.is_some() { 0 } else { a.port };
     let limits = Limits {
         max_connections: a.max_connections as usize,

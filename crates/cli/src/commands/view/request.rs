@@ -197,7 +197,7 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
             "/api/render" => api::render_endpoint(state, &q),
             "/api/flip" => api::flip_endpoint(state, &q),
             "/api/errors" => api::errors_endpoint(state, &q),
-            "/api/shader" => api::shader(&q),
+            "/api/shader" => api::shader(state, &q),
             "/api/material" => api::material(&q),
             // Nothing else exists: no file is ever read from a path, so `..` leads nowhere.
             _ => Ok(Response::error(

@@ -1,4 +1,4 @@
-//! What the explorer's handlers share: the measured reference, the loaded scenes, the bench
+//! What the explorer's handlers share: the measured reference, the users' models, the loaded scenes, the bench
 //! run, the render slots and per-client generations, the FLIP pool, the computation cap, and
 //! whether the client of the request being handled has gone.
 
@@ -99,6 +99,8 @@ impl Measured {
 /// What the handlers share.
 pub struct State {
     pub measured: Option<Measured>,
+    /// The users' models (`--model file:PATH`), in the order given.
+    pub users: Vec<super::users::UserModel>,
     pub loaded_sphere: Loaded,
     pub loaded_mesh: Option<Loaded>,
     pub mesh_path: Option<PathBuf>,
@@ -156,6 +158,7 @@ impl State {
             .transpose()?;
         Ok(Self {
             measured,
+            users: Vec::new(),
             loaded_sphere,
             loaded_mesh,
             mesh_name: mesh.as_ref().map(|m| m.display().to_string()),
@@ -167,6 +170,17 @@ impl State {
             slots: Mutex::new((0, 0)),
             freed: Condvar::new(),
         })
+    }
+
+    /// The state with the users' models `users` (loaded by [`super::users::load`]).
+    pub fn with_users(mut self, users: Vec<super::users::UserModel>) -> Self {
+        self.users = users;
+        self
+    }
+
+    /// The user's model the page and the API call `name`.
+    pub fn user(&self, name: &str) -> Option<&super::users::UserModel> {
+        self.users.iter().find(|u| u.name == name)
     }
 
     /// Model `id`'s measured throughput in the bench run, evaluations per second: the best

@@ -51,6 +51,9 @@ pub fn measured_row(id: &str, spec: &ModelSpec, m: &Measured) -> Result<Value, C
 /// with `ref=` the measured file's name, the row of `fastbrdf errors --measured FILE --json`
 /// (`NAME=VALUE` parameters as its `--param`).
 pub fn errors_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
+    if let Some(r) = super::user::errors_user(state, q) {
+        return r;
+    }
     let id = checked_id(q.need("model")?)?;
     q.need("ref")?;
     if let Some(Reference::Measured(m)) = Reference::from_query(q, state)? {

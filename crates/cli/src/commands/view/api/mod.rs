@@ -7,13 +7,14 @@
 //!
 //! The query string is the explorer's text boundary: [`query`] parses it once per request into
 //! the models' specs; the endpoints ([`models`](mod@models), [`plots`](mod@plots), [`errors`],
-//! [`render`]) take them.
+//! [`render`]) take them; [`user`] computes what the users' models (`--model file:PATH`) show.
 
 mod errors;
 mod models;
 mod plots;
 mod query;
 mod render;
+mod user;
 
 pub use errors::errors_endpoint;
 pub use models::{material, models, shader};

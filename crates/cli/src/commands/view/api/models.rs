@@ -14,7 +14,7 @@ use serde_json::{Value, json};
 
 /// `GET /api/models`: every model the explorer can show, with its parameters.
 pub fn models(state: &State) -> Response {
-    let list: Vec<Value> = fastbrdf::registry::all()
+    let mut list: Vec<Value> = fastbrdf::registry::all()
         .iter()
         .filter(|e| e.info.kind.shading() != Shading::Not)
         .map(|e| {
@@ -59,6 +59,8 @@ pub fn models(state: &State) -> Response {
             })
         })
         .collect();
+    // The users' models (`--model file:PATH`), after the registry's.
+    list.extend(state.users.iter().map(|u| u.entry_json()));
     let materials: Vec<&str> = fastbrdf_analysis::materials::all()
         .iter()
         .map(|m| m.name.as_str())
@@ -71,6 +73,7 @@ pub fn models(state: &State) -> Response {
         "measured": state.measured.as_ref().map(|m| json!({
             "name": m.name, "file": m.path.display().to_string(), "samples": m.data.len(),
         })),
+        "users": state.users.iter().map(|u| u.name.as_str()).collect::<Vec<_>>(),
         "limits": {"size": MAX_SIZE, "spp": MAX_SPP, "models": MAX_MODELS},
         "langs": ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"],
     }))
@@ -96,7 +99,10 @@ pub fn material(q: &Query) -> Result<Response, CliError> {
 }
 
 /// `GET /api/shader?model=ID&lang=LANG&NAME=VALUE...`: `fastbrdf shader` as text.
-pub fn shader(q: &Query) -> Result<Response, CliError> {
+pub fn shader(state: &State, q: &Query) -> Result<Response, CliError> {
+    if let Some(r) = super::user::user_shader(state, q) {
+        return r;
+    }
     let id = checked_id(q.need("model")?)?;
     let lang_text = q.get("lang").unwrap_or("wgsl");
     let lang = Lang::parse(lang_text).ok_or_else(|| {

@@ -3,7 +3,8 @@
 //! every number from the library functions the CLI commands call.
 
 use super::errors::{errors_row, measured_row};
-use super::query::{Chosen, Query, Reference, Response, chosen, one_model, theta_i};
+use super::query::{Query, Reference, Response, chosen, one_model, theta_i};
+use super::user;
 use crate::CliError;
 use crate::commands::common::numbers::swept;
 use crate::commands::view::state::{Measured, State};
@@ -32,22 +33,31 @@ fn eval_brdf(m: &fastbrdf::Model<f64>, wi: [f64; 3], wo: [f64; 3]) -> f64 {
     }
 }
 
-/// The in-plane polar plot of `f` at incidence `ti_deg`: theta_o from -90 (the incident side:
-/// wi is at -theta_i) to 90 degrees (the mirror direction is at +theta_i).
-fn polar_of(f: impl Fn([f64; 3], [f64; 3]) -> f64, ti_deg: f64) -> Vec<f64> {
+/// The direction pairs of the in-plane polar plot at incidence `ti_deg`: theta_o from -90 (the
+/// incident side: wi is at -theta_i) to 90 degrees (the mirror direction is at +theta_i).
+pub(super) fn polar_pairs(ti_deg: f64) -> Vec<([f64; 3], [f64; 3])> {
     let ti = ti_deg.to_radians();
     let wi = [ti.sin(), 0.0, ti.cos()];
     (0..POLAR_POINTS)
         .map(|k| {
             let t = -90.0 + 180.0 * k as f64 / (POLAR_POINTS - 1) as f64;
             let r = t.to_radians();
-            f(wi, [-r.sin(), 0.0, r.cos()])
+            (wi, [-r.sin(), 0.0, r.cos()])
         })
         .collect()
 }
 
-/// The theta_h x theta_d slice of `f` at phi_d = 90 degrees (rows theta_d, columns theta_h).
-fn slice_of(f: impl Fn([f64; 3], [f64; 3]) -> f64) -> Vec<f64> {
+/// The in-plane polar plot of `f` at incidence `ti_deg` ([`polar_pairs`]).
+fn polar_of(f: impl Fn([f64; 3], [f64; 3]) -> f64, ti_deg: f64) -> Vec<f64> {
+    polar_pairs(ti_deg)
+        .into_iter()
+        .map(|(a, b)| f(a, b))
+        .collect()
+}
+
+/// The direction pairs of the theta_h x theta_d slice at phi_d = 90 degrees (rows theta_d,
+/// columns theta_h).
+pub(super) fn slice_pairs() -> Vec<([f64; 3], [f64; 3])> {
     let mut slice = Vec::with_capacity(SLICE * SLICE);
     for jd in 0..SLICE {
         let td = (jd as f64 + 0.5) / SLICE as f64 * std::f64::consts::FRAC_PI_2;
@@ -60,14 +70,19 @@ fn slice_of(f: impl Fn([f64; 3], [f64; 3]) -> f64) -> Vec<f64> {
             let h = [s, 0.0, c];
             let k = 2.0 * (h[0] * wi[0] + h[1] * wi[1] + h[2] * wi[2]);
             let wo = [k * h[0] - wi[0], k * h[1] - wi[1], k * h[2] - wi[2]];
-            slice.push(f(wi, wo));
+            slice.push((wi, wo));
         }
     }
     slice
 }
 
+/// The theta_h x theta_d slice of `f` ([`slice_pairs`]).
+fn slice_of(f: impl Fn([f64; 3], [f64; 3]) -> f64) -> Vec<f64> {
+    slice_pairs().into_iter().map(|(a, b)| f(a, b)).collect()
+}
+
 /// Rec. 709 luminance of an RGB BRDF value: what the plots show of measured data.
-fn luminance(c: [f64; 3]) -> f64 {
+pub(super) fn luminance(c: [f64; 3]) -> f64 {
     0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
@@ -91,7 +106,7 @@ fn measured_plots(m: &Measured, ti_deg: f64) -> Value {
 }
 
 /// The lobe and error curves' abscissae, degrees.
-fn curve_theta() -> Vec<f64> {
+pub(super) fn curve_theta() -> Vec<f64> {
     (0..CURVE_POINTS)
         .map(|k| 89.9 * k as f64 / (CURVE_POINTS - 1) as f64)
         .collect()
@@ -246,8 +261,9 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
             )));
         }
     };
-    let Chosen { models, reference } = chosen(state, q)?;
-    for (id, spec) in &models {
+    let c = chosen(state, q)?;
+    let (models, reference) = (&c.models, &c.reference);
+    for (id, spec) in models {
         one_model(id, spec)?;
     }
     use rayon::prelude::*;
@@ -255,7 +271,11 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         .par_iter()
         .map(|(id, spec)| albedo_of(id, spec, quick))
         .collect::<Result<_, _>>()?;
-    if let Some(Reference::Measured(m)) = &reference {
+    out.extend(c.users.iter().map(|u| user::no_albedo(&u.model.name)));
+    if let Some(u) = &c.ref_user {
+        out.insert(0, user::no_albedo(&u.model.name));
+    }
+    if let Some(Reference::Measured(m)) = reference {
         out.insert(
             0,
             json!({"id": m.name, "albedo": Value::Null,
@@ -272,18 +292,50 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
 /// `GET /api/plots?models=A,B&ref=R&theta=DEG&NAME=VALUE...`: every plot's numbers.
 pub fn plots(state: &State, q: &Query) -> Result<Response, CliError> {
     let t = Instant::now();
-    let Chosen { models, reference } = chosen(state, q)?;
-    for (id, spec) in &models {
+    let c = chosen(state, q)?;
+    let (models, reference) = (&c.models, &c.reference);
+    for (id, spec) in models {
         one_model(id, spec)?;
     }
     let ti = theta_i(q)?;
+    // A user's model or a user's reference: errors from batched evaluations on a grid.
+    let ref_brdf = user::reference_brdf(&c);
+    let user_ref = matches!(reference, Some(Reference::User(_)));
+    let against = |b: Option<std::sync::Arc<dyn fastbrdf::user::UserBrdf>>, id: &str| match (
+        &ref_brdf, b, reference,
+    ) {
+        (Some(r), Some(b), Some(rf)) if rf.name() != id => {
+            user::against(b.as_ref(), r.as_ref(), rf.name())
+        }
+        _ => Ok(Value::Null),
+    };
     // One model per task: the two cores of a slider move's budget.
     use rayon::prelude::*;
     let mut out: Vec<Value> = models
         .par_iter()
-        .map(|(id, spec)| plots_of(id, spec, reference.as_ref(), ti))
+        .map(|(id, spec)| {
+            let mut v = plots_of(id, spec, reference.as_ref(), ti)?;
+            if user_ref {
+                let b = fastbrdf::user::Builtin::new(spec, fastbrdf::sample::Strategy::Auto)
+                    .ok()
+                    .map(|b| {
+                        std::sync::Arc::new(b) as std::sync::Arc<dyn fastbrdf::user::UserBrdf>
+                    });
+                v["against"] = against(b, id)?;
+            }
+            Ok::<_, CliError>(v)
+        })
         .collect::<Result<_, _>>()?;
-    if let Some(Reference::Measured(m)) = &reference {
+    // The users' models: each one batch of points (a GPU dispatch), one after another.
+    for u in &c.users {
+        let b = u.brdf.clone() as std::sync::Arc<dyn fastbrdf::user::UserBrdf>;
+        let a = against(Some(b), &u.model.name)?;
+        out.push(user::user_plots(u, ti, a)?);
+    }
+    if let Some(u) = &c.ref_user {
+        out.insert(0, user::user_plots(u, ti, Value::Null)?);
+    }
+    if let Some(Reference::Measured(m)) = reference {
         out.insert(0, measured_plots(m, ti));
     }
     let polar_t: Vec<f64> = (0..POLAR_POINTS)
@@ -293,7 +345,7 @@ pub fn plots(state: &State, q: &Query) -> Result<Response, CliError> {
     Ok(Response::json(&json!({
         "theta_i_deg": ti,
         "reference": reference.as_ref().map(Reference::name),
-        "reference_kind": reference.as_ref().map(|r| if r.model().is_some() { "model" } else { "measured" }),
+        "reference_kind": reference.as_ref().map(Reference::kind),
         "polar_theta_deg": polar_t,
         "curve_theta_deg": theta_h,
         "slice_size": SLICE,

@@ -4,10 +4,13 @@
 
 use crate::CliError;
 use crate::commands::view::state::{Measured, State};
+use crate::commands::view::users::UserModel;
 use crate::model_args::{self, Use};
 use fastbrdf::ModelSpec;
 use fastbrdf::kind::Shading;
+use fastbrdf_gpu::user::GpuBrdf;
 use serde_json::{Value, json};
+use std::sync::Arc;
 
 /// An HTTP answer: status, content type and body.
 pub struct Response {
@@ -129,6 +132,8 @@ pub enum Reference<'a> {
     Model(&'static str),
     /// The server's `--measured` file (`ref=` its name).
     Measured(&'a Measured),
+    /// A user's model (`--model file:PATH`; `ref=` its name), with the query's values.
+    User(&'a UserModel),
 }
 
 impl<'a> Reference<'a> {
@@ -137,7 +142,10 @@ impl<'a> Reference<'a> {
             None | Some("") => Ok(None),
             Some(r) => match &state.measured {
                 Some(m) if m.name == r => Ok(Some(Reference::Measured(m))),
-                _ => Ok(Some(Reference::Model(checked_id(r)?))),
+                _ => match state.user(r) {
+                    Some(u) => Ok(Some(Reference::User(u))),
+                    None => Ok(Some(Reference::Model(checked_id(r)?))),
+                },
             },
         }
     }
@@ -146,13 +154,22 @@ impl<'a> Reference<'a> {
         match self {
             Reference::Model(id) => id,
             Reference::Measured(m) => &m.name,
+            Reference::User(u) => &u.name,
         }
     }
     /// The registry model, if the reference is one.
     pub fn model(&self) -> Option<&'static str> {
         match self {
             Reference::Model(id) => Some(id),
-            Reference::Measured(_) => None,
+            Reference::Measured(_) | Reference::User(_) => None,
+        }
+    }
+    /// What the JSON calls its kind: `model`, `measured` or `user`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Reference::Model(_) => "model",
+            Reference::Measured(_) => "measured",
+            Reference::User(_) => "user",
         }
     }
 }
@@ -167,8 +184,15 @@ pub fn checked_id(id: &str) -> Result<&'static str, CliError> {
     Ok(e.info.id)
 }
 
-/// The chosen model ids (`models=a,b`), checked, at most [`MAX_MODELS`].
-pub fn model_ids(q: &Query) -> Result<Vec<&'static str>, CliError> {
+/// One chosen model: a registry id or a user's model.
+pub enum Pick<'a> {
+    Registry(&'static str),
+    User(&'a UserModel),
+}
+
+/// The chosen models (`models=a,b`: registry ids and the names of the users' models),
+/// checked, at most [`MAX_MODELS`].
+pub fn picks<'a>(q: &Query, state: &'a State) -> Result<Vec<Pick<'a>>, CliError> {
     let ids: Vec<&str> = q
         .need("models")?
         .split(',')
@@ -179,7 +203,12 @@ pub fn model_ids(q: &Query) -> Result<Vec<&'static str>, CliError> {
             "models: give 1 to {MAX_MODELS} comma-separated model ids"
         )));
     }
-    ids.into_iter().map(checked_id).collect()
+    ids.into_iter()
+        .map(|id| match state.user(id) {
+            Some(u) => Ok(Pick::User(u)),
+            None => checked_id(id).map(Pick::Registry),
+        })
+        .collect()
 }
 
 /// The spec of model `id` from the query's values, parsed once: those of `all` it takes (as
@@ -240,32 +269,106 @@ pub fn check_unused(ids: &[&str], all: &[(String, String)]) -> Result<(), CliErr
     Ok(())
 }
 
+/// A user's model as a query chose it: compiled with the query's values of the parameters its
+/// file declares.
+pub struct UserPick<'a> {
+    pub model: &'a UserModel,
+    pub brdf: Arc<GpuBrdf>,
+    /// The query's values it took.
+    pub values: Vec<(String, String)>,
+}
+
 /// What a plots, albedo or render query chose: the registry models with their specs, parsed
-/// once (a model reference first, each once; a measured reference is not among them), and the
+/// once (a model reference first, each once; a measured or user's reference is not among
+/// them), the users' models (a user's reference not among them: it is `ref_user`), and the
 /// reference.
 pub struct Chosen<'a> {
     pub models: Vec<(&'static str, ModelSpec)>,
+    pub users: Vec<UserPick<'a>>,
     pub reference: Option<Reference<'a>>,
+    /// The user's model that is the reference, compiled with the query's values.
+    pub ref_user: Option<UserPick<'a>>,
 }
 
 /// The models of a plots, albedo or render query, a model reference first, each once, each
-/// with its spec.
+/// with its spec (a user's model: compiled with its values). A parameter goes to the registry
+/// models that take it, and to the users' models whose file declares it; one that none takes
+/// is refused.
 pub fn chosen<'a>(state: &'a State, q: &Query) -> Result<Chosen<'a>, CliError> {
-    let ids = model_ids(q)?;
+    let picks = picks(q, state)?;
     let reference = Reference::from_query(q, state)?;
     let all = q.params();
     let mut order: Vec<&'static str> = reference.iter().filter_map(Reference::model).collect();
-    for id in ids {
-        if !order.contains(&id) {
-            order.push(id);
+    let ref_name = reference.as_ref().map(|r| r.name().to_string());
+    let mut users: Vec<&UserModel> = vec![];
+    for p in picks {
+        match p {
+            Pick::Registry(id) => {
+                if !order.contains(&id) {
+                    order.push(id);
+                }
+            }
+            Pick::User(u) => {
+                if ref_name.as_deref() != Some(&u.name) && !users.iter().any(|x| x.name == u.name) {
+                    users.push(u);
+                }
+            }
         }
     }
-    check_unused(&order, &all)?;
+    let ref_model = match &reference {
+        Some(Reference::User(u)) => Some(*u),
+        _ => None,
+    };
+    let all_users: Vec<&UserModel> = ref_model
+        .iter()
+        .copied()
+        .chain(users.iter().copied())
+        .collect();
+    // The registry models get the values one of them takes or no user's model declares (the
+    // latter then refused as unused, naming the value).
+    let mut to_registry = Vec::new();
+    for (k, v) in &all {
+        let mut taken = false;
+        for id in &order {
+            taken |= model_args::takes(id, k)?;
+        }
+        if taken || !all_users.iter().any(|u| u.declares(k)) {
+            to_registry.push((k.clone(), v.clone()));
+        }
+    }
+    if order.is_empty() {
+        if let Some((k, _)) = to_registry.first() {
+            let names: Vec<&str> = all_users.iter().map(|u| u.name.as_str()).collect();
+            return Err(fastbrdf::Error::UnknownParam {
+                model: names.join(","),
+                param: fastbrdf_io::shorten(k, 64),
+            }
+            .into());
+        }
+    } else {
+        check_unused(&order, &to_registry)?;
+    }
     let models = order
         .into_iter()
-        .map(|id| Ok((id, spec_of(id, &all)?)))
+        .map(|id| Ok((id, spec_of(id, &to_registry)?)))
         .collect::<Result<_, CliError>>()?;
-    Ok(Chosen { models, reference })
+    let pick = |u: &'a UserModel| -> Result<UserPick<'a>, CliError> {
+        let values: Vec<(String, String)> =
+            all.iter().filter(|(k, _)| u.declares(k)).cloned().collect();
+        Ok(UserPick {
+            model: u,
+            brdf: u.instance(&values)?,
+            values,
+        })
+    };
+    let ref_user = ref_model.map(pick).transpose()?;
+    let users = users.into_iter().map(pick).collect::<Result<_, _>>()?;
+    Ok(Chosen {
+        models,
+        users,
+        reference,
+        ref_user,
+    })
 }
 
 /// The incidence angle `theta`, degrees in [0, 90) (default 30).

@@ -14,6 +14,7 @@ use fastbrdf_render::film::png_bytes;
 use fastbrdf_render::render::{Options, Shading, render};
 use fastbrdf_render::scene::{Light, Specular};
 use fastbrdf_render::setup;
+use fastbrdf_render::user::UserRgb;
 use rayon::prelude::*;
 use serde_json::{Value, json};
 use std::sync::Arc;
@@ -77,7 +78,12 @@ fn row(m: &Metrics) -> Value {
 /// has `flip` null and `flip_job`, the id for `/api/flip`.
 pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let t0 = Instant::now();
-    let Chosen { models, reference } = chosen(state, q)?;
+    let Chosen {
+        models,
+        users,
+        reference,
+        ref_user,
+    } = chosen(state, q)?;
     let mode = flip_mode(q)?;
     let size = parse_u32(q, "size", 256, 16, MAX_SIZE)?;
     let spp = parse_u32(q, "spp", 1, 1, MAX_SPP)?;
@@ -149,11 +155,25 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
             Arc::new(Specular::rgb(&label, m.brdf.clone())),
         ));
     }
+    // A user's model as `fastbrdf render --model file:PATH` renders it: through `UserRgb`, the
+    // whole BRDF (weights 0, 1), the reference first.
+    let user_job = |u: &super::query::UserPick| {
+        let mut s = scene_spec.clone();
+        (s.kd, s.ks) = (0.0, 1.0);
+        let brdf = Arc::new(UserRgb::new(u.brdf.clone()));
+        (
+            u.model.name.clone(),
+            s,
+            Arc::new(Specular::rgb(&u.model.name, brdf)),
+        )
+    };
+    jobs.extend(ref_user.iter().map(user_job));
     for (id, spec) in &models {
         let mut specular = Specular::new(spec)?;
         specular.id = id.to_string();
         jobs.push((id.to_string(), scene_spec.clone(), Arc::new(specular)));
     }
+    jobs.extend(users.iter().map(user_job));
     let names: Vec<String> = jobs.iter().map(|j| j.0.clone()).collect();
     let compared = reference.is_some() && names.len() > 1;
     // FLIP in the pool when it has room; else (FLIP_JOBS taken) on this thread, in the slot.
@@ -178,8 +198,15 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
             return Ok(superseded());
         }
         let t = Instant::now();
-        let scene = setup::scene(&spec, loaded, specular);
+        let scene = setup::scene(&spec, loaded, specular.clone());
         let film = render(&scene, &opts, &|_, _| {})?;
+        if let Some(e) = specular.rgb.as_ref().and_then(|b| b.failure()) {
+            // A user's model evaluated on the GPU failed mid-render (its device was lost).
+            return Err(CliError {
+                code: crate::EXIT_CHECK_FAILED,
+                message: format!("--model {id}: {e}"),
+            });
+        }
         film.check_finite()
             .map_err(|e| CliError::input(format!("--model {id}: {e}")))?;
         let px = Arc::new(film.to_srgb8(1.0));
