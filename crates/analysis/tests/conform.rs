@@ -13,7 +13,7 @@ fn builtin(id: &str, p: &[(&str, &str)]) -> Builtin {
 fn quiet(_: &str) {}
 
 /// Every registry BRDF at its defaults and cook-torrance with each distribution, each by its
-/// default strategy.
+/// default strategy, and a few harder cases.
 fn builtins() -> Vec<Builtin> {
     let mut out: Vec<Builtin> = registry::ids_of(Kind::Brdf)
         .into_iter()
@@ -22,6 +22,25 @@ fn builtins() -> Vec<Builtin> {
     for d in registry::ids_of(Kind::Distribution) {
         out.push(builtin("cook-torrance", &[("d", d)]));
     }
+    // Narrow and wide lobes, anisotropy, an energy compensation, three channels.
+    let ct = "cook-torrance";
+    out.push(builtin(ct, &[("d", "ggx"), ("alpha", "0.005")]));
+    out.push(builtin(ct, &[("d", "beckmann"), ("alpha", "0.01")]));
+    out.push(builtin(ct, &[("d", "ggx"), ("alpha", "1")]));
+    out.push(builtin(
+        ct,
+        &[
+            ("d", "ggx"),
+            ("g", "smith-ggx-correlated"),
+            ("ms", "kulla-conty"),
+        ],
+    ));
+    out.push(builtin(
+        ct,
+        &[("d", "ggx"), ("f0", "0.9,0.6,0.2"), ("f", "schlick")],
+    ));
+    out.push(builtin("ward", &[("alpha_x", "0.1"), ("alpha_y", "0.4")]));
+    out.push(builtin("phong", &[("n", "1000")]));
     out
 }
 
@@ -202,6 +221,31 @@ fn each_broken_bsdf_fails_exactly_the_check_it_breaks() {
         assert!(!r.passed);
     }
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+/// A built-in that is non-reciprocal by design (ms = filament compensates with `wo` only)
+/// fails `reciprocity`, also at an alpha where its asymmetry is a few percent.
+#[test]
+fn a_non_reciprocal_builtin_fails_reciprocity() {
+    let cfg = Config {
+        sample_angles_deg: vec![45.0],
+        ..Config::ci()
+    };
+    for alpha in ["0.01", "0.3"] {
+        let m = builtin(
+            "cook-torrance",
+            &[
+                ("d", "ggx"),
+                ("g", "smith-ggx-correlated"),
+                ("ms", "filament"),
+                ("alpha", alpha),
+            ],
+        );
+        let r = conform::run(&m, None, &cfg, &quiet).unwrap();
+        let c = r.checks.iter().find(|c| c.check == "reciprocity").unwrap();
+        assert_eq!(c.status, Status::Fail, "{alpha}: {c:?}");
+        assert!(c.value > 5e-3 && c.at.is_some(), "{alpha}: {c:?}");
+    }
 }
 
 #[test]

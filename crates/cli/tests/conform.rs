@@ -19,9 +19,9 @@ fn a_builtin_conforms_one_line_per_check() {
     }
     let recip = lines[3];
     assert!(
-        recip.contains("max |f(wi,wo)-f(wo,wi)| = ")
-            && recip.contains("of the peak")
-            && recip.contains("(limit 0.001) at wi=("),
+        recip.contains("max |f(wi,wo)-f(wo,wi)| cos_i cos_o = ")
+            && recip.contains("of its peak")
+            && recip.contains("(limit 0.001)"),
         "{recip}"
     );
     assert!(

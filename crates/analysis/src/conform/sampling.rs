@@ -294,25 +294,35 @@ fn weight_check(angles: &[Angle], cfg: &Config) -> Check {
         .expect("at least one angle");
     let n: usize = angles.iter().map(|a| a.samples).sum();
     let pass = angles.iter().all(|a| a.weight.0 <= cfg.weight_tol);
+    let (text, at) = located(w.weight.0, w.weight.1, w);
     Check::new(
         "weight",
         pass,
         w.weight.0,
         cfg.weight_tol,
         format!(
-            "max |weight - f cos / pdf| = {} relative (limit {}) over {n} samples at wi={} wo={}",
+            "max |weight - f cos / pdf| = {} relative (limit {}) over {n} samples{text}",
             num(w.weight.0),
             num(cfg.weight_tol),
-            dir(w.weight.1),
-            dir(w.wo)
         ),
     )
-    .at(Some(At {
-        wi: Some(w.weight.1),
-        wo: Some(w.wo),
-        theta_o_deg: Some(w.deg),
-        channel: None,
-    }))
+    .at(at)
+}
+
+/// ` at wi=(..) wo=(..)` and its place, where `value` is not 0.
+fn located(value: f64, wi: [f64; 3], a: &Angle) -> (String, Option<At>) {
+    if value == 0.0 {
+        return (String::new(), None);
+    }
+    (
+        format!(" at wi={} wo={}", dir(wi), dir(a.wo)),
+        Some(At {
+            wi: Some(wi),
+            wo: Some(a.wo),
+            theta_o_deg: Some(a.deg),
+            channel: None,
+        }),
+    )
 }
 
 fn integral_check(angles: &[Angle], cfg: &Config) -> Check {
@@ -360,25 +370,19 @@ fn pdf_sample_check(angles: &[Angle], cfg: &Config) -> Check {
         .max_by(|a, b| a.pdf.0.total_cmp(&b.pdf.0))
         .expect("at least one angle");
     let pass = angles.iter().all(|a| a.pdf.0 <= cfg.pdf_sample_tol);
+    let (text, at) = located(w.pdf.0, w.pdf.1, w);
     Check::new(
         "pdf-sample",
         pass,
         w.pdf.0,
         cfg.pdf_sample_tol,
         format!(
-            "max |pdf(wo, wi) - reported pdf| = {} relative (limit {}) at wi={} wo={}",
+            "max |pdf(wo, wi) - reported pdf| = {} relative (limit {}){text}",
             num(w.pdf.0),
             num(cfg.pdf_sample_tol),
-            dir(w.pdf.1),
-            dir(w.wo)
         ),
     )
-    .at(Some(At {
-        wi: Some(w.pdf.1),
-        wo: Some(w.wo),
-        theta_o_deg: Some(w.deg),
-        channel: None,
-    }))
+    .at(at)
 }
 
 /// Pairs of the value set above the horizon where `f cos` exceeds

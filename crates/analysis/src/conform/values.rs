@@ -103,30 +103,45 @@ impl Values {
     pub fn reciprocity(&self, m: &Batched, set: &Pairs, cfg: &Config) -> Result<Check, String> {
         let g = m.eval(&set.wo, &set.wi)?;
         let c = self.channels;
+        // Weighted by cos theta_i cos theta_o (symmetric, as f must be): the transport a
+        // renderer sees, without the 1 / (cos cos) of grazing pairs swamping the peak.
+        let cc = |i: usize| set.wi[i / c][2].max(0.0) * set.wo[i / c][2].max(0.0);
         let mut worst = (0.0, 0);
+        let mut p: f64 = 0.0;
         for (i, (&a, &b)) in self.f.iter().zip(&g).enumerate() {
-            if a.is_finite() && b.is_finite() && (a - b).abs() > worst.0 {
-                worst = ((a - b).abs(), i);
+            if a.is_finite() && b.is_finite() {
+                let w = cc(i);
+                p = p.max(a.abs() * w).max(b.abs() * w);
+                if (a - b).abs() * w > worst.0 {
+                    worst = ((a - b).abs() * w, i);
+                }
             }
         }
-        let p = self.peak.max(peak(&g));
         let rel = if p > 0.0 { worst.0 / p } else { 0.0 };
         let k = worst.1 / c;
         let pass = rel <= cfg.reciprocity_tol;
+        // Where: only where the two differ.
+        let (text, at) = if worst.0 > 0.0 {
+            (
+                pair_text(set.wi[k], set.wo[k]),
+                pair_at(set.wi[k], set.wo[k]),
+            )
+        } else {
+            (String::new(), None)
+        };
         Ok(Check::new(
             "reciprocity",
             pass,
             rel,
             cfg.reciprocity_tol,
             format!(
-                "max |f(wi,wo)-f(wo,wi)| = {} of the peak {} (limit {}){}",
+                "max |f(wi,wo)-f(wo,wi)| cos_i cos_o = {} of its peak {} (limit {}){text}",
                 num(rel),
                 num(p),
                 num(cfg.reciprocity_tol),
-                pair_text(set.wi[k], set.wo[k])
             ),
         )
-        .at(pair_at(set.wi[k], set.wo[k])))
+        .at(at))
     }
 
     /// The model against `r` on the pair set.

@@ -24,7 +24,7 @@ Checks (each prints PASS, FAIL or SKIP with its number and where it was found):\
 finite            f finite on a grid of direction pairs (z exactly 0 and 1 included) and random pairs\n  \
 non-negative      the least value >= 0\n  \
 non-finite-input  NaN or infinite components in wi or wo give finite values >= 0\n  \
-reciprocity       max |f(wi,wo) - f(wo,wi)| <= 1e-3 of the peak\n  \
+reciprocity       max |f(wi,wo) - f(wo,wi)| cos_i cos_o <= 1e-3 of its peak\n  \
 energy            directional albedo (integral of f cos over wi) <= 1 + 1e-3, normal to grazing\n  \
 reference         with --reference: max |f - ref| <= 1e-3 of the reference's peak; relative, RMS\n  \
 chi2              the sampler against its pdf (Mitsuba's chi-square test, Bonferroni over angles)\n  \
