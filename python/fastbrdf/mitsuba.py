@@ -145,7 +145,7 @@ def _property(props: Any, key: str) -> Any:
     if isinstance(value, str):
         return value
     _, dr = _mi()
-    if type(value).__name__ in ("Color3f", "Color3d"):
+    if type(value).__name__ in ("Color3f", "Color3d", "ScalarColor3f", "ScalarColor3d"):
         # {"type": "rgb", "value": [r, g, b]} for a number: fastbrdf's R,G,B string (one
         # number when grey, which keeps the model grey).
         rgb = [float(x) for x in value]
