@@ -1,6 +1,10 @@
 //! The bind group and pipeline layouts shared by every pipeline and object: a leaf that
 //! `passes` (the pipelines) and `objects` (the bind groups) both read.
 
+/// The object group's binding of a user's parameters (`FbUserParams`, a uniform): bound for
+/// every object, a zero block for those shaded with a model.
+pub(super) const USER_PARAMS_BINDING: u32 = 5;
+
 /// The bind group layouts shared by every pipeline.
 pub(super) struct Layouts {
     pub(super) frame: wgpu::BindGroupLayout,
@@ -58,6 +62,7 @@ impl Layouts {
                 entry(2, fragment, storage),
                 entry(3, fragment, storage),
                 entry(4, fragment, storage),
+                entry(USER_PARAMS_BINDING, fragment, uniform),
             ],
         });
         let ids = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

@@ -1,6 +1,7 @@
 //! The GPU renderer: the CPU renderer's scenes (`fastbrdf_render::scene::Scene`: camera,
 //! lights, spheres, planes, OBJ meshes, textures, micro-relief) rasterised with wgpu and shaded
-//! per sample by any model's WGSL twin (`spec::Instance`), into the CPU's `Film`.
+//! per sample by any model's WGSL twin (`spec::Instance`) or a user's shader
+//! ([`render_user`], `crate::user`), into the CPU's `Film`.
 //!
 //! # Design
 //!
@@ -84,6 +85,7 @@ mod scene_data;
 
 use crate::context::{GpuError, validated};
 use crate::spec::Instance;
+use crate::user::{ParamValue, UserShader};
 use fastbrdf_render::film::{Film, check_size};
 use fastbrdf_render::render::Options;
 use fastbrdf_render::scene::Scene;
@@ -117,7 +119,8 @@ const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// `opts.shading` is ignored (the GPU evaluates the model per sample); `scene.environment`
 /// is not rendered (the CLI refuses `--env` with `--gpu`). Errors: sizes outside
 /// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
-/// corners, or with shadows its BVH and triangles) or texture larger than the device's limits, a model that is not a BRDF instance, and GPU failures.
+/// corners, or with shadows its BVH and triangles) or texture larger than the device's limits,
+/// a model that is not a BRDF instance, an RGB BRDF (see [`render_user`]), and GPU failures.
 pub fn render(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -136,6 +139,61 @@ pub fn render_with_progress(
     queue: &wgpu::Queue,
     scene: &Scene,
     opts: &Options,
+    progress: &dyn Fn(usize, usize),
+) -> Result<Film, GpuError> {
+    render_scene(device, queue, scene, opts, None, progress)
+}
+
+/// [`render_with_progress`] with a user's shader (issue 31): every object whose specular term
+/// is an RGB BRDF (`Specular::rgb`, e.g. `fastbrdf_render::user::UserRgb` of this shader's
+/// [`crate::user::GpuBrdf`], as the CPU renderer shades it) is shaded with `shader` at
+/// `values` ([`UserShader::values`]) instead: its `fb_user_brdf` spliced in place of a model
+/// instance's function, R, G and B, weighted like the CPU's RGB BRDFs (`li ks f cos` per
+/// channel; a scene gives a whole BRDF the weights kd 0, ks 1). The RGB BRDF the scene
+/// carries is not called. Objects with a model spec shade as in [`render`].
+///
+/// Errors: those of [`render`], values that are not one per parameter of `shader`, and the
+/// user's module failing to translate.
+#[allow(clippy::too_many_arguments)]
+pub fn render_user(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    opts: &Options,
+    shader: &UserShader,
+    values: &[ParamValue],
+    progress: &dyn Fn(usize, usize),
+) -> Result<Film, GpuError> {
+    if values.len() != shader.params().len() {
+        return Err(GpuError::Input(format!(
+            "{}: {} parameter values for its {} parameters (UserShader::values gives them all)",
+            shader.name(),
+            values.len(),
+            shader.params().len()
+        )));
+    }
+    let user = User {
+        shader,
+        block: shader.param_block(values),
+    };
+    render_scene(device, queue, scene, opts, Some(&user), progress)
+}
+
+/// A user's shader and its parameter block, for the objects with an RGB specular term.
+struct User<'a> {
+    shader: &'a UserShader,
+    block: Vec<f32>,
+}
+
+/// The pipelines' key of the user's shader (a model's key is `id [params]`, never this).
+const USER_KEY: &str = "file:";
+
+fn render_scene(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    scene: &Scene,
+    opts: &Options,
+    user: Option<&User>,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Film, GpuError> {
     check_size(opts.width, opts.height).map_err(|e| GpuError::Input(e.to_string()))?;
@@ -167,6 +225,32 @@ pub fn render_with_progress(
     };
     for (i, obj) in scene.objects.iter().enumerate() {
         let spec = &obj.material.specular;
+        if let (Some(_), Some(u)) = (&spec.rgb, user) {
+            // An RGB BRDF: the user's shader, compiled once.
+            if !pipelines.contains_key(USER_KEY) {
+                let p = Pipelines::user(device, &layouts, u.shader)?;
+                pipelines.insert(USER_KEY.to_string(), p);
+            }
+            objects.push(upload_object(
+                device,
+                queue,
+                &layouts,
+                &limits,
+                obj,
+                i,
+                (&[], &u.block),
+                USER_KEY.to_string(),
+                &reach,
+            )?);
+            continue;
+        }
+        if spec.rgb.is_some() {
+            return Err(GpuError::Input(format!(
+                "'{}' is an RGB BRDF (measured data, a fitted model): CPU-only; the GPU \
+                 renderer shades with model instances and users' shaders",
+                spec.id
+            )));
+        }
         if spec.is_coloured() {
             return Err(GpuError::Input(format!(
                 "coloured specular ({}: a parameter given as R,G,B, e.g. --metal) is CPU-only for now: drop --gpu",
@@ -186,7 +270,15 @@ pub fn render_with_progress(
             pipelines.insert(key.clone(), Pipelines::new(device, &layouts, &instance)?);
         }
         objects.push(upload_object(
-            device, queue, &layouts, &limits, obj, i, &instance, key, &reach,
+            device,
+            queue,
+            &layouts,
+            &limits,
+            obj,
+            i,
+            (&instance.coefs, &[]),
+            key,
+            &reach,
         )?);
     }
     let lights = lights_buffer(device, scene);

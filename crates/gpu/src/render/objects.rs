@@ -1,10 +1,10 @@
 //! One scene object on the GPU: its uniform, albedo texture, mesh buffers (corners dilated at
-//! boundary edges for the rasteriser) and model coefficients, bound together.
+//! boundary edges for the rasteriser), model coefficients and a user's parameters, bound
+//! together.
 
-use super::layouts::Layouts;
+use super::layouts::{Layouts, USER_PARAMS_BINDING};
 use super::scene_data::{check_binding, storage};
 use crate::context::GpuError;
-use crate::spec::Instance;
 use fastbrdf_render::scene::{Object, Shape};
 use fastbrdf_render::texture::Texture;
 use glam::{Vec2, Vec3};
@@ -20,7 +20,9 @@ pub(super) struct GpuObject {
     pub(super) corners: Option<(wgpu::Buffer, u32)>,
 }
 
-/// The object uniform, its texture, mesh buffers and model coefficients, bound together.
+/// The object uniform, its texture, mesh buffers, model coefficients (`coefs`, the model
+/// instance's `fb_k`; empty for a user's shader) and a user's parameter block (`params`,
+/// [`crate::user::UserShader::param_block`]; empty for a model), bound together.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn upload_object(
     device: &wgpu::Device,
@@ -29,7 +31,7 @@ pub(super) fn upload_object(
     limits: &wgpu::Limits,
     obj: &Object,
     index: usize,
-    instance: &Instance,
+    (coefs, params): (&[f32], &[f32]),
     model: String,
     reach: &Reach,
 ) -> Result<GpuObject, GpuError> {
@@ -153,7 +155,18 @@ pub(super) fn upload_object(
     let view = texture.create_view(&Default::default());
     let vertices = storage(device, "fastbrdf render vertices", &vertices);
     let triangles = storage(device, "fastbrdf render triangles", &triangles);
-    let coefs = storage(device, "fastbrdf render coefficients", &instance.coefs);
+    let coefs = storage(device, "fastbrdf render coefficients", coefs);
+    // At least one vec4 (a uniform binding is never empty; `FbUserParams` has K >= 1).
+    let params = if params.is_empty() {
+        &[0.0; 4][..]
+    } else {
+        params
+    };
+    let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("fastbrdf render user parameters"),
+        contents: bytemuck::cast_slice(params),
+        usage: wgpu::BufferUsages::UNIFORM,
+    });
     let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
         label: Some("fastbrdf render object"),
         layout: &layouts.object,
@@ -177,6 +190,10 @@ pub(super) fn upload_object(
             wgpu::BindGroupEntry {
                 binding: 4,
                 resource: coefs.as_entire_binding(),
+            },
+            wgpu::BindGroupEntry {
+                binding: USER_PARAMS_BINDING,
+                resource: params.as_entire_binding(),
             },
         ],
     });

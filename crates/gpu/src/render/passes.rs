@@ -1,11 +1,13 @@
-//! The render pipelines of one model (visibility and shading, for analytic shapes and
-//! meshes), the bind group layouts they share, and one pass over the scene's objects.
+//! The render pipelines of one model or user's shader (visibility and shading, for analytic
+//! shapes and meshes), the bind group layouts they share, and one pass over the scene's objects.
 
 use super::layouts::Layouts;
+use super::layouts::USER_PARAMS_BINDING;
 use super::objects::GpuObject;
 use super::{COLOR_FORMAT, DEPTH_FORMAT, ID_FORMAT, SHADER, Tile};
 use crate::context::{GpuError, validated};
 use crate::spec::Instance;
+use crate::user::UserShader;
 use std::collections::HashMap;
 
 /// The pipelines of one specular model: the visibility pass (`_id`: depth and the nearest
@@ -86,7 +88,8 @@ impl ScenePass<'_> {
 }
 
 impl Pipelines {
-    /// Compiles the render shader with the model `instance` (a BRDF) as `rd_brdf`.
+    /// Compiles the render shader with the model `instance` (a BRDF) as `rd_brdf` (its value
+    /// in R, G and B).
     pub(super) fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
@@ -99,11 +102,38 @@ impl Pipelines {
             )));
         }
         let glue = format!(
-            "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> f32 {{\n    return {}(wi, wo);\n}}\n",
+            "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>({}(wi, wo));\n}}\n",
             instance.function
         );
         let src = format!("{}\n{SHADER}\n{glue}", instance.module_source());
         let what = format!("render shader of {}", instance.info.id);
+        Self::compile(device, layouts, &what, src)
+    }
+
+    /// Compiles the render shader with a user's shader as `rd_brdf` (R, G, B: the whole
+    /// BRDF), its parameters at group 1 binding [`USER_PARAMS_BINDING`].
+    pub(super) fn user(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        shader: &UserShader,
+    ) -> Result<Self, GpuError> {
+        let user = shader
+            .wgsl_at(1, USER_PARAMS_BINDING)
+            .map_err(|e| GpuError::Input(e.message))?;
+        let glue = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {\n    return fb_user_brdf(wi, wo);\n}\n";
+        let src = format!("{user}\n{SHADER}\n{glue}");
+        let what = format!("render shader of {}", shader.name());
+        Self::compile(device, layouts, &what, src)
+    }
+
+    /// The four pipelines of the completed render shader `src`; `what` names it in errors.
+    fn compile(
+        device: &wgpu::Device,
+        layouts: &Layouts,
+        what: &str,
+        src: String,
+    ) -> Result<Self, GpuError> {
+        let what = what.to_string();
         validated(device, &what, || {
             let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                 label: Some(&what),

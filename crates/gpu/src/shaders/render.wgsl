@@ -8,7 +8,9 @@
 // model functions' own CPU-GPU differences (tests/parity.rs).
 //
 // The module is completed at run time by the model library (`spec::Instance::module_source`)
-// and one line defining `rd_brdf(wi, wo)` as the model's `fb_<id>`.
+// and a function `rd_brdf(wi, wo) -> vec3<f32>` calling the model's `fb_<id>` (its value in
+// R, G and B), or by a user's shader (`user::UserShader::wgsl_at`, its parameters at group 1
+// binding 5) and `rd_brdf` calling its `fb_user_brdf` (R, G, B: the whole BRDF).
 
 /// Per-frame (per-tile) data. Vectors are vec4 to keep the uniform layout obvious.
 struct Frame {
@@ -100,6 +102,7 @@ struct BvhNode {
 @group(1) @binding(3) var<storage, read> mesh_t: array<u32>;
 /// The model instance's coefficients (spec::Emit::storage).
 @group(1) @binding(4) var<storage, read> fb_k: array<f32>;
+// Binding 5 of group 1: a user's parameters (`fb_user_params`), declared by its module.
 /// The visibility pass's result, read by the shading pass only: per sample, the object
 /// nearest along the primary ray (its index plus one; 0: none) and, for a mesh, its triangle.
 @group(2) @binding(0) var rd_ids: texture_2d<u32>;
@@ -660,6 +663,8 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
             let f = rd_orthonormal_pair(n);
             let wi = vec3<f32>(rd_dot(l, f.t), rd_dot(l, f.b), cos_i);
             let wo = vec3<f32>(rd_dot(v, f.t), rd_dot(v, f.b), rd_dot(v, n));
+            // rd_brdf is R, G, B (a model's one value in all three): per channel the CPU's
+            // `li * (ks * f * cos)`, grey or RGB (render.rs, `add_specular`).
             radiance += li * (ks * rd_brdf(wi, wo) * cos_i);
         }
     }
