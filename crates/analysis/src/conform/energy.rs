@@ -277,7 +277,7 @@ mod tests {
             errors.push((s - std::f64::consts::PI).abs());
         }
         assert!(
-            errors[2] < 1e-5 && errors[2] < errors[1] && errors[1] < errors[0],
+            errors[2] < 1e-6 && errors[2] < errors[1] && errors[1] < errors[0],
             "{errors:?}"
         );
     }
