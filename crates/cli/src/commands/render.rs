@@ -7,6 +7,7 @@ use super::common::scene::{SceneArgs, check_out, material_and_metal};
 use crate::CliError;
 use crate::model_args::{ModelArgs, Use};
 use fastbrdf::ModelSpec;
+use fastbrdf_gpu::user::{GpuBrdf, UserError, UserErrorKind, UserShader};
 use fastbrdf_render::film::Film;
 use fastbrdf_render::render::Options;
 use fastbrdf_render::scene::Specular;
@@ -45,7 +46,8 @@ fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlat
 pub struct RenderArgs {
     /// Specular model id (a lobe, a distribution or a BRDF), or a user's model `file:PATH` (a
     /// BRDF Explorer `.brdf` file, a `.wgsl` or `.glsl` function: the whole BRDF, rendered
-    /// with weights 0,1, its values from the GPU evaluator).
+    /// with weights 0,1, its values from the GPU evaluator; with --gpu its shader runs in the
+    /// GPU renderer's).
     #[arg(long)]
     model: String,
     #[command(flatten)]
@@ -58,8 +60,9 @@ pub struct RenderArgs {
     out: PathBuf,
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
-    /// Grey models only: a coloured one (--metal, R,G,B values) is CPU-only for now, and so is
-    /// --env. Shadows as on the CPU (--shadows on|off).
+    /// Grey models and users' models (file:PATH, their shader spliced into the GPU's): a
+    /// coloured registry model (--metal, R,G,B values) is CPU-only for now, and so is --env.
+    /// Shadows as on the CPU (--shadows on|off).
     #[arg(long)]
     gpu: bool,
 }
@@ -104,6 +107,81 @@ fn render_model_gpu(
     Ok((film, gpu.label()))
 }
 
+/// A user's failure as the CLI's: the file's errors exit 2, the GPU's 1.
+fn user_error(e: UserError) -> CliError {
+    CliError {
+        code: match e.kind {
+            UserErrorKind::Input => crate::EXIT_INPUT,
+            UserErrorKind::Gpu => crate::EXIT_CHECK_FAILED,
+        },
+        message: e.message,
+    }
+}
+
+/// Renders a user's model (`file:PATH`) on the GPU: its shader spliced into the render shader
+/// (`fastbrdf_gpu::render::render_user`), the whole BRDF with weights 0, 1 as on the CPU;
+/// returns the film and the adapter's label. The scene is the CPU's (its RGB BRDF the
+/// shader's compute evaluator on the same device, which the GPU renderer does not call).
+fn render_user_gpu(
+    a: &RenderArgs,
+    spec: &SceneSpec,
+    loaded: &setup::Loaded,
+    opts: &Options,
+) -> Result<(Film, String), CliError> {
+    let path = a
+        .model
+        .strip_prefix(crate::model_args::USER_PREFIX)
+        .unwrap_or("");
+    if path.is_empty() {
+        return Err(CliError::input(
+            "--model file:: no path after 'file:' (e.g. --model file:my.brdf)",
+        ));
+    }
+    for (flag, given) in [
+        ("--material", &a.model_args.material.material),
+        ("--metal", &a.model_args.metal.metal),
+    ] {
+        if let Some(m) = given {
+            return Err(CliError::input(format!(
+                "{flag} {m}: a user's model ({}) takes its values from --param only",
+                a.model
+            )));
+        }
+    }
+    if spec.env.is_some() {
+        return Err(CliError::input(
+            "--gpu: environment lighting (--env) is CPU-only: drop --gpu (the GPU renderer is a rasteriser without rays to sample the map with)".to_string(),
+        ));
+    }
+    // The file and the values are checked before a device is opened.
+    let shader = UserShader::load(std::path::Path::new(path)).map_err(user_error)?;
+    let given = a.model_args.param.pairs()?;
+    let values = shader.values(&given).map_err(user_error)?;
+    let gpu = fastbrdf_gpu::Gpu::new()?;
+    let brdf = GpuBrdf::new(&gpu.device, &gpu.queue, shader.clone(), &given).map_err(user_error)?;
+    let mut whole = spec.clone();
+    (whole.kd, whole.ks) = (0.0, 1.0);
+    let specular = Specular::rgb(&a.model, Arc::new(UserRgb::new(Arc::new(brdf))));
+    let scene = setup::scene(&whole, loaded, Arc::new(specular));
+    let pb = bar(1, "render (GPU)");
+    let film = fastbrdf_gpu::render::render_user(
+        &gpu.device,
+        &gpu.queue,
+        &scene,
+        opts,
+        &shader,
+        &values,
+        &|d, t| {
+            pb.set_length(t as u64);
+            pb.set_position(d as u64);
+        },
+    )?;
+    pb.finish_and_clear();
+    film.check_finite()
+        .map_err(|e| CliError::input(format!("--model {}: {e}", a.model)))?;
+    Ok((film, gpu.label()))
+}
+
 pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let (mut spec, opts) = a.scene.spec()?;
     material_and_metal(&mut spec, &a.scene, &a.model_args, &a.model)?;
@@ -111,10 +189,8 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let loaded = setup::load(&spec)?;
     let t = std::time::Instant::now();
     if a.gpu && crate::model_args::is_user(&a.model) {
-        return Err(CliError::input(format!(
-            "--gpu: a user's model ({}) renders on the CPU for now (its values still come from the GPU evaluator): drop --gpu",
-            a.model
-        )));
+        let (film, label) = render_user_gpu(a, &spec, &loaded, &opts)?;
+        return finish(a, &spec, &opts, film, t, format!(", GPU: {label}"));
     }
     if let Some(user) = a.model_args.user(&a.model)? {
         // A user's model: the whole BRDF (weights 0, 1), shaded by the CPU renderer with its
