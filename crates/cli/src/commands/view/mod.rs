@@ -46,7 +46,8 @@
 //! - stderr: after start-up the server writes to stderr ignoring failures (a closed pipe, as in
 //!   `fastbrdf view 2>&1 | head -1`), so that losing stderr never stops it.
 //!
-//! Where it lives: [`state`] (what the handlers share), [`flip`] (FLIP off the requests'
+//! Where it lives: [`state`] (what the handlers share), [`users`] (the users' models of
+//! `--model file:PATH`, compiled on the GPU per set of values), [`flip`] (FLIP off the requests'
 //! critical path), [`request`] (the checks and
 //! [`handle`](request::handle)), [`server`] (the transport), [`api`] (the endpoints: the query
 //! parsed into model specs once per request), `page.html`, [`cdp`] (the DevTools client).
