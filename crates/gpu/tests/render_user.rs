@@ -256,7 +256,7 @@ fn wrong_values_and_rgb_without_a_shader_are_errors() {
     let Some(gpu) = common::gpu() else { return };
     let m = Model::load("brdf-explorer/walter.brdf", &[]);
     let scene = m.scene(gpu);
-    let e = render_user(
+    let Err(e) = render_user(
         &gpu.device,
         &gpu.queue,
         &scene,
@@ -264,17 +264,17 @@ fn wrong_values_and_rgb_without_a_shader_are_errors() {
         &m.shader,
         &[],
         &|_, _| {},
-    )
-    .err()
-    .expect("no values for five parameters");
+    ) else {
+        panic!("no values for five parameters rendered");
+    };
     let msg = e.to_string();
     assert!(
         msg.contains("walter.brdf") && msg.contains("0 parameter values for its 5"),
         "{msg}"
     );
-    let e = gpu_render(&gpu.device, &gpu.queue, &scene, &opts())
-        .err()
-        .expect("an RGB BRDF without a shader");
+    let Err(e) = gpu_render(&gpu.device, &gpu.queue, &scene, &opts()) else {
+        panic!("an RGB BRDF without a shader rendered");
+    };
     let msg = e.to_string();
     assert!(
         msg.contains("walter.brdf") && msg.contains("RGB BRDF"),
