@@ -294,15 +294,17 @@ pub fn run(
 
 /// Pearson's statistic over `(observed, expected)` cells with Mitsuba's pooling: cells in
 /// increasing order of expected count, those expecting fewer than 5 pooled (and cells after
-/// them while the pool expects fewer than 5). Returns `(chi2, dof, pooled, impossible)`.
-fn statistic(cells: &mut [(f64, f64)]) -> (f64, usize, usize, bool) {
+/// them while the pool expects fewer than 5). Returns `(chi2, dof, pooled, impossible)`: a
+/// cell observed but expecting nothing (or NaN) makes the histogram impossible under the pdf.
+/// Shared with `fastbrdf conform`'s batched test.
+pub fn statistic(cells: &mut [(f64, f64)]) -> (f64, usize, usize, bool) {
     const MIN: f64 = 5.0;
     cells.sort_by(|a, b| a.1.total_cmp(&b.1));
     let (mut chi2, mut dof, mut pooled) = (0.0, 0usize, 0usize);
     let (mut pin, mut pexp) = (0.0, 0.0);
     let mut impossible = false;
     for &(o, e) in cells.iter() {
-        if e <= 0.0 && o > 0.0 {
+        if !(e > 0.0) && o > 0.0 {
             impossible = true;
         }
         if e < MIN || (pin > 0.0 && pexp < MIN) {

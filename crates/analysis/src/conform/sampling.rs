@@ -83,7 +83,7 @@ fn angle(m: &Batched, deg: f64, index: u64, cfg: &Config) -> Result<Angle, Strin
         .map(|(&o, &x)| (o, x * scale))
         .collect();
     cells.push((missing, (n as f64 - integral * scale).max(0.0)));
-    let (chi2, dof, impossible) = statistic(&mut cells);
+    let (chi2, dof, _, impossible) = fastbrdf::chi2::statistic(&mut cells);
     let p_value = if impossible {
         0.0
     } else if dof == 0 || !chi2.is_finite() {
@@ -219,37 +219,6 @@ fn cells(
             }
         }
     }
-}
-
-/// Pearson's statistic with Mitsuba's pooling (`fastbrdf::chi2`'s): cells in increasing order
-/// of expected count, those expecting fewer than 5 pooled. `(chi2, dof, impossible)`.
-fn statistic(cells: &mut [(f64, f64)]) -> (f64, usize, bool) {
-    const MIN: f64 = 5.0;
-    cells.sort_by(|a, b| a.1.total_cmp(&b.1));
-    let (mut chi2, mut dof) = (0.0, 0usize);
-    let (mut pin, mut pexp) = (0.0, 0.0);
-    let mut impossible = false;
-    for &(o, e) in cells.iter() {
-        if !(e > 0.0) && o > 0.0 {
-            impossible = true;
-        }
-        if e < MIN || (pin > 0.0 && pexp < MIN) {
-            pin += o;
-            pexp += e;
-        } else {
-            chi2 += (o - e) * (o - e) / e;
-            dof += 1;
-        }
-    }
-    if pin + pexp > 0.0 {
-        if pexp > 0.0 {
-            chi2 += (pin - pexp) * (pin - pexp) / pexp;
-        } else if pin > 0.0 {
-            impossible = true;
-        }
-        dof += 1;
-    }
-    (chi2, dof.saturating_sub(1), impossible)
 }
 
 fn chi2_check(angles: &[Angle], threshold: f64, cfg: &Config) -> Check {
