@@ -9,9 +9,17 @@
 
 const float PI = 3.14159265358979;
 
+// Directions with a NaN or infinite component give 0, tested on the bits: a GPU may assume
+// that floats are never NaN and fold a comparison with one (lavapipe does).
+bool nonFinite(vec3 v)
+{
+    uvec3 b = floatBitsToUint(v) & 0x7fffffffu;
+    return any(greaterThanEqual(b, uvec3(0x7f800000u)));
+}
+
 vec3 brdf(vec3 wi, vec3 wo)
 {
-    if (wi.z <= 0 || wo.z <= 0) return vec3(0);
+    if (nonFinite(wi) || nonFinite(wo) || wi.z <= 0 || wo.z <= 0) return vec3(0);
     vec3 h = normalize(wi + wo);
     float spec = (n + 8) / (8 * PI) * pow(max(h.z, 0), n);
     return (diffuse ? kd / PI : vec3(0)) + ks * spec;

@@ -18,8 +18,15 @@ fn smith_g1(c: f32) -> f32 {
     return 2.0 * c / (c + sqrt(a2 + (1.0 - a2) * c * c));
 }
 
+// Directions with a NaN or infinite component give 0, tested on the bits: a GPU may assume
+// that floats are never NaN and fold a comparison with one (lavapipe does).
+fn non_finite(v: vec3<f32>) -> bool {
+    let b = bitcast<vec3<u32>>(v) & vec3<u32>(0x7fffffffu);
+    return any(b >= vec3<u32>(0x7f800000u));
+}
+
 fn brdf(wi: vec3<f32>, wo: vec3<f32>) -> f32 {
-    if wi.z <= 0.0 || wo.z <= 0.0 {
+    if non_finite(wi) || non_finite(wo) || wi.z <= 0.0 || wo.z <= 0.0 {
         return 0.0;
     }
     let h = normalize(wi + wo);
