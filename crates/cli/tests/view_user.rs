@@ -224,6 +224,34 @@ fn a_user_model_is_listed_plotted_compared_and_rendered() {
         "{back}"
     );
 
+    // Each set of values is its own compiled instance, past the ones kept: a value seen
+    // before gives the same numbers again, another value other numbers.
+    let polar_at = |a: &str| {
+        let v = ok_json(
+            &s.addr,
+            &format!("/api/plots?models=walter.brdf&alphaG={a}&Ks=1"),
+        );
+        numbers(&v["models"][0]["polar"])
+    };
+    let first = polar_at("0.3");
+    let mut seen = vec![];
+    for k in 0..10 {
+        let p = polar_at(&format!("0.{}", 40 + k));
+        assert_ne!(p, first);
+        assert!(!seen.contains(&p));
+        seen.push(p);
+    }
+    assert_eq!(polar_at("0.3"), first);
+
+    // A user's model as the reference of the pictures: rendered first.
+    let pic = ok_json(
+        &s.addr,
+        "/api/render?models=cook-torrance,walter.brdf&ref=walter.brdf&size=16&flip=none",
+    );
+    assert_eq!(pic["reference"], "walter.brdf");
+    assert_eq!(pic["images"][0]["id"], "walter.brdf");
+    assert_eq!(pic["diffs"][0]["id"], "cook-torrance");
+
     // Pictures: the user's model rendered beside the registry reference.
     let pic = ok_json(&s.addr, &format!("/api/render?{q}&size=32&spp=1&flip=none"));
     let imgs: Vec<&str> = pic["images"]
