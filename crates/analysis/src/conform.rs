@@ -49,6 +49,7 @@ use fastbrdf::user::UserBrdf;
 use serde::Serialize;
 
 pub use eval::Batched;
+pub use values::Agreement;
 
 /// Sizes and tolerances of one run.
 #[derive(Clone, Debug)]
@@ -317,6 +318,19 @@ pub fn albedo(
 ) -> Result<(Vec<f64>, bool), String> {
     let a = energy::albedo(&Batched::new(model, cfg.batch)?, wo_at(theta_o_deg), cfg)?;
     Ok((a.value, a.converged))
+}
+
+/// How `model` agrees with `reference` on the `reference` check's pair set (the numbers that
+/// check holds to its limit): `fastbrdf errors` for users' models.
+pub fn agreement(
+    model: &dyn UserBrdf,
+    reference: &dyn UserBrdf,
+    cfg: &Config,
+) -> Result<Agreement, String> {
+    let m = Batched::new(model, cfg.batch)?;
+    let set = grid::pairs(cfg);
+    let v = values::Values::eval(&m, &set)?;
+    v.agreement(&Batched::new(reference, cfg.batch)?, &set, cfg)
 }
 
 /// `x` in 3 significant digits (`NaN`, `inf` as such).

@@ -142,7 +142,9 @@ fn bad_user_models_are_exit_2_naming_the_input_with_nothing_on_stdout() {
         ),
         (vec!["eval", "--model", &glsl], "compile_error.glsl:7:"),
         (
-            vec!["render", "--gpu", "--model", &walter, "--out", "x.png"],
+            vec![
+                "render", "--gpu", "--model", &walter, "--env", "sky", "--out", "x.png",
+            ],
             "--gpu",
         ),
     ];
@@ -215,4 +217,100 @@ fn render_and_compare_take_a_user_model() {
     // The same BRDF through the GPU evaluator (f32) and the registry: a near-perfect match.
     assert!(m["psnr"].as_f64().is_none_or(|p| p > 40.0), "{j}");
     assert_eq!(listing(&d), ["cmp.png", "walter.png"]);
+}
+
+#[test]
+fn errors_and_albedo_take_a_user_model() {
+    if !have_gpu() {
+        return;
+    }
+    let walter = model("brdf-explorer/walter.brdf");
+    let o = fastbrdf(
+        &[
+            "errors",
+            "--model",
+            &walter,
+            "--reference",
+            "cook-torrance",
+            "--param",
+            "Ks=1",
+            "--param",
+            "alphaG=0.2",
+            "--param",
+            "alpha=0.2",
+            "--param",
+            "d=ggx",
+            "--param",
+            "g=smith-ggx",
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    // The same BRDF: within 1e-5 of the reference's peak on conform's pair set.
+    assert!(j["max_abs_of_peak"].as_f64().unwrap() < 1e-5, "{j}");
+    assert!(j["pairs"].as_u64().unwrap() > 20_000, "{j}");
+    // A different roughness is seen.
+    let o = fastbrdf(
+        &[
+            "errors",
+            "--model",
+            &walter,
+            "--reference",
+            "cook-torrance",
+            "--param",
+            "Ks=1",
+            "--param",
+            "alphaG=0.25",
+            "--param",
+            "alpha=0.2",
+            "--param",
+            "d=ggx",
+            "--param",
+            "g=smith-ggx",
+            "--csv",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let row: Vec<String> = stdout(&o)
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(String::from)
+        .collect();
+    assert!(row[4].parse::<f64>().unwrap() > 1e-3, "{row:?}");
+    // --n sweeps registry parameters: refused with a user's model.
+    let o = fastbrdf(
+        &[
+            "errors",
+            "--model",
+            &walter,
+            "--reference",
+            "ward",
+            "--m",
+            "0.1",
+        ],
+        "",
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(o.stdout.is_empty());
+    let o = fastbrdf(
+        &[
+            "albedo",
+            "--model",
+            &model("user/broken_energy_gain.brdf"),
+            "--angles",
+            "0,60",
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(j["conserves"], false, "{j}");
+    let a = j["rows"][0]["albedo"].as_f64().unwrap();
+    assert!((a - 1.2).abs() < 1e-4, "{j}");
 }

@@ -320,7 +320,8 @@ impl Specular {
     /// An RGB BRDF (a measured material, a fitted model) named `label`, shaded by scalar
     /// lookups in f32 (`RgbBrdf::eval_rgb`); the whole BRDF, diffuse part included, so a scene
     /// usually gives it the weights 0, 1. With the environment light only the map's
-    /// directions are used for it (no BRDF sampling); the GPU renderer refuses it.
+    /// directions are used for it (no BRDF sampling); the GPU renderer refuses it unless given
+    /// the user's shader (`fastbrdf_gpu::render::render_user`).
     pub fn rgb(label: &str, brdf: Arc<dyn RgbBrdf>) -> Self {
         Self {
             id: label.into(),

@@ -144,8 +144,8 @@ impl Values {
         .at(at))
     }
 
-    /// The model against `r` on the pair set.
-    pub fn reference(&self, r: &Batched, set: &Pairs, cfg: &Config) -> Result<Check, String> {
+    /// The model against `r` on the pair set: the numbers of the `reference` check.
+    pub fn agreement(&self, r: &Batched, set: &Pairs, cfg: &Config) -> Result<Agreement, String> {
         let (c, rc) = (self.channels, r.channels);
         if c != rc && c != 1 && rc != 1 {
             return Err(format!(
@@ -177,34 +177,75 @@ impl Values {
                 }
             }
         }
-        let rms = (sq / count.max(1) as f64).sqrt();
-        let value = if rpeak > 0.0 { abs.0 / rpeak } else { abs.0 };
-        let pass = value <= cfg.reference_tol;
-        let (ka, kr) = (abs.1, rel.1);
+        let at = |(_, k, j): (f64, usize, usize)| At {
+            channel: (n > 1).then_some(j),
+            ..pair_at(set.wi[k], set.wo[k]).unwrap()
+        };
+        Ok(Agreement {
+            max_abs: abs.0,
+            reference_peak: rpeak,
+            max_abs_of_peak: if rpeak > 0.0 { abs.0 / rpeak } else { abs.0 },
+            max_abs_at: at(abs),
+            max_rel: rel.0,
+            max_rel_at: at(rel),
+            rel_floor: cfg.reference_floor,
+            rms: (sq / count.max(1) as f64).sqrt(),
+            pairs: set.wi.len(),
+            channels: n,
+        })
+    }
+
+    /// The model against `r` on the pair set.
+    pub fn reference(&self, r: &Batched, set: &Pairs, cfg: &Config) -> Result<Check, String> {
+        let a = self.agreement(r, set, cfg)?;
+        let pass = a.max_abs_of_peak <= cfg.reference_tol;
+        let (wa, wr) = (&a.max_abs_at, &a.max_rel_at);
+        let pair = |w: &At| pair_text(w.wi.unwrap(), w.wo.unwrap());
         Ok(Check::new(
             "reference",
             pass,
-            value,
+            a.max_abs_of_peak,
             cfg.reference_tol,
             format!(
                 "max |f - ref| = {} ({} of the reference's peak {}, limit {}){}{}; max relative error {} (where ref > {} of its peak){}; RMS {} over solid angle",
-                num(abs.0),
-                num(value),
-                num(rpeak),
+                num(a.max_abs),
+                num(a.max_abs_of_peak),
+                num(a.reference_peak),
                 num(cfg.reference_tol),
-                pair_text(set.wi[ka], set.wo[ka]),
-                channel_text(n, abs.2),
-                num(rel.0),
+                pair(wa),
+                channel_text(a.channels, wa.channel.unwrap_or(0)),
+                num(a.max_rel),
                 num(cfg.reference_floor),
-                pair_text(set.wi[kr], set.wo[kr]),
-                num(rms)
+                pair(wr),
+                num(a.rms)
             ),
         )
-        .at(Some(At {
-            channel: (n > 1).then_some(abs.2),
-            ..pair_at(set.wi[ka], set.wo[ka]).unwrap()
-        })))
+        .at(Some(a.max_abs_at.clone())))
     }
+}
+
+/// How a model agrees with a reference on conform's pair set (the grid, grazing pairs
+/// included, and the uniform random pairs): what `reference` holds to its limit and what
+/// `fastbrdf errors --model file:PATH` prints.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Agreement {
+    /// The largest `|f - ref|` over pairs and channels (non-finite values skipped).
+    pub max_abs: f64,
+    /// The reference's largest finite value.
+    pub reference_peak: f64,
+    /// `max_abs / reference_peak`: the check's number.
+    pub max_abs_of_peak: f64,
+    pub max_abs_at: At,
+    /// The largest `|f - ref| / |ref|` where `|ref| > rel_floor * reference_peak`.
+    pub max_rel: f64,
+    pub max_rel_at: At,
+    pub rel_floor: f64,
+    /// The RMS of `f - ref` over the uniform random pairs (over solid angle).
+    pub rms: f64,
+    /// Direction pairs compared.
+    pub pairs: usize,
+    /// Channels compared (the larger of the two).
+    pub channels: usize,
 }
 
 fn channel_text(n: usize, j: usize) -> String {

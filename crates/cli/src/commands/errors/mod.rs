@@ -5,6 +5,7 @@
 
 mod measured;
 mod over_materials;
+mod user;
 
 use super::common::numbers::{csv_num, swept};
 use super::common::progress::bar;
@@ -68,8 +69,7 @@ max absolute error, divided by the reference's peak for non-lobes) is at most --
 as outside, not measured.",
     mut_arg("material", |a| a.help(ERRORS_MATERIAL_HELP).conflicts_with("over")),
     mut_arg("params", |a| a
-        .help("With --measured: a model parameter NAME=VALUE (d=ggx, f=schlick, ...); repeat")
-        .requires("measured"))
+        .help("With --measured or a user's model (file:PATH): a model parameter NAME=VALUE (d=ggx, f=schlick, ...); repeat"))
 )]
 pub struct Args {
     /// The approximation (with --over materials: optional, default every model with a
@@ -137,6 +137,14 @@ pub struct Args {
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
+    let user = [&a.model, &a.reference]
+        .iter()
+        .any(|id| id.as_deref().is_some_and(crate::model_args::is_user));
+    if !a.params.params.is_empty() && a.measured.is_none() && !user {
+        return Err(CliError::input(
+            "--param: only with --measured or a user's model (file:PATH)",
+        ));
+    }
     if a.over.is_some() {
         return over_materials::run(&over_materials::Args {
             model: a.model.as_deref(),
@@ -188,6 +196,14 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             "give --model and --reference (or --over materials)",
         ));
     };
+    if crate::model_args::is_user(model) || crate::model_args::is_user(reference) {
+        if a.n.is_some() || a.m.is_some() || a.material.material.is_some() {
+            return Err(CliError::input(
+                "--n, --m and --material sweep registry parameters: with a user's model (file:PATH) give its values with --param",
+            ));
+        }
+        return user::run(model, reference, &a.params.pairs()?, a.json, a.csv);
+    }
     let material = a.material.get()?;
     let from_material;
     let (param, text, step) = match (&a.n, &a.m, material) {
