@@ -3,7 +3,8 @@
 //! drains), and with the transfers (upload, dispatch, read back) for comparison.
 //!
 //! A software adapter (lavapipe) runs the shader on the CPU's cores: its figures are CPU
-//! figures, and `context::label` says so wherever they are printed.
+//! figures, and `context::label` says so wherever they are printed. Users' shaders are timed
+//! by the same method (`user::bench`).
 
 use crate::compute::{GpuInput, GpuKernel};
 use crate::context::GpuError;
@@ -37,8 +38,28 @@ pub fn measure(
     let n = input.len();
     let k = GpuKernel::from_spec(device, spec)?;
     let r = k.upload(device, input)?;
+    let mut out = vec![0.0f32; n];
+    time(
+        device,
+        n,
+        budget,
+        &|repeat| k.dispatch(device, queue, &r, repeat),
+        &mut || k.eval(device, queue, input, &mut out),
+    )
+}
+
+/// The timing method of every GPU figure (built-in models and users' shaders alike, so their
+/// numbers compare): `dispatch(repeat)` submits `repeat` dispatches over `n` resident elements
+/// without waiting, `transfer()` uploads, dispatches and reads back the `n` elements.
+pub(crate) fn time(
+    device: &wgpu::Device,
+    n: usize,
+    budget: Duration,
+    dispatch: &dyn Fn(u32),
+    transfer: &mut dyn FnMut() -> Result<(), GpuError>,
+) -> Result<Measured, GpuError> {
     // Warm-up (pipeline compilation happens at the first dispatch on some drivers).
-    k.dispatch(device, queue, &r, 1);
+    dispatch(1);
     wait(device)?;
     // Double the dispatches per submission until one submission takes a quarter of the budget,
     // then keep the best of the rounds that fit in the budget.
@@ -48,7 +69,7 @@ pub fn measure(
     let mut rounds = 0;
     loop {
         let t = Instant::now();
-        k.dispatch(device, queue, &r, repeat);
+        dispatch(repeat);
         wait(device)?;
         let dt = t.elapsed().as_secs_f64();
         best = best.max(n as f64 * repeat as f64 / dt);
@@ -64,13 +85,12 @@ pub fn measure(
             break;
         }
     }
-    let mut out = vec![0.0f32; n];
     let mut best_t = f64::INFINITY;
     let start = Instant::now();
     let mut rounds = 0;
     while rounds < 3 || (start.elapsed() < budget && rounds < 12) {
         let t = Instant::now();
-        k.eval(device, queue, input, &mut out)?;
+        transfer()?;
         best_t = best_t.min(t.elapsed().as_secs_f64());
         rounds += 1;
     }

@@ -10,6 +10,7 @@
 //!   mapped back to the user's file, line and column, WGSL out.
 //! - `eval`: the GPU side (batches in storage buffers, chunked, 2-D dispatches).
 
+pub mod bench;
 mod eval;
 mod parse;
 mod translate;
