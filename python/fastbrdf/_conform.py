@@ -51,8 +51,10 @@ def conform(
 
     ``model`` (and ``reference``, compared against it: the ``reference`` check) is a registry
     id (with its parameters as keywords, and ``material`` and ``metal`` as for :class:`Model`;
-    a ``reference`` id takes its defaults: give a :class:`Model` for others), a :class:`Model`,
-    or any object with
+    a ``reference`` id takes its defaults: give a :class:`Model` for others), a user's shader
+    ``"file:PATH"`` (a BRDF Explorer ``.brdf`` file or a ``.wgsl``/``.glsl`` function, compiled
+    on the GPU with its parameters as keywords, as the CLI's ``--model file:PATH``), a
+    :class:`Model`, or any object with
     ``eval(wi, wo)`` and, optionally, ``sample(wo, u)`` and ``pdf(wo, wi)`` on numpy arrays, in
     fastbrdf's conventions (local frame, normal +z, both directions pointing away from the
     surface, ``f`` without the cosine):

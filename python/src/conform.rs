@@ -62,6 +62,7 @@ pub(crate) fn conform_json(
             let (m_cb, r_cb);
             let m: &dyn UserBrdf = match &model {
                 Source::Builtin(b) => b,
+                Source::Gpu(g) => g,
                 Source::Object(o) => {
                     m_cb = Callbacks::new(o, &shared, cancel);
                     &m_cb
@@ -70,6 +71,7 @@ pub(crate) fn conform_json(
             let r: Option<&dyn UserBrdf> = match &reference {
                 None => None,
                 Some(Source::Builtin(b)) => Some(b),
+                Some(Source::Gpu(g)) => Some(g),
                 Some(Source::Object(o)) => {
                     r_cb = Callbacks::new(o, &shared, cancel);
                     Some(&r_cb)
@@ -89,6 +91,8 @@ pub(crate) fn conform_json(
 /// A model to check: a registry model, or a Python object.
 enum Source {
     Builtin(Builtin),
+    /// A user's shader (`file:PATH`) on the GPU.
+    Gpu(fastbrdf_gpu::user::GpuBrdf),
     Object(Object),
 }
 
@@ -106,6 +110,17 @@ impl Source {
                     "{arg}: a registry model is (id, params, material, metal): {e}"
                 ))
             })?;
+            if let Some(path) = id.strip_prefix("file:") {
+                return Self::file(
+                    path,
+                    &id,
+                    &params_arg(&params)?,
+                    material,
+                    metal,
+                    arg,
+                    strategy,
+                );
+            }
             let spec = full_spec(
                 &id,
                 &params_arg(&params)?,
@@ -122,6 +137,41 @@ impl Source {
             )));
         }
         Object::new(obj, arg).map(Self::Object)
+    }
+}
+
+impl Source {
+    /// A user's shader `file:PATH` (as the CLI's `--model file:PATH`), compiled on the GPU
+    /// with the values `given` (checked against the ranges the file declares).
+    fn file(
+        path: &str,
+        id: &str,
+        given: &[(String, String)],
+        material: Option<String>,
+        metal: Option<String>,
+        arg: &str,
+        strategy: Strategy,
+    ) -> PyResult<Self> {
+        if material.is_some() || metal.is_some() {
+            return Err(value_error(format!(
+                "{arg}: a user's model ({}) takes neither material nor metal",
+                fastbrdf_io::shorten(id, 60)
+            )));
+        }
+        if strategy != Strategy::Auto {
+            return Err(value_error(format!(
+                "strategy '{strategy}': a user's model samples as its file says"
+            )));
+        }
+        match fastbrdf_gpu::user::load(std::path::Path::new(path), given) {
+            Ok(g) => Ok(Self::Gpu(g)),
+            Err(e) => Err(match e.kind {
+                fastbrdf_gpu::user::UserErrorKind::Input => value_error(format!("{arg}: {e}")),
+                fastbrdf_gpu::user::UserErrorKind::Gpu => {
+                    PyRuntimeError::new_err(format!("{arg}: {e}"))
+                }
+            }),
+        }
     }
 }
 

@@ -416,3 +416,24 @@ def test_a_mitsuba_sampler_with_a_wrong_pdf_fails_chi2():
     mc = mitsuba_wrapper()
     r = fastbrdf.conform(mc.WrongPdf(0.1))
     assert failed(r) == ["chi2"], [(c["check"], c["summary"]) for c in r["checks"] if c["status"] == "fail"]
+
+
+LVP = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json"
+USER = ROOT / "crates" / "gpu" / "tests" / "data" / "user"
+
+
+def test_a_users_shader_file_is_checked_as_the_cli_checks_it(monkeypatch):
+    """``file:PATH`` as the CLI's ``--model file:PATH``: a WGSL shader that samples, compiled on
+    the GPU (lavapipe: the Vulkan driver tools/test.sh installs)."""
+    if os.path.exists(LVP) and not os.environ.get("VK_ICD_FILENAMES") and not os.environ.get("VK_DRIVER_FILES"):
+        monkeypatch.setenv("VK_ICD_FILENAMES", LVP)
+    monkeypatch.setenv("WGPU_BACKEND", os.environ.get("WGPU_BACKEND", "vulkan"))
+    good = fastbrdf.conform(f"file:{USER / 'ggx_sampled.wgsl'}", alpha=0.4)
+    assert good["passed"], good
+    assert status(good)["chi2"] == "pass"
+    bad = fastbrdf.conform(f"file:{USER / 'broken_pdf_scaled.wgsl'}")
+    assert failed(bad) == ["pdf-integral"]
+    with pytest.raises(ValueError, match="alpha"):
+        fastbrdf.conform(f"file:{USER / 'ggx_sampled.wgsl'}", alpha=7)
+    with pytest.raises(ValueError, match=r"compile_error.wgsl:7:"):
+        fastbrdf.conform(f"file:{USER / 'compile_error.wgsl'}")
