@@ -230,6 +230,7 @@ mod tests {
                 fma_fraction: None,
                 limit: None,
                 limit_fraction: None,
+                instructions: None,
             }],
             speedups: vec![],
             quick: true,

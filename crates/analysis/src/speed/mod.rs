@@ -42,7 +42,7 @@ pub use peers::{
     ftz_daz, ftz_note, max_mixed_error, peer_rows, peers,
 };
 pub use report::{
-    CompareRow, KernelRow, Report, SAVED_RUN_LIMIT, SLOWER_BELOW, SpeedupRow, compare,
+    CompareRow, Instructions, KernelRow, Report, SAVED_RUN_LIMIT, SLOWER_BELOW, SpeedupRow, compare,
 };
 pub use speedups::speedups;
 
@@ -279,6 +279,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
                 fma_fraction: fraction,
                 limit: limit.map(|l| l.0.into()),
                 limit_fraction: limit.map(|l| l.1),
+                instructions: None,
             }
         };
         let input = small_in.input(info.kind, small);

@@ -29,6 +29,43 @@ pub struct KernelRow {
     pub limit: Option<String>,
     #[serde(default)]
     pub limit_fraction: Option<f64>,
+    /// The SPIR-V instructions of the model's shader after `spirv-opt -O`, by class
+    /// (`fastbrdf_gpu::cost`: the committed table for the built-in models, counted at run time
+    /// for a user's shader, `file:PATH`); `null` when unknown (no `spirv-opt` for a user's
+    /// shader, a model the table lacks). A property of the model, the same on every row of
+    /// it; absent from runs saved before it existed.
+    #[serde(default)]
+    pub instructions: Option<Instructions>,
+}
+
+/// Instruction counts by class, as `fastbrdf_gpu::cost::Counts` (see its module
+/// documentation for the classes); `total` is the sum of the six.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Instructions {
+    pub arithmetic: u32,
+    pub transcendental: u32,
+    pub division_sqrt: u32,
+    pub branches: u32,
+    pub select: u32,
+    pub other: u32,
+    pub total: u32,
+}
+
+impl Instructions {
+    /// The sum of the six classes (a saved run's `total` must equal it).
+    pub fn sum(&self) -> u64 {
+        [
+            self.arithmetic,
+            self.transcendental,
+            self.division_sqrt,
+            self.branches,
+            self.select,
+            self.other,
+        ]
+        .iter()
+        .map(|&x| u64::from(x))
+        .sum()
+    }
 }
 
 /// One speedup.
@@ -107,6 +144,14 @@ impl Report {
                 return Err(bad(format!(
                     "kernels[{i}] ({} {}): evals_per_s = {} with batch {} is not a possible measurement",
                     k.model, k.variant, k.evals_per_s, k.batch
+                )));
+            }
+            if let Some(c) = k.instructions.filter(|c| c.sum() != u64::from(c.total)) {
+                return Err(bad(format!(
+                    "kernels[{i}] ({}): instructions.total = {} is not the sum of its classes ({})",
+                    k.model,
+                    c.total,
+                    c.sum()
                 )));
             }
             let fractions = [
@@ -224,6 +269,7 @@ mod tests {
             fma_fraction: None,
             limit: None,
             limit_fraction: None,
+            instructions: None,
         };
         let run = |kernels: Vec<KernelRow>| Report {
             cpu: "test".into(),
@@ -264,5 +310,72 @@ mod tests {
                 .iter()
                 .all(|r| r.ratio == 1.0 && !r.slower)
         );
+    }
+
+    /// `instructions` is written as null when unknown and as the counts object otherwise; a
+    /// saved run without it loads with none; a saved total that is not the sum of its classes
+    /// is refused, naming the row.
+    #[test]
+    fn instructions_are_null_or_counts_and_a_wrong_total_is_refused() {
+        let mut row = KernelRow {
+            model: "file:mine.brdf".into(),
+            variant: "gpu".into(),
+            batch: 1024,
+            evals_per_s: 1e7,
+            isa: "gpu".into(),
+            fma_fraction: None,
+            limit: None,
+            limit_fraction: None,
+            instructions: None,
+        };
+        let v = serde_json::to_value(&row).unwrap();
+        assert!(v["instructions"].is_null(), "{v}");
+        let c = Instructions {
+            arithmetic: 37,
+            transcendental: 4,
+            division_sqrt: 12,
+            branches: 4,
+            select: 0,
+            other: 13,
+            total: 70,
+        };
+        row.instructions = Some(c);
+        let v = serde_json::to_value(&row).unwrap();
+        assert_eq!(v["instructions"]["division_sqrt"], 12);
+        assert_eq!(v["instructions"]["total"], 70);
+        let mut old = v.clone();
+        old.as_object_mut().unwrap().remove("instructions");
+        let back: KernelRow = serde_json::from_value(old).unwrap();
+        assert_eq!(back.instructions, None);
+        let run = |kernels: Vec<KernelRow>| Report {
+            cpu: "test".into(),
+            isa: "avx2".into(),
+            threads: 1,
+            fma_per_s: 1e10,
+            div_per_s: None,
+            kernels,
+            speedups: vec![],
+            quick: true,
+            gpu: Some("test".into()),
+            peers: vec![],
+        };
+        let dir = std::env::temp_dir().join(format!("fastbrdf-speed-instr-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("run.json");
+        std::fs::write(
+            &path,
+            serde_json::to_string(&run(vec![row.clone()])).unwrap(),
+        )
+        .unwrap();
+        let loaded = Report::load(&path).unwrap();
+        assert_eq!(loaded.kernels[0].instructions, Some(c));
+        row.instructions = Some(Instructions { total: 71, ..c });
+        std::fs::write(&path, serde_json::to_string(&run(vec![row])).unwrap()).unwrap();
+        let e = Report::load(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("kernels[0] (file:mine.brdf)") && e.contains("71"),
+            "{e}"
+        );
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -15,6 +15,7 @@ pub(super) fn baseline(model: &str, secs: f64) -> KernelRow {
         fma_fraction: None,
         limit: None,
         limit_fraction: None,
+        instructions: None,
     }
 }
 
@@ -197,6 +198,7 @@ mod tests {
                 fma_fraction: None,
                 limit: None,
                 limit_fraction: None,
+                instructions: None,
             },
         ];
         let r = Report {

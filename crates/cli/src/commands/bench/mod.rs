@@ -2,9 +2,11 @@
 //! speedup claims, in one run (fastbrdf-analysis::speed).
 
 mod tables;
+mod users;
 
 use super::common::progress::bar;
 use crate::CliError;
+use crate::model_args::ParamArgs;
 use fastbrdf_analysis::speed::{self, Report};
 use std::path::PathBuf;
 use tables::{compare_table, gpu_tables, markdown, text};
@@ -14,6 +16,7 @@ use tables::{compare_table, gpu_tables, markdown, text};
     after_help = "Examples:\n  fastbrdf bench --quick\n  fastbrdf bench --json > bench.json\n  \
 fastbrdf bench --from bench.json --markdown\n  fastbrdf bench --models pow,power16,cook-torrance\n  \
 fastbrdf bench --gpu --quick\n  \
+fastbrdf bench --gpu --quick --models ggx,cook-torrance --model file:walter.brdf --param alphaG=0.3\n  \
 fastbrdf bench --quick --compare docs/bench/bench.json\n\n\
 Every run also races each lobe's (n = 200), Beckmann's and GGX's (alpha = 0.3) batch kernel against\n\
 the plain C loop a user would write (powf, exp2f, expf, squarings; compiled with the system C\n\
@@ -22,14 +25,20 @@ inputs, with both sides' error against the f64 model and the FTZ/DAZ state (\"C 
 --gpu adds, in the same run, each model's evaluations per second on the GPU with the data\n\
 resident (variant `gpu`) and with upload and read-back (`gpu+transfer`), batch min(--large,\n\
 4194304), and GPU speedup rows. The adapter is named in the output; a software adapter\n\
-(lavapipe, llvmpipe) runs on the CPU, and the output says its figures are CPU figures."
+(lavapipe, llvmpipe) runs on the CPU, and the output says its figures are CPU figures.\n\n\
+--model file:PATH (with --gpu) times a user's BRDF (a BRDF Explorer .brdf file or a .wgsl or .glsl\n\
+function; the book's user-shaders page) on the GPU by the same method, on the same direction\n\
+pairs, beside the built-in models, with its instruction count (counted with spirv-opt at run\n\
+time; without spirv-opt it shows as - and a note says why). Its rows are named file:PATH, with\n\
+[NAME=VALUE,...] when --param values are given (each file takes the --param values it\n\
+declares, checked against the declared ranges)."
 )]
 pub struct Args {
     /// About 10 s instead of about a minute (shorter timing rounds; one run of the large batch).
     #[arg(long)]
     quick: bool,
     /// Print JSON: {"cpu", "isa", "threads", "fma_per_s", "div_per_s", "kernels": [{model,
-    /// variant, batch, evals_per_s, isa, fma_fraction, limit, limit_fraction}], "speedups": [{name, measured, claimed, how}], "quick",
+    /// variant, batch, evals_per_s, isa, fma_fraction, limit, limit_fraction, instructions}], "speedups": [{name, measured, claimed, how}], "quick",
     /// "peers": [{model, params, batch, repeats, rounds, isa, kernel_evals_per_s,
     /// peer_evals_per_s, ratio, kernel_max_error, peer_max_error, peer, compiler, flags,
     /// libmvec, ftz, daz, kernel_limit, kernel_limit_fraction, peer_limit_fraction}], and with --gpu "gpu" (the adapter's label)}; GPU rows have variant
@@ -51,7 +60,11 @@ pub struct Args {
     /// ue4-phong-approx, sg-tuned, beckmann, beckmann-ct: their vectorised exp2's polynomial
     /// included, on FMA instruction sets) is held to that count, and its C loop, which calls
     /// libm's or libmvec's exponential, gets no peer_limit_fraction. Null where an uncounted
-    /// square root or transcendental makes the count meaningless.
+    /// square root or transcendental makes the count meaningless. `instructions` is the model's
+    /// shader's SPIR-V instruction count after spirv-opt -O, {arithmetic, transcendental,
+    /// division_sqrt, branches, select, other, total} (fastbrdf_gpu::cost; the committed table
+    /// for built-in models, counted at run time for a --model file), on every row of the model;
+    /// null when unknown.
     #[arg(long, conflicts_with = "markdown")]
     json: bool,
     /// Print the Markdown tables the book shows (docs/book/src/speed.md).
@@ -69,6 +82,16 @@ pub struct Args {
     /// Also measure every model on the GPU (wgpu; fails if there is no adapter).
     #[arg(long, conflicts_with = "from")]
     gpu: bool,
+    /// A user's model, file:PATH (a BRDF Explorer .brdf file, or a .wgsl or .glsl function),
+    /// timed on the GPU beside the built-in models (needs --gpu; --models chooses the
+    /// built-ins); repeatable. A bad file or a compile error is exit 2 before any timing,
+    /// naming the file, line and column.
+    #[arg(long = "model", value_name = "file:PATH", requires = "gpu")]
+    model: Vec<String>,
+    // The --model files' parameter values: each file takes the names it declares, checked
+    // against the declared range (`users::load`).
+    #[command(flatten)]
+    param: ParamArgs,
     /// Print only the GPU figures (with the CPU's all-thread SIMD figure beside them) and the
     /// GPU speedups; for a run made with --gpu.
     #[arg(long, conflicts_with = "json")]
@@ -83,7 +106,7 @@ pub struct Args {
 }
 
 /// Adds the GPU rows and speedups to a CPU run.
-fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
+fn add_gpu(r: &mut Report, a: &Args, users: &[users::UserModel]) -> Result<(), CliError> {
     use fastbrdf_gpu::compute::{CHUNK, GpuInput};
     let gpu = fastbrdf_gpu::Gpu::new()?;
     let label = gpu.label();
@@ -97,7 +120,7 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
             a.models.is_empty() || a.models.iter().any(|m| m == speed::registry_id(name))
         })
         .collect();
-    let pb = bar(configs.len() as u64, "bench --gpu");
+    let pb = bar((configs.len() + users.len()) as u64, "bench --gpu");
     for (name, spec) in &configs {
         let input = GpuInput::from(inputs.input(spec.kind(), inputs.cos.len()));
         let m = fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, spec, input, budget)?;
@@ -114,8 +137,14 @@ fn add_gpu(r: &mut Report, a: &Args) -> Result<(), CliError> {
                 fma_fraction: None,
                 limit: None,
                 limit_fraction: None,
+                instructions: None,
             });
         }
+        pb.inc(1);
+    }
+    for u in users {
+        r.kernels
+            .extend(users::measure(&gpu, u, &inputs, n, budget)?);
         pb.inc(1);
     }
     pb.finish_and_clear();
@@ -138,8 +167,16 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 )));
             }
             for m in &a.models {
+                if crate::model_args::is_user(m) {
+                    return Err(CliError::input(format!(
+                        "--models {}: a user's model is given with --model file:PATH (with --gpu)",
+                        fastbrdf_io::shorten(m, 60)
+                    )));
+                }
                 fastbrdf::registry::find(m)?;
             }
+            // Users' files are read, compiled and counted before a minute of timing.
+            let users = users::load(&a.model, &a.param.params)?;
             let pb = bar(1, "bench");
             let opts = speed::Options {
                 quick: a.quick,
@@ -153,8 +190,9 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             pb.finish_and_clear();
             let mut r = r;
             if a.gpu {
-                add_gpu(&mut r, a)?;
+                add_gpu(&mut r, a, &users)?;
             }
+            users::fill_builtin(&mut r.kernels);
             r
         }
     };

@@ -78,21 +78,31 @@ fn eng(x: f64) -> String {
     }
 }
 
-/// The instruction counts of the benchmark's configurations by name (`speed::configurations`),
-/// from the committed table (`fastbrdf_gpu::cost`: SPIR-V after `spirv-opt -O`, the same on
-/// every machine): `total (transcendental/division-sqrt/branches)`, or `-` for a name the
-/// table lacks (a saved run's model that no longer exists).
-fn instructions() -> impl Fn(&str) -> String {
-    let table: Vec<(String, Option<fastbrdf_gpu::cost::Counts>)> = speed::configurations()
-        .into_iter()
-        .map(|(name, spec)| (name, fastbrdf_gpu::cost::lookup(&spec)))
+/// The instruction counts of a run's models by name: the run's own (`instructions` of the
+/// model's rows: a user's shader is counted at run time), else the committed table of the
+/// benchmark's configurations (`speed::configurations`; `fastbrdf_gpu::cost`: SPIR-V after
+/// `spirv-opt -O`, the same on every machine), as `total (transcendental/division-sqrt/
+/// branches)`, or `-` when neither has them (a user's shader counted without `spirv-opt`, a
+/// saved run's model that no longer exists).
+fn instructions(r: &Report) -> impl Fn(&str) -> String + use<> {
+    let mut table: Vec<(String, speed::Instructions)> = r
+        .kernels
+        .iter()
+        .filter_map(|k| Some((k.model.clone(), k.instructions?)))
         .collect();
+    table.extend(
+        speed::configurations()
+            .into_iter()
+            .filter_map(|(name, spec)| {
+                let c = fastbrdf_gpu::cost::lookup(&spec)?;
+                Some((name, super::users::instructions(c)))
+            }),
+    );
     move |model: &str| {
         table
             .iter()
             .find(|(n, _)| n == model)
-            .and_then(|(_, c)| *c)
-            .map(|c| {
+            .map(|(_, c)| {
                 format!(
                     "{} ({}/{}/{})",
                     c.total, c.transcendental, c.division_sqrt, c.branches
@@ -142,7 +152,7 @@ fn table(r: &Report, md: bool) -> String {
             .iter()
             .find(|k| k.model == m && k.variant == variant && k.batch == batch)
     };
-    let instr = instructions();
+    let instr = instructions(r);
     let (gpu_md, gpu_md_rule, gpu_txt) = match gpu_batch {
         Some(b) => (
             format!(" GPU ({b}) | GPU with transfers ({b}) | instructions |"),
@@ -179,9 +189,15 @@ fn table(r: &Report, md: bool) -> String {
         let frac = get(m, "simd", 4096)
             .map(|k| limit_text(k.limit.as_deref(), k.limit_fraction, k.fma_fraction))
             .unwrap_or_else(|| "-".into());
+        // A user's model has GPU rows alone.
+        let gpu_only = r
+            .kernels
+            .iter()
+            .filter(|k| k.model == m)
+            .all(|k| k.variant.starts_with("gpu"));
         let isa = get(m, "simd", 4096)
             .map(|k| k.isa.clone())
-            .unwrap_or_else(|| "scalar".into());
+            .unwrap_or_else(|| if gpu_only { "gpu" } else { "scalar" }.into());
         let (g_md, g_txt) = match gpu_batch {
             Some(b) => (
                 format!(
@@ -277,7 +293,7 @@ pub fn gpu_tables(r: &Report, md: bool) -> String {
             "model (evals/s)", "cpu all simd", "gpu", "gpu+xfer", "gpu/cpu", "instr"
         );
     }
-    let instr = instructions();
+    let instr = instructions(r);
     for m in models {
         let cpu = get(m, "simd-threads").map(|k| k.0);
         let g = get(m, "gpu").map(|k| k.0);
@@ -503,9 +519,25 @@ mod tests {
 
     /// Every configuration the benchmark times has committed instruction counts (a new model
     /// or configuration needs `FASTBRDF_BLESS=1 cargo test -p fastbrdf-gpu --test cost`).
+    /// A run without rows: the committed table alone.
+    fn empty_run() -> Report {
+        Report {
+            cpu: "test".into(),
+            isa: "avx2".into(),
+            threads: 1,
+            fma_per_s: 1e10,
+            div_per_s: None,
+            kernels: vec![],
+            speedups: vec![],
+            quick: true,
+            gpu: None,
+            peers: vec![],
+        }
+    }
+
     #[test]
     fn every_benchmark_configuration_has_instruction_counts() {
-        let instr = instructions();
+        let instr = instructions(&empty_run());
         let configs = speed::configurations();
         assert!(configs.len() >= 40, "{} configurations", configs.len());
         for (name, spec) in &configs {
@@ -520,5 +552,58 @@ mod tests {
             );
         }
         assert_eq!(instr("no-such-model"), "-");
+    }
+
+    /// A run's own counts (a user's shader, counted at run time) are shown for its model; a
+    /// built-in model's come from the committed table; a model with neither shows `-`.
+    #[test]
+    fn a_runs_own_instruction_counts_are_shown() {
+        let counts = speed::Instructions {
+            arithmetic: 7,
+            transcendental: 3,
+            division_sqrt: 2,
+            branches: 1,
+            select: 0,
+            other: 4,
+            total: 17,
+        };
+        let row = |model: &str, instructions| speed::KernelRow {
+            model: model.into(),
+            variant: "gpu".into(),
+            batch: 1024,
+            evals_per_s: 1e6,
+            isa: "gpu".into(),
+            fma_fraction: None,
+            limit: None,
+            limit_fraction: None,
+            instructions,
+        };
+        let mut r = empty_run();
+        r.kernels = vec![
+            row("file:mine.brdf", Some(counts)),
+            row("file:uncounted.brdf", None),
+        ];
+        r.gpu = Some("test adapter".into());
+        let instr = instructions(&r);
+        assert_eq!(instr("file:mine.brdf"), "17 (3/2/1)");
+        assert_eq!(instr("file:uncounted.brdf"), "-");
+        let pow = fastbrdf_gpu::cost::lookup(&fastbrdf::ModelSpec::parse("pow", &[]).unwrap())
+            .expect("pow is in the committed table");
+        assert_eq!(
+            instr("pow"),
+            format!(
+                "{} ({}/{}/{})",
+                pow.total, pow.transcendental, pow.division_sqrt, pow.branches
+            )
+        );
+        let t = table(&r, false);
+        let line = t
+            .lines()
+            .find(|l| l.contains("file:mine.brdf"))
+            .expect("a row for the user's model");
+        assert!(
+            line.contains("17 (3/2/1)") && line.trim_end().ends_with("gpu"),
+            "{line}"
+        );
     }
 }
