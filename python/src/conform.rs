@@ -62,7 +62,7 @@ pub(crate) fn conform_json(
             let (m_cb, r_cb);
             let m: &dyn UserBrdf = match &model {
                 Source::Builtin(b) => b,
-                Source::Gpu(g) => g,
+                Source::Gpu(g) => &**g,
                 Source::Object(o) => {
                     m_cb = Callbacks::new(o, &shared, cancel);
                     &m_cb
@@ -71,7 +71,7 @@ pub(crate) fn conform_json(
             let r: Option<&dyn UserBrdf> = match &reference {
                 None => None,
                 Some(Source::Builtin(b)) => Some(b),
-                Some(Source::Gpu(g)) => Some(g),
+                Some(Source::Gpu(g)) => Some(&**g),
                 Some(Source::Object(o)) => {
                     r_cb = Callbacks::new(o, &shared, cancel);
                     Some(&r_cb)
@@ -92,7 +92,7 @@ pub(crate) fn conform_json(
 enum Source {
     Builtin(Builtin),
     /// A user's shader (`file:PATH`) on the GPU.
-    Gpu(fastbrdf_gpu::user::GpuBrdf),
+    Gpu(Box<fastbrdf_gpu::user::GpuBrdf>),
     Object(Object),
 }
 
@@ -164,7 +164,7 @@ impl Source {
             )));
         }
         match fastbrdf_gpu::user::load(std::path::Path::new(path), given) {
-            Ok(g) => Ok(Self::Gpu(g)),
+            Ok(g) => Ok(Self::Gpu(Box::new(g))),
             Err(e) => Err(match e.kind {
                 fastbrdf_gpu::user::UserErrorKind::Input => value_error(format!("{arg}: {e}")),
                 fastbrdf_gpu::user::UserErrorKind::Gpu => {

@@ -91,6 +91,19 @@ fn a_user_model_is_listed_plotted_compared_and_rendered() {
     let w = models.iter().find(|m| m["id"] == "walter.brdf").unwrap();
     assert_eq!(w["kind"], "user");
     assert_eq!(w["channels"], 3);
+    // The deterministic cost beside the built-ins': SPIR-V instructions after spirv-opt -O
+    // (spirv-opt is installed by tools/test.sh; without it the count is null).
+    let ct = models.iter().find(|m| m["id"] == "cook-torrance").unwrap();
+    assert!(ct["instructions"]["total"].as_u64().unwrap() > 0, "{ct}");
+    let shader = fastbrdf_gpu::user::UserShader::load(std::path::Path::new(&data(
+        "brdf-explorer/walter.brdf",
+    )))
+    .unwrap();
+    match shader.instructions() {
+        Ok(want) => assert_eq!(w["instructions"]["total"], want.total, "{w}"),
+        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and no spirv-opt: {e}"),
+        Err(_) => assert!(w["instructions"].is_null(), "{w}"),
+    }
     let p = |name: &str| {
         w["params"]
             .as_array()

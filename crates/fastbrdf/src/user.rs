@@ -194,15 +194,15 @@ mod tests {
         let wo = [[-0.2, 0.0, 0.97], [0.1, -0.5, 0.86]];
         let mut out = [0.0; 2];
         b.eval(&wi, &wo, &mut out).unwrap();
-        for k in 0..2 {
-            assert_eq!(out[k], m.eval(wi[k], wo[k]));
+        for (k, v) in out.iter().enumerate() {
+            assert_eq!(*v, m.eval(wi[k], wo[k]));
         }
         let s = b.sample(&wo, &[[0.2, 0.7], [0.9, 0.1]]).unwrap();
         let mut p = [0.0; 2];
         b.pdf(&wo, &s.wi, &mut p).unwrap();
-        for k in 0..2 {
+        for (k, v) in p.iter().enumerate() {
             assert!(s.valid[k]);
-            assert!((p[k] - s.pdf[k]).abs() <= 1e-9 * p[k]);
+            assert!((v - s.pdf[k]).abs() <= 1e-9 * v);
         }
         assert!(b.eval(&wi, &wo, &mut [0.0; 3]).is_err());
         assert!(b.name().starts_with("cook-torrance"), "{}", b.name());

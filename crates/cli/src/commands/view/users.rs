@@ -29,6 +29,9 @@ pub struct UserModel {
     gpu: Arc<fastbrdf_gpu::Gpu>,
     /// Compiled instances by their values (most recent last).
     kept: Mutex<VecDeque<(Vec<ParamValue>, Arc<GpuBrdf>)>>,
+    /// Its SPIR-V instruction counts after `spirv-opt -O` (`UserShader::instructions`), counted
+    /// once at start-up; `None` without spirv-opt (a note on stderr says so).
+    instructions: Option<fastbrdf_gpu::cost::Counts>,
 }
 
 /// A [`UserError`] as the CLI reports it: the user's input exit 2 (HTTP 400), the GPU exit 1
@@ -140,6 +143,7 @@ impl UserModel {
             "channels": self.shader.channels(), "samples": self.shader.samples(),
             "formula": Value::Null, "source": format!("{USER_PREFIX}{}", self.path.display()),
             "bounds": [], "ops": Value::Null, "swept": Value::Null, "cost": Value::Null,
+            "instructions": self.instructions,
         })
     }
 }
@@ -229,6 +233,13 @@ pub fn load(ids: &[String], params: &[String], taken: &[&str]) -> Result<Vec<Use
                 fastbrdf_io::shorten(&name, 60)
             )));
         }
+        let instructions = match shader.instructions() {
+            Ok(c) => Some(c),
+            Err(e) => {
+                eprintln!("note: instruction count of {} unknown: {e}", shader.name());
+                None
+            }
+        };
         let u = UserModel {
             name,
             path,
@@ -236,6 +247,7 @@ pub fn load(ids: &[String], params: &[String], taken: &[&str]) -> Result<Vec<Use
             given,
             gpu: gpu.clone(),
             kept: Mutex::new(VecDeque::new()),
+            instructions,
         };
         // Compiled now: a shader the GPU refuses fails at start-up, not at the first request.
         u.instance(&[])?;

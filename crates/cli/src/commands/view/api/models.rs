@@ -56,6 +56,10 @@ pub fn models(state: &State) -> Response {
                 "bounds": e.info.bounds, "ops": e.info.ops,
                 "swept": swept(e),
                 "cost": state.cost(e.info.id),
+                // The committed SPIR-V counts at its defaults (as `fastbrdf models --json`).
+                "instructions": fastbrdf::ModelSpec::parse(e.info.id, &[])
+                    .ok()
+                    .and_then(|s| fastbrdf_gpu::cost::lookup(&s)),
             })
         })
         .collect();
