@@ -16,6 +16,7 @@ fn commands_with_param(out: &str) -> Vec<Vec<String>> {
         v(&["sample", "--model", "phong"]),
         v(&["chi2", "--model", "phong", "--samples", "1000"]),
         v(&["albedo", "--model", "ward"]),
+        v(&["conform", "ward"]),
         v(&["render", "--model", "flog", "--size", "16x16", "--out", out]),
         v(&[
             "compare",
@@ -40,11 +41,11 @@ fn every_command_refuses_the_same_bad_param_text() {
     let out = dir.join("x.png");
     let out = out.to_str().unwrap();
     for base in commands_with_param(out) {
-        let at = base
-            .iter()
-            .position(|a| a == "--model" || a == "--models")
-            .unwrap();
-        let model = &base[at + 1];
+        // The model follows --model or --models, or is the first argument (conform's MODEL).
+        let model = match base.iter().position(|a| a == "--model" || a == "--models") {
+            Some(at) => &base[at + 1],
+            None => &base[1],
+        };
         let unknown = if base[0] == "compare" {
             "--param q: none of the models takes it".to_string()
         } else {
@@ -268,6 +269,7 @@ fn the_shared_options_read_alike_in_every_command() {
         vec!["chi2"],
         vec!["albedo"],
         vec!["shader"],
+        vec!["conform"],
     ] {
         let mut args = cmd.clone();
         args.push("--help");
@@ -276,7 +278,7 @@ fn the_shared_options_read_alike_in_every_command() {
         let help = stdout(&r).split_whitespace().collect::<Vec<_>>().join(" ");
         assert!(help.contains("--param <NAME=VALUE>"), "{cmd:?}");
         assert!(help.contains(param), "{cmd:?}: {help}");
-        if matches!(cmd[0], "eval" | "albedo" | "shader") {
+        if matches!(cmd[0], "eval" | "albedo" | "shader" | "conform") {
             assert!(help.contains("--material <NAME>"), "{cmd:?}");
             assert!(help.contains(material), "{cmd:?}");
         } else {
