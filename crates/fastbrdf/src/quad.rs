@@ -161,15 +161,16 @@ fn outer_breaks(u_breaks: &[f64]) -> Vec<f64> {
     breaks
 }
 
-/// Polar coordinates around `peak`: an orthonormal frame (t, b, peak).
-struct Polar {
+/// Polar coordinates around `peak`: an orthonormal frame (t, b, peak). Public for the batched
+/// quadrature of `fastbrdf conform` (the analysis crate), which integrates the same way.
+pub struct Polar {
     p: [f64; 3],
     t: [f64; 3],
     b: [f64; 3],
 }
 
 impl Polar {
-    fn new(p: [f64; 3]) -> Self {
+    pub fn new(p: [f64; 3]) -> Self {
         let t = if p[2].abs() < 0.9 {
             [p[1], -p[0], 0.0]
         } else {
@@ -185,22 +186,23 @@ impl Polar {
         Self { p, t, b }
     }
 
-    /// `f(w) cos theta_w` at the direction `w` of the ring `u` (cosine to the peak) at angle
-    /// `phi`; 0 below the horizon.
-    fn value(&self, f: &impl Fn([f64; 3]) -> f64, u: f64, phi: f64) -> f64 {
+    /// The direction of the ring `u` (cosine to the peak) at angle `phi`.
+    pub fn direction(&self, u: f64, phi: f64) -> [f64; 3] {
         let (p, t, b) = (self.p, self.t, self.b);
         let s = (1.0 - u * u).max(0.0).sqrt();
         let (sp, cp) = phi.sin_cos();
-        let w = [
-            s * (cp * t[0] + sp * b[0]) + u * p[0],
-            s * (cp * t[1] + sp * b[1]) + u * p[1],
-            s * (cp * t[2] + sp * b[2]) + u * p[2],
-        ];
+        std::array::from_fn(|i| s * (cp * t[i] + sp * b[i]) + u * p[i])
+    }
+
+    /// `f(w) cos theta_w` at the direction `w` of the ring `u` (cosine to the peak) at angle
+    /// `phi`; 0 below the horizon.
+    fn value(&self, f: &impl Fn([f64; 3]) -> f64, u: f64, phi: f64) -> f64 {
+        let w = self.direction(u, phi);
         if w[2] > 0.0 { f(w) * w[2] } else { 0.0 }
     }
 
     /// The angles where the horizon cuts the ring `u`: s (cos phi t_z + sin phi b_z) + u p_z = 0.
-    fn horizon(&self, u: f64) -> Vec<f64> {
+    pub fn horizon(&self, u: f64) -> Vec<f64> {
         let s = (1.0 - u * u).max(0.0).sqrt();
         let mut breaks = vec![];
         let (a, bb, c) = (s * self.t[2], s * self.b[2], u * self.p[2]);

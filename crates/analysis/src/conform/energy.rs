@@ -13,6 +13,7 @@
 //! and the normal the model is largest at.
 
 use super::{At, Batched, Check, Config, num, wo_at};
+use fastbrdf::quad::Polar;
 use std::f64::consts::TAU;
 
 /// One angle's albedo per channel, and whether the rounds converged.
@@ -198,55 +199,6 @@ fn rule(lo: f64, hi: f64, breaks: &[f64], panels: usize) -> Vec<(f64, f64)> {
         }
     }
     out
-}
-
-/// Polar coordinates around `p`: an orthonormal frame (t, b, p) (`fastbrdf::quad`'s).
-struct Polar {
-    p: [f64; 3],
-    t: [f64; 3],
-    b: [f64; 3],
-}
-
-impl Polar {
-    fn new(p: [f64; 3]) -> Self {
-        let t = if p[2].abs() < 0.9 {
-            [p[1], -p[0], 0.0]
-        } else {
-            [0.0, p[2], -p[1]]
-        };
-        let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
-        let t = [t[0] / tl, t[1] / tl, t[2] / tl];
-        let b = [
-            p[1] * t[2] - p[2] * t[1],
-            p[2] * t[0] - p[0] * t[2],
-            p[0] * t[1] - p[1] * t[0],
-        ];
-        Self { p, t, b }
-    }
-
-    /// The direction of the ring `u` (cosine to `p`) at angle `phi`.
-    fn direction(&self, u: f64, phi: f64) -> [f64; 3] {
-        let (p, t, b) = (self.p, self.t, self.b);
-        let s = (1.0 - u * u).max(0.0).sqrt();
-        let (sp, cp) = phi.sin_cos();
-        std::array::from_fn(|i| s * (cp * t[i] + sp * b[i]) + u * p[i])
-    }
-
-    /// The angles where the horizon cuts the ring `u`.
-    fn horizon(&self, u: f64) -> Vec<f64> {
-        let s = (1.0 - u * u).max(0.0).sqrt();
-        let (a, bb, c) = (s * self.t[2], s * self.b[2], u * self.p[2]);
-        let r = (a * a + bb * bb).sqrt();
-        let mut out = vec![];
-        if r > 0.0 && (c / r).abs() < 1.0 {
-            let base = bb.atan2(a);
-            let d = (-c / r).acos();
-            for x in [base + d, base - d] {
-                out.push(x.rem_euclid(TAU));
-            }
-        }
-        out
-    }
 }
 
 #[cfg(test)]
