@@ -4,25 +4,11 @@
 //! adapter, and fail when `CI` is set); a bad file fails before any GPU is opened.
 
 mod common;
+use common::gpu_data as data;
+use common::have_gpu;
 
 use common::{stderr, stdout, temp_dir};
 use std::process::{Command, Output, Stdio};
-
-fn have_gpu() -> bool {
-    match fastbrdf_gpu::Gpu::new() {
-        Ok(_) => true,
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
-        Err(e) => {
-            eprintln!("skipping: {e}");
-            false
-        }
-    }
-}
-
-/// The path of a test file of the GPU crate.
-fn data(rel: &str) -> String {
-    format!("{}/../gpu/tests/data/{rel}", env!("CARGO_MANIFEST_DIR"))
-}
 
 /// `fastbrdf` with `args` and the extra environment `env`.
 fn fastbrdf(args: &[&str], env: &[(&str, &str)]) -> Output {

@@ -5,23 +5,10 @@
 //! (lavapipe in CI): skipped without an adapter, a failure when `CI` is set.
 
 mod common;
+use common::gpu_data as data;
+use common::have_gpu;
 
 use common::stderr;
-
-fn have_gpu() -> bool {
-    match fastbrdf_gpu::Gpu::new() {
-        Ok(_) => true,
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
-        Err(e) => {
-            eprintln!("skipping: {e}");
-            false
-        }
-    }
-}
-
-fn data(rel: &str) -> String {
-    format!("{}/../gpu/tests/data/{rel}", env!("CARGO_MANIFEST_DIR"))
-}
 
 /// The record of `fastbrdf conform file:PATH --json` and its exit code.
 fn conform(rel: &str) -> (serde_json::Value, Option<i32>) {

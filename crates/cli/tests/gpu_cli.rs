@@ -2,23 +2,13 @@
 //! `fastbrdf bench --gpu` (needs an adapter: skipped without one, a failure when `CI` is set).
 
 mod common;
+use common::have_gpu;
 
 use common::{stderr, stdout, temp_dir};
 use std::process::Output;
 
 fn fastbrdf(args: &[&str]) -> Output {
     common::fastbrdf(args, "")
-}
-
-fn have_gpu() -> bool {
-    match fastbrdf_gpu::Gpu::new() {
-        Ok(_) => true,
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
-        Err(e) => {
-            eprintln!("skipping: {e}");
-            false
-        }
-    }
 }
 
 #[test]

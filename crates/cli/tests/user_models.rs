@@ -3,6 +3,7 @@
 //! without an adapter, and fail when `CI` is set).
 
 mod common;
+use common::have_gpu;
 
 use common::{listing, stderr, stdout, temp_dir};
 use std::process::Output;
@@ -11,23 +12,9 @@ fn fastbrdf(args: &[&str], stdin: &str) -> Output {
     common::fastbrdf(args, stdin)
 }
 
-fn have_gpu() -> bool {
-    match fastbrdf_gpu::Gpu::new() {
-        Ok(_) => true,
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
-        Err(e) => {
-            eprintln!("skipping: {e}");
-            false
-        }
-    }
-}
-
 /// `file:` and the path of a test file of the GPU crate (`brdf-explorer/` or `user/`).
 fn model(rel: &str) -> String {
-    format!(
-        "file:{}/../gpu/tests/data/{rel}",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("file:{}", common::gpu_data(rel))
 }
 
 /// Unit directions (exact in decimal: the shaders take them as given, unnormalised).

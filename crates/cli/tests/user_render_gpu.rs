@@ -5,6 +5,7 @@
 //! adapter (lavapipe in CI): skipped without one, a failure when `CI` is set.
 
 mod common;
+use common::have_gpu;
 
 use common::{stderr, temp_dir};
 use std::path::Path;
@@ -14,23 +15,9 @@ fn fastbrdf(args: &[&str]) -> Output {
     common::fastbrdf(args, "")
 }
 
-fn have_gpu() -> bool {
-    match fastbrdf_gpu::Gpu::new() {
-        Ok(_) => true,
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
-        Err(e) => {
-            eprintln!("skipping: {e}");
-            false
-        }
-    }
-}
-
 /// `file:` and the path of a test file of the GPU crate (`brdf-explorer/` or `user/`).
 fn model(rel: &str) -> String {
-    format!(
-        "file:{}/../gpu/tests/data/{rel}",
-        env!("CARGO_MANIFEST_DIR")
-    )
+    format!("file:{}", common::gpu_data(rel))
 }
 
 /// Renders `model` with `extra` arguments (a sphere over the floor, 64 x 48, 2 x 2 samples

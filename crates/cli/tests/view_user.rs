@@ -6,6 +6,8 @@
 //! without a GPU unless CI is set (then a missing adapter fails); lavapipe serves in CI.
 
 mod common;
+use common::gpu_data as data;
+use common::have_gpu;
 mod explorer;
 mod served;
 
@@ -14,22 +16,6 @@ use explorer::{get_json, ok_json};
 use fastbrdf::user::UserBrdf;
 use serde_json::Value;
 use served::serve;
-
-fn have_gpu() -> bool {
-    match fastbrdf_gpu::Gpu::new() {
-        Ok(_) => true,
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
-        Err(e) => {
-            eprintln!("skipping: {e}");
-            false
-        }
-    }
-}
-
-/// The path of a test file of the GPU crate (`brdf-explorer/` or `user/`).
-fn data(rel: &str) -> String {
-    format!("{}/../gpu/tests/data/{rel}", env!("CARGO_MANIFEST_DIR"))
-}
 
 fn numbers(v: &Value) -> Vec<f64> {
     v.as_array()

@@ -45,3 +45,21 @@ pub fn listing(d: &Path) -> Vec<String> {
     v.sort();
     v
 }
+
+/// Whether a GPU adapter is there (lavapipe serves): without one a GPU test skips, except when
+/// `CI` is set, where a missing adapter fails it.
+pub fn have_gpu() -> bool {
+    match fastbrdf_gpu::Gpu::new() {
+        Ok(_) => true,
+        Err(e) if std::env::var_os("CI").is_some() => panic!("CI is set and there is no GPU: {e}"),
+        Err(e) => {
+            eprintln!("skipping: {e}");
+            false
+        }
+    }
+}
+
+/// The path of a test file of the GPU crate (`brdf-explorer/`, `user/`: users' shaders).
+pub fn gpu_data(rel: &str) -> String {
+    format!("{}/../gpu/tests/data/{rel}", env!("CARGO_MANIFEST_DIR"))
+}
