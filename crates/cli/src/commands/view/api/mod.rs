@@ -10,6 +10,7 @@
 //! [`render`]) take them; [`user`] computes what the users' models (`--model file:PATH`) show.
 
 mod errors;
+mod grids;
 mod models;
 mod plots;
 mod query;

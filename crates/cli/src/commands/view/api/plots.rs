@@ -3,6 +3,7 @@
 //! every number from the library functions the CLI commands call.
 
 use super::errors::{errors_row, measured_row};
+use super::grids::{POLAR_POINTS, SLICE, curve_theta, luminance, polar_pairs, slice_pairs};
 use super::query::{Query, Reference, Response, chosen, one_model, theta_i};
 use super::user;
 use crate::CliError;
@@ -15,12 +16,8 @@ use fastbrdf_analysis::albedo;
 use serde_json::{Value, json};
 use std::time::Instant;
 
-/// Points of the in-plane polar plot, of the lobe and error curves, albedo angles, and the
-/// side of the theta_h x theta_d slice: fixed on the server, not requested.
-const POLAR_POINTS: usize = 181;
-const CURVE_POINTS: usize = 256;
+/// Albedo angles: fixed on the server, not requested.
 const ALBEDO_ANGLES: [f64; 10] = [0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0, 85.0];
-const SLICE: usize = 48;
 /// Relative tolerance of the albedo quadrature in the explorer (the CLI uses 1e-7; 1e-3 keeps
 /// a slider move within its time budget and is below the plot's resolution; the furnace
 /// verdict allows each angle's own error estimate, as the CLI's does).
@@ -33,20 +30,6 @@ fn eval_brdf(m: &fastbrdf::Model<f64>, wi: [f64; 3], wo: [f64; 3]) -> f64 {
     }
 }
 
-/// The direction pairs of the in-plane polar plot at incidence `ti_deg`: theta_o from -90 (the
-/// incident side: wi is at -theta_i) to 90 degrees (the mirror direction is at +theta_i).
-pub(super) fn polar_pairs(ti_deg: f64) -> Vec<([f64; 3], [f64; 3])> {
-    let ti = ti_deg.to_radians();
-    let wi = [ti.sin(), 0.0, ti.cos()];
-    (0..POLAR_POINTS)
-        .map(|k| {
-            let t = -90.0 + 180.0 * k as f64 / (POLAR_POINTS - 1) as f64;
-            let r = t.to_radians();
-            (wi, [-r.sin(), 0.0, r.cos()])
-        })
-        .collect()
-}
-
 /// The in-plane polar plot of `f` at incidence `ti_deg` ([`polar_pairs`]).
 fn polar_of(f: impl Fn([f64; 3], [f64; 3]) -> f64, ti_deg: f64) -> Vec<f64> {
     polar_pairs(ti_deg)
@@ -55,35 +38,9 @@ fn polar_of(f: impl Fn([f64; 3], [f64; 3]) -> f64, ti_deg: f64) -> Vec<f64> {
         .collect()
 }
 
-/// The direction pairs of the theta_h x theta_d slice at phi_d = 90 degrees (rows theta_d,
-/// columns theta_h).
-pub(super) fn slice_pairs() -> Vec<([f64; 3], [f64; 3])> {
-    let mut slice = Vec::with_capacity(SLICE * SLICE);
-    for jd in 0..SLICE {
-        let td = (jd as f64 + 0.5) / SLICE as f64 * std::f64::consts::FRAC_PI_2;
-        for jh in 0..SLICE {
-            let th = (jh as f64 + 0.5) / SLICE as f64 * std::f64::consts::FRAC_PI_2;
-            // d in h's frame (phi_d = 90 degrees), rotated by theta_h about y.
-            let d = [0.0, td.sin(), td.cos()];
-            let (s, c) = th.sin_cos();
-            let wi = [c * d[0] + s * d[2], d[1], -s * d[0] + c * d[2]];
-            let h = [s, 0.0, c];
-            let k = 2.0 * (h[0] * wi[0] + h[1] * wi[1] + h[2] * wi[2]);
-            let wo = [k * h[0] - wi[0], k * h[1] - wi[1], k * h[2] - wi[2]];
-            slice.push((wi, wo));
-        }
-    }
-    slice
-}
-
 /// The theta_h x theta_d slice of `f` ([`slice_pairs`]).
 fn slice_of(f: impl Fn([f64; 3], [f64; 3]) -> f64) -> Vec<f64> {
     slice_pairs().into_iter().map(|(a, b)| f(a, b)).collect()
-}
-
-/// Rec. 709 luminance of an RGB BRDF value: what the plots show of measured data.
-pub(super) fn luminance(c: [f64; 3]) -> f64 {
-    0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
 }
 
 /// The plots of the measured reference: polar and slice of its luminance, its "lobe" as a
@@ -103,13 +60,6 @@ fn measured_plots(m: &Measured, ti_deg: f64) -> Value {
         "polar": polar_of(f, ti_deg), "lobe": lobe, "error": Value::Null,
         "measured": Value::Null, "slice": slice_of(f),
     })
-}
-
-/// The lobe and error curves' abscissae, degrees.
-pub(super) fn curve_theta() -> Vec<f64> {
-    (0..CURVE_POINTS)
-        .map(|k| 89.9 * k as f64 / (CURVE_POINTS - 1) as f64)
-        .collect()
 }
 
 /// The plots of one model `id` (`spec`: as it shades, from [`spec_of`](super::query::spec_of);

@@ -3,7 +3,7 @@
 //! model, another user's model) on a fixed grid of direction pairs, evaluated in batches, and
 //! `/api/errors` when either side is a user's model.
 
-use super::plots::{curve_theta, luminance, polar_pairs, slice_pairs};
+use super::grids::{curve_theta, luminance, polar_pairs, slice_pairs};
 use super::query::{
     Chosen, Query, Reference, Response, UserPick, check_unused, checked_id, one_model, spec_of,
 };
