@@ -269,6 +269,19 @@ fn a_user_model_is_listed_plotted_compared_and_rendered() {
     for m in pic["metrics"].as_array().unwrap() {
         assert!(m["rmse"].as_f64().unwrap().is_finite(), "{m}");
     }
+
+    // The white furnace of a user's model: `fastbrdf albedo --model file:PATH`'s numbers.
+    let al = ok_json(&s.addr, &format!("/api/albedo?{q}"));
+    let w = al["models"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|m| m["id"] == "walter.brdf")
+        .unwrap();
+    let a = numbers(&w["albedo"]["albedo"]);
+    assert_eq!(a.len(), 10, "{w}");
+    assert!(a.iter().all(|x| *x > 0.5 && *x <= 1.0), "{w}");
+    assert_eq!(w["albedo"]["conserves"], true, "{w}");
 }
 
 #[test]

@@ -221,9 +221,11 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         .par_iter()
         .map(|(id, spec)| albedo_of(id, spec, quick))
         .collect::<Result<_, _>>()?;
-    out.extend(c.users.iter().map(|u| user::no_albedo(&u.model.name)));
+    for u in &c.users {
+        out.push(user::albedo(&u.model.name, &u.brdf, &ALBEDO_ANGLES)?);
+    }
     if let Some(u) = &c.ref_user {
-        out.insert(0, user::no_albedo(&u.model.name));
+        out.insert(0, user::albedo(&u.model.name, &u.brdf, &ALBEDO_ANGLES)?);
     }
     if let Some(Reference::Measured(m)) = reference {
         out.insert(

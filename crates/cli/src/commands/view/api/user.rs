@@ -163,11 +163,31 @@ pub fn reference_brdf(c: &Chosen) -> Option<Arc<dyn UserBrdf>> {
     }
 }
 
-/// The albedo entry of a user's model: not computed (the explorer integrates registry models
-/// only).
-pub fn no_albedo(name: &str) -> Value {
-    json!({"id": name, "albedo": Value::Null,
-           "why": "not computed for a user's model (the explorer integrates registry models only; `fastbrdf conform` checks its white furnace)"})
+/// The albedo entry of a user's model at `angles` (degrees): `fastbrdf albedo --model
+/// file:PATH`'s curve, by conform's batched quadrature (the largest channel at each angle),
+/// with the white-furnace verdict at conform's tolerance; `error` null (the quadrature
+/// refines until two rounds agree, it has no per-angle estimate).
+pub fn albedo(name: &str, brdf: &fastbrdf_gpu::user::GpuBrdf, angles: &[f64]) -> Result<Value, CliError> {
+    use fastbrdf_analysis::conform;
+    let cfg = conform::Config::ci();
+    let mut values = Vec::with_capacity(angles.len());
+    for &t in angles {
+        let (a, _) = conform::albedo(brdf, t, &cfg).map_err(|e| CliError {
+            code: crate::EXIT_CHECK_FAILED,
+            message: format!("{name}: {e}"),
+        })?;
+        values.push(a.iter().copied().fold(f64::NAN, f64::max));
+    }
+    let tol = cfg.energy_tol;
+    let worst = (0..angles.len())
+        .max_by(|&a, &b| values[a].total_cmp(&values[b]))
+        .expect("angles");
+    Ok(json!({"id": name, "albedo": {
+        "brdf": "user", "theta_deg": angles, "albedo": values,
+        "error": vec![Value::Null; angles.len()], "estimate": false,
+        "claims_energy": true, "conserves": values.iter().all(|v| *v <= 1.0 + tol),
+        "tolerance": tol, "worst_theta_deg": angles[worst], "worst_albedo": values[worst],
+    }}))
 }
 
 /// `GET /api/errors?model=A&ref=B&NAME=VALUE...` when A or B is a user's model: [`against`]
