@@ -167,7 +167,11 @@ pub fn reference_brdf(c: &Chosen) -> Option<Arc<dyn UserBrdf>> {
 /// file:PATH`'s curve, by conform's batched quadrature (the largest channel at each angle),
 /// with the white-furnace verdict at conform's tolerance; `error` null (the quadrature
 /// refines until two rounds agree, it has no per-angle estimate).
-pub fn albedo(name: &str, brdf: &fastbrdf_gpu::user::GpuBrdf, angles: &[f64]) -> Result<Value, CliError> {
+pub fn albedo(
+    name: &str,
+    brdf: &fastbrdf_gpu::user::GpuBrdf,
+    angles: &[f64],
+) -> Result<Value, CliError> {
     use fastbrdf_analysis::conform;
     let cfg = conform::Config::ci();
     let mut values = Vec::with_capacity(angles.len());
