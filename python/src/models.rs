@@ -10,7 +10,11 @@ use pyo3::prelude::*;
 #[pyfunction]
 pub(crate) fn models_json() -> PyResult<String> {
     guard(|| {
-        let models: Vec<_> = registry::all().iter().map(|e| &e.info).collect();
+        // As `fastbrdf models --json`: the info and the committed instruction counts.
+        let models: Vec<_> = registry::all()
+            .iter()
+            .map(|e| fastbrdf_gpu::cost::model_entry(&e.info))
+            .collect();
         serde_json::to_string_pretty(&serde_json::json!({ "models": models }))
             .map_err(|e| PyRuntimeError::new_err(e.to_string()))
     })
@@ -21,7 +25,8 @@ pub(crate) fn models_json() -> PyResult<String> {
 pub(crate) fn info_json(id: &str) -> PyResult<String> {
     guard(|| {
         let e = registry::find(id).map_err(value_error)?;
-        serde_json::to_string(&e.info).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+        serde_json::to_string(&fastbrdf_gpu::cost::model_entry(&e.info))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))
     })
 }
 

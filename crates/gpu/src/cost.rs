@@ -169,6 +169,19 @@ pub fn lookup(spec: &ModelSpec) -> Option<Counts> {
     table().iter().find(|r| r.spec == key).map(|r| r.counts)
 }
 
+/// A model's entry of `fastbrdf models --json` (and of the Python package's `models()`): its
+/// registry info and `instructions`, the committed counts at its defaults ([`lookup`]; null
+/// for a model the table lacks, which `tests/cost.rs` forbids). One function for both, so
+/// they cannot drift.
+pub fn model_entry(info: &fastbrdf::ModelInfo) -> serde_json::Value {
+    let mut v = serde_json::to_value(info).expect("the registry serialises");
+    let counts = fastbrdf::ModelSpec::parse(info.id, &[])
+        .ok()
+        .and_then(|s| lookup(&s));
+    v["instructions"] = serde_json::to_value(counts).expect("counts serialise");
+    v
+}
+
 /// The rows of a table's CSV text (`#` lines are comments).
 pub fn parse_table(text: &str) -> Result<Vec<Row>, String> {
     let mut lines = text

@@ -25,7 +25,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         .filter(|i| a.kind.as_deref().is_none_or(|k| i.kind.name() == k))
         .collect();
     if a.json {
-        let list: Vec<serde_json::Value> = models.iter().map(|m| with_instructions(m)).collect();
+        let list: Vec<serde_json::Value> = models
+            .iter()
+            .map(|m| fastbrdf_gpu::cost::model_entry(m))
+            .collect();
         let v = serde_json::json!({ "models": list });
         crate::outln!(
             "{}",
@@ -35,17 +38,6 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     }
     crate::out!("{}", table(&models));
     Ok(())
-}
-
-/// A model's JSON with `instructions`: its committed instruction counts at its defaults
-/// (`fastbrdf_gpu::cost::lookup`; null for a model the table lacks, which its test forbids).
-fn with_instructions(m: &fastbrdf::ModelInfo) -> serde_json::Value {
-    let mut v = serde_json::to_value(m).expect("registry serialises");
-    let counts = fastbrdf::ModelSpec::parse(m.id, &[])
-        .ok()
-        .and_then(|s| fastbrdf_gpu::cost::lookup(&s));
-    v["instructions"] = serde_json::to_value(counts).expect("counts serialise");
-    v
 }
 
 /// A bound as `abs|abs/peak|rel [zone] BOUND (PARAM LO..HI)`: the label says what the error
