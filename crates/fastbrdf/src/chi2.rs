@@ -104,16 +104,32 @@ const GL5: [(f64, f64); 5] = [
     (0.906_179_845_938_664, 0.236_926_885_056_189_08),
 ];
 
-/// The integral of `pdf` over bin `(i, j)` on `sub x sub` cells.
+/// The integral of `pdf` over bin `(i, j)` on `sub x sub` cells ([`bin_nodes`]).
 fn bin_integral(
     pdf: &impl Fn([f64; 3]) -> f64,
     (i, j): (usize, usize),
     (res_theta, res_phi): (usize, usize),
     sub: usize,
 ) -> f64 {
+    let mut acc = 0.0;
+    let (dt, dp) = bin_nodes((i, j), (res_theta, res_phi), sub, |w, wtp, st| {
+        acc += wtp * pdf(w) * st;
+    });
+    acc * 0.25 * dt * dp
+}
+
+/// The integration points of bin `(i, j)` on `sub x sub` cells, 5-point Gauss-Legendre in
+/// each variable of each cell: `node(w, wt wp, sin theta)` per point (the integral of `f` is
+/// `sum(wt wp f(w) sin theta) 0.25 dt dp`); returns the cell's sides `(dt, dp)`. Shared with
+/// `fastbrdf conform`'s batched test, which evaluates all points of a round in one call.
+pub fn bin_nodes(
+    (i, j): (usize, usize),
+    (res_theta, res_phi): (usize, usize),
+    sub: usize,
+    mut node: impl FnMut([f64; 3], f64, f64),
+) -> (f64, f64) {
     let dt = FRAC_PI_2 / (res_theta * sub) as f64;
     let dp = TAU / (res_phi * sub) as f64;
-    let mut acc = 0.0;
     for a in 0..sub {
         let t0 = (i * sub + a) as f64 * dt;
         for b in 0..sub {
@@ -124,12 +140,12 @@ fn bin_integral(
                 for (xp, wp) in GL5 {
                     let p = p0 + 0.5 * dp * (1.0 + xp);
                     let (sp, cp) = p.sin_cos();
-                    acc += wt * wp * pdf([st * cp, st * sp, ct]) * st;
+                    node([st * cp, st * sp, ct], wt * wp, st);
                 }
             }
         }
     }
-    acc * 0.25 * dt * dp
+    (dt, dp)
 }
 
 /// The integral of `pdf` over every bin (row-major in theta): `sub x sub` cells per bin,

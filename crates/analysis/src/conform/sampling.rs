@@ -15,7 +15,7 @@ use super::values::Values;
 use super::{At, Batched, Check, Config, dir, num, wo_at};
 use fastbrdf::chi2::{bin, gamma_q};
 use fastbrdf::sample::Rng;
-use std::f64::consts::{FRAC_PI_2, PI, TAU};
+use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// What one angle found.
 struct Angle {
@@ -149,14 +149,6 @@ fn angle(m: &Batched, deg: f64, index: u64, cfg: &Config) -> Result<Angle, Strin
     })
 }
 
-const GL5: [(f64, f64); 5] = [
-    (0.0, 0.568_888_888_888_888_9),
-    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
-    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
-    (-0.906_179_845_938_664, 0.236_926_885_056_189_08),
-    (0.906_179_845_938_664, 0.236_926_885_056_189_08),
-];
-
 /// The pdf's integral over every bin (row-major in theta), in batched rounds.
 fn expected(m: &Batched, wo: [f64; 3], cfg: &Config) -> Result<Vec<f64>, String> {
     let (rt, rp) = (cfg.chi2.res_theta, cfg.chi2.res_phi);
@@ -191,7 +183,7 @@ fn expected(m: &Batched, wo: [f64; 3], cfg: &Config) -> Result<Vec<f64>, String>
     Ok(value)
 }
 
-/// The points and weights of bin `(i, j)` on `sub x sub` cells.
+/// The points and weights of bin `(i, j)` on `sub x sub` cells (`fastbrdf chi2`'s nodes).
 fn cells(
     i: usize,
     j: usize,
@@ -203,22 +195,10 @@ fn cells(
 ) {
     let dt = FRAC_PI_2 / (rt * sub) as f64;
     let dp = TAU / (rp * sub) as f64;
-    for a in 0..sub {
-        let t0 = (i * sub + a) as f64 * dt;
-        for b in 0..sub {
-            let p0 = -PI + (j * sub + b) as f64 * dp;
-            for (xt, wt) in GL5 {
-                let t = t0 + 0.5 * dt * (1.0 + xt);
-                let (st, ct) = t.sin_cos();
-                for (xp, wp) in GL5 {
-                    let p = p0 + 0.5 * dp * (1.0 + xp);
-                    let (sp, cp) = p.sin_cos();
-                    dirs.push([st * cp, st * sp, ct]);
-                    weights.push(wt * wp * st * 0.25 * dt * dp);
-                }
-            }
-        }
-    }
+    fastbrdf::chi2::bin_nodes((i, j), (rt, rp), sub, |w, wtp, st| {
+        dirs.push(w);
+        weights.push(wtp * st * 0.25 * dt * dp);
+    });
 }
 
 fn chi2_check(angles: &[Angle], threshold: f64, cfg: &Config) -> Check {
