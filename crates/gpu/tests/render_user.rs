@@ -11,6 +11,7 @@
 //! only where the renderers themselves do.
 
 mod common;
+use common::{data, owned};
 
 use fastbrdf::user::UserBrdf;
 use fastbrdf_gpu::Gpu;
@@ -23,21 +24,7 @@ use fastbrdf_render::scene::{Light, LightKind, Scene, Specular};
 use fastbrdf_render::setup::{self, SceneSpec};
 use fastbrdf_render::user::UserRgb;
 use glam::Vec3;
-use std::path::{Path, PathBuf};
 use std::sync::Arc;
-
-fn data(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(p)
-}
-
-fn owned(given: &[(&str, &str)]) -> Vec<(String, String)> {
-    given
-        .iter()
-        .map(|(k, v)| (k.to_string(), v.to_string()))
-        .collect()
-}
 
 fn opts() -> Options {
     Options {

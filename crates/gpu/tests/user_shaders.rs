@@ -8,6 +8,7 @@
 //! is set (`tests/common`).
 
 mod common;
+use common::{data, owned};
 
 use fastbrdf::user::{Builtin, UserBrdf};
 use fastbrdf_gpu::Gpu;
@@ -16,19 +17,6 @@ use fastbrdf_gpu::user::{
 };
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
-
-fn data(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data")
-        .join(p)
-}
-
-fn owned(given: &[(&str, &str)]) -> Vec<(String, String)> {
-    given
-        .iter()
-        .map(|(k, v)| (k.to_string(), v.to_string()))
-        .collect()
-}
 
 fn compile(gpu: &Gpu, path: &Path, given: &[(&str, &str)]) -> GpuBrdf {
     let s = UserShader::load(path).unwrap_or_else(|e| panic!("{e}"));

@@ -56,3 +56,18 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
 pub fn spec(id: &str, given: &[(&str, &str)]) -> fastbrdf::ModelSpec {
     fastbrdf::ModelSpec::parse(id, given).unwrap_or_else(|e| panic!("{id} {given:?}: {e}"))
 }
+
+/// A file of `tests/data/` (users' shaders: `brdf-explorer/`, `user/`).
+pub fn data(p: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(p)
+}
+
+/// `(name, value)` pairs as owned strings (the `given` values of `fastbrdf_gpu::user`).
+pub fn owned(given: &[(&str, &str)]) -> Vec<(String, String)> {
+    given
+        .iter()
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+}
