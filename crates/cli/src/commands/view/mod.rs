@@ -1,6 +1,6 @@
 //! `fastbrdf view`: an interactive explorer in the browser. An HTTP/1.1 server (hyper on a small
 //! tokio runtime, loopback only unless `--allow-remote`) serves one page embedded in the binary
-//! (`page.html`: hand-written HTML, CSS and JavaScript, plots drawn on `<canvas>` from the JSON
+//! (`page/`: hand-written HTML, CSS and JavaScript, joined into one page, plots drawn on `<canvas>` from the JSON
 //! numbers; no CDN, works offline; every string from the link, a file name or the server goes into
 //! the page as text, never as HTML) and the JSON API of [`api`] that the page calls.
 //!
@@ -50,7 +50,7 @@
 //! `--model file:PATH`, compiled on the GPU per set of values), [`flip`] (FLIP off the requests'
 //! critical path), [`request`] (the checks and
 //! [`handle`](request::handle)), [`server`] (the transport), [`api`] (the endpoints: the query
-//! parsed into model specs once per request), `page.html`, [`cdp`] (the DevTools client).
+//! parsed into model specs once per request), `page/` (index.html and its scripts, joined by `request::PAGE`), [`cdp`] (the DevTools client).
 
 pub mod api;
 pub mod cdp;

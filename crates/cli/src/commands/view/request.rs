@@ -7,7 +7,16 @@ use crate::CliError;
 use std::net::{IpAddr, SocketAddr};
 
 /// The page, embedded.
-pub const PAGE: &str = include_str!("page.html");
+pub const PAGE: &str = concat!(
+    include_str!("page/index.html"),
+    "<script>\n\"use strict\";\n",
+    include_str!("page/main.js"),
+    include_str!("page/gpu.js"),
+    include_str!("page/panes.js"),
+    include_str!("page/kinds.js"),
+    include_str!("page/user.js"),
+    "task(start);\n</script>\n</body>\n</html>\n"
+);
 
 /// Longest request target (path and query) accepted.
 pub const MAX_URL: usize = 8192;

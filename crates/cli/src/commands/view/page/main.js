@@ -1,76 +1,12 @@
-<!doctype html>
-<html lang="en">
-<head>
-<meta charset="utf-8">
-<title>fastbrdf view</title>
-<!-- fastbrdf view: hand-written, no libraries, no network beyond this server's /api. The
-     whole view lives in location.hash; plots are drawn on <canvas> from /api/plots numbers. -->
-<style>
-body { font: 13px system-ui, sans-serif; margin: 0; background: #f4f4f2; color: #222; }
-header { background: #263238; color: #fff; padding: 6px 12px; display: flex; gap: 16px; align-items: baseline; }
-header h1 { font-size: 16px; margin: 0; }
-#status { color: #b0bec5; }
-#status.err { color: #ff8a80; font-weight: bold; }
-main { display: grid; grid-template-columns: 300px 1fr; gap: 10px; padding: 10px; }
-section { background: #fff; border: 1px solid #ddd; border-radius: 4px; padding: 8px; margin-bottom: 10px; }
-h2 { font-size: 13px; margin: 0 0 6px; color: #455a64; }
-.row { display: flex; align-items: center; gap: 6px; margin: 4px 0; }
-.row label { width: 62px; overflow: hidden; text-overflow: ellipsis; }
-.row input[type=range] { flex: 1; min-width: 0; }
-.row input[type=text] { width: 64px; }
-.model { display: flex; align-items: center; gap: 6px; }
-.swatch { width: 12px; height: 12px; border-radius: 2px; display: inline-block; }
-#plots { display: grid; grid-template-columns: repeat(3, 1fr); gap: 8px; }
-canvas.plot { width: 100%; height: auto; background: #fff; border: 1px solid #eee; }
-#pictures { display: flex; flex-wrap: wrap; gap: 8px; }
-figure { margin: 0; text-align: center; font-size: 12px; }
-figure img { width: 200px; height: 200px; image-rendering: auto; background: #000; cursor: crosshair; }
-table { border-collapse: collapse; font-size: 12px; }
-td, th { padding: 2px 6px; border-bottom: 1px solid #eee; text-align: right; }
-td:first-child, th:first-child { text-align: left; }
-pre { max-height: 220px; overflow: auto; background: #fafafa; border: 1px solid #eee; padding: 6px; font-size: 11px; }
-.verdict-ok { color: #2e7d32; } .verdict-bad { color: #c62828; }
-</style>
-</head>
-<body data-ready="0">
-<header><h1>fastbrdf view</h1><span id="status">loading models...</span></header>
-<main>
-<div>
-  <section><h2>Models</h2>
-    <div id="models"></div>
-    <div class="row"><select id="add"></select></div>
-    <div class="row"><label for="material">material</label><select id="material"><option value="">(none)</option></select></div>
-  </section>
-  <section><h2>Parameters</h2>
-    <div class="row"><label for="theta">theta_i</label><input type="range" id="theta" min="0" max="89" step="0.5"><input type="text" id="theta-text"></div>
-    <div id="params"></div>
-  </section>
-  <section><h2>Scene</h2>
-    <div class="row"><label for="mesh">object</label><select id="mesh"><option value="sphere">sphere</option></select></div>
-    <div class="row"><label>light</label><span id="light-text"></span></div>
-    <div>Drag on a picture to move the light.</div>
-  </section>
-  <section><h2>Export</h2>
-    <div class="row"><select id="export-model"></select><select id="lang"></select><button id="copy">copy</button></div>
-    <pre id="shader"></pre>
-    <div>Link to this view: <a id="link" href="#">link</a></div>
-  </section>
-</div>
-<div>
-  <section><h2>Plots</h2><div id="plots">
-    <canvas class="plot" id="polar" width="420" height="260"></canvas>
-    <canvas class="plot" id="lobe" width="420" height="260"></canvas>
-    <canvas class="plot" id="err-abs" width="420" height="260"></canvas>
-    <canvas class="plot" id="err-rel" width="420" height="260"></canvas>
-    <canvas class="plot" id="albedo" width="420" height="260"></canvas>
-    <canvas class="plot" id="slice" width="420" height="260"></canvas>
-  </div></section>
-  <section><h2>Pictures <span id="render-info"></span></h2><div id="pictures"></div></section>
-  <section><h2>Numbers</h2><table id="numbers"></table><div id="verdicts"></div></section>
-</div>
-</main>
-<script>
-"use strict";
+// The page is main.js and the files after it (gpu.js, panes.js, kinds.js, user.js), one
+// script (request.rs joins them). The later files add themselves through HOOKS, so each
+// part lives in one file:
+//   start(info)      after /api/models has arrived, before the first update (add controls);
+//   controls()       after the controls were rebuilt (models or structure changed);
+//   update(q)        on every change of state (q: the models' query, paramQuery());
+//   plots(d)         after /api/plots' numbers were drawn (d: its JSON);
+//   render(q, g)     replaces the server's pictures when it returns true (gpu.js: WebGPU).
+const HOOKS = { start: [], controls: [], update: [], plots: [], render: [] };
 const COLORS = ["#000000", "#e53935", "#1e88e5", "#43a047", "#fb8c00", "#8e24aa", "#00897b"];
 let MODELS = {}, INFO = null, MEAS = null; // MEAS: the --measured file's name, a reference only; users' models (--model file:PATH) are in MODELS, kind "user"
 let state = { models: ["flog"], ref: "pow", theta: 30, params: {}, mesh: "sphere", light: "0.5,0.7,0.6", lang: "wgsl", exp: "" };
@@ -203,6 +139,7 @@ function buildControls() {
   $("light-text").textContent = state.light;
   const em = $("export-model"); em.replaceChildren();
   for (const id of allIds()) if (id !== MEAS) em.add(new Option(id, id, false, id === (state.exp || state.models[0])));
+  for (const h of HOOKS.controls) h();
 }
 
 function changed(structure) {
@@ -388,6 +325,7 @@ function update() {
     const t = performance.now();
     const d = await getJSON("/api/plots?" + q, ps);
     lastPlots = d; drawPlots(d); drawNumbers();
+    for (const h of HOOKS.plots) h(d);
     setStatus(`plots ${(performance.now() - t).toFixed(0)} ms (server ${d.ms.toFixed(0)} ms)`);
   });
   if (albedoCtl) albedoCtl.abort(); albedoCtl = new AbortController(); const as = albedoCtl.signal;
@@ -400,9 +338,11 @@ function update() {
   });
   renderAll(q);
   exportShader();
+  for (const h of HOOKS.update) h(q);
 }
 let albedoCtl = null;
 function renderAll(q) {
+  for (const h of HOOKS.render) if (h(q, gen + 1)) { gen++; return; }
   if (renderCtl) renderCtl.abort(); renderCtl = new AbortController(); const rs = renderCtl.signal;
   const g = ++gen;
   const rq = new URLSearchParams(q); rq.set("mesh", state.mesh); rq.set("light", state.light); rq.set("client", client); rq.set("gen", String(g));
@@ -492,10 +432,7 @@ async function start() {
   $("theta").oninput = () => { state.theta = Number($("theta").value); $("theta-text").value = state.theta; changed(false); };
   $("theta-text").onchange = () => { state.theta = Number($("theta-text").value); $("theta").value = state.theta; changed(false); };
   readHash();
+  for (const h of HOOKS.start) await h(INFO);
   window.addEventListener("hashchange", () => { readHash(); changed(true); });
   changed(true);
 }
-task(start);
-</script>
-</body>
-</html>

@@ -1,0 +1,1 @@
+// gpu.js: (placeholder, filled by its owner)

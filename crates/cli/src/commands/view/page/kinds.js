@@ -1,0 +1,1 @@
+// kinds.js: (placeholder, filled by its owner)

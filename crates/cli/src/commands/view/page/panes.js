@@ -1,0 +1,1 @@
+// panes.js: (placeholder, filled by its owner)

@@ -1,0 +1,1 @@
+// user.js: (placeholder, filled by its owner)
