@@ -3,11 +3,12 @@
 //! whether the client of the request being handled has gone.
 
 use super::flip::Flips;
+use super::users::UserModel;
 use crate::CliError;
 use fastbrdf_render::setup::{self, Loaded, SceneSpec};
 use std::collections::HashMap;
 use std::path::PathBuf;
-use std::sync::{Arc, Condvar, Mutex};
+use std::sync::{Arc, Condvar, Mutex, RwLock};
 use std::time::Duration;
 
 /// Renders running at once (the renderer itself is parallel over tiles).
@@ -99,8 +100,9 @@ impl Measured {
 /// What the handlers share.
 pub struct State {
     pub measured: Option<Measured>,
-    /// The users' models (`--model file:PATH`), in the order given.
-    pub users: Vec<super::users::UserModel>,
+    /// The users' models: `--model file:PATH` in the order given, then the uploads
+    /// (`POST /api/user`), oldest first; read through [`State::users`] and [`State::user`].
+    users: RwLock<Vec<Arc<UserModel>>>,
     pub loaded_sphere: Loaded,
     pub loaded_mesh: Option<Loaded>,
     pub mesh_path: Option<PathBuf>,
@@ -158,7 +160,7 @@ impl State {
             .transpose()?;
         Ok(Self {
             measured,
-            users: Vec::new(),
+            users: RwLock::new(Vec::new()),
             loaded_sphere,
             loaded_mesh,
             mesh_name: mesh.as_ref().map(|m| m.display().to_string()),
@@ -173,14 +175,21 @@ impl State {
     }
 
     /// The state with the users' models `users` (loaded by [`super::users::load`]).
-    pub fn with_users(mut self, users: Vec<super::users::UserModel>) -> Self {
-        self.users = users;
+    pub fn with_users(self, users: Vec<UserModel>) -> Self {
+        *self.users.write().unwrap_or_else(|e| e.into_inner()) =
+            users.into_iter().map(Arc::new).collect();
         self
     }
 
-    /// The user's model the page and the API call `name`.
-    pub fn user(&self, name: &str) -> Option<&super::users::UserModel> {
-        self.users.iter().find(|u| u.name == name)
+    /// The user's model the page and the API call `name` (a start-up one or an upload).
+    pub fn user(&self, name: &str) -> Option<Arc<UserModel>> {
+        let users = self.users.read().unwrap_or_else(|e| e.into_inner());
+        users.iter().find(|u| u.name == name).cloned()
+    }
+
+    /// The users' models now (a snapshot: an upload after the call is not in it).
+    pub fn users(&self) -> Vec<Arc<UserModel>> {
+        self.users.read().unwrap_or_else(|e| e.into_inner()).clone()
     }
 
     /// Model `id`'s measured throughput in the bench run, evaluations per second: the best

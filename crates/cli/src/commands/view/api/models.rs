@@ -64,7 +64,8 @@ pub fn models(state: &State) -> Response {
         })
         .collect();
     // The users' models (`--model file:PATH`), after the registry's.
-    list.extend(state.users.iter().map(|u| u.entry_json()));
+    let users = state.users();
+    list.extend(users.iter().map(|u| u.entry_json()));
     let materials: Vec<&str> = fastbrdf_analysis::materials::all()
         .iter()
         .map(|m| m.name.as_str())
@@ -77,7 +78,7 @@ pub fn models(state: &State) -> Response {
         "measured": state.measured.as_ref().map(|m| json!({
             "name": m.name, "file": m.path.display().to_string(), "samples": m.data.len(),
         })),
-        "users": state.users.iter().map(|u| u.name.as_str()).collect::<Vec<_>>(),
+        "users": users.iter().map(|u| u.name.as_str()).collect::<Vec<_>>(),
         "limits": {"size": MAX_SIZE, "spp": MAX_SPP, "models": MAX_MODELS},
         "langs": ["wgsl", "glsl", "hlsl", "msl", "brdf-explorer"],
     }))

@@ -132,8 +132,9 @@ pub enum Reference<'a> {
     Model(&'static str),
     /// The server's `--measured` file (`ref=` its name).
     Measured(&'a Measured),
-    /// A user's model (`--model file:PATH`; `ref=` its name), with the query's values.
-    User(&'a UserModel),
+    /// A user's model (`--model file:PATH` or an upload; `ref=` its name), with the query's
+    /// values.
+    User(Arc<UserModel>),
 }
 
 impl<'a> Reference<'a> {
@@ -185,14 +186,14 @@ pub fn checked_id(id: &str) -> Result<&'static str, CliError> {
 }
 
 /// One chosen model: a registry id or a user's model.
-pub enum Pick<'a> {
+pub enum Pick {
     Registry(&'static str),
-    User(&'a UserModel),
+    User(Arc<UserModel>),
 }
 
 /// The chosen models (`models=a,b`: registry ids and the names of the users' models),
 /// checked, at most [`MAX_MODELS`].
-pub fn picks<'a>(q: &Query, state: &'a State) -> Result<Vec<Pick<'a>>, CliError> {
+pub fn picks(q: &Query, state: &State) -> Result<Vec<Pick>, CliError> {
     let ids: Vec<&str> = q
         .need("models")?
         .split(',')
@@ -271,8 +272,8 @@ pub fn check_unused(ids: &[&str], all: &[(String, String)]) -> Result<(), CliErr
 
 /// A user's model as a query chose it: compiled with the query's values of the parameters its
 /// file declares.
-pub struct UserPick<'a> {
-    pub model: &'a UserModel,
+pub struct UserPick {
+    pub model: Arc<UserModel>,
     pub brdf: Arc<GpuBrdf>,
     /// The query's values it took.
     pub values: Vec<(String, String)>,
@@ -284,10 +285,10 @@ pub struct UserPick<'a> {
 /// reference.
 pub struct Chosen<'a> {
     pub models: Vec<(&'static str, ModelSpec)>,
-    pub users: Vec<UserPick<'a>>,
+    pub users: Vec<UserPick>,
     pub reference: Option<Reference<'a>>,
     /// The user's model that is the reference, compiled with the query's values.
-    pub ref_user: Option<UserPick<'a>>,
+    pub ref_user: Option<UserPick>,
 }
 
 /// The models of a plots, albedo or render query, a model reference first, each once, each
@@ -300,7 +301,7 @@ pub fn chosen<'a>(state: &'a State, q: &Query) -> Result<Chosen<'a>, CliError> {
     let all = q.params();
     let mut order: Vec<&'static str> = reference.iter().filter_map(Reference::model).collect();
     let ref_name = reference.as_ref().map(|r| r.name().to_string());
-    let mut users: Vec<&UserModel> = vec![];
+    let mut users: Vec<Arc<UserModel>> = vec![];
     for p in picks {
         match p {
             Pick::Registry(id) => {
@@ -316,14 +317,10 @@ pub fn chosen<'a>(state: &'a State, q: &Query) -> Result<Chosen<'a>, CliError> {
         }
     }
     let ref_model = match &reference {
-        Some(Reference::User(u)) => Some(*u),
+        Some(Reference::User(u)) => Some(u.clone()),
         _ => None,
     };
-    let all_users: Vec<&UserModel> = ref_model
-        .iter()
-        .copied()
-        .chain(users.iter().copied())
-        .collect();
+    let all_users: Vec<&Arc<UserModel>> = ref_model.iter().chain(users.iter()).collect();
     // The registry models get the values one of them takes or no user's model declares (the
     // latter then refused as unused, naming the value).
     let mut to_registry = Vec::new();
@@ -352,12 +349,12 @@ pub fn chosen<'a>(state: &'a State, q: &Query) -> Result<Chosen<'a>, CliError> {
         .into_iter()
         .map(|id| Ok((id, spec_of(id, &to_registry)?)))
         .collect::<Result<_, CliError>>()?;
-    let pick = |u: &'a UserModel| -> Result<UserPick<'a>, CliError> {
+    let pick = |u: Arc<UserModel>| -> Result<UserPick, CliError> {
         let values: Vec<(String, String)> =
             all.iter().filter(|(k, _)| u.declares(k)).cloned().collect();
         Ok(UserPick {
-            model: u,
             brdf: u.instance(&values)?,
+            model: u,
             values,
         })
     };

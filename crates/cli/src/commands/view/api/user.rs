@@ -212,8 +212,8 @@ pub fn errors_user(state: &State, q: &Query) -> Option<Result<Response, CliError
             )));
         }
         let all = q.params();
-        let users: Vec<_> = [mu, ru].into_iter().flatten().collect();
-        let registry: Vec<&'static str> = [(model, mu), (r, ru)]
+        let users: Vec<_> = [&mu, &ru].into_iter().flatten().collect();
+        let registry: Vec<&'static str> = [(model, &mu), (r, &ru)]
             .into_iter()
             .filter(|(_, u)| u.is_none())
             .map(|(id, _)| checked_id(id))
@@ -249,7 +249,7 @@ pub fn errors_user(state: &State, q: &Query) -> Option<Result<Response, CliError
                 })
             }
         };
-        let (a, b) = (side(model, mu)?, side(r, ru)?);
+        let (a, b) = (side(model, mu.as_deref())?, side(r, ru.as_deref())?);
         let mut v = against(a.as_ref(), b.as_ref(), r)?;
         v["model"] = json!(model);
         Ok(Response::json(&v))
