@@ -18,6 +18,9 @@ pub const PAGE: &str = concat!(
     "task(start);\n</script>\n</body>\n</html>\n"
 );
 
+/// The one path that takes a request body: `POST /api/user`, a user's model to compile.
+pub const UPLOAD: &str = "/api/user";
+
 /// Longest request target (path and query) accepted.
 pub const MAX_URL: usize = 8192;
 /// One request as [`handle`] sees it.
@@ -30,6 +33,9 @@ pub struct Request<'a> {
     pub host: Option<&'a str>,
     /// Whether the request carries a body (a `Content-Length` above 0, or chunked).
     pub has_body: bool,
+    /// The body, read by the server: only that of a `POST` to [`UPLOAD`] (at most
+    /// [`api::MAX_UPLOAD`] bytes); None when unread.
+    pub body: Option<&'a [u8]>,
     /// The `Sec-Fetch-Site` header (a browser's: `same-origin`, `same-site`, `cross-site`,
     /// `none`), if any.
     pub fetch_site: Option<&'a str>,
@@ -169,23 +175,33 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
     {
         return Response::error(403, &why);
     }
-    if req.has_body {
+    let (method, target) = (req.method, req.target);
+    let (path, query) = target.split_once('?').unwrap_or((target, ""));
+    let upload = method == "POST" && path == UPLOAD;
+    if req.has_body && !(upload && req.body.is_some()) {
         return Response::error(
             413,
-            "request bodies are refused: the API is GET-only, parameters go in the query",
+            "request bodies are refused: the API is GET-only (but POST /api/user, a user's model), parameters go in the query",
         );
     }
-    let (method, target) = (req.method, req.target);
     if target.len() > MAX_URL {
         return Response::error(414, &format!("request target longer than {MAX_URL} bytes"));
     }
-    if method != "GET" {
+    if path == UPLOAD && !upload {
+        return Response::error(
+            405,
+            &format!(
+                "method {} {UPLOAD}: only POST, with the file as the body and ?name=FILE.brdf|.wgsl|.glsl",
+                fastbrdf_io::shorten(method, 16)
+            ),
+        );
+    }
+    if method != "GET" && !upload {
         return Response::error(
             405,
             &format!("method {}: only GET", fastbrdf_io::shorten(method, 16)),
         );
     }
-    let (path, query) = target.split_once('?').unwrap_or((target, ""));
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         let q = Query::parse(query);
         let r: Result<Response, CliError> = match path {
@@ -208,6 +224,8 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
             "/api/errors" => api::errors_endpoint(state, &q),
             "/api/shader" => api::shader(state, &q),
             "/api/material" => api::material(&q),
+            UPLOAD => api::upload(state, &q, req.body.unwrap_or_default()),
+            "/api/conform" => api::conform_endpoint(state, &q),
             // Nothing else exists: no file is ever read from a path, so `..` leads nowhere.
             _ => Ok(Response::error(
                 404,

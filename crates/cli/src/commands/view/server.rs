@@ -3,7 +3,7 @@
 //! request's [`handle`] on the blocking pool.
 
 use super::api::Response;
-use super::request::{Hosts, Request, cross_site, handle};
+use super::request::{Hosts, MAX_URL, Request, UPLOAD, cross_site, handle};
 use super::state::{COMPUTE_WAIT, GONE, Hangup, MAX_WAITING, RENDER_SLOTS, State, compute_slots};
 use crate::CliError;
 use std::net::SocketAddr;
@@ -98,9 +98,16 @@ struct Shared {
 }
 
 /// The endpoints that compute (time in the milliseconds to seconds) under a computation
-/// permit; renders (`/api/render`) have their own slots ([`RENDER_SLOTS`], [`MAX_WAITING`]);
-/// the others (the page, `/api/models`, `/api/shader`, `/api/material`, errors) answer at once.
-const COMPUTED: [&str; 3] = ["/api/plots", "/api/albedo", "/api/errors"];
+/// permit (an upload compiles a shader and a GPU pipeline, conform runs its 11 checks);
+/// renders (`/api/render`) have their own slots ([`RENDER_SLOTS`], [`MAX_WAITING`]); the
+/// others (the page, `/api/models`, `/api/shader`, `/api/material`, errors) answer at once.
+const COMPUTED: [&str; 5] = [
+    "/api/plots",
+    "/api/albedo",
+    "/api/errors",
+    UPLOAD,
+    "/api/conform",
+];
 
 /// A running server: its address and the runtime that serves it.
 pub struct Server {
@@ -388,6 +395,8 @@ struct Head {
     target: String,
     host: Option<String>,
     has_body: bool,
+    /// The body of an upload, read ([`read_body`]).
+    body: Option<Vec<u8>>,
     fetch_site: Option<String>,
     origin: Option<String>,
 }
@@ -399,6 +408,7 @@ impl Head {
             target: &self.target,
             host: self.host.as_deref(),
             has_body: self.has_body,
+            body: self.body.as_deref(),
             fetch_site: self.fetch_site.as_deref(),
             origin: self.origin.as_deref(),
         }
@@ -430,15 +440,16 @@ async fn answer(
             .get(name)
             .map(|h| String::from_utf8_lossy(h.as_bytes()).into_owned())
     };
-    let head = Head {
+    let mut head = Head {
         method,
         target,
         host,
         has_body,
+        body: None,
         fetch_site: header("sec-fetch-site"),
         origin: header("origin"),
     };
-    drop(req);
+    let incoming = req.into_body();
     // A computation keeps running when its client goes (it cannot be interrupted), so a
     // client that asks and hangs up, again and again, could pile them up: at most
     // `computing_max` run, one more waits `COMPUTE_WAIT` then gets 503, and the quick requests
@@ -450,6 +461,21 @@ async fn answer(
         .as_deref()
         .is_some_and(|h| !shared.hosts.allows(h))
         || cross_site(&shared.hosts, &head.request()).is_some();
+    // The one body read: an upload's, bounded ([`read_body`]); any other is left unread and
+    // refused by `handle` (the connection then closes).
+    let mut unread = has_body;
+    if head.method == "POST" && path == UPLOAD && !refused && head.target.len() <= MAX_URL {
+        match read_body(incoming, shared.limits.idle_timeout).await {
+            Ok(b) => {
+                head.body = Some(b);
+                unread = false;
+            }
+            Err(r) => return to_hyper(r, true),
+        }
+    } else {
+        drop(incoming);
+    }
+    let path = head.target.split('?').next().unwrap_or("");
     let permit = if COMPUTED.contains(&path) && !refused {
         match tokio::time::timeout(COMPUTE_WAIT, shared.computing.clone().acquire_owned()).await {
             Ok(Ok(p)) => Some(p),
@@ -462,7 +488,7 @@ async fn answer(
                             shared.computing_max
                         ),
                     ),
-                    has_body,
+                    unread,
                 );
             }
         }
@@ -486,7 +512,37 @@ async fn answer(
     })
     .await
     .unwrap_or_else(|_| Response::error(500, "internal error (a panic); the server goes on"));
-    to_hyper(r, has_body)
+    to_hyper(r, unread)
+}
+
+/// An upload's body: at most [`MAX_UPLOAD`](super::api::MAX_UPLOAD) bytes (a larger
+/// `Content-Length` is 413 before a byte is read, a longer body 413 when the limit is
+/// passed), complete within `wait` (else 408).
+async fn read_body(body: hyper::body::Incoming, wait: Duration) -> Result<Vec<u8>, Response> {
+    use http_body_util::BodyExt;
+    use hyper::body::Body as _;
+    let cap = super::api::MAX_UPLOAD;
+    let too_large = || {
+        Response::error(
+            413,
+            &format!("the body is over {cap} bytes: an uploaded model is at most {cap} bytes"),
+        )
+    };
+    if body.size_hint().lower() > cap as u64 {
+        return Err(too_large());
+    }
+    match tokio::time::timeout(wait, http_body_util::Limited::new(body, cap).collect()).await {
+        Err(_) => Err(Response::error(
+            408,
+            &format!("the body did not arrive within {} s", wait.as_secs_f64()),
+        )),
+        Ok(Err(e)) if e.is::<http_body_util::LengthLimitError>() => Err(too_large()),
+        Ok(Err(e)) => Err(Response::error(
+            400,
+            &format!("reading the body failed: {e}"),
+        )),
+        Ok(Ok(c)) => Ok(c.to_bytes().to_vec()),
+    }
 }
 
 /// hyper's response for `r`; `close`: the connection ends with it (a request body was left

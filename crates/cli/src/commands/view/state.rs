@@ -52,6 +52,10 @@ impl Drop for Hangup {
     }
 }
 
+/// Uploaded users' models kept (`POST /api/user`): one more drops the oldest upload (the
+/// start-up ones stay).
+pub const MAX_UPLOADS: usize = 16;
+
 /// Clients whose latest render generation is remembered.
 const MAX_CLIENTS: usize = 1024;
 
@@ -103,6 +107,8 @@ pub struct State {
     /// The users' models: `--model file:PATH` in the order given, then the uploads
     /// (`POST /api/user`), oldest first; read through [`State::users`] and [`State::user`].
     users: RwLock<Vec<Arc<UserModel>>>,
+    /// The GPU the users' models run on: the start-up ones', else opened at the first upload.
+    gpu: Mutex<Option<Arc<fastbrdf_gpu::Gpu>>>,
     pub loaded_sphere: Loaded,
     pub loaded_mesh: Option<Loaded>,
     pub mesh_path: Option<PathBuf>,
@@ -161,6 +167,7 @@ impl State {
         Ok(Self {
             measured,
             users: RwLock::new(Vec::new()),
+            gpu: Mutex::new(None),
             loaded_sphere,
             loaded_mesh,
             mesh_name: mesh.as_ref().map(|m| m.display().to_string()),
@@ -176,6 +183,9 @@ impl State {
 
     /// The state with the users' models `users` (loaded by [`super::users::load`]).
     pub fn with_users(self, users: Vec<UserModel>) -> Self {
+        if let Some(u) = users.first() {
+            *self.gpu.lock().unwrap_or_else(|e| e.into_inner()) = Some(u.gpu().clone());
+        }
         *self.users.write().unwrap_or_else(|e| e.into_inner()) =
             users.into_iter().map(Arc::new).collect();
         self
@@ -190,6 +200,52 @@ impl State {
     /// The users' models now (a snapshot: an upload after the call is not in it).
     pub fn users(&self) -> Vec<Arc<UserModel>> {
         self.users.read().unwrap_or_else(|e| e.into_inner()).clone()
+    }
+
+    /// The GPU for users' models: the start-up models', else one opened now (and kept). No
+    /// adapter is the server's failure (exit 1: HTTP 500), naming `what`.
+    pub fn gpu(&self, what: &str) -> Result<Arc<fastbrdf_gpu::Gpu>, CliError> {
+        let mut g = self.gpu.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(gpu) = g.as_ref() {
+            return Ok(gpu.clone());
+        }
+        let gpu = Arc::new(fastbrdf_gpu::Gpu::new().map_err(|e| CliError {
+            code: crate::EXIT_CHECK_FAILED,
+            message: format!("{what}: no GPU: {e}"),
+        })?);
+        *g = Some(gpu.clone());
+        Ok(gpu)
+    }
+
+    /// Adds the upload `u`: it replaces an earlier upload of its name, and past
+    /// [`MAX_UPLOADS`] the oldest upload goes. A start-up model, the measured file or a
+    /// registry model of its name is an error naming it (nothing changes).
+    pub fn add_upload(&self, u: UserModel) -> Result<Arc<UserModel>, CliError> {
+        let name = u.name.clone();
+        let taken = |why: &str| {
+            CliError::input(format!(
+                "name {}: taken by {why}; send the file under another name",
+                fastbrdf_io::shorten(&name, 64)
+            ))
+        };
+        if self.measured.as_ref().is_some_and(|m| m.name == u.name) {
+            return Err(taken("the measured file"));
+        }
+        if fastbrdf::registry::find(&u.name).is_ok() {
+            return Err(taken("a registry model"));
+        }
+        let u = Arc::new(u);
+        let mut users = self.users.write().unwrap_or_else(|e| e.into_inner());
+        if users.iter().any(|x| x.name == u.name && !x.uploaded) {
+            return Err(taken("a --model file given at start-up"));
+        }
+        users.retain(|x| x.name != u.name);
+        while users.iter().filter(|x| x.uploaded).count() >= MAX_UPLOADS {
+            let oldest = users.iter().position(|x| x.uploaded).expect("an upload");
+            users.remove(oldest);
+        }
+        users.push(u.clone());
+        Ok(u)
     }
 
     /// Model `id`'s measured throughput in the bench run, evaluations per second: the best

@@ -17,13 +17,17 @@ use std::sync::{Arc, Mutex};
 /// Compiled parameter sets kept per user's model (a slider move compiles a new one).
 pub const KEPT_VALUE_SETS: usize = 8;
 
-/// A user's model loaded at start-up.
+/// A user's model: loaded at start-up (`--model file:PATH`) or uploaded (`POST /api/user`).
 pub struct UserModel {
     /// What the page and the API call it: the file's name (the path as given when that name
-    /// is taken by a registry model, the measured file or another user's model).
+    /// is taken by a registry model, the measured file or another user's model); an upload's
+    /// is `file:NAME`.
     pub name: String,
+    /// The file (an upload: its name as sent).
     pub path: PathBuf,
     pub shader: UserShader,
+    /// Sent to the running server (`POST /api/user`), not given at start-up.
+    pub uploaded: bool,
     /// The `--param` values given at start-up: the values a request does not give.
     pub given: Vec<(String, String)>,
     gpu: Arc<fastbrdf_gpu::Gpu>,
@@ -47,6 +51,46 @@ fn cli_error(e: UserError) -> CliError {
 }
 
 impl UserModel {
+    /// The model of `shader` (read from `path`) with the start-up values `given`, on `gpu`:
+    /// its instruction counts taken (a note on stderr without spirv-opt) and its default
+    /// instance compiled, so that a shader the GPU refuses fails here, not at the first request.
+    pub fn new(
+        name: String,
+        path: PathBuf,
+        shader: UserShader,
+        given: Vec<(String, String)>,
+        gpu: Arc<fastbrdf_gpu::Gpu>,
+        uploaded: bool,
+    ) -> Result<Self, CliError> {
+        let instructions = match shader.instructions() {
+            Ok(c) => Some(c),
+            Err(e) => {
+                super::server::note(&format!(
+                    "note: instruction count of {} unknown: {e}",
+                    shader.name()
+                ));
+                None
+            }
+        };
+        let u = UserModel {
+            name,
+            path,
+            shader,
+            uploaded,
+            given,
+            gpu,
+            kept: Mutex::new(VecDeque::new()),
+            instructions,
+        };
+        u.instance(&[])?;
+        Ok(u)
+    }
+
+    /// The GPU its instances run on.
+    pub fn gpu(&self) -> &Arc<fastbrdf_gpu::Gpu> {
+        &self.gpu
+    }
+
     /// Whether the file declares parameter `name`.
     pub fn declares(&self, name: &str) -> bool {
         self.shader.params().iter().any(|p| p.name == name)
@@ -143,7 +187,7 @@ impl UserModel {
             "channels": self.shader.channels(), "samples": self.shader.samples(),
             "formula": Value::Null, "source": format!("{USER_PREFIX}{}", self.path.display()),
             "bounds": [], "ops": Value::Null, "swept": Value::Null, "cost": Value::Null,
-            "instructions": self.instructions,
+            "instructions": self.instructions, "uploaded": self.uploaded,
         })
     }
 }
@@ -233,25 +277,15 @@ pub fn load(ids: &[String], params: &[String], taken: &[&str]) -> Result<Vec<Use
                 fastbrdf_io::shorten(&name, 60)
             )));
         }
-        let instructions = match shader.instructions() {
-            Ok(c) => Some(c),
-            Err(e) => {
-                eprintln!("note: instruction count of {} unknown: {e}", shader.name());
-                None
-            }
-        };
-        let u = UserModel {
+        // Compiled now: a shader the GPU refuses fails at start-up, not at the first request.
+        out.push(UserModel::new(
             name,
             path,
             shader,
             given,
-            gpu: gpu.clone(),
-            kept: Mutex::new(VecDeque::new()),
-            instructions,
-        };
-        // Compiled now: a shader the GPU refuses fails at start-up, not at the first request.
-        u.instance(&[])?;
-        out.push(u);
+            gpu.clone(),
+            false,
+        )?);
     }
     Ok(out)
 }

@@ -9,6 +9,7 @@
 //! the models' specs; the endpoints ([`models`](mod@models), [`plots`](mod@plots), [`errors`],
 //! [`render`]) take them; [`user`] computes what the users' models (`--model file:PATH`) show.
 
+mod conform;
 mod errors;
 mod grids;
 mod models;
@@ -17,8 +18,10 @@ mod query;
 mod render;
 mod user;
 
+pub use conform::conform_endpoint;
 pub use errors::errors_endpoint;
 pub use models::{material, models, shader};
 pub use plots::{albedo_endpoint, plots};
 pub use query::{Query, Response};
 pub use render::{flip_endpoint, render_endpoint};
+pub use user::{MAX_UPLOAD, upload};

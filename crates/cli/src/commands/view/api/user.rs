@@ -9,8 +9,10 @@ use super::query::{
 };
 use crate::CliError;
 use crate::commands::view::state::State;
+use crate::commands::view::users::UserModel;
 use fastbrdf::sample::Strategy;
 use fastbrdf::user::{Builtin, UserBrdf};
+use fastbrdf_gpu::user::{Language, UserShader};
 use serde_json::{Value, json};
 use std::sync::Arc;
 
@@ -234,7 +236,7 @@ pub fn errors_user(state: &State, q: &Query) -> Option<Result<Response, CliError
         } else {
             check_unused(&registry, &to_registry)?;
         }
-        let side = |id: &str, u: Option<&crate::commands::view::users::UserModel>| match u {
+        let side = |id: &str, u: Option<&UserModel>| match u {
             Some(u) => {
                 let own: Vec<(String, String)> =
                     all.iter().filter(|(k, _)| u.declares(k)).cloned().collect();
@@ -269,4 +271,128 @@ pub fn user_shader(state: &State, q: &Query) -> Option<Result<Response, CliError
         content_type: "text/plain; charset=utf-8",
         body: t.into_bytes(),
     }))
+}
+
+/// Largest file `POST /api/user` takes, bytes (the server reads no more: 413).
+pub const MAX_UPLOAD: usize = 256 * 1024;
+/// Longest name an upload may have.
+const MAX_NAME: usize = 64;
+
+/// The name of an upload (`?name=FILE.brdf|.wgsl|.glsl`), checked: 1 to [`MAX_NAME`]
+/// letters, digits, `.`, `_`, `-` or `+`, not starting with `.`, ending in an extension that
+/// says the language.
+fn upload_name(q: &Query) -> Result<(&str, Language), CliError> {
+    let name = q.get("name").ok_or_else(|| {
+        CliError::input("missing query parameter 'name': the file's name, e.g. ?name=my.wgsl")
+    })?;
+    let ok = !name.is_empty()
+        && name.len() <= MAX_NAME
+        && !name.starts_with('.')
+        && name
+            .bytes()
+            .all(|b| b.is_ascii_alphanumeric() || b"._-+".contains(&b));
+    if !ok {
+        return Err(CliError::input(format!(
+            "name '{}': 1 to {MAX_NAME} letters, digits, '.', '_', '-' or '+', not starting \
+             with '.' (e.g. my_ggx.wgsl)",
+            fastbrdf_io::shorten(name, MAX_NAME)
+        )));
+    }
+    let lang = Language::from_path(std::path::Path::new(name)).ok_or_else(|| {
+        CliError::input(format!(
+            "name {name}: unknown shader language: the name must end in .brdf (BRDF \
+             Explorer), .wgsl or .glsl"
+        ))
+    })?;
+    Ok((name, lang))
+}
+
+/// The line and column a compile error of file `origin` names (`ORIGIN:LINE:COL: ...`).
+fn located(message: &str, origin: &str) -> (Option<u64>, Option<u64>) {
+    let Some(rest) = message
+        .strip_prefix(origin)
+        .and_then(|r| r.strip_prefix(':'))
+    else {
+        return (None, None);
+    };
+    let mut parts = rest.splitn(3, ':');
+    let line = parts.next().and_then(|l| l.parse().ok());
+    let column = line.and(parts.next().and_then(|c| c.parse().ok()));
+    (line, column)
+}
+
+/// A user's error of upload `name` as 400 `{"error", "line", "column"}` (line and column:
+/// null when the message names none); the GPU's as 500.
+fn upload_error(e: CliError, name: &str) -> Response {
+    if e.code != crate::EXIT_INPUT {
+        return Response::from(e);
+    }
+    let (line, column) = located(&e.message, name);
+    Response {
+        status: 400,
+        content_type: "application/json",
+        body: serde_json::to_vec(&json!({"error": e.message, "line": line, "column": column}))
+            .expect("serialisable"),
+    }
+}
+
+/// `POST /api/user?name=FILE.brdf|.wgsl|.glsl` with the file's text as the body (at most
+/// [`MAX_UPLOAD`] bytes, UTF-8): compiled as `--model file:FILE` is at start-up (naga, then a
+/// GPU pipeline), added as user's model `file:FILE` (replacing an earlier upload of that
+/// name; at most [`MAX_UPLOADS`](crate::commands::view::state::MAX_UPLOADS), the oldest
+/// dropped) and answered with its `/api/models` entry. A compile error is 400 with the message
+/// `FILE:LINE:COL: ...` and its `line` and `column`.
+pub fn upload(state: &State, q: &Query, body: &[u8]) -> Result<Response, CliError> {
+    let (name, lang) = upload_name(q)?;
+    if body.len() > MAX_UPLOAD {
+        return Ok(Response::error(
+            413,
+            &format!(
+                "{name}: {} bytes; an upload is at most {MAX_UPLOAD} bytes",
+                body.len()
+            ),
+        ));
+    }
+    let text = std::str::from_utf8(body).map_err(|e| {
+        CliError::input(format!("{name}: not UTF-8 text (byte {})", e.valid_up_to()))
+    })?;
+    if text.trim().is_empty() {
+        return Err(CliError::input(format!("{name}: the file is empty")));
+    }
+    let shader = match UserShader::parse(text, name, lang) {
+        Ok(s) => s,
+        Err(e) => return Ok(upload_error(user_cli_error(e), name)),
+    };
+    let id = format!("{}{name}", crate::model_args::USER_PREFIX);
+    let gpu = state.gpu(&id)?;
+    let model = UserModel::new(id, name.into(), shader, Vec::new(), gpu, true);
+    match model {
+        Ok(m) => Ok(Response::json(&state.add_upload(m)?.entry_json())),
+        Err(e) => Ok(upload_error(e, name)),
+    }
+}
+
+/// A [`fastbrdf_gpu::user::UserError`] as the CLI reports it (input: exit 2, GPU: exit 1).
+fn user_cli_error(e: fastbrdf_gpu::user::UserError) -> CliError {
+    CliError {
+        code: match e.kind {
+            fastbrdf_gpu::user::UserErrorKind::Input => crate::EXIT_INPUT,
+            fastbrdf_gpu::user::UserErrorKind::Gpu => crate::EXIT_CHECK_FAILED,
+        },
+        message: e.message,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn located_reads_line_and_column_after_the_name() {
+        assert_eq!(
+            super::located("a.wgsl:3:14: error: x", "a.wgsl"),
+            (Some(3), Some(14))
+        );
+        assert_eq!(super::located("a.wgsl:7: error", "a.wgsl"), (Some(7), None));
+        assert_eq!(super::located("a.wgsl: no brdf", "a.wgsl"), (None, None));
+        assert_eq!(super::located("b.wgsl:3:1: x", "a.wgsl"), (None, None));
+    }
 }
