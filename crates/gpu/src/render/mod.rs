@@ -55,6 +55,9 @@
 //!   against the device's storage binding limit like the other mesh buffers (128 MiB by
 //!   default: about 3.5 million triangles); a larger mesh is refused with the sizes and the
 //!   hint `--shadows off` (no such buffers then).
+//! - Environment light (`scene.environment`): `env.rs` and `shaders/env.wgsl`, spliced in
+//!   only then; per sample and pass a map direction and a cosine direction (balance
+//!   heuristic), with the CPU's shadow rays; `samples` passes in a few draws per tile, summed.
 //! - Large images are cut into tiles of at most 2048 x 2048 samples (and at most the device's
 //!   largest texture side), whole pixels each, so the image size is only limited by
 //!   `film::check_size`, like the CPU's.
@@ -78,6 +81,7 @@
 //! `tests/render.rs` holds GPU renders of the sphere and the face mesh to their CPU renders
 //! within stated tolerances: 8-bit on any adapter, and 1e-4 linear on software adapters.
 
+pub mod env;
 mod layouts;
 mod objects;
 mod passes;
@@ -117,7 +121,9 @@ const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// linear `Film`.
 ///
 /// `opts.shading` is ignored (the GPU evaluates the model per sample); `scene.environment`
-/// is not rendered (the CLI refuses `--env` with `--gpu`). Errors: sizes outside
+/// is sampled as [`env`] says (the same picture as the CPU's in the limit of many samples,
+/// `tests/render_env.rs`; `opts.sampler` is ignored: the GPU's numbers are the independent
+/// sampler's). Errors: sizes outside
 /// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
 /// corners, or with shadows its BVH and triangles) or texture larger than the device's limits,
 /// a model that is not a BRDF instance, an RGB BRDF (see [`render_user`]), and GPU failures.
@@ -215,6 +221,11 @@ fn render_scene(
     }
 
     let layouts = Layouts::new(device);
+    let env = scene
+        .environment
+        .as_ref()
+        .map(|e| env::GpuEnv::new(device, queue, &layouts, &limits, e))
+        .transpose()?;
     let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
     let mut objects = Vec::with_capacity(scene.objects.len());
     // World length of one sample per unit of distance from the eye (see `dilate_boundaries`).
@@ -228,7 +239,7 @@ fn render_scene(
         if let (Some(_), Some(u)) = (&spec.rgb, user) {
             // An RGB BRDF: the user's shader, compiled once.
             if !pipelines.contains_key(USER_KEY) {
-                let p = Pipelines::user(device, &layouts, u.shader)?;
+                let p = Pipelines::user(device, &layouts, u.shader, env.as_ref())?;
                 pipelines.insert(USER_KEY.to_string(), p);
             }
             objects.push(upload_object(
@@ -267,7 +278,8 @@ fn render_scene(
         let instance = Instance::with_storage(brdf)?;
         let key = format!("{} {:?}", instance.info.id, instance.params);
         if !pipelines.contains_key(&key) {
-            pipelines.insert(key.clone(), Pipelines::new(device, &layouts, &instance)?);
+            let p = Pipelines::new(device, &layouts, &instance, env.as_ref())?;
+            pipelines.insert(key.clone(), p);
         }
         objects.push(upload_object(
             device,
@@ -341,8 +353,24 @@ fn render_scene(
     let mut film = Film::try_new(w, h).map_err(|e| GpuError::Input(e.to_string()))?;
     let inv = 1.0 / (n * n) as f32;
     let tiles = (w.div_ceil(tile_px) * h.div_ceil(tile_px)) as usize;
+    // Under an environment, each tile takes its passes in a few draws (the first with the
+    // direct light and the background), summed (`env::GpuEnv::chunks`).
+    let chunks_of = |tile: &Tile| {
+        env.as_ref().map_or(vec![(0, 1)], |e| {
+            e.chunks(u64::from(tile.w) * u64::from(tile.h))
+        })
+    };
+    let total = {
+        let full = Tile {
+            x0: 0,
+            y0: 0,
+            w: w.min(tile_px) * n,
+            h: h.min(tile_px) * n,
+        };
+        tiles * chunks_of(&full).len()
+    };
     let mut done = 0;
-    progress(done, tiles);
+    progress(done, total);
     for py0 in (0..h).step_by(tile_px as usize) {
         for px0 in (0..w).step_by(tile_px as usize) {
             let (pw, ph) = (tile_px.min(w - px0), tile_px.min(h - py0));
@@ -352,6 +380,10 @@ fn render_scene(
                 w: pw * n,
                 h: ph * n,
             };
+            let chunks = chunks_of(&tile);
+            // A smaller tile at an edge may take fewer draws: the progress still ends at
+            // `total`.
+            let extra = total / tiles - chunks.len();
             let frame = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("fastbrdf render frame"),
                 contents: bytemuck::cast_slice(&frame_data(scene, opts, &tile)),
@@ -383,94 +415,115 @@ fn render_scene(
                     },
                 ],
             });
-            validated(device, "the GPU render pass", || {
-                let mut enc = device.create_command_encoder(&Default::default());
-                // Visibility: per sample the nearest hit's object and triangle (each fragment
-                // only intersects its primary ray), so that the shading pass below shades one
-                // fragment per sample however many surfaces overlap there: shading every
-                // fragment that passed the depth test so far (it writes its depth, so the test
-                // comes after the shader) cost a shadow ray per overlapping layer, thousands
-                // per sample on a mesh of stacked copies.
-                let bg = scene.background;
-                let passes = [
-                    // The visibility pass: ids into `ids_view`.
-                    ScenePass {
-                        label: "fastbrdf render visibility",
-                        target: &ids_view,
-                        clear: wgpu::Color::TRANSPARENT,
-                        ids: None,
-                        pick: |p: &Pipelines| (&p.analytic_id, &p.mesh_id),
-                    },
-                    // The shading pass. Scene order: with the `Less` depth test, ties keep the
-                    // earlier object (decided by the visibility pass; here only its winner
-                    // passes).
-                    ScenePass {
-                        label: "fastbrdf render",
-                        target: &color_view,
-                        clear: wgpu::Color {
-                            r: f64::from(bg.x),
-                            g: f64::from(bg.y),
-                            b: f64::from(bg.z),
-                            a: 1.0,
-                        },
-                        ids: Some(&ids_bind),
-                        pick: |p: &Pipelines| (&p.analytic, &p.mesh),
-                    },
-                ];
-                for p in &passes {
-                    p.draw(
-                        &mut enc,
-                        &depth_view,
-                        &tile,
-                        &frame_bind,
-                        &objects,
-                        &pipelines,
-                    );
+            for (ci, &(first, count)) in chunks.iter().enumerate() {
+                if let Some(e) = &env {
+                    e.set_chunk(queue, first, count);
                 }
-                enc.copy_texture_to_buffer(
-                    wgpu::TexelCopyTextureInfo {
-                        texture: &color,
-                        mip_level: 0,
-                        origin: wgpu::Origin3d::ZERO,
-                        aspect: wgpu::TextureAspect::All,
-                    },
-                    wgpu::TexelCopyBufferInfo {
-                        buffer: &readback,
-                        layout: wgpu::TexelCopyBufferLayout {
-                            offset: 0,
-                            bytes_per_row: Some(row_bytes),
-                            rows_per_image: None,
+                validated(device, "the GPU render pass", || {
+                    let mut enc = device.create_command_encoder(&Default::default());
+                    // Visibility: per sample the nearest hit's object and triangle (each fragment
+                    // only intersects its primary ray), so that the shading pass below shades one
+                    // fragment per sample however many surfaces overlap there: shading every
+                    // fragment that passed the depth test so far (it writes its depth, so the test
+                    // comes after the shader) cost a shadow ray per overlapping layer, thousands
+                    // per sample on a mesh of stacked copies.
+                    // Under an environment the background is drawn (`env.wgsl`) on black.
+                    let bg = if env.is_some() {
+                        Vec3::ZERO
+                    } else {
+                        scene.background
+                    };
+                    let passes = [
+                        // The visibility pass: ids into `ids_view`.
+                        ScenePass {
+                            label: "fastbrdf render visibility",
+                            target: &ids_view,
+                            clear: wgpu::Color::TRANSPARENT,
+                            ids: None,
+                            env: None,
+                            pick: |p: &Pipelines| (&p.analytic_id, &p.mesh_id),
                         },
-                    },
-                    wgpu::Extent3d {
-                        width: tile.w,
-                        height: tile.h,
-                        depth_or_array_layers: 1,
-                    },
-                );
-                queue.submit([enc.finish()]);
-            })?;
-            crate::compute::map_read(device, &readback, |bytes| {
-                let texels: &[f32] = bytemuck::cast_slice(bytes);
-                let stride = (row_bytes / 4) as usize;
-                for py in 0..ph {
-                    for px in 0..pw {
-                        // The CPU's order: samples row by row within the pixel, then scaled.
-                        let mut sum = Vec3::ZERO;
-                        for sy in 0..n {
-                            for sx in 0..n {
-                                let (x, y) = ((px * n + sx) as usize, (py * n + sy) as usize);
-                                let t = &texels[y * stride + 4 * x..][..3];
-                                sum += Vec3::new(t[0], t[1], t[2]);
+                        // The shading pass. Scene order: with the `Less` depth test, ties keep the
+                        // earlier object (decided by the visibility pass; here only its winner
+                        // passes).
+                        ScenePass {
+                            label: "fastbrdf render",
+                            target: &color_view,
+                            clear: wgpu::Color {
+                                r: f64::from(bg.x),
+                                g: f64::from(bg.y),
+                                b: f64::from(bg.z),
+                                a: 1.0,
+                            },
+                            ids: Some(&ids_bind),
+                            env: env.as_ref(),
+                            pick: |p: &Pipelines| (&p.analytic, &p.mesh),
+                        },
+                    ];
+                    for p in &passes {
+                        p.draw(
+                            &mut enc,
+                            &depth_view,
+                            &tile,
+                            &frame_bind,
+                            &objects,
+                            &pipelines,
+                        );
+                    }
+                    enc.copy_texture_to_buffer(
+                        wgpu::TexelCopyTextureInfo {
+                            texture: &color,
+                            mip_level: 0,
+                            origin: wgpu::Origin3d::ZERO,
+                            aspect: wgpu::TextureAspect::All,
+                        },
+                        wgpu::TexelCopyBufferInfo {
+                            buffer: &readback,
+                            layout: wgpu::TexelCopyBufferLayout {
+                                offset: 0,
+                                bytes_per_row: Some(row_bytes),
+                                rows_per_image: None,
+                            },
+                        },
+                        wgpu::Extent3d {
+                            width: tile.w,
+                            height: tile.h,
+                            depth_or_array_layers: 1,
+                        },
+                    );
+                    queue.submit([enc.finish()]);
+                })?;
+                crate::compute::map_read(device, &readback, |bytes| {
+                    let texels: &[f32] = bytemuck::cast_slice(bytes);
+                    let stride = (row_bytes / 4) as usize;
+                    for py in 0..ph {
+                        for px in 0..pw {
+                            // The CPU's order: samples row by row within the pixel, then scaled.
+                            let mut sum = Vec3::ZERO;
+                            for sy in 0..n {
+                                for sx in 0..n {
+                                    let (x, y) = ((px * n + sx) as usize, (py * n + sy) as usize);
+                                    let t = &texels[y * stride + 4 * x..][..3];
+                                    sum += Vec3::new(t[0], t[1], t[2]);
+                                }
+                            }
+                            sum *= inv;
+                            let p = &mut film.pixels[((py0 + py) * w + px0 + px) as usize];
+                            if ci == 0 {
+                                *p = sum;
+                            } else {
+                                *p += sum;
                             }
                         }
-                        sum *= inv;
-                        film.pixels[((py0 + py) * w + px0 + px) as usize] = sum;
                     }
-                }
-            })?;
-            done += 1;
-            progress(done, tiles);
+                })?;
+                done += 1;
+                progress(done, total);
+            }
+            if extra > 0 {
+                done += extra;
+                progress(done, total);
+            }
         }
     }
     Ok(film)

@@ -1,6 +1,7 @@
 //! The render pipelines of one model or user's shader (visibility and shading, for analytic
 //! shapes and meshes), the bind group layouts they share, and one pass over the scene's objects.
 
+use super::env::{ENV_SHADER, GpuEnv};
 use super::layouts::Layouts;
 use super::layouts::USER_PARAMS_BINDING;
 use super::objects::GpuObject;
@@ -21,12 +22,14 @@ pub(super) struct Pipelines {
 
 /// One pass over the scene's objects into `target` (cleared to `clear`, depth cleared and
 /// discarded): `pick` chooses each model's analytic and mesh pipelines; `ids` (the visibility
-/// pass's result) is bound at group 2 when given.
+/// pass's result) is bound at group 2 when given; `env` (the shading pass under an
+/// environment) at group 3, its background drawn before the objects.
 pub(super) struct ScenePass<'a> {
     pub(super) label: &'static str,
     pub(super) target: &'a wgpu::TextureView,
     pub(super) clear: wgpu::Color,
     pub(super) ids: Option<&'a wgpu::BindGroup>,
+    pub(super) env: Option<&'a GpuEnv>,
     pub(super) pick: fn(&Pipelines) -> (&wgpu::RenderPipeline, &wgpu::RenderPipeline),
 }
 
@@ -69,6 +72,12 @@ impl ScenePass<'_> {
         if let Some(ids) = self.ids {
             pass.set_bind_group(2, ids, &[]);
         }
+        if let Some(env) = self.env {
+            pass.set_bind_group(3, &env.bind, &[]);
+            pass.set_bind_group(1, &env.empty, &[]);
+            pass.set_pipeline(&env.background);
+            pass.draw(0..3, 0..1);
+        }
         for o in objects {
             let (analytic, mesh) = (self.pick)(&pipelines[&o.model]);
             pass.set_bind_group(1, &o.bind, &[]);
@@ -89,11 +98,13 @@ impl ScenePass<'_> {
 
 impl Pipelines {
     /// Compiles the render shader with the model `instance` (a BRDF) as `rd_brdf` (its value
-    /// in R, G and B).
+    /// in R, G and B); with `env`, the shading pipelines are the environment's
+    /// (`rd_fs_*_env`, `shaders/env.wgsl` spliced in).
     pub(super) fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
         instance: &Instance,
+        env: Option<&GpuEnv>,
     ) -> Result<Self, GpuError> {
         if instance.info.kind != fastbrdf::Kind::Brdf {
             return Err(GpuError::Input(format!(
@@ -105,9 +116,13 @@ impl Pipelines {
             "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>({}(wi, wo));\n}}\n",
             instance.function
         );
-        let src = format!("{}\n{SHADER}\n{glue}", instance.module_source());
+        let src = format!(
+            "{}\n{SHADER}\n{}{glue}",
+            instance.module_source(),
+            env_source(env)
+        );
         let what = format!("render shader of {}", instance.info.id);
-        Self::compile(device, layouts, &what, src)
+        Self::compile(device, layouts, &what, src, env)
     }
 
     /// Compiles the render shader with a user's shader as `rd_brdf` (R, G, B: the whole
@@ -116,14 +131,15 @@ impl Pipelines {
         device: &wgpu::Device,
         layouts: &Layouts,
         shader: &UserShader,
+        env: Option<&GpuEnv>,
     ) -> Result<Self, GpuError> {
         let user = shader
             .wgsl_at(1, USER_PARAMS_BINDING)
             .map_err(|e| GpuError::Input(e.message))?;
         let glue = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {\n    return fb_user_brdf(wi, wo);\n}\n";
-        let src = format!("{user}\n{SHADER}\n{glue}");
+        let src = format!("{user}\n{SHADER}\n{}{glue}", env_source(env));
         let what = format!("render shader of {}", shader.name());
-        Self::compile(device, layouts, &what, src)
+        Self::compile(device, layouts, &what, src, env)
     }
 
     /// The four pipelines of the completed render shader `src`; `what` names it in errors.
@@ -132,6 +148,7 @@ impl Pipelines {
         layouts: &Layouts,
         what: &str,
         src: String,
+        env: Option<&GpuEnv>,
     ) -> Result<Self, GpuError> {
         let what = what.to_string();
         validated(device, &what, || {
@@ -143,10 +160,10 @@ impl Pipelines {
                 let visibility = fs.ends_with("_id");
                 device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                     label: Some(&what),
-                    layout: Some(if visibility {
-                        &layouts.visibility
-                    } else {
-                        &layouts.pipeline
+                    layout: Some(match (visibility, env) {
+                        (true, _) => &layouts.visibility,
+                        (false, Some(e)) => &e.pipeline,
+                        (false, None) => &layouts.pipeline,
                     }),
                     vertex: wgpu::VertexState {
                         module: &module,
@@ -187,12 +204,22 @@ impl Pipelines {
                 step_mode: wgpu::VertexStepMode::Vertex,
                 attributes: &wgpu::vertex_attr_array![0 => Float32x3],
             };
+            let (analytic, mesh) = match env {
+                Some(_) => ("rd_fs_analytic_env", "rd_fs_mesh_env"),
+                None => ("rd_fs_analytic", "rd_fs_mesh"),
+            };
             Self {
                 analytic_id: pipeline("rd_vs_full", "rd_fs_analytic_id", &[]),
                 mesh_id: pipeline("rd_vs_mesh", "rd_fs_mesh_id", &[Some(corners.clone())]),
-                analytic: pipeline("rd_vs_full", "rd_fs_analytic", &[]),
-                mesh: pipeline("rd_vs_mesh", "rd_fs_mesh", &[Some(corners)]),
+                analytic: pipeline("rd_vs_full", analytic, &[]),
+                mesh: pipeline("rd_vs_mesh", mesh, &[Some(corners)]),
             }
         })
     }
+}
+
+/// The environment's shader and a newline when there is one, else nothing (the module of an
+/// environment-less scene is unchanged).
+fn env_source(env: Option<&GpuEnv>) -> String {
+    env.map_or(String::new(), |_| format!("{ENV_SHADER}\n"))
 }

@@ -218,6 +218,7 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
             }),
             "/api/models" => Ok(api::models(state)),
             "/api/plots" => api::plots(state, &q),
+            "/api/panes" => api::panes(state, &q),
             "/api/albedo" => api::albedo_endpoint(state, &q),
             "/api/render" => api::render_endpoint(state, &q),
             "/api/flip" => api::flip_endpoint(state, &q),

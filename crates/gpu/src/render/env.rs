@@ -1,0 +1,459 @@
+//! Environment light on the GPU (issues 30, 32, 33): `scene.environment` sampled per primary
+//! hit and pass by `shaders/env.wgsl`, spliced after `render.wgsl` only when the scene has an
+//! environment, so the module and bind groups 0 to 2 of an environment-less scene are
+//! unchanged.
+//!
+//! # The estimator
+//!
+//! Per primary hit and pass, one direction drawn from the map by its importance tables
+//! (`EnvMap::sample`'s rows by their sin theta-weighted luminance, then columns) and one
+//! cosine-weighted about the shading normal, combined by the balance heuristic over the whole
+//! integrand: each adds `L (base cos / pi + ks f cos) / (pdf_map + cos / pi)`, with the CPU's
+//! shadow rays (`environment.rs`, `visible`). The CPU renderer draws a third direction from
+//! the specular BRDF (VNDF for GGX, ...) and weighs its specular term by the power heuristic;
+//! the GPU has every model's value (its WGSL twin) but no sampling twins, so it keeps the two
+//! strategies that need none. Both cover every direction the integrand is non-zero in (the
+//! map's density is positive wherever its radiance is; the cosine density on the whole
+//! hemisphere), so the estimate is unbiased and converges to the CPU's picture; only its noise
+//! differs (more on sharp lobes reflecting a smooth sky, where BRDF sampling would help).
+//!
+//! Random numbers: the CPU's independent sampler (`fastbrdf_render::env::Rng`, a PCG hash of
+//! the sample id and the pass; the sample id the CPU's), so a render is deterministic and a
+//! draw of passes `[first, first + count)` adds new samples to the draws before it. (The
+//! CPU's default Sobol sampler is not ported: its direction tables would be the first
+//! constants of their kind in the shaders; stratification would lower the noise, not the
+//! bias.)
+//!
+//! # Bind group 3 (what a browser mirrors)
+//!
+//! | binding | type | content |
+//! |---|---|---|
+//! | 0 | `var<uniform>` 32 bytes | `EnvParams`: `size: vec4<u32>` (map width, height, first pass, pass count), `weights: vec4<f32>` (each pass's weight, the direct light's weight, 0, 0): [`EnvData::params`] |
+//! | 1 | `texture_2d<f32>`, `Rgba32Float`, non-filterable (textureLoad) | [`EnvData::texels_rgba32f`] |
+//! | 2 | `var<storage, read> array<f32>` | [`EnvData::tables`] |
+//!
+//! All in the fragment stage. The shading pass's pipelines use the entry points
+//! `rd_fs_analytic_env` and `rd_fs_mesh_env` instead of `rd_fs_analytic` and `rd_fs_mesh`
+//! (layout: groups 0, 1, 2 as before and this group 3); the background is drawn first in the
+//! shading pass by `rd_vs_full` + `rd_fs_env_background` (groups 0, an empty group 1, 2 and 3;
+//! no depth test or write), which writes the map's radiance where the visibility pass found
+//! no object. The shading pass clears to black instead of the scene's background.
+//! A progressive viewer draws with `params(frame, 1, 1.0, 1.0)` per frame (each frame an
+//! unbiased picture) and averages frames; [`super::render`] draws `samples` passes in chunks,
+//! the first with the direct light (`params(0, k, 1 / samples, 1)`), the rest without
+//! (`params(first, k, 1 / samples, 0)`), and sums them.
+
+use super::layouts::Layouts;
+use super::scene_data::check_binding;
+use super::{COLOR_FORMAT, DEPTH_FORMAT, SHADER};
+use crate::context::{GpuError, validated};
+use fastbrdf_render::env::{EnvMap, uv_to_dir};
+use glam::Vec3;
+use std::f32::consts::PI;
+use wgpu::util::DeviceExt;
+
+/// The environment's shader, appended to the render module (after `render.wgsl`, before the
+/// `rd_brdf` glue) when the scene has an environment.
+pub const ENV_SHADER: &str = include_str!("../shaders/env.wgsl");
+
+/// Shaded sample-passes per GPU submission (chunks of passes keep each draw short: a
+/// display driver's watchdog resets a GPU busy for a few seconds).
+const SAMPLE_PASSES_PER_DRAW: u64 = 1 << 20;
+
+/// What the environment light puts on the GPU (bind group 3), as plain data: what the native
+/// renderer uploads, and what a browser (WebGPU) uploads likewise.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvData {
+    /// Map size in texels (2:1).
+    pub width: u32,
+    pub height: u32,
+    /// `width x height` texels, row-major, top row straight up (`fastbrdf_render::env`'s
+    /// mapping): R, G, B radiance and A = the texel's probability mass x width x height (the
+    /// numerator of the density `A / (2 pi^2 sin theta)`). Upload as an `Rgba32Float`
+    /// texture (`bytemuck::cast_slice` for the bytes; little-endian f32 in a browser).
+    pub texels_rgba32f: Vec<f32>,
+    /// The sampling tables, one storage buffer: the marginal CDF over rows (`height + 1`
+    /// entries, 0 to 1), then per row the conditional CDF over its columns (`width + 1`
+    /// entries each, 0 to 1; all 0 for a row of zero weight).
+    pub tables: Vec<f32>,
+}
+
+fn lum(c: Vec3) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+impl EnvData {
+    /// The data of `map`: its texels (read at their centres, where `EnvMap::radiance` returns
+    /// each texel's own value) and its sampling distribution, built as `EnvMap::from_texels`
+    /// builds it (luminance x sin theta at the row's centre, in f64; a black map falls back
+    /// to sin theta).
+    pub fn new(map: &EnvMap) -> Self {
+        let (w, h) = (map.width as usize, map.height as usize);
+        let mut texels = Vec::with_capacity(w * h);
+        for r in 0..h {
+            for c in 0..w {
+                let (d, _) = uv_to_dir((c as f32 + 0.5) / w as f32, (r as f32 + 0.5) / h as f32);
+                texels.push(map.radiance(d));
+            }
+        }
+        let black = texels.iter().all(|t| lum(*t) <= 0.0);
+        let mut weights = vec![0.0f64; w * h];
+        for r in 0..h {
+            let st = (PI * (r as f32 + 0.5) / h as f32).sin() as f64;
+            for c in 0..w {
+                let l = if black {
+                    1.0
+                } else {
+                    lum(texels[r * w + c]) as f64
+                };
+                weights[r * w + c] = l * st;
+            }
+        }
+        let total: f64 = weights.iter().sum();
+        let mut tables = Vec::with_capacity(h + 1 + h * (w + 1));
+        let mut conditional = Vec::with_capacity(h * (w + 1));
+        let mut acc = 0.0f64;
+        tables.push(0.0);
+        for r in 0..h {
+            let row = &weights[r * w..(r + 1) * w];
+            let sum: f64 = row.iter().sum();
+            let mut a = 0.0f64;
+            conditional.push(0.0);
+            for &x in row {
+                a += x;
+                conditional.push(if sum > 0.0 { (a / sum) as f32 } else { 0.0 });
+            }
+            acc += sum;
+            tables.push((acc / total) as f32);
+        }
+        tables.extend(conditional);
+        let n = (w * h) as f32;
+        let texels_rgba32f = texels
+            .iter()
+            .zip(&weights)
+            .flat_map(|(t, x)| [t.x, t.y, t.z, (x / total) as f32 * n])
+            .collect();
+        Self {
+            width: map.width,
+            height: map.height,
+            texels_rgba32f,
+            tables,
+        }
+    }
+
+    /// The `EnvParams` uniform (32 bytes: four u32, then four f32 as their bits) of a draw
+    /// taking passes `first .. first + count`, each weighted `pass_weight`, with the direct
+    /// light, ambient and background weighted `direct_weight` (1 or 0).
+    pub fn params(&self, first: u32, count: u32, pass_weight: f32, direct_weight: f32) -> [u32; 8] {
+        [
+            self.width,
+            self.height,
+            first,
+            count,
+            pass_weight.to_bits(),
+            direct_weight.to_bits(),
+            0,
+            0,
+        ]
+    }
+}
+
+/// The environment's GPU resources: group 3, its layouts, the background pipeline.
+pub(super) struct GpuEnv {
+    pub(super) data_size: (u32, u32),
+    pub(super) params: wgpu::Buffer,
+    pub(super) bind: wgpu::BindGroup,
+    /// The shading pass's layout under an environment: frame, object, ids, env.
+    pub(super) pipeline: wgpu::PipelineLayout,
+    /// An empty group 1 for the background draw.
+    pub(super) empty: wgpu::BindGroup,
+    pub(super) background: wgpu::RenderPipeline,
+    /// Passes per primary sample (`Environment::samples`).
+    pub(super) samples: u32,
+}
+
+impl GpuEnv {
+    pub(super) fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &Layouts,
+        limits: &wgpu::Limits,
+        env: &fastbrdf_render::env::Environment,
+    ) -> Result<Self, GpuError> {
+        let data = EnvData::new(&env.map);
+        if data.width > limits.max_texture_dimension_2d {
+            return Err(GpuError::Input(format!(
+                "the environment map is {}x{}: wider than the GPU's largest texture ({}); \
+                 render it on the CPU (drop --gpu) or downscale the map",
+                data.width, data.height, limits.max_texture_dimension_2d
+            )));
+        }
+        check_binding(
+            limits,
+            data.tables.len() * 4,
+            "the environment map's sampling tables",
+        )?;
+        let frag = wgpu::ShaderStages::FRAGMENT;
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("fastbrdf render env"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: frag,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 1,
+                    visibility: frag,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: frag,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Storage { read_only: true },
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let empty_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("fastbrdf render empty"),
+            entries: &[],
+        });
+        let empty = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("fastbrdf render empty"),
+            layout: &empty_layout,
+            entries: &[],
+        });
+        let pipeline = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("fastbrdf render env"),
+            bind_group_layouts: &[
+                Some(&layouts.frame),
+                Some(&layouts.object),
+                Some(&layouts.ids),
+                Some(&layout),
+            ],
+            immediate_size: 0,
+        });
+        let bg_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("fastbrdf render env background"),
+            bind_group_layouts: &[
+                Some(&layouts.frame),
+                Some(&empty_layout),
+                Some(&layouts.ids),
+                Some(&layout),
+            ],
+            immediate_size: 0,
+        });
+        let texture = device.create_texture_with_data(
+            queue,
+            &wgpu::TextureDescriptor {
+                label: Some("fastbrdf render env map"),
+                size: wgpu::Extent3d {
+                    width: data.width,
+                    height: data.height,
+                    depth_or_array_layers: 1,
+                },
+                mip_level_count: 1,
+                sample_count: 1,
+                dimension: wgpu::TextureDimension::D2,
+                format: wgpu::TextureFormat::Rgba32Float,
+                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                view_formats: &[],
+            },
+            wgpu::util::TextureDataOrder::LayerMajor,
+            bytemuck::cast_slice(&data.texels_rgba32f),
+        );
+        let view = texture.create_view(&Default::default());
+        let tables = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("fastbrdf render env tables"),
+            contents: bytemuck::cast_slice(&data.tables),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("fastbrdf render env params"),
+            contents: bytemuck::cast_slice(&data.params(0, 1, 1.0, 1.0)),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("fastbrdf render env"),
+            layout: &layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: params.as_entire_binding(),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: tables.as_entire_binding(),
+                },
+            ],
+        });
+        let background = background_pipeline(device, &bg_layout)?;
+        Ok(Self {
+            data_size: (data.width, data.height),
+            params,
+            bind,
+            pipeline,
+            empty,
+            background,
+            samples: env.samples.max(1),
+        })
+    }
+
+    /// The chunks of passes of a tile of `tile_samples` primary samples: (first, count).
+    pub(super) fn chunks(&self, tile_samples: u64) -> Vec<(u32, u32)> {
+        chunks(self.samples, tile_samples)
+    }
+
+    /// Sets the parameters of the draw of passes `first .. first + count` of the render: each
+    /// weighted 1 / samples, the direct light in the draw of pass 0 only.
+    pub(super) fn set_chunk(&self, queue: &wgpu::Queue, first: u32, count: u32) {
+        let direct = if first == 0 { 1.0 } else { 0.0 };
+        let p = [
+            self.data_size.0,
+            self.data_size.1,
+            first,
+            count,
+            (1.0 / self.samples as f32).to_bits(),
+            f32::to_bits(direct),
+            0,
+            0,
+        ];
+        queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&p));
+    }
+}
+
+/// `samples` passes in draws of at most [`SAMPLE_PASSES_PER_DRAW`] sample-passes (at least one
+/// pass each): (first pass, count).
+fn chunks(samples: u32, tile_samples: u64) -> Vec<(u32, u32)> {
+    let per = (SAMPLE_PASSES_PER_DRAW / tile_samples.max(1)).clamp(1, 1 << 16) as u32;
+    (0..samples)
+        .step_by(per as usize)
+        .map(|first| (first, per.min(samples - first)))
+        .collect()
+}
+
+/// The background pipeline (`rd_fs_env_background`): the render module with the
+/// environment and a black `rd_brdf` (no object is shaded by it).
+fn background_pipeline(
+    device: &wgpu::Device,
+    layout: &wgpu::PipelineLayout,
+) -> Result<wgpu::RenderPipeline, GpuError> {
+    let src = format!(
+        "{SHADER}\n{ENV_SHADER}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>(0.0);\n}}\n"
+    );
+    validated(device, "the environment's background shader", || {
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("fastbrdf render env background"),
+            source: wgpu::ShaderSource::Wgsl(src.into()),
+        });
+        device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("fastbrdf render env background"),
+            layout: Some(layout),
+            vertex: wgpu::VertexState {
+                module: &module,
+                entry_point: Some("rd_vs_full"),
+                compilation_options: Default::default(),
+                buffers: &[],
+            },
+            primitive: wgpu::PrimitiveState {
+                topology: wgpu::PrimitiveTopology::TriangleList,
+                cull_mode: None,
+                ..Default::default()
+            },
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(false),
+                depth_compare: Some(wgpu::CompareFunction::Always),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &module,
+                entry_point: Some("rd_fs_env_background"),
+                compilation_options: Default::default(),
+                targets: &[Some(wgpu::ColorTargetState {
+                    format: COLOR_FORMAT,
+                    blend: None,
+                    write_mask: wgpu::ColorWrites::ALL,
+                })],
+            }),
+            multiview_mask: None,
+            cache: None,
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use fastbrdf_render::env::Rng;
+
+    /// The data's texels, densities and draws are the CPU map's: the radiance and density at
+    /// the texel of each drawn direction, and the direction a draw of the tables gives.
+    #[test]
+    fn the_data_is_the_cpu_maps() {
+        let mut rng = Rng::new(5, 0);
+        let random: Vec<Vec3> = (0..64 * 32)
+            .map(|i| {
+                let x = rng.uniform();
+                if i / 64 % 7 == 0 {
+                    Vec3::ZERO
+                } else {
+                    Vec3::new(x, x * x, 0.5) * 10.0
+                }
+            })
+            .collect();
+        for map in [EnvMap::sky(), EnvMap::from_texels(64, 32, random).unwrap()] {
+            let d = EnvData::new(&map);
+            let (w, h) = (d.width as usize, d.height as usize);
+            assert_eq!(d.texels_rgba32f.len(), 4 * w * h);
+            assert_eq!(d.tables.len(), h + 1 + h * (w + 1));
+            assert_eq!(d.tables[h], 1.0);
+            for _ in 0..2000 {
+                let (dir, le, pdf) = map.sample(rng.uniform(), rng.uniform());
+                let (u, v) = fastbrdf_render::env::dir_to_uv(dir);
+                let c = ((u * w as f32) as usize).min(w - 1);
+                let r = ((v * h as f32) as usize).min(h - 1);
+                let t = &d.texels_rgba32f[4 * (r * w + c)..][..4];
+                assert_eq!(Vec3::new(t[0], t[1], t[2]), le);
+                let st = (1.0 - dir.y * dir.y).max(0.0).sqrt();
+                if pdf > 0.0 && st > 1e-3 {
+                    let mine = t[3] / (2.0 * PI * PI * st);
+                    assert!((mine - pdf).abs() <= 1e-3 * pdf, "{mine} vs {pdf}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn params_and_chunks() {
+        assert_eq!(chunks(16, 64 * 64), vec![(0, 16)]);
+        assert_eq!(chunks(5, 1 << 19), vec![(0, 2), (2, 2), (4, 1)]);
+        assert_eq!(chunks(3, 1 << 24), vec![(0, 1), (1, 1), (2, 1)]);
+        let d = EnvData::new(&EnvMap::constant(Vec3::ONE));
+        let p = d.params(3, 2, 0.25, 1.0);
+        assert_eq!(&p[..4], &[16, 8, 3, 2]);
+        assert_eq!(f32::from_bits(p[4]), 0.25);
+        assert_eq!(f32::from_bits(p[5]), 1.0);
+    }
+}

@@ -1,0 +1,281 @@
+// fastbrdf GPU renderer: environment light. Spliced after render.wgsl only when the scene has
+// an environment (crates/gpu/src/render/env.rs), so the module of an environment-less scene
+// is unchanged. Everything it adds lives in bind group 3:
+//
+//   @group(3) @binding(0) uniform EnvParams (32 bytes)
+//   @group(3) @binding(1) texture_2d<f32> (Rgba32Float, read with textureLoad): per texel,
+//                         rgb radiance and a = its probability mass x width x height
+//   @group(3) @binding(2) storage array<f32>: the marginal CDF over rows (height + 1
+//                         entries), then per row the conditional CDF over its columns
+//                         (width + 1 entries each)
+//
+// The estimator (twin of crates/render/src/render/environment.rs, without its BRDF
+// sampling: the GPU has the models' values, not their samplers): per primary hit and pass,
+// one direction drawn from the map (its importance tables) and one cosine-weighted about the
+// shading normal, combined by the balance heuristic over the whole integrand (diffuse and
+// specular): each contributes L (base cos / pi + ks f cos) / (pdf_map + cos / pi), times the
+// pass weight, with the CPU's shadow rule (`visible`). Both strategies cover every direction
+// the integrand is non-zero in (the map's density is positive wherever its radiance is), so
+// the sum is unbiased and converges to the CPU's picture.
+//
+// Random numbers: the CPU's independent sampler (`env::Rng`: a PCG hash of the sample id and
+// the pass, 24-bit uniforms), the sample id `(pixel y * width + pixel x) * N^2 + subsample`
+// as on the CPU: deterministic, and a draw with passes [first, first + count) adds new
+// samples to earlier ones.
+
+/// The environment's parameters of one draw.
+struct EnvParams {
+    /// Map width and height; the first pass of this draw and how many passes it takes.
+    size: vec4<u32>,
+    /// Weight of each pass's estimate (1 / passes of the whole render); weight of the direct
+    /// light, ambient and background (1 in the draw that includes them, else 0); 0; 0.
+    weights: vec4<f32>,
+}
+
+@group(3) @binding(0) var<uniform> env: EnvParams;
+@group(3) @binding(1) var env_map: texture_2d<f32>;
+@group(3) @binding(2) var<storage, read> env_cdf: array<f32>;
+
+// ---- random numbers (twins: hash::pcg, env::Rng) -------------------------------------------
+
+fn rd_pcg(x: u32) -> u32 {
+    let s = x * 747796405u + 2891336453u;
+    let w = ((s >> ((s >> 28u) + 4u)) ^ s) * 277803737u;
+    return (w >> 22u) ^ w;
+}
+
+/// Rng::new(id, pass)'s state.
+fn rd_rng(id: u32, pass_index: u32) -> u32 {
+    return rd_pcg(id ^ rd_pcg(pass_index + 0x9e3779b9u));
+}
+
+/// Rng::uniform: a number in [0, 1).
+fn rd_uniform(state: ptr<function, u32>) -> f32 {
+    *state = rd_pcg(*state);
+    return f32(*state >> 8u) * (1.0 / 16777216.0);
+}
+
+/// The CPU's sample id of the fragment at `pos` (environment.rs, `env_pass`).
+fn rd_sample_id(pos: vec2<f32>) -> u32 {
+    let gx = frame.tile.x + u32(pos.x);
+    let gy = frame.tile.y + u32(pos.y);
+    let n = frame.size.z;
+    return ((gy / n) * frame.size.x + gx / n) * (n * n) + (gy % n) * n + gx % n;
+}
+
+// ---- the map (twins: env.rs) ----------------------------------------------------------------
+
+struct RdBin {
+    i: u32,
+    frac: f32,
+}
+
+/// sample_cdf on the table of `n` bins at `env_cdf[off ..= off + n]`: the bin holding `u`
+/// and where in it.
+fn rd_env_bin(off: u32, n: u32, u_in: f32) -> RdBin {
+    let u = clamp(u_in, 0.0, 0.99999988) * env_cdf[off + n];
+    // The partition point: the first entry above u.
+    var lo = 0u;
+    var hi = n + 1u;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if env_cdf[off + mid] <= u {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    let i = min(max(lo, 1u) - 1u, n - 1u);
+    let width = env_cdf[off + i + 1u] - env_cdf[off + i];
+    var frac = 0.5;
+    if width > 0.0 {
+        frac = clamp((u - env_cdf[off + i]) / width, 0.0, 0.99999988);
+    }
+    return RdBin(i, frac);
+}
+
+struct RdEnvSample {
+    d: vec3<f32>,
+    le: vec3<f32>,
+    pdf: f32,
+}
+
+/// EnvMap::sample: (unit direction, radiance, solid-angle density; 0 at the poles).
+fn rd_env_sample(u1: f32, u2: f32) -> RdEnvSample {
+    let w = env.size.x;
+    let h = env.size.y;
+    let r = rd_env_bin(0u, h, u1);
+    let c = rd_env_bin(h + 1u + r.i * (w + 1u), w, u2);
+    let u = (f32(c.i) + c.frac) / f32(w);
+    let v = (f32(r.i) + r.frac) / f32(h);
+    let phi = (u - 0.5) * 2.0 * RD_PI;
+    let theta = v * RD_PI;
+    let st = sin(theta);
+    let d = vec3<f32>(st * sin(phi), cos(theta), -st * cos(phi));
+    let t = textureLoad(env_map, vec2<i32>(i32(c.i), i32(r.i)), 0);
+    if st <= 0.0 {
+        return RdEnvSample(d, t.xyz, 0.0);
+    }
+    return RdEnvSample(d, t.xyz, t.w / (2.0 * RD_PI * RD_PI * st));
+}
+
+/// EnvMap::lookup: the radiance from unit direction `d` (xyz) and the map's density there (w).
+fn rd_env_lookup(d: vec3<f32>) -> vec4<f32> {
+    let w = env.size.x;
+    let h = env.size.y;
+    let y = clamp(d.y, -1.0, 1.0);
+    let u = rd_atan2(d.x, -d.z) / RD_TAU + 0.5;
+    let v = rd_atan2(sqrt((1.0 - y) * (1.0 + y)), y) / RD_PI;
+    let c = min(u32(max(u * f32(w), 0.0)), w - 1u);
+    let r = min(u32(max(v * f32(h), 0.0)), h - 1u);
+    let t = textureLoad(env_map, vec2<i32>(i32(c), i32(r)), 0);
+    let st = sqrt(max(1.0 - d.y * d.y, 0.0));
+    if st <= 0.0 {
+        return vec4<f32>(t.xyz, 0.0);
+    }
+    return vec4<f32>(t.xyz, t.w / (2.0 * RD_PI * RD_PI * st));
+}
+
+/// env::cosine_sample: a cosine-weighted direction about unit normal `n`.
+fn rd_cosine_sample(n: vec3<f32>, u1: f32, u2: f32) -> vec3<f32> {
+    let f = rd_orthonormal_pair(n);
+    let r = sqrt(u1);
+    let a = RD_TAU * u2;
+    return rd_normalize(f.t * (r * cos(a)) + f.b * (r * sin(a)) + n * sqrt(max(1.0 - u1, 0.0)));
+}
+
+// ---- shading ---------------------------------------------------------------------------------
+
+/// A hit as the environment pass sees it (rd_shade's prologue: point, view direction,
+/// shading normal, unbumped normal, kd x albedo).
+struct RdSurface {
+    p: vec3<f32>,
+    v: vec3<f32>,
+    n: vec3<f32>,
+    g: vec3<f32>,
+    base: vec3<f32>,
+}
+
+fn rd_env_surface(r: RdRay, hit: RdHit) -> RdSurface {
+    let p = r.o + hit.t * r.d;
+    let v = -r.d;
+    var n = hit.n;
+    if rd_dot(hit.n, v) < 0.0 {
+        n = -hit.n;
+    }
+    let g = n;
+    if object.flags.z != 0u {
+        let pn = rd_perturb(p, n);
+        if rd_dot(pn, v) > 0.0 {
+            n = pn;
+        }
+    }
+    var albedo = object.albedo.xyz;
+    if object.flags.y != 0u {
+        albedo = albedo * rd_texture(hit.uv);
+    }
+    return RdSurface(p, v, n, g, albedo * object.albedo.w);
+}
+
+/// environment.rs's `visible`: light from `l` reaches the hit (no shadow ray where only the
+/// bumped normal faces `l`).
+fn rd_env_visible(s: RdSurface, l: vec3<f32>) -> bool {
+    return frame.shadow.x == 0.0 || rd_dot(s.g, l) <= 0.0
+        || !rd_shadowed(s.p, s.g, l, 0.0, true);
+}
+
+/// The integrand without the radiance: base cos / pi + ks f(wi, wo) cos (R, G, B).
+fn rd_env_f(s: RdSurface, l: vec3<f32>, cos_i: f32) -> vec3<f32> {
+    var f = s.base * (cos_i / RD_PI);
+    let ks = object.mat.x;
+    if ks > 0.0 {
+        let b = rd_orthonormal_pair(s.n);
+        let wi = vec3<f32>(rd_dot(l, b.t), rd_dot(l, b.b), cos_i);
+        let wo = vec3<f32>(rd_dot(s.v, b.t), rd_dot(s.v, b.b), rd_dot(s.v, s.n));
+        f += ks * rd_brdf(wi, wo) * cos_i;
+    }
+    return f;
+}
+
+/// One pass's estimate at a hit: a map direction and a cosine direction, balance heuristic.
+fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
+    var rng = rd_rng(id, pass_index);
+    let u1 = rd_uniform(&rng);
+    let u2 = rd_uniform(&rng);
+    let u3 = rd_uniform(&rng);
+    let u4 = rd_uniform(&rng);
+    var sum = vec3<f32>(0.0);
+    let m = rd_env_sample(u1, u2);
+    let cos_m = rd_dot(s.n, m.d);
+    if m.pdf > 0.0 && cos_m > 0.0 && any(m.le != vec3<f32>(0.0)) && rd_env_visible(s, m.d) {
+        sum += m.le * rd_env_f(s, m.d, cos_m) / (m.pdf + cos_m / RD_PI);
+    }
+    let l = rd_cosine_sample(s.n, u3, u4);
+    let cos_c = rd_dot(s.n, l);
+    if cos_c > 0.0 {
+        let e = rd_env_lookup(l);
+        if any(e.xyz != vec3<f32>(0.0)) && rd_env_visible(s, l) {
+            sum += e.xyz * rd_env_f(s, l, cos_c) / (e.w + cos_c / RD_PI);
+        }
+    }
+    return sum;
+}
+
+/// The radiance of a hit under the environment: the direct light (rd_shade) times its
+/// weight, plus this draw's passes times theirs.
+fn rd_env_shade(pos: vec2<f32>, r: RdRay, hit: RdHit) -> vec3<f32> {
+    var out = vec3<f32>(0.0);
+    if env.weights.y != 0.0 {
+        out = rd_shade(r, hit) * env.weights.y;
+    }
+    let s = rd_env_surface(r, hit);
+    let id = rd_sample_id(pos);
+    var sum = vec3<f32>(0.0);
+    for (var k = 0u; k < env.size.w; k++) {
+        sum += rd_env_pass(s, id, env.size.z + k);
+    }
+    return out + sum * env.weights.x;
+}
+
+// ---- entry points (the shading pass under an environment) ---------------------------------
+
+/// Spheres and planes, shading pass (rd_fs_analytic with the environment).
+@fragment
+fn rd_fs_analytic_env(@builtin(position) pos: vec4<f32>) -> RdOut {
+    if !rd_visible(pos.xy, 0u) {
+        discard;
+    }
+    let r = rd_primary_ray(pos.xy);
+    let hit = rd_analytic_hit(r);
+    if !hit.ok {
+        discard;
+    }
+    return RdOut(vec4<f32>(rd_env_shade(pos.xy, r, hit), 1.0), rd_depth(hit.t));
+}
+
+/// Meshes, shading pass (rd_fs_mesh with the environment).
+@fragment
+fn rd_fs_mesh_env(@builtin(position) pos: vec4<f32>, @location(0) @interpolate(flat) tri: u32)
+    -> RdOut {
+    if !rd_visible(pos.xy, tri) {
+        discard;
+    }
+    let r = rd_primary_ray(pos.xy);
+    let hit = rd_triangle(r, tri);
+    if !hit.ok {
+        discard;
+    }
+    return RdOut(vec4<f32>(rd_env_shade(pos.xy, r, hit), 1.0), rd_depth(hit.t));
+}
+
+/// The background under an environment (render.rs, `initial`): the map's radiance along the
+/// primary ray where the visibility pass found no object, times the direct weight. Drawn
+/// with `rd_vs_full` before the objects; group 1 is not read (an empty group).
+@fragment
+fn rd_fs_env_background(@builtin(position) pos: vec4<f32>) -> @location(0) vec4<f32> {
+    if textureLoad(rd_ids, vec2<i32>(pos.xy), 0).x != 0u {
+        discard;
+    }
+    let r = rd_primary_ray(pos.xy);
+    return vec4<f32>(rd_env_lookup(r.d).xyz * env.weights.y, 1.0);
+}
