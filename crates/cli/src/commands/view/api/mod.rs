@@ -12,6 +12,7 @@
 mod conform;
 mod errors;
 mod grids;
+mod kinds;
 mod models;
 mod panes;
 mod plots;

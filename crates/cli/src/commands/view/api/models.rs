@@ -6,19 +6,18 @@ use crate::CliError;
 use crate::commands::common::numbers::swept;
 use crate::commands::view::state::State;
 use crate::model_args::{self, Use};
-use fastbrdf::kind::Shading;
 use fastbrdf::params::ParamKind;
 use fastbrdf::{Given, ModelSpec};
 use fastbrdf_gpu::export::{Form, Lang, export_form};
 use serde_json::{Value, json};
 
-/// `GET /api/models`: every model the explorer can show, with its parameters.
+/// `GET /api/models`: every model the explorer can show, with its parameters (shadowing,
+/// Fresnel and split-sum terms too: their curves are `/api/plots`' `terms`).
 pub fn models(state: &State) -> Response {
     let mut list: Vec<Value> = fastbrdf::registry::all()
         .iter()
-        .filter(|e| e.info.kind.shading() != Shading::Not)
         .map(|e| {
-            let params: Vec<Value> = e
+            let mut params: Vec<Value> = e
                 .info
                 .params
                 .iter()
@@ -50,6 +49,8 @@ pub fn models(state: &State) -> Response {
                     }
                 })
                 .collect();
+            // A split-sum term's inputs (alpha, cos_v) as sliders too (`"input": true`).
+            params.extend(super::kinds::input_params(e.info.kind));
             json!({
                 "id": e.info.id, "kind": e.info.kind.name(), "params": params,
                 "formula": e.info.formula, "source": e.info.source,

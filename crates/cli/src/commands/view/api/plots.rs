@@ -4,7 +4,7 @@
 
 use super::errors::{errors_row, measured_row};
 use super::grids::{POLAR_POINTS, SLICE, curve_theta, luminance, polar_pairs, slice_pairs};
-use super::query::{Query, Reference, Response, chosen, one_model, theta_i};
+use super::query::{Query, Reference, Response, one_model, theta_i};
 use super::user;
 use crate::CliError;
 use crate::commands::common::numbers::swept;
@@ -211,7 +211,8 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
             )));
         }
     };
-    let c = chosen(state, q)?;
+    // Shadowing, Fresnel and split-sum terms have no albedo: skipped.
+    let c = super::kinds::shaded(state, q)?;
     let (models, reference) = (&c.models, &c.reference);
     for (id, spec) in models {
         one_model(id, spec)?;
@@ -244,12 +245,15 @@ pub fn albedo_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
 /// `GET /api/plots?models=A,B&ref=R&theta=DEG&NAME=VALUE...`: every plot's numbers.
 pub fn plots(state: &State, q: &Query) -> Result<Response, CliError> {
     let t = Instant::now();
-    let c = chosen(state, q)?;
+    // The terms (shadowing, Fresnel, split-sum) apart: their curves are `terms`.
+    let split = super::kinds::split(state, q)?;
+    let c = super::kinds::shaded(state, q)?;
     let (models, reference) = (&c.models, &c.reference);
     for (id, spec) in models {
         one_model(id, spec)?;
     }
     let ti = theta_i(q)?;
+    let terms = super::kinds::terms(&split, q, ti)?;
     // A user's model or a user's reference: errors from batched evaluations on a grid.
     let ref_brdf = user::reference_brdf(&c);
     let user_ref = matches!(reference, Some(Reference::User(_)));
@@ -302,6 +306,7 @@ pub fn plots(state: &State, q: &Query) -> Result<Response, CliError> {
         "curve_theta_deg": theta_h,
         "slice_size": SLICE,
         "models": out,
+        "terms": terms,
         "ms": t.elapsed().as_secs_f64() * 1e3,
     })))
 }

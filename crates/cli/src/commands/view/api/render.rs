@@ -3,9 +3,7 @@
 //! [`flip`](crate::commands::view::flip) while the pictures go out (`flip=later`, then
 //! `/api/flip?job=ID`), or waited for (`flip=wait`, the default).
 
-use super::query::{
-    Chosen, MAX_SIZE, MAX_SPP, Query, Reference, Response, base64, chosen, parse_u32,
-};
+use super::query::{Chosen, MAX_SIZE, MAX_SPP, Query, Reference, Response, base64, parse_u32};
 use crate::CliError;
 use crate::commands::view::flip::{Flips, Outcome, Waited};
 use crate::commands::view::state::{State, client_gone};
@@ -83,7 +81,7 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         users,
         reference,
         ref_user,
-    } = chosen(state, q)?;
+    } = super::kinds::shaded(state, q)?; // terms (shadowing, Fresnel, env) skipped
     let mode = flip_mode(q)?;
     let size = parse_u32(q, "size", 256, 16, MAX_SIZE)?;
     let spp = parse_u32(q, "spp", 1, 1, MAX_SPP)?;
