@@ -61,8 +61,9 @@ pub struct RenderArgs {
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
     /// Grey models and users' models (file:PATH, their shader spliced into the GPU's): a
-    /// coloured registry model (--metal, R,G,B values) is CPU-only for now, and so is --env.
-    /// Shadows as on the CPU (--shadows on|off).
+    /// coloured registry model (--metal, R,G,B values) is CPU-only for now. Shadows as on the
+    /// CPU (--shadows on|off). With --env, the map sampled per sample (map and cosine
+    /// directions, the independent sampler; the CPU's picture in the limit, not to the bit).
     #[arg(long)]
     gpu: bool,
 }
@@ -80,11 +81,6 @@ fn render_model_gpu(
         return Err(CliError::input(format!(
             "--gpu: coloured specular ({id} with a parameter given as R,G,B, e.g. by --metal) is CPU-only for now: drop --gpu"
         )));
-    }
-    if spec.env.is_some() {
-        return Err(CliError::input(
-            "--gpu: environment lighting (--env) is CPU-only: drop --gpu (the GPU renderer is a rasteriser without rays to sample the map with)".to_string(),
-        ));
     }
     // The plan is built once, in the spec: the scene's specular term and the GPU's shader
     // both come from it.
@@ -147,11 +143,6 @@ fn render_user_gpu(
                 a.model
             )));
         }
-    }
-    if spec.env.is_some() {
-        return Err(CliError::input(
-            "--gpu: environment lighting (--env) is CPU-only: drop --gpu (the GPU renderer is a rasteriser without rays to sample the map with)".to_string(),
-        ));
     }
     // The file and the values are checked before a device is opened.
     let shader = UserShader::load(std::path::Path::new(path)).map_err(user_error)?;
@@ -226,6 +217,18 @@ fn finish(
     t: std::time::Instant,
     on: String,
 ) -> Result<(), CliError> {
+    // The GPU renders the N x N grid, its environment samples from the independent sampler.
+    let gpu_opts;
+    let opts = if a.gpu {
+        gpu_opts = Options {
+            sampler: fastbrdf_render::render::Sampler::Independent,
+            aa: fastbrdf_render::render::Antialias::Grid,
+            ..*opts
+        };
+        &gpu_opts
+    } else {
+        opts
+    };
     let rendered = t.elapsed().as_secs_f64();
     film.save(&a.out, a.scene.exposure)?;
     let total = t.elapsed().as_secs_f64();
