@@ -355,6 +355,54 @@ fn a_user_model_panes_equal_its_direct_gpu_evaluation() {
     assert!(v["error"].as_str().unwrap().contains("alpha"), "{v}");
 }
 
+#[test]
+fn a_measured_reference_panes_are_its_table() {
+    use fastbrdf::measured::{MeasuredBrdf, from_half_diff, write_merl};
+    let dir = common::temp_dir("view-panes-merl");
+    let path = dir.join("ward-panes.binary");
+    let fastbrdf::Model::Brdf(ward) = fastbrdf::ModelSpec::parse("ward", &[("alpha", "0.25")])
+        .and_then(|s| s.model::<f64>())
+        .unwrap()
+    else {
+        panic!("ward is a BRDF")
+    };
+    write_merl(&path, |th, td, pd| {
+        let (wi, wo) = from_half_diff(th, td, pd);
+        if wi[2] <= 0.0 || wo[2] <= 0.0 {
+            return [-1.0; 3];
+        }
+        let s = ward.eval(wi, wo);
+        [0.3, 0.1, 0.05].map(|kd| kd / std::f64::consts::PI + 0.05 * s)
+    })
+    .unwrap();
+    let s = serve(&["--measured", path.to_str().unwrap()]);
+    let d = ok_json(
+        &s.addr,
+        &format!(
+            "/api/panes?models=ward&ref=ward-panes.binary&alpha=0.25&{}",
+            angles()
+        ),
+    );
+    assert_eq!(d["reference_kind"], "measured");
+    let m = &d["models"][0];
+    assert_eq!(
+        (&m["id"], &m["kind"]),
+        (&json!("ward-panes.binary"), &json!("measured"))
+    );
+    assert_eq!(m["channel"], "luminance");
+    let table = MeasuredBrdf::read(&path).unwrap();
+    check(m, &d, 1e-12, &|p| {
+        p.iter()
+            .map(|(a, b)| {
+                let c = table.eval_rgb(*a, *b);
+                0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2]
+            })
+            .collect()
+    });
+    drop(s);
+    let _ = std::fs::remove_dir_all(dir);
+}
+
 const CANVASES: &str = r#"JSON.stringify(["panes-lobe", "panes-theta-h", "panes-theta-d", "panes-theta-v", "panes-slice"].map(id => document.getElementById(id).toDataURL()))"#;
 
 fn ready(b: &mut cdp::Browser, s: &str) {

@@ -101,8 +101,9 @@ struct Shared {
 /// permit (an upload compiles a shader and a GPU pipeline, conform runs its 11 checks);
 /// renders (`/api/render`) have their own slots ([`RENDER_SLOTS`], [`MAX_WAITING`]); the
 /// others (the page, `/api/models`, `/api/shader`, `/api/material`, errors) answer at once.
-const COMPUTED: [&str; 5] = [
+const COMPUTED: [&str; 6] = [
     "/api/plots",
+    "/api/panes",
     "/api/albedo",
     "/api/errors",
     UPLOAD,

@@ -140,7 +140,7 @@ function panesDrawSlice(d) {
   const cv = $("panes-slice"), c = cv.getContext("2d"), n = d.slice_size, ms = d.models;
   c.fillStyle = "#fff"; c.fillRect(0, 0, cv.width, cv.height);
   c.fillStyle = "#222"; c.font = "12px sans-serif";
-  c.fillText(`theta_h (x) x theta_d (y), phi_d = ${d.phi_d_deg} deg, log colour (click: theta_h, theta_d)`, 8, 14);
+  c.fillText(`theta_h (x) x theta_d (y), phi_d = ${d.phi_d_deg} deg, log (click: set them)`, 8, 14);
   const tile = Math.min(160, Math.floor((cv.width - 10) / Math.max(ms.length, 1)) - 6);
   PANES.tiles = [];
   ms.forEach((m, k) => {
