@@ -11,7 +11,7 @@
 //! query and the JSON.
 
 use super::grids::{curve_theta, luminance};
-use super::query::{Query, Reference, Response, chosen, one_model, parse_u32, theta_i};
+use super::query::{Query, Reference, Response, one_model, parse_u32, theta_i};
 use super::user::eval_batch;
 use crate::CliError;
 use crate::commands::view::state::State;
@@ -32,6 +32,9 @@ pub const MAX_LOBE_RES: u32 = 64;
 /// Default and largest side of the theta_h x theta_d slice (`slice`).
 pub const SLICE_SIDE: u32 = 48;
 pub const MAX_SLICE_SIDE: u32 = 128;
+/// Why a term (shadowing, Fresnel, split-sum) has no panes.
+const TERM_WHY: &str =
+    "a shadowing, Fresnel or split-sum term is not a BRDF: its curves are in the Terms plots";
 /// Points of the theta_v plot (theta_v from -89.9 to 89.9 degrees).
 const THETA_V_POINTS: usize = 361;
 /// Largest polar angle sampled, degrees (the horizon itself is left out, as in the lobe curves).
@@ -280,7 +283,14 @@ pub fn panes(state: &State, q: &Query) -> Result<Response, CliError> {
             .cloned()
             .collect(),
     );
-    let c = chosen(state, &mq)?;
+    // Shadowing, Fresnel and split-sum terms are not BRDFs: skipped, named (kinds.rs draws
+    // their curves).
+    let skipped: Vec<Value> = super::kinds::split(state, &mq)?
+        .terms
+        .iter()
+        .map(|(id, _)| json!({"id": id, "why": TERM_WHY}))
+        .collect();
+    let c = super::kinds::shaded(state, &mq)?;
     for (id, spec) in &c.models {
         one_model(id, spec)?;
     }
@@ -326,6 +336,7 @@ pub fn panes(state: &State, q: &Query) -> Result<Response, CliError> {
         "reference": c.reference.as_ref().map(Reference::name),
         "reference_kind": c.reference.as_ref().map(Reference::kind),
         "models": out,
+        "skipped": skipped,
         "ms": t.elapsed().as_secs_f64() * 1e3,
     })))
 }
