@@ -285,6 +285,10 @@ fn registry_panes_equal_an_independent_evaluation_and_bad_inputs_are_named() {
         let e = v["error"].as_str().unwrap();
         assert!(e.contains(name), "{q}: {e}");
     }
+    // A shadowing term is not a BRDF: named in `skipped`, not drawn.
+    let d = ok_json(&s.addr, "/api/panes?models=flog,smith&alpha=0.2&theta=20");
+    assert_eq!(d["models"].as_array().unwrap().len(), 1);
+    assert_eq!(d["skipped"][0]["id"], "smith", "{}", d["skipped"]);
     let d = ok_json(&s.addr, "/api/panes?models=flog&theta=20");
     assert_eq!(d["theta_i_deg"], 20.0);
     assert_eq!(d["phi_v_deg"], 180.0);

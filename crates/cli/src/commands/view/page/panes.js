@@ -168,6 +168,7 @@ function panesDraw(d) {
   panesPlot("panes-theta-v", d, "theta_v", d.theta_v_deg, `f vs theta_v (wi at ${d.theta_i_deg}, ${d.phi_i_deg}; plane phi_v = ${d.phi_v_deg})`, "theta_v (deg)", -90, 90);
   panesDrawSlice(d);
   panesShowSliders();
+  $("panes-note").textContent = (d.skipped || []).map(t => `${t.id}: ${t.why}`).join("; ");
 }
 
 // ---- the section ----------------------------------------------------------------------------
@@ -185,7 +186,8 @@ HOOKS.start.push(() => {
   const canvases = PANE_CANVASES.map(([id, w, h]) => el("canvas", { class: "plot", id, width: w, height: h }));
   $("right").append(el("section", { id: "panes" }, el("h2", {}, "Lobe and angles"),
     el("div", { style: "display:flex;flex-wrap:wrap;gap:0 16px" }, rows, el("div", { class: "row" }, el("label", { for: "panes-log" }, "log f"), log)),
-    el("div", { style: "display:grid;grid-template-columns:repeat(3, 1fr);gap:8px" }, canvases)));
+    el("div", { style: "display:grid;grid-template-columns:repeat(3, 1fr);gap:8px" }, canvases),
+    el("div", { id: "panes-note" })));
   panesMouse($("panes-lobe"));
   $("panes-slice").addEventListener("click", ev => {
     const cv = $("panes-slice"), r = cv.getBoundingClientRect(), x = (ev.clientX - r.left) * cv.width / r.width, y = (ev.clientY - r.top) * cv.height / r.height;
