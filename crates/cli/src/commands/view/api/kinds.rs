@@ -284,7 +284,7 @@ fn errors_of(
     }))
 }
 
-/// `n` points from `a` to `b`.
+/// [`POINTS`] points from `a` to `b`.
 fn grid(a: f64, b: f64) -> Vec<f64> {
     (0..POINTS)
         .map(|k| a + (b - a) * k as f64 / (POINTS - 1) as f64)
