@@ -178,14 +178,14 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
     let (method, target) = (req.method, req.target);
     let (path, query) = target.split_once('?').unwrap_or((target, ""));
     let upload = method == "POST" && path == UPLOAD;
+    if target.len() > MAX_URL {
+        return Response::error(414, &format!("request target longer than {MAX_URL} bytes"));
+    }
     if req.has_body && !(upload && req.body.is_some()) {
         return Response::error(
             413,
             "request bodies are refused: the API is GET-only (but POST /api/user, a user's model), parameters go in the query",
         );
-    }
-    if target.len() > MAX_URL {
-        return Response::error(414, &format!("request target longer than {MAX_URL} bytes"));
     }
     if path == UPLOAD && !upload {
         return Response::error(
