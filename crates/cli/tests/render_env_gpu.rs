@@ -58,7 +58,7 @@ fn the_furnace_renders_a_uniform_image_on_the_gpu() {
     assert!(o.status.success(), "{}", stderr(&o));
     let e = stderr(&o);
     assert!(
-        e.contains("GPU") && e.contains("independent sampler"),
+        e.contains("GPU") && e.contains("2x2 grid"),
         "{e}"
     );
     let px = linear(&out);
@@ -71,10 +71,10 @@ fn the_furnace_renders_a_uniform_image_on_the_gpu() {
 }
 
 /// The sky on the GPU and on the CPU: a glossy sphere on a floor (shadows on), 2 x 2 samples
-/// per pixel, 256 passes; linear RMSE within 0.06 (the GPU's noise per sample at 256 passes
-/// is about 0.48 / 16 = 0.03, `fastbrdf-gpu`'s tests/render_env.rs, halved by the 4 samples
-/// per pixel; the CPU's is a few times lower; measured 0.015), means within 2% (measured
-/// 0.1%). A user's shader renders under the sky too.
+/// per pixel, 256 passes, both the default Sobol sampler; linear RMSE within 0.03 (measured
+/// 0.0023; with the independent sampler the GPU's noise per sample at 256 passes is about
+/// 0.48 / 16 = 0.03, `fastbrdf-gpu`'s tests/render_env.rs, halved by the 4 samples per
+/// pixel), means within 1% (measured 0.02%). A user's shader renders under the sky too.
 #[test]
 fn the_sky_on_the_gpu_is_the_cpus_picture() {
     if !have_gpu() {
@@ -107,8 +107,8 @@ fn the_sky_on_the_gpu_is_the_cpus_picture() {
         .sqrt();
     let (mg, mc) = (g.iter().sum::<f32>() / n, c.iter().sum::<f32>() / n);
     eprintln!("sky, GPU against CPU: RMSE {rmse:.4}, means {mg:.4} and {mc:.4}");
-    assert!(rmse <= 0.06, "RMSE {rmse}");
-    assert!((mg - mc).abs() <= 0.02 * mc, "means {mg} and {mc}");
+    assert!(rmse <= 0.03, "RMSE {rmse}");
+    assert!((mg - mc).abs() <= 0.01 * mc, "means {mg} and {mc}");
     let user = format!("file:{}", common::gpu_data("user/blinn_phong.glsl"));
     let u = d.join("user.png");
     render(&user, true, &u, &["--param", "n=50"]);

@@ -62,8 +62,9 @@ pub struct RenderArgs {
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
     /// Grey models and users' models (file:PATH, their shader spliced into the GPU's): a
     /// coloured registry model (--metal, R,G,B values) is CPU-only for now. Shadows as on the
-    /// CPU (--shadows on|off). With --env, the map sampled per sample (map and cosine
-    /// directions, the independent sampler; the CPU's picture in the limit, not to the bit).
+    /// CPU (--shadows on|off). With --env, the map sampled per sample with the CPU's random
+    /// numbers (--sampler), by map and cosine directions: without a specular term the CPU's
+    /// picture to rounding, with one the same in the limit (the CPU adds BRDF sampling).
     #[arg(long)]
     gpu: bool,
 }
@@ -217,11 +218,10 @@ fn finish(
     t: std::time::Instant,
     on: String,
 ) -> Result<(), CliError> {
-    // The GPU renders the N x N grid, its environment samples from the independent sampler.
+    // The GPU renders the N x N grid in every pixel (no adaptive antialiasing).
     let gpu_opts;
     let opts = if a.gpu {
         gpu_opts = Options {
-            sampler: fastbrdf_render::render::Sampler::Independent,
             aa: fastbrdf_render::render::Antialias::Grid,
             ..*opts
         };

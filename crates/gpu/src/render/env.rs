@@ -17,18 +17,20 @@
 //! hemisphere), so the estimate is unbiased and converges to the CPU's picture; only its noise
 //! differs (more on sharp lobes reflecting a smooth sky, where BRDF sampling would help).
 //!
-//! Random numbers: the CPU's independent sampler (`fastbrdf_render::env::Rng`, a PCG hash of
-//! the sample id and the pass; the sample id the CPU's), so a render is deterministic and a
-//! draw of passes `[first, first + count)` adds new samples to the draws before it. (The
-//! CPU's default Sobol sampler is not ported: its direction tables would be the first
-//! constants of their kind in the shaders; stratification would lower the noise, not the
-//! bias.)
+//! Random numbers: the CPU's (`opts.sampler`): Owen-scrambled Sobol points (the default;
+//! `sobol_burley`'s `sample_4d` ported with its first four dimensions' direction numbers) or
+//! the independent sampler (`fastbrdf_render::env::Rng`, a PCG hash), seeded by the CPU's
+//! sample id and pass, so that each sample and pass takes the very numbers the CPU's map and
+//! cosine directions take: with no specular term (where the CPU draws no BRDF direction) the
+//! two estimators are the same and the pictures agree to rounding (`tests/render_env.rs`). A
+//! render is deterministic, and a draw of passes `[first, first + count)` adds new samples to
+//! the draws before it.
 //!
 //! # Bind group 3 (what a browser mirrors)
 //!
 //! | binding | type | content |
 //! |---|---|---|
-//! | 0 | `var<uniform>` 32 bytes | `EnvParams`: `size: vec4<u32>` (map width, height, first pass, pass count), `weights: vec4<f32>` (each pass's weight, the direct light's weight, 0, 0): [`EnvData::params`] |
+//! | 0 | `var<uniform>` 48 bytes | `EnvParams`: `size: vec4<u32>` (map width, height, first pass, pass count), `weights: vec4<f32>` (each pass's weight, the direct light's weight, 0, 0), `options: vec4<u32>` (sampler: 0 Sobol, 1 independent; 0, 0, 0): [`EnvData::params`] |
 //! | 1 | `texture_2d<f32>`, `Rgba32Float`, non-filterable (textureLoad) | [`EnvData::texels_rgba32f`] |
 //! | 2 | `var<storage, read> array<f32>` | [`EnvData::tables`] |
 //!
@@ -38,16 +40,19 @@
 //! shading pass by `rd_vs_full` + `rd_fs_env_background` (groups 0, an empty group 1, 2 and 3;
 //! no depth test or write), which writes the map's radiance where the visibility pass found
 //! no object. The shading pass clears to black instead of the scene's background.
-//! A progressive viewer draws with `params(frame, 1, 1.0, 1.0)` per frame (each frame an
-//! unbiased picture) and averages frames; [`super::render`] draws `samples` passes in chunks,
-//! the first with the direct light (`params(0, k, 1 / samples, 1)`), the rest without
-//! (`params(first, k, 1 / samples, 0)`), and sums them.
+//! A progressive viewer draws with `params(frame, 1, 1.0, 1.0, sampler)` per frame (each
+//! frame an unbiased picture) and averages frames; [`super::render`] draws `samples` passes
+//! in chunks, the first with the direct light (`params(0, k, 1 / samples, 1, sampler)`), the
+//! rest without (`params(first, k, 1 / samples, 0, sampler)`), and sums them. With the Sobol
+//! sampler, frame k's points are stratified with those of frames 0 to k - 1 (per sample, pass
+//! k is point k of its sequence).
 
 use super::layouts::Layouts;
 use super::scene_data::check_binding;
 use super::{COLOR_FORMAT, DEPTH_FORMAT, SHADER};
 use crate::context::{GpuError, validated};
 use fastbrdf_render::env::{EnvMap, uv_to_dir};
+use fastbrdf_render::render::Sampler;
 use glam::Vec3;
 use std::f32::consts::PI;
 use wgpu::util::DeviceExt;
@@ -141,26 +146,53 @@ impl EnvData {
         }
     }
 
-    /// The `EnvParams` uniform (32 bytes: four u32, then four f32 as their bits) of a draw
-    /// taking passes `first .. first + count`, each weighted `pass_weight`, with the direct
-    /// light, ambient and background weighted `direct_weight` (1 or 0).
-    pub fn params(&self, first: u32, count: u32, pass_weight: f32, direct_weight: f32) -> [u32; 8] {
-        [
-            self.width,
-            self.height,
-            first,
-            count,
-            pass_weight.to_bits(),
-            direct_weight.to_bits(),
-            0,
-            0,
-        ]
+    /// The `EnvParams` uniform (48 bytes: four u32, four f32 as their bits, four u32) of a
+    /// draw taking passes `first .. first + count`, each weighted `pass_weight`, with the
+    /// direct light, ambient and background weighted `direct_weight` (1 or 0), its random
+    /// numbers from `sampler`.
+    pub fn params(
+        &self,
+        first: u32,
+        count: u32,
+        pass_weight: f32,
+        direct_weight: f32,
+        sampler: Sampler,
+    ) -> [u32; 12] {
+        params(
+            (self.width, self.height),
+            [first, count],
+            [pass_weight, direct_weight],
+            sampler,
+        )
     }
+}
+
+/// The `EnvParams` words (see [`EnvData::params`]).
+fn params(size: (u32, u32), passes: [u32; 2], weights: [f32; 2], sampler: Sampler) -> [u32; 12] {
+    let s = match sampler {
+        Sampler::Sobol => 0,
+        Sampler::Independent => 1,
+    };
+    [
+        size.0,
+        size.1,
+        passes[0],
+        passes[1],
+        weights[0].to_bits(),
+        weights[1].to_bits(),
+        0,
+        0,
+        s,
+        0,
+        0,
+        0,
+    ]
 }
 
 /// The environment's GPU resources: group 3, its layouts, the background pipeline.
 pub(super) struct GpuEnv {
     pub(super) data_size: (u32, u32),
+    pub(super) sampler: Sampler,
     pub(super) params: wgpu::Buffer,
     pub(super) bind: wgpu::BindGroup,
     /// The shading pass's layout under an environment: frame, object, ids, env.
@@ -179,6 +211,7 @@ impl GpuEnv {
         layouts: &Layouts,
         limits: &wgpu::Limits,
         env: &fastbrdf_render::env::Environment,
+        sampler: Sampler,
     ) -> Result<Self, GpuError> {
         let data = EnvData::new(&env.map);
         if data.width > limits.max_texture_dimension_2d {
@@ -285,7 +318,7 @@ impl GpuEnv {
         });
         let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("fastbrdf render env params"),
-            contents: bytemuck::cast_slice(&data.params(0, 1, 1.0, 1.0)),
+            contents: bytemuck::cast_slice(&data.params(0, 1, 1.0, 1.0, sampler)),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
         let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -309,6 +342,7 @@ impl GpuEnv {
         let background = background_pipeline(device, &bg_layout)?;
         Ok(Self {
             data_size: (data.width, data.height),
+            sampler,
             params,
             bind,
             pipeline,
@@ -327,16 +361,12 @@ impl GpuEnv {
     /// weighted 1 / samples, the direct light in the draw of pass 0 only.
     pub(super) fn set_chunk(&self, queue: &wgpu::Queue, first: u32, count: u32) {
         let direct = if first == 0 { 1.0 } else { 0.0 };
-        let p = [
-            self.data_size.0,
-            self.data_size.1,
-            first,
-            count,
-            (1.0 / self.samples as f32).to_bits(),
-            f32::to_bits(direct),
-            0,
-            0,
-        ];
+        let p = params(
+            self.data_size,
+            [first, count],
+            [1.0 / self.samples as f32, direct],
+            self.sampler,
+        );
         queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&p));
     }
 }
@@ -451,9 +481,11 @@ mod tests {
         assert_eq!(chunks(5, 1 << 19), vec![(0, 2), (2, 2), (4, 1)]);
         assert_eq!(chunks(3, 1 << 24), vec![(0, 1), (1, 1), (2, 1)]);
         let d = EnvData::new(&EnvMap::constant(Vec3::ONE));
-        let p = d.params(3, 2, 0.25, 1.0);
+        let p = d.params(3, 2, 0.25, 1.0, Sampler::Independent);
         assert_eq!(&p[..4], &[16, 8, 3, 2]);
         assert_eq!(f32::from_bits(p[4]), 0.25);
         assert_eq!(f32::from_bits(p[5]), 1.0);
+        assert_eq!(&p[8..], &[1, 0, 0, 0]);
+        assert_eq!(d.params(0, 1, 1.0, 1.0, Sampler::Sobol)[8], 0);
     }
 }

@@ -121,10 +121,9 @@ const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// linear `Film`.
 ///
 /// `opts.shading` is ignored (the GPU evaluates the model per sample); `scene.environment`
-/// is sampled as [`env`] says (the same picture as the CPU's in the limit of many samples,
-/// `tests/render_env.rs`; `opts.sampler` is ignored: the GPU's numbers are the independent
-/// sampler's). Errors: sizes outside
-/// `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
+/// is sampled as [`env`] says, with the CPU's random numbers (`opts.sampler`): the same
+/// picture as the CPU's in the limit of many samples (`tests/render_env.rs`). Errors: sizes
+/// outside `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
 /// corners, or with shadows its BVH and triangles) or texture larger than the device's limits,
 /// a model that is not a BRDF instance, an RGB BRDF (see [`render_user`]), and GPU failures.
 pub fn render(
@@ -224,7 +223,7 @@ fn render_scene(
     let env = scene
         .environment
         .as_ref()
-        .map(|e| env::GpuEnv::new(device, queue, &layouts, &limits, e))
+        .map(|e| env::GpuEnv::new(device, queue, &layouts, &limits, e, opts.sampler))
         .transpose()?;
     let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
     let mut objects = Vec::with_capacity(scene.objects.len());

@@ -2,7 +2,7 @@
 // an environment (crates/gpu/src/render/env.rs), so the module of an environment-less scene
 // is unchanged. Everything it adds lives in bind group 3:
 //
-//   @group(3) @binding(0) uniform EnvParams (32 bytes)
+//   @group(3) @binding(0) uniform EnvParams (48 bytes)
 //   @group(3) @binding(1) texture_2d<f32> (Rgba32Float, read with textureLoad): per texel,
 //                         rgb radiance and a = its probability mass x width x height
 //   @group(3) @binding(2) storage array<f32>: the marginal CDF over rows (height + 1
@@ -18,10 +18,13 @@
 // the integrand is non-zero in (the map's density is positive wherever its radiance is), so
 // the sum is unbiased and converges to the CPU's picture.
 //
-// Random numbers: the CPU's independent sampler (`env::Rng`: a PCG hash of the sample id and
-// the pass, 24-bit uniforms), the sample id `(pixel y * width + pixel x) * N^2 + subsample`
-// as on the CPU: deterministic, and a draw with passes [first, first + count) adds new
-// samples to earlier ones.
+// Random numbers: the CPU's (environment.rs, `uniforms`), either sampler: Owen-scrambled
+// Sobol points (sobol_burley's `sample_4d`, its first four dimensions, ported with their
+// direction numbers) or the independent sampler (`env::Rng`: a PCG hash of the sample id
+// and the pass), the sample id `(pixel y * width + pixel x) * N^2 + subsample` as on the CPU:
+// the same four numbers per sample and pass as the CPU's map and cosine directions take.
+// Deterministic, and a draw with passes [first, first + count) adds new samples to earlier
+// ones.
 
 /// The environment's parameters of one draw.
 struct EnvParams {
@@ -30,6 +33,8 @@ struct EnvParams {
     /// Weight of each pass's estimate (1 / passes of the whole render); weight of the direct
     /// light, ambient and background (1 in the draw that includes them, else 0); 0; 0.
     weights: vec4<f32>,
+    /// The sampler (0: Sobol, 1: independent); 0; 0; 0.
+    options: vec4<u32>,
 }
 
 @group(3) @binding(0) var<uniform> env: EnvParams;
@@ -53,6 +58,83 @@ fn rd_rng(id: u32, pass_index: u32) -> u32 {
 fn rd_uniform(state: ptr<function, u32>) -> f32 {
     *state = rd_pcg(*state);
     return f32(*state >> 8u) * (1.0 / 16777216.0);
+}
+
+// Sobol points (twin: sobol_burley 0.5's `sample_4d(index, 0, seed)`, parts.rs): the
+// bit-reversed direction numbers of its dimensions 0 to 3, Burley's hash-based Owen
+// scrambling with the crate's constants, and its float conversion.
+var<private> RD_SOBOL_REV: array<vec4<u32>, 16> = array<vec4<u32>, 16>(
+    vec4<u32>(0x00000001u, 0x00000001u, 0x00000001u, 0x00000001u),
+    vec4<u32>(0x00000002u, 0x00000003u, 0x00000003u, 0x00000003u),
+    vec4<u32>(0x00000004u, 0x00000005u, 0x00000006u, 0x00000004u),
+    vec4<u32>(0x00000008u, 0x0000000fu, 0x00000009u, 0x0000000au),
+    vec4<u32>(0x00000010u, 0x00000011u, 0x00000017u, 0x0000001fu),
+    vec4<u32>(0x00000020u, 0x00000033u, 0x0000003au, 0x0000002eu),
+    vec4<u32>(0x00000040u, 0x00000055u, 0x00000071u, 0x00000045u),
+    vec4<u32>(0x00000080u, 0x000000ffu, 0x000000a3u, 0x000000c9u),
+    vec4<u32>(0x00000100u, 0x00000101u, 0x00000116u, 0x0000011bu),
+    vec4<u32>(0x00000200u, 0x00000303u, 0x00000339u, 0x000002a4u),
+    vec4<u32>(0x00000400u, 0x00000505u, 0x00000677u, 0x0000079au),
+    vec4<u32>(0x00000800u, 0x00000f0fu, 0x000009aau, 0x00000b67u),
+    vec4<u32>(0x00001000u, 0x00001111u, 0x00001601u, 0x0000101eu),
+    vec4<u32>(0x00002000u, 0x00003333u, 0x00003903u, 0x0000302du),
+    vec4<u32>(0x00004000u, 0x00005555u, 0x00007706u, 0x00004041u),
+    vec4<u32>(0x00008000u, 0x0000ffffu, 0x0000aa09u, 0x0000a0c3u)
+);
+
+fn rd_sobol_hash(x: vec4<u32>) -> vec4<u32> {
+    var n = x ^ vec4<u32>(0xe6fe3bebu);
+    n ^= n >> vec4<u32>(16u);
+    n *= vec4<u32>(0x7feb352du);
+    n ^= n >> vec4<u32>(15u);
+    n *= vec4<u32>(0x846ca68bu);
+    n ^= n >> vec4<u32>(16u);
+    return n;
+}
+
+fn rd_owen_rev(x: vec4<u32>, scramble: vec4<u32>) -> vec4<u32> {
+    var n = x;
+    n ^= n * vec4<u32>(0x3d20adeau);
+    n += scramble;
+    n *= (scramble >> vec4<u32>(16u)) | vec4<u32>(1u);
+    n ^= n * vec4<u32>(0x05526c56u);
+    n ^= n * vec4<u32>(0x53a22864u);
+    return n;
+}
+
+/// sample_4d(index, 0, seed): point `index` (below 2^16) of the sequence `seed`, in [0, 1).
+fn rd_sobol4(index: u32, seed: u32) -> vec4<f32> {
+    let shuffled =
+        rd_owen_rev(vec4<u32>(reverseBits(index)), rd_sobol_hash(vec4<u32>(seed ^ 0x79c68e4au))).x;
+    var sobol = vec4<u32>(0u);
+    var idx = shuffled & 0xffff0000u;
+    var i = 0u;
+    while idx != 0u {
+        let j = countLeadingZeros(idx);
+        sobol ^= RD_SOBOL_REV[i + j];
+        i += j + 1u;
+        idx = (idx << j) << 1u;
+    }
+    let scramble = vec4<u32>(seed * 0x9c8f2d3bu)
+        ^ vec4<u32>(0x912f69bau, 0x174f18abu, 0x691e72cau, 0xb40cc1b8u);
+    let r = reverseBits(rd_owen_rev(sobol, rd_sobol_hash(scramble)));
+    return bitcast<vec4<f32>>((r >> vec4<u32>(9u)) | vec4<u32>(0x3f800000u)) - vec4<f32>(1.0);
+}
+
+/// The four uniform numbers of sample `id` in pass `p` (environment.rs, `uniforms`): the map's
+/// pair, then the cosine pair.
+fn rd_env_uniforms(id: u32, p: u32) -> vec4<f32> {
+    if env.options.x == 0u {
+        // Pass k takes point k (mod 2^16) of the sequence seeded by the sample (and k / 2^16).
+        let seed = rd_pcg(id ^ rd_pcg(p >> 16u));
+        return rd_sobol4(p & 0xffffu, seed);
+    }
+    var rng = rd_rng(id, p);
+    let u1 = rd_uniform(&rng);
+    let u2 = rd_uniform(&rng);
+    let u3 = rd_uniform(&rng);
+    let u4 = rd_uniform(&rng);
+    return vec4<f32>(u1, u2, u3, u4);
 }
 
 /// The CPU's sample id of the fragment at `pos` (environment.rs, `env_pass`).
@@ -199,18 +281,14 @@ fn rd_env_f(s: RdSurface, l: vec3<f32>, cos_i: f32) -> vec3<f32> {
 
 /// One pass's estimate at a hit: a map direction and a cosine direction, balance heuristic.
 fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
-    var rng = rd_rng(id, pass_index);
-    let u1 = rd_uniform(&rng);
-    let u2 = rd_uniform(&rng);
-    let u3 = rd_uniform(&rng);
-    let u4 = rd_uniform(&rng);
+    let u = rd_env_uniforms(id, pass_index);
     var sum = vec3<f32>(0.0);
-    let m = rd_env_sample(u1, u2);
+    let m = rd_env_sample(u.x, u.y);
     let cos_m = rd_dot(s.n, m.d);
     if m.pdf > 0.0 && cos_m > 0.0 && any(m.le != vec3<f32>(0.0)) && rd_env_visible(s, m.d) {
         sum += m.le * rd_env_f(s, m.d, cos_m) / (m.pdf + cos_m / RD_PI);
     }
-    let l = rd_cosine_sample(s.n, u3, u4);
+    let l = rd_cosine_sample(s.n, u.z, u.w);
     let cos_c = rd_dot(s.n, l);
     if cos_c > 0.0 {
         let e = rd_env_lookup(l);
