@@ -86,6 +86,7 @@ mod layouts;
 mod objects;
 mod passes;
 mod scene_data;
+pub mod web;
 
 use crate::context::{GpuError, validated};
 use crate::spec::Instance;

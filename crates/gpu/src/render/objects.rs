@@ -20,21 +20,29 @@ pub(super) struct GpuObject {
     pub(super) corners: Option<(wgpu::Buffer, u32)>,
 }
 
-/// The object uniform, its texture, mesh buffers, model coefficients (`coefs`, the model
-/// instance's `fb_k`; empty for a user's shader) and a user's parameter block (`params`,
-/// [`crate::user::UserShader::param_block`]; empty for a model), bound together.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn upload_object(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    layouts: &Layouts,
+/// What one object puts on the GPU, as plain data: its uniform (`struct Object`), its linear
+/// albedo texels (RGBA f32, at least 1 x 1), its mesh buffers (`mesh_v`, `mesh_t`) and, for a
+/// mesh, the rasteriser's triangle corners (dilated at boundary edges) with their count. The
+/// native renderer uploads it ([`upload_object`]); `render::web` sends it to a browser.
+pub(super) struct ObjectData {
+    pub(super) uniform: Vec<u32>,
+    pub(super) texture: (u32, u32, Vec<f32>),
+    pub(super) vertices: Vec<f32>,
+    pub(super) triangles: Vec<u32>,
+    pub(super) corners: Option<(Vec<f32>, u32)>,
+}
+
+/// Index of kd (`albedo.w`) and ks (`mat.x`) in [`ObjectData::uniform`].
+pub(super) const KD_WORD: usize = 19;
+pub(super) const KS_WORD: usize = 20;
+
+/// The object's data (see [`ObjectData`]), checked against `limits`.
+pub(super) fn object_data(
     limits: &wgpu::Limits,
     obj: &Object,
     index: usize,
-    (coefs, params): (&[f32], &[f32]),
-    model: String,
     reach: &Reach,
-) -> Result<GpuObject, GpuError> {
+) -> Result<ObjectData, GpuError> {
     let m = &obj.material;
     let zero4 = [0.0f32; 4];
     let (mut a, mut normal, mut tu, mut tv) = (zero4, zero4, zero4, zero4);
@@ -83,12 +91,7 @@ pub(super) fn upload_object(
             let pos = dilate_boundaries(&mesh.positions, &triangles, reach);
             check_binding(limits, vertices.len() * 4, "the mesh's vertices")?;
             check_binding(limits, pos.len() * 4, "the mesh's triangle corners")?;
-            let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("fastbrdf render corners"),
-                contents: bytemuck::cast_slice(&pos),
-                usage: wgpu::BufferUsages::VERTEX,
-            });
-            corners = Some((buf, count));
+            corners = Some((pos, count));
             2
         }
     };
@@ -105,25 +108,6 @@ pub(super) fn upload_object(
         }
         None => (1, 1, vec![0.0; 4]),
     };
-    let texture = device.create_texture_with_data(
-        queue,
-        &wgpu::TextureDescriptor {
-            label: Some("fastbrdf render albedo"),
-            size: wgpu::Extent3d {
-                width: tex_w,
-                height: tex_h,
-                depth_or_array_layers: 1,
-            },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: wgpu::TextureFormat::Rgba32Float,
-            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        },
-        wgpu::util::TextureDataOrder::LayerMajor,
-        bytemuck::cast_slice(&texels),
-    );
     let (bump_scale, bump_depth) = m.bump.map_or((0.0, 0.0), |b| (b.scale, b.depth));
     let mut uniform: Vec<u32> = Vec::with_capacity(36);
     for v in [
@@ -147,14 +131,69 @@ pub(super) fn upload_object(
     let id = u32::try_from(index + 1)
         .map_err(|_| GpuError::Input(format!("object {index}: too many objects")))?;
     uniform.extend([tex_w, tex_h, id, 0]);
+    debug_assert_eq!(uniform[KD_WORD], m.kd.to_bits());
+    debug_assert_eq!(uniform[KS_WORD], m.ks.to_bits());
+    Ok(ObjectData {
+        uniform,
+        texture: (tex_w, tex_h, texels),
+        vertices,
+        triangles,
+        corners,
+    })
+}
+
+/// The object uniform, its texture, mesh buffers, model coefficients (`coefs`, the model
+/// instance's `fb_k`; empty for a user's shader) and a user's parameter block (`params`,
+/// [`crate::user::UserShader::param_block`]; empty for a model), bound together.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn upload_object(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    layouts: &Layouts,
+    limits: &wgpu::Limits,
+    obj: &Object,
+    index: usize,
+    (coefs, params): (&[f32], &[f32]),
+    model: String,
+    reach: &Reach,
+) -> Result<GpuObject, GpuError> {
+    let data = object_data(limits, obj, index, reach)?;
+    let corners = data.corners.map(|(pos, count)| {
+        let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("fastbrdf render corners"),
+            contents: bytemuck::cast_slice(&pos),
+            usage: wgpu::BufferUsages::VERTEX,
+        });
+        (buf, count)
+    });
+    let (tex_w, tex_h, texels) = &data.texture;
+    let texture = device.create_texture_with_data(
+        queue,
+        &wgpu::TextureDescriptor {
+            label: Some("fastbrdf render albedo"),
+            size: wgpu::Extent3d {
+                width: *tex_w,
+                height: *tex_h,
+                depth_or_array_layers: 1,
+            },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: wgpu::TextureFormat::Rgba32Float,
+            usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            view_formats: &[],
+        },
+        wgpu::util::TextureDataOrder::LayerMajor,
+        bytemuck::cast_slice(texels),
+    );
     let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("fastbrdf render object"),
-        contents: bytemuck::cast_slice(&uniform),
+        contents: bytemuck::cast_slice(&data.uniform),
         usage: wgpu::BufferUsages::UNIFORM,
     });
     let view = texture.create_view(&Default::default());
-    let vertices = storage(device, "fastbrdf render vertices", &vertices);
-    let triangles = storage(device, "fastbrdf render triangles", &triangles);
+    let vertices = storage(device, "fastbrdf render vertices", &data.vertices);
+    let triangles = storage(device, "fastbrdf render triangles", &data.triangles);
     let coefs = storage(device, "fastbrdf render coefficients", coefs);
     // At least one vec4 (a uniform binding is never empty; `FbUserParams` has K >= 1).
     let params = if params.is_empty() {

@@ -63,6 +63,15 @@ pub(super) fn frame_data(scene: &Scene, opts: &Options, tile: &Tile) -> Vec<u32>
 
 /// The lights as `struct Light` records (one zero record when there are none).
 pub(super) fn lights_buffer(device: &wgpu::Device, scene: &Scene) -> wgpu::Buffer {
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("fastbrdf render lights"),
+        contents: bytemuck::cast_slice(&lights_data(scene)),
+        usage: wgpu::BufferUsages::STORAGE,
+    })
+}
+
+/// The lights' records as data (8 f32 each; one zero record when there are none).
+pub(super) fn lights_data(scene: &Scene) -> Vec<f32> {
     let mut data: Vec<f32> = Vec::with_capacity(8 * scene.lights.len().max(1));
     for l in &scene.lights {
         let (p, kind) = match l.kind {
@@ -83,11 +92,7 @@ pub(super) fn lights_buffer(device: &wgpu::Device, scene: &Scene) -> wgpu::Buffe
     if data.is_empty() {
         data.resize(8, 0.0);
     }
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("fastbrdf render lights"),
-        contents: bytemuck::cast_slice(&data),
-        usage: wgpu::BufferUsages::STORAGE,
-    })
+    data
 }
 
 /// The scene's objects for the shadow rays (`struct Occluder`, `BvhNode` and `sh_tris` in
@@ -107,6 +112,24 @@ impl Occluders {
         limits: &wgpu::Limits,
         scene: &Scene,
     ) -> Result<Self, GpuError> {
+        let d = OccluderData::new(limits, scene)?;
+        Ok(Self {
+            objects: storage(device, "fastbrdf render occluders", &d.objects),
+            nodes: storage(device, "fastbrdf render bvh nodes", &d.nodes),
+            triangles: storage(device, "fastbrdf render shadow triangles", &d.triangles),
+        })
+    }
+}
+
+/// [`Occluders`] as data: the records, BVH nodes and triangle corners.
+pub(super) struct OccluderData {
+    pub(super) objects: Vec<[u32; 12]>,
+    pub(super) nodes: Vec<[u32; 8]>,
+    pub(super) triangles: Vec<f32>,
+}
+
+impl OccluderData {
+    pub(super) fn new(limits: &wgpu::Limits, scene: &Scene) -> Result<Self, GpuError> {
         let mut objects: Vec<[u32; 12]> = Vec::with_capacity(scene.objects.len());
         let mut nodes: Vec<[u32; 8]> = Vec::new();
         let mut triangles: Vec<f32> = Vec::new();
@@ -185,9 +208,9 @@ impl Occluders {
             objects.push([0, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0]);
         }
         Ok(Self {
-            objects: storage(device, "fastbrdf render occluders", &objects),
-            nodes: storage(device, "fastbrdf render bvh nodes", &nodes),
-            triangles: storage(device, "fastbrdf render shadow triangles", &triangles),
+            objects,
+            nodes,
+            triangles,
         })
     }
 }

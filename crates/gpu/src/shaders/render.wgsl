@@ -140,7 +140,7 @@ fn rd_normalize(a: vec3<f32>) -> vec3<f32> {
 fn rd_normalize_or(a: vec3<f32>, fallback: vec3<f32>) -> vec3<f32> {
     let rcp = rd_length_recip(a);
     // Finite and positive: below the largest f32 (this also rejects NaN).
-    if rcp > 0.0 && rcp <= 3.40282347e38 {
+    if rcp > 0.0 && rcp <= 0x1.fffffep+127f {
         return a * rcp;
     }
     return fallback;

@@ -58,6 +58,13 @@ impl Browser {
     /// Starts `browser` headless with a new empty profile (the flags that keep it from
     /// reaching for the network, which hangs it on a closed machine).
     pub fn start(browser: &Path) -> Result<Self, String> {
+        Self::start_with(browser, false)
+    }
+
+    /// [`Browser::start`], with WebGPU on the software adapter (SwiftShader) when `webgpu`:
+    /// the explorer then draws its pictures itself; without it the page has no WebGPU and
+    /// shows the server's.
+    pub fn start_with(browser: &Path, webgpu: bool) -> Result<Self, String> {
         use std::os::fd::AsRawFd;
         static STARTED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
         let profile = std::env::temp_dir().join(format!(
@@ -72,10 +79,17 @@ impl Browser {
         let (we_read, chrome_writes) = pipe()?;
         let (r, w) = (chrome_reads.as_raw_fd(), chrome_writes.as_raw_fd());
         let mut cmd = Command::new(browser);
+        if webgpu {
+            cmd.args(["--enable-unsafe-webgpu", "--use-webgpu-adapter=swiftshader"]);
+            if let Ok(extra) = std::env::var("FASTBRDF_CHROMIUM_FLAGS") {
+                cmd.args(extra.split_whitespace());
+            }
+        } else {
+            cmd.arg("--disable-gpu");
+        }
         cmd.args([
             "--headless",
             "--no-sandbox",
-            "--disable-gpu",
             "--disable-quic",
             "--no-first-run",
             "--disable-background-networking",

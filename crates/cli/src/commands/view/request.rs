@@ -221,6 +221,8 @@ pub fn handle(state: &State, hosts: &Hosts, req: &Request<'_>) -> Response {
             "/api/panes" => api::panes(state, &q),
             "/api/albedo" => api::albedo_endpoint(state, &q),
             "/api/render" => api::render_endpoint(state, &q),
+            "/api/gpu/scene" => api::gpu_scene(state, &q),
+            "/api/gpu/shader" => api::gpu_shader(state, &q),
             "/api/flip" => api::flip_endpoint(state, &q),
             "/api/errors" => api::errors_endpoint(state, &q),
             "/api/shader" => api::shader(state, &q),

@@ -11,6 +11,7 @@
 
 mod conform;
 mod errors;
+mod gpu;
 mod grids;
 mod kinds;
 mod models;
@@ -22,6 +23,7 @@ mod user;
 
 pub use conform::conform_endpoint;
 pub use errors::errors_endpoint;
+pub use gpu::{scene_endpoint as gpu_scene, shader_endpoint as gpu_shader};
 pub use models::{material, models, shader};
 pub use panes::panes;
 pub use plots::{albedo_endpoint, plots};

@@ -1,1 +1,484 @@
-// gpu.js: (placeholder, filled by its owner)
+// ---- pictures drawn by WebGPU (issue 32) ---------------------------------------------
+// The page draws the lit object of every model, the reference and the difference maps
+// itself, with the GPU renderer's own module (crates/gpu/src/shaders/render.wgsl and the
+// model's runtime-parameter WGSL, from /api/gpu/shader, once per model and choice set) on the
+// scene's buffers (/api/gpu/scene, once per object and size). A slider move writes the
+// parameter blocks and redraws: no request. The passes are the native renderer's
+// (crates/gpu/src/render/: visibility, then shading, in scene order), then per model a
+// resolve (the N x N samples averaged, sRGB 8-bit as Film::to_srgb8), the difference maps
+// (compare::difference, scaled by their common maximum, magma as compare::heat_map) with RMSE
+// and PSNR (compare::pixel_metrics), and one draw per canvas. Without WebGPU (or for what it
+// cannot draw: a measured reference, R,G,B parameters) the server's pictures are shown and
+// the page says why. document.body.dataset.renderer is "webgpu" or "server"; each redraw a
+// control causes is a performance measure "fastbrdf:frame", from the control's input event
+// to the GPU having finished every picture of that state.
+const GPU = {
+  on: false, why: "", device: null, format: null, L: null, tools: null,
+  size: 512, spp: 1, scene: null, sceneKey: "", sceneLight: "", lightNow: "",
+  mods: new Map(), drawn: [], busy: false, again: false, since: null, bypass: false,
+  stats: null, readback: null, metricsBusy: false, lastScale: 0, frames: 0,
+};
+const WEBGPU_TOOLS = `
+struct Dims { w: u32, h: u32, n: u32, k: u32 }
+@group(0) @binding(0) var<uniform> dims: Dims;
+@group(0) @binding(1) var img: texture_2d<f32>;
+@group(0) @binding(2) var<storage, read_write> px: array<u32>;
+// texture.rs linear_to_srgb, then Film::to_srgb8's (x 255 + 0.5) as u8.
+fn srgb8(c: f32) -> u32 {
+  let x = clamp(c, 0.0, 1.0);
+  var s = 12.92 * x;
+  if x > 0.0031308 { s = 1.055 * pow(x, 1.0 / 2.4) - 0.055; }
+  return u32(s * 255.0 + 0.5);
+}
+// The CPU's order: samples row by row within the pixel, summed, then scaled by 1 / N^2.
+@compute @workgroup_size(8, 8) fn resolve(@builtin(global_invocation_id) g: vec3<u32>) {
+  if g.x >= dims.w || g.y >= dims.h { return; }
+  var sum = vec3<f32>(0.0);
+  for (var sy = 0u; sy < dims.n; sy++) {
+    for (var sx = 0u; sx < dims.n; sx++) {
+      sum += textureLoad(img, vec2<u32>(g.x * dims.n + sx, g.y * dims.n + sy), 0).xyz;
+    }
+  }
+  sum = sum * (1.0 / f32(dims.n * dims.n));
+  px[g.y * dims.w + g.x] = srgb8(sum.x) | (srgb8(sum.y) << 8u) | (srgb8(sum.z) << 16u);
+}
+`;
+const WEBGPU_DIFF = `
+struct Dims { w: u32, h: u32, n: u32, k: u32 }
+@group(0) @binding(0) var<uniform> dims: Dims;
+@group(0) @binding(1) var<storage, read> ref_px: array<u32>;
+@group(0) @binding(2) var<storage, read> px: array<u32>;
+@group(0) @binding(3) var<storage, read_write> diff: array<f32>;
+// [0]: the largest difference of all maps (f32 bits: non-negative floats order as u32);
+// then 256 partial sums of squared 8-bit differences per model (k).
+@group(0) @binding(4) var<storage, read_write> stats: array<atomic<u32>>;
+fn ch(p: u32, s: u32) -> f32 { return f32((p >> s) & 255u); }
+@compute @workgroup_size(8, 8) fn diff_main(@builtin(global_invocation_id) g: vec3<u32>,
+    @builtin(workgroup_id) wg: vec3<u32>) {
+  if g.x >= dims.w || g.y >= dims.h { return; }
+  let i = g.y * dims.w + g.x;
+  let a = ref_px[i];
+  let b = px[i];
+  // compare::difference: (|dr| + |dg| + |db|) / (3 x 255), summed in f32 in that order.
+  let d = (abs(ch(a, 0u) - ch(b, 0u)) + abs(ch(a, 8u) - ch(b, 8u)) + abs(ch(a, 16u) - ch(b, 16u))) / (3.0 * 255.0);
+  diff[i] = d;
+  atomicMax(&stats[0], bitcast<u32>(d));
+  var se = 0u;
+  for (var s = 0u; s < 24u; s += 8u) {
+    let e = i32((a >> s) & 255u) - i32((b >> s) & 255u);
+    se += u32(e * e);
+  }
+  atomicAdd(&stats[1u + dims.k * 256u + (wg.x + wg.y * 64u) % 256u], se);
+}
+`;
+const WEBGPU_SHOW = `
+struct Dims { w: u32, h: u32, n: u32, k: u32 }
+@group(0) @binding(0) var<uniform> dims: Dims;
+@group(0) @binding(1) var<storage, read> px: array<u32>;
+@group(0) @binding(2) var<storage, read> diff: array<f32>;
+@group(0) @binding(3) var<storage, read> stats: array<u32>;
+@group(0) @binding(4) var<storage, read> magma: array<u32>;
+@group(0) @binding(5) var<storage, read_write> rgba: array<u32>;
+// dims.n: 0 the picture, 1 its difference map (compare::heat_map with the common scale, at
+// least 1/255, as /api/render); written as RGBA bytes at picture dims.k of rgba.
+@compute @workgroup_size(8, 8) fn show(@builtin(global_invocation_id) g: vec3<u32>) {
+  if g.x >= dims.w || g.y >= dims.h { return; }
+  let i = g.y * dims.w + g.x;
+  var c = px[i];
+  if dims.n == 1u {
+    let scale = max(bitcast<f32>(stats[0]), 1.0 / 255.0);
+    let t = clamp(diff[i] / scale, 0.0, 1.0) * 255.0;
+    c = magma[u32(floor(t + 0.5))];
+  }
+  rgba[dims.k * dims.w * dims.h + i] = (c & 0xffffffu) | 0xff000000u;
+}
+`;
+
+// A rejected promise's message prefixed with what was being done.
+async function labelled(what, p) { try { return await p; } catch (e) { throw new Error(`${what}: ${e.message}`); } }
+function b64bytes(s) { const b = atob(s), u = new Uint8Array(b.length); for (let i = 0; i < b.length; i++) u[i] = b.charCodeAt(i); return u; }
+function gpuBuffer(usage, data, size) {
+  const d = GPU.device, n = Math.max(256, Math.ceil((data ? data.byteLength : size) / 4) * 4);
+  const buf = d.createBuffer({ size: n, usage: usage | GPUBufferUsage.COPY_DST });
+  if (data && data.byteLength) d.queue.writeBuffer(buf, 0, data.buffer, data.byteOffset, data.byteLength);
+  return buf;
+}
+const STORAGE = () => GPUBufferUsage.STORAGE, UNIFORM = () => GPUBufferUsage.UNIFORM;
+
+async function gpuInit() {
+  if (!navigator.gpu) throw new Error("this browser has no WebGPU");
+  const adapter = await navigator.gpu.requestAdapter();
+  if (!adapter) throw new Error("no WebGPU adapter");
+  GPU.adapter = adapter; // kept: Chromium loses async pipeline creation when the adapter is collected
+  const d = GPU.device = await adapter.requestDevice();
+  d.lost.then(info => { GPU.on = false; GPU.why = "the WebGPU device was lost: " + info.message; document.body.dataset.renderer = "server"; renderAll(paramQuery()); });
+  // A validation error is a bug of this page: shown, and the server draws from then on.
+  d.onuncapturederror = ev => {
+    const m = "WebGPU: " + ev.error.message;
+    document.body.dataset.gpuError = m; setStatus(m, true);
+    GPU.on = false; GPU.why = m; document.body.dataset.renderer = "server";
+  };
+  const F = GPUShaderStage.FRAGMENT, ro = { buffer: { type: "read-only-storage" } }, un = { buffer: { type: "uniform" } };
+  const e = (binding, visibility, rest) => Object.assign({ binding, visibility }, rest);
+  // layouts.rs, binding for binding.
+  const frame = d.createBindGroupLayout({ entries: [e(0, GPUShaderStage.VERTEX | F, un), e(1, F, ro), e(2, F, ro), e(3, F, ro), e(4, F, ro)] });
+  const object = d.createBindGroupLayout({ entries: [e(0, F, un), e(1, F, { texture: { sampleType: "unfilterable-float" } }), e(2, F, ro), e(3, F, ro), e(4, F, ro), e(5, F, un)] });
+  const ids = d.createBindGroupLayout({ entries: [e(0, F, { texture: { sampleType: "uint" } })] });
+  GPU.L = {
+    frame, object, ids,
+    shading: d.createPipelineLayout({ bindGroupLayouts: [frame, object, ids] }),
+    visibility: d.createPipelineLayout({ bindGroupLayouts: [frame, object] }),
+  };
+  const C = GPUShaderStage.COMPUTE;
+  const resolveL = d.createBindGroupLayout({ entries: [e(0, C, un), e(1, C, { texture: { sampleType: "unfilterable-float" } }), e(2, C, { buffer: { type: "storage" } })] });
+  const diffL = d.createBindGroupLayout({ entries: [e(0, C, un), e(1, C, ro), e(2, C, ro), e(3, C, { buffer: { type: "storage" } }), e(4, C, { buffer: { type: "storage" } })] });
+  const showL = d.createBindGroupLayout({ entries: [e(0, C, un), e(1, C, ro), e(2, C, ro), e(3, C, ro), e(4, C, ro), e(5, C, { buffer: { type: "storage" } })] });
+  const mod = code => d.createShaderModule({ code });
+  GPU.tools = await labelled("the page's own pipelines", (async () => ({
+    resolveL, diffL, showL,
+    resolve: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [resolveL] }), compute: { module: mod(WEBGPU_TOOLS), entryPoint: "resolve" } }),
+    diff: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [diffL] }), compute: { module: mod(WEBGPU_DIFF), entryPoint: "diff_main" } }),
+    show: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [showL] }), compute: { module: mod(WEBGPU_SHOW), entryPoint: "show" } }),
+  }))());
+  GPU.dummy = gpuBuffer(STORAGE(), null, 16);
+  GPU.on = true;
+}
+
+// ---- what is drawn -------------------------------------------------------------------
+function gpuDrawable() {
+  // What the page cannot draw itself: the measured reference (CPU data), coloured values.
+  if (state.ref && state.ref === MEAS) return "a measured reference is drawn by the server";
+  for (const v of Object.values(state.params)) if (String(v).includes(",") && !allIds().some(id => MODELS[id] && MODELS[id].kind === "user")) return "R,G,B parameters are drawn by the server";
+  return "";
+}
+// Models with a picture: the reference first (as /api/render), only kinds the renderer shades.
+function gpuModels() { return allIds().filter(id => MODELS[id] && !["shadowing", "fresnel", "env"].includes(MODELS[id].kind)); }
+function choiceKey(id) {
+  const q = new URLSearchParams({ model: id });
+  for (const p of MODELS[id].params) if (p.type === "choice" && MODELS[id].kind !== "user") q.set(p.name, state.params[p.name] ?? choiceDefault(p));
+  return q.toString();
+}
+
+async function gpuScene() {
+  const key = `${state.mesh}|${GPU.size}|${GPU.spp}`;
+  if (GPU.scene && GPU.sceneKey === key) return GPU.scene;
+  const q = new URLSearchParams({ mesh: state.mesh, light: state.light, size: GPU.size, spp: GPU.spp });
+  const s = await getJSON("/api/gpu/scene?" + q);
+  const d = GPU.device, u32 = t => new Uint32Array(b64bytes(t).buffer), f32 = t => new Float32Array(b64bytes(t).buffer);
+  const W = s.width * s.spp, H = s.height * s.spp, tex = (format, usage) => d.createTexture({ size: [W, H], format, usage });
+  const RA = GPUTextureUsage.RENDER_ATTACHMENT;
+  const sc = {
+    s, W, H, lightsData: f32(s.lights),
+    frame: gpuBuffer(UNIFORM(), u32(s.frame)), lights: null,
+    occ: gpuBuffer(STORAGE(), u32(s.occluders)), nodes: gpuBuffer(STORAGE(), u32(s.nodes)), tris: gpuBuffer(STORAGE(), f32(s.shadow_triangles)),
+    depth: tex("depth32float", RA), ids: tex("rg32uint", RA | GPUTextureUsage.TEXTURE_BINDING),
+    magma: gpuBuffer(STORAGE(), new Uint32Array(Array.from({ length: 256 }, (_, i) => { const m = b64bytes(s.magma); return m[3 * i] | (m[3 * i + 1] << 8) | (m[3 * i + 2] << 16); }))),
+    dims: gpuBuffer(UNIFORM(), new Uint32Array([s.width, s.height, s.spp, 0])),
+    objects: s.objects.map(o => {
+      const t = d.createTexture({ size: [o.texture.width, o.texture.height], format: "rgba32float", usage: GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST });
+      d.queue.writeTexture({ texture: t }, f32(o.texture.texels), { bytesPerRow: 16 * o.texture.width }, [o.texture.width, o.texture.height]);
+      return {
+        uniform: gpuBuffer(UNIFORM(), u32(o.uniform)), whole: gpuBuffer(UNIFORM(), u32(o.whole)), view: t.createView(),
+        vertices: gpuBuffer(STORAGE(), f32(o.vertices)), triangles: gpuBuffer(STORAGE(), u32(o.triangles)),
+        corners: o.corners ? gpuBuffer(GPUBufferUsage.VERTEX, f32(o.corners)) : null, count: o.count,
+      };
+    }),
+  };
+  sc.lights = gpuBuffer(STORAGE(), sc.lightsData);
+  sc.frameBind = d.createBindGroup({ layout: GPU.L.frame, entries: [sc.frame, sc.lights, sc.occ, sc.nodes, sc.tris].map((b, i) => ({ binding: i, resource: { buffer: b } })) });
+  sc.idsBind = d.createBindGroup({ layout: GPU.L.ids, entries: [{ binding: 0, resource: sc.ids.createView() }] });
+  sc.idsReady = false;
+  GPU.scene = sc; GPU.sceneKey = key; GPU.sceneLight = state.light; GPU.lightNow = state.light;
+  for (const m of GPU.mods.values()) m.perScene = null;
+  return sc;
+}
+
+// glam's Vec3::normalize in f32 (Light::parse's direction), for a light dragged in the page.
+function lightRecord(text, base) {
+  const f = Math.fround, v = text.split(",").map(x => f(Number(x)));
+  const dot = f(f(f(v[0] * v[0]) + f(v[1] * v[1])) + f(v[2] * v[2])), r = f(1 / f(Math.sqrt(dot)));
+  const out = base.slice(0, 8); out[0] = f(v[0] * r); out[1] = f(v[1] * r); out[2] = f(v[2] * r); out[3] = 0;
+  return out;
+}
+
+async function gpuModule(id) {
+  const key = choiceKey(id);
+  let m = GPU.mods.get(key);
+  if (m) return m.ready;
+  m = { key, id };
+  GPU.mods.set(key, m);
+  m.ready = (async () => {
+    const info = await getJSON("/api/gpu/shader?" + key);
+    const d = GPU.device, module = d.createShaderModule({ code: info.wgsl });
+    const ci = await labelled(`${id}: compiling`, module.getCompilationInfo());
+    const errs = ci.messages.filter(x => x.type === "error");
+    if (errs.length) throw new Error(`${id}: WebGPU cannot compile its module: ${errs[0].lineNum}:${errs[0].linePos}: ${errs[0].message}`);
+    const pipe = (vs, fs, vis, buffers) => labelled(`${id}: the ${fs} pipeline`, d.createRenderPipelineAsync({
+      layout: vis ? GPU.L.visibility : GPU.L.shading,
+      vertex: { module, entryPoint: vs, buffers },
+      primitive: { topology: "triangle-list", cullMode: "none" },
+      depthStencil: { format: "depth32float", depthWriteEnabled: true, depthCompare: "less" },
+      fragment: { module, entryPoint: fs, targets: [{ format: vis ? "rg32uint" : "rgba32float" }] },
+    }));
+    const corners = [{ arrayStride: 12, attributes: [{ shaderLocation: 0, offset: 0, format: "float32x3" }] }];
+    const mesh = state.mesh === "mesh";
+    Object.assign(m, {
+      info, mesh,
+      shade: await (mesh ? pipe("rd_vs_mesh", "rd_fs_mesh", false, corners) : pipe("rd_vs_full", "rd_fs_analytic", false, [])),
+      vis: await (mesh ? pipe("rd_vs_mesh", "rd_fs_mesh_id", true, corners) : pipe("rd_vs_full", "rd_fs_analytic_id", true, [])),
+      block: new Float32Array(4 * Math.max(1, info.params.length)),
+      perScene: null,
+    });
+    m.params = gpuBuffer(UNIFORM(), m.block);
+    return m;
+  })();
+  m.ready.catch(() => GPU.mods.delete(key));
+  return m.ready;
+}
+
+// The block of parameter values (one vec4 each): the page's values, else the defaults.
+function fillBlock(m) {
+  const own = MODELS[m.id].params;
+  m.info.params.forEach((p, k) => {
+    const spec = own.find(q => q.name === p.name) || {}, text = state.params[p.name];
+    let v = text !== undefined ? text : (p.default !== undefined ? p.default : spec.default);
+    if (spec.type === "color") {
+      const c = String(v).split(",").map(Number), rgb = c.length === 1 ? [c[0], c[0], c[0]] : c;
+      m.block.set(rgb.slice(0, 3), 4 * k);
+    } else m.block[4 * k] = Number(v);
+  });
+  for (const p of own) if (p.type === "number" && state.params[p.name] !== undefined) {
+    const v = Number(state.params[p.name]);
+    if (!(v >= p.min && v <= p.max)) return false; // the server's message says why
+  }
+  GPU.device.queue.writeBuffer(m.params, 0, m.block);
+  return true;
+}
+
+function perScene(m, sc) {
+  if (m.perScene) return m.perScene;
+  const d = GPU.device, whole = m.info.whole;
+  const color = d.createTexture({ size: [sc.W, sc.H], format: "rgba32float", usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.TEXTURE_BINDING });
+  const n = sc.s.width * sc.s.height;
+  const px = gpuBuffer(STORAGE() | GPUBufferUsage.COPY_SRC, null, 4 * n), diff = gpuBuffer(STORAGE(), null, 4 * n);
+  const binds = sc.objects.map(o => d.createBindGroup({ layout: GPU.L.object, entries: [
+    { binding: 0, resource: { buffer: whole ? o.whole : o.uniform } }, { binding: 1, resource: o.view },
+    { binding: 2, resource: { buffer: o.vertices } }, { binding: 3, resource: { buffer: o.triangles } },
+    { binding: 4, resource: { buffer: GPU.dummy } }, { binding: 5, resource: { buffer: m.params } }] }));
+  const resolve = d.createBindGroup({ layout: GPU.tools.resolveL, entries: [
+    { binding: 0, resource: { buffer: sc.dims } }, { binding: 1, resource: color.createView() }, { binding: 2, resource: { buffer: px } }] });
+  m.perScene = { color, view: color.createView(), px, diff, binds, resolve };
+  return m.perScene;
+}
+
+// ---- one frame -----------------------------------------------------------------------
+async function gpuFrame() {
+  const ids = gpuModels();
+  const sc = await gpuScene();
+  const mods = [];
+  for (const id of ids) mods.push(await gpuModule(id));
+  if (!mods.length) return;
+  if (state.mesh === "mesh" !== mods[0].mesh) { for (const m of mods) GPU.mods.delete(m.key); return gpuFrame(); }
+  for (const m of mods) if (!fillBlock(m)) return;
+  const d = GPU.device;
+  if (GPU.lightNow !== state.light) {
+    const rec = state.light === GPU.sceneLight ? sc.lightsData : lightRecord(state.light, sc.lightsData);
+    d.queue.writeBuffer(sc.lights, 0, rec.buffer ? rec : new Float32Array(rec));
+    GPU.lightNow = state.light; sc.idsReady = sc.idsReady && true;
+  }
+  const ref = state.ref && ids[0] === state.ref ? mods[0] : null, tests = ref ? mods.slice(1) : mods;
+  d.pushErrorScope("validation");
+  const enc = d.createCommandEncoder();
+  const bg = sc.s.background;
+  const scenePass = (target, clear, m, pipeline, bind2) => {
+    const p = enc.beginRenderPass({
+      colorAttachments: [{ view: target, clearValue: clear, loadOp: "clear", storeOp: "store" }],
+      depthStencilAttachment: { view: sc.depth.createView(), depthClearValue: 1, depthLoadOp: "clear", depthStoreOp: "discard" },
+    });
+    p.setBindGroup(0, sc.frameBind);
+    if (bind2) p.setBindGroup(2, sc.idsBind);
+    p.setPipeline(pipeline);
+    sc.objects.forEach((o, i) => {
+      p.setBindGroup(1, perScene(m, sc).binds[i]);
+      if (o.corners) { p.setVertexBuffer(0, o.corners); p.draw(o.count); } else p.draw(3);
+    });
+    p.end();
+  };
+  // Visibility: the same for every model (the scene's geometry), drawn once per scene.
+  if (!sc.idsReady) { scenePass(sc.ids.createView(), { r: 0, g: 0, b: 0, a: 0 }, mods[0], mods[0].vis, false); sc.idsReady = true; }
+  for (const m of mods) scenePass(perScene(m, sc).view, { r: bg[0], g: bg[1], b: bg[2], a: 1 }, m, m.shade, true);
+  const groups = [Math.ceil(sc.s.width / 8), Math.ceil(sc.s.height / 8)];
+  let cp = enc.beginComputePass();
+  cp.setPipeline(GPU.tools.resolve);
+  for (const m of mods) { cp.setBindGroup(0, m.perScene.resolve); cp.dispatchWorkgroups(...groups); }
+  cp.end();
+  const statsWords = 1 + 256 * Math.max(1, tests.length);
+  if (!GPU.stats || GPU.stats.size < 4 * statsWords) {
+    GPU.stats = gpuBuffer(STORAGE() | GPUBufferUsage.COPY_SRC, null, 4 * statsWords);
+    GPU.readback = d.createBuffer({ size: GPU.stats.size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+  }
+  enc.clearBuffer(GPU.stats);
+  if (ref) {
+    cp = enc.beginComputePass();
+    cp.setPipeline(GPU.tools.diff);
+    tests.forEach((m, k) => {
+      const dims = dimsOf(sc, 0, k);
+      cp.setBindGroup(0, d.createBindGroup({ layout: GPU.tools.diffL, entries: [dims, ref.perScene.px, m.perScene.px, m.perScene.diff, GPU.stats].map((b, i) => ({ binding: i, resource: { buffer: b } })) }));
+      cp.dispatchWorkgroups(...groups);
+    });
+    cp.end();
+  }
+  // The pictures (reference first), then the difference maps, as RGBA bytes in one buffer,
+  // read back and put into 2D canvases. (Presenting through a "webgpu" canvas context loses
+  // the device in headless Chromium 156 on SwiftShader; a read-back works on every adapter.)
+  const shown = [...mods.map(m => [m, false]), ...(ref ? tests.map(m => [m, true]) : [])];
+  const n = sc.s.width * sc.s.height, bytes = 4 * n * shown.length;
+  if (!GPU.rgba || GPU.rgba.size < bytes) {
+    GPU.rgba = gpuBuffer(STORAGE() | GPUBufferUsage.COPY_SRC, null, bytes);
+    GPU.rgbaBack = d.createBuffer({ size: GPU.rgba.size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+  }
+  cp = enc.beginComputePass();
+  cp.setPipeline(GPU.tools.show);
+  shown.forEach(([m, heat], k) => {
+    cp.setBindGroup(0, d.createBindGroup({ layout: GPU.tools.showL, entries: [dimsOf(sc, heat ? 1 : 0, k), m.perScene.px, m.perScene.diff, GPU.stats, sc.magma, GPU.rgba].map((b, i) => ({ binding: i, resource: { buffer: b } })) }));
+    cp.dispatchWorkgroups(...groups);
+  });
+  cp.end();
+  enc.copyBufferToBuffer(GPU.rgba, 0, GPU.rgbaBack, 0, bytes);
+  const readStats = ref && GPU.readback.mapState === "unmapped" && !GPU.metricsBusy;
+  if (readStats) enc.copyBufferToBuffer(GPU.stats, 0, GPU.readback, 0, 4 * statsWords);
+  const cmd = enc.finish();
+  const bad = await d.popErrorScope();
+  if (bad) throw new Error("WebGPU: " + bad.message);
+  d.queue.submit([cmd]);
+  await labelled("the frame", GPU.rgbaBack.mapAsync(GPUMapMode.READ, 0, bytes));
+  const all = new Uint8ClampedArray(GPU.rgbaBack.getMappedRange(0, bytes).slice(0));
+  GPU.rgbaBack.unmap();
+  const canvases = gpuCanvases(ids, ref ? tests.map(m => m.id) : [], sc);
+  const targets = [...canvases.pictures, ...canvases.diffs];
+  shown.forEach((_, k) => targets[k].getContext("2d").putImageData(new ImageData(all.subarray(4 * n * k, 4 * n * (k + 1)), sc.s.width, sc.s.height), 0, 0));
+  GPU.drawn = mods.map(m => m.id);
+  GPU.frames++;
+  if (readStats) gpuMetrics(tests.map(m => m.id), statsWords, sc);
+  else if (!ref) { lastRender = null; drawNumbers(); }
+}
+
+// RMSE and PSNR of each picture against the reference (compare::pixel_metrics, exact: the
+// squared 8-bit differences are summed as integers), and the maps' scale, off the frame.
+async function gpuMetrics(ids, words, sc) {
+  GPU.metricsBusy = true;
+  try {
+    await GPU.readback.mapAsync(GPUMapMode.READ, 0, 4 * words);
+    const w = new Uint32Array(GPU.readback.getMappedRange(0, 4 * words).slice(0));
+    GPU.readback.unmap();
+    const scale = Math.max(new Float32Array(new Uint32Array([w[0]]).buffer)[0], 1 / 255), n = 3 * sc.s.width * sc.s.height;
+    const metrics = ids.map((id, k) => {
+      let se = 0; for (let j = 0; j < 256; j++) se += w[1 + 256 * k + j];
+      const rmse = Math.sqrt(se / (255 * 255) / n);
+      return { model: id, rmse, psnr: rmse === 0 ? null : 20 * Math.log10(1 / rmse), flip: null };
+    });
+    GPU.lastScale = scale;
+    lastRender = { metrics, reference: state.ref, webgpu: true };
+    flipPending = false; drawNumbers();
+    for (const c of $("pictures").querySelectorAll("canvas.diff")) c.nextSibling.textContent = `|${c.dataset.model} - ${state.ref}| (scale ${scale.toFixed(3)})`;
+  } catch (e) { /* a newer frame owns the buffer */ } finally { GPU.metricsBusy = false; }
+}
+
+// The small uniforms of the passes after the scene's (w, h, n, k), made once per scene.
+function dimsOf(sc, n, k) {
+  sc.dimsCache = sc.dimsCache || new Map();
+  const key = n + "," + k;
+  if (!sc.dimsCache.has(key)) sc.dimsCache.set(key, gpuBuffer(UNIFORM(), new Uint32Array([sc.s.width, sc.s.height, n, k])));
+  return sc.dimsCache.get(key);
+}
+
+// One canvas per picture and per difference map, kept while the models stay the same.
+function gpuCanvases(ids, diffIds, sc) {
+  const box = $("pictures"), key = ids.join(",") + "|" + diffIds.join(",") + "|" + sc.s.width;
+  if (box.dataset.key !== key || box.querySelector("img")) {
+    box.replaceChildren(); box.dataset.key = key;
+    const fig = (id, cls, caption, color) => {
+      const c = el("canvas", { class: cls, "data-model": id, width: sc.s.width, height: sc.s.height });
+      box.appendChild(el("figure", {}, c, el("figcaption", { style: color ? `color:${color}` : undefined }, caption)));
+      if (cls === "render") gpuLightDrag(c);
+      return c;
+    };
+    ids.forEach(id => fig(id, "render", `${id}${id === state.ref ? " (reference)" : ""}`, colorOf(id)));
+    diffIds.forEach(id => fig(id, "diff", `|${id} - ${state.ref}|`));
+  }
+  return { pictures: [...box.querySelectorAll("canvas.render")], diffs: [...box.querySelectorAll("canvas.diff")] };
+}
+
+// Dragging on a picture moves the light, redrawn as it moves (no request).
+function gpuLightDrag(c) {
+  c.onpointerdown = ev => {
+    const move = e => {
+      const r = c.getBoundingClientRect(), x = 2 * (e.clientX - r.left) / r.width - 1, y = 1 - 2 * (e.clientY - r.top) / r.height;
+      const z = Math.sqrt(Math.max(0.05, 1 - Math.min(1, x * x + y * y)));
+      state.light = [x, y, z].map(v => v.toFixed(3)).join(",");
+      $("light-text").textContent = state.light;
+      gpuRequest(e.timeStamp);
+    };
+    move(ev);
+    const up = () => { window.removeEventListener("pointermove", move); window.removeEventListener("pointerup", up); writeHash(); };
+    window.addEventListener("pointermove", move); window.addEventListener("pointerup", up);
+  };
+}
+
+// Frames: at most one in flight; inputs meanwhile are served by the next one, whose
+// measure starts at the earliest of them.
+let gpuInput = null;
+function gpuRequest(since) {
+  if (since !== undefined && since !== null && GPU.since === null) GPU.since = since;
+  if (GPU.busy) { GPU.again = true; return; }
+  GPU.busy = true;
+  task(async () => {
+    try {
+      do {
+        GPU.again = false;
+        const since = GPU.since; GPU.since = null;
+        await gpuFrame();
+        if (since !== null) performance.measure("fastbrdf:frame", { start: since, end: performance.now(), detail: { models: GPU.drawn.length, size: GPU.size } });
+      } while (GPU.again);
+      $("render-info").textContent = `(drawn by WebGPU in this browser: ${GPU.size}x${GPU.size}, ${GPU.spp * GPU.spp} spp; frame ${gpuMedian()})`;
+    } catch (e) {
+      // What WebGPU cannot draw goes to the server, which says why if it cannot either.
+      GPU.bypass = e.message; setStatus(e.message, true);
+      document.body.dataset.gpuError = String(e.stack || e.message);
+      renderAll(paramQuery());
+    } finally { GPU.busy = false; }
+  });
+}
+function gpuMedian() {
+  const t = performance.getEntriesByName("fastbrdf:frame").map(e => e.duration).sort((a, b) => a - b);
+  return t.length ? `median ${t[t.length >> 1].toFixed(1)} ms over ${t.length}` : "not yet measured";
+}
+
+// A control's input event: when the frame it causes starts to count.
+for (const type of ["input", "change"]) document.addEventListener(type, e => { gpuInput = e.timeStamp; }, true);
+
+HOOKS.start.push(async () => {
+  try { await gpuInit(); } catch (e) { GPU.why = e.message; }
+  document.body.dataset.renderer = GPU.on ? "webgpu" : "server";
+});
+HOOKS.render.push(() => {
+  if (!GPU.on) { $("render-info").dataset.why = GPU.why; return false; }
+  const why = GPU.bypass || gpuDrawable();
+  if (why) { document.body.dataset.renderer = "server"; $("render-info").dataset.why = why; GPU.bypass = ""; return false; }
+  document.body.dataset.renderer = "webgpu";
+  const since = gpuInput; gpuInput = null;
+  gpuRequest(since);
+  return true;
+});
+// For tests and users: the last picture of `id` as drawn, 8-bit RGB, base64.
+window.fastbrdfPixels = async id => {
+  const m = [...GPU.mods.values()].find(x => x.id === id && x.perScene);
+  if (!m) throw new Error(`${id}: no picture drawn`);
+  const b = GPU.device.createBuffer({ size: m.perScene.px.size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+  const enc = GPU.device.createCommandEncoder(); enc.copyBufferToBuffer(m.perScene.px, 0, b, 0, b.size); GPU.device.queue.submit([enc.finish()]);
+  await b.mapAsync(GPUMapMode.READ);
+  const w = new Uint32Array(b.getMappedRange().slice(0)); b.unmap(); b.destroy();
+  const n = GPU.scene.s.width * GPU.scene.s.height; let s = "";
+  for (let i = 0; i < n; i++) s += String.fromCharCode(w[i] & 255, (w[i] >> 8) & 255, (w[i] >> 16) & 255);
+  return btoa(s);
+};

@@ -1,0 +1,173 @@
+//! The GPU renderer for a browser (issue 32): everything `fastbrdf view`'s page needs to draw
+//! a scene with WebGPU from the same module as [`super::render`], as plain data.
+//!
+//! The page runs the renderer's two passes (visibility, then shading: `shaders/render.wgsl`)
+//! with the bind group layouts of `layouts.rs` (groups 0 to 2; WebGPU's default limits hold
+//! them: 7 storage buffers in the fragment stage, 3 groups), so its picture is this
+//! renderer's: the CPU's, within the tolerances of `tests/render.rs`. What differs is only
+//! where the model's parameters live: in the page they change on every slider move, so a
+//! registry model is the runtime-parameter instance (`Instance::runtime`, the code
+//! `fastbrdf shader --runtime-params` exports), its numeric parameters read from a uniform at
+//! group 1, binding 5, one `vec4` per parameter (`.x`; the layout of a user's parameter
+//! block, `UserShader::param_block`); choices are fixed in the module (one module per model
+//! and choice set). A user's shader takes its own block there already ([`user_module`]).
+//!
+//! One tile: the page draws at most [`MAX_SAMPLES`] samples per side.
+
+use super::layouts::USER_PARAMS_BINDING;
+use super::objects::{KD_WORD, KS_WORD, Reach, object_data};
+use super::scene_data::{OccluderData, frame_data, lights_data};
+use super::{SHADER, Tile};
+use crate::context::GpuError;
+use crate::spec::Instance;
+use crate::user::UserShader;
+use fastbrdf::ModelSpec;
+use fastbrdf_render::render::Options;
+use fastbrdf_render::scene::Scene;
+
+/// The largest side of the page's sample grid (W N and H N): one tile of the native renderer.
+pub const MAX_SAMPLES: u32 = super::TILE_SAMPLES;
+
+/// The name of a registry model's parameter block in a [`model_module`].
+pub const PARAMS_NAME: &str = "fb_web_params";
+
+/// One object of a [`WebScene`]: its uniform (`struct Object`; [`WebObject::whole`] is the
+/// same with kd 0 and ks 1, how the explorer shades a whole BRDF: a user's model), linear
+/// albedo texels (RGBA f32, row-major), mesh vertices (8 f32 each) and triangles (4 u32
+/// each), and for a mesh the rasteriser's corners (3 x f32 per corner, `count` corners).
+pub struct WebObject {
+    pub uniform: Vec<u32>,
+    pub whole: Vec<u32>,
+    pub texture: (u32, u32, Vec<f32>),
+    pub vertices: Vec<f32>,
+    pub triangles: Vec<u32>,
+    pub corners: Option<(Vec<f32>, u32)>,
+}
+
+/// A scene as the page's WebGPU renderer takes it: group 0's frame uniform (one tile: the
+/// whole (W N) x (H N) sample grid), lights, occluder records, BVH nodes and shadow-ray
+/// triangles; group 1's data per object; the background colour that clears the shading pass.
+pub struct WebScene {
+    pub width: u32,
+    pub height: u32,
+    pub spp: u32,
+    pub frame: Vec<u32>,
+    pub lights: Vec<f32>,
+    pub occluders: Vec<u32>,
+    pub nodes: Vec<u32>,
+    pub shadow_triangles: Vec<f32>,
+    pub background: [f32; 3],
+    pub objects: Vec<WebObject>,
+}
+
+/// The scene's data for the page, checked against WebGPU's default limits
+/// (`wgpu::Limits::default()`: what every browser grants without asking). Errors: sizes
+/// whose sample grid exceeds [`MAX_SAMPLES`] per side, `spp` outside 1..=16, an environment
+/// (not drawn by the page yet), and what [`super::render`] refuses about meshes and textures.
+pub fn scene(scene: &Scene, opts: &Options) -> Result<WebScene, GpuError> {
+    let (w, h, n) = (opts.width, opts.height, opts.spp);
+    if !(1..=16).contains(&n) {
+        return Err(GpuError::Input(format!(
+            "spp {n}: must be 1 to 16 (N x N samples per pixel)"
+        )));
+    }
+    if w == 0 || h == 0 || w * n > MAX_SAMPLES || h * n > MAX_SAMPLES {
+        return Err(GpuError::Input(format!(
+            "{w}x{h} at {n}x{n} samples: the page draws at most {MAX_SAMPLES} samples per side"
+        )));
+    }
+    let limits = wgpu::Limits::default();
+    let (_, _, _, th) = scene.camera.frame();
+    let reach = Reach {
+        eye: scene.camera.eye,
+        sample_per_distance: 2.0 * th / (h * n) as f32,
+    };
+    let tile = Tile {
+        x0: 0,
+        y0: 0,
+        w: w * n,
+        h: h * n,
+    };
+    let mut objects = Vec::with_capacity(scene.objects.len());
+    for (i, obj) in scene.objects.iter().enumerate() {
+        let d = object_data(&limits, obj, i, &reach)?;
+        let mut whole = d.uniform.clone();
+        whole[KD_WORD] = 0f32.to_bits();
+        whole[KS_WORD] = 1f32.to_bits();
+        objects.push(WebObject {
+            uniform: d.uniform,
+            whole,
+            texture: d.texture,
+            vertices: d.vertices,
+            triangles: d.triangles,
+            corners: d.corners,
+        });
+    }
+    let occ = OccluderData::new(&limits, scene)?;
+    let bg = scene.background;
+    Ok(WebScene {
+        width: w,
+        height: h,
+        spp: n,
+        frame: frame_data(scene, opts, &tile),
+        lights: lights_data(scene),
+        occluders: occ.objects.concat(),
+        nodes: occ.nodes.concat(),
+        shadow_triangles: occ.triangles,
+        background: [bg.x, bg.y, bg.z],
+        objects,
+    })
+}
+
+/// A module for the page: the renderer's shaders with `rd_brdf`, and the numeric parameters
+/// it reads from its block, in order, with their values in `spec` (one `vec4` each, `.x`).
+pub struct WebModule {
+    pub wgsl: String,
+    pub params: Vec<(String, f64)>,
+}
+
+/// The module of a registry model: its shaded BRDF (a lobe or a distribution as the renderer
+/// shades it, `ModelSpec::shaded`) as the runtime-parameter instance, every numeric parameter
+/// read from `fb_web_params` at group 1, binding 5. Errors: a coloured spec (the runtime form
+/// takes one value per parameter) and a model the renderer cannot shade.
+pub fn model_module(spec: &ModelSpec) -> Result<WebModule, GpuError> {
+    let shaded = spec.shaded().map_err(|e| GpuError::Input(e.to_string()))?;
+    if shaded.is_coloured() {
+        return Err(GpuError::Input(format!(
+            "{}: a parameter given as R,G,B: the page draws grey models (the server draws \
+             this one)",
+            spec.id()
+        )));
+    }
+    let inst = Instance::runtime(&shaded).map_err(|e| GpuError::Input(e.to_string()))?;
+    if inst.info.kind != fastbrdf::Kind::Brdf {
+        return Err(GpuError::Input(format!(
+            "'{}' is not a BRDF: the renderer shades with BRDF instances",
+            inst.info.id
+        )));
+    }
+    let k = inst.sliders.len().max(1);
+    let args: String = (0..inst.sliders.len())
+        .map(|i| format!(", {PARAMS_NAME}[{i}].x"))
+        .collect();
+    let glue = format!(
+        "@group(1) @binding({USER_PARAMS_BINDING}) var<uniform> {PARAMS_NAME}: array<vec4<f32>, {k}>;\n\
+         fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>({}(wi, wo{args}));\n}}\n",
+        inst.function
+    );
+    Ok(WebModule {
+        wgsl: format!("{}\n{SHADER}\n{glue}", inst.module_source()),
+        params: inst.sliders.clone(),
+    })
+}
+
+/// The module of a user's shader: as `render_user` builds it (its parameters at group 1,
+/// binding 5, in `UserShader::param_block`'s layout).
+pub fn user_module(shader: &UserShader) -> Result<String, GpuError> {
+    let user = shader
+        .wgsl_at(1, USER_PARAMS_BINDING)
+        .map_err(|e| GpuError::Input(e.message))?;
+    Ok(format!(
+        "{user}\n{SHADER}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return fb_user_brdf(wi, wo);\n}}\n"
+    ))
+}
