@@ -5,7 +5,8 @@
 //! bodies are bounded (413), uploads are bounded (16 kept), a cross-site POST is refused, and
 //! `/api/conform` answers `fastbrdf conform file:PATH --json`'s record. Then the page: a WGSL
 //! function pasted into "Your model" in headless Chromium is listed with its conform verdicts,
-//! and a compile error shows its line. The GPU tests skip without a GPU unless CI is set;
+//! and a compile error shows its line; with WebGPU (SwiftShader) the browser's own compiler
+//! names the same line and column first. The GPU tests skip without a GPU unless CI is set;
 //! lavapipe serves in CI.
 
 mod common;
@@ -446,4 +447,45 @@ fn a_function_pasted_into_the_page_is_listed_with_its_conform_verdicts() {
         "{v}"
     );
     assert_eq!(v["checks"], json!([]), "{v}");
+}
+
+#[test]
+fn a_browser_with_webgpu_shows_its_own_compile_messages_with_the_files_lines() {
+    let Some(path) = browser() else { return };
+    if !have_gpu() {
+        return;
+    }
+    let s = serve(&[]);
+    let mut b = cdp::Browser::start_with(&path, true).unwrap();
+    let page = b
+        .open(
+            &format!("http://{}/#models=flog&ref=pow", s.addr),
+            1400,
+            1050,
+        )
+        .unwrap();
+    b.wait_for(
+        &page,
+        "document.body.dataset.ready === '1'",
+        Duration::from_secs(60),
+    )
+    .unwrap();
+    let v = paste_and_compile(&mut b, &page, "typo.wgsl", &read("user/compile_error.wgsl"));
+    // The browser's compiler (Tint) and the server's (naga) find the same line and column.
+    let errors = v["errors"].as_str().unwrap();
+    assert!(errors.contains("browser: typo.wgsl:7:23: "), "{v}");
+    assert!(
+        errors.contains("\ntypo.wgsl:7:23: error: no definition in scope"),
+        "{v}"
+    );
+    // A correct function: no message from either.
+    let v = paste_and_compile(&mut b, &page, "ok.wgsl", &read("user/ggx_sampled.wgsl"));
+    assert_eq!(v["errors"], "", "{v}");
+    assert!(
+        v["models"]
+            .as_array()
+            .unwrap()
+            .contains(&json!("file:ok.wgsl")),
+        "{v}"
+    );
 }
