@@ -125,3 +125,161 @@ fn webgpu_pictures_equal_fastbrdf_render() {
         );
     }
 }
+
+const FRAMES: &str = "performance.getEntriesByName('fastbrdf:frame').length";
+
+/// A drag of the n slider with three models, the reference and their difference maps: every
+/// move is redrawn by WebGPU without asking the server for a picture, and measured.
+#[test]
+fn slider_drag_redraws_in_the_browser_and_is_measured() {
+    let Some(path) = browser() else { return };
+    let s = serve(&[]);
+    let mut b = cdp::Browser::start_with(&path, true).unwrap();
+    let url = format!(
+        "http://{}/#models=flog,power16,schlick&ref=pow&n=100",
+        s.addr
+    );
+    let page = b.open(&url, 1400, 1050).unwrap();
+    wait_drawn(&mut b, &page);
+    let before = pixels(&mut b, &page, "flog");
+    let renders = "performance.getEntriesByType('resource').filter(e => e.name.includes('/api/render') || e.name.includes('/api/gpu/shader')).length";
+    let requests_before = b.eval(&page, renders).unwrap();
+    let rect: Value = b
+        .eval(&page, "(() => { const r = document.getElementById('slider-n').getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; })()")
+        .unwrap();
+    let r: Vec<f64> = rect
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let (x0, x1, y) = (r[0] + 0.4 * r[2], r[0] + 0.2 * r[2], r[1] + r[3] / 2.0);
+    b.mouse(&page, "mousePressed", x0, y).unwrap();
+    let moves = 8;
+    for k in 1..=moves {
+        let seen = b.eval(&page, FRAMES).unwrap().as_u64().unwrap();
+        b.mouse(
+            &page,
+            "mouseMoved",
+            x0 + (x1 - x0) * f64::from(k) / f64::from(moves),
+            y,
+        )
+        .unwrap();
+        b.wait_for(
+            &page,
+            &format!("{FRAMES} > {seen}"),
+            Duration::from_secs(60),
+        )
+        .unwrap();
+    }
+    b.mouse(&page, "mouseReleased", x1, y).unwrap();
+    wait_drawn(&mut b, &page);
+    // Where full-size frames are slow (SwiftShader), the drag was drawn smaller and the full
+    // size follows once the slider rests.
+    b.wait_for(
+        &page,
+        &format!("GPU.scene.s.width === {SIZE} && !GPU.busy && GPU.settleSince === null && document.body.dataset.ready === '1'"),
+        Duration::from_secs(60),
+    )
+    .unwrap();
+    let settle: Vec<f64> = serde_json::from_value(
+        b.eval(
+            &page,
+            "performance.getEntriesByName('fastbrdf:settle').map(e => e.duration)",
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    eprintln!("fastbrdf:settle (the full size after the drag): {settle:?}");
+    let frames: Vec<f64> = serde_json::from_value(
+        b.eval(
+            &page,
+            "performance.getEntriesByName('fastbrdf:frame').map(e => e.duration)",
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    assert!(frames.len() >= moves as usize, "{frames:?}");
+    eprintln!(
+        "phases: {}",
+        b.eval(
+            &page,
+            "JSON.stringify(performance.getEntriesByName('fastbrdf:frame').map(e => e.detail))"
+        )
+        .unwrap()
+    );
+    let mut sorted = frames.clone();
+    sorted.sort_by(f64::total_cmp);
+    eprintln!(
+        "fastbrdf:frame over {} slider moves (3 models, the reference and 3 difference maps at {SIZE}x{SIZE}, SwiftShader): median {:.1} ms, min {:.1}, max {:.1}",
+        frames.len(),
+        sorted[sorted.len() / 2],
+        sorted[0],
+        sorted[sorted.len() - 1]
+    );
+    // No picture came from the server, and no module was fetched again (n is a number; the
+    // scene at the preview size is fetched once).
+    assert_eq!(b.eval(&page, renders).unwrap(), requests_before);
+    let after = pixels(&mut b, &page, "flog");
+    assert_ne!(before, after, "the slider did not change the picture");
+    // The picture drawn at the new n is fastbrdf render's at that n.
+    let n = b
+        .eval(&page, "document.getElementById('text-n').value")
+        .unwrap();
+    let n = n.as_str().unwrap();
+    let light = b.eval(&page, "state.light").unwrap();
+    let light = format!("dir:{}", light.as_str().unwrap());
+    let cpu = cli_render(&[
+        "--model",
+        "flog",
+        "--param",
+        &format!("n={n}"),
+        "--light",
+        &light,
+    ]);
+    let (max, psnr) = compare(&cpu, &after);
+    assert!(max <= 2, "flog at n = {n}: {max}/255 (PSNR {psnr:.1} dB)");
+    // The numbers table carries the browser's PSNR against the reference.
+    let psnr_shown = b
+        .eval(
+            &page,
+            "document.querySelector('#numbers tr[data-model=\"flog\"] .psnr').textContent",
+        )
+        .unwrap();
+    assert!(
+        psnr_shown.as_str().unwrap().parse::<f64>().is_ok(),
+        "PSNR shown: {psnr_shown}"
+    );
+}
+
+/// Without WebGPU (Chromium with --disable-gpu) the page shows the server's pictures and says so.
+#[test]
+fn without_webgpu_the_server_draws() {
+    let Some(path) = browser() else { return };
+    let s = serve(&[]);
+    let mut b = cdp::Browser::start(&path).unwrap();
+    let page = b
+        .open(
+            &format!("http://{}/#models=flog&ref=pow", s.addr),
+            1400,
+            1050,
+        )
+        .unwrap();
+    b.wait_for(
+        &page,
+        "document.body.dataset.ready === '1' && document.querySelectorAll('#pictures img.render').length === 2",
+        Duration::from_secs(120),
+    )
+    .unwrap();
+    assert_eq!(
+        b.eval(&page, "document.body.dataset.renderer").unwrap(),
+        "server"
+    );
+    let info = b
+        .eval(&page, "document.getElementById('render-info').textContent")
+        .unwrap();
+    assert!(
+        info.as_str().unwrap().contains("server"),
+        "the page does not say who draws: {info}"
+    );
+}

@@ -15,7 +15,7 @@
 const GPU = {
   on: false, why: "", device: null, format: null, L: null, tools: null,
   size: 512, spp: 1, scene: null, sceneKey: "", sceneLight: "", lightNow: "",
-  mods: new Map(), drawn: [], busy: false, again: false, since: null, bypass: false,
+  mods: new Map(), scenes: new Map(), preview: 128, budget: 100, fullMs: 0, settle: null, drawn: [], busy: false, again: false, since: null, bypass: false,
   stats: null, readback: null, metricsBusy: false, lastScale: 0, frames: 0,
 };
 const WEBGPU_TOOLS = `
@@ -159,16 +159,17 @@ function choiceKey(id) {
   return q.toString();
 }
 
-async function gpuScene() {
-  const key = `${state.mesh}|${GPU.size}|${GPU.spp}`;
-  if (GPU.scene && GPU.sceneKey === key) return GPU.scene;
-  const q = new URLSearchParams({ mesh: state.mesh, light: state.light, size: GPU.size, spp: GPU.spp });
+async function gpuScene(size) {
+  const key = `${state.mesh}|${size}|${GPU.spp}`;
+  if (GPU.scenes.has(key)) return GPU.scenes.get(key);
+  if (![...GPU.scenes.keys()].every(k => k.startsWith(state.mesh + "|"))) GPU.scenes.clear();
+  const q = new URLSearchParams({ mesh: state.mesh, light: state.light, size, spp: GPU.spp });
   const s = await getJSON("/api/gpu/scene?" + q);
   const d = GPU.device, u32 = t => new Uint32Array(b64bytes(t).buffer), f32 = t => new Float32Array(b64bytes(t).buffer);
   const W = s.width * s.spp, H = s.height * s.spp, tex = (format, usage) => d.createTexture({ size: [W, H], format, usage });
   const RA = GPUTextureUsage.RENDER_ATTACHMENT;
   const sc = {
-    s, W, H, lightsData: f32(s.lights),
+    key, s, W, H, lightsData: f32(s.lights), light: state.light, lightNow: state.light,
     frame: gpuBuffer(UNIFORM(), u32(s.frame)), lights: null,
     occ: gpuBuffer(STORAGE(), u32(s.occluders)), nodes: gpuBuffer(STORAGE(), u32(s.nodes)), tris: gpuBuffer(STORAGE(), f32(s.shadow_triangles)),
     depth: tex("depth32float", RA), ids: tex("rg32uint", RA | GPUTextureUsage.TEXTURE_BINDING),
@@ -188,8 +189,7 @@ async function gpuScene() {
   sc.frameBind = d.createBindGroup({ layout: GPU.L.frame, entries: [sc.frame, sc.lights, sc.occ, sc.nodes, sc.tris].map((b, i) => ({ binding: i, resource: { buffer: b } })) });
   sc.idsBind = d.createBindGroup({ layout: GPU.L.ids, entries: [{ binding: 0, resource: sc.ids.createView() }] });
   sc.idsReady = false;
-  GPU.scene = sc; GPU.sceneKey = key; GPU.sceneLight = state.light; GPU.lightNow = state.light;
-  for (const m of GPU.mods.values()) m.perScene = null;
+  GPU.scenes.set(key, sc);
   return sc;
 }
 
@@ -209,7 +209,8 @@ async function gpuModule(id) {
   GPU.mods.set(key, m);
   m.ready = (async () => {
     const info = await getJSON("/api/gpu/shader?" + key);
-    const d = GPU.device, module = d.createShaderModule({ code: info.wgsl });
+    let code = info.wgsl;
+    const d = GPU.device, module = d.createShaderModule({ code });
     const ci = await labelled(`${id}: compiling`, module.getCompilationInfo());
     const errs = ci.messages.filter(x => x.type === "error");
     if (errs.length) throw new Error(`${id}: WebGPU cannot compile its module: ${errs[0].lineNum}:${errs[0].linePos}: ${errs[0].message}`);
@@ -227,7 +228,7 @@ async function gpuModule(id) {
       shade: await (mesh ? pipe("rd_vs_mesh", "rd_fs_mesh", false, corners) : pipe("rd_vs_full", "rd_fs_analytic", false, [])),
       vis: await (mesh ? pipe("rd_vs_mesh", "rd_fs_mesh_id", true, corners) : pipe("rd_vs_full", "rd_fs_analytic_id", true, [])),
       block: new Float32Array(4 * Math.max(1, info.params.length)),
-      perScene: null,
+      per: new Map(),
     });
     m.params = gpuBuffer(UNIFORM(), m.block);
     return m;
@@ -256,7 +257,7 @@ function fillBlock(m) {
 }
 
 function perScene(m, sc) {
-  if (m.perScene) return m.perScene;
+  if (m.per.has(sc.key)) return m.per.get(sc.key);
   const d = GPU.device, whole = m.info.whole;
   const color = d.createTexture({ size: [sc.W, sc.H], format: "rgba32float", usage: GPUTextureUsage.RENDER_ATTACHMENT | GPUTextureUsage.TEXTURE_BINDING });
   const n = sc.s.width * sc.s.height;
@@ -267,24 +268,26 @@ function perScene(m, sc) {
     { binding: 4, resource: { buffer: GPU.dummy } }, { binding: 5, resource: { buffer: m.params } }] }));
   const resolve = d.createBindGroup({ layout: GPU.tools.resolveL, entries: [
     { binding: 0, resource: { buffer: sc.dims } }, { binding: 1, resource: color.createView() }, { binding: 2, resource: { buffer: px } }] });
-  m.perScene = { color, view: color.createView(), px, diff, binds, resolve };
-  return m.perScene;
+  const out = { color, view: color.createView(), px, diff, binds, resolve };
+  m.per.set(sc.key, out);
+  return out;
 }
 
 // ---- one frame -----------------------------------------------------------------------
-async function gpuFrame() {
+async function gpuFrame(size) {
+  const t0 = performance.now();
   const ids = gpuModels();
-  const sc = await gpuScene();
+  const sc = await gpuScene(size);
   const mods = [];
   for (const id of ids) mods.push(await gpuModule(id));
   if (!mods.length) return;
-  if (state.mesh === "mesh" !== mods[0].mesh) { for (const m of mods) GPU.mods.delete(m.key); return gpuFrame(); }
+  if (state.mesh === "mesh" !== mods[0].mesh) { for (const m of mods) GPU.mods.delete(m.key); return gpuFrame(size); }
   for (const m of mods) if (!fillBlock(m)) return;
   const d = GPU.device;
-  if (GPU.lightNow !== state.light) {
-    const rec = state.light === GPU.sceneLight ? sc.lightsData : lightRecord(state.light, sc.lightsData);
-    d.queue.writeBuffer(sc.lights, 0, rec.buffer ? rec : new Float32Array(rec));
-    GPU.lightNow = state.light; sc.idsReady = sc.idsReady && true;
+  if (sc.lightNow !== state.light) {
+    const rec = state.light === sc.light ? sc.lightsData : new Float32Array(lightRecord(state.light, sc.lightsData));
+    d.queue.writeBuffer(sc.lights, 0, rec);
+    sc.lightNow = state.light;
   }
   const ref = state.ref && ids[0] === state.ref ? mods[0] : null, tests = ref ? mods.slice(1) : mods;
   d.pushErrorScope("validation");
@@ -310,7 +313,7 @@ async function gpuFrame() {
   const groups = [Math.ceil(sc.s.width / 8), Math.ceil(sc.s.height / 8)];
   let cp = enc.beginComputePass();
   cp.setPipeline(GPU.tools.resolve);
-  for (const m of mods) { cp.setBindGroup(0, m.perScene.resolve); cp.dispatchWorkgroups(...groups); }
+  for (const m of mods) { cp.setBindGroup(0, perScene(m, sc).resolve); cp.dispatchWorkgroups(...groups); }
   cp.end();
   const statsWords = 1 + 256 * Math.max(1, tests.length);
   if (!GPU.stats || GPU.stats.size < 4 * statsWords) {
@@ -323,7 +326,7 @@ async function gpuFrame() {
     cp.setPipeline(GPU.tools.diff);
     tests.forEach((m, k) => {
       const dims = dimsOf(sc, 0, k);
-      cp.setBindGroup(0, d.createBindGroup({ layout: GPU.tools.diffL, entries: [dims, ref.perScene.px, m.perScene.px, m.perScene.diff, GPU.stats].map((b, i) => ({ binding: i, resource: { buffer: b } })) }));
+      cp.setBindGroup(0, d.createBindGroup({ layout: GPU.tools.diffL, entries: [dims, perScene(ref, sc).px, perScene(m, sc).px, perScene(m, sc).diff, GPU.stats].map((b, i) => ({ binding: i, resource: { buffer: b } })) }));
       cp.dispatchWorkgroups(...groups);
     });
     cp.end();
@@ -340,7 +343,7 @@ async function gpuFrame() {
   cp = enc.beginComputePass();
   cp.setPipeline(GPU.tools.show);
   shown.forEach(([m, heat], k) => {
-    cp.setBindGroup(0, d.createBindGroup({ layout: GPU.tools.showL, entries: [dimsOf(sc, heat ? 1 : 0, k), m.perScene.px, m.perScene.diff, GPU.stats, sc.magma, GPU.rgba].map((b, i) => ({ binding: i, resource: { buffer: b } })) }));
+    cp.setBindGroup(0, d.createBindGroup({ layout: GPU.tools.showL, entries: [dimsOf(sc, heat ? 1 : 0, k), perScene(m, sc).px, perScene(m, sc).diff, GPU.stats, sc.magma, GPU.rgba].map((b, i) => ({ binding: i, resource: { buffer: b } })) }));
     cp.dispatchWorkgroups(...groups);
   });
   cp.end();
@@ -350,15 +353,19 @@ async function gpuFrame() {
   const cmd = enc.finish();
   const bad = await d.popErrorScope();
   if (bad) throw new Error("WebGPU: " + bad.message);
+  const t1 = performance.now();
   d.queue.submit([cmd]);
   await labelled("the frame", GPU.rgbaBack.mapAsync(GPUMapMode.READ, 0, bytes));
+  const t2 = performance.now();
   const all = new Uint8ClampedArray(GPU.rgbaBack.getMappedRange(0, bytes).slice(0));
   GPU.rgbaBack.unmap();
   const canvases = gpuCanvases(ids, ref ? tests.map(m => m.id) : [], sc);
   const targets = [...canvases.pictures, ...canvases.diffs];
   shown.forEach((_, k) => targets[k].getContext("2d").putImageData(new ImageData(all.subarray(4 * n * k, 4 * n * (k + 1)), sc.s.width, sc.s.height), 0, 0));
-  GPU.drawn = mods.map(m => m.id);
+  GPU.drawn = mods.map(m => m.id); GPU.scene = sc;
   GPU.frames++;
+  // Where a frame's time goes: encoding, the GPU's work and read-back, the 2D canvases.
+  GPU.phases = { encode: t1 - t0, gpu: t2 - t1, canvas: performance.now() - t2 };
   if (readStats) gpuMetrics(tests.map(m => m.id), statsWords, sc);
   else if (!ref) { lastRender = null; drawNumbers(); }
 }
@@ -394,7 +401,7 @@ function dimsOf(sc, n, k) {
 
 // One canvas per picture and per difference map, kept while the models stay the same.
 function gpuCanvases(ids, diffIds, sc) {
-  const box = $("pictures"), key = ids.join(",") + "|" + diffIds.join(",") + "|" + sc.s.width;
+  const box = $("pictures"), key = ids.join(",") + "|" + diffIds.join(",");
   if (box.dataset.key !== key || box.querySelector("img")) {
     box.replaceChildren(); box.dataset.key = key;
     const fig = (id, cls, caption, color) => {
@@ -406,6 +413,7 @@ function gpuCanvases(ids, diffIds, sc) {
     ids.forEach(id => fig(id, "render", `${id}${id === state.ref ? " (reference)" : ""}`, colorOf(id)));
     diffIds.forEach(id => fig(id, "diff", `|${id} - ${state.ref}|`));
   }
+  for (const c of box.querySelectorAll("canvas")) if (c.width !== sc.s.width) { c.width = sc.s.width; c.height = sc.s.height; }
   return { pictures: [...box.querySelectorAll("canvas.render")], diffs: [...box.querySelectorAll("canvas.diff")] };
 }
 
@@ -426,10 +434,13 @@ function gpuLightDrag(c) {
 }
 
 // Frames: at most one in flight; inputs meanwhile are served by the next one, whose
-// measure starts at the earliest of them.
+// measure starts at the earliest of them. Where a full-size frame takes longer than
+// GPU.budget ms (a software adapter), a control's frames are drawn at GPU.preview pixels per
+// side and the full size follows once the control has rested 300 ms ("fastbrdf:settle").
 let gpuInput = null;
-function gpuRequest(since) {
+function gpuRequest(since, full) {
   if (since !== undefined && since !== null && GPU.since === null) GPU.since = since;
+  if (full) GPU.wantFull = true;
   if (GPU.busy) { GPU.again = true; return; }
   GPU.busy = true;
   task(async () => {
@@ -437,10 +448,21 @@ function gpuRequest(since) {
       do {
         GPU.again = false;
         const since = GPU.since; GPU.since = null;
-        await gpuFrame();
-        if (since !== null) performance.measure("fastbrdf:frame", { start: since, end: performance.now(), detail: { models: GPU.drawn.length, size: GPU.size } });
+        const preview = since !== null && !GPU.wantFull && GPU.fullMs > GPU.budget;
+        const size = preview ? GPU.preview : GPU.size;
+        GPU.wantFull = false;
+        const t = performance.now();
+        await gpuFrame(size);
+        const end = performance.now();
+        if (!preview) GPU.fullMs = end - t;
+        const detail = Object.assign({ models: GPU.drawn.length, size }, GPU.phases);
+        if (since !== null) performance.measure("fastbrdf:frame", { start: since, end, detail });
+        else if (GPU.settleSince) performance.measure("fastbrdf:settle", { start: GPU.settleSince, end, detail });
+        GPU.settleSince = null;
+        clearTimeout(GPU.settle);
+        if (preview) GPU.settle = setTimeout(() => { GPU.settleSince = performance.now(); gpuRequest(null, true); }, 300);
       } while (GPU.again);
-      $("render-info").textContent = `(drawn by WebGPU in this browser: ${GPU.size}x${GPU.size}, ${GPU.spp * GPU.spp} spp; frame ${gpuMedian()})`;
+      $("render-info").textContent = `(drawn by WebGPU in this browser: ${GPU.scene.s.width}x${GPU.scene.s.height}, ${GPU.spp * GPU.spp} spp; control to frame ${gpuMedian()})`;
     } catch (e) {
       // What WebGPU cannot draw goes to the server, which says why if it cannot either.
       GPU.bypass = e.message; setStatus(e.message, true);
@@ -472,10 +494,11 @@ HOOKS.render.push(() => {
 });
 // For tests and users: the last picture of `id` as drawn, 8-bit RGB, base64.
 window.fastbrdfPixels = async id => {
-  const m = [...GPU.mods.values()].find(x => x.id === id && x.perScene);
+  const m = GPU.scene && [...GPU.mods.values()].find(x => x.id === id && x.per.has(GPU.scene.key));
   if (!m) throw new Error(`${id}: no picture drawn`);
-  const b = GPU.device.createBuffer({ size: m.perScene.px.size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
-  const enc = GPU.device.createCommandEncoder(); enc.copyBufferToBuffer(m.perScene.px, 0, b, 0, b.size); GPU.device.queue.submit([enc.finish()]);
+  const px = perScene(m, GPU.scene).px;
+  const b = GPU.device.createBuffer({ size: px.size, usage: GPUBufferUsage.MAP_READ | GPUBufferUsage.COPY_DST });
+  const enc = GPU.device.createCommandEncoder(); enc.copyBufferToBuffer(px, 0, b, 0, b.size); GPU.device.queue.submit([enc.finish()]);
   await b.mapAsync(GPUMapMode.READ);
   const w = new Uint32Array(b.getMappedRange().slice(0)); b.unmap(); b.destroy();
   const n = GPU.scene.s.width * GPU.scene.s.height; let s = "";

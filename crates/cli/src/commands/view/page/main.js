@@ -357,7 +357,7 @@ function renderAll(q) {
         d = await getJSON("/api/render?" + rq, rs);
         if (g !== gen) return;
         lastRender = d; showPictures(d); drawNumbers();
-        $("render-info").textContent = `(${d.width}x${d.height}, ${d.spp * d.spp} spp, ${d.ms.toFixed(0)} ms)`;
+        $("render-info").textContent = `(${serverWhy()}${d.width}x${d.height}, ${d.spp * d.spp} spp, ${d.ms.toFixed(0)} ms)`;
       }
       if (d.flip_job === null || d.flip_job === undefined) return;
       const f = await getJSON("/api/flip?" + new URLSearchParams({ job: d.flip_job }), rs);
@@ -365,9 +365,14 @@ function renderAll(q) {
       if (g !== gen || lastRender !== d) return;
       lastRender = Object.assign({}, d, { metrics: f.metrics });
       flipPending = false; drawNumbers();
-      $("render-info").textContent = `(${d.width}x${d.height}, ${d.spp * d.spp} spp, ${d.ms.toFixed(0)} ms; FLIP after, ${f.flip_ms.toFixed(0)} ms of work)`;
+      $("render-info").textContent = `(${serverWhy()}${d.width}x${d.height}, ${d.spp * d.spp} spp, ${d.ms.toFixed(0)} ms; FLIP after, ${f.flip_ms.toFixed(0)} ms of work)`;
     } finally { if (g === gen) { flipPending = false; drawNumbers(); } }
   });
+}
+// Who draws the server's pictures and why the browser does not (gpu.js leaves the reason).
+function serverWhy() {
+  const why = $("render-info").dataset.why;
+  return `drawn by the server${why ? ": " + why : ""}; `;
 }
 function showPictures(d) {
   const box = $("pictures"); box.replaceChildren();
