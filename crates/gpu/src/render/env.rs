@@ -30,11 +30,15 @@
 //!
 //! | binding | type | content |
 //! |---|---|---|
-//! | 0 | `var<uniform>` 48 bytes | `EnvParams`: `size: vec4<u32>` (map width, height, first pass, pass count), `weights: vec4<f32>` (each pass's weight, the direct light's weight, 0, 0), `options: vec4<u32>` (sampler: 0 Sobol, 1 independent; 0, 0, 0): [`EnvData::params`] |
+//! | 0 | `var<uniform>` 48 bytes | `EnvParams`: `size: vec4<u32>` (map width, height, first pass, pass count), `weights: vec4<f32>` (each pass's weight, the direct light's weight, the split-sum's alpha and f0), `options: vec4<u32>` (sampler: 0 Sobol, 1 independent; mode: 0 sampled, 1 split-sum; the prefiltered maps' level width and height): [`EnvData::params`], [`EnvData::split_sum_params`] |
 //! | 1 | `texture_2d<f32>`, `Rgba32Float`, non-filterable (textureLoad) | [`EnvData::texels_rgba32f`] |
 //! | 2 | `var<storage, read> array<f32>` | [`EnvData::tables`] |
+//! | 3 | `texture_2d<f32>`, `Rgba32Float`, non-filterable (textureLoad) | the split-sum's prefiltered maps ([`super::split_sum::Prefiltered`]); any 1 x 1 texture in the sampled mode |
 //!
-//! All in the fragment stage. The shading pass's pipelines use the entry points
+//! All in the fragment stage. The module ends with `rd_dfg(cos_v, alpha) -> vec2<f32>`:
+//! [`super::split_sum::DFG_STUB`] in the sampled mode, the environment model's terms in the
+//! split-sum mode ([`super::split_sum::SplitSum::glue`]).
+//! The shading pass's pipelines use the entry points
 //! `rd_fs_analytic_env` and `rd_fs_mesh_env` instead of `rd_fs_analytic` and `rd_fs_mesh`
 //! (layout: groups 0, 1, 2 as before and this group 3); the background is drawn first in the
 //! shading pass by `rd_vs_full` + `rd_fs_env_background` (groups 0, an empty group 1, 2 and 3;
@@ -49,6 +53,7 @@
 
 use super::layouts::Layouts;
 use super::scene_data::check_binding;
+use super::split_sum::{DFG_STUB, Prefiltered, SplitSum};
 use super::{COLOR_FORMAT, DEPTH_FORMAT, SHADER};
 use crate::context::{GpuError, validated};
 use fastbrdf_render::env::{EnvMap, uv_to_dir};
@@ -147,8 +152,8 @@ impl EnvData {
     }
 
     /// The `EnvParams` uniform (48 bytes: four u32, four f32 as their bits, four u32) of a
-    /// draw taking passes `first .. first + count`, each weighted `pass_weight`, with the
-    /// direct light, ambient and background weighted `direct_weight` (1 or 0), its random
+    /// sampled draw taking passes `first .. first + count`, each weighted `pass_weight`, with
+    /// the direct light, ambient and background weighted `direct_weight` (1 or 0), its random
     /// numbers from `sampler`.
     pub fn params(
         &self,
@@ -163,16 +168,39 @@ impl EnvData {
             [first, count],
             [pass_weight, direct_weight],
             sampler,
+            None,
+        )
+    }
+
+    /// The `EnvParams` uniform of a split-sum draw (one draw, with the direct light) of a
+    /// GGX surface of roughness `alpha` and Schlick `f0`, its prefiltered maps `pre`.
+    pub fn split_sum_params(&self, pre: &Prefiltered, alpha: f32, f0: f32) -> [u32; 12] {
+        params(
+            (self.width, self.height),
+            [0, 0],
+            [0.0, 1.0],
+            Sampler::Sobol,
+            Some((alpha, f0, pre)),
         )
     }
 }
 
-/// The `EnvParams` words (see [`EnvData::params`]).
-fn params(size: (u32, u32), passes: [u32; 2], weights: [f32; 2], sampler: Sampler) -> [u32; 12] {
+/// The `EnvParams` words (see [`EnvData::params`]); `split`: alpha, f0 and the prefiltered
+/// maps of the split-sum mode.
+fn params(
+    size: (u32, u32),
+    passes: [u32; 2],
+    weights: [f32; 2],
+    sampler: Sampler,
+    split: Option<(f32, f32, &Prefiltered)>,
+) -> [u32; 12] {
     let s = match sampler {
         Sampler::Sobol => 0,
         Sampler::Independent => 1,
     };
+    let (a, f0, mode, pw, ph) = split.map_or((0.0, 0.0, 0, 0, 0), |(a, f0, p)| {
+        (a, f0, 1, p.width, p.height)
+    });
     [
         size.0,
         size.1,
@@ -180,12 +208,12 @@ fn params(size: (u32, u32), passes: [u32; 2], weights: [f32; 2], sampler: Sample
         passes[1],
         weights[0].to_bits(),
         weights[1].to_bits(),
-        0,
-        0,
+        a.to_bits(),
+        f0.to_bits(),
         s,
-        0,
-        0,
-        0,
+        mode,
+        pw,
+        ph,
     ]
 }
 
@@ -202,6 +230,8 @@ pub(super) struct GpuEnv {
     pub(super) background: wgpu::RenderPipeline,
     /// Passes per primary sample (`Environment::samples`).
     pub(super) samples: u32,
+    /// The split-sum mode, with its prefiltered maps.
+    pub(super) split: Option<(SplitSum, Prefiltered)>,
 }
 
 impl GpuEnv {
@@ -212,8 +242,10 @@ impl GpuEnv {
         limits: &wgpu::Limits,
         env: &fastbrdf_render::env::Environment,
         sampler: Sampler,
+        split: Option<&SplitSum>,
     ) -> Result<Self, GpuError> {
         let data = EnvData::new(&env.map);
+        let split = split.map(|s| (s.clone(), Prefiltered::new(&data)));
         if data.width > limits.max_texture_dimension_2d {
             return Err(GpuError::Input(format!(
                 "the environment map is {}x{}: wider than the GPU's largest texture ({}); \
@@ -260,6 +292,16 @@ impl GpuEnv {
                     },
                     count: None,
                 },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 3,
+                    visibility: frag,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
             ],
         });
         let empty_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -291,26 +333,42 @@ impl GpuEnv {
             ],
             immediate_size: 0,
         });
-        let texture = device.create_texture_with_data(
-            queue,
-            &wgpu::TextureDescriptor {
-                label: Some("fastbrdf render env map"),
-                size: wgpu::Extent3d {
-                    width: data.width,
-                    height: data.height,
-                    depth_or_array_layers: 1,
-                },
-                mip_level_count: 1,
-                sample_count: 1,
-                dimension: wgpu::TextureDimension::D2,
-                format: wgpu::TextureFormat::Rgba32Float,
-                usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-                view_formats: &[],
-            },
-            wgpu::util::TextureDataOrder::LayerMajor,
-            bytemuck::cast_slice(&data.texels_rgba32f),
+        let texture = |label, (width, height), texels: &[f32]| {
+            device
+                .create_texture_with_data(
+                    queue,
+                    &wgpu::TextureDescriptor {
+                        label: Some(label),
+                        size: wgpu::Extent3d {
+                            width,
+                            height,
+                            depth_or_array_layers: 1,
+                        },
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension: wgpu::TextureDimension::D2,
+                        format: wgpu::TextureFormat::Rgba32Float,
+                        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+                        view_formats: &[],
+                    },
+                    wgpu::util::TextureDataOrder::LayerMajor,
+                    bytemuck::cast_slice(texels),
+                )
+                .create_view(&Default::default())
+        };
+        let view = texture(
+            "fastbrdf render env map",
+            (data.width, data.height),
+            &data.texels_rgba32f,
         );
-        let view = texture.create_view(&Default::default());
+        let pre_view = match &split {
+            Some((_, p)) => texture(
+                "fastbrdf render env prefiltered",
+                (p.width, p.height * p.levels),
+                &p.texels_rgba32f,
+            ),
+            None => texture("fastbrdf render env prefiltered", (1, 1), &[0.0; 4]),
+        };
         let tables = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("fastbrdf render env tables"),
             contents: bytemuck::cast_slice(&data.tables),
@@ -337,6 +395,10 @@ impl GpuEnv {
                     binding: 2,
                     resource: tables.as_entire_binding(),
                 },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&pre_view),
+                },
             ],
         });
         let background = background_pipeline(device, &bg_layout)?;
@@ -349,11 +411,25 @@ impl GpuEnv {
             empty,
             background,
             samples: env.samples.max(1),
+            split,
         })
     }
 
+    /// The end of a module whose other code is `module`: `rd_dfg`, the split-sum's terms or
+    /// the stub.
+    pub(super) fn dfg_glue(&self, module: &str) -> Result<String, GpuError> {
+        match &self.split {
+            Some((s, _)) => s.glue(module),
+            None => Ok(DFG_STUB.to_string()),
+        }
+    }
+
     /// The chunks of passes of a tile of `tile_samples` primary samples: (first, count).
+    /// The split-sum mode draws once.
     pub(super) fn chunks(&self, tile_samples: u64) -> Vec<(u32, u32)> {
+        if self.split.is_some() {
+            return vec![(0, 1)];
+        }
         chunks(self.samples, tile_samples)
     }
 
@@ -366,6 +442,7 @@ impl GpuEnv {
             [first, count],
             [1.0 / self.samples as f32, direct],
             self.sampler,
+            self.split.as_ref().map(|(s, p)| (s.alpha, s.f0, p)),
         );
         queue.write_buffer(&self.params, 0, bytemuck::cast_slice(&p));
     }
@@ -388,7 +465,7 @@ fn background_pipeline(
     layout: &wgpu::PipelineLayout,
 ) -> Result<wgpu::RenderPipeline, GpuError> {
     let src = format!(
-        "{SHADER}\n{ENV_SHADER}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>(0.0);\n}}\n"
+        "{SHADER}\n{ENV_SHADER}\n{DFG_STUB}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>(0.0);\n}}\n"
     );
     validated(device, "the environment's background shader", || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

@@ -86,6 +86,7 @@ mod layouts;
 mod objects;
 mod passes;
 mod scene_data;
+pub mod split_sum;
 pub mod web;
 
 use crate::context::{GpuError, validated};
@@ -147,7 +148,7 @@ pub fn render_with_progress(
     opts: &Options,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Film, GpuError> {
-    render_scene(device, queue, scene, opts, None, progress)
+    render_scene(device, queue, scene, opts, None, None, progress)
 }
 
 /// [`render_with_progress`] with a user's shader (issue 31): every object whose specular term
@@ -182,7 +183,7 @@ pub fn render_user(
         shader,
         block: shader.param_block(values),
     };
-    render_scene(device, queue, scene, opts, Some(&user), progress)
+    render_scene(device, queue, scene, opts, Some(&user), None, progress)
 }
 
 /// A user's shader and its parameter block, for the objects with an RGB specular term.
@@ -200,6 +201,7 @@ fn render_scene(
     scene: &Scene,
     opts: &Options,
     user: Option<&User>,
+    split: Option<&split_sum::SplitSum>,
     progress: &dyn Fn(usize, usize),
 ) -> Result<Film, GpuError> {
     check_size(opts.width, opts.height).map_err(|e| GpuError::Input(e.to_string()))?;
@@ -224,7 +226,7 @@ fn render_scene(
     let env = scene
         .environment
         .as_ref()
-        .map(|e| env::GpuEnv::new(device, queue, &layouts, &limits, e, opts.sampler))
+        .map(|e| env::GpuEnv::new(device, queue, &layouts, &limits, e, opts.sampler, split))
         .transpose()?;
     let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
     let mut objects = Vec::with_capacity(scene.objects.len());

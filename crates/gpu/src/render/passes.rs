@@ -116,11 +116,8 @@ impl Pipelines {
             "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>({}(wi, wo));\n}}\n",
             instance.function
         );
-        let src = format!(
-            "{}\n{SHADER}\n{}{glue}",
-            instance.module_source(),
-            env_source(env)
-        );
+        let module = instance.module_source();
+        let src = format!("{module}\n{SHADER}\n{}{glue}", env_source(env, &module)?);
         let what = format!("render shader of {}", instance.info.id);
         Self::compile(device, layouts, &what, src, env)
     }
@@ -137,7 +134,7 @@ impl Pipelines {
             .wgsl_at(1, USER_PARAMS_BINDING)
             .map_err(|e| GpuError::Input(e.message))?;
         let glue = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {\n    return fb_user_brdf(wi, wo);\n}\n";
-        let src = format!("{user}\n{SHADER}\n{}{glue}", env_source(env));
+        let src = format!("{user}\n{SHADER}\n{}{glue}", env_source(env, &user)?);
         let what = format!("render shader of {}", shader.name());
         Self::compile(device, layouts, &what, src, env)
     }
@@ -218,8 +215,11 @@ impl Pipelines {
     }
 }
 
-/// The environment's shader and a newline when there is one, else nothing (the module of an
-/// environment-less scene is unchanged).
-fn env_source(env: Option<&GpuEnv>) -> String {
-    env.map_or(String::new(), |_| format!("{ENV_SHADER}\n"))
+/// The environment's shader and its `rd_dfg` (for a module whose other code is `module`)
+/// when there is one, else nothing (the module of an environment-less scene is unchanged).
+fn env_source(env: Option<&GpuEnv>, module: &str) -> Result<String, GpuError> {
+    Ok(match env {
+        Some(e) => format!("{ENV_SHADER}\n{}\n", e.dfg_glue(module)?),
+        None => String::new(),
+    })
 }

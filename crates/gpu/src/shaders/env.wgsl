@@ -8,6 +8,11 @@
 //   @group(3) @binding(2) storage array<f32>: the marginal CDF over rows (height + 1
 //                         entries), then per row the conditional CDF over its columns
 //                         (width + 1 entries each)
+//   @group(3) @binding(3) texture_2d<f32> (Rgba32Float, textureLoad): the split-sum mode's
+//                         prefiltered maps, level after level (render/split_sum.rs)
+//
+// The module ends with `rd_dfg(cos_v, alpha) -> vec2<f32>` (split_sum.rs): the split-sum's
+// scale and bias from an environment model's twin, or a stub in the sampled mode.
 //
 // The estimator (twin of crates/render/src/render/environment.rs, without its BRDF
 // sampling: the GPU has the models' values, not their samplers): per primary hit and pass,
@@ -31,15 +36,18 @@ struct EnvParams {
     /// Map width and height; the first pass of this draw and how many passes it takes.
     size: vec4<u32>,
     /// Weight of each pass's estimate (1 / passes of the whole render); weight of the direct
-    /// light, ambient and background (1 in the draw that includes them, else 0); 0; 0.
+    /// light, ambient and background (1 in the draw that includes them, else 0); the
+    /// split-sum's GGX alpha and f0.
     weights: vec4<f32>,
-    /// The sampler (0: Sobol, 1: independent); 0; 0; 0.
+    /// The sampler (0: Sobol, 1: independent); the mode (0: sampled, 1: split-sum); the
+    /// prefiltered maps' level width and height.
     options: vec4<u32>,
 }
 
 @group(3) @binding(0) var<uniform> env: EnvParams;
 @group(3) @binding(1) var env_map: texture_2d<f32>;
 @group(3) @binding(2) var<storage, read> env_cdf: array<f32>;
+@group(3) @binding(3) var env_pre: texture_2d<f32>;
 
 // ---- random numbers (twins: hash::pcg, env::Rng) -------------------------------------------
 
@@ -299,14 +307,74 @@ fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
     return sum;
 }
 
+// ---- the split-sum shortcut (render/split_sum.rs) -------------------------------------
+
+/// Texel (c, r) of prefiltered level `level`, wrapping in longitude.
+fn rd_pre_texel(level: u32, c: i32, r: i32) -> vec3<f32> {
+    let w = i32(env.options.z);
+    let h = i32(env.options.w);
+    let x = ((c % w) + w) % w;
+    let y = clamp(r, 0, h - 1);
+    return textureLoad(env_pre, vec2<i32>(x, i32(level) * h + y), 0).xyz;
+}
+
+/// Prefiltered level `level` towards unit direction `d`, bilinear between texel centres.
+fn rd_pre_dir(level: u32, d: vec3<f32>) -> vec3<f32> {
+    let y = clamp(d.y, -1.0, 1.0);
+    let u = rd_atan2(d.x, -d.z) / RD_TAU + 0.5;
+    let v = rd_atan2(sqrt((1.0 - y) * (1.0 + y)), y) / RD_PI;
+    let x = u * f32(env.options.z) - 0.5;
+    let yy = v * f32(env.options.w) - 0.5;
+    let x0 = floor(x);
+    let y0 = floor(yy);
+    let fx = x - x0;
+    let fy = yy - y0;
+    let c = i32(x0);
+    let r = i32(y0);
+    let top = mix(rd_pre_texel(level, c, r), rd_pre_texel(level, c + 1, r), fx);
+    let bottom = mix(rd_pre_texel(level, c, r + 1), rd_pre_texel(level, c + 1, r + 1), fx);
+    return mix(top, bottom, fy);
+}
+
+/// The GGX-prefiltered radiance towards `d` at roughness `alpha`: linear between the two
+/// levels around sqrt(alpha) (levels 1 .. 1 + K hold sqrt(alpha) = 0, 1 / (K - 1), ..., 1).
+fn rd_prefiltered(d: vec3<f32>, alpha: f32) -> vec3<f32> {
+    let k = textureDimensions(env_pre).y / env.options.w - 1u;
+    let f = clamp(sqrt(max(alpha, 0.0)), 0.0, 1.0) * f32(k - 1u);
+    let i0 = min(u32(f), k - 1u);
+    let i1 = min(i0 + 1u, k - 1u);
+    let t = f - f32(i0);
+    return mix(rd_pre_dir(1u + i0, d), rd_pre_dir(1u + i1, d), t);
+}
+
+/// The split-sum shading of a hit: base E(n) / pi + ks L_pre(r, alpha) (f0 scale + bias).
+fn rd_env_split(s: RdSurface) -> vec3<f32> {
+    var out = s.base * rd_pre_dir(0u, s.n);
+    let ks = object.mat.x;
+    let nov = rd_dot(s.n, s.v);
+    if ks > 0.0 && nov > 0.0 {
+        let refl = s.n * (2.0 * nov) - s.v;
+        let alpha = env.weights.z;
+        let dfg = rd_dfg(nov, alpha);
+        out += ks * rd_prefiltered(refl, alpha) * (env.weights.w * dfg.x + dfg.y);
+    }
+    return out;
+}
+
+// ---- the shading pass ------------------------------------------------------------------
+
 /// The radiance of a hit under the environment: the direct light (rd_shade) times its
-/// weight, plus this draw's passes times theirs.
+/// weight, plus this draw's passes times theirs (or, in the split-sum mode, the split-sum
+/// shading times the direct light's weight).
 fn rd_env_shade(pos: vec2<f32>, r: RdRay, hit: RdHit) -> vec3<f32> {
     var out = vec3<f32>(0.0);
     if env.weights.y != 0.0 {
         out = rd_shade(r, hit) * env.weights.y;
     }
     let s = rd_env_surface(r, hit);
+    if env.options.y == 1u {
+        return out + rd_env_split(s) * env.weights.y;
+    }
     let id = rd_sample_id(pos);
     var sum = vec3<f32>(0.0);
     for (var k = 0u; k < env.size.w; k++) {
