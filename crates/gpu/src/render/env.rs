@@ -37,7 +37,8 @@
 //!
 //! All in the fragment stage. The module ends with `rd_dfg(cos_v, alpha) -> vec2<f32>`:
 //! [`super::split_sum::DFG_STUB`] in the sampled mode, the environment model's terms in the
-//! split-sum mode ([`super::split_sum::SplitSum::glue`]).
+//! split-sum mode ([`super::split_sum::dfg_glue`]); [`super::split_sum::env_module_source`]
+//! gives what follows `render.wgsl`.
 //! The shading pass's pipelines use the entry points
 //! `rd_fs_analytic_env` and `rd_fs_mesh_env` instead of `rd_fs_analytic` and `rd_fs_mesh`
 //! (layout: groups 0, 1, 2 as before and this group 3); the background is drawn first in the
@@ -413,15 +414,6 @@ impl GpuEnv {
             samples: env.samples.max(1),
             split,
         })
-    }
-
-    /// The end of a module whose other code is `module`: `rd_dfg`, the split-sum's terms or
-    /// the stub.
-    pub(super) fn dfg_glue(&self, module: &str) -> Result<String, GpuError> {
-        match &self.split {
-            Some((s, _)) => s.glue(module),
-            None => Ok(DFG_STUB.to_string()),
-        }
     }
 
     /// The chunks of passes of a tile of `tile_samples` primary samples: (first, count).

@@ -1,10 +1,11 @@
 //! The render pipelines of one model or user's shader (visibility and shading, for analytic
 //! shapes and meshes), the bind group layouts they share, and one pass over the scene's objects.
 
-use super::env::{ENV_SHADER, GpuEnv};
+use super::env::GpuEnv;
 use super::layouts::Layouts;
 use super::layouts::USER_PARAMS_BINDING;
 use super::objects::GpuObject;
+use super::split_sum::env_module_source;
 use super::{COLOR_FORMAT, DEPTH_FORMAT, ID_FORMAT, SHADER, Tile};
 use crate::context::{GpuError, validated};
 use crate::spec::Instance;
@@ -218,8 +219,8 @@ impl Pipelines {
 /// The environment's shader and its `rd_dfg` (for a module whose other code is `module`)
 /// when there is one, else nothing (the module of an environment-less scene is unchanged).
 fn env_source(env: Option<&GpuEnv>, module: &str) -> Result<String, GpuError> {
-    Ok(match env {
-        Some(e) => format!("{ENV_SHADER}\n{}\n", e.dfg_glue(module)?),
-        None => String::new(),
-    })
+    match env {
+        Some(e) => env_module_source(module, e.split.as_ref().map(|(s, _)| &s.dfg)),
+        None => Ok(String::new()),
+    }
 }

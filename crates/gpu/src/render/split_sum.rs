@@ -239,32 +239,58 @@ impl SplitSum {
         })
     }
 
-    /// The WGSL of `rd_dfg(cos_v, alpha) -> vec2<f32>` (scale, bias) for a module whose other
-    /// code is `module`: the environment model's twin for each term (renamed
-    /// `rd_dfg_scale`, `rd_dfg_bias`) and the library items they need that `module` lacks.
+    /// The WGSL of `rd_dfg` for a module whose other code is `module` ([`dfg_glue`]).
     pub fn glue(&self, module: &str) -> Result<String, GpuError> {
-        let mut wrappers = String::new();
-        for term in ["scale", "bias"] {
-            let spec = ModelSpec::parse(self.dfg.id(), &[("term", term)])
-                .map_err(|e| GpuError::Input(e.to_string()))?;
-            let inst = Instance::new(&spec)?;
-            wrappers.push_str(&inst.wrapper.replace(
-                &format!("fn {}(", inst.function),
-                &format!("fn rd_dfg_{term}("),
-            ));
-        }
-        let present = crate::library::closure(module);
-        let need = crate::library::closure(&wrappers);
-        let items: Vec<&str> = crate::library::items()
-            .iter()
-            .filter(|i| need.contains(&i.name) && !present.contains(&i.name))
-            .map(|i| i.text.as_str())
-            .collect();
-        Ok(format!(
-            "{}\n{wrappers}\nfn rd_dfg(cos_v: f32, alpha: f32) -> vec2<f32> {{\n    return vec2<f32>(rd_dfg_scale(cos_v, alpha), rd_dfg_bias(cos_v, alpha));\n}}\n",
-            items.join("\n")
-        ))
+        dfg_glue(&self.dfg, module)
     }
+}
+
+/// The WGSL of `rd_dfg(cos_v, alpha) -> vec2<f32>` (scale, bias) for a module whose other
+/// code is `module`: the environment model `dfg`'s twin for each term (renamed
+/// `rd_dfg_scale`, `rd_dfg_bias`) and the library items they need that `module` lacks (so
+/// that no item is declared twice).
+pub fn dfg_glue(dfg: &ModelSpec, module: &str) -> Result<String, GpuError> {
+    if dfg.info().kind != Kind::Env {
+        return Err(GpuError::Input(format!(
+            "'{}' is not a split-sum model (env-brdf, env-brdf-approx, env-brdf-approx-tuned)",
+            dfg.id()
+        )));
+    }
+    let mut wrappers = String::new();
+    for term in ["scale", "bias"] {
+        let spec = ModelSpec::parse(dfg.id(), &[("term", term)])
+            .map_err(|e| GpuError::Input(e.to_string()))?;
+        let inst = Instance::new(&spec)?;
+        wrappers.push_str(&inst.wrapper.replace(
+            &format!("fn {}(", inst.function),
+            &format!("fn rd_dfg_{term}("),
+        ));
+    }
+    let present = crate::library::closure(module);
+    let need = crate::library::closure(&wrappers);
+    let items: Vec<&str> = crate::library::items()
+        .iter()
+        .filter(|i| need.contains(&i.name) && !present.contains(&i.name))
+        .map(|i| i.text.as_str())
+        .collect();
+    Ok(format!(
+        "{}\n{wrappers}\nfn rd_dfg(cos_v: f32, alpha: f32) -> vec2<f32> {{\n    return vec2<f32>(rd_dfg_scale(cos_v, alpha), rd_dfg_bias(cos_v, alpha));\n}}\n",
+        items.join("\n")
+    ))
+}
+
+/// What follows `render.wgsl` in the module of a scene with an environment (for a browser
+/// building the module itself): `env.wgsl` ([`super::env::ENV_SHADER`]) and `rd_dfg`, the
+/// split-sum terms of `dfg` (an environment model) or, with none, the stub
+/// ([`DFG_STUB`]); `module` is the module's other code (the model library's items and the
+/// model's function, or a user's shader). The module is then
+/// `module + render.wgsl + this + the rd_brdf glue`, as `render::render` compiles it.
+pub fn env_module_source(module: &str, dfg: Option<&ModelSpec>) -> Result<String, GpuError> {
+    let glue = match dfg {
+        Some(d) => dfg_glue(d, module)?,
+        None => DFG_STUB.to_string(),
+    };
+    Ok(format!("{}\n{glue}\n", super::env::ENV_SHADER))
 }
 
 /// Renders `scene` under its environment with the split-sum shortcut (see the module's
