@@ -283,3 +283,56 @@ fn without_webgpu_the_server_draws() {
         "the page does not say who draws: {info}"
     );
 }
+
+/// A user's shader (`view --model file:`) and the face mesh: drawn by WebGPU from the user's
+/// module and the mesh's buffers, equal to `fastbrdf render` of the same.
+#[test]
+fn users_models_and_meshes_are_drawn_by_webgpu() {
+    let Some(path) = browser() else { return };
+    let model = format!("file:{}", common::gpu_data("brdf-explorer/walter.brdf"));
+    let s = serve(&["--model", &model, "--mesh", "face"]);
+    let mut b = cdp::Browser::start_with(&path, true).unwrap();
+    let url = format!(
+        "http://{}/#models=walter.brdf&ref=cook-torrance&alpha=0.3&mesh=mesh&light=0.3,0.8,0.5",
+        s.addr
+    );
+    let page = b.open(&url, 1400, 1050).unwrap();
+    wait_drawn(&mut b, &page);
+    for (id, args) in [
+        (
+            "walter.brdf".to_string(),
+            vec!["--model".to_string(), model.clone()],
+        ),
+        (
+            "cook-torrance".to_string(),
+            vec![
+                "--model".into(),
+                "cook-torrance".into(),
+                "--param".into(),
+                "alpha=0.3".into(),
+            ],
+        ),
+    ] {
+        let mut all: Vec<&str> = args.iter().map(String::as_str).collect();
+        all.extend(["--mesh", "face", "--light", "dir:0.3,0.8,0.5"]);
+        let cpu = cli_render(&all);
+        let gpu = pixels(&mut b, &page, &id);
+        let (max, psnr) = compare(&cpu, &gpu);
+        // Samples within rounding of a silhouette edge may differ (the GPU renderer's parity
+        // rule, crates/gpu/src/render/mod.rs): a few pixels, none elsewhere.
+        let off = cpu
+            .chunks(3)
+            .zip(gpu.chunks(3))
+            .filter(|(a, b)| a.iter().zip(*b).any(|(x, y)| x.abs_diff(*y) > 2))
+            .count();
+        eprintln!(
+            "{id} on the face: WebGPU (SwiftShader) against fastbrdf render: max {max}/255, \
+             {off} pixels of {} off by more than 2/255, PSNR {psnr:.1} dB",
+            SIZE * SIZE
+        );
+        assert!(
+            off * 10_000 <= (SIZE * SIZE) as usize && psnr > 55.0,
+            "{id}"
+        );
+    }
+}

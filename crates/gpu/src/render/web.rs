@@ -31,6 +31,25 @@ pub const MAX_SAMPLES: u32 = super::TILE_SAMPLES;
 /// The name of a registry model's parameter block in a [`model_module`].
 pub const PARAMS_NAME: &str = "fb_web_params";
 
+/// The mesh traversal's stack in `shaders/render.wgsl`, and what a module for a scene without
+/// meshes declares instead: `rd_occ_mesh` is then never called, but SwiftShader pays for the
+/// zero-initialised 64-entry array in every fragment (measured: about half of a frame).
+const MESH_STACK: &str = "var stack: array<u32, 64>;";
+const NO_MESH_STACK: &str = "var stack: array<u32, 2>; // no meshes in this scene";
+
+/// The renderer's shaders for a scene with or without meshes (see [`MESH_STACK`]).
+fn renderer(meshes: bool) -> String {
+    assert!(
+        SHADER.contains(MESH_STACK),
+        "render.wgsl's mesh stack moved"
+    );
+    if meshes {
+        SHADER.to_string()
+    } else {
+        SHADER.replace(MESH_STACK, NO_MESH_STACK)
+    }
+}
+
 /// One object of a [`WebScene`]: its uniform (`struct Object`; [`WebObject::whole`] is the
 /// same with kd 0 and ks 1, how the explorer shades a whole BRDF: a user's model), linear
 /// albedo texels (RGBA f32, row-major), mesh vertices (8 f32 each) and triangles (4 u32
@@ -126,11 +145,11 @@ pub struct WebModule {
     pub params: Vec<(String, f64)>,
 }
 
-/// The module of a registry model: its shaded BRDF (a lobe or a distribution as the renderer
+/// The module of a registry model (`meshes`: whether the scene has meshes): its shaded BRDF (a lobe or a distribution as the renderer
 /// shades it, `ModelSpec::shaded`) as the runtime-parameter instance, every numeric parameter
 /// read from `fb_web_params` at group 1, binding 5. Errors: a coloured spec (the runtime form
 /// takes one value per parameter) and a model the renderer cannot shade.
-pub fn model_module(spec: &ModelSpec) -> Result<WebModule, GpuError> {
+pub fn model_module(spec: &ModelSpec, meshes: bool) -> Result<WebModule, GpuError> {
     let shaded = spec.shaded().map_err(|e| GpuError::Input(e.to_string()))?;
     if shaded.is_coloured() {
         return Err(GpuError::Input(format!(
@@ -156,18 +175,19 @@ pub fn model_module(spec: &ModelSpec) -> Result<WebModule, GpuError> {
         inst.function
     );
     Ok(WebModule {
-        wgsl: format!("{}\n{SHADER}\n{glue}", inst.module_source()),
+        wgsl: format!("{}\n{}\n{glue}", inst.module_source(), renderer(meshes)),
         params: inst.sliders.clone(),
     })
 }
 
 /// The module of a user's shader: as `render_user` builds it (its parameters at group 1,
 /// binding 5, in `UserShader::param_block`'s layout).
-pub fn user_module(shader: &UserShader) -> Result<String, GpuError> {
+pub fn user_module(shader: &UserShader, meshes: bool) -> Result<String, GpuError> {
     let user = shader
         .wgsl_at(1, USER_PARAMS_BINDING)
         .map_err(|e| GpuError::Input(e.message))?;
     Ok(format!(
-        "{user}\n{SHADER}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return fb_user_brdf(wi, wo);\n}}\n"
+        "{user}\n{}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return fb_user_brdf(wi, wo);\n}}\n",
+        renderer(meshes)
     ))
 }

@@ -111,7 +111,8 @@ pub fn scene_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     })))
 }
 
-/// `GET /api/gpu/shader?model=ID&CHOICE=VALUE...`: the render module of one model, for the
+/// `GET /api/gpu/shader?model=ID&mesh=sphere|mesh&CHOICE=VALUE...`: the render module of one
+/// model for a scene with or without meshes, for the
 /// page's WebGPU renderer: `{model, wgsl, block, params: [{name, default}], whole}`. A
 /// registry model is its shaded BRDF's runtime-parameter instance with the query's choices
 /// (numbers are the page's, one `vec4` each in the block at group 1, binding 5, in `params`
@@ -119,8 +120,19 @@ pub fn scene_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
 /// layout of its `params` in `/api/models`), shaded as a whole BRDF (`whole`: kd 0, ks 1).
 pub fn shader_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let id = q.need("model")?;
+    let meshes = match q.get("mesh").unwrap_or("sphere") {
+        "sphere" => false,
+        "mesh" => true,
+        m => {
+            return Err(CliError::input(format!(
+                "mesh '{}': expected sphere or mesh",
+                fastbrdf_io::shorten(m, 64)
+            )));
+        }
+    };
     if let Some(u) = state.user(id) {
-        let wgsl = web::user_module(&u.shader).map_err(|e| CliError::input(e.to_string()))?;
+        let wgsl =
+            web::user_module(&u.shader, meshes).map_err(|e| CliError::input(e.to_string()))?;
         return Ok(Response::json(&json!({
             "model": u.name, "wgsl": wgsl, "block": "user", "params": u.params_json(),
             "whole": true,
@@ -134,7 +146,7 @@ pub fn shader_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         None,
         Use::AsIs,
     )?;
-    let m = web::model_module(&spec).map_err(|e| CliError::input(e.to_string()))?;
+    let m = web::model_module(&spec, meshes).map_err(|e| CliError::input(e.to_string()))?;
     let params: Vec<Value> = m
         .params
         .iter()

@@ -154,7 +154,7 @@ function gpuDrawable() {
 // Models with a picture: the reference first (as /api/render), only kinds the renderer shades.
 function gpuModels() { return allIds().filter(id => MODELS[id] && !["shadowing", "fresnel", "env"].includes(MODELS[id].kind)); }
 function choiceKey(id) {
-  const q = new URLSearchParams({ model: id });
+  const q = new URLSearchParams({ model: id, mesh: state.mesh });
   for (const p of MODELS[id].params) if (p.type === "choice" && MODELS[id].kind !== "user") q.set(p.name, state.params[p.name] ?? choiceDefault(p));
   return q.toString();
 }
@@ -281,7 +281,6 @@ async function gpuFrame(size) {
   const mods = [];
   for (const id of ids) mods.push(await gpuModule(id));
   if (!mods.length) return;
-  if (state.mesh === "mesh" !== mods[0].mesh) { for (const m of mods) GPU.mods.delete(m.key); return gpuFrame(size); }
   for (const m of mods) if (!fillBlock(m)) return;
   const d = GPU.device;
   if (sc.lightNow !== state.light) {
