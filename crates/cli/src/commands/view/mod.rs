@@ -55,6 +55,7 @@
 pub mod api;
 pub mod cdp;
 mod flip;
+mod measure;
 mod request;
 mod server;
 mod state;
@@ -76,6 +77,7 @@ fastbrdf view --port 9000 --open\n  \
 fastbrdf view --mesh face              (the embedded face beside the sphere)\n  \
 fastbrdf view --mesh head.obj --bench bench.json   (your mesh; costs from `fastbrdf bench --json`)\n  \
 fastbrdf view --screenshot docs/images/view.png   (headless Chromium, then exit)\n  \
+fastbrdf view --measure-frames 20 --state 'models=flog,power16,schlick&ref=pow&n=100'   (WebGPU redraw times, JSON)\n  \
 fastbrdf view --measured gold-metallic-paint.binary   (the MERL file as a reference: #models=ward&ref=gold-metallic-paint.binary)\n  \
 fastbrdf view --model file:walter.brdf --param alphaG=0.2   (your BRDF beside the built-ins: #models=walter.brdf,cook-torrance)\n  \
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
@@ -144,7 +146,13 @@ pub struct Args {
     /// Take a screenshot of the page in headless Chromium to this PNG file, then exit.
     #[arg(long, value_name = "FILE.png")]
     screenshot: Option<PathBuf>,
-    /// With --screenshot: the view (the part of the page's URL after #).
+    /// Measure how fast the page redraws as a control moves, with WebGPU in headless
+    /// Chromium (its software adapter, SwiftShader): N moves of the first numeric slider of
+    /// --state's view, then print the page's own measures as JSON (`fastbrdf:frame`, control
+    /// to drawn frame; `fastbrdf:settle`; frames drawn back to back) and exit.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
+    measure_frames: Option<u32>,
+    /// With --screenshot or --measure-frames: the view (the part of the page's URL after #).
     #[arg(long, default_value = "models=flog,schlick&ref=pow&n=60&theta=35")]
     state: String,
     /// The Chromium executable (default: chromium, chromium-browser or google-chrome on PATH).
@@ -164,7 +172,11 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let taken: Vec<&str> = state.measured.iter().map(|m| m.name.as_str()).collect();
     let users = users::load(&a.model, &a.param, &taken)?;
     let state = Arc::new(state.with_users(users));
-    let port = if a.screenshot.is_some() { 0 } else { a.port };
+    let port = if a.screenshot.is_some() || a.measure_frames.is_some() {
+        0
+    } else {
+        a.port
+    };
     let limits = Limits {
         max_connections: a.max_connections as usize,
         idle_timeout: Duration::from_secs(a.idle_timeout),
@@ -196,6 +208,28 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         ));
         server.stop();
         return Ok(());
+    }
+    if let Some(moves) = a.measure_frames {
+        let url = format!("{}#{}", server.url(), a.state);
+        let m = measure::measure(a.browser.as_deref(), &url, moves)
+            .map_err(|e| CliError::input(format!("--measure-frames: {e}")));
+        server.stop();
+        let m = m?;
+        let f = &m["frame_ms"];
+        note(&format!(
+            "control to frame: median {:.1} ms over {} moves ({} pictures; {}x{} when a frame is fast, else {}x{} while moving); full size drawn back to back: median {:.1} ms",
+            f["median"].as_f64().unwrap_or(f64::NAN),
+            moves,
+            m["pictures"],
+            m["size"],
+            m["size"],
+            m["preview_size"],
+            m["preview_size"],
+            m["alone_ms"]["size"]["median"].as_f64().unwrap_or(f64::NAN)
+        ));
+        return crate::commands::write_stdout(
+            format!("{}\n", serde_json::to_string_pretty(&m).unwrap_or_default()).as_bytes(),
+        );
     }
     note(&format!(
         "fastbrdf view: serving on {} (Ctrl-C to stop)",

@@ -504,3 +504,14 @@ window.fastbrdfPixels = async id => {
   for (let i = 0; i < n; i++) s += String.fromCharCode(w[i] & 255, (w[i] >> 8) & 255, (w[i] >> 16) & 255);
   return btoa(s);
 };
+// For `fastbrdf view --measure-frames`: `k` frames of the current state at `size` pixels per
+// side, drawn back to back with no control involved (the GPU's share of a frame), in ms.
+window.fastbrdfFramesAlone = async (size, k) => {
+  const out = [];
+  for (let i = 0; i < k; i++) { const t = performance.now(); await gpuFrame(size); out.push(performance.now() - t); }
+  return out;
+};
+window.fastbrdfAdapter = () => {
+  const i = GPU.adapter && GPU.adapter.info;
+  return i ? { vendor: i.vendor, architecture: i.architecture, device: i.device, description: i.description } : null;
+};
