@@ -144,7 +144,7 @@ function buildControls() {
 
 function changed(structure) {
   if (structure) { pruneParams(); buildControls(); }
-  writeHash(); update();
+  writeHash(); update(structure);
 }
 
 // ---- plots ---------------------------------------------------------------------------
@@ -318,9 +318,26 @@ async function task(fn) {
   try { await fn(); } catch (e) { if (e.name !== "AbortError" && e.status !== 409) setStatus(e.message, true); }
   finally { pending--; ready(); }
 }
-function update() {
-  if (plotCtl) plotCtl.abort(); plotCtl = new AbortController(); const ps = plotCtl.signal;
+// While a control moves and the browser draws the pictures (WebGPU), the server's numbers
+// (plots, albedo, shader, the hooks' panes) follow once it has rested LAZY_MS: a frame is not
+// kept waiting behind computations that the next move would replace. Pending, they keep
+// document.body.dataset.ready at "0".
+const LAZY_MS = 150;
+let lazyTimer = null;
+function update(structure) {
   const q = paramQuery();
+  if (lazyTimer !== null) { clearTimeout(lazyTimer); lazyTimer = null; pending--; }
+  if (!structure && document.body.dataset.renderer === "webgpu") {
+    renderAll(q);
+    pending++; ready();
+    lazyTimer = setTimeout(() => { lazyTimer = null; pending--; numbers(paramQuery(), false); }, LAZY_MS);
+    return;
+  }
+  numbers(q, true);
+}
+// The server's numbers of the view `q` (and its pictures too when `pictures`).
+function numbers(q, pictures) {
+  if (plotCtl) plotCtl.abort(); plotCtl = new AbortController(); const ps = plotCtl.signal;
   task(async () => {
     const t = performance.now();
     const d = await getJSON("/api/plots?" + q, ps);
@@ -336,9 +353,10 @@ function update() {
     drawAlbedo(await getJSON("/api/albedo?" + qq, as));
     drawAlbedo(await getJSON("/api/albedo?" + q, as));
   });
-  renderAll(q);
+  if (pictures) renderAll(q);
   exportShader();
   for (const h of HOOKS.update) h(q);
+  ready();
 }
 let albedoCtl = null;
 function renderAll(q) {
