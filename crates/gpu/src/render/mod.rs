@@ -226,7 +226,7 @@ fn render_scene(
     let env = scene
         .environment
         .as_ref()
-        .map(|e| env::GpuEnv::new(device, queue, &layouts, &limits, e, opts.sampler, split))
+        .map(|_| env::GpuEnv::new(device, queue, &layouts, &limits, scene, opts.sampler, split))
         .transpose()?;
     let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
     let mut objects = Vec::with_capacity(scene.objects.len());

@@ -14,20 +14,22 @@
 // The module ends with `rd_dfg(cos_v, alpha) -> vec2<f32>` (split_sum.rs): the split-sum's
 // scale and bias from an environment model's twin, or a stub in the sampled mode.
 //
-// The estimator (twin of crates/render/src/render/environment.rs, without its BRDF
+// The estimator (twin of crates/render/src/render/environment.rs, but for its BRDF
 // sampling: the GPU has the models' values, not their samplers): per primary hit and pass,
-// one direction drawn from the map (its importance tables) and one cosine-weighted about the
-// shading normal, combined by the balance heuristic over the whole integrand (diffuse and
-// specular): each contributes L (base cos / pi + ks f cos) / (pdf_map + cos / pi), times the
-// pass weight, with the CPU's shadow rule (`visible`). Both strategies cover every direction
-// the integrand is non-zero in (the map's density is positive wherever its radiance is), so
-// the sum is unbiased and converges to the CPU's picture.
+// one direction drawn from the map (its importance tables), one cosine-weighted about the
+// shading normal and, with a specular term, one from a GGX lobe of the model's roughness
+// about the view's mirror (env.weights.z; 0: none), combined by the balance heuristic over the
+// whole integrand (diffuse and specular): each contributes
+// L (base cos / pi + ks f cos) / (pdf_map + cos / pi + pdf_lobe), times the pass weight, with
+// the CPU's shadow rule (`visible`). The map and cosine strategies cover every direction the
+// integrand is non-zero in (the map's density is positive wherever its radiance is), so the
+// sum is unbiased whatever the lobe, and converges to the CPU's picture.
 //
 // Random numbers: the CPU's (environment.rs, `uniforms`), either sampler: Owen-scrambled
 // Sobol points (sobol_burley's `sample_4d`, its first four dimensions, ported with their
 // direction numbers) or the independent sampler (`env::Rng`: a PCG hash of the sample id
 // and the pass), the sample id `(pixel y * width + pixel x) * N^2 + subsample` as on the CPU:
-// the same four numbers per sample and pass as the CPU's map and cosine directions take.
+// the same six numbers per sample and pass as the CPU's map, cosine and BRDF directions take.
 // Deterministic, and a draw with passes [first, first + count) adds new samples to earlier
 // ones.
 
@@ -36,8 +38,8 @@ struct EnvParams {
     /// Map width and height; the first pass of this draw and how many passes it takes.
     size: vec4<u32>,
     /// Weight of each pass's estimate (1 / passes of the whole render); weight of the direct
-    /// light, ambient and background (1 in the draw that includes them, else 0); the
-    /// split-sum's GGX alpha and f0.
+    /// light, ambient and background (1 in the draw that includes them, else 0); the lobe
+    /// strategy's GGX roughness (sampled mode; 0: none) or the split-sum's alpha; its f0.
     weights: vec4<f32>,
     /// The sampler (0: Sobol, 1: independent); the mode (0: sampled, 1: split-sum); the
     /// prefiltered maps' level width and height.
@@ -129,20 +131,30 @@ fn rd_sobol4(index: u32, seed: u32) -> vec4<f32> {
     return bitcast<vec4<f32>>((r >> vec4<u32>(9u)) | vec4<u32>(0x3f800000u)) - vec4<f32>(1.0);
 }
 
-/// The four uniform numbers of sample `id` in pass `p` (environment.rs, `uniforms`): the map's
-/// pair, then the cosine pair.
-fn rd_env_uniforms(id: u32, p: u32) -> vec4<f32> {
+struct RdUniforms {
+    /// The map's pair, then the cosine pair.
+    a: vec4<f32>,
+    /// The BRDF's pair (here the GGX lobe's).
+    b: vec2<f32>,
+}
+
+/// The six uniform numbers of sample `id` in pass `p` (environment.rs, `uniforms`).
+fn rd_env_uniforms(id: u32, p: u32) -> RdUniforms {
     if env.options.x == 0u {
-        // Pass k takes point k (mod 2^16) of the sequence seeded by the sample (and k / 2^16).
+        // Pass k takes point k (mod 2^16) of the sequence seeded by the sample (and k / 2^16),
+        // the BRDF's pair the first two dimensions of a second seed.
         let seed = rd_pcg(id ^ rd_pcg(p >> 16u));
-        return rd_sobol4(p & 0xffffu, seed);
+        let k = p & 0xffffu;
+        return RdUniforms(rd_sobol4(k, seed), rd_sobol4(k, rd_pcg(seed ^ 0x68bc21ebu)).xy);
     }
     var rng = rd_rng(id, p);
     let u1 = rd_uniform(&rng);
     let u2 = rd_uniform(&rng);
     let u3 = rd_uniform(&rng);
     let u4 = rd_uniform(&rng);
-    return vec4<f32>(u1, u2, u3, u4);
+    let u5 = rd_uniform(&rng);
+    let u6 = rd_uniform(&rng);
+    return RdUniforms(vec4<f32>(u1, u2, u3, u4), vec2<f32>(u5, u6));
 }
 
 /// The CPU's sample id of the fragment at `pos` (environment.rs, `env_pass`).
@@ -287,21 +299,100 @@ fn rd_env_f(s: RdSurface, l: vec3<f32>, cos_i: f32) -> vec3<f32> {
     return f;
 }
 
-/// One pass's estimate at a hit: a map direction and a cosine direction, balance heuristic.
+// ---- the GGX lobe strategy ----------------------------------------------------------------
+
+/// A hit's local frame and view direction, and the lobe's roughness (0: no lobe strategy).
+struct RdLobe {
+    t: vec3<f32>,
+    b: vec3<f32>,
+    wo: vec3<f32>,
+    alpha: f32,
+}
+
+fn rd_lobe(s: RdSurface) -> RdLobe {
+    let f = rd_orthonormal_pair(s.n);
+    let wo = vec3<f32>(rd_dot(s.v, f.t), rd_dot(s.v, f.b), rd_dot(s.v, s.n));
+    var alpha = 0.0;
+    if object.mat.x > 0.0 && wo.z > 0.0 {
+        alpha = env.weights.z;
+    }
+    return RdLobe(f.t, f.b, wo, alpha);
+}
+
+/// The density of `rd_lobe_sample` at unit local direction `wi` (0 below the surface):
+/// the GGX visible-normal density over 4 wo.h, `G1(wo) D(h) / (4 wo.z)` (Heitz 2018).
+fn rd_lobe_pdf(lobe: RdLobe, wi: vec3<f32>) -> f32 {
+    if lobe.alpha <= 0.0 || wi.z <= 0.0 {
+        return 0.0;
+    }
+    let h = rd_normalize(wi + lobe.wo);
+    if rd_dot(lobe.wo, h) <= 0.0 || h.z <= 0.0 {
+        return 0.0;
+    }
+    let a2 = lobe.alpha * lobe.alpha;
+    let q = h.z * h.z * (a2 - 1.0) + 1.0;
+    let d = a2 / (RD_PI * q * q);
+    let wo = lobe.wo;
+    let g1 = 2.0 * wo.z / (wo.z + sqrt(a2 * (wo.x * wo.x + wo.y * wo.y) + wo.z * wo.z));
+    return g1 * d / (4.0 * wo.z);
+}
+
+/// A direction drawn from GGX's visible normals of roughness `lobe.alpha` (Heitz 2018), local.
+fn rd_lobe_sample(lobe: RdLobe, u1: f32, u2: f32) -> vec3<f32> {
+    let a = lobe.alpha;
+    let vh = rd_normalize(vec3<f32>(a * lobe.wo.x, a * lobe.wo.y, lobe.wo.z));
+    let lensq = vh.x * vh.x + vh.y * vh.y;
+    var t1 = vec3<f32>(1.0, 0.0, 0.0);
+    if lensq > 0.0 {
+        t1 = vec3<f32>(-vh.y, vh.x, 0.0) / sqrt(lensq);
+    }
+    let t2 = rd_cross(vh, t1);
+    let r = sqrt(u1);
+    let phi = RD_TAU * u2;
+    let p1 = r * cos(phi);
+    let s = 0.5 * (1.0 + vh.z);
+    let p2 = (1.0 - s) * sqrt(max(1.0 - p1 * p1, 0.0)) + s * r * sin(phi);
+    let nh = t1 * p1 + t2 * p2 + vh * sqrt(max(1.0 - p1 * p1 - p2 * p2, 0.0));
+    let h = rd_normalize(vec3<f32>(a * nh.x, a * nh.y, max(nh.z, 0.0)));
+    return h * (2.0 * rd_dot(lobe.wo, h)) - lobe.wo;
+}
+
+/// One pass's estimate at a hit: a map direction, a cosine direction and, with a specular
+/// term and a lobe roughness given (`env.weights.z`), a direction from a GGX lobe of that
+/// roughness about the view's mirror; the balance heuristic over the strategies taken.
 fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
     let u = rd_env_uniforms(id, pass_index);
+    let lobe = rd_lobe(s);
     var sum = vec3<f32>(0.0);
-    let m = rd_env_sample(u.x, u.y);
+    let m = rd_env_sample(u.a.x, u.a.y);
     let cos_m = rd_dot(s.n, m.d);
     if m.pdf > 0.0 && cos_m > 0.0 && any(m.le != vec3<f32>(0.0)) && rd_env_visible(s, m.d) {
-        sum += m.le * rd_env_f(s, m.d, cos_m) / (m.pdf + cos_m / RD_PI);
+        let wi = vec3<f32>(rd_dot(m.d, lobe.t), rd_dot(m.d, lobe.b), cos_m);
+        let p = m.pdf + cos_m / RD_PI + rd_lobe_pdf(lobe, wi);
+        sum += m.le * rd_env_f(s, m.d, cos_m) / p;
     }
-    let l = rd_cosine_sample(s.n, u.z, u.w);
+    let l = rd_cosine_sample(s.n, u.a.z, u.a.w);
     let cos_c = rd_dot(s.n, l);
     if cos_c > 0.0 {
         let e = rd_env_lookup(l);
         if any(e.xyz != vec3<f32>(0.0)) && rd_env_visible(s, l) {
-            sum += e.xyz * rd_env_f(s, l, cos_c) / (e.w + cos_c / RD_PI);
+            let wi = vec3<f32>(rd_dot(l, lobe.t), rd_dot(l, lobe.b), cos_c);
+            let p = e.w + cos_c / RD_PI + rd_lobe_pdf(lobe, wi);
+            sum += e.xyz * rd_env_f(s, l, cos_c) / p;
+        }
+    }
+    if lobe.alpha > 0.0 {
+        let wi = rd_lobe_sample(lobe, u.b.x, u.b.y);
+        let pl = rd_lobe_pdf(lobe, wi);
+        if pl > 0.0 {
+            let d = rd_normalize(lobe.t * wi.x + lobe.b * wi.y + s.n * wi.z);
+            let cos_l = rd_dot(s.n, d);
+            if cos_l > 0.0 {
+                let e = rd_env_lookup(d);
+                if any(e.xyz != vec3<f32>(0.0)) && rd_env_visible(s, d) {
+                    sum += e.xyz * rd_env_f(s, d, cos_l) / (e.w + cos_l / RD_PI + pl);
+                }
+            }
         }
     }
     return sum;
