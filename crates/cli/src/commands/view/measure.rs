@@ -104,6 +104,12 @@ pub fn measure(browser: Option<&Path>, url: &str, moves: u32) -> Result<Value, S
         &s,
         "performance.getEntriesByName('fastbrdf:settle').map(e => e.duration)",
     )?;
+    // The GPU's part of each frame (submission to read-back), the rest being the page's.
+    let gpu = numbers(
+        &mut b,
+        &s,
+        "performance.getEntriesByName('fastbrdf:frame').map(e => e.detail.gpu)",
+    )?;
     let at = |size: u64| -> Vec<f64> {
         frames
             .iter()
@@ -123,6 +129,7 @@ pub fn measure(browser: Option<&Path>, url: &str, moves: u32) -> Result<Value, S
         "frame_ms_at_size": summary(&at(full)),
         "frame_ms_at_preview": summary(&at(preview)),
         "settle_ms": summary(&settle),
+        "frame_gpu_ms": summary(&gpu),
         "alone_ms": {"size": summary(&alone_full), "preview": summary(&alone_preview)},
     }))
 }

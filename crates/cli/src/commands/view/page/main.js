@@ -322,7 +322,7 @@ async function task(fn) {
 // (plots, albedo, shader, the hooks' panes) follow once it has rested LAZY_MS: a frame is not
 // kept waiting behind computations that the next move would replace. Pending, they keep
 // document.body.dataset.ready at "0".
-const LAZY_MS = 150;
+const LAZY_MS = 300;
 let lazyTimer = null;
 function update(structure) {
   const q = paramQuery();
