@@ -128,12 +128,6 @@ fn bad_user_models_are_exit_2_naming_the_input_with_nothing_on_stdout() {
             "--metal gold",
         ),
         (vec!["eval", "--model", &glsl], "compile_error.glsl:7:"),
-        (
-            vec![
-                "render", "--gpu", "--model", &walter, "--env", "sky", "--out", "x.png",
-            ],
-            "--gpu",
-        ),
     ];
     for (args, needle) in cases {
         let o = fastbrdf(&args, PAIRS);

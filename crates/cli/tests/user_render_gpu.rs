@@ -106,7 +106,6 @@ fn render_gpu_of_a_users_model_rejects_bad_input_without_writing() {
             vec!["--model", &walter, "--param", "nope=1"],
             "no parameter 'nope'",
         ),
-        (vec!["--model", &walter, "--env", "sky"], "--env"),
         (
             vec!["--model", &walter, "--material", "gold-paint"],
             "--param only",
