@@ -14,9 +14,11 @@
 //!
 //! One tile: the page draws at most [`MAX_SAMPLES`] samples per side.
 
+use super::env::EnvData;
 use super::layouts::USER_PARAMS_BINDING;
 use super::objects::{KD_WORD, KS_WORD, Reach, object_data};
 use super::scene_data::{OccluderData, frame_data, lights_data};
+use super::split_sum::{Prefiltered, env_module_source};
 use super::{SHADER, Tile};
 use crate::context::GpuError;
 use crate::spec::Instance;
@@ -138,6 +140,39 @@ pub fn scene(scene: &Scene, opts: &Options) -> Result<WebScene, GpuError> {
     })
 }
 
+/// Environment light in a page's module: none, or `env.wgsl` with the split-sum terms of an
+/// environment model (`rd_dfg`; the stub without one), so that one module draws both the
+/// sampled picture and the split-sum shortcut (`EnvParams`' mode is a uniform).
+#[derive(Clone, Copy)]
+pub enum Env<'a> {
+    None,
+    Lit(Option<&'a ModelSpec>),
+}
+
+/// An environment's data for the page (group 3): the map and its sampling tables, and the
+/// split-sum's prefiltered maps (`split_sum::Prefiltered`).
+pub struct WebEnv {
+    pub data: EnvData,
+    pub prefiltered: Prefiltered,
+}
+
+impl WebEnv {
+    pub fn new(map: &fastbrdf_render::env::EnvMap) -> Self {
+        let data = EnvData::new(map);
+        let prefiltered = Prefiltered::new(&data);
+        Self { data, prefiltered }
+    }
+}
+
+/// `code` + the renderer + (with an environment) its part + `glue`: a page's module.
+fn assemble(code: &str, meshes: bool, env: Env, glue: &str) -> Result<String, GpuError> {
+    let env_part = match env {
+        Env::None => String::new(),
+        Env::Lit(dfg) => env_module_source(code, dfg)?,
+    };
+    Ok(format!("{code}\n{}\n{env_part}\n{glue}", renderer(meshes)))
+}
+
 /// A module for the page: the renderer's shaders with `rd_brdf`, and the numeric parameters
 /// it reads from its block, in order, with their values in `spec` (one `vec4` each, `.x`).
 pub struct WebModule {
@@ -149,7 +184,7 @@ pub struct WebModule {
 /// shades it, `ModelSpec::shaded`) as the runtime-parameter instance, every numeric parameter
 /// read from `fb_web_params` at group 1, binding 5. Errors: a coloured spec (the runtime form
 /// takes one value per parameter) and a model the renderer cannot shade.
-pub fn model_module(spec: &ModelSpec, meshes: bool) -> Result<WebModule, GpuError> {
+pub fn model_module(spec: &ModelSpec, meshes: bool, env: Env) -> Result<WebModule, GpuError> {
     let shaded = spec.shaded().map_err(|e| GpuError::Input(e.to_string()))?;
     if shaded.is_coloured() {
         return Err(GpuError::Input(format!(
@@ -175,19 +210,21 @@ pub fn model_module(spec: &ModelSpec, meshes: bool) -> Result<WebModule, GpuErro
         inst.function
     );
     Ok(WebModule {
-        wgsl: format!("{}\n{}\n{glue}", inst.module_source(), renderer(meshes)),
+        wgsl: assemble(&inst.module_source(), meshes, env, &glue)?,
         params: inst.sliders.clone(),
     })
 }
 
 /// The module of a user's shader: as `render_user` builds it (its parameters at group 1,
 /// binding 5, in `UserShader::param_block`'s layout).
-pub fn user_module(shader: &UserShader, meshes: bool) -> Result<String, GpuError> {
+pub fn user_module(shader: &UserShader, meshes: bool, env: Env) -> Result<String, GpuError> {
     let user = shader
         .wgsl_at(1, USER_PARAMS_BINDING)
         .map_err(|e| GpuError::Input(e.message))?;
-    Ok(format!(
-        "{user}\n{}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return fb_user_brdf(wi, wo);\n}}\n",
-        renderer(meshes)
-    ))
+    assemble(
+        &user,
+        meshes,
+        env,
+        "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {\n    return fb_user_brdf(wi, wo);\n}\n",
+    )
 }

@@ -133,6 +133,11 @@ pub struct Args {
     /// compare --measured`. A malformed file is exit 2 at start-up.
     #[arg(long, value_name = "FILE")]
     measured: Option<PathBuf>,
+    /// A latitude-longitude environment map (Radiance .hdr or OpenEXR, as `render --env`)
+    /// the page's WebGPU pictures may be lit by (its "light" menu: file); the built-in sky is
+    /// always offered.
+    #[arg(long, value_name = "FILE")]
+    env: Option<PathBuf>,
     /// A user's model, file:PATH (a BRDF Explorer .brdf file, or a .wgsl or .glsl function; the
     /// book's user-shaders page), listed beside the registry's models, as a model or a
     /// reference, evaluated on the GPU (Mesa's lavapipe without one); repeatable. A bad file or
@@ -171,7 +176,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let state = State::new(a.mesh.clone(), a.bench.clone(), a.measured.clone())?;
     let taken: Vec<&str> = state.measured.iter().map(|m| m.name.as_str()).collect();
     let users = users::load(&a.model, &a.param, &taken)?;
-    let state = Arc::new(state.with_users(users));
+    let state = Arc::new(state.with_users(users).with_env(a.env.as_deref())?);
     let port = if a.screenshot.is_some() || a.measure_frames.is_some() {
         0
     } else {

@@ -113,6 +113,8 @@ pub struct State {
     pub loaded_mesh: Option<Loaded>,
     pub mesh_path: Option<PathBuf>,
     pub mesh_name: Option<String>,
+    /// `--env FILE`: the lat-long map the page's WebGPU pictures may be lit by (`env=file`).
+    pub env_file: Option<(String, Arc<fastbrdf_render::env::EnvMap>)>,
     bench: Option<fastbrdf_analysis::speed::Report>,
     pub bench_source: Option<String>,
     generations: Mutex<HashMap<String, u64>>,
@@ -172,6 +174,7 @@ impl State {
             loaded_mesh,
             mesh_name: mesh.as_ref().map(|m| m.display().to_string()),
             mesh_path: mesh,
+            env_file: None,
             bench: report,
             bench_source: bench.map(|b| b.display().to_string()),
             generations: Mutex::new(HashMap::new()),
@@ -179,6 +182,15 @@ impl State {
             slots: Mutex::new((0, 0)),
             freed: Condvar::new(),
         })
+    }
+
+    /// The state with the environment map of `--env FILE` (read once; a bad file is exit 2).
+    pub fn with_env(mut self, path: Option<&std::path::Path>) -> Result<Self, CliError> {
+        if let Some(p) = path {
+            let map = fastbrdf_render::env::EnvMap::load(p)?;
+            self.env_file = Some((p.display().to_string(), Arc::new(map)));
+        }
+        Ok(self)
     }
 
     /// The state with the users' models `users` (loaded by [`super::users::load`]).

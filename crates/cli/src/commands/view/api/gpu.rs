@@ -12,7 +12,47 @@ use fastbrdf_render::render::Options;
 use fastbrdf_render::scene::{Light, Specular};
 use fastbrdf_render::setup::{self, Loaded, SceneSpec};
 use serde_json::{Value, json};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
+
+/// The environments' data for the page, computed once each (`sky`, `file`): the split-sum's
+/// prefiltered maps take a moment.
+fn web_env(state: &State, which: &str) -> Result<Option<Arc<web::WebEnv>>, CliError> {
+    static CACHE: OnceLock<Mutex<Vec<(String, Arc<web::WebEnv>)>>> = OnceLock::new();
+    let map = match which {
+        "none" => return Ok(None),
+        "sky" => None,
+        "file" => match &state.env_file {
+            Some((_, m)) => Some(m.clone()),
+            None => {
+                return Err(CliError::input(
+                    "env=file: the server was started without --env FILE",
+                ));
+            }
+        },
+        e => {
+            return Err(CliError::input(format!(
+                "env '{}': expected none, sky or file",
+                fastbrdf_io::shorten(e, 64)
+            )));
+        }
+    };
+    let cache = CACHE.get_or_init(|| Mutex::new(Vec::new()));
+    if let Some((_, e)) = cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .find(|(k, _)| k == which)
+    {
+        return Ok(Some(e.clone()));
+    }
+    let map = map.unwrap_or_else(|| Arc::new(fastbrdf_render::env::EnvMap::sky()));
+    let env = Arc::new(web::WebEnv::new(&map));
+    cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .push((which.to_string(), env.clone()));
+    Ok(Some(env))
+}
 
 /// The scene a query names (`mesh=sphere|mesh`, `light=X,Y,Z`), as `/api/render` builds it:
 /// its spec and the loaded geometry.
@@ -61,20 +101,28 @@ fn b64<T: Words>(data: &[T]) -> String {
     base64(&bytes)
 }
 
-/// `GET /api/gpu/scene?mesh=sphere|mesh&light=X,Y,Z&size=N&spp=S`: the scene as the GPU
+/// `GET /api/gpu/scene?mesh=sphere|mesh&light=X,Y,Z&size=N&spp=S&env=none|sky|file`: the scene as the GPU
 /// renderer's buffers, each little-endian base64 (`fastbrdf_gpu::render::web::WebScene`):
 /// `{width, height, spp, frame (u32), lights (f32), occluders (u32), nodes (u32),
 /// shadow_triangles (f32), background [r,g,b], objects: [{uniform (u32), whole (u32: kd 0,
 /// ks 1), texture: {width, height, texels (f32 RGBA)}, vertices (f32), triangles (u32),
 /// corners (f32) | null, count}], magma (768 bytes: the difference maps' colours, FLIP's
-/// magma as `compare::heat_map`)}`.
+/// magma as `compare::heat_map`), env: null | {width, height, texels (f32 RGBA: radiance and
+/// the texel's probability mass), tables (f32: the sampling CDFs), prefiltered: {width,
+/// height, levels, texels}} (group 3, `fastbrdf_gpu::render::env`)}`. With an environment
+/// the ambient term is 0, as `--env` makes it.
 pub fn scene_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let size = parse_u32(q, "size", 512, 16, MAX_SIZE)?;
     let spp = parse_u32(q, "spp", 1, 1, 4)?;
     let (spec, loaded) = scene_choice(state, q)?;
     // The specular term is the module's (the page's); the scene only carries the material.
     let any = fastbrdf::ModelSpec::parse("blinn-phong", &[])?;
-    let scene = setup::scene(&spec, loaded, Arc::new(Specular::new(&any)?));
+    let mut scene = setup::scene(&spec, loaded, Arc::new(Specular::new(&any)?));
+    let env = web_env(state, q.get("env").unwrap_or("none"))?;
+    if env.is_some() {
+        // As `setup::scene` with --env: the environment is the ambient light.
+        scene.ambient = glam::Vec3::ZERO;
+    }
     let opts = Options {
         width: size,
         height: size,
@@ -101,7 +149,17 @@ pub fn scene_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         &(0..256).map(|i| i as f32 / 255.0).collect::<Vec<_>>(),
         1.0,
     );
+    let env = env.map(|e| {
+        let (d, p) = (&e.data, &e.prefiltered);
+        json!({
+            "width": d.width, "height": d.height,
+            "texels": b64(&d.texels_rgba32f), "tables": b64(&d.tables),
+            "prefiltered": {"width": p.width, "height": p.height, "levels": p.levels,
+                            "texels": b64(&p.texels_rgba32f)},
+        })
+    });
     Ok(Response::json(&json!({
+        "env": env,
         "width": s.width, "height": s.height, "spp": s.spp,
         "frame": b64(&s.frame), "lights": b64(&s.lights),
         "occluders": b64(&s.occluders), "nodes": b64(&s.nodes),
@@ -111,8 +169,9 @@ pub fn scene_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     })))
 }
 
-/// `GET /api/gpu/shader?model=ID&mesh=sphere|mesh&CHOICE=VALUE...`: the render module of one
-/// model for a scene with or without meshes, for the
+/// `GET /api/gpu/shader?model=ID&mesh=sphere|mesh&env=none|sky|file&dfg=ENV_MODEL&CHOICE=VALUE...`:
+/// the render module of one model for a scene with or without meshes and an environment (with
+/// `dfg`'s split-sum terms, default `env-brdf`), for the
 /// page's WebGPU renderer: `{model, wgsl, block, params: [{name, default}], whole}`. A
 /// registry model is its shaded BRDF's runtime-parameter instance with the query's choices
 /// (numbers are the page's, one `vec4` each in the block at group 1, binding 5, in `params`
@@ -130,9 +189,29 @@ pub fn shader_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
             )));
         }
     };
+    let dfg_spec;
+    let env = match q.get("env").unwrap_or("none") {
+        "none" => web::Env::None,
+        "sky" | "file" => {
+            let dfg = q.get("dfg").unwrap_or("env-brdf");
+            dfg_spec = fastbrdf::ModelSpec::parse(dfg, &[])?;
+            if dfg_spec.kind() != fastbrdf::Kind::Env {
+                return Err(CliError::input(format!(
+                    "dfg '{dfg}': not an environment model (see `fastbrdf models --kind env`)"
+                )));
+            }
+            web::Env::Lit(Some(&dfg_spec))
+        }
+        e => {
+            return Err(CliError::input(format!(
+                "env '{}': expected none, sky or file",
+                fastbrdf_io::shorten(e, 64)
+            )));
+        }
+    };
     if let Some(u) = state.user(id) {
         let wgsl =
-            web::user_module(&u.shader, meshes).map_err(|e| CliError::input(e.to_string()))?;
+            web::user_module(&u.shader, meshes, env).map_err(|e| CliError::input(e.to_string()))?;
         return Ok(Response::json(&json!({
             "model": u.name, "wgsl": wgsl, "block": "user", "params": u.params_json(),
             "whole": true,
@@ -146,7 +225,7 @@ pub fn shader_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         None,
         Use::AsIs,
     )?;
-    let m = web::model_module(&spec, meshes).map_err(|e| CliError::input(e.to_string()))?;
+    let m = web::model_module(&spec, meshes, env).map_err(|e| CliError::input(e.to_string()))?;
     let params: Vec<Value> = m
         .params
         .iter()

@@ -75,6 +75,7 @@ pub fn models(state: &State) -> Response {
         "models": list,
         "materials": materials,
         "mesh": state.mesh_name,
+        "env": state.env_file.as_ref().map(|(name, _)| name),
         "bench": state.bench_source,
         "measured": state.measured.as_ref().map(|m| json!({
             "name": m.name, "file": m.path.display().to_string(), "samples": m.data.len(),

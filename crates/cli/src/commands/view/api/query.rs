@@ -57,9 +57,9 @@ pub const MAX_SIZE: u32 = 1024;
 pub const MAX_SPP: u32 = 4;
 pub const MAX_MODELS: usize = 6;
 /// Keys of the query that are not model parameters.
-const RESERVED: [&str; 13] = [
+const RESERVED: [&str; 15] = [
     "models", "ref", "theta", "lang", "size", "spp", "mesh", "light", "client", "gen", "model",
-    "quick", "flip",
+    "quick", "flip", "env", "dfg",
 ];
 
 /// The decoded query string, in order.

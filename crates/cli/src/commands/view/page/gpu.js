@@ -15,7 +15,7 @@
 const GPU = {
   on: false, why: "", device: null, format: null, L: null, tools: null,
   size: 512, spp: 1, scene: null, sceneKey: "", sceneLight: "", lightNow: "",
-  mods: new Map(), scenes: new Map(), preview: 128, budget: 100, fullMs: 0, settle: null, drawn: [], busy: false, again: false, since: null, bypass: false,
+  mods: new Map(), scenes: new Map(), pass: 0, maxPasses: 64, restart: false, preview: 128, budget: 100, fullMs: 0, settle: null, drawn: [], busy: false, again: false, since: null, bypass: false,
   stats: null, readback: null, metricsBusy: false, lastScale: 0, frames: 0,
 };
 const WEBGPU_TOOLS = `
@@ -23,6 +23,8 @@ struct Dims { w: u32, h: u32, n: u32, k: u32 }
 @group(0) @binding(0) var<uniform> dims: Dims;
 @group(0) @binding(1) var img: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read_write> px: array<u32>;
+// Per sample, the sum of the passes drawn so far (environment light: one pass per frame).
+@group(0) @binding(3) var<storage, read_write> acc: array<vec4<f32>>;
 // texture.rs linear_to_srgb, then Film::to_srgb8's (x 255 + 0.5) as u8.
 fn srgb8(c: f32) -> u32 {
   let x = clamp(c, 0.0, 1.0);
@@ -30,16 +32,26 @@ fn srgb8(c: f32) -> u32 {
   if x > 0.0031308 { s = 1.055 * pow(x, 1.0 / 2.4) - 0.055; }
   return u32(s * 255.0 + 0.5);
 }
-// The CPU's order: samples row by row within the pixel, summed, then scaled by 1 / N^2.
+// dims.k: the pass just drawn (0: the sum restarts with it).
+@compute @workgroup_size(8, 8) fn accumulate(@builtin(global_invocation_id) g: vec3<u32>) {
+  let W = dims.w * dims.n;
+  if g.x >= W || g.y >= dims.h * dims.n { return; }
+  let c = textureLoad(img, vec2<u32>(g.x, g.y), 0);
+  let i = g.y * W + g.x;
+  if dims.k == 0u { acc[i] = c; } else { acc[i] = acc[i] + c; }
+}
+// The CPU's order: samples row by row within the pixel, summed, then scaled by 1 / N^2 (and
+// by 1 / passes: exact for one pass).
 @compute @workgroup_size(8, 8) fn resolve(@builtin(global_invocation_id) g: vec3<u32>) {
   if g.x >= dims.w || g.y >= dims.h { return; }
   var sum = vec3<f32>(0.0);
   for (var sy = 0u; sy < dims.n; sy++) {
     for (var sx = 0u; sx < dims.n; sx++) {
-      sum += textureLoad(img, vec2<u32>(g.x * dims.n + sx, g.y * dims.n + sy), 0).xyz;
+      sum += acc[(g.y * dims.n + sy) * dims.w * dims.n + g.x * dims.n + sx].xyz;
     }
   }
   sum = sum * (1.0 / f32(dims.n * dims.n));
+  if dims.k > 0u { sum = sum * (1.0 / f32(dims.k + 1u)); }
   px[g.y * dims.w + g.x] = srgb8(sum.x) | (srgb8(sum.y) << 8u) | (srgb8(sum.z) << 16u);
 }
 `;
@@ -130,13 +142,23 @@ async function gpuInit() {
     visibility: d.createPipelineLayout({ bindGroupLayouts: [frame, object] }),
   };
   const C = GPUShaderStage.COMPUTE;
-  const resolveL = d.createBindGroupLayout({ entries: [e(0, C, un), e(1, C, { texture: { sampleType: "unfilterable-float" } }), e(2, C, { buffer: { type: "storage" } })] });
+  const resolveL = d.createBindGroupLayout({ entries: [e(0, C, un), e(1, C, { texture: { sampleType: "unfilterable-float" } }), e(2, C, { buffer: { type: "storage" } }), e(3, C, { buffer: { type: "storage" } })] });
+  // Group 3 under an environment light (crates/gpu/src/render/env.rs, "Bind group 3").
+  const envL = d.createBindGroupLayout({ entries: [e(0, F, un), e(1, F, { texture: { sampleType: "unfilterable-float" } }), e(2, F, ro), e(3, F, { texture: { sampleType: "unfilterable-float" } })] });
+  const emptyL = d.createBindGroupLayout({ entries: [] });
+  Object.assign(GPU.L, {
+    env: envL,
+    shadingEnv: d.createPipelineLayout({ bindGroupLayouts: [frame, object, ids, envL] }),
+    background: d.createPipelineLayout({ bindGroupLayouts: [frame, emptyL, ids, envL] }),
+    empty: d.createBindGroup({ layout: emptyL, entries: [] }),
+  });
   const diffL = d.createBindGroupLayout({ entries: [e(0, C, un), e(1, C, ro), e(2, C, ro), e(3, C, { buffer: { type: "storage" } }), e(4, C, { buffer: { type: "storage" } })] });
   const showL = d.createBindGroupLayout({ entries: [e(0, C, un), e(1, C, ro), e(2, C, ro), e(3, C, ro), e(4, C, ro), e(5, C, { buffer: { type: "storage" } })] });
   const mod = code => d.createShaderModule({ code });
   GPU.tools = await labelled("the page's own pipelines", (async () => ({
     resolveL, diffL, showL,
     resolve: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [resolveL] }), compute: { module: mod(WEBGPU_TOOLS), entryPoint: "resolve" } }),
+    accumulate: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [resolveL] }), compute: { module: mod(WEBGPU_TOOLS), entryPoint: "accumulate" } }),
     diff: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [diffL] }), compute: { module: mod(WEBGPU_DIFF), entryPoint: "diff_main" } }),
     show: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [showL] }), compute: { module: mod(WEBGPU_SHOW), entryPoint: "show" } }),
   }))());
@@ -155,15 +177,16 @@ function gpuDrawable() {
 function gpuModels() { return allIds().filter(id => MODELS[id] && !["shadowing", "fresnel", "env"].includes(MODELS[id].kind)); }
 function choiceKey(id) {
   const q = new URLSearchParams({ model: id, mesh: state.mesh });
+  if (state.env !== "none") { q.set("env", state.env); q.set("dfg", state.dfg || "env-brdf"); }
   for (const p of MODELS[id].params) if (p.type === "choice" && MODELS[id].kind !== "user") q.set(p.name, state.params[p.name] ?? choiceDefault(p));
   return q.toString();
 }
 
 async function gpuScene(size) {
-  const key = `${state.mesh}|${size}|${GPU.spp}`;
+  const key = `${state.mesh}|${size}|${GPU.spp}|${state.env}`;
   if (GPU.scenes.has(key)) return GPU.scenes.get(key);
-  if (![...GPU.scenes.keys()].every(k => k.startsWith(state.mesh + "|"))) GPU.scenes.clear();
-  const q = new URLSearchParams({ mesh: state.mesh, light: state.light, size, spp: GPU.spp });
+  if (![...GPU.scenes.keys()].every(k => k.startsWith(state.mesh + "|") && k.endsWith("|" + state.env))) GPU.scenes.clear();
+  const q = new URLSearchParams({ mesh: state.mesh, light: state.light, size, spp: GPU.spp, env: state.env });
   const s = await getJSON("/api/gpu/scene?" + q);
   const d = GPU.device, u32 = t => new Uint32Array(b64bytes(t).buffer), f32 = t => new Float32Array(b64bytes(t).buffer);
   const W = s.width * s.spp, H = s.height * s.spp, tex = (format, usage) => d.createTexture({ size: [W, H], format, usage });
@@ -186,6 +209,11 @@ async function gpuScene(size) {
     }),
   };
   sc.lights = gpuBuffer(STORAGE(), sc.lightsData);
+  if (s.env) {
+    const E = s.env, P = E.prefiltered, T = GPUTextureUsage.TEXTURE_BINDING | GPUTextureUsage.COPY_DST;
+    const texture = (w, h, data) => { const t = d.createTexture({ size: [w, h], format: "rgba32float", usage: T }); d.queue.writeTexture({ texture: t }, data, { bytesPerRow: 16 * w }, [w, h]); return t.createView(); };
+    sc.env = { E, map: texture(E.width, E.height, f32(E.texels)), tables: gpuBuffer(STORAGE(), f32(E.tables)), pre: texture(P.width, P.height * P.levels, f32(P.texels)) };
+  }
   sc.frameBind = d.createBindGroup({ layout: GPU.L.frame, entries: [sc.frame, sc.lights, sc.occ, sc.nodes, sc.tris].map((b, i) => ({ binding: i, resource: { buffer: b } })) });
   sc.idsBind = d.createBindGroup({ layout: GPU.L.ids, entries: [{ binding: 0, resource: sc.ids.createView() }] });
   sc.idsReady = false;
@@ -214,8 +242,8 @@ async function gpuModule(id) {
     const ci = await labelled(`${id}: compiling`, module.getCompilationInfo());
     const errs = ci.messages.filter(x => x.type === "error");
     if (errs.length) throw new Error(`${id}: WebGPU cannot compile its module: ${errs[0].lineNum}:${errs[0].linePos}: ${errs[0].message}`);
-    const pipe = (vs, fs, vis, buffers) => labelled(`${id}: the ${fs} pipeline`, d.createRenderPipelineAsync({
-      layout: vis ? GPU.L.visibility : GPU.L.shading,
+    const pipe = (vs, fs, vis, buffers, lit) => labelled(`${id}: the ${fs} pipeline`, d.createRenderPipelineAsync({
+      layout: vis ? GPU.L.visibility : lit ? GPU.L.shadingEnv : GPU.L.shading,
       vertex: { module, entryPoint: vs, buffers },
       primitive: { topology: "triangle-list", cullMode: "none" },
       depthStencil: { format: "depth32float", depthWriteEnabled: true, depthCompare: "less" },
@@ -223,9 +251,16 @@ async function gpuModule(id) {
     }));
     const corners = [{ arrayStride: 12, attributes: [{ shaderLocation: 0, offset: 0, format: "float32x3" }] }];
     const mesh = state.mesh === "mesh";
+    const lit = state.env !== "none", x = lit ? "_env" : "";
     Object.assign(m, {
-      info, mesh,
-      shade: await (mesh ? pipe("rd_vs_mesh", "rd_fs_mesh", false, corners) : pipe("rd_vs_full", "rd_fs_analytic", false, [])),
+      info, mesh, lit,
+      shade: await (mesh ? pipe("rd_vs_mesh", "rd_fs_mesh" + x, false, corners, lit) : pipe("rd_vs_full", "rd_fs_analytic" + x, false, [], lit)),
+      background: lit ? await labelled(`${id}: the background pipeline`, d.createRenderPipelineAsync({
+        layout: GPU.L.background, vertex: { module, entryPoint: "rd_vs_full" },
+        primitive: { topology: "triangle-list", cullMode: "none" },
+        depthStencil: { format: "depth32float", depthWriteEnabled: false, depthCompare: "always" },
+        fragment: { module, entryPoint: "rd_fs_env_background", targets: [{ format: "rgba32float" }] },
+      })) : null,
       vis: await (mesh ? pipe("rd_vs_mesh", "rd_fs_mesh_id", true, corners) : pipe("rd_vs_full", "rd_fs_analytic_id", true, [])),
       block: new Float32Array(4 * Math.max(1, info.params.length)),
       per: new Map(),
@@ -266,9 +301,16 @@ function perScene(m, sc) {
     { binding: 0, resource: { buffer: whole ? o.whole : o.uniform } }, { binding: 1, resource: o.view },
     { binding: 2, resource: { buffer: o.vertices } }, { binding: 3, resource: { buffer: o.triangles } },
     { binding: 4, resource: { buffer: GPU.dummy } }, { binding: 5, resource: { buffer: m.params } }] }));
+  const acc = gpuBuffer(STORAGE(), null, 16 * sc.W * sc.H), passDims = gpuBuffer(UNIFORM(), new Uint32Array([sc.s.width, sc.s.height, sc.s.spp, 0]));
   const resolve = d.createBindGroup({ layout: GPU.tools.resolveL, entries: [
-    { binding: 0, resource: { buffer: sc.dims } }, { binding: 1, resource: color.createView() }, { binding: 2, resource: { buffer: px } }] });
-  const out = { color, view: color.createView(), px, diff, binds, resolve };
+    { binding: 0, resource: { buffer: passDims } }, { binding: 1, resource: color.createView() }, { binding: 2, resource: { buffer: px } }, { binding: 3, resource: { buffer: acc } }] });
+  const out = { color, view: color.createView(), px, diff, binds, resolve, passDims };
+  if (sc.env) {
+    out.envParams = gpuBuffer(UNIFORM(), null, 48);
+    out.envBind = d.createBindGroup({ layout: GPU.L.env, entries: [
+      { binding: 0, resource: { buffer: out.envParams } }, { binding: 1, resource: sc.env.map },
+      { binding: 2, resource: { buffer: sc.env.tables } }, { binding: 3, resource: sc.env.pre }] });
+  }
   m.per.set(sc.key, out);
   return out;
 }
@@ -289,6 +331,21 @@ async function gpuFrame(size) {
     sc.lightNow = state.light;
   }
   const ref = state.ref && ids[0] === state.ref ? mods[0] : null, tests = ref ? mods.slice(1) : mods;
+  // The pass drawn: under an environment, frame k adds pass k (EnvData::params(k, 1, [1, 1]));
+  // a changed view restarts at 0. The split-sum shortcut (state.dfg) draws the models, not
+  // the reference, with its prefiltered maps and the model's alpha and f0.
+  const k = sc.env ? GPU.pass : 0;
+  if (sc.env) for (const m of mods) {
+    const E = sc.env.E, P = sc.env.E.prefiltered, split = !!state.dfg && m !== ref;
+    const num = (name, dflt) => { const v = Number(state.params[name] ?? ((MODELS[m.id].params.find(p => p.name === name) || {}).default ?? dflt)); return Number.isFinite(v) ? v : dflt; };
+    const n = num("n", NaN), alpha = Math.min(1, Math.max(1e-3, num("alpha", Number.isFinite(n) ? Math.sqrt(2 / (n + 2)) : 0.3)));
+    const w = new ArrayBuffer(48), u = new Uint32Array(w), f = new Float32Array(w);
+    u.set([E.width, E.height, split ? 0 : k, split ? 0 : 1]);
+    f.set([split ? 0 : 1, 1, alpha, split ? num("f0", 0.04) : 0], 4);
+    u.set([0, split ? 1 : 0, split ? P.width : 0, split ? P.height : 0], 8);
+    d.queue.writeBuffer(perScene(m, sc).envParams, 0, w);
+  }
+  for (const m of mods) d.queue.writeBuffer(perScene(m, sc).passDims, 12, new Uint32Array([k]));
   d.pushErrorScope("validation");
   const enc = d.createCommandEncoder();
   const bg = sc.s.background;
@@ -299,6 +356,11 @@ async function gpuFrame(size) {
     });
     p.setBindGroup(0, sc.frameBind);
     if (bind2) p.setBindGroup(2, sc.idsBind);
+    if (bind2 && m.lit) {
+      // The environment's background where no object is, then the objects.
+      p.setBindGroup(3, perScene(m, sc).envBind);
+      p.setPipeline(m.background); p.setBindGroup(1, GPU.L.empty); p.draw(3);
+    }
     p.setPipeline(pipeline);
     sc.objects.forEach((o, i) => {
       p.setBindGroup(1, perScene(m, sc).binds[i]);
@@ -308,9 +370,14 @@ async function gpuFrame(size) {
   };
   // Visibility: the same for every model (the scene's geometry), drawn once per scene.
   if (!sc.idsReady) { scenePass(sc.ids.createView(), { r: 0, g: 0, b: 0, a: 0 }, mods[0], mods[0].vis, false); sc.idsReady = true; }
-  for (const m of mods) scenePass(perScene(m, sc).view, { r: bg[0], g: bg[1], b: bg[2], a: 1 }, m, m.shade, true);
+  const clear = sc.env ? { r: 0, g: 0, b: 0, a: 1 } : { r: bg[0], g: bg[1], b: bg[2], a: 1 };
+  for (const m of mods) scenePass(perScene(m, sc).view, clear, m, m.shade, true);
   const groups = [Math.ceil(sc.s.width / 8), Math.ceil(sc.s.height / 8)];
   let cp = enc.beginComputePass();
+  cp.setPipeline(GPU.tools.accumulate);
+  for (const m of mods) { cp.setBindGroup(0, perScene(m, sc).resolve); cp.dispatchWorkgroups(Math.ceil(sc.W / 8), Math.ceil(sc.H / 8)); }
+  cp.end();
+  cp = enc.beginComputePass();
   cp.setPipeline(GPU.tools.resolve);
   for (const m of mods) { cp.setBindGroup(0, perScene(m, sc).resolve); cp.dispatchWorkgroups(...groups); }
   cp.end();
@@ -437,12 +504,15 @@ function gpuLightDrag(c) {
 // GPU.budget ms (a software adapter), a control's frames are drawn at GPU.preview pixels per
 // side and the full size follows once the control has rested 300 ms ("fastbrdf:settle").
 let gpuInput = null;
-function gpuRequest(since, full) {
+function gpuRequest(since, full, more) {
   if (since !== undefined && since !== null && GPU.since === null) GPU.since = since;
   if (full) GPU.wantFull = true;
+  // Any request but a progressive one restarts the environment's passes at 0.
+  if (!more) GPU.restart = true;
   if (GPU.busy) { GPU.again = true; return; }
   GPU.busy = true;
-  task(async () => {
+  let last = 0;
+  const run = async () => {
     try {
       do {
         GPU.again = false;
@@ -450,25 +520,34 @@ function gpuRequest(since, full) {
         const preview = since !== null && !GPU.wantFull && GPU.fullMs > GPU.budget;
         const size = preview ? GPU.preview : GPU.size;
         GPU.wantFull = false;
+        if (GPU.restart) { GPU.pass = 0; GPU.restart = false; }
         const t = performance.now();
         await gpuFrame(size);
         const end = performance.now();
-        if (!preview) GPU.fullMs = end - t;
-        const detail = Object.assign({ models: GPU.drawn.length, size }, GPU.phases);
+        if (!preview && GPU.pass === 0) GPU.fullMs = end - t;
+        last = size;
+        const detail = Object.assign({ models: GPU.drawn.length, size, pass: GPU.pass }, GPU.phases);
         if (since !== null) performance.measure("fastbrdf:frame", { start: since, end, detail });
         else if (GPU.settleSince) performance.measure("fastbrdf:settle", { start: GPU.settleSince, end, detail });
         GPU.settleSince = null;
+        if (GPU.scene.env) GPU.pass++;
         clearTimeout(GPU.settle);
         if (preview) GPU.settle = setTimeout(() => { GPU.settleSince = performance.now(); gpuRequest(null, true); }, 300);
       } while (GPU.again);
-      $("render-info").textContent = `(drawn by WebGPU in this browser: ${GPU.scene.s.width}x${GPU.scene.s.height}, ${GPU.spp * GPU.spp} spp; control to frame ${gpuMedian()})`;
+      const env = GPU.scene.env ? `, environment: ${GPU.pass} pass${GPU.pass === 1 ? "" : "es"}${state.dfg ? ", models split-sum (" + state.dfg + ")" : ""}` : "";
+      $("render-info").textContent = `(drawn by WebGPU in this browser: ${GPU.scene.s.width}x${GPU.scene.s.height}, ${GPU.spp * GPU.spp} spp${env}; control to frame ${gpuMedian()})`;
     } catch (e) {
       // What WebGPU cannot draw goes to the server, which says why if it cannot either.
       GPU.bypass = e.message; setStatus(e.message, true);
       document.body.dataset.gpuError = String(e.stack || e.message);
       renderAll(paramQuery());
     } finally { GPU.busy = false; }
-  });
+    // Under an environment, the picture improves by one pass per frame while nothing moves
+    // (not counted in document.body.dataset.ready), up to GPU.maxPasses at the full size.
+    if (GPU.on && GPU.scene && GPU.scene.env && last === GPU.size && GPU.pass < GPU.maxPasses && !GPU.again)
+      setTimeout(() => { if (!GPU.busy) gpuRequest(null, true, true); }, 0);
+  };
+  if (more) run(); else task(run);
 }
 function gpuMedian() {
   const t = performance.getEntriesByName("fastbrdf:frame").map(e => e.duration).sort((a, b) => a - b);
@@ -478,9 +557,25 @@ function gpuMedian() {
 // A control's input event: when the frame it causes starts to count.
 for (const type of ["input", "change"]) document.addEventListener(type, e => { gpuInput = e.timeStamp; }, true);
 
-HOOKS.start.push(async () => {
+HOOKS.start.push(async info => {
   try { await gpuInit(); } catch (e) { GPU.why = e.message; }
   document.body.dataset.renderer = GPU.on ? "webgpu" : "server";
+  // Environment light and the split-sum toggle, in the Scene section (WebGPU only).
+  const box = $("mesh").closest("section"), env = el("select", { id: "env" }), dfg = el("select", { id: "dfg" });
+  env.add(new Option("key light only", "none")); env.add(new Option("sky + key light", "sky"));
+  if (info.env) env.add(new Option(`${info.env} + key light`, "file"));
+  dfg.add(new Option("sampled", ""));
+  for (const m of info.models) if (m.kind === "env") dfg.add(new Option(`split-sum: ${m.id}`, m.id));
+  const note = GPU.on ? "" : " (WebGPU only: " + GPU.why + ")";
+  for (const [label, sel] of [["environment", env], ["models", dfg]]) {
+    sel.disabled = !GPU.on; sel.title = "the pictures' light" + note;
+    box.insertBefore(el("div", { class: "row" }, el("label", { for: sel.id }, label), sel), box.lastElementChild);
+  }
+  env.onchange = () => { state.env = env.value; writeHash(); renderAll(paramQuery()); };
+  dfg.onchange = () => { state.dfg = dfg.value; writeHash(); renderAll(paramQuery()); };
+});
+HOOKS.controls.push(() => {
+  if ($("env")) { $("env").value = state.env; $("dfg").value = state.dfg; }
 });
 HOOKS.render.push(() => {
   if (!GPU.on) { $("render-info").dataset.why = GPU.why; return false; }

@@ -9,7 +9,9 @@
 const HOOKS = { start: [], controls: [], update: [], plots: [], render: [] };
 const COLORS = ["#000000", "#e53935", "#1e88e5", "#43a047", "#fb8c00", "#8e24aa", "#00897b"];
 let MODELS = {}, INFO = null, MEAS = null; // MEAS: the --measured file's name, a reference only; users' models (--model file:PATH) are in MODELS, kind "user"
-let state = { models: ["flog"], ref: "pow", theta: 30, params: {}, mesh: "sphere", light: "0.5,0.7,0.6", lang: "wgsl", exp: "" };
+// env: the pictures' environment light (none, sky, file; WebGPU only, gpu.js), dfg: the
+// split-sum shortcut's environment model ("" for the sampled picture).
+let state = { models: ["flog"], ref: "pow", theta: 30, params: {}, mesh: "sphere", light: "0.5,0.7,0.6", lang: "wgsl", exp: "", env: "none", dfg: "" };
 let plotCtl = null, renderCtl = null, gen = 0, pending = 0, lastPlots = null, lastRender = null, flipPending = false;
 const client = Math.random().toString(36).slice(2);
 const $ = id => document.getElementById(id);
@@ -30,12 +32,14 @@ window.addEventListener("error", e => setStatus("script error: " + e.message, tr
 // ---- state <-> URL -------------------------------------------------------------------
 function readHash() {
   const q = new URLSearchParams(location.hash.slice(1));
-  const s = { models: [], ref: "", theta: 30, params: {}, mesh: "sphere", light: state.light, lang: "wgsl", exp: "" };
+  const s = { models: [], ref: "", theta: 30, params: {}, mesh: "sphere", light: state.light, lang: "wgsl", exp: "", env: "none", dfg: "" };
   for (const [k, v] of q) {
     if (k === "models") s.models = v.split(",").filter(x => x);
     else if (k === "ref") s.ref = v;
     else if (k === "theta") s.theta = Number(v);
     else if (k === "mesh") s.mesh = v;
+    else if (k === "env") s.env = v;
+    else if (k === "dfg") s.dfg = v;
     else if (k === "light") s.light = v;
     else if (k === "lang") s.lang = v;
     else if (k === "exp") s.exp = v;
@@ -55,6 +59,8 @@ function paramQuery() {
 function writeHash() {
   const q = paramQuery();
   q.set("mesh", state.mesh); q.set("light", state.light); q.set("lang", state.lang);
+  if (state.env !== "none") q.set("env", state.env);
+  if (state.dfg) q.set("dfg", state.dfg);
   if (state.exp) q.set("exp", state.exp);
   history.replaceState(null, "", "#" + q.toString());
   $("link").href = location.href;
