@@ -82,12 +82,13 @@ fastbrdf view --measured gold-metallic-paint.binary   (the MERL file as a refere
 fastbrdf view --model file:walter.brdf --param alphaG=0.2   (your BRDF beside the built-ins: #models=walter.brdf,cook-torrance)\n  \
 curl 'http://127.0.0.1:8000/api/errors?model=flog&ref=pow&n=100'\n\n\
 The whole view lives in the URL after #, so a link reproduces it. The JSON API (the book's\n\
-docs/book/src/explorer.md): /api/models, /api/plots, /api/albedo, /api/render, /api/flip, /api/errors, /api/shader, /api/material.\n\
+docs/book/src/explorer.md): /api/models, /api/plots, /api/panes, /api/albedo, /api/render, /api/flip, /api/errors, /api/shader, /api/material,\n\
+/api/gpu/scene, /api/gpu/shader (the page's WebGPU pictures), POST /api/user, /api/conform.\n\
 Bad requests get HTTP 400 with the message the CLI prints for the same input.\n\n\
 Limits (one client cannot take the server down): HTTP/1.1 only (HTTP/2 is refused with a GOAWAY);\n\
 at most 128 connections (--max-connections; lowered to leave 64 of the open-file limit free),\n\
-more get 503; request heads at most 16 KiB and 64 fields (431), targets 8 KiB (414); GET only,\n\
-bodies refused (413); a request head must arrive within 20 s (idle connections are closed), a\n\
+more get 503; request heads at most 16 KiB and 64 fields (431), targets 8 KiB (414); GET only\n\
+but POST /api/user (a user's model, at most 256 KiB), other bodies refused (413); a request head must arrive within 20 s (idle connections are closed), a\n\
 client that does not read an answer for 30 s is dropped; Host must name the bound address\n\
 (127.0.0.1, localhost or [::1] on loopback; --allow-host NAME for a proxy), else 403; /api/*\n\
 refuses cross-site requests (Sec-Fetch-Site cross-site or same-site, or an Origin that is not\n\

@@ -40,9 +40,20 @@ fn srgb8(c: f32) -> u32 {
   let i = g.y * W + g.x;
   if dims.k == 0u { acc[i] = c; } else { acc[i] = acc[i] + c; }
 }
-// The CPU's order: samples row by row within the pixel, summed, then scaled by 1 / N^2 (and
-// by 1 / passes: exact for one pass).
+// The CPU's order: samples row by row within the pixel, summed, then scaled by 1 / N^2.
 @compute @workgroup_size(8, 8) fn resolve(@builtin(global_invocation_id) g: vec3<u32>) {
+  if g.x >= dims.w || g.y >= dims.h { return; }
+  var sum = vec3<f32>(0.0);
+  for (var sy = 0u; sy < dims.n; sy++) {
+    for (var sx = 0u; sx < dims.n; sx++) {
+      sum += textureLoad(img, vec2<u32>(g.x * dims.n + sx, g.y * dims.n + sy), 0).xyz;
+    }
+  }
+  sum = sum * (1.0 / f32(dims.n * dims.n));
+  px[g.y * dims.w + g.x] = srgb8(sum.x) | (srgb8(sum.y) << 8u) | (srgb8(sum.z) << 16u);
+}
+// The same from the passes' sums (environment light), also scaled by 1 / passes.
+@compute @workgroup_size(8, 8) fn resolve_passes(@builtin(global_invocation_id) g: vec3<u32>) {
   if g.x >= dims.w || g.y >= dims.h { return; }
   var sum = vec3<f32>(0.0);
   for (var sy = 0u; sy < dims.n; sy++) {
@@ -50,8 +61,7 @@ fn srgb8(c: f32) -> u32 {
       sum += acc[(g.y * dims.n + sy) * dims.w * dims.n + g.x * dims.n + sx].xyz;
     }
   }
-  sum = sum * (1.0 / f32(dims.n * dims.n));
-  if dims.k > 0u { sum = sum * (1.0 / f32(dims.k + 1u)); }
+  sum = sum * (1.0 / f32(dims.n * dims.n)) * (1.0 / f32(dims.k + 1u));
   px[g.y * dims.w + g.x] = srgb8(sum.x) | (srgb8(sum.y) << 8u) | (srgb8(sum.z) << 16u);
 }
 `;
@@ -158,6 +168,7 @@ async function gpuInit() {
   GPU.tools = await labelled("the page's own pipelines", (async () => ({
     resolveL, diffL, showL,
     resolve: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [resolveL] }), compute: { module: mod(WEBGPU_TOOLS), entryPoint: "resolve" } }),
+    resolvePasses: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [resolveL] }), compute: { module: mod(WEBGPU_TOOLS), entryPoint: "resolve_passes" } }),
     accumulate: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [resolveL] }), compute: { module: mod(WEBGPU_TOOLS), entryPoint: "accumulate" } }),
     diff: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [diffL] }), compute: { module: mod(WEBGPU_DIFF), entryPoint: "diff_main" } }),
     show: await d.createComputePipelineAsync({ layout: d.createPipelineLayout({ bindGroupLayouts: [showL] }), compute: { module: mod(WEBGPU_SHOW), entryPoint: "show" } }),
@@ -301,7 +312,7 @@ function perScene(m, sc) {
     { binding: 0, resource: { buffer: whole ? o.whole : o.uniform } }, { binding: 1, resource: o.view },
     { binding: 2, resource: { buffer: o.vertices } }, { binding: 3, resource: { buffer: o.triangles } },
     { binding: 4, resource: { buffer: GPU.dummy } }, { binding: 5, resource: { buffer: m.params } }] }));
-  const acc = gpuBuffer(STORAGE(), null, 16 * sc.W * sc.H), passDims = gpuBuffer(UNIFORM(), new Uint32Array([sc.s.width, sc.s.height, sc.s.spp, 0]));
+  const acc = gpuBuffer(STORAGE(), null, sc.env ? 16 * sc.W * sc.H : 16), passDims = gpuBuffer(UNIFORM(), new Uint32Array([sc.s.width, sc.s.height, sc.s.spp, 0]));
   const resolve = d.createBindGroup({ layout: GPU.tools.resolveL, entries: [
     { binding: 0, resource: { buffer: passDims } }, { binding: 1, resource: color.createView() }, { binding: 2, resource: { buffer: px } }, { binding: 3, resource: { buffer: acc } }] });
   const out = { color, view: color.createView(), px, diff, binds, resolve, passDims };
@@ -374,11 +385,13 @@ async function gpuFrame(size) {
   for (const m of mods) scenePass(perScene(m, sc).view, clear, m, m.shade, true);
   const groups = [Math.ceil(sc.s.width / 8), Math.ceil(sc.s.height / 8)];
   let cp = enc.beginComputePass();
-  cp.setPipeline(GPU.tools.accumulate);
-  for (const m of mods) { cp.setBindGroup(0, perScene(m, sc).resolve); cp.dispatchWorkgroups(Math.ceil(sc.W / 8), Math.ceil(sc.H / 8)); }
-  cp.end();
-  cp = enc.beginComputePass();
-  cp.setPipeline(GPU.tools.resolve);
+  if (sc.env) {
+    cp.setPipeline(GPU.tools.accumulate);
+    for (const m of mods) { cp.setBindGroup(0, perScene(m, sc).resolve); cp.dispatchWorkgroups(Math.ceil(sc.W / 8), Math.ceil(sc.H / 8)); }
+    cp.end();
+    cp = enc.beginComputePass();
+  }
+  cp.setPipeline(sc.env ? GPU.tools.resolvePasses : GPU.tools.resolve);
   for (const m of mods) { cp.setBindGroup(0, perScene(m, sc).resolve); cp.dispatchWorkgroups(...groups); }
   cp.end();
   const statsWords = 1 + 256 * Math.max(1, tests.length);
