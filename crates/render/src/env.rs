@@ -246,6 +246,19 @@ impl EnvMap {
         })
     }
 
+    /// Per texel (row-major), its radiance and probability mass (the masses sum to 1): the
+    /// distribution [`EnvMap::sample`] draws from, for a GPU twin (`fastbrdf_gpu::render::env`).
+    pub fn texels(&self) -> impl Iterator<Item = (Vec3, f32)> + '_ {
+        self.cells.iter().map(|c| (c.rgb, c.mass))
+    }
+
+    /// The sampling tables: the cumulative distribution over rows (height + 1 entries), and
+    /// per row the one over its columns (width + 1 entries each), as [`EnvMap::sample`] reads
+    /// them.
+    pub fn tables(&self) -> (&[f32], &[f32]) {
+        (&self.marginal, &self.conditional)
+    }
+
     /// A constant map of radiance `c` (the furnace: `c` = 1).
     pub fn constant(c: Vec3) -> Self {
         Self::from_texels(16, 8, vec![c; 128]).expect("a valid constant map")

@@ -61,10 +61,8 @@ use super::scene_data::check_binding;
 use super::split_sum::{DFG_STUB, Prefiltered, SplitSum};
 use super::{COLOR_FORMAT, DEPTH_FORMAT, SHADER};
 use crate::context::{GpuError, validated};
-use fastbrdf_render::env::{EnvMap, uv_to_dir};
+use fastbrdf_render::env::EnvMap;
 use fastbrdf_render::render::Sampler;
-use glam::Vec3;
-use std::f32::consts::PI;
 use wgpu::util::DeviceExt;
 
 /// The environment's shader, appended to the render module (after `render.wgsl`, before the
@@ -93,66 +91,21 @@ pub struct EnvData {
     pub tables: Vec<f32>,
 }
 
-fn lum(c: Vec3) -> f32 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
-}
-
 impl EnvData {
-    /// The data of `map`: its texels (read at their centres, where `EnvMap::radiance` returns
-    /// each texel's own value) and its sampling distribution, built as `EnvMap::from_texels`
-    /// builds it (luminance x sin theta at the row's centre, in f64; a black map falls back
-    /// to sin theta).
+    /// The data of `map`: its texels and its sampling distribution, the very tables the CPU
+    /// renderer draws from (`EnvMap::texels`, `EnvMap::tables`).
     pub fn new(map: &EnvMap) -> Self {
-        let (w, h) = (map.width as usize, map.height as usize);
-        let mut texels = Vec::with_capacity(w * h);
-        for r in 0..h {
-            for c in 0..w {
-                let (d, _) = uv_to_dir((c as f32 + 0.5) / w as f32, (r as f32 + 0.5) / h as f32);
-                texels.push(map.radiance(d));
-            }
-        }
-        let black = texels.iter().all(|t| lum(*t) <= 0.0);
-        let mut weights = vec![0.0f64; w * h];
-        for r in 0..h {
-            let st = (PI * (r as f32 + 0.5) / h as f32).sin() as f64;
-            for c in 0..w {
-                let l = if black {
-                    1.0
-                } else {
-                    lum(texels[r * w + c]) as f64
-                };
-                weights[r * w + c] = l * st;
-            }
-        }
-        let total: f64 = weights.iter().sum();
-        let mut tables = Vec::with_capacity(h + 1 + h * (w + 1));
-        let mut conditional = Vec::with_capacity(h * (w + 1));
-        let mut acc = 0.0f64;
-        tables.push(0.0);
-        for r in 0..h {
-            let row = &weights[r * w..(r + 1) * w];
-            let sum: f64 = row.iter().sum();
-            let mut a = 0.0f64;
-            conditional.push(0.0);
-            for &x in row {
-                a += x;
-                conditional.push(if sum > 0.0 { (a / sum) as f32 } else { 0.0 });
-            }
-            acc += sum;
-            tables.push((acc / total) as f32);
-        }
-        tables.extend(conditional);
-        let n = (w * h) as f32;
-        let texels_rgba32f = texels
-            .iter()
-            .zip(&weights)
-            .flat_map(|(t, x)| [t.x, t.y, t.z, (x / total) as f32 * n])
+        let n = (map.width * map.height) as f32;
+        let texels_rgba32f = map
+            .texels()
+            .flat_map(|(t, mass)| [t.x, t.y, t.z, mass * n])
             .collect();
+        let (marginal, conditional) = map.tables();
         Self {
             width: map.width,
             height: map.height,
             texels_rgba32f,
-            tables,
+            tables: [marginal, conditional].concat(),
         }
     }
 
@@ -558,6 +511,8 @@ fn background_pipeline(
 mod tests {
     use super::*;
     use fastbrdf_render::env::Rng;
+    use glam::Vec3;
+    use std::f32::consts::PI;
 
     /// The data's texels, densities and draws are the CPU map's: the radiance and density at
     /// the texel of each drawn direction, and the direction a draw of the tables gives.
