@@ -54,7 +54,7 @@ fn web_env(state: &State, which: &str) -> Result<Option<Arc<web::WebEnv>>, CliEr
     Ok(Some(env))
 }
 
-/// The scene a query names (`mesh=sphere|mesh`, `light=X,Y,Z`), as `/api/render` builds it:
+/// The scene a query names (`mesh=sphere|mesh`, `light=X,Y,Z`), for `/api/render` and the page:
 /// its spec and the loaded geometry.
 pub fn scene_choice<'a>(state: &'a State, q: &Query) -> Result<(SceneSpec, &'a Loaded), CliError> {
     let mut spec = SceneSpec::new();

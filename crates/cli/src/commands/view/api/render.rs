@@ -10,7 +10,7 @@ use crate::commands::view::state::{State, client_gone};
 use fastbrdf_render::compare::{self, Metrics};
 use fastbrdf_render::film::png_bytes;
 use fastbrdf_render::render::{Options, Shading, render};
-use fastbrdf_render::scene::{Light, Specular};
+use fastbrdf_render::scene::Specular;
 use fastbrdf_render::setup;
 use fastbrdf_render::user::UserRgb;
 use rayon::prelude::*;
@@ -85,27 +85,8 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
     let mode = flip_mode(q)?;
     let size = parse_u32(q, "size", 256, 16, MAX_SIZE)?;
     let spp = parse_u32(q, "spp", 1, 1, MAX_SPP)?;
-    let mut spec = setup::SceneSpec::new();
-    match q.get("mesh").unwrap_or("sphere") {
-        "sphere" => {}
-        "mesh" => {
-            if state.loaded_mesh.is_none() {
-                return Err(CliError::input(
-                    "mesh=mesh: the server was started without --mesh",
-                ));
-            }
-        }
-        m => {
-            return Err(CliError::input(format!(
-                "mesh '{}': expected sphere or mesh",
-                fastbrdf_io::shorten(m, 64)
-            )));
-        }
-    }
-    let use_mesh = q.get("mesh") == Some("mesh");
-    if let Some(l) = q.get("light") {
-        spec.lights = vec![Light::parse(&format!("dir:{l}"))?];
-    }
+    // The scene (mesh or sphere, light) as the page's WebGPU pictures take it.
+    let (scene_spec, loaded) = super::gpu::scene_choice(state, q)?;
     let client = q.get("client").unwrap_or("").to_string();
     let generation = match q.get("gen") {
         Some(g) => g.parse::<u64>().map_err(|_| {
@@ -117,18 +98,6 @@ pub fn render_endpoint(state: &State, q: &Query) -> Result<Response, CliError> {
         None => 0,
     };
     state.note_generation(&client, generation);
-    let loaded = if use_mesh {
-        state.loaded_mesh.as_ref().expect("checked above")
-    } else {
-        &state.loaded_sphere
-    };
-    let scene_spec = if use_mesh {
-        let mut s = spec.clone();
-        s.mesh = state.mesh_path.clone();
-        s
-    } else {
-        spec
-    };
     let opts = Options {
         width: size,
         height: size,
