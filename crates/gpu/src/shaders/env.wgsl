@@ -248,37 +248,6 @@ fn rd_cosine_sample(n: vec3<f32>, u1: f32, u2: f32) -> vec3<f32> {
 
 // ---- shading ---------------------------------------------------------------------------------
 
-/// A hit as the environment pass sees it (rd_shade's prologue: point, view direction,
-/// shading normal, unbumped normal, kd x albedo).
-struct RdSurface {
-    p: vec3<f32>,
-    v: vec3<f32>,
-    n: vec3<f32>,
-    g: vec3<f32>,
-    base: vec3<f32>,
-}
-
-fn rd_env_surface(r: RdRay, hit: RdHit) -> RdSurface {
-    let p = r.o + hit.t * r.d;
-    let v = -r.d;
-    var n = hit.n;
-    if rd_dot(hit.n, v) < 0.0 {
-        n = -hit.n;
-    }
-    let g = n;
-    if object.flags.z != 0u {
-        let pn = rd_perturb(p, n);
-        if rd_dot(pn, v) > 0.0 {
-            n = pn;
-        }
-    }
-    var albedo = object.albedo.xyz;
-    if object.flags.y != 0u {
-        albedo = albedo * rd_texture(hit.uv);
-    }
-    return RdSurface(p, v, n, g, albedo * object.albedo.w);
-}
-
 /// environment.rs's `visible`: light from `l` reaches the hit (no shadow ray where only the
 /// bumped normal faces `l`).
 fn rd_env_visible(s: RdSurface, l: vec3<f32>) -> bool {
@@ -462,7 +431,7 @@ fn rd_env_shade(pos: vec2<f32>, r: RdRay, hit: RdHit) -> vec3<f32> {
     if env.weights.y != 0.0 {
         out = rd_shade(r, hit) * env.weights.y;
     }
-    let s = rd_env_surface(r, hit);
+    let s = rd_surface(r, hit);
     if env.options.y == 1u {
         return out + rd_env_split(s) * env.weights.y;
     }

@@ -613,16 +613,24 @@ fn rd_light_at(l: Light, p: vec3<f32>) -> RdPair {
     return RdPair(d / sqrt(d2), l.color.xyz * (l.color.w / d2));
 }
 
-/// The radiance of a hit: two-sided normal, micro-relief, texture, ambient, then per light
-/// the diffuse and the specular term, accumulated in the CPU's order.
-fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
+/// A hit as shading sees it: point, view direction, shading normal (two-sided, bumped),
+/// unbumped normal (shadow rays leave along it), kd x albedo (textured).
+struct RdSurface {
+    p: vec3<f32>,
+    v: vec3<f32>,
+    n: vec3<f32>,
+    g: vec3<f32>,
+    base: vec3<f32>,
+}
+
+/// The shading prologue of render_tile (and of the environment's passes, env.wgsl).
+fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
     let p = r.o + hit.t * r.d;
     let v = -r.d;
     var n = hit.n;
     if rd_dot(hit.n, v) < 0.0 {
         n = -hit.n;
     }
-    // The unbumped normal: shadow rays leave along it.
     let g = n;
     if object.flags.z != 0u {
         let pn = rd_perturb(p, n);
@@ -634,7 +642,18 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
     if object.flags.y != 0u {
         albedo = albedo * rd_texture(hit.uv);
     }
-    let base = albedo * object.albedo.w;
+    return RdSurface(p, v, n, g, albedo * object.albedo.w);
+}
+
+/// The radiance of a hit: two-sided normal, micro-relief, texture, ambient, then per light
+/// the diffuse and the specular term, accumulated in the CPU's order.
+fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
+    let s = rd_surface(r, hit);
+    let p = s.p;
+    let v = s.v;
+    let n = s.n;
+    let g = s.g;
+    let base = s.base;
     let ks = object.mat.x;
     var radiance = frame.ambient.xyz * base;
     for (var i = 0u; i < frame.size.w; i++) {
