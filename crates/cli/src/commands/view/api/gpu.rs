@@ -14,10 +14,13 @@ use fastbrdf_render::setup::{self, Loaded, SceneSpec};
 use serde_json::{Value, json};
 use std::sync::{Arc, Mutex, OnceLock};
 
+/// An environment's data by its name in the query.
+type Cached = (String, Arc<web::WebEnv>);
+
 /// The environments' data for the page, computed once each (`sky`, `file`): the split-sum's
 /// prefiltered maps take a moment.
 fn web_env(state: &State, which: &str) -> Result<Option<Arc<web::WebEnv>>, CliError> {
-    static CACHE: OnceLock<Mutex<Vec<(String, Arc<web::WebEnv>)>>> = OnceLock::new();
+    static CACHE: OnceLock<Mutex<Vec<Cached>>> = OnceLock::new();
     let map = match which {
         "none" => return Ok(None),
         "sky" => None,
