@@ -4,18 +4,9 @@
 //! bad `--sampler` and `--aa` values; the furnace through the CLI.
 
 mod common;
-use common::{fastbrdf, stderr, temp_dir};
+use common::{fastbrdf, hdr, stderr, temp_dir};
 use std::path::Path;
 use std::process::Output;
-
-/// A flat (uncompressed) Radiance file: `w` x `h` texels of radiance 1 (RGBE 128,128,128,129).
-fn hdr(w: u32, h: u32) -> Vec<u8> {
-    let mut b = format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {h} +X {w}\n").into_bytes();
-    for _ in 0..w * h {
-        b.extend([128, 128, 128, 129]);
-    }
-    b
-}
 
 fn exr(path: &Path, w: usize, h: usize, bad: (f32, f32, f32)) {
     exr::prelude::write_rgb_file(path, w, h, |x, y| {

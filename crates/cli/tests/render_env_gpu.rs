@@ -4,17 +4,8 @@
 //! is set.
 
 mod common;
-use common::{fastbrdf, have_gpu, stderr, temp_dir};
+use common::{fastbrdf, have_gpu, hdr, stderr, temp_dir};
 use std::path::Path;
-
-/// A flat (uncompressed) Radiance file: `w` x `h` texels of radiance 1 (RGBE 128,128,128,129).
-fn hdr(w: u32, h: u32) -> Vec<u8> {
-    let mut b = format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {h} +X {w}\n").into_bytes();
-    for _ in 0..w * h {
-        b.extend([128, 128, 128, 129]);
-    }
-    b
-}
 
 fn linear(p: &Path) -> Vec<f32> {
     image::open(p).unwrap().to_rgb32f().into_raw()

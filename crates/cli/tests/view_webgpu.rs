@@ -428,3 +428,26 @@ fn environment_light_accumulates_to_render_gpu_env() {
     eprintln!("split-sum (env-brdf) against the sampled picture: max {max}/255, PSNR {psnr:.1} dB");
     assert!(max > 0, "the split-sum toggle did not change the picture");
 }
+
+/// `view --env FILE`: the page's scene carries the map (`env=file`); without the flag,
+/// `env=file` is a 400 naming it, and a bad `env` value too.
+#[test]
+fn the_env_file_reaches_the_page() {
+    let d = common::temp_dir("webgpu-env");
+    let map = d.join("white.hdr");
+    std::fs::write(&map, common::hdr(32, 16)).unwrap();
+    let s = serve(&["--env", map.to_str().unwrap()]);
+    let (status, v) = explorer::get_json(&s.addr, "/api/gpu/scene?size=32&env=file");
+    assert_eq!(status, 200, "{v}");
+    assert_eq!(v["env"]["width"], 32);
+    assert_eq!(v["env"]["prefiltered"]["levels"], 7);
+    let models = explorer::ok_json(&s.addr, "/api/models");
+    assert_eq!(models["env"], map.to_str().unwrap());
+    let plain = serve(&[]);
+    let (status, v) = explorer::get_json(&plain.addr, "/api/gpu/scene?size=32&env=file");
+    assert_eq!(status, 400);
+    assert!(v["error"].as_str().unwrap().contains("--env"), "{v}");
+    let (status, v) = explorer::get_json(&plain.addr, "/api/gpu/shader?model=flog&env=moon");
+    assert_eq!(status, 400);
+    assert!(v["error"].as_str().unwrap().contains("env 'moon'"), "{v}");
+}

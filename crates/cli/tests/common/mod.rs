@@ -63,3 +63,12 @@ pub fn have_gpu() -> bool {
 pub fn gpu_data(rel: &str) -> String {
     format!("{}/../gpu/tests/data/{rel}", env!("CARGO_MANIFEST_DIR"))
 }
+
+/// A flat (uncompressed) Radiance file: `w` x `h` texels of radiance 1 (RGBE 128,128,128,129).
+pub fn hdr(w: u32, h: u32) -> Vec<u8> {
+    let mut b = format!("#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {h} +X {w}\n").into_bytes();
+    for _ in 0..w * h {
+        b.extend([128, 128, 128, 129]);
+    }
+    b
+}
