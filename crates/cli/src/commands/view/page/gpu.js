@@ -580,7 +580,7 @@ HOOKS.start.push(async info => {
   dfg.add(new Option("sampled", ""));
   for (const m of info.models) if (m.kind === "env") dfg.add(new Option(`split-sum: ${m.id}`, m.id));
   const note = GPU.on ? "" : " (WebGPU only: " + GPU.why + ")";
-  for (const [label, sel] of [["environment", env], ["models", dfg]]) {
+  for (const [label, sel] of [["env", env], ["IBL", dfg]]) {
     sel.disabled = !GPU.on; sel.title = "the pictures' light" + note;
     box.insertBefore(el("div", { class: "row" }, el("label", { for: sel.id }, label), sel), box.lastElementChild);
   }
