@@ -41,7 +41,7 @@
 //!
 //! All in the fragment stage. The module ends with `rd_dfg(cos_v, alpha) -> vec2<f32>`:
 //! [`super::split_sum::DFG_STUB`] in the sampled mode, the environment model's terms in the
-//! split-sum mode ([`super::split_sum::dfg_glue`]); [`super::split_sum::env_module_source`]
+//! split-sum mode ([`super::split_sum::dfg_glue`]); [`env_module_source`]
 //! gives what follows `render.wgsl`.
 //! The shading pass's pipelines use the entry points
 //! `rd_fs_analytic_env` and `rd_fs_mesh_env` instead of `rd_fs_analytic` and `rd_fs_mesh`
@@ -58,7 +58,7 @@
 
 use super::layouts::Layouts;
 use super::scene_data::check_binding;
-use super::split_sum::{DFG_STUB, Prefiltered, SplitSum};
+use super::split_sum::{DFG_STUB, Prefiltered, SplitSum, dfg_glue};
 use super::{COLOR_FORMAT, DEPTH_FORMAT, SHADER};
 use crate::context::{GpuError, validated};
 use fastbrdf_render::env::EnvMap;
@@ -212,6 +212,23 @@ fn params(
     ]
 }
 
+/// What follows `render.wgsl` in the module of a scene with an environment (for a browser
+/// building the module itself): `env.wgsl` ([`ENV_SHADER`]) and `rd_dfg`, the
+/// split-sum terms of `dfg` (an environment model) or, with none, the stub
+/// ([`DFG_STUB`]); `module` is the module's other code (the model library's items and the
+/// model's function, or a user's shader). The module is then
+/// `module + render.wgsl + this + the rd_brdf glue`, as `render::render` compiles it.
+pub fn env_module_source(
+    module: &str,
+    dfg: Option<&fastbrdf::ModelSpec>,
+) -> Result<String, GpuError> {
+    let glue = match dfg {
+        Some(d) => dfg_glue(d, module)?,
+        None => DFG_STUB.to_string(),
+    };
+    Ok(format!("{}\n{glue}\n", ENV_SHADER))
+}
+
 /// The environment's GPU resources: group 3, its layouts, the background pipeline.
 pub(super) struct GpuEnv {
     pub(super) data_size: (u32, u32),
@@ -245,7 +262,7 @@ impl GpuEnv {
             return Err(GpuError::Input("the scene has no environment".into()));
         };
         let data = EnvData::new(&env.map);
-        let split = split.map(|s| (s.clone(), Prefiltered::new(&data)));
+        let split = split.map(|s| (s.clone(), Prefiltered::new(&env.map)));
         if data.width > limits.max_texture_dimension_2d {
             return Err(GpuError::Input(format!(
                 "the environment map is {}x{}: wider than the GPU's largest texture ({}); \

@@ -2,10 +2,10 @@
 //! shapes and meshes), the bind group layouts they share, and one pass over the scene's objects.
 
 use super::env::GpuEnv;
+use super::env::env_module_source;
 use super::layouts::Layouts;
 use super::layouts::USER_PARAMS_BINDING;
 use super::objects::GpuObject;
-use super::split_sum::env_module_source;
 use super::{COLOR_FORMAT, DEPTH_FORMAT, ID_FORMAT, SHADER, Tile};
 use crate::context::{GpuError, validated};
 use crate::spec::Instance;

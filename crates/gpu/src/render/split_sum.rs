@@ -28,12 +28,11 @@
 //! bilinearly (texel centres; wrapping in longitude), linearly between the two levels around
 //! `sqrt(alpha)`.
 
-use super::env::EnvData;
 use crate::context::GpuError;
 use crate::spec::Instance;
 use fastbrdf::ModelSpec;
 use fastbrdf::model::Kind;
-use fastbrdf_render::env::uv_to_dir;
+use fastbrdf_render::env::{EnvMap, uv_to_dir};
 use fastbrdf_render::film::Film;
 use fastbrdf_render::render::Options;
 use fastbrdf_render::scene::Scene;
@@ -110,14 +109,10 @@ fn centres(w: u32, h: u32) -> Vec<(Vec3, f32)> {
 }
 
 impl Prefiltered {
-    /// The prefiltered maps of `data`'s map.
-    pub fn new(data: &EnvData) -> Self {
-        let texels: Vec<Vec3> = data
-            .texels_rgba32f
-            .chunks_exact(4)
-            .map(|t| Vec3::new(t[0], t[1], t[2]))
-            .collect();
-        let (w, h) = (data.width, data.height);
+    /// The prefiltered maps of `map`.
+    pub fn new(map: &EnvMap) -> Self {
+        let texels: Vec<Vec3> = map.texels().map(|(t, _)| t).collect();
+        let (w, h) = (map.width, map.height);
         // A smaller map is read at the finer grid too (its texels repeated), so that the
         // sums over directions are as fine as for a large one.
         let src_size = (SOURCE_WIDTH, SOURCE_WIDTH / 2);
@@ -279,20 +274,6 @@ pub fn dfg_glue(dfg: &ModelSpec, module: &str) -> Result<String, GpuError> {
     ))
 }
 
-/// What follows `render.wgsl` in the module of a scene with an environment (for a browser
-/// building the module itself): `env.wgsl` ([`super::env::ENV_SHADER`]) and `rd_dfg`, the
-/// split-sum terms of `dfg` (an environment model) or, with none, the stub
-/// ([`DFG_STUB`]); `module` is the module's other code (the model library's items and the
-/// model's function, or a user's shader). The module is then
-/// `module + render.wgsl + this + the rd_brdf glue`, as `render::render` compiles it.
-pub fn env_module_source(module: &str, dfg: Option<&ModelSpec>) -> Result<String, GpuError> {
-    let glue = match dfg {
-        Some(d) => dfg_glue(d, module)?,
-        None => DFG_STUB.to_string(),
-    };
-    Ok(format!("{}\n{glue}\n", super::env::ENV_SHADER))
-}
-
 /// Renders `scene` under its environment with the split-sum shortcut (see the module's
 /// header), `dfg` the environment model giving its terms; direct lights and the background as
 /// in [`super::render`]. Errors: those of [`super::render`], a scene without an environment,
@@ -323,7 +304,7 @@ mod tests {
     /// constant (the sums are normalised, the solid angles sum to 4 pi).
     #[test]
     fn a_constant_map_prefilters_to_itself() {
-        let p = Prefiltered::new(&EnvData::new(&EnvMap::constant(Vec3::splat(2.0))));
+        let p = Prefiltered::new(&EnvMap::constant(Vec3::splat(2.0)));
         assert_eq!(p.levels, 1 + GGX_LEVELS);
         assert_eq!(
             p.texels_rgba32f.len(),
@@ -340,7 +321,7 @@ mod tests {
     /// alpha grows, and stays towards the sun.
     #[test]
     fn rougher_levels_spread_the_sun() {
-        let p = Prefiltered::new(&EnvData::new(&EnvMap::sky()));
+        let p = Prefiltered::new(&EnvMap::sky());
         let n = (PRE_WIDTH * PRE_HEIGHT) as usize;
         let peak = |level: usize| {
             let t = &p.texels_rgba32f[4 * n * level..4 * n * (level + 1)];

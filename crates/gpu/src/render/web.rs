@@ -15,10 +15,11 @@
 //! One tile: the page draws at most [`MAX_SAMPLES`] samples per side.
 
 use super::env::EnvData;
+use super::env::env_module_source;
 use super::layouts::USER_PARAMS_BINDING;
 use super::objects::{KD_WORD, KS_WORD, Reach, object_data};
 use super::scene_data::{OccluderData, frame_data, lights_data};
-use super::split_sum::{Prefiltered, env_module_source};
+use super::split_sum::Prefiltered;
 use super::{SHADER, Tile};
 use crate::context::GpuError;
 use crate::spec::Instance;
@@ -159,7 +160,7 @@ pub struct WebEnv {
 impl WebEnv {
     pub fn new(map: &fastbrdf_render::env::EnvMap) -> Self {
         let data = EnvData::new(map);
-        let prefiltered = Prefiltered::new(&data);
+        let prefiltered = Prefiltered::new(map);
         Self { data, prefiltered }
     }
 }

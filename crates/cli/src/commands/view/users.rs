@@ -65,10 +65,8 @@ impl UserModel {
         let instructions = match shader.instructions() {
             Ok(c) => Some(c),
             Err(e) => {
-                super::server::note(&format!(
-                    "note: instruction count of {} unknown: {e}",
-                    shader.name()
-                ));
+                // As the server's notes: on stderr (no link to the server module).
+                eprintln!("note: instruction count of {} unknown: {e}", shader.name());
                 None
             }
         };
