@@ -107,6 +107,14 @@ fn an_uploaded_file_is_the_model_it_would_be_at_start_up() {
         let listed = info["models"].as_array().unwrap();
         let at_start = listed.iter().find(|m| m["id"] == name).unwrap();
         assert_eq!(listed.iter().find(|m| m["id"] == id.as_str()), Some(&entry));
+        // The page's WebGPU pictures take the upload's module, the start-up file's.
+        let module = |m: &str| ok_json(&s.addr, &format!("/api/gpu/shader?model={m}"));
+        let (up, start) = (module(&id), module(name));
+        assert_eq!(up["block"], "user");
+        assert_eq!(
+            up["wgsl"], start["wgsl"],
+            "{name}: the upload's WebGPU module"
+        );
         let strip = |e: &Value| {
             let mut e = without(e, &["id", "file", "source", "uploaded"]);
             // The declared-at notes name the file as given.
