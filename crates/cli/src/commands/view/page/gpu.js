@@ -13,10 +13,10 @@
 // control causes is a performance measure "fastbrdf:frame", from the control's input event
 // to the GPU having finished every picture of that state.
 const GPU = {
-  on: false, why: "", device: null, format: null, L: null, tools: null,
-  size: 512, spp: 1, scene: null, sceneKey: "", sceneLight: "", lightNow: "",
+  on: false, why: "", device: null, L: null, tools: null,
+  size: 512, spp: 1, scene: null,
   mods: new Map(), scenes: new Map(), pass: 0, maxPasses: 64, restart: false, preview: 128, budget: 100, fullMs: 0, settle: null, drawn: [], busy: false, again: false, since: null, bypass: false,
-  stats: null, readback: null, metricsBusy: false, lastScale: 0, frames: 0,
+  stats: null, readback: null, metricsBusy: false,
 };
 const WEBGPU_TOOLS = `
 struct Dims { w: u32, h: u32, n: u32, k: u32 }
@@ -442,7 +442,6 @@ async function gpuFrame(size) {
   const targets = [...canvases.pictures, ...canvases.diffs];
   shown.forEach((_, k) => targets[k].getContext("2d").putImageData(new ImageData(all.subarray(4 * n * k, 4 * n * (k + 1)), sc.s.width, sc.s.height), 0, 0));
   GPU.drawn = mods.map(m => m.id); GPU.scene = sc;
-  GPU.frames++;
   // Where a frame's time goes: encoding, the GPU's work and read-back, the 2D canvases.
   GPU.phases = { encode: t1 - t0, gpu: t2 - t1, canvas: performance.now() - t2 };
   if (readStats) gpuMetrics(tests.map(m => m.id), statsWords, sc);
@@ -463,7 +462,6 @@ async function gpuMetrics(ids, words, sc) {
       const rmse = Math.sqrt(se / (255 * 255) / n);
       return { model: id, rmse, psnr: rmse === 0 ? null : 20 * Math.log10(1 / rmse), flip: null };
     });
-    GPU.lastScale = scale;
     lastRender = { metrics, reference: state.ref, webgpu: true };
     flipPending = false; drawNumbers();
     for (const c of $("pictures").querySelectorAll("canvas.diff")) c.nextSibling.textContent = `|${c.dataset.model} - ${state.ref}| (scale ${scale.toFixed(3)})`;
