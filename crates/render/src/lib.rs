@@ -23,6 +23,7 @@ pub mod env;
 pub mod error;
 pub mod film;
 pub mod geometry;
+pub mod gltf;
 mod hash;
 pub mod mesh;
 pub mod render;
