@@ -96,6 +96,33 @@ if ! command -v spirv-opt > /dev/null; then
         echo "test.sh: no apt-get; install SPIRV-Tools (spirv-opt) to run the instruction-count test" >&2
     fi
 fi
+# The Khronos glTF-Validator checks every glTF file the writer makes
+# (crates/render/tests/gltf_validator.rs, through tools/gltf_validate.mjs): the npm package
+# gltf-validator (one file of compiled Dart, ~0.4 MB, no dependencies), installed into
+# target/gltf-validator with Node.js and npm (Debian's nodejs and npm when missing); the test
+# finds it through FASTBRDF_GLTF_VALIDATOR. With CI set a missing validator fails that test,
+# without CI it is skipped with a message.
+gltf_validator_version=2.0.0-dev.3.10
+gltf_validator="${FASTBRDF_GLTF_VALIDATOR:-$PWD/target/gltf-validator/node_modules/gltf-validator}"
+if [ -z "${FASTBRDF_GLTF_VALIDATOR:-}" ] && { [ ! -e "$gltf_validator/package.json" ] ||
+    ! grep -q "\"version\": \"$gltf_validator_version\"" "$gltf_validator/package.json"; }; then
+    if ! command -v node > /dev/null || ! command -v npm > /dev/null; then
+        echo "test.sh: no node or npm: installing Debian's nodejs and npm (the glTF-Validator test)" >&2
+        if command -v apt-get > /dev/null; then
+            apt_install nodejs npm || { $sudo apt-get update -qq > /dev/null && apt_install nodejs npm; } ||
+                echo "test.sh: could not install nodejs and npm; the glTF-Validator test will skip (or fail under CI)" >&2
+        else
+            echo "test.sh: no apt-get; install Node.js and npm to run the glTF-Validator test" >&2
+        fi
+    fi
+    if command -v npm > /dev/null; then
+        echo "test.sh: installing gltf-validator@$gltf_validator_version into target/gltf-validator" >&2
+        npm install --prefix target/gltf-validator --no-audit --no-fund --loglevel=error \
+            "gltf-validator@$gltf_validator_version" > /dev/null ||
+            echo "test.sh: could not install gltf-validator; the glTF-Validator test will skip (or fail under CI)" >&2
+    fi
+fi
+export FASTBRDF_GLTF_VALIDATOR="$gltf_validator"
 if [ -e "$icd" ] && [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}" ]; then
     export VK_ICD_FILENAMES="$icd"
 fi

@@ -24,6 +24,7 @@ pub mod error;
 pub mod film;
 pub mod geometry;
 pub mod gltf;
+pub mod gltf_write;
 mod hash;
 pub mod mesh;
 pub mod render;
