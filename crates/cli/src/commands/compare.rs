@@ -1,8 +1,9 @@
 //! `fastbrdf compare`: several models against a reference (a model or measured data) with
 //! difference heat maps and RMSE / PSNR / FLIP (fastbrdf-render).
 
+use super::common::gltf_scene;
 use super::common::pictures::{Entry, Scores, check_compare, compare_models};
-use super::common::scene::{SceneArgs, check_out, material_and_metal};
+use super::common::scene::{SceneArgs, SceneFileArg, check_out, material_and_metal};
 use crate::CliError;
 use crate::model_args::{Chosen, ModelArgs, Use};
 use fastbrdf_render::film::write_atomic;
@@ -35,21 +36,34 @@ fastbrdf compare --models ward,cook-torrance --measured blue-rubber.binary --par
 )]
 pub struct CompareArgs {
     /// Models to compare (comma-separated ids).
-    #[arg(long, value_delimiter = ',', required = true)]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        required_unless_present = "scene",
+        conflicts_with = "scene"
+    )]
     models: Vec<String>,
     /// The reference model id.
     #[arg(
         long,
-        required_unless_present = "measured",
-        conflicts_with = "measured"
+        required_unless_present_any = ["measured", "scene"],
+        conflicts_with_all = ["measured", "scene"]
     )]
     reference: Option<String>,
+    #[command(flatten)]
+    scene_file: SceneFileArg,
+    /// With --scene: an approximation set, NAME=VALUE[,NAME=VALUE...] given to every
+    /// material of the scene (e.g. g=smith-ggx-correlated-fast,f=schlick-sg); repeat for
+    /// several. Each is rendered and compared with the materials as written (the reference;
+    /// --param values go to both), and timed: its render's time per pixel is printed.
+    #[arg(long = "set", value_name = "SET")]
+    sets: Vec<String>,
     /// A measured material (MERL .binary, see `fastbrdf measured`) as the reference instead of
     /// a model. It is the whole BRDF (diffuse included), so it renders with weights 0,1; the
     /// models render with the scene's --weights and --albedo (give them the material's
     /// diffuse colour and weights to compare like with like; `fastbrdf fit-measured` fits
     /// both).
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "scene")]
     measured: Option<PathBuf>,
     #[command(flatten)]
     model_args: ModelArgs,
@@ -67,33 +81,123 @@ pub struct CompareArgs {
     json: bool,
 }
 
+/// Each environment sample is a pass over every primary sample: the comparison's work cap
+/// counts them (`models` renders and the reference).
+fn check_env_work(
+    spec: &fastbrdf_render::setup::SceneSpec,
+    opts: &fastbrdf_render::render::Options,
+    models: usize,
+) -> Result<(), CliError> {
+    if spec.env.is_none() {
+        return Ok(());
+    }
+    let samples = (models as u64 + 1)
+        * u64::from(opts.width)
+        * u64::from(opts.height)
+        * u64::from(opts.spp).pow(2)
+        * u64::from(spec.env_samples);
+    let cap = fastbrdf_render::compare::MAX_COMPARE_SAMPLES;
+    if samples > cap {
+        return Err(CliError::input(format!(
+            "the comparison would trace {samples} environment samples ({} renders of {}x{} at {}x{} samples per pixel, {} environment samples each): at most {cap}; use a smaller --size, --spp, --env-samples or fewer models",
+            models + 1,
+            opts.width,
+            opts.height,
+            opts.spp,
+            opts.spp,
+            spec.env_samples
+        )));
+    }
+    Ok(())
+}
+
+/// `compare --scene FILE --set ...`: approximation sets against the scene's materials.
+fn compare_gltf(
+    a: &CompareArgs,
+    file: &std::path::Path,
+    spec: &fastbrdf_render::setup::SceneSpec,
+    opts: &fastbrdf_render::render::Options,
+) -> Result<(), CliError> {
+    check_out(&a.out, &["png"])?;
+    if a.sets.is_empty() {
+        return Err(CliError::input(
+            "--scene: give one or more approximation sets to compare with the scene's materials, e.g. --set g=smith-ggx-correlated-fast,f=schlick-sg",
+        ));
+    }
+    let sets = a
+        .sets
+        .iter()
+        .map(|s| Ok((s.clone(), gltf_scene::parse_set(s)?)))
+        .collect::<Result<Vec<_>, CliError>>()?;
+    check_compare(opts, sets.len())?;
+    check_env_work(spec, opts, sets.len())?;
+    let common = a.model_args.param.pairs()?;
+    let loaded = gltf_scene::load(file, spec)?;
+    let (rgb, gw, gh, ref_ns, results) =
+        gltf_scene::compare_sets(&loaded, spec, opts, a.scene.exposure, &common, &sets)?;
+    write_atomic(&a.out, &fastbrdf_render::film::png_bytes(&rgb, gw, gh)?)?;
+    eprintln!("wrote {}", a.out.display());
+    let file = loaded.scene.file.clone();
+    if a.json {
+        let rows: Vec<serde_json::Value> = results
+            .iter()
+            .map(|r| {
+                let mut v = r.scores.json();
+                v["set"] = serde_json::json!(r.label);
+                v["ns_per_pixel"] = serde_json::json!(r.ns_per_pixel);
+                v
+            })
+            .collect();
+        let mut out = fastbrdf_analysis::render_json::comparison("the scene's materials", rows);
+        out["scene"] = serde_json::json!(file);
+        out["reference_ns_per_pixel"] = serde_json::json!(ref_ns);
+        out["warnings"] = serde_json::json!(loaded.scene.warnings);
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&out).expect("serialisable")
+        );
+    } else {
+        println!(
+            "{:<44} {:>9} {:>7} | {:>12} {:>9} {:>8} | {:>9}   (against {file}'s materials: {ref_ns:.0} ns/pixel)",
+            "set", "PSNR dB", "FLIP", "RMSE linear", "PSNR dB", "FLIP rh", "ns/pixel"
+        );
+        for r in &results {
+            let (s, l) = (&r.scores.srgb, &r.scores.linear);
+            println!(
+                "{:<44} {:>9.2} {:>7.4} | {:>12.5} {:>9.2} {:>8.4} | {:>9.0}",
+                fastbrdf_io::shorten(&r.label, 44),
+                s.psnr,
+                s.flip,
+                l.rmse,
+                l.psnr,
+                l.flip_reinhard,
+                r.ns_per_pixel
+            );
+        }
+        println!(
+            "sRGB: clipped 8-bit pictures as written; linear: the HDR film; ns/pixel: each render's wall time over its pixels ({} threads)",
+            rayon::current_num_threads()
+        );
+    }
+    Ok(())
+}
+
 pub fn run_compare(a: &CompareArgs) -> Result<(), CliError> {
     let (mut spec, opts) = a.scene.spec()?;
+    if let Some(file) = &a.scene_file.scene {
+        return compare_gltf(a, file, &spec, &opts);
+    }
+    if let Some(set) = a.sets.first() {
+        return Err(CliError::input(format!(
+            "--set {set}: approximation sets are for --scene FILE (a glTF scene's materials)"
+        )));
+    }
     // With --measured, the first model stands for the reference where one is needed.
     let ref_id = a.reference.clone().unwrap_or_else(|| a.models[0].clone());
     material_and_metal(&mut spec, &a.scene, &a.model_args, &ref_id)?;
     check_out(&a.out, &["png"])?;
     check_compare(&opts, a.models.len())?;
-    if spec.env.is_some() {
-        // Each environment sample is a pass over every primary sample: the work cap counts them.
-        let samples = (a.models.len() as u64 + 1)
-            * u64::from(opts.width)
-            * u64::from(opts.height)
-            * u64::from(opts.spp).pow(2)
-            * u64::from(spec.env_samples);
-        let cap = fastbrdf_render::compare::MAX_COMPARE_SAMPLES;
-        if samples > cap {
-            return Err(CliError::input(format!(
-                "the comparison would trace {samples} environment samples ({} renders of {}x{} at {}x{} samples per pixel, {} environment samples each): at most {cap}; use a smaller --size, --spp, --env-samples or fewer models",
-                a.models.len() + 1,
-                opts.width,
-                opts.height,
-                opts.spp,
-                opts.spp,
-                spec.env_samples
-            )));
-        }
-    }
+    check_env_work(&spec, &opts, a.models.len())?;
     // One spec per model (each takes the --param values it can use), the reference first.
     let ids: Vec<&str> = a
         .reference

@@ -1,9 +1,10 @@
 //! `fastbrdf render`: a picture of one model (fastbrdf-render on the CPU, fastbrdf-gpu with
 //! `--gpu`).
 
+use super::common::gltf_scene;
 use super::common::pictures::{render_model, render_rgb};
 use super::common::progress::bar;
-use super::common::scene::{SceneArgs, check_out, material_and_metal};
+use super::common::scene::{SceneArgs, SceneFileArg, check_out, material_and_metal};
 use crate::CliError;
 use crate::model_args::{ModelArgs, Use};
 use fastbrdf::ModelSpec;
@@ -47,9 +48,17 @@ pub struct RenderArgs {
     /// Specular model id (a lobe, a distribution or a BRDF), or a user's model `file:PATH` (a
     /// BRDF Explorer `.brdf` file, a `.wgsl` or `.glsl` function: the whole BRDF, rendered
     /// with weights 0,1, its values from the GPU evaluator; with --gpu its shader runs in the
-    /// GPU renderer's).
-    #[arg(long)]
+    /// GPU renderer's). Not with --scene (every material of a glTF scene is gltf-pbr).
+    #[arg(
+        long,
+        required_unless_present = "scene",
+        conflicts_with = "scene",
+        default_value = "",
+        hide_default_value = true
+    )]
     model: String,
+    #[command(flatten)]
+    scene_file: SceneFileArg,
     #[command(flatten)]
     model_args: ModelArgs,
     #[command(flatten)]
@@ -176,6 +185,9 @@ fn render_user_gpu(
 
 pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let (mut spec, opts) = a.scene.spec()?;
+    if let Some(file) = &a.scene_file.scene {
+        return render_gltf(a, file, &spec, &opts);
+    }
     material_and_metal(&mut spec, &a.scene, &a.model_args, &a.model)?;
     check_out(&a.out, &["png", "exr"])?;
     let loaded = setup::load(&spec)?;
@@ -207,6 +219,44 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
         )
     };
     finish(a, &spec, &opts, film, t, on)
+}
+
+/// `render --scene FILE`: the glTF scene with its materials, `--param` given to every one.
+fn render_gltf(
+    a: &RenderArgs,
+    file: &std::path::Path,
+    spec: &SceneSpec,
+    opts: &Options,
+) -> Result<(), CliError> {
+    if a.gpu {
+        return Err(CliError::input(
+            "--gpu --scene: the GPU renderer does not draw glTF scenes yet: drop --gpu",
+        ));
+    }
+    check_out(&a.out, &["png", "exr"])?;
+    let overrides = a.model_args.param.pairs()?;
+    let t = std::time::Instant::now();
+    let loaded = gltf_scene::load(file, spec)?;
+    let (film, _) = gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render")?;
+    let s = &loaded.scene;
+    let on = format!(
+        ", scene {}: {} triangles, {} materials as {}, {} lights{}",
+        s.file,
+        s.triangles(),
+        s.materials.len(),
+        fastbrdf_render::gltf::MODEL_ID,
+        if spec.lights.is_empty() {
+            s.lights.len()
+        } else {
+            spec.lights.len()
+        },
+        if s.camera.is_some() {
+            ", its camera"
+        } else {
+            ", a framing view"
+        }
+    );
+    finish(a, spec, opts, film, t, on)
 }
 
 /// Writes the picture and reports what was rendered, how and how long it took.

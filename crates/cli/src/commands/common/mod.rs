@@ -2,6 +2,7 @@
 //! the progress bar, scene options, pictures and charts.
 
 pub mod figures;
+pub mod gltf_scene;
 pub mod input;
 pub mod numbers;
 pub mod pictures;

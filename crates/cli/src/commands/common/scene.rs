@@ -87,6 +87,24 @@ pub struct SceneArgs {
     pub aa: AaArg,
 }
 
+/// `--scene FILE`: a glTF 2.0 scene (`render` and `compare`).
+#[derive(clap::Args, Clone, Debug, Default)]
+pub struct SceneFileArg {
+    /// A glTF 2.0 scene (.gltf with its buffers beside it or as data URIs, or .glb; at most
+    /// 256 MiB, buffers 1 GiB) instead of the sphere or --mesh: its meshes under their node
+    /// transforms, its first camera (else a view framing the scene), its punctual lights
+    /// unless --light or --env is given, and every material as the gltf-pbr model (base
+    /// colour, metallic, roughness, KHR_materials_ior, _specular, _clearcoat, _sheen,
+    /// _anisotropy; --param values go to every material). What is not rendered (textures,
+    /// emission, animations...) is named in a warning on stderr. CPU only.
+    #[arg(
+        long = "scene",
+        value_name = "FILE",
+        conflicts_with_all = ["mesh", "texture", "floor", "bump", "weights", "albedo", "material", "metal"]
+    )]
+    pub scene: Option<PathBuf>,
+}
+
 /// `--aa`.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AaArg {
