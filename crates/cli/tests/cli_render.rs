@@ -233,6 +233,10 @@ fn demo_writes_every_picture_and_an_index() {
         );
     }
     assert!(html.contains("log.abs_err_max") && html.contains("<th>FLIP</th>"));
+    // The built-in glTF scene: the writer's bytes (tests/gltf_validator.rs validates them).
+    let glb = std::fs::read(d.join("scene.glb")).unwrap();
+    assert_eq!(glb, fastbrdf_render::gltf_write::demo_scene());
+    assert!(html.contains("href=\"scene.glb\""));
     // The face sections: captioned, each with its metrics table (a row per compared form).
     for (file, rows) in [
         ("seed000-cook-torrance-face.png", ["D16", "one-pow D"]),

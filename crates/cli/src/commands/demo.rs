@@ -1,7 +1,9 @@
 //! `fastbrdf demo`: the main job on built-in defaults. Writes a folder with sphere grids of
 //! every lobe, the seeds' comparisons with difference maps and metrics (on spheres, and on the
 //! embedded face with a procedural skin under the built-in sky), the analysis plots,
-//! the reproduction table, and `index.html` that shows it all.
+//! the reproduction table, a glTF scene built into the binary (`scene.glb`: the face and
+//! spheres of gltf-pbr materials, from the library's glTF writer), and `index.html` that shows
+//! it all.
 
 use super::common::pictures::{Entry, Scores, check_compare, compare_models, render_model};
 use crate::CliError;
@@ -38,6 +40,9 @@ pub struct Args {
 /// Environment samples per primary sample in the face renders, 2 x 2 primary samples per
 /// pixel: 16 per pixel (the demo stays fast; each is three rays with their shadow rays).
 const FACE_ENV_SAMPLES: u32 = 4;
+
+/// The built-in glTF scene's file in the output folder.
+const SCENE_FILE: &str = "scene.glb";
 
 struct Section {
     title: String,
@@ -312,7 +317,10 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             at("ward-pow", "alpha", 0.35)?,
         ],
     )?;
-    // 3. Plots and the reproduction table.
+    // 3. The built-in glTF scene (the face and five spheres of gltf-pbr materials), written
+    // by the library's glTF writer; the same bytes every run.
+    set.write(SCENE_FILE, &fastbrdf_render::gltf_write::demo_scene())?;
+    // 4. Plots and the reproduction table.
     super::common::figures::stage_seed_figures(&mut set, "plots")?;
     let report = reproduce::run(&[], &|| {})?;
     let md = reproduce::markdown(&report);
@@ -334,6 +342,51 @@ fn esc(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
+}
+
+/// The glTF scene's section: the file and a table of its materials' factors.
+fn scene_html() -> String {
+    use fastbrdf_render::gltf_write::{demo_materials, face_material};
+    let mut h = format!(
+        "<h2>A glTF scene</h2>\n<p><a href=\"{SCENE_FILE}\"><code>{SCENE_FILE}</code></a>: MediaPipe's canonical face over five spheres, a camera, a directional key light and a point fill light, written by the glTF writer (<code>fastbrdf_render::gltf_write</code>). Open it in any glTF viewer; it passes the Khronos glTF-Validator (<code>node tools/gltf_validate.mjs {SCENE_FILE}</code>). Its materials (linear factors):</p>\n<table><tr><th>material</th><th>base colour</th><th>metallic</th><th>roughness</th><th>extensions</th></tr>\n"
+    );
+    let mut all = vec![face_material()];
+    all.extend(demo_materials());
+    for m in &all {
+        let mut ext = vec![];
+        if let Some(x) = m.ior {
+            ext.push(format!("ior {x}"));
+        }
+        if let Some(x) = m.specular {
+            ext.push(format!("specular {} colour {:?}", x.factor, x.color));
+        }
+        if let Some(x) = m.clearcoat {
+            ext.push(format!("clearcoat {} roughness {}", x.factor, x.roughness));
+        }
+        if let Some(x) = m.sheen {
+            ext.push(format!(
+                "sheen colour {:?} roughness {}",
+                x.color, x.roughness
+            ));
+        }
+        if let Some(x) = m.anisotropy {
+            ext.push(format!("anisotropy {} rotation {}", x.strength, x.rotation));
+        }
+        let c = m.base_color;
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}, {}, {}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&m.name),
+            c[0],
+            c[1],
+            c[2],
+            m.metallic,
+            m.roughness,
+            esc(&ext.join("; "))
+        );
+    }
+    h.push_str("</table>\n");
+    h
 }
 
 fn index_html(sections: &[Section], report: &reproduce::Report, secs: f64) -> String {
@@ -386,6 +439,7 @@ th{background:#eee}.agrees{color:#060}.differs{color:#a00}figure{margin:1em 0 2e
         }
         let _ = writeln!(h, "</figure>");
     }
+    h.push_str(&scene_html());
     let _ = writeln!(h, "<h2>Plots of the seeds' figures</h2>");
     for (file, caption) in [
         (

@@ -22,7 +22,7 @@
 pub mod demo;
 mod encode;
 
-pub use demo::{demo_document, demo_scene, uv_sphere};
+pub use demo::{demo_document, demo_materials, demo_scene, face_material, uv_sphere};
 
 use crate::error::{RenderError, Result};
 use crate::geometry::TriMesh;
