@@ -346,44 +346,15 @@ fn esc(s: &str) -> String {
 
 /// The glTF scene's section: the file and a table of its materials' factors.
 fn scene_html() -> String {
-    use fastbrdf_render::gltf_write::{demo_materials, face_material};
     let mut h = format!(
         "<h2>A glTF scene</h2>\n<p><a href=\"{SCENE_FILE}\"><code>{SCENE_FILE}</code></a>: MediaPipe's canonical face over five spheres, a camera, a directional key light and a point fill light, written by the glTF writer (<code>fastbrdf_render::gltf_write</code>). Open it in any glTF viewer; it passes the Khronos glTF-Validator (<code>node tools/gltf_validate.mjs {SCENE_FILE}</code>). Its materials (linear factors):</p>\n<table><tr><th>material</th><th>base colour</th><th>metallic</th><th>roughness</th><th>extensions</th></tr>\n"
     );
-    let mut all = vec![face_material()];
-    all.extend(demo_materials());
-    for m in &all {
-        let mut ext = vec![];
-        if let Some(x) = m.ior {
-            ext.push(format!("ior {x}"));
+    for row in fastbrdf_render::gltf_write::material_rows() {
+        h.push_str("<tr>");
+        for cell in row {
+            let _ = write!(h, "<td>{}</td>", esc(&cell));
         }
-        if let Some(x) = m.specular {
-            ext.push(format!("specular {} colour {:?}", x.factor, x.color));
-        }
-        if let Some(x) = m.clearcoat {
-            ext.push(format!("clearcoat {} roughness {}", x.factor, x.roughness));
-        }
-        if let Some(x) = m.sheen {
-            ext.push(format!(
-                "sheen colour {:?} roughness {}",
-                x.color, x.roughness
-            ));
-        }
-        if let Some(x) = m.anisotropy {
-            ext.push(format!("anisotropy {} rotation {}", x.strength, x.rotation));
-        }
-        let c = m.base_color;
-        let _ = writeln!(
-            h,
-            "<tr><td>{}</td><td>{}, {}, {}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            esc(&m.name),
-            c[0],
-            c[1],
-            c[2],
-            m.metallic,
-            m.roughness,
-            esc(&ext.join("; "))
-        );
+        h.push_str("</tr>\n");
     }
     h.push_str("</table>\n");
     h

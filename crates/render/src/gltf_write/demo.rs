@@ -129,6 +129,65 @@ pub fn face_material() -> Material {
     }
 }
 
+/// The demo's materials as table rows (the face's first): name, base colour (linear RGB),
+/// metallic, roughness, and the extensions with their factors; `fastbrdf demo`'s
+/// `index.html` and the book's page `gltf-demo.md` show them (a test keeps the page's table
+/// equal to these rows).
+pub fn material_rows() -> Vec<[String; 5]> {
+    let list = |c: &[f32]| {
+        c.iter()
+            .map(|x| x.to_string())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let mut all = vec![face_material()];
+    all.extend(demo_materials());
+    all.iter()
+        .map(|m| {
+            let mut ext = vec![];
+            if let Some(x) = m.ior {
+                ext.push(format!("KHR_materials_ior: ior {x}"));
+            }
+            if let Some(x) = m.specular {
+                ext.push(format!(
+                    "KHR_materials_specular: factor {}, colour {}",
+                    x.factor,
+                    list(&x.color)
+                ));
+            }
+            if let Some(x) = m.clearcoat {
+                ext.push(format!(
+                    "KHR_materials_clearcoat: factor {}, roughness {}",
+                    x.factor, x.roughness
+                ));
+            }
+            if let Some(x) = m.sheen {
+                ext.push(format!(
+                    "KHR_materials_sheen: colour {}, roughness {}",
+                    list(&x.color),
+                    x.roughness
+                ));
+            }
+            if let Some(x) = m.anisotropy {
+                ext.push(format!(
+                    "KHR_materials_anisotropy: strength {}, rotation {}",
+                    x.strength, x.rotation
+                ));
+            }
+            if ext.is_empty() {
+                ext.push("none".into());
+            }
+            [
+                m.name.clone(),
+                list(&m.base_color[..3]),
+                m.metallic.to_string(),
+                m.roughness.to_string(),
+                ext.join("; "),
+            ]
+        })
+        .collect()
+}
+
 /// Radius of the demo's spheres, metres.
 pub const SPHERE_RADIUS: f32 = 0.038;
 

@@ -22,7 +22,9 @@
 pub mod demo;
 mod encode;
 
-pub use demo::{demo_document, demo_materials, demo_scene, face_material, uv_sphere};
+pub use demo::{
+    demo_document, demo_materials, demo_scene, face_material, material_rows, uv_sphere,
+};
 
 use crate::error::{RenderError, Result};
 use crate::geometry::TriMesh;

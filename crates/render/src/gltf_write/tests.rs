@@ -361,3 +361,23 @@ fn demo_scene_is_the_same_bytes_every_time_and_holds_every_extension() {
     let geo = Geometry::from_trimesh(&face);
     assert_eq!(geo.uvs[0].y, 1.0 - face.uvs[0].y);
 }
+
+#[test]
+fn the_books_table_lists_the_demo_materials() {
+    let page = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../docs/book/src/gltf-demo.md"
+    );
+    let text = std::fs::read_to_string(page).unwrap();
+    let rows: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("| material | base colour"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|'))
+        .collect();
+    let want: Vec<String> = material_rows()
+        .iter()
+        .map(|r| format!("| {} |", r.join(" | ")))
+        .collect();
+    assert_eq!(rows, want, "docs/book/src/gltf-demo.md's material table");
+}
