@@ -133,9 +133,12 @@ fn compare_gltf(
     check_env_work(spec, opts, sets.len())?;
     let common = a.model_args.param.pairs()?;
     let loaded = gltf_scene::load(file, spec)?;
-    let (rgb, gw, gh, ref_ns, results) =
-        gltf_scene::compare_sets(&loaded, spec, opts, a.scene.exposure, &common, &sets)?;
-    write_atomic(&a.out, &fastbrdf_render::film::png_bytes(&rgb, gw, gh)?)?;
+    let c = gltf_scene::compare_sets(&loaded, spec, opts, a.scene.exposure, &common, &sets)?;
+    write_atomic(
+        &a.out,
+        &fastbrdf_render::film::png_bytes(&c.rgb, c.width, c.height)?,
+    )?;
+    let (ref_ns, results) = (c.reference_ns_per_pixel, c.sets);
     eprintln!("wrote {}", a.out.display());
     let file = loaded.scene.file.clone();
     if a.json {

@@ -245,10 +245,12 @@ fn render_gltf(
         s.triangles(),
         s.materials.len(),
         fastbrdf_render::gltf::MODEL_ID,
-        if spec.lights.is_empty() {
-            s.lights.len()
-        } else {
+        if !spec.lights.is_empty() {
             spec.lights.len()
+        } else if spec.env.is_some() {
+            0
+        } else {
+            s.lights.len()
         },
         if s.camera.is_some() {
             ", its camera"

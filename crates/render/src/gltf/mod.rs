@@ -125,6 +125,19 @@ pub fn from_bytes(file: &str, bytes: &[u8], dir: &Path) -> Result<GltfScene> {
     if !raw.is_object() {
         return Err(ctx.err("", "not glTF JSON: the top level must be an object"));
     }
+    let version = raw.pointer("/asset/version").and_then(|v| v.as_str());
+    if version.is_none_or(|v| v.split('.').next() != Some("2")) {
+        return Err(ctx.err(
+            "/asset/version",
+            format!(
+                "{}: only glTF 2.x is read",
+                version.map_or("missing".to_string(), |v| format!(
+                    "'{}'",
+                    fastbrdf_io::shorten(v, 20)
+                ))
+            ),
+        ));
+    }
     let mut warnings = Vec::new();
     pointer::check_extensions(&ctx, &raw, &mut warnings)?;
     let root: gltf::json::Root = gltf::json::deserialize::from_slice(json_bytes)
@@ -166,9 +179,8 @@ impl GltfScene {
     }
 
     /// The scene to render with `specs` (one per material, [`GltfScene::specs`]): the file's
-    /// camera, its lights unless `spec.lights` are given (with neither lights nor an
-    /// environment, the default key light), the environment `env`, `spec`'s shadows and
-    /// environment samples. Each material is the whole BRDF: weights kd 0, ks 1.
+    /// camera; `spec.lights` if given, else none under the environment `env`, else the file's
+    /// lights, else the default key light; `env`, `spec`'s shadows and environment samples. Each material is the whole BRDF: weights kd 0, ks 1.
     pub fn scene(
         &self,
         spec: &SceneSpec,
@@ -196,9 +208,11 @@ impl GltfScene {
             .collect();
         let lights = if !spec.lights.is_empty() {
             spec.lights.clone()
+        } else if env.is_some() {
+            Vec::new()
         } else if !self.lights.is_empty() {
             self.lights.clone()
-        } else if env.is_none() {
+        } else {
             vec![Light {
                 kind: LightKind::Directional {
                     to_light: Vec3::new(-0.45, 0.55, 0.7).normalize(),
@@ -206,8 +220,6 @@ impl GltfScene {
                 color: Vec3::ONE,
                 intensity: 3.0,
             }]
-        } else {
-            Vec::new()
         };
         Ok(Scene {
             camera: self.view(),

@@ -58,7 +58,7 @@ impl Doc {
     }
 
     fn view(&mut self, bytes: &[u8]) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let offset = self.bin.len();
@@ -164,11 +164,11 @@ impl Doc {
     pub fn glb(&self) -> Vec<u8> {
         let mut j =
             serde_json::to_vec(&self.with_buffer(json!({"byteLength": self.bin.len()}))).unwrap();
-        while j.len() % 4 != 0 {
+        while !j.len().is_multiple_of(4) {
             j.push(b' ');
         }
         let mut b = self.bin.clone();
-        while b.len() % 4 != 0 {
+        while !b.len().is_multiple_of(4) {
             b.push(0);
         }
         let total = 12 + 8 + j.len() + if b.is_empty() { 0 } else { 8 + b.len() };

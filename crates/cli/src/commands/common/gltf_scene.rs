@@ -92,9 +92,18 @@ pub struct SetResult {
     pub ns_per_pixel: f64,
 }
 
-/// The comparison: the reference (the materials as written, with `common`) and each set
-/// (`common` then the set's pairs); returns the grid (rgb, w, h), the reference's time per
+/// A comparison's grid picture (8-bit sRGB, `width` x `height`), the reference's time per
 /// pixel and each set's result.
+pub struct Comparison {
+    pub rgb: Vec<u8>,
+    pub width: u32,
+    pub height: u32,
+    pub reference_ns_per_pixel: f64,
+    pub sets: Vec<SetResult>,
+}
+
+/// The comparison: the reference (the materials as written, with `common`) and each set
+/// (`common` then the set's pairs).
 pub fn compare_sets(
     l: &Loaded,
     spec: &SceneSpec,
@@ -102,7 +111,7 @@ pub fn compare_sets(
     exposure: f32,
     common: &[(String, String)],
     sets: &[(String, Vec<(String, String)>)],
-) -> Result<(Vec<u8>, u32, u32, f64, Vec<SetResult>), CliError> {
+) -> Result<Comparison, CliError> {
     let (w, h) = (opts.width, opts.height);
     let pixels = f64::from(w) * f64::from(h);
     // Every set's materials are checked before anything is rendered.
@@ -162,5 +171,11 @@ pub fn compare_sets(
         });
     }
     let (rgb, gw, gh) = compare::grid(&[top, bottom], w, h, Some(scale))?;
-    Ok((rgb, gw, gh, rsecs * 1e9 / pixels, results))
+    Ok(Comparison {
+        rgb,
+        width: gw,
+        height: gh,
+        reference_ns_per_pixel: rsecs * 1e9 / pixels,
+        sets: results,
+    })
 }
