@@ -8,10 +8,10 @@
 //
 // Exit status: 0 when no file has an error, 1 when one has, 2 when a file cannot be read or
 // the validator cannot be loaded. External resources of a .gltf (buffers, images) are read
-// from beside it. The validator is looked up, in order, at $FASTBRDF_GLTF_VALIDATOR (the
-// package's folder, e.g. target/gltf-validator/node_modules/gltf-validator, which
-// tools/test.sh installs), in target/gltf-validator/ of this repository, then wherever Node
-// finds `gltf-validator` (NODE_PATH, a global install).
+// from beside it. The validator: $FASTBRDF_GLTF_VALIDATOR when set (the package's folder,
+// e.g. target/gltf-validator/node_modules/gltf-validator, which tools/test.sh installs; an
+// error when it is not there); otherwise target/gltf-validator/ of this repository, then
+// wherever Node finds `gltf-validator` (NODE_PATH, a global install).
 import { readFile } from "node:fs/promises";
 import { existsSync } from "node:fs";
 import { createRequire } from "node:module";
@@ -21,23 +21,25 @@ import { fileURLToPath } from "node:url";
 const here = path.dirname(fileURLToPath(import.meta.url));
 
 function loadValidator() {
-    const candidates = [];
-    if (process.env.FASTBRDF_GLTF_VALIDATOR) {
-        candidates.push(path.resolve(process.env.FASTBRDF_GLTF_VALIDATOR));
-    }
-    candidates.push(path.join(here, "..", "target", "gltf-validator", "node_modules", "gltf-validator"));
     const require = createRequire(import.meta.url);
-    for (const dir of candidates) {
-        if (existsSync(path.join(dir, "package.json"))) {
-            return require(dir);
+    const given = process.env.FASTBRDF_GLTF_VALIDATOR;
+    if (given) {
+        // Named on purpose: that one or an error, never another.
+        const dir = path.resolve(given);
+        if (!existsSync(path.join(dir, "package.json"))) {
+            throw new Error(`FASTBRDF_GLTF_VALIDATOR=${given}: no package.json there (the gltf-validator package's folder)`);
         }
+        return require(dir);
+    }
+    const local = path.join(here, "..", "target", "gltf-validator", "node_modules", "gltf-validator");
+    if (existsSync(path.join(local, "package.json"))) {
+        return require(local);
     }
     try {
         return require("gltf-validator");
     } catch {
-        const looked = candidates.join(", ");
         throw new Error(
-            `no gltf-validator (looked in ${looked} and Node's module path); install it with ` +
+            `no gltf-validator (looked in ${local} and Node's module path); install it with ` +
                 "`npm install --prefix target/gltf-validator gltf-validator@2.0.0-dev.3.10`",
         );
     }
