@@ -34,11 +34,24 @@
 
 use crate::error::{Error, Result};
 use crate::microfacet::fresnel::{Consts, conductor};
-use crate::params::{ParamKind, Params};
+use crate::params::{ParamKind, ParamSpec, Params};
 use crate::registry;
 
 /// A parameter list as text pairs (`name`, `value`).
 pub(crate) type ParamList = Vec<(String, String)>;
+
+/// Parameters whose value is the largest channel of another's R,G,B value, set when that one
+/// is split and the derived one is not given: `gltf-pbr`'s sheen albedo scaling uses
+/// `max3(sheenColor)` in every channel (`KHR_materials_sheen`).
+const MAX_OF: &[(&str, &str)] = &[("sheen_color", "sheen_max")];
+
+/// The parameters of `params` that the colour rule may derive ([`MAX_OF`]).
+pub(crate) fn derived(params: &'static [ParamSpec]) -> impl Iterator<Item = &'static str> {
+    params
+        .iter()
+        .filter(|s| MAX_OF.iter().any(|(_, d)| *d == s.name))
+        .map(|s| s.name)
+}
 
 /// The channel names, in order.
 pub const CHANNELS: [&str; 3] = ["R", "G", "B"];
@@ -185,6 +198,22 @@ pub(crate) fn channels(id: &str, params: &[(String, String)]) -> Result<Option<[
             list.push((name.clone(), part.trim().to_string()));
         }
         split.push(spec.name);
+        // A parameter that couples the channels gets its value from the whole colour.
+        for (from, derived) in MAX_OF {
+            let declared = e.info.params.iter().any(|s| s.name == *derived);
+            let given = params.iter().any(|(n, _)| n == derived);
+            if name == from && declared && !given {
+                let max = parts
+                    .iter()
+                    .filter_map(|x| x.trim().parse::<f64>().ok())
+                    .fold(f64::NEG_INFINITY, f64::max);
+                if max.is_finite() {
+                    for list in &mut out {
+                        list.push((derived.to_string(), max.to_string()));
+                    }
+                }
+            }
+        }
     }
     for (c, list) in out.iter().enumerate() {
         let given: Vec<(&str, &str)> = list.iter().map(|(a, b)| (a.as_str(), b.as_str())).collect();

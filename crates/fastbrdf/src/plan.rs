@@ -26,10 +26,11 @@ use crate::sample::{CosDist, Strategy};
 use crate::vec3::{Pair, V3};
 use crate::wgsl::Emit;
 
-use crate::brdf::{cook_torrance, lambert, phong, ward};
+use crate::brdf::{cook_torrance, gltf_pbr, lambert, phong, ward};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
 use crate::microfacet::{
-    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, ms, shadowing, smith_ggx,
+    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, ms, shadowing, sheen,
+    smith_ggx,
 };
 
 // The family traits live in the leaf module `forms` (no family, no registry below them);
@@ -76,6 +77,8 @@ pub fn library_sources() -> Vec<(&'static str, &'static str)> {
     add(EnvPlan::wgsl_sources());
     // Generated from its table (`microfacet::ms::wgsl_source`), so not a family's `WGSL`.
     add(vec![("microfacet/ms.wgsl", ms::wgsl_source())]);
+    // Generated from its tables (`microfacet::sheen::wgsl_source`), like ms.
+    add(vec![("microfacet/sheen.wgsl", sheen::wgsl_source())]);
     add(vec![("runtime.wgsl", RUNTIME)]);
     out
 }
@@ -99,6 +102,10 @@ pub(crate) fn push_source(
 /// implementation of the family trait (dispatch) is written below.
 macro_rules! families {
     ($d:tt $plan:ident: $form:ident, $with:ident { $($v:ident($t:ty)),* $(,)? }) => {
+        // `gltf-pbr`'s plan (about 1 KB) holds its parts' plans by value so that every plan
+        // stays `Copy` (no allocation, no lifetime); a plan is copied per batch or per spec,
+        // never per element.
+        #[allow(clippy::large_enum_variant)]
         #[derive(Clone, Copy, Debug)]
         pub enum $plan { $($v($t)),* }
         $(impl From<$t> for $plan { fn from(x: $t) -> Self { $plan::$v(x) } })*
@@ -183,6 +190,7 @@ families!($ BrdfPlan: BrdfForm, with_brdf {
     WardPower16(ward::Ward<2>),
     Lambert(lambert::Lambert),
     LobeBrdf(phong::LobeBrdf),
+    GltfPbr(gltf_pbr::GltfPbr),
 });
 
 families!($ EnvPlan: EnvForm, with_env {
@@ -190,7 +198,8 @@ families!($ EnvPlan: EnvForm, with_env {
     Approx(env_brdf::Approx),
 });
 
-/// A model instance of any kind.
+/// A model instance of any kind (large for `gltf-pbr`: see `families!`).
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Copy, Debug)]
 pub enum Plan {
     Lobe(LobePlan),

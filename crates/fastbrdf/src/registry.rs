@@ -3,7 +3,7 @@
 //! and one line in [`REGISTRY`]; the id lists (`ids_of`), the parameter choices that name
 //! "any model of kind X" and the registry-wide tests derive from it.
 
-use crate::brdf::{cook_torrance, lambert, phong, ward};
+use crate::brdf::{cook_torrance, gltf_pbr, lambert, phong, ward};
 use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
@@ -79,6 +79,7 @@ pub static REGISTRY: &[Entry] = &[
     lambert::ENTRY,
     phong::ENTRY,
     phong::ENTRY_BLINN,
+    gltf_pbr::ENTRY,
 ];
 
 /// Every registry entry, with the choices that name "any model of kind X"

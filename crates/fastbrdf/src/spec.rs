@@ -229,6 +229,14 @@ impl ModelSpec {
                         };
                         (*k, v)
                     })
+                    // A value the colour rule derived for every channel (`sheen_max`).
+                    .chain(colour::derived(self.entry.info.params).filter_map(|name| {
+                        let given = self.given.iter().any(|(k, _)| *k == name);
+                        match self.params[c].get(name) {
+                            Some(Value::Num(x)) if !given => Some((name, Given::Num(*x))),
+                            _ => None,
+                        }
+                    }))
                     .collect(),
                 params: vec![self.params[c].clone()],
                 plans: vec![self.plans[c]],

@@ -122,6 +122,21 @@ fn cases() -> Vec<Case> {
         out.push(Case::new("ward-pow", &[("alpha", a)]));
     }
     out.push(Case::new("ward", &[("alpha_x", "0.1"), ("alpha_y", "0.4")]));
+    // gltf-pbr: a mixture of the base's and the coat's visible normals and the cosine lobe.
+    out.push(Case::new("gltf-pbr", &[("roughness", "0.5")]));
+    out.push(Case::new(
+        "gltf-pbr",
+        &[
+            ("metallic", "0.2"),
+            ("roughness", "0.3"),
+            ("clearcoat", "0.7"),
+            ("clearcoat_roughness", "0.1"),
+            ("sheen_color", "0.5"),
+            ("sheen_roughness", "0.4"),
+            ("anisotropy", "0.6"),
+            ("anisotropy_rotation", "0.7"),
+        ],
+    ));
     out.push(Case::new("ward-power16", &[("alpha", "0.3")]));
     out.push(Case::new("ward-power16", &[("alpha", "0.05")]));
     out

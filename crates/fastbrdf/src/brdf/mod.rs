@@ -2,6 +2,7 @@
 //! the surface), returned without the cosine factor.
 
 pub mod cook_torrance;
+pub mod gltf_pbr;
 pub mod lambert;
 pub mod phong;
 pub mod ward;

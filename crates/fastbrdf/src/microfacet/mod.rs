@@ -8,4 +8,5 @@ pub mod ggx;
 pub mod kelemen_neumann;
 pub mod ms;
 pub mod shadowing;
+pub mod sheen;
 pub mod smith_ggx;

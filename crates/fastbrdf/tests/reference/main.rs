@@ -12,6 +12,7 @@ mod common;
 
 mod brdfs;
 mod env;
+mod gltf;
 mod lobes;
 mod microfacet;
 
@@ -48,6 +49,7 @@ const REFERENCED: &[&str] = &[
     "fresnel-dielectric",
     "fresnel-conductor",
     "cook-torrance",
+    "gltf-pbr",
     "ward",
     "ward-pow",
     "ward-power16",
