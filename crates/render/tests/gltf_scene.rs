@@ -385,6 +385,20 @@ fn a_glb_and_an_external_bin_read_as_the_data_uri_does() {
     std::fs::write(dir.join("my data.bin"), &d.bin).unwrap();
     std::fs::write(dir.join("s.gltf"), d.gltf_external("my%20data.bin")).unwrap();
     let c = gltf::load(&dir.join("s.gltf")).unwrap();
+    // A link beside the scene that leads out of its folder is not followed.
+    #[cfg(unix)]
+    {
+        let outside = dir.with_extension("outside.bin");
+        std::fs::write(&outside, &d.bin).unwrap();
+        std::os::unix::fs::symlink(&outside, dir.join("link.bin")).unwrap();
+        std::fs::write(dir.join("l.gltf"), d.gltf_external("link.bin")).unwrap();
+        let e = gltf::load(&dir.join("l.gltf")).err().unwrap().to_string();
+        assert!(
+            e.contains("/buffers/0/uri: 'link.bin' leads outside the scene's folder"),
+            "{e}"
+        );
+        std::fs::remove_file(&outside).unwrap();
+    }
     std::fs::remove_dir_all(&dir).unwrap();
     for s in [&b, &c] {
         assert_eq!(s.objects[0].mesh.positions, a.objects[0].mesh.positions);

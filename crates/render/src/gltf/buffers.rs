@@ -175,6 +175,15 @@ fn read_uri(ctx: &Ctx, ptr: &str, uri: &str, dir: &Path) -> Result<Vec<u8>> {
         ));
     }
     let path = dir.join(rel_path);
+    // A link inside the folder may still lead out of it: the file itself must be inside.
+    if let (Ok(real), Ok(real_dir)) = (path.canonicalize(), dir.canonicalize())
+        && !real.starts_with(&real_dir)
+    {
+        return Err(ctx.err(
+            ptr,
+            format!("'{short}' leads outside the scene's folder (a link): not read"),
+        ));
+    }
     let f = std::fs::File::open(&path)
         .map_err(|e| ctx.err(ptr, format!("cannot read {}: {e}", path.display())))?;
     Ok(fastbrdf_io::read_reader_bounded(
