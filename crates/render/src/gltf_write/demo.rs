@@ -207,7 +207,7 @@ pub fn demo_document() -> Document {
     let materials = demo_materials();
     let count = materials.len();
     for (k, m) in materials.into_iter().enumerate() {
-        let x = 0.085 * (k as f32 - (count - 1) as f32 / 2.0);
+        let x = 0.08 * (k as f32 - (count - 1) as f32 / 2.0);
         let name = m.name.clone();
         let mat = d.add_material(m);
         let mesh = d.add_mesh(&name, sphere, Some(mat));
@@ -228,7 +228,7 @@ pub fn demo_document() -> Document {
     });
     d.add_node(Node {
         camera: Some(0),
-        ..Node::looking("camera", Vec3::new(0.0, -0.05, 0.7), Vec3::NEG_Z, Vec3::Y)
+        ..Node::looking("camera", Vec3::new(0.0, -0.05, 0.78), Vec3::NEG_Z, Vec3::Y)
     });
     d.lights.push(Light {
         name: "key".into(),
