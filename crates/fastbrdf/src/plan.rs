@@ -29,8 +29,8 @@ use crate::wgsl::Emit;
 use crate::brdf::{cook_torrance, gltf_pbr, lambert, phong, ward};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
 use crate::microfacet::{
-    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, ms, shadowing, sheen,
-    smith_ggx,
+    beckmann, beckmann_pow, env_brdf, env_rational, env_table, fresnel, ggx, kelemen_neumann, ms,
+    shadowing, sheen, smith_ggx,
 };
 
 // The family traits live in the leaf module `forms` (no family, no registry below them);
@@ -79,6 +79,10 @@ pub fn library_sources() -> Vec<(&'static str, &'static str)> {
     add(vec![("microfacet/ms.wgsl", ms::wgsl_source())]);
     // Generated from its tables (`microfacet::sheen::wgsl_source`), like ms.
     add(vec![("microfacet/sheen.wgsl", sheen::wgsl_source())]);
+    add(vec![(
+        "microfacet/env_table_data.wgsl",
+        env_table::wgsl_source(),
+    )]);
     add(vec![("runtime.wgsl", RUNTIME)]);
     out
 }
@@ -196,6 +200,8 @@ families!($ BrdfPlan: BrdfForm, with_brdf {
 families!($ EnvPlan: EnvForm, with_env {
     Dfg(env_brdf::Dfg),
     Approx(env_brdf::Approx),
+    Rational(env_rational::Rational),
+    Table(env_table::Table),
 });
 
 /// A model instance of any kind (large for `gltf-pbr`: see `families!`).

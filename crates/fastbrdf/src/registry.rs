@@ -8,7 +8,8 @@ use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{
-    beckmann, beckmann_pow, env_brdf, fresnel, ggx, kelemen_neumann, shadowing, smith_ggx,
+    beckmann, beckmann_pow, env_brdf, env_rational, env_table, fresnel, ggx, kelemen_neumann,
+    shadowing, smith_ggx,
 };
 use crate::model::{Kind, Lobe};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
@@ -71,6 +72,9 @@ pub static REGISTRY: &[Entry] = &[
     env_brdf::ENTRY_DFG,
     env_brdf::ENTRY_APPROX,
     env_brdf::ENTRY_APPROX_TUNED,
+    env_rational::ENTRY_MATERIALX,
+    env_rational::ENTRY_MATERIALX_TUNED,
+    env_table::ENTRY,
     // Full BRDFs.
     cook_torrance::ENTRY,
     ward::ENTRY,

@@ -3,6 +3,8 @@
 pub mod beckmann;
 pub mod beckmann_pow;
 pub mod env_brdf;
+pub mod env_rational;
+pub mod env_table;
 pub mod fresnel;
 pub mod ggx;
 pub mod kelemen_neumann;

@@ -1,0 +1,34 @@
+// fastbrdf 0.1.0 (env): env-brdf-materialx-tuned
+// Made by: fastbrdf shader --model env-brdf-materialx-tuned --lang wgsl
+//
+// Formula: env-brdf-materialx's form, its 2 x 17 free constants refitted minimax against env-brdf
+// Source: this project (fit_env_rational example)
+// Parameters (this export: term = scale):
+//   term: which split-sum term: the scale of f0 or the bias (albedo = f0 scale + bias) (one of scale, bias, default scale)
+// Documented error bounds (measured by `fastbrdf check`):
+//   env-brdf-materialx-tuned vs env-brdf: max abs error (relative to the peak) <= 0.061 over alpha in [0.005, 1], whole domain
+// Precision: f32 on the CPU within 1e-6 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
+// Coefficients are literals computed in f64 for these parameters; for other values re-export, or use --runtime-params (parameters as arguments, coefficients computed in the shader in f32).
+// Entry: fb_env_brdf_materialx_tuned(cos_v, alpha): n.v and the GGX roughness alpha (the look-up table's axes); specular albedo = f0 scale + bias; returns f32.
+
+/// P(x, y) = c0 + c1 x + c2 y + c3 x y + c4 x^2 + c5 y^2 + c6 x^2 y + c7 x y^2 + c8 x^2 y^2, by
+/// Horner in y for each power of x, then in x (as env_rational::poly).
+fn fb_env_rational_poly(x: f32, y: f32, c: array<f32, 9>) -> f32 {
+    let p0 = y * (y * c[5] + c[2]) + c[0];
+    let p1 = y * (y * c[7] + c[3]) + c[1];
+    let p2 = y * (y * c[8] + c[6]) + c[4];
+    return x * (x * p2 + p1) + p0;
+}
+
+/// env-brdf-materialx(-tuned): one term, numerator over denominator, clamped at 0.
+fn fb_env_rational(cos_v: f32, alpha: f32, num: array<f32, 9>, den: array<f32, 9>) -> f32 {
+    return max(fb_env_rational_poly(cos_v, alpha, num) / fb_env_rational_poly(cos_v, alpha, den), 0.0);
+}
+
+/// env-brdf-materialx-tuned: env-brdf-materialx's form, its 2 x 17 free constants refitted minimax against env-brdf
+/// Source: this project (fit_env_rational example). Instance: term = scale.
+fn fb_env_brdf_materialx_tuned(cos_v: f32, alpha: f32) -> f32 {
+    let v = select(0.0, min(cos_v, 1.0), cos_v > 0.0);
+    let a = select(0.005f, min(alpha, 1.0f), alpha > 0.005f);
+    return fb_env_rational(v, a, array<f32, 9>(0.042109f, -0.360609f, 12.851064f, -5.715247f, 54.23768f, -8.330896f, -57.782654f, 32.151756f, -11.697879f), array<f32, 9>(1.0f, 1.361571f, 11.582963f, -1.9314f, 48.847004f, -7.747486f, -38.176315f, 48.07008f, -6.271647f));
+}
