@@ -178,7 +178,9 @@ fn compare_gltf(
             );
         }
         println!(
-            "sRGB: clipped 8-bit pictures as written; linear: the HDR film; ns/pixel: each render's wall time over its pixels ({} threads)",
+            "sRGB: clipped 8-bit pictures as written; linear: the HDR film; ns/pixel: each render's wall time over its pixels, the least of up to {} renders within {} s ({} threads)",
+            gltf_scene::TIMING_RENDERS,
+            gltf_scene::TIMING_SECONDS,
             rayon::current_num_threads()
         );
     }

@@ -237,7 +237,7 @@ fn render_gltf(
     let overrides = a.model_args.param.pairs()?;
     let t = std::time::Instant::now();
     let loaded = gltf_scene::load(file, spec)?;
-    let (film, _) = gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render")?;
+    let (film, _) = gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false)?;
     let s = &loaded.scene;
     let on = format!(
         ", scene {}: {} triangles, {} materials as {}, {} lights{}",
