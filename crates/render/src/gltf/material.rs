@@ -302,17 +302,26 @@ pub(crate) fn read(
     let mut needs_tangents = false;
     if let Some(o) = e("KHR_materials_ior")? {
         let ior = o.number("ior", 1.5, 0.0, inf)?;
-        put(
-            "ior",
-            num(clamp(
+        let ior = if ior == 0.0 {
+            // The extension's 0 stands for an infinite index (f0 = 1): the model's largest.
+            unused.push("ior 0 (infinite) taken as 5 (the model's range is 1 to 5)".into());
+            5.0
+        } else if ior < 1.0 {
+            return Err(ctx.err(
+                &format!("{}/ior", o.ptr),
+                format!("{ior} is neither 0 nor at least 1"),
+            ));
+        } else {
+            clamp(
                 &mut unused,
                 "ior",
                 ior,
                 1.0,
                 5.0,
                 "the model's range is 1 to 5",
-            )),
-        );
+            )
+        };
+        put("ior", num(ior));
     }
     if let Some(o) = e("KHR_materials_specular")? {
         put("specular", num(o.number("specularFactor", 1.0, 0.0, 1.0)?));
