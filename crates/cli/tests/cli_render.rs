@@ -223,6 +223,7 @@ fn demo_writes_every_picture_and_an_index() {
         "seed000-cook-torrance-face.png",
         "seed000-ward-face.png",
         "tuned-vs-untuned.png",
+        "gltf-scene.png",
         "plots/seed001-fig3-max-rel-epicentre.png",
         "plots/seed000-fig2-4-relative-error.png",
     ] {
