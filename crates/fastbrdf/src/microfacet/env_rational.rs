@@ -16,10 +16,11 @@
 //!   0aa65a15abbe281f1648bb86ac6d52c649c63ba3 (MaterialX 1.39; 1.38 printed the same fit to
 //!   four digits). Its data: GGX with the height-correlated Smith term (`mx_ggx_smith_G2`),
 //!   the reference of `env-brdf` here.
-//! - `env-brdf-materialx-tuned`: the 17 free constants of each term refitted to minimise the
-//!   maximum absolute error against `env-brdf` over `cos_v` in (0, 1] and `alpha` in
-//!   [0.005, 1] (`cargo run --release -p fastbrdf-analysis --example fit_env_rational`);
-//!   same cost.
+//! - `env-brdf-materialx-tuned`: the 17 free constants of each term refitted against
+//!   `env-brdf` over `cos_v` in (0, 1] and `alpha` in [0.005, 1], minimising the larger of its
+//!   max and its mean absolute error each relative to MaterialX's, so that both fall (scale:
+//!   max 0.0797 from 0.0863, mean 4.59e-3 from 4.94e-3; bias: 0.0373 from 0.0426, 4.98e-4 from
+//!   5.66e-4; `cargo run --release -p fastbrdf-analysis --example fit_env_rational`); same cost.
 //!
 //! Error bounds (max abs over `cos_v` in (0, 1], `alpha` in [0.005, 1], both terms): see the
 //! `INFO_*` constants (and `fastbrdf models`); the mean errors and the furnace consequence are
@@ -61,10 +62,10 @@ pub const INFO_MATERIALX_TUNED: ModelInfo = ModelInfo {
     id: "env-brdf-materialx-tuned",
     kind: Kind::Env,
     params: &[TERM],
-    formula: "env-brdf-materialx's form, its 2 x 17 free constants refitted minimax against env-brdf",
+    formula: "env-brdf-materialx's form, its 2 x 17 free constants refitted against env-brdf (max and mean both below MaterialX's)",
     source: "this project (fit_env_rational example)",
     ops: Ops::new(16, 16, 1, 0, 0),
-    bounds: &vs_dfg(0.061),
+    bounds: &vs_dfg(0.0797),
     f32_bound: 1e-6,
     note: "",
 };
@@ -104,27 +105,26 @@ pub const MATERIALX: Coeffs = [
 /// The refit (`fit_env_rational` example).
 pub const TUNED: Coeffs = [
     [
-        0.042109, -0.360609, 12.851064, -5.715247, 54.237678, -8.330896, -57.782652, 32.151758,
-        -11.697879,
+        0.085452, -0.191066, 10.218748, 0.907510, 28.483358, -8.181671, -24.737931, 17.283280,
+        -6.033422,
     ],
     [
-        0.925694, -2.238597, 2.345219, -4.577402, 1.312830, -0.654122, 2.234880, -0.030748,
-        0.682666,
+        0.928778, -2.271133, 2.281598, -3.585109, 1.347032, -0.865758, 1.307620, 0.280952, 0.708361,
     ],
     [
-        1.000000, 1.361571, 11.582963, -1.931400, 48.847004, -7.747486, -38.176317, 48.070078,
-        -6.271647,
+        1.000000, -1.180156, 8.803780, 14.385899, 27.735349, -7.465713, -33.963556, 14.708145,
+        34.397942,
     ],
     [
         1.000000,
-        0.310357,
-        14.821693,
-        -47.666837,
-        13.008245,
-        47.061880,
-        41.098023,
-        288.506385,
-        -345.633159,
+        -0.020249,
+        16.308169,
+        -56.675835,
+        14.286259,
+        41.799783,
+        54.884053,
+        285.368313,
+        -200.145018,
     ],
 ];
 

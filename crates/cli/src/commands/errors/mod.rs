@@ -3,6 +3,7 @@
 //! own parameter (`--over materials`, [`over_materials`]); or against measured data
 //! (`--measured`, [`measured`]).
 
+mod env;
 mod measured;
 mod over_materials;
 mod user;
@@ -59,7 +60,12 @@ fastbrdf errors --model flog --reference pow --material gold-paint   (n = the fi
 fastbrdf errors --over materials                         (every approximation, 86 materials)\n  \
 fastbrdf errors --over materials --model ward-pow --threshold 0.05 --json\n  \
 fastbrdf errors --model ward --measured blue-rubber.binary --m 0.1..0.5:0.05   (residuals against the data)\n  \
-fastbrdf errors --model cook-torrance --param d=ggx --measured brass.binary --m 0.005..1:log10 --json\n\n\
+fastbrdf errors --model cook-torrance --param d=ggx --measured brass.binary --m 0.005..1:log10 --json\n  \
+fastbrdf errors --model env-brdf-table --param size=128 --param bits=16   (a split-sum model: the DFG ledger row)\n\n\
+A split-sum model (kind env) without --m: both terms and the white furnace (scale + bias)\n\
+against --reference (default env-brdf) over cos_v in (0, 1] and alpha in [0.005, 1]: max\n\
+absolute error and where (cos_v, alpha), mean absolute error (uniform in cos_v and alpha), and\n\
+the furnace's largest gain and loss; --param sets its parameters (size, bits).\n\n\
 --over materials measures each approximation against its reference at every MERL material's\n\
 own fitted parameter (Ngan, Matusik and Durand, EGSR 2005; see `fastbrdf materials`): lobes at\n\
 the Blinn-Phong n, Beckmann approximations and smith-rational at the Beckmann m, Ward's at\n\
@@ -140,9 +146,26 @@ pub fn run(a: &Args) -> Result<(), CliError> {
     let user = [&a.model, &a.reference]
         .iter()
         .any(|id| id.as_deref().is_some_and(crate::model_args::is_user));
+    // A split-sum model without a sweep: its DFG-ledger row over the whole domain.
+    let env = a.model.as_deref().is_some_and(|m| {
+        fastbrdf::registry::find(m).is_ok_and(|e| e.info.kind == fastbrdf::Kind::Env)
+    }) && a.n.is_none()
+        && a.m.is_none()
+        && a.over.is_none()
+        && a.measured.is_none()
+        && a.material.material.is_none();
+    if env {
+        return env::run(&env::Args {
+            model: a.model.as_deref().unwrap_or_default(),
+            reference: a.reference.as_deref().unwrap_or("env-brdf"),
+            params: &a.params.pairs()?,
+            json: a.json,
+            csv: a.csv,
+        });
+    }
     if !a.params.params.is_empty() && a.measured.is_none() && !user {
         return Err(CliError::input(
-            "--param: only with --measured or a user's model (file:PATH)",
+            "--param: only with --measured, a user's model (file:PATH) or a split-sum model (env-brdf-table:size, bits) without --m",
         ));
     }
     if a.over.is_some() {

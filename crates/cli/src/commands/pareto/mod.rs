@@ -1,7 +1,9 @@
 //! `fastbrdf pareto`: error against cost for every lobe (fastbrdf-analysis::pareto), and with
-//! `--brdf` for Cook-Torrance configurations ([`brdf`]).
+//! `--brdf` for Cook-Torrance configurations ([`brdf`]), with `--env` for the split-sum models
+//! (the DFG ledger, [`env`]).
 
 mod brdf;
+mod env;
 
 use super::common::figures::save_error;
 use super::common::progress::bar;
@@ -15,7 +17,7 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown --out fastbrdf-out/pareto\n  \
-fastbrdf pareto --brdf --mesh face.obj\n  fastbrdf pareto --brdf --alpha 0.1,0.3,0.6 --reference d=beckmann,g=smith,f=dielectric,eta=1.5 --json\n\n\
+fastbrdf pareto --brdf --mesh face.obj\n  fastbrdf pareto --env --markdown\n  fastbrdf pareto --brdf --alpha 0.1,0.3,0.6 --reference d=beckmann,g=smith,f=dielectric,eta=1.5 --json\n\n\
 Output: a table on stdout (text, --json or --markdown). The plot (PNG and SVG, written both or\n\
 neither) is written only with --out; nothing is written to disk otherwise. A model whose\n\
 error or throughput is unknown has null in JSON.\n\n\
@@ -26,7 +28,14 @@ g = f cos_i cos_o over pairs of hemisphere directions (f64); mean FLIP of a sphe
 of --mesh) against the reference's. JSON: {reference, reference_label, alphas, grid, size, spp,\n\
 mesh, front_on, rows: [{label, d, g, f, denominator, params, alpha, reference, simd,\n\
 ns_per_eval, cost_ratio, max_rel_peak, max_at_deg: [theta_i, theta_o, phi], rms_rel, rms_abs,\n\
-flip_sphere, flip_mesh, pareto}]}."
+flip_sphere, flip_mesh, pareto}]}.\n\n\
+--env: every split-sum model (kind env) and every table configuration (env-brdf-table's size\n\
+and bits) against env-brdf over cos_v in (0, 1] and alpha in [0.005, 1]: ns per evaluation of\n\
+the scale term's batch kernel (4096 values, one core, measured now); per term and for the\n\
+white furnace (scale + bias) the max absolute error, where (cos_v, alpha), and the mean\n\
+(uniform in cos_v and alpha); the front on (ns, the larger term's max). JSON: {reference,\n\
+rows: [{label, model, params, ops, ns_per_eval, max_abs, scale, bias, furnace: {max_abs, cos_v,\n\
+alpha, mean_abs, mean_abs_r}, furnace_gain, furnace_loss, pareto}]}."
 )]
 pub struct Args {
     /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1e5, max_abs_8_1e5,
@@ -44,9 +53,16 @@ pub struct Args {
     bench: Option<PathBuf>,
     #[command(flatten)]
     brdf: brdf::BrdfArgs,
+    /// The split-sum models (kind env) and table configurations against env-brdf: the DFG
+    /// ledger (docs/book/src/dfg-ledger.md).
+    #[arg(long, conflicts_with_all = ["brdf", "bench", "out"])]
+    env: bool,
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
+    if a.env {
+        return env::run(a.json, a.markdown);
+    }
     if a.brdf.brdf {
         return brdf::run(&a.brdf, a.json, a.markdown, a.out.as_deref());
     }
