@@ -17,7 +17,7 @@ fn have_model() -> bool {
 }
 
 /// Two spheres (a red dielectric with sheen, a clearcoated metal) on a floor quad, a camera, a
-/// directional light, an unused texture.
+/// directional light, a base colour texture and a normal texture (not rendered).
 fn scene() -> Doc {
     let mut d = Doc::new();
     d.uses("KHR_lights_punctual", false);
@@ -35,9 +35,20 @@ fn scene() -> Doc {
         "materials",
         json!({"pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.7, 0.3, 1.0], "roughnessFactor": 0.3,
             "baseColorTexture": {"index": 0}},
+            "normalTexture": {"index": 0},
             "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 1.0, "clearcoatRoughnessFactor": 0.05}}}),
     );
-    d.push("images", json!({"uri": "unused.png"}));
+    // A 2x2 base colour texture (rendered) and a normal texture (named in a warning).
+    let img = image::RgbImage::from_fn(2, 2, |x, y| {
+        image::Rgb([255 - 100 * x as u8, 200, 60 + 90 * y as u8])
+    });
+    let mut png = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut png, image::ImageFormat::Png).unwrap();
+    let uri = format!(
+        "data:image/png;base64,{}",
+        gltf_build::base64(&png.into_inner())
+    );
+    d.push("images", json!({"uri": uri}));
     d.push("textures", json!({"source": 0}));
     let a = d.sphere(16, Some(red));
     let b = d.sphere(16, Some(metal));
@@ -202,7 +213,7 @@ fn render_and_compare_a_scene() {
     let err = stderr(&res);
     assert!(res.status.success(), "{err}");
     assert!(
-        err.contains("warning: ") && err.contains("/materials/1: not rendered: baseColorTexture"),
+        err.contains("warning: ") && err.contains("/materials/1: not rendered: normalTexture"),
         "{err}"
     );
     assert!(
@@ -275,7 +286,7 @@ fn render_and_compare_a_scene() {
             .as_array()
             .unwrap()
             .iter()
-            .any(|w| w.as_str().unwrap().contains("baseColorTexture"))
+            .any(|w| w.as_str().unwrap().contains("normalTexture"))
     );
     let grid = image::open(&cmp).unwrap().to_rgb8();
     assert!(grid.width() >= 3 * 32 && grid.height() >= 2 * 24);

@@ -110,6 +110,8 @@ struct Sample {
     g: Vec3,
     v: Vec3,
     base: Vec3,
+    /// The specular term's texel (`Specular::tint`), one elsewhere.
+    tint: Vec3,
 }
 
 /// Per-worker buffers of [`render_tile`], reused from tile to tile (allocating them per tile
@@ -544,6 +546,7 @@ fn trace(
                 g: Vec3::Z,
                 v: -ray.d,
                 base: Vec3::ZERO,
+                tint: Vec3::ONE,
             },
             Some(hit) => {
                 let m = &scene.objects[hit.object].material;
@@ -572,6 +575,11 @@ fn trace(
                     g: smooth,
                     v,
                     base: albedo * m.kd,
+                    tint: m
+                        .specular
+                        .tint
+                        .as_ref()
+                        .map_or(Vec3::ONE, |t| t.texture.sample(hit.uv)),
                 }
             }
         });
@@ -617,7 +625,7 @@ fn direct(
                 }
             }
             if !spec.idx.is_empty() {
-                add_specular(m, opts.shading, spec, radiance);
+                add_specular(m, opts.shading, spec, radiance, samples);
             }
         }
     }
@@ -625,8 +633,40 @@ fn direct(
 
 /// Adds `li[j] * ks * f(wi, wo) * cos` to `radiance[idx[j]]` for every entry of `spec`, the
 /// specular values `f` of material `m` evaluated for its local directions (one batch kernel
-/// call per channel, or the scalar model).
+/// call per channel, or the scalar model). A tinted term (`Specular::tint`) adds
+/// `f_zero + t * (f - f_zero)`, `t` the texel of `samples[idx[j]]`: both models evaluated.
 fn add_specular(
+    m: &crate::scene::Material,
+    shading: Shading,
+    spec: &mut Spec,
+    radiance: &mut [Vec3],
+    samples: &[Sample],
+) {
+    if let Some(tint) = &m.specular.tint {
+        let zero = crate::scene::Material {
+            kd: m.kd,
+            ks: m.ks,
+            albedo: m.albedo,
+            texture: None,
+            bump: None,
+            specular: tint.zero.clone(),
+        };
+        let mut f0 = vec![Vec3::ZERO; radiance.len()];
+        let mut f1 = vec![Vec3::ZERO; radiance.len()];
+        add_specular_untinted(&zero, shading, spec, &mut f0);
+        add_specular_untinted(m, shading, spec, &mut f1);
+        // A sample may hold several entries: its sums are added once, then cleared.
+        for &i in &spec.idx {
+            radiance[i] += f0[i] + samples[i].tint * (f1[i] - f0[i]);
+            (f0[i], f1[i]) = (Vec3::ZERO, Vec3::ZERO);
+        }
+        return;
+    }
+    add_specular_untinted(m, shading, spec, radiance);
+}
+
+/// [`add_specular`] of the material's own model, its tint left out.
+fn add_specular_untinted(
     m: &crate::scene::Material,
     shading: Shading,
     spec: &mut Spec,

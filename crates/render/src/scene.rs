@@ -296,6 +296,19 @@ pub struct Specular {
     pub channels: Vec<Channel>,
     /// An RGB BRDF evaluated by scalar lookups instead of the channels' kernels.
     pub rgb: Option<Arc<dyn RgbBrdf>>,
+    /// A texture that scales one parameter in which the BRDF is affine (a glTF base colour
+    /// texture): the value at a hit is `zero + t * (this - zero)` per channel, `t` the texel.
+    /// CPU renderer only.
+    pub tint: Option<Tint>,
+}
+
+/// A [`Specular`]'s texture: `f(t) = f_zero + t (f - f_zero)` per channel, exact for a BRDF
+/// affine in the textured parameter (glTF's base colour: the texel times the factor).
+pub struct Tint {
+    /// Linear texels, sampled at the hit's texture coordinates.
+    pub texture: Arc<Texture>,
+    /// The model with the textured parameter at 0.
+    pub zero: Arc<Specular>,
 }
 
 impl Specular {
@@ -314,6 +327,7 @@ impl Specular {
             brdf: Some(brdf),
             channels,
             rgb: None,
+            tint: None,
         })
     }
 
@@ -328,6 +342,7 @@ impl Specular {
             brdf: None,
             channels: Vec::new(),
             rgb: Some(brdf),
+            tint: None,
         }
     }
 
@@ -398,11 +413,13 @@ impl Scene {
     }
 
     /// The nearest hit along `ray` for shading: texture coordinates only on objects whose
-    /// material has a texture (zero elsewhere), since nothing else reads them (the sphere's
+    /// material has a texture or a tinted specular term (zero elsewhere), since nothing else reads them (the sphere's
     /// cost an `atan2` and an `asin` per ray).
     #[inline]
     pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
-        self.nearest(ray, |o| o.material.texture.is_some())
+        self.nearest(ray, |o| {
+            o.material.texture.is_some() || o.material.specular.tint.is_some()
+        })
     }
 
     /// Whether anything lies along `ray` strictly between `t_min` and `t_max` (a shadow ray:

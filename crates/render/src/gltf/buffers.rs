@@ -134,7 +134,7 @@ pub(super) fn load_buffers(
     Ok(out)
 }
 
-fn read_uri(ctx: &Ctx, ptr: &str, uri: &str, dir: &Path) -> Result<Vec<u8>> {
+pub(super) fn read_uri(ctx: &Ctx, ptr: &str, uri: &str, dir: &Path) -> Result<Vec<u8>> {
     if let Some(rest) = uri.strip_prefix("data:") {
         let Some((_, payload)) = rest.split_once(";base64,") else {
             return Err(ctx.err(ptr, "a data URI must be base64 (data:...;base64,...)"));

@@ -1,8 +1,8 @@
 //! glTF materials as the `gltf-pbr` model: the metallic-roughness factors and the
 //! `KHR_materials_*` extensions' factors become the model's parameters (the mapping below),
-//! read from the raw JSON so that every value is checked at its JSON pointer. Textures are not
-//! rendered: each one is named in a warning, as are emission, alpha modes other than OPAQUE and
-//! the material extensions not read.
+//! read from the raw JSON so that every value is checked at its JSON pointer. The base colour
+//! texture is rendered (see `GltfScene::scene`); every other texture is named in a warning, as
+//! are emission, alpha modes other than OPAQUE and the material extensions not read.
 //!
 //! | glTF | `gltf-pbr` |
 //! |---|---|
@@ -48,6 +48,9 @@ pub struct GltfMaterial {
     pub pairs: Vec<(String, String)>,
     /// Whether it needs tangents (anisotropy).
     pub needs_tangents: bool,
+    /// Its `baseColorTexture` (a texture index) when it is rendered: on `TEXCOORD_0`, without
+    /// `KHR_texture_transform`.
+    pub base_color_texture: Option<usize>,
 }
 
 impl GltfMaterial {
@@ -63,6 +66,7 @@ impl GltfMaterial {
                 ("roughness".into(), "1".into()),
             ],
             needs_tangents: false,
+            base_color_texture: None,
         }
     }
 
@@ -215,13 +219,13 @@ impl<'a> Obj<'a> {
         Ok([x[0], x[1], x[2]])
     }
 
-    /// The texture references of this object (keys ending in `Texture`), named.
-    fn textures(&self, out: &mut Vec<String>) {
+    /// The texture references of this object (keys ending in `Texture`) but `skip`, named.
+    fn textures(&self, out: &mut Vec<String>, skip: &str) {
         let Some(o) = self.v.and_then(|v| v.as_object()) else {
             return;
         };
         for (k, t) in o {
-            if k.ends_with("Texture") {
+            if k.ends_with("Texture") && k != skip {
                 let transform = t.pointer("/extensions/KHR_texture_transform").is_some();
                 out.push(format!(
                     "{k}{}",
@@ -285,8 +289,23 @@ pub(crate) fn read(
         "roughness",
         num(pbr.number("roughnessFactor", 1.0, 0.0, 1.0)?),
     );
-    pbr.textures(&mut unused);
-    top.textures(&mut unused);
+    // The base colour texture is rendered (`Specular::tint`) when it is on TEXCOORD_0 and not
+    // transformed.
+    let mut base_color_texture = None;
+    if let Some(t) = pbr.v.and_then(|o| o.get("baseColorTexture")) {
+        let coord = t.get("texCoord").and_then(|v| v.as_u64()).unwrap_or(0);
+        if coord != 0 {
+            unused.push(format!(
+                "baseColorTexture (on TEXCOORD_{coord}: only TEXCOORD_0 is read)"
+            ));
+        } else if t.pointer("/extensions/KHR_texture_transform").is_some() {
+            unused.push("baseColorTexture (with KHR_texture_transform)".into());
+        } else {
+            base_color_texture = t.get("index").and_then(|v| v.as_u64()).map(|i| i as usize);
+        }
+    }
+    pbr.textures(&mut unused, "baseColorTexture");
+    top.textures(&mut unused, "");
     let ext = Obj::new(ctx, m, ptr, "extensions")?;
     let e = |name: &str| -> Result<Option<Obj>> {
         Ok(match ext.v.and_then(|x| x.get(name)) {
@@ -337,7 +356,7 @@ pub(crate) fn read(
             )
         });
         put("specular_color", colour(c));
-        o.textures(&mut unused);
+        o.textures(&mut unused, "");
     }
     if let Some(o) = e("KHR_materials_clearcoat")? {
         put(
@@ -348,7 +367,7 @@ pub(crate) fn read(
             "clearcoat_roughness",
             num(o.number("clearcoatRoughnessFactor", 0.0, 0.0, 1.0)?),
         );
-        o.textures(&mut unused);
+        o.textures(&mut unused, "");
     }
     if let Some(o) = e("KHR_materials_sheen")? {
         put(
@@ -359,7 +378,7 @@ pub(crate) fn read(
             "sheen_roughness",
             num(o.number("sheenRoughnessFactor", 0.0, 0.0, 1.0)?),
         );
-        o.textures(&mut unused);
+        o.textures(&mut unused, "");
     }
     if let Some(o) = e("KHR_materials_anisotropy")? {
         let s = o.number("anisotropyStrength", 0.0, 0.0, 1.0)?;
@@ -368,7 +387,7 @@ pub(crate) fn read(
             "anisotropy_rotation",
             num(o.number("anisotropyRotation", 0.0, -inf, inf)?),
         );
-        o.textures(&mut unused);
+        o.textures(&mut unused, "");
         needs_tangents = s > 0.0;
     }
     let emissive = top.colour("emissiveFactor", 3, [0.0; 3], 0.0, 1.0)?;
@@ -409,6 +428,7 @@ pub(crate) fn read(
         pointer: ptr.into(),
         pairs,
         needs_tangents,
+        base_color_texture,
     };
     if !unused.is_empty() {
         warnings.push(format!(

@@ -404,7 +404,8 @@ fn add(g: &mut Group, mut p: Prim, world: Mat4, need: bool, ptr: &str, warnings:
     g.normals
         .extend(normals.iter().map(|&v| (nm * v).normalize_or_zero()));
     match p.uvs {
-        Some(uv) => g.uvs.extend(uv),
+        // glTF puts v = 0 at the top of an image, the renderer's textures at the bottom.
+        Some(uv) => g.uvs.extend(uv.iter().map(|t| Vec2::new(t.x, 1.0 - t.y))),
         None => {
             g.all_uvs = false;
             g.uvs

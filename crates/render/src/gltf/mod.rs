@@ -9,11 +9,14 @@
 //! [`MAX_TOTAL_BUFFER_BYTES`], [`crate::mesh::MAX_TRIANGLES`]), every accessor's range checked
 //! before it is read. A broken file is a [`RenderError::Input`] naming the file and the JSON
 //! pointer of what is wrong (`scene.gltf: /meshes/0/primitives/0/attributes/POSITION:
-//! accessor 7 does not exist (2 accessors)`). What the renderer does not use (textures,
-//! animations, skins, morph targets, alpha modes, other extensions...) is named in
+//! accessor 7 does not exist (2 accessors)`). The base colour texture is rendered exactly
+//! (`Specular::tint`: the model is affine in its base colour). What the renderer does not use
+//! (other textures, animations, skins, morph targets, alpha modes, other extensions...) is
+//! named in
 //! [`GltfScene::warnings`], never dropped silently.
 
 mod buffers;
+mod images;
 pub mod material;
 mod meshes;
 mod pointer;
@@ -23,8 +26,9 @@ mod view;
 use crate::env::{EnvMap, Environment};
 use crate::error::{RenderError, Result};
 use crate::geometry::TriMesh;
-use crate::scene::{Camera, Light, LightKind, Material, Object, Scene, Shape, Specular};
+use crate::scene::{Camera, Light, LightKind, Material, Object, Scene, Shape, Specular, Tint};
 use crate::setup::SceneSpec;
+use crate::texture::Texture;
 use fastbrdf::ModelSpec;
 use glam::Vec3;
 use std::path::Path;
@@ -91,6 +95,8 @@ pub struct GltfScene {
     pub file: String,
     pub objects: Vec<GltfObject>,
     pub materials: Vec<GltfMaterial>,
+    /// Per material, its base colour texture (linear texels) when it is rendered.
+    pub textures: Vec<Option<Arc<Texture>>>,
     /// The first camera of the default scene (perspective), if any.
     pub camera: Option<Camera>,
     pub lights: Vec<Light>,
@@ -148,10 +154,29 @@ pub fn from_bytes(file: &str, bytes: &[u8], dir: &Path) -> Result<GltfScene> {
     let mut materials = material::read_all(&ctx, &raw, &mut warnings)?;
     let walked = meshes::walk(&ctx, &doc, &raw, &buffers, &mut materials, &mut warnings)?;
     meshes::unused_features(&doc, &mut warnings);
+    let mut images = images::Images::default();
+    let mut textures = Vec::new();
+    for (mi, m) in materials.iter().enumerate() {
+        let used: Vec<&GltfObject> = walked.objects.iter().filter(|o| o.material == mi).collect();
+        textures.push(match m.base_color_texture {
+            Some(_) if used.iter().any(|o| o.mesh.uvs.is_empty()) => {
+                warnings.push(format!(
+                    "material {}: its baseColorTexture is not rendered: not every primitive has TEXCOORD_0",
+                    m.label()
+                ));
+                None
+            }
+            Some(t) if !used.is_empty() => {
+                Some(images.get(&ctx, &doc, &buffers, dir, t, &mut warnings)?)
+            }
+            _ => None,
+        });
+    }
     Ok(GltfScene {
         file: file.into(),
         objects: walked.objects,
         materials,
+        textures,
         camera: walked.camera,
         lights: walked.lights,
         bounds: walked.bounds,
@@ -180,16 +205,31 @@ impl GltfScene {
 
     /// The scene to render with `specs` (one per material, [`GltfScene::specs`]): the file's
     /// camera; `spec.lights` if given, else none under the environment `env`, else the file's
-    /// lights, else the default key light; `env`, `spec`'s shadows and environment samples. Each material is the whole BRDF: weights kd 0, ks 1.
+    /// lights, else the default key light; `env`, `spec`'s shadows and environment samples.
+    /// Each material is the whole BRDF: weights kd 0, ks 1. A material with a base colour
+    /// texture is tinted by it ([`Tint`]): the model at base colour 0 as well, mixed by the
+    /// texel per channel, exact since `gltf-pbr` is affine in its base colour.
     pub fn scene(
         &self,
         spec: &SceneSpec,
         env: Option<Arc<EnvMap>>,
         specs: &[ModelSpec],
     ) -> Result<Scene> {
+        // A textured base colour: the value is affine in it, f(0) + t (f(factor) - f(0)).
         let speculars: Vec<Arc<Specular>> = specs
             .iter()
-            .map(|s| Specular::new(s).map(Arc::new))
+            .zip(&self.textures)
+            .map(|(s, tex)| {
+                let mut sp = Specular::new(s)?;
+                if let Some(texture) = tex {
+                    let zero = s.with("base_color", fastbrdf::Given::Num(0.0))?;
+                    sp.tint = Some(Tint {
+                        texture: texture.clone(),
+                        zero: Arc::new(Specular::new(&zero)?),
+                    });
+                }
+                Ok(Arc::new(sp))
+            })
             .collect::<Result<_>>()?;
         let objects = self
             .objects

@@ -230,7 +230,7 @@ pub(super) fn env_pass(
             }
         }
         if !spec.idx.is_empty() {
-            add_specular(m, ctx.opts.shading, spec, radiance);
+            add_specular(m, ctx.opts.shading, spec, radiance, samples);
         }
     }
 }

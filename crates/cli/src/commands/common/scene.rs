@@ -95,8 +95,9 @@ pub struct SceneFileArg {
     /// transforms, its first camera (else a view framing the scene), its punctual lights
     /// unless --light or --env is given, and every material as the gltf-pbr model (base
     /// colour, metallic, roughness, KHR_materials_ior, _specular, _clearcoat, _sheen,
-    /// _anisotropy; --param values go to every material). What is not rendered (textures,
-    /// emission, animations...) is named in a warning on stderr. CPU only.
+    /// _anisotropy, the base colour texture; --param values go to every material). What is
+    /// not rendered (other textures, emission, animations...) is named in a warning on
+    /// stderr. CPU only.
     #[arg(
         long = "scene",
         value_name = "FILE",
