@@ -154,6 +154,12 @@ fn clap_refuses_what_a_scene_replaces() {
         "",
     );
     assert_eq!(res.status.code(), Some(2));
+    let res = fastbrdf(
+        &["render", "--scene", "x.gltf", "--gpu", "--out", "x.png"],
+        "",
+    );
+    assert_eq!(res.status.code(), Some(2));
+    assert!(stderr(&res).contains("--gpu --scene: the GPU renderer does not draw glTF scenes yet"));
     for args in [
         vec![
             "compare", "--scene", "x.gltf", "--models", "ggx", "--out", "x.png",
