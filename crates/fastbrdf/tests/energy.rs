@@ -430,3 +430,51 @@ fn anisotropy_needs_both_slopes_a_smith_g_and_no_ms() {
         }
     }
 }
+
+/// `gltf-pbr`'s white furnace, layer by layer, as docs/book/src/gltf-pbr.md states it
+/// (`base_color = 1`; the albedo seen from `wo`, which is where the coat's Fresnel reads).
+#[test]
+fn gltf_pbr_furnace_is_as_documented() {
+    let at = |params: &[(&str, &str)], deg: f64| {
+        let mut given = vec![("base_color", "1")];
+        given.extend_from_slice(params);
+        let b = brdf("gltf-pbr", &given);
+        albedo_from_wo(b.as_ref(), dir(deg.to_radians().cos()))
+    };
+    let sheen = [
+        ("metallic", "0"),
+        ("specular", "0"),
+        ("sheen_color", "1"),
+        ("sheen_roughness", "0.5"),
+    ];
+    for deg in [0.0, 60.0, 85.0] {
+        // Single scattering loses energy; the coat takes its Fresnel's share from the base.
+        let metal = at(&[("metallic", "1"), ("roughness", "0.5")], deg);
+        assert!(metal < 1.0, "metal at {deg}: {metal}");
+        let coated = at(
+            &[("metallic", "1"), ("roughness", "0.1"), ("clearcoat", "1")],
+            deg,
+        );
+        assert!(coated <= 1.0 + 1e-6, "coated metal at {deg}: {coated}");
+        // The sheen's albedo scaling keeps a white Lambertian base at 1 (its table's error).
+        let s = at(&sheen, deg);
+        assert!(s <= 1.005, "Lambert + sheen at {deg}: {s}");
+        let mut neubelt = sheen.to_vec();
+        neubelt.push(("sheen_v", "neubelt"));
+        let n = at(&neubelt, deg);
+        assert!(n <= 1.005, "Lambert + Neubelt sheen at {deg}: {n}");
+    }
+    // The dielectric gains energy at grazing (its diffuse is weighted by 1 - F(v.h)).
+    let d = at(&[("metallic", "0"), ("roughness", "0.1")], 85.0);
+    assert!(d > 1.3, "smooth dielectric at 85: {d}");
+    // The analytic fit of the sheen albedo gains where the table does not.
+    let mut fit = sheen.to_vec();
+    fit.push(("sheen_albedo", "fit"));
+    let f = at(&fit, 85.0);
+    assert!(f > 1.005, "Lambert + sheen (fit) at 85: {f}");
+    // Without the scaling the sheen adds its albedo on top.
+    let mut none = sheen.to_vec();
+    none.push(("sheen_albedo", "none"));
+    let u = at(&none, 60.0);
+    assert!(u > 1.2, "Lambert + sheen without scaling at 60: {u}");
+}
