@@ -286,6 +286,8 @@ fn render_and_compare_a_scene() {
     );
     assert!(rows[1]["psnr"].as_f64().unwrap() > 10.0, "{}", rows[1]);
     assert!(rows[1]["ns_per_pixel"].as_f64().unwrap() > 0.0);
+    assert!(rows[1]["ns_per_eval"].as_f64().unwrap() > 0.0);
+    assert!(v["reference_ns_per_eval"].as_f64().unwrap() > 0.0);
     assert!(v["reference_ns_per_pixel"].as_f64().unwrap() > 0.0);
     assert!(
         v["warnings"]

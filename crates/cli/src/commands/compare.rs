@@ -55,7 +55,8 @@ pub struct CompareArgs {
     /// With --scene: an approximation set, NAME=VALUE[,NAME=VALUE...] given to every
     /// material of the scene (e.g. g=smith-ggx-correlated-fast,f=schlick-sg); repeat for
     /// several. Each is rendered and compared with the materials as written (the reference;
-    /// --param values go to both), and timed: its render's time per pixel is printed.
+    /// --param values go to both), and timed: its render's time per pixel and the shading
+    /// cost alone (ns per BRDF evaluation) are printed.
     #[arg(long = "set", value_name = "SET")]
     sets: Vec<String>,
     /// A measured material (MERL .binary, see `fastbrdf measured`) as the reference instead of
@@ -138,7 +139,7 @@ fn compare_gltf(
         &a.out,
         &fastbrdf_render::film::png_bytes(&c.rgb, c.width, c.height)?,
     )?;
-    let (ref_ns, results) = (c.reference_ns_per_pixel, c.sets);
+    let (ref_ns, ref_eval, results) = (c.reference_ns_per_pixel, c.reference_ns_per_eval, c.sets);
     eprintln!("wrote {}", a.out.display());
     let file = loaded.scene.file.clone();
     if a.json {
@@ -148,12 +149,14 @@ fn compare_gltf(
                 let mut v = r.scores.json();
                 v["set"] = serde_json::json!(r.label);
                 v["ns_per_pixel"] = serde_json::json!(r.ns_per_pixel);
+                v["ns_per_eval"] = serde_json::json!(r.ns_per_eval);
                 v
             })
             .collect();
         let mut out = fastbrdf_analysis::render_json::comparison("the scene's materials", rows);
         out["scene"] = serde_json::json!(file);
         out["reference_ns_per_pixel"] = serde_json::json!(ref_ns);
+        out["reference_ns_per_eval"] = serde_json::json!(ref_eval);
         out["warnings"] = serde_json::json!(loaded.scene.warnings);
         println!(
             "{}",
@@ -161,27 +164,29 @@ fn compare_gltf(
         );
     } else {
         println!(
-            "{:<44} {:>9} {:>7} | {:>12} {:>9} {:>8} | {:>9}   (against {file}'s materials: {ref_ns:.0} ns/pixel)",
-            "set", "PSNR dB", "FLIP", "RMSE linear", "PSNR dB", "FLIP rh", "ns/pixel"
+            "{:<44} {:>9} {:>7} | {:>12} {:>9} {:>8} | {:>9} {:>8}   (against {file}'s materials: {ref_ns:.0} ns/pixel, {ref_eval:.1} ns/eval)",
+            "set", "PSNR dB", "FLIP", "RMSE linear", "PSNR dB", "FLIP rh", "ns/pixel", "ns/eval"
         );
         for r in &results {
             let (s, l) = (&r.scores.srgb, &r.scores.linear);
             println!(
-                "{:<44} {:>9.2} {:>7.4} | {:>12.5} {:>9.2} {:>8.4} | {:>9.0}",
+                "{:<44} {:>9.2} {:>7.4} | {:>12.5} {:>9.2} {:>8.4} | {:>9.0} {:>8.1}",
                 fastbrdf_io::shorten(&r.label, 44),
                 s.psnr,
                 s.flip,
                 l.rmse,
                 l.psnr,
                 l.flip_reinhard,
-                r.ns_per_pixel
+                r.ns_per_pixel,
+                r.ns_per_eval
             );
         }
         println!(
-            "sRGB: clipped 8-bit pictures as written; linear: the HDR film; ns/pixel: each render's wall time over its pixels, the least of up to {} renders within {} s ({} threads)",
+            "sRGB: clipped 8-bit pictures as written; linear: the HDR film; ns/pixel: each render's wall time over its pixels, the least of up to {} renders within {} s ({} threads); ns/eval: shading alone, one BRDF evaluation by the batch kernels (one thread, {} direction pairs, the mean over the materials)",
             gltf_scene::TIMING_RENDERS,
             gltf_scene::TIMING_SECONDS,
-            rayon::current_num_threads()
+            rayon::current_num_threads(),
+            gltf_scene::COST_PAIRS
         );
     }
     Ok(())

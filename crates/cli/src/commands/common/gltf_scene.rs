@@ -108,6 +108,63 @@ pub struct SetResult {
     pub label: String,
     pub scores: Scores,
     pub ns_per_pixel: f64,
+    /// Shading alone: nanoseconds per BRDF evaluation ([`shading_cost`]).
+    pub ns_per_eval: f64,
+}
+
+/// Direction pairs of [`shading_cost`].
+pub const COST_PAIRS: usize = 1 << 14;
+
+/// The cost of shading alone, steadier than a small render's time: nanoseconds per BRDF
+/// evaluation (all channels of a coloured material), averaged over the scene's materials,
+/// each evaluated by its batch kernels (one thread) on [`COST_PAIRS`] fixed direction pairs
+/// of the upper hemisphere, the least of 3 runs.
+pub fn shading_cost(l: &Loaded, overrides: &[(String, String)]) -> Result<f64, CliError> {
+    let n = COST_PAIRS;
+    let mut cols: [Vec<f32>; 6] = Default::default();
+    for k in 0..n {
+        // A low-discrepancy spread of both directions (golden-ratio sequences).
+        let (u, v) = ((k as f32 * 0.618_034).fract(), (k as f32 + 0.5) / n as f32);
+        let (w, x) = (
+            (k as f32 * 0.754_878).fract(),
+            (k as f32 * 0.569_840).fract(),
+        );
+        for (base, (a, b)) in [(0, (u, v)), (3, (w, x))] {
+            let (s, c) = (2.0 * std::f32::consts::PI * a).sin_cos();
+            let z = 0.05 + 0.95 * b;
+            let r = (1.0 - z * z).sqrt();
+            cols[base].push(r * c);
+            cols[base + 1].push(r * s);
+            cols[base + 2].push(z);
+        }
+    }
+    let input = [
+        &cols[0][..],
+        &cols[1],
+        &cols[2],
+        &cols[3],
+        &cols[4],
+        &cols[5],
+    ];
+    let mut out = vec![0.0f32; n];
+    let specs = l.scene.specs(overrides)?;
+    let mut total = 0.0;
+    for spec in &specs {
+        let sp = fastbrdf_render::scene::Specular::new(spec)?;
+        let mut best = f64::INFINITY;
+        for _ in 0..3 {
+            let t = std::time::Instant::now();
+            for ch in &sp.channels {
+                ch.kernel
+                    .eval(fastbrdf::batch::Input::Dirs(input), &mut out)
+                    .map_err(fastbrdf_render::RenderError::from)?;
+            }
+            best = best.min(t.elapsed().as_secs_f64());
+        }
+        std::hint::black_box(&out);
+        total += best * 1e9 / n as f64;
+    }
+    Ok(total / specs.len().max(1) as f64)
 }
 
 /// A comparison's grid picture (8-bit sRGB, `width` x `height`), the reference's time per
@@ -117,6 +174,7 @@ pub struct Comparison {
     pub width: u32,
     pub height: u32,
     pub reference_ns_per_pixel: f64,
+    pub reference_ns_per_eval: f64,
     pub sets: Vec<SetResult>,
 }
 
@@ -154,6 +212,7 @@ pub fn compare_sets(
                 linear: compare::linear_metrics(&rf, &f, exposure),
             },
             ns_per_pixel: secs * 1e9 / pixels,
+            ns_per_eval: shading_cost(l, o)?,
         });
         tests.push(t);
     }
@@ -194,6 +253,7 @@ pub fn compare_sets(
         width: gw,
         height: gh,
         reference_ns_per_pixel: rsecs * 1e9 / pixels,
+        reference_ns_per_eval: shading_cost(l, common)?,
         sets: results,
     })
 }
