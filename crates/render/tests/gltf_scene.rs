@@ -713,11 +713,26 @@ fn truncated_or_corrupted_files_are_errors_never_panics() {
     let mut d = Doc::new();
     let mat = d.push(
         "materials",
-        json!({"extensions": {"KHR_materials_sheen": {}}}),
+        json!({"extensions": {"KHR_materials_sheen": {}},
+               "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}),
     );
+    // A 1x1 PNG in a buffer view, so that the image's bytes are corrupted too.
+    let img = image::RgbImage::from_pixel(1, 1, image::Rgb([200, 100, 50]));
+    let mut png = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut png, image::ImageFormat::Png).unwrap();
+    let png = png.into_inner();
+    let at = d.bin.len();
+    d.bin.extend_from_slice(&png);
+    let v = d.push(
+        "bufferViews",
+        json!({"buffer": 0, "byteOffset": at, "byteLength": png.len()}),
+    );
+    d.push("images", json!({"bufferView": v, "mimeType": "image/png"}));
+    d.push("textures", json!({"source": 0}));
     let m = d.quad(false, Some(mat));
     let n = d.push("nodes", json!({"mesh": m}));
     d.scene(&[n]);
+    assert!(read(&d).textures[0].is_some());
     let glb = d.glb();
     for cut in (0..glb.len()).step_by(7) {
         let _ = gltf::from_bytes("t.glb", &glb[..cut], Path::new("."));
