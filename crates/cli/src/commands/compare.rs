@@ -29,7 +29,8 @@ fastbrdf compare --models ward-pow,ward-power16 --reference ward --param alpha=0
 fastbrdf compare --models flog,power16-tuned --reference pow --material gold-paint --out gold.png\n  \
 fastbrdf compare --models ggx,beckmann-power16 --reference cook-torrance --param alpha=0.2 --metal gold --out au.png\n  \
 fastbrdf compare --models flog,schlick --reference pow --param n=100 --env sky --out cmp-sky.png\n  \
-fastbrdf compare --models ward,cook-torrance --measured blue-rubber.binary --param alpha=0.29 --weights 0.3,0.05 --out rubber.png",
+fastbrdf compare --models ward,cook-torrance --measured blue-rubber.binary --param alpha=0.29 --weights 0.3,0.05 --out rubber.png\n  \
+fastbrdf compare --scene scene.glb --set g=smith-ggx-correlated-fast,f=schlick-sg --set diffuse=burley --json --out sets.png   (approximation sets against a glTF scene's materials)",
     mut_arg("params", |a| a.help("A parameter, NAME=VALUE, given to every model that takes it; repeat for several")),
     mut_arg("material", |a| a.help(COMPARE_MATERIAL_HELP)),
     mut_arg("metal", |a| a.help(COMPARE_METAL_HELP))

@@ -39,7 +39,9 @@ fastbrdf render --model cook-torrance --param alpha=0.3 --env sky --floor --out 
 fastbrdf render --model ward --param alpha=0.2 --env studio.hdr --env-samples 64 --out studio.exr\n  \
 fastbrdf render --model pow --env white --weights 1,0 --albedo 1,1,1 --out furnace.exr   (uniform 1: the furnace)\n  \
 fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)\n  \
-fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlated --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)",
+fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlated --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)\n  \
+fastbrdf render --scene scene.glb --env sky --out scene.png   (a glTF scene: its camera, lights unless --light/--env, materials as gltf-pbr)\n  \
+fastbrdf render --scene scene.gltf --param f=schlick-sg --out sg.png   (a shortcut choice given to every material)",
     mut_arg("params", |a| a.help("A model parameter, NAME=VALUE; repeat for several")),
     mut_arg("material", |a| a.help(RENDER_MATERIAL_HELP)),
     mut_arg("metal", |a| a.help(RENDER_METAL_HELP))
