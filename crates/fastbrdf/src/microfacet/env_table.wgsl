@@ -45,26 +45,34 @@ fn fb_env_table_at(cos_v: f32, alpha: f32, n: i32) -> vec4<f32> {
 fn fb_env_table_16(cos_v: f32, alpha: f32, bits: u32, bias: bool) -> f32 {
     let c = fb_env_table_at(cos_v, alpha, 16);
     let k = 2 * (i32(c.z) * 16 + i32(c.x)) + select(0, 1, bias);
-    return fb_env_table_mix(c, FB_ENV_TABLE_16[k], FB_ENV_TABLE_16[k + 2], FB_ENV_TABLE_16[k + 32], FB_ENV_TABLE_16[k + 34], bits);
+    // One local copy: a compiler may materialise a constant array once per dynamic access.
+    var t = FB_ENV_TABLE_16;
+    return fb_env_table_mix(c, t[k], t[k + 2], t[k + 32], t[k + 34], bits);
 }
 
 /// env-brdf-table, size 32.
 fn fb_env_table_32(cos_v: f32, alpha: f32, bits: u32, bias: bool) -> f32 {
     let c = fb_env_table_at(cos_v, alpha, 32);
     let k = 2 * (i32(c.z) * 32 + i32(c.x)) + select(0, 1, bias);
-    return fb_env_table_mix(c, FB_ENV_TABLE_32[k], FB_ENV_TABLE_32[k + 2], FB_ENV_TABLE_32[k + 64], FB_ENV_TABLE_32[k + 66], bits);
+    // One local copy: a compiler may materialise a constant array once per dynamic access.
+    var t = FB_ENV_TABLE_32;
+    return fb_env_table_mix(c, t[k], t[k + 2], t[k + 64], t[k + 66], bits);
 }
 
 /// env-brdf-table, size 64.
 fn fb_env_table_64(cos_v: f32, alpha: f32, bits: u32, bias: bool) -> f32 {
     let c = fb_env_table_at(cos_v, alpha, 64);
     let k = 2 * (i32(c.z) * 64 + i32(c.x)) + select(0, 1, bias);
-    return fb_env_table_mix(c, FB_ENV_TABLE_64[k], FB_ENV_TABLE_64[k + 2], FB_ENV_TABLE_64[k + 128], FB_ENV_TABLE_64[k + 130], bits);
+    // One local copy: a compiler may materialise a constant array once per dynamic access.
+    var t = FB_ENV_TABLE_64;
+    return fb_env_table_mix(c, t[k], t[k + 2], t[k + 128], t[k + 130], bits);
 }
 
 /// env-brdf-table, size 128.
 fn fb_env_table_128(cos_v: f32, alpha: f32, bits: u32, bias: bool) -> f32 {
     let c = fb_env_table_at(cos_v, alpha, 128);
     let k = 2 * (i32(c.z) * 128 + i32(c.x)) + select(0, 1, bias);
-    return fb_env_table_mix(c, FB_ENV_TABLE_128[k], FB_ENV_TABLE_128[k + 2], FB_ENV_TABLE_128[k + 256], FB_ENV_TABLE_128[k + 258], bits);
+    // One local copy: a compiler may materialise a constant array once per dynamic access.
+    var t = FB_ENV_TABLE_128;
+    return fb_env_table_mix(c, t[k], t[k + 2], t[k + 256], t[k + 258], bits);
 }

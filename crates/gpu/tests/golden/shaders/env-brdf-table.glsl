@@ -54,10 +54,15 @@ vec4 fb_env_table_at(float cos_v, float alpha, int n_1) {
 }
 
 float fb_env_table_32_(float cos_v_1, float alpha_1, uint bits_2, bool bias) {
+    float t[2048] = FB_ENV_TABLE_32_;
     vec4 _e5 = fb_env_table_at(cos_v_1, alpha_1, 32);
     int k = ((2 * ((int(_e5.z) * 32) + int(_e5.x))) + (bias ? 1 : 0));
-    float _e33 = fb_env_table_mix(_e5, FB_ENV_TABLE_32_[k], FB_ENV_TABLE_32_[(k + 2)], FB_ENV_TABLE_32_[(k + 64)], FB_ENV_TABLE_32_[(k + 66)], bits_2);
-    return _e33;
+    float _e22 = t[k];
+    float _e26 = t[(k + 2)];
+    float _e30 = t[(k + 64)];
+    float _e34 = t[(k + 66)];
+    float _e35 = fb_env_table_mix(_e5, _e22, _e26, _e30, _e34, bits_2);
+    return _e35;
 }
 
 float fb_env_brdf_table(float cos_v_2, float alpha_2) {

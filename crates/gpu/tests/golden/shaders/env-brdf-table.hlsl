@@ -62,10 +62,16 @@ int naga_f2i32(float value) {
 
 float fb_env_table_32_(float cos_v_1, float alpha_1, uint bits_2, bool bias)
 {
+    float t[2048] = FB_ENV_TABLE_32_;
+
     const float4 _e5 = fb_env_table_at(cos_v_1, alpha_1, int(32));
     int k = asint(asuint(asint(asuint(int(2)) * asuint(asint(asuint(asint(asuint(naga_f2i32(_e5.z)) * asuint(int(32)))) + asuint(naga_f2i32(_e5.x)))))) + asuint((bias ? int(1) : int(0))));
-    const float _e33 = fb_env_table_mix(_e5, FB_ENV_TABLE_32_[min(uint(k), 2047u)], FB_ENV_TABLE_32_[min(uint(asint(asuint(k) + asuint(int(2)))), 2047u)], FB_ENV_TABLE_32_[min(uint(asint(asuint(k) + asuint(int(64)))), 2047u)], FB_ENV_TABLE_32_[min(uint(asint(asuint(k) + asuint(int(66)))), 2047u)], bits_2);
-    return _e33;
+    float _e22 = t[min(uint(k), 2047u)];
+    float _e26 = t[min(uint(asint(asuint(k) + asuint(int(2)))), 2047u)];
+    float _e30 = t[min(uint(asint(asuint(k) + asuint(int(64)))), 2047u)];
+    float _e34 = t[min(uint(asint(asuint(k) + asuint(int(66)))), 2047u)];
+    const float _e35 = fb_env_table_mix(_e5, _e22, _e26, _e30, _e34, bits_2);
+    return _e35;
 }
 
 float fb_env_brdf_table(float cos_v_2, float alpha_2)

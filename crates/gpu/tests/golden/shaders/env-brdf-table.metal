@@ -88,10 +88,15 @@ float fb_env_table_32_(
     uint bits_2,
     bool bias
 ) {
+    type_5 t = FB_ENV_TABLE_32_;
     metal::float4 _e5 = fb_env_table_at(cos_v_1, alpha_1, 32);
     int k = as_type<int>(as_type<uint>(as_type<int>(as_type<uint>(2) * as_type<uint>(as_type<int>(as_type<uint>(as_type<int>(as_type<uint>(naga_f2i32(_e5.z)) * as_type<uint>(32))) + as_type<uint>(naga_f2i32(_e5.x)))))) + as_type<uint>(bias ? 1 : 0));
-    float _e33 = fb_env_table_mix(_e5, FB_ENV_TABLE_32_.inner[k], FB_ENV_TABLE_32_.inner[as_type<int>(as_type<uint>(k) + as_type<uint>(2))], FB_ENV_TABLE_32_.inner[as_type<int>(as_type<uint>(k) + as_type<uint>(64))], FB_ENV_TABLE_32_.inner[as_type<int>(as_type<uint>(k) + as_type<uint>(66))], bits_2);
-    return _e33;
+    float _e22 = t.inner[k];
+    float _e26 = t.inner[as_type<int>(as_type<uint>(k) + as_type<uint>(2))];
+    float _e30 = t.inner[as_type<int>(as_type<uint>(k) + as_type<uint>(64))];
+    float _e34 = t.inner[as_type<int>(as_type<uint>(k) + as_type<uint>(66))];
+    float _e35 = fb_env_table_mix(_e5, _e22, _e26, _e30, _e34, bits_2);
+    return _e35;
 }
 
 float fb_env_brdf_table(

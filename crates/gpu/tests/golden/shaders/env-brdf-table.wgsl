@@ -58,7 +58,9 @@ fn fb_env_table_at(cos_v: f32, alpha: f32, n: i32) -> vec4<f32> {
 fn fb_env_table_32(cos_v: f32, alpha: f32, bits: u32, bias: bool) -> f32 {
     let c = fb_env_table_at(cos_v, alpha, 32);
     let k = 2 * (i32(c.z) * 32 + i32(c.x)) + select(0, 1, bias);
-    return fb_env_table_mix(c, FB_ENV_TABLE_32[k], FB_ENV_TABLE_32[k + 2], FB_ENV_TABLE_32[k + 64], FB_ENV_TABLE_32[k + 66], bits);
+    // One local copy: a compiler may materialise a constant array once per dynamic access.
+    var t = FB_ENV_TABLE_32;
+    return fb_env_table_mix(c, t[k], t[k + 2], t[k + 64], t[k + 66], bits);
 }
 
 /// env-brdf's terms on the 32 x 32 table: (scale, bias) of texel (i, j) at 2 (j 32 + i).
