@@ -242,7 +242,10 @@ mod tests {
     fn the_ledger_measures_what_it_says() {
         let r = Reference::new("env-brdf").unwrap();
         let same = r.measure("env-brdf", &[]).unwrap();
-        assert!(same.scale.max_abs < 1e-12 && same.furnace.mean_abs < 1e-12, "{same:?}");
+        assert!(
+            same.scale.max_abs < 1e-12 && same.furnace.mean_abs < 1e-12,
+            "{same:?}"
+        );
         let k = r.measure("env-brdf-approx", &[]).unwrap();
         assert!(k.scale.max_abs > 0.01 && k.bias.max_abs > 0.001, "{k:?}");
         assert!(k.furnace.max_abs <= k.scale.max_abs + k.bias.max_abs + 1e-12);
