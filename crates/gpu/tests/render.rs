@@ -452,6 +452,7 @@ fn two_meshes_shadow_each_other() {
             texture: None,
             bump: None,
             specular: s.objects[0].material.specular.clone(),
+            maps: None,
         };
         s.objects.push(Object {
             shape: Shape::Mesh(Arc::new(copy)),
