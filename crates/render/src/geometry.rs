@@ -2,7 +2,7 @@
 
 mod bvh4;
 use bvh4::Bvh4;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// A ray `o + t d`, `d` unit.
 #[derive(Clone, Copy, Debug)]
@@ -19,6 +19,9 @@ pub struct Hit {
     /// Shading normal (interpolated for meshes), unit.
     pub n: Vec3,
     pub uv: Vec2,
+    /// The interpolated tangent (xyz, w the bitangent's sign) of a mesh with tangents
+    /// ([`TriMesh::tangents`]); zero elsewhere.
+    pub tangent: Vec4,
     /// Index of the object in the scene.
     pub object: usize,
 }
@@ -111,6 +114,10 @@ pub struct TriMesh {
     pub normals: Vec<Vec3>,
     pub uvs: Vec<Vec2>,
     pub triangles: Vec<[u32; 3]>,
+    /// Per-vertex tangents (xyz, w the bitangent's sign: a glTF mesh's, for its normal
+    /// texture and anisotropy), or empty. Set after [`TriMesh::new`]; read by
+    /// [`TriMesh::hit_tangent`].
+    pub tangents: Vec<Vec4>,
     nodes: Vec<Node>,
     order: Vec<u32>,
     /// The CPU's traversal structure, collapsed from `nodes` (see `geometry::bvh4`).
@@ -392,6 +399,7 @@ impl TriMesh {
             normals,
             uvs,
             triangles,
+            tangents: Vec::new(),
             nodes: Vec::new(),
             order: Vec::new(),
             bvh4: Bvh4::default(),
@@ -466,6 +474,31 @@ impl TriMesh {
     #[inline]
     pub fn hit(&self, r: &Ray, t_min: f32, t_max: f32, uv: bool) -> Option<(f32, Vec3, Vec2)> {
         self.shade(self.bvh4.hit(r, t_min, t_max)?, uv)
+    }
+
+    /// [`TriMesh::hit`] and the interpolated tangent (zero without [`TriMesh::tangents`]): the
+    /// same hit, normal and uv.
+    #[inline]
+    pub fn hit_tangent(
+        &self,
+        r: &Ray,
+        t_min: f32,
+        t_max: f32,
+        uv: bool,
+    ) -> Option<(f32, Vec3, Vec2, Vec4)> {
+        let found = self.bvh4.hit(r, t_min, t_max)?;
+        let (t, n, uv) = self.shade(found, uv)?;
+        let tangent = if self.tangents.is_empty() {
+            Vec4::ZERO
+        } else {
+            let (_, i, u, v) = found;
+            let [a, b, c] = self.triangles[self.order[i] as usize];
+            let t3 = |k: u32| self.tangents[k as usize];
+            let s = t3(a) * (1.0 - u - v) + t3(b) * u + t3(c) * v;
+            // The sign is the first corner's (a triangle's corners share it in any sane file).
+            s.truncate().extend(t3(a).w)
+        };
+        Some((t, n, uv, tangent))
     }
 
     /// [`TriMesh::hit`] through the binary tree (the GPU's layout; kept to compare against

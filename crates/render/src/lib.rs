@@ -26,6 +26,7 @@ pub mod geometry;
 pub mod gltf;
 pub mod gltf_write;
 mod hash;
+pub mod maps;
 pub mod mesh;
 pub mod render;
 pub mod scene;

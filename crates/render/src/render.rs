@@ -650,6 +650,7 @@ fn add_specular(
             texture: None,
             bump: None,
             specular: tint.zero.clone(),
+            maps: None,
         };
         let mut f0 = vec![Vec3::ZERO; radiance.len()];
         let mut f1 = vec![Vec3::ZERO; radiance.len()];

@@ -374,6 +374,9 @@ pub struct Material {
     pub texture: Option<Arc<Texture>>,
     pub bump: Option<Bump>,
     pub specular: Arc<Specular>,
+    /// A glTF material's textures beyond its base colour (metallic-roughness, normal,
+    /// occlusion, emission: [`crate::maps`]); CPU renderer only.
+    pub maps: Option<Arc<crate::maps::SurfaceMaps>>,
 }
 
 /// Geometry.
@@ -418,7 +421,9 @@ impl Scene {
     #[inline]
     pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
         self.nearest(ray, |o| {
-            o.material.texture.is_some() || o.material.specular.tint.is_some()
+            o.material.texture.is_some()
+                || o.material.specular.tint.is_some()
+                || o.material.maps.is_some()
         })
     }
 
@@ -451,6 +456,20 @@ impl Scene {
             let h = match &o.shape {
                 Shape::Sphere(s) => s.hit(ray, 1e-4, t_max, uv(o)),
                 Shape::Plane(p) => p.hit(ray, 1e-4, t_max, uv(o)),
+                Shape::Mesh(m) if !m.tangents.is_empty() => {
+                    if let Some((t, n, uv, tangent)) = m.hit_tangent(ray, 1e-4, t_max, uv(o)) {
+                        t_max = t;
+                        best = Some(Hit {
+                            t,
+                            p: ray.o + t * ray.d,
+                            n,
+                            uv,
+                            tangent,
+                            object: i,
+                        });
+                    }
+                    continue;
+                }
                 Shape::Mesh(m) => m.hit(ray, 1e-4, t_max, uv(o)),
             };
             if let Some((t, n, uv)) = h {
@@ -460,6 +479,7 @@ impl Scene {
                     p: ray.o + t * ray.d,
                     n,
                     uv,
+                    tangent: glam::Vec4::ZERO,
                     object: i,
                 });
             }

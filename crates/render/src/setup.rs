@@ -136,6 +136,7 @@ pub fn scene(spec: &SceneSpec, loaded: &Loaded, specular: Arc<Specular>) -> Scen
         texture: loaded.texture.clone(),
         bump: spec.bump,
         specular: specular.clone(),
+        maps: None,
     };
     let (shape, camera) = match &loaded.mesh {
         Some(m) => {
@@ -179,6 +180,7 @@ pub fn scene(spec: &SceneSpec, loaded: &Loaded, specular: Arc<Specular>) -> Scen
                 texture: None,
                 bump: None,
                 specular: specular.clone(),
+                maps: None,
             },
         });
     }

@@ -243,6 +243,7 @@ impl GltfScene {
                     texture: None,
                     bump: None,
                     specular: speculars[o.material].clone(),
+                    maps: None,
                 },
             })
             .collect();
