@@ -16,6 +16,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 mod environment;
+mod mapped;
 use environment::{EnvScratch, env_pass};
 
 /// How the specular term is evaluated.
@@ -112,6 +113,20 @@ struct Sample {
     base: Vec3,
     /// The specular term's texel (`Specular::tint`), one elsewhere.
     tint: Vec3,
+    /// The specular term's local frame (x, y) about `n`: the mesh's tangent frame where it
+    /// has tangents (a glTF mesh: anisotropy, normal textures; `maps::frame`), else
+    /// `n.any_orthonormal_pair()`.
+    t: Vec3,
+    b: Vec3,
+    /// A metallic-roughness texture's metallic and roughness level (`maps::MetallicRoughness`),
+    /// else 0.
+    metal: f32,
+    level: u32,
+    /// The occlusion of the light that is not punctual (the environment, the ambient term):
+    /// one without an occlusion texture.
+    ao: f32,
+    /// Emitted radiance (a glTF material's emission), added once per primary sample.
+    emit: Vec3,
 }
 
 /// Per-worker buffers of [`render_tile`], reused from tile to tile (allocating them per tile
@@ -357,7 +372,7 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
 /// the background elsewhere.
 fn initial(scene: &Scene, env: Option<&std::sync::Arc<crate::env::EnvMap>>, s: &Sample) -> Vec3 {
     match (s.object, env) {
-        (Some(_), _) => scene.ambient * s.base,
+        (Some(_), _) => scene.ambient * s.base * s.ao + s.emit,
         (None, Some(map)) => map.radiance(-s.v),
         (None, None) => scene.background,
     }
@@ -536,31 +551,57 @@ fn trace(
     for (i, ray) in rays.iter().enumerate() {
         let (pixel, sub) = pixel(i);
         samples.push(match scene.intersect_shading(ray) {
-            None => Sample {
-                pixel,
-                sub,
-                passes,
-                object: None,
-                p: Vec3::ZERO,
-                n: Vec3::Z,
-                g: Vec3::Z,
-                v: -ray.d,
-                base: Vec3::ZERO,
-                tint: Vec3::ONE,
-            },
+            None => {
+                let (t, b) = Vec3::Z.any_orthonormal_pair();
+                Sample {
+                    pixel,
+                    sub,
+                    passes,
+                    object: None,
+                    p: Vec3::ZERO,
+                    n: Vec3::Z,
+                    g: Vec3::Z,
+                    v: -ray.d,
+                    base: Vec3::ZERO,
+                    tint: Vec3::ONE,
+                    t,
+                    b,
+                    metal: 0.0,
+                    level: 0,
+                    ao: 1.0,
+                    emit: Vec3::ZERO,
+                }
+            }
             Some(hit) => {
                 let m = &scene.objects[hit.object].material;
                 let v = -ray.d;
                 // Two-sided shading: face the viewer, then perturb; a perturbed
                 // normal that turns away from the viewer (at silhouettes) falls
                 // back to the smooth one rather than flipping.
-                let smooth = if hit.n.dot(v) < 0.0 { -hit.n } else { hit.n };
-                let nrm = match m.bump {
-                    Some(b) => Some(b.perturb(hit.p, smooth))
-                        .filter(|n| n.dot(v) > 0.0)
-                        .unwrap_or(smooth),
-                    None => smooth,
+                let back = hit.n.dot(v) < 0.0;
+                let smooth = if back { -hit.n } else { hit.n };
+                let (nrm, t, b) = match m.bump {
+                    Some(b) => {
+                        let n = Some(b.perturb(hit.p, smooth))
+                            .filter(|n| n.dot(v) > 0.0)
+                            .unwrap_or(smooth);
+                        let (t, b) = n.any_orthonormal_pair();
+                        (n, t, b)
+                    }
+                    // The mesh's tangent frame and the normal texture, where there are.
+                    None => crate::maps::frame(
+                        smooth,
+                        hit.tangent,
+                        back,
+                        v,
+                        m.maps.as_ref().and_then(|x| x.normal.as_ref()),
+                        hit.uv,
+                    ),
                 };
+                let (metal, level, ao, emit) = m
+                    .maps
+                    .as_ref()
+                    .map_or((0.0, 0, 1.0, Vec3::ZERO), |x| mapped::texels(x, hit.uv));
                 let albedo = m
                     .texture
                     .as_ref()
@@ -580,6 +621,12 @@ fn trace(
                         .tint
                         .as_ref()
                         .map_or(Vec3::ONE, |t| t.texture.sample(hit.uv)),
+                    t,
+                    b,
+                    metal,
+                    level,
+                    ao,
+                    emit,
                 }
             }
         });
@@ -618,7 +665,7 @@ fn direct(
                 }
                 radiance[i] += li * s.base * (cos_i / std::f32::consts::PI);
                 if m.ks > 0.0 {
-                    let (t, b) = s.n.any_orthonormal_pair();
+                    let (t, b) = (s.t, s.b);
                     let wi = [l.dot(t), l.dot(b), cos_i];
                     let wo = [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)];
                     spec.push(i, wi, wo, li);
@@ -642,6 +689,10 @@ fn add_specular(
     radiance: &mut [Vec3],
     samples: &[Sample],
 ) {
+    if let Some(mr) = m.maps.as_ref().and_then(|x| x.metallic_roughness.as_ref()) {
+        mapped::add_specular_mapped(m, mr, shading, spec, radiance, samples);
+        return;
+    }
     if let Some(tint) = &m.specular.tint {
         let zero = crate::scene::Material {
             kd: m.kd,

@@ -329,11 +329,13 @@ fn unused_features_are_named_in_warnings() {
     let mat = d.push(
         "materials",
         json!({"name": "paint", "alphaMode": "BLEND", "emissiveFactor": [1.0, 0.0, 0.0],
-               "normalTexture": {"index": 0}, "occlusionTexture": {"index": 0},
-               "emissiveTexture": {"index": 0},
+               "normalTexture": {"index": 0, "texCoord": 1},
+               "occlusionTexture": {"index": 0, "texCoord": 1},
+               "emissiveTexture": {"index": 0,
+                   "extensions": {"KHR_texture_transform": {"scale": [2.0, 2.0]}}},
                "pbrMetallicRoughness": {"baseColorTexture": {"index": 0,
                    "extensions": {"KHR_texture_transform": {"scale": [2.0, 2.0]}}},
-                   "metallicRoughnessTexture": {"index": 0}},
+                   "metallicRoughnessTexture": {"index": 0, "texCoord": 1}},
                "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0},
                    "KHR_materials_clearcoat": {"clearcoatTexture": {"index": 0}}}}),
     );
@@ -353,12 +355,11 @@ fn unused_features_are_named_in_warnings() {
     let all = s.warnings.join("\n");
     for name in [
         "baseColorTexture (with KHR_texture_transform)",
-        "metallicRoughnessTexture",
-        "normalTexture",
-        "occlusionTexture",
-        "emissiveTexture",
+        "metallicRoughnessTexture (on TEXCOORD_1: only TEXCOORD_0 is read)",
+        "normalTexture (on TEXCOORD_1: only TEXCOORD_0 is read)",
+        "occlusionTexture (on TEXCOORD_1: only TEXCOORD_0 is read)",
+        "emissiveTexture (with KHR_texture_transform)",
         "clearcoatTexture",
-        "emission (emissiveFactor 1,0,0)",
         "alphaMode BLEND",
         "extension KHR_materials_transmission",
         "/materials/0 'paint'",

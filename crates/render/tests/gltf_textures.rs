@@ -200,3 +200,257 @@ fn an_unusable_base_colour_texture_is_named_and_a_broken_image_is_an_error() {
         .to_string();
     assert!(e.starts_with("t.gltf: /images/0: "), "{e}");
 }
+
+// The textures beyond the base colour (`fastbrdf_render::maps`).
+
+/// `doc` with `pngs` as data-URI images and textures 0, 1, ... in order.
+fn with_images(pngs: &[Vec<u8>]) -> Doc {
+    let mut d = Doc::new();
+    for p in pngs {
+        let img = d.push(
+            "images",
+            json!({"uri": format!("data:image/png;base64,{}", gltf_build::base64(p))}),
+        );
+        d.push("textures", json!({"source": img}));
+    }
+    d
+}
+
+/// A quad facing the camera (as [`quad_scene`]) with the given NORMAL and, if any, TANGENT of
+/// all four corners.
+fn quad_with(d: &mut Doc, mat: serde_json::Value, normal: [f32; 3], tangent: Option<[f32; 4]>) {
+    let m = d.push("materials", mat);
+    let pos = d.floats(
+        &[
+            -0.5, -0.5, 0.0, 0.5, -0.5, 0.0, 0.5, 0.5, 0.0, -0.5, 0.5, 0.0,
+        ],
+        "VEC3",
+    );
+    let uv = d.floats(&[0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0], "VEC2");
+    let nor = d.floats(&normal.repeat(4), "VEC3");
+    let idx = d.indices(&[0, 1, 2, 0, 2, 3]);
+    let mut attrs = json!({"POSITION": pos, "TEXCOORD_0": uv, "NORMAL": nor});
+    if let Some(t) = tangent {
+        attrs["TANGENT"] = json!(d.floats(&t.repeat(4), "VEC4"));
+    }
+    let q = d.mesh(attrs, Some(idx), Some(m));
+    let n = d.push("nodes", json!({"mesh": q}));
+    let c = d.push(
+        "cameras",
+        json!({"type": "perspective", "perspective": {"yfov": 0.3, "znear": 0.1}}),
+    );
+    let cam = d.push(
+        "nodes",
+        json!({"camera": c, "translation": [0.0, 0.0, 3.0]}),
+    );
+    d.scene(&[n, cam]);
+}
+
+/// Asserts two renders agree to `tol` relative, and that the quad is lit in most pixels.
+fn same(a: &[Vec3], b: &[Vec3], tol: f32) {
+    let mut lit = 0;
+    for (x, y) in a.iter().zip(b) {
+        assert!(
+            (*x - *y).abs().max_element() <= tol * (1.0 + y.max_element()),
+            "{x} != {y}"
+        );
+        lit += usize::from(y.max_element() > 0.02);
+    }
+    assert!(lit > a.len() / 3, "the quad is lit: {lit} of {}", a.len());
+}
+
+#[test]
+fn a_metallic_roughness_texture_is_rendered_as_its_factors_would_be() {
+    if fastbrdf::registry::find(gltf::MODEL_ID).is_err() {
+        return;
+    }
+    // One texel: roughness 102/255 = 0.4 (level 410 of 1024), metallic 191/255, times the
+    // factors 1 and 0.8; against those values as factors (the level's roughness).
+    let pbr = |m: f64, r: f64, tex: bool| {
+        let mut p = json!({"baseColorFactor": [0.9, 0.6, 0.3, 1.0], "metallicFactor": m,
+            "roughnessFactor": r});
+        if tex {
+            p["metallicRoughnessTexture"] = json!({"index": 0});
+        }
+        json!({"pbrMetallicRoughness": p,
+            "extensions": {"KHR_materials_clearcoat": {"clearcoatFactor": 0.5, "clearcoatRoughnessFactor": 0.2}}})
+    };
+    let mut a = with_images(&[png(1, 1, &[[7, 102, 191]])]);
+    quad_scene(&mut a, pbr(0.8, 1.0, true));
+    let sa = gltf::from_bytes("t.gltf", &a.gltf(), Path::new(".")).unwrap();
+    assert!(sa.maps[0].metallic_roughness.is_some(), "{:?}", sa.warnings);
+    let level = (102.0f32 / 255.0 * 1024.0).round() as f64 / 1024.0;
+    let mut b = Doc::new();
+    quad_scene(&mut b, pbr(0.8 * 191.0 / 255.0, level, false));
+    same(
+        &render_doc(&a.glb(), 16, 16),
+        &render_doc(&b.glb(), 16, 16),
+        1e-4,
+    );
+    // A texture of two halves (rough left, smooth right): each half its own roughness.
+    let mut d = with_images(&[png(
+        4,
+        1,
+        &[[0, 255, 0], [0, 255, 0], [0, 40, 0], [0, 40, 0]],
+    )]);
+    quad_scene(&mut d, pbr(0.0, 1.0, true));
+    let px = render_doc(&d.glb(), 32, 16);
+    for (x, r) in [
+        (9, 1.0),
+        (22, (40.0f32 / 255.0 * 1024.0).round() as f64 / 1024.0),
+    ] {
+        let mut e = Doc::new();
+        quad_scene(&mut e, pbr(0.0, r, false));
+        let want = render_doc(&e.glb(), 32, 16)[8 * 32 + x];
+        let got = px[8 * 32 + x];
+        assert!(
+            (got - want).abs().max_element() <= 1e-4 * (1.0 + want.max_element()),
+            "x {x}: {got} != {want}"
+        );
+    }
+    assert!(
+        (px[8 * 32 + 9] - px[8 * 32 + 22]).abs().max_element() > 1e-3,
+        "the halves differ"
+    );
+}
+
+#[test]
+fn a_normal_texture_tilts_the_normal_in_the_tangent_frame() {
+    if fastbrdf::registry::find(gltf::MODEL_ID).is_err() {
+        return;
+    }
+    let mat = json!({"pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.5},
+        "normalTexture": {"index": 0}});
+    let unit = |b: u8| b as f32 / 255.0 * 2.0 - 1.0;
+    // Texels leaning right (+X) and up the image (+Y); the quad's u runs along +x and up the
+    // image along +y, so MikkTSpace's frame is (x, y, z). With a TANGENT of +y instead
+    // (B = z x y = -x), +X of the texture leans along +y and +Y along -x.
+    for (texel, tangent, lean) in [
+        ([204u8, 128, 230], None, 0),
+        ([128, 204, 230], None, 0),
+        ([204, 128, 230], Some([0.0, 1.0, 0.0, 1.0]), 1),
+    ] {
+        let mut a = with_images(&[png(1, 1, &[texel])]);
+        quad_with(&mut a, mat.clone(), [0.0, 0.0, 1.0], tangent);
+        let s = gltf::from_bytes("t.gltf", &a.gltf(), Path::new(".")).unwrap();
+        assert!(s.maps[0].normal.is_some(), "{:?}", s.warnings);
+        let (side, up) = (unit(texel[0]), unit(texel[1]));
+        let tilt = if lean == 0 {
+            [side, up, unit(texel[2])]
+        } else {
+            [-up, side, unit(texel[2])]
+        };
+        let n = Vec3::from_array(tilt).normalize().to_array();
+        let mut b = Doc::new();
+        quad_with(
+            &mut b,
+            json!({"pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.5}}),
+            n,
+            None,
+        );
+        same(
+            &render_doc(&a.glb(), 16, 16),
+            &render_doc(&b.glb(), 16, 16),
+            1e-4,
+        );
+    }
+}
+
+#[test]
+fn emission_is_added_and_occlusion_scales_the_environment() {
+    if fastbrdf::registry::find(gltf::MODEL_ID).is_err() {
+        return;
+    }
+    let lin = |c: u8| fastbrdf_render::texture::srgb_to_linear(c as f32 / 255.0);
+    let base = json!({"metallicFactor": 0.0, "roughnessFactor": 0.5});
+    let mut a = with_images(&[png(1, 1, &[[200, 100, 50]])]);
+    quad_scene(
+        &mut a,
+        json!({"pbrMetallicRoughness": base, "emissiveFactor": [1.0, 0.5, 0.25],
+            "emissiveTexture": {"index": 0},
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2.0}}}),
+    );
+    let mut b = Doc::new();
+    quad_scene(&mut b, json!({"pbrMetallicRoughness": base}));
+    let (pa, pb) = (render_doc(&a.glb(), 16, 16), render_doc(&b.glb(), 16, 16));
+    let emit = Vec3::new(2.0 * lin(200), lin(100), 0.5 * lin(50));
+    let mut on = 0;
+    for (x, y) in pa.iter().zip(&pb) {
+        if *y != Vec3::splat(0.015) {
+            // On the quad (not the background).
+            assert!(
+                (*x - *y - emit).abs().max_element() < 1e-5,
+                "{x} - {y} != {emit}"
+            );
+            on += 1;
+        }
+    }
+    assert!(on > 100, "{on}");
+    // Occlusion 102/255 at strength 0.5 scales the white environment by 1 + 0.5 (0.4 - 1).
+    let env = |mat: serde_json::Value, pngs: &[Vec<u8>]| {
+        let mut d = with_images(pngs);
+        quad_scene(&mut d, mat);
+        let s = gltf::from_bytes("t.glb", &d.glb(), Path::new(".")).unwrap();
+        let sky = std::sync::Arc::new(fastbrdf_render::env::EnvMap::from_spec("white").unwrap());
+        let mut spec = fastbrdf_render::setup::SceneSpec::new();
+        spec.env_samples = 4;
+        let scene = s.scene(&spec, Some(sky), &s.specs(&[]).unwrap()).unwrap();
+        fastbrdf_render::render::render(&scene, &opts(12, 12), &|_, _| {})
+            .unwrap()
+            .pixels
+    };
+    let occluded = env(
+        json!({"pbrMetallicRoughness": base, "occlusionTexture": {"index": 0, "strength": 0.5}}),
+        &[png(1, 1, &[[102, 0, 0]])],
+    );
+    let open = env(json!({"pbrMetallicRoughness": base}), &[]);
+    let k = 1.0 + 0.5 * (102.0 / 255.0 - 1.0);
+    let scaled: Vec<Vec3> = open.iter().map(|p| *p * k).collect();
+    // The background (white) is not occluded: only the quad's pixels are compared.
+    let quad: Vec<(Vec3, Vec3)> = occluded
+        .iter()
+        .zip(&scaled)
+        .zip(&open)
+        .filter(|(_, o)| (**o - Vec3::ONE).abs().max_element() > 1e-6)
+        .map(|((a, b), _)| (*a, *b))
+        .collect();
+    assert!(quad.len() > 40, "{}", quad.len());
+    for (x, y) in quad {
+        assert!(
+            (x - y).abs().max_element() <= 1e-5 * (1.0 + y.max_element()),
+            "{x} != {y}"
+        );
+    }
+}
+
+#[test]
+fn anisotropy_follows_the_files_tangents() {
+    if fastbrdf::registry::find(gltf::MODEL_ID).is_err() {
+        return;
+    }
+    let mat = |rot: f64| {
+        json!({"pbrMetallicRoughness": {"metallicFactor": 1.0, "roughnessFactor": 0.5},
+            "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.9, "anisotropyRotation": rot}}})
+    };
+    let draw = |rot: f64, tangent: [f32; 4]| {
+        let mut d = Doc::new();
+        d.uses("KHR_materials_anisotropy", false);
+        quad_with(&mut d, mat(rot), [0.0, 0.0, 1.0], Some(tangent));
+        render_doc(&d.glb(), 16, 16)
+    };
+    // Direction T cos + B sin: T = +x at 0 and T = +y, B = (z x y) = -x at pi/2 are both
+    // along x (the lobe is symmetric under reversal); T = +y at 0 is along y.
+    let along_x = draw(0.0, [1.0, 0.0, 0.0, 1.0]);
+    same(
+        &along_x,
+        &draw(std::f64::consts::FRAC_PI_2, [0.0, 1.0, 0.0, 1.0]),
+        1e-4,
+    );
+    let along_y = draw(0.0, [0.0, 1.0, 0.0, 1.0]);
+    let diff = along_x
+        .iter()
+        .zip(&along_y)
+        .map(|(a, b)| (*a - *b).abs().max_element())
+        .fold(0.0f32, f32::max);
+    assert!(diff > 1e-2, "the tangent turns the highlight: {diff}");
+}

@@ -1,7 +1,8 @@
-//! Base colour textures: a material's `baseColorTexture` decoded (PNG or JPEG, from a buffer
-//! view, a data URI or a file beside the scene), bounded as `--texture` files are
-//! ([`crate::texture::MAX_TEXTURE_SIDE`], [`crate::texture::MAX_TEXTURE_PIXELS`]), sRGB
-//! texels made linear. Each image is decoded once.
+//! Textures: a material's images decoded (PNG or JPEG, from a buffer view, a data URI or a
+//! file beside the scene), bounded as `--texture` files are
+//! ([`crate::texture::MAX_TEXTURE_SIDE`], [`crate::texture::MAX_TEXTURE_PIXELS`]); colour
+//! (base colour, emissive) texels made linear from sRGB, data (metallic-roughness, normal,
+//! occlusion) texels as stored, `byte / 255`. Each image is decoded once per use.
 
 use super::Ctx;
 use crate::error::Result;
@@ -16,19 +17,20 @@ use std::sync::Arc;
 /// The decoded images of a scene, by image index.
 #[derive(Default)]
 pub(super) struct Images {
-    done: HashMap<usize, Arc<Texture>>,
+    /// By (image index, whether sRGB-decoded).
+    done: HashMap<(usize, bool), Arc<Texture>>,
 }
 
 impl Images {
-    /// The texture `texture` (an index into `textures`) as linear texels; `ptr` names the
-    /// reference in errors and `warnings` gets what is not used (the sampler's wrap modes).
+    /// The texture `texture` (an index into `textures`) as linear texels, sRGB-decoded when
+    /// `srgb` (a colour, not data); `warnings` gets what is not used (the sampler's wrap modes).
     pub(super) fn get(
         &mut self,
         ctx: &Ctx,
         doc: &gltf::Document,
         buffers: &[Vec<u8>],
         dir: &Path,
-        texture: usize,
+        (texture, srgb): (usize, bool),
         warnings: &mut Vec<String>,
     ) -> Result<Arc<Texture>> {
         let t = doc
@@ -43,7 +45,7 @@ impl Images {
             ));
         }
         let img = t.source();
-        if let Some(done) = self.done.get(&img.index()) {
+        if let Some(done) = self.done.get(&(img.index(), srgb)) {
             return Ok(done.clone());
         }
         let ptr = format!("/images/{}", img.index());
@@ -69,15 +71,15 @@ impl Images {
                 super::buffers::read_uri(ctx, &format!("{ptr}/uri"), uri, dir)?
             }
         };
-        let tex = Arc::new(decode(ctx, &ptr, &bytes)?);
-        self.done.insert(img.index(), tex.clone());
+        let tex = Arc::new(decode(ctx, &ptr, &bytes, srgb)?);
+        self.done.insert((img.index(), srgb), tex.clone());
         Ok(tex)
     }
 }
 
 /// Decodes PNG or JPEG bytes: the format and the declared size checked first, the decoder's
 /// allocations capped.
-fn decode(ctx: &Ctx, ptr: &str, bytes: &[u8]) -> Result<Texture> {
+fn decode(ctx: &Ctx, ptr: &str, bytes: &[u8], srgb: bool) -> Result<Texture> {
     let bad = |m: String| ctx.err(ptr, m);
     let reader = || {
         image::ImageReader::new(std::io::Cursor::new(bytes))
@@ -106,7 +108,12 @@ fn decode(ctx: &Ctx, ptr: &str, bytes: &[u8]) -> Result<Texture> {
         .decode()
         .map_err(|e| bad(format!("cannot read the image: {e}")))?
         .to_rgb8();
-    let lut: Vec<f32> = (0..256).map(|i| srgb_to_linear(i as f32 / 255.0)).collect();
+    let lut: Vec<f32> = (0..256)
+        .map(|i| {
+            let x = i as f32 / 255.0;
+            if srgb { srgb_to_linear(x) } else { x }
+        })
+        .collect();
     let texels = rgb
         .pixels()
         .map(|p| Vec3::new(lut[p[0] as usize], lut[p[1] as usize], lut[p[2] as usize]))

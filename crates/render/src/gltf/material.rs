@@ -1,8 +1,10 @@
 //! glTF materials as the `gltf-pbr` model: the metallic-roughness factors and the
 //! `KHR_materials_*` extensions' factors become the model's parameters (the mapping below),
-//! read from the raw JSON so that every value is checked at its JSON pointer. The base colour
-//! texture is rendered (see `GltfScene::scene`); every other texture is named in a warning, as
-//! are emission, alpha modes other than OPAQUE and the material extensions not read.
+//! read from the raw JSON so that every value is checked at its JSON pointer. The base colour,
+//! metallic-roughness, normal, occlusion and emissive textures on `TEXCOORD_0` without
+//! `KHR_texture_transform` are rendered (see `GltfScene::scene` and `crate::maps`), and the
+//! emission; the extensions' textures, other texture coordinates and transforms, alpha modes
+//! other than OPAQUE and the material extensions not read are named in a warning.
 //!
 //! | glTF | `gltf-pbr` |
 //! |---|---|
@@ -49,8 +51,18 @@ pub struct GltfMaterial {
     /// Whether it needs tangents (anisotropy).
     pub needs_tangents: bool,
     /// Its `baseColorTexture` (a texture index) when it is rendered: on `TEXCOORD_0`, without
-    /// `KHR_texture_transform`.
+    /// `KHR_texture_transform`. Likewise the textures below.
     pub base_color_texture: Option<usize>,
+    /// `pbrMetallicRoughness.metallicRoughnessTexture` (G roughness, B metallic).
+    pub metallic_roughness_texture: Option<usize>,
+    /// `normalTexture` and its `scale`.
+    pub normal_texture: Option<(usize, f64)>,
+    /// `occlusionTexture` and its `strength`.
+    pub occlusion_texture: Option<(usize, f64)>,
+    /// `emissiveTexture`.
+    pub emissive_texture: Option<usize>,
+    /// `emissiveFactor` x `KHR_materials_emissive_strength` (linear RGB; zero: no emission).
+    pub emission: [f64; 3],
 }
 
 impl GltfMaterial {
@@ -67,6 +79,11 @@ impl GltfMaterial {
             ],
             needs_tangents: false,
             base_color_texture: None,
+            metallic_roughness_texture: None,
+            normal_texture: None,
+            occlusion_texture: None,
+            emissive_texture: None,
+            emission: [0.0; 3],
         }
     }
 
@@ -121,6 +138,24 @@ impl GltfMaterial {
                 fastbrdf_io::shorten(&self.name, 40)
             )
         }
+    }
+}
+
+/// The texture index of texture info `key` of `o` when it is rendered: on TEXCOORD_0 and not
+/// transformed; else it is named in `unused`.
+fn texture(o: &Obj, key: &str, unused: &mut Vec<String>) -> Option<usize> {
+    let t = o.v.and_then(|v| v.get(key))?;
+    let coord = t.get("texCoord").and_then(|v| v.as_u64()).unwrap_or(0);
+    if coord != 0 {
+        unused.push(format!(
+            "{key} (on TEXCOORD_{coord}: only TEXCOORD_0 is read)"
+        ));
+        None
+    } else if t.pointer("/extensions/KHR_texture_transform").is_some() {
+        unused.push(format!("{key} (with KHR_texture_transform)"));
+        None
+    } else {
+        t.get("index").and_then(|v| v.as_u64()).map(|i| i as usize)
     }
 }
 
@@ -220,12 +255,12 @@ impl<'a> Obj<'a> {
     }
 
     /// The texture references of this object (keys ending in `Texture`) but `skip`, named.
-    fn textures(&self, out: &mut Vec<String>, skip: &str) {
+    fn textures(&self, out: &mut Vec<String>, skip: &[&str]) {
         let Some(o) = self.v.and_then(|v| v.as_object()) else {
             return;
         };
         for (k, t) in o {
-            if k.ends_with("Texture") && k != skip {
+            if k.ends_with("Texture") && !skip.contains(&k.as_str()) {
                 let transform = t.pointer("/extensions/KHR_texture_transform").is_some();
                 out.push(format!(
                     "{k}{}",
@@ -289,23 +324,29 @@ pub(crate) fn read(
         "roughness",
         num(pbr.number("roughnessFactor", 1.0, 0.0, 1.0)?),
     );
-    // The base colour texture is rendered (`Specular::tint`) when it is on TEXCOORD_0 and not
-    // transformed.
-    let mut base_color_texture = None;
-    if let Some(t) = pbr.v.and_then(|o| o.get("baseColorTexture")) {
-        let coord = t.get("texCoord").and_then(|v| v.as_u64()).unwrap_or(0);
-        if coord != 0 {
-            unused.push(format!(
-                "baseColorTexture (on TEXCOORD_{coord}: only TEXCOORD_0 is read)"
-            ));
-        } else if t.pointer("/extensions/KHR_texture_transform").is_some() {
-            unused.push("baseColorTexture (with KHR_texture_transform)".into());
-        } else {
-            base_color_texture = t.get("index").and_then(|v| v.as_u64()).map(|i| i as usize);
-        }
-    }
-    pbr.textures(&mut unused, "baseColorTexture");
-    top.textures(&mut unused, "");
+    // The core textures are rendered (`Specular::tint`, `crate::maps`) when they are on
+    // TEXCOORD_0 and not transformed.
+    let base_color_texture = texture(&pbr, "baseColorTexture", &mut unused);
+    let metallic_roughness_texture = texture(&pbr, "metallicRoughnessTexture", &mut unused);
+    let scaled = |key: &str, factor: &str, lo: f64, hi: f64, unused: &mut Vec<String>| {
+        let Some(i) = texture(&top, key, unused) else {
+            return Ok(None);
+        };
+        let info = Obj::new(ctx, m, ptr, key)?;
+        Ok::<_, RenderError>(Some((i, info.number(factor, 1.0, lo, hi)?)))
+    };
+    let normal_texture = scaled("normalTexture", "scale", -inf, inf, &mut unused)?;
+    let occlusion_texture = scaled("occlusionTexture", "strength", 0.0, 1.0, &mut unused)?;
+    let emissive_texture = texture(&top, "emissiveTexture", &mut unused);
+    let core = [
+        "baseColorTexture",
+        "metallicRoughnessTexture",
+        "normalTexture",
+        "occlusionTexture",
+        "emissiveTexture",
+    ];
+    pbr.textures(&mut unused, &core);
+    top.textures(&mut unused, &core);
     let ext = Obj::new(ctx, m, ptr, "extensions")?;
     let e = |name: &str| -> Result<Option<Obj>> {
         Ok(match ext.v.and_then(|x| x.get(name)) {
@@ -356,7 +397,7 @@ pub(crate) fn read(
             )
         });
         put("specular_color", colour(c));
-        o.textures(&mut unused, "");
+        o.textures(&mut unused, &[]);
     }
     if let Some(o) = e("KHR_materials_clearcoat")? {
         put(
@@ -367,7 +408,7 @@ pub(crate) fn read(
             "clearcoat_roughness",
             num(o.number("clearcoatRoughnessFactor", 0.0, 0.0, 1.0)?),
         );
-        o.textures(&mut unused, "");
+        o.textures(&mut unused, &[]);
     }
     if let Some(o) = e("KHR_materials_sheen")? {
         put(
@@ -378,7 +419,7 @@ pub(crate) fn read(
             "sheen_roughness",
             num(o.number("sheenRoughnessFactor", 0.0, 0.0, 1.0)?),
         );
-        o.textures(&mut unused, "");
+        o.textures(&mut unused, &[]);
     }
     if let Some(o) = e("KHR_materials_anisotropy")? {
         let s = o.number("anisotropyStrength", 0.0, 0.0, 1.0)?;
@@ -387,25 +428,17 @@ pub(crate) fn read(
             "anisotropy_rotation",
             num(o.number("anisotropyRotation", 0.0, -inf, inf)?),
         );
-        o.textures(&mut unused, "");
+        o.textures(&mut unused, &[]);
         needs_tangents = s > 0.0;
     }
+    // A normal texture is applied in the tangent frame.
+    needs_tangents |= normal_texture.is_some();
     let emissive = top.colour("emissiveFactor", 3, [0.0; 3], 0.0, 1.0)?;
     let strength = match e("KHR_materials_emissive_strength")? {
         Some(o) => o.number("emissiveStrength", 1.0, 0.0, inf)?,
         None => 1.0,
     };
-    if emissive.iter().any(|&x| x > 0.0) && strength > 0.0 {
-        unused.push(format!(
-            "emission (emissiveFactor {}{})",
-            colour(emissive),
-            if strength != 1.0 {
-                format!(" x {strength}")
-            } else {
-                String::new()
-            }
-        ));
-    }
+    let emission = emissive.map(|x| x * strength);
     match m.get("alphaMode").and_then(|v| v.as_str()) {
         None | Some("OPAQUE") => {}
         Some(mode) => unused.push(format!(
@@ -429,6 +462,11 @@ pub(crate) fn read(
         pairs,
         needs_tangents,
         base_color_texture,
+        metallic_roughness_texture,
+        normal_texture,
+        occlusion_texture,
+        emissive_texture,
+        emission,
     };
     if !unused.is_empty() {
         warnings.push(format!(

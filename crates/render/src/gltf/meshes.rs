@@ -158,8 +158,12 @@ pub(super) fn walk(
         }
         let tangents = (materials[m].needs_tangents && g.all_tangents).then_some(g.tangents);
         let uvs = if g.all_uvs { g.uvs } else { Vec::new() };
+        let mut mesh = TriMesh::new(g.positions, g.normals, uvs, g.triangles);
+        if let Some(t) = &tangents {
+            mesh.tangents = t.iter().map(|&a| glam::Vec4::from_array(a)).collect();
+        }
         objects.push(GltfObject {
-            mesh: Arc::new(TriMesh::new(g.positions, g.normals, uvs, g.triangles)),
+            mesh: Arc::new(mesh),
             tangents,
             material: m,
         });

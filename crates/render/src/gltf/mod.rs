@@ -10,10 +10,11 @@
 //! before it is read. A broken file is a [`RenderError::Input`] naming the file and the JSON
 //! pointer of what is wrong (`scene.gltf: /meshes/0/primitives/0/attributes/POSITION:
 //! accessor 7 does not exist (2 accessors)`). The base colour texture is rendered exactly
-//! (`Specular::tint`: the model is affine in its base colour). What the renderer does not use
-//! (other textures, animations, skins, morph targets, alpha modes, other extensions...) is
-//! named in
-//! [`GltfScene::warnings`], never dropped silently.
+//! (`Specular::tint`: the model is affine in its base colour); the metallic-roughness, normal,
+//! occlusion and emissive textures and the emission as [`crate::maps`] says (metallic exactly,
+//! roughness to 1/2048, the normal in the mesh's tangent frame). What the renderer does not
+//! use (the extensions' textures, animations, skins, morph targets, alpha modes, other
+//! extensions...) is named in [`GltfScene::warnings`], never dropped silently.
 
 mod buffers;
 mod images;
@@ -26,7 +27,8 @@ mod view;
 use crate::env::{EnvMap, Environment};
 use crate::error::{RenderError, Result};
 use crate::geometry::TriMesh;
-use crate::scene::{Camera, Light, LightKind, Material, Object, Scene, Shape, Specular, Tint};
+use crate::maps::{self, Emissive, MetallicRoughness, NormalMap, Occlusion, SurfaceMaps};
+use crate::scene::{Camera, Light, LightKind, Material, Object, Scene, Shape, Specular};
 use crate::setup::SceneSpec;
 use crate::texture::Texture;
 use fastbrdf::ModelSpec;
@@ -82,8 +84,8 @@ impl Ctx {
 pub struct GltfObject {
     pub mesh: Arc<TriMesh>,
     /// Per-vertex tangents (xyz, w the bitangent's sign) where a material needs them
-    /// (anisotropy): the file's, or MikkTSpace's. The CPU renderer's local frame does not use
-    /// them yet (see the warnings).
+    /// (anisotropy, a normal texture): the file's, or MikkTSpace's; the mesh carries them too
+    /// (`TriMesh::tangents`), for the CPU renderer's shading frame.
     pub tangents: Option<Vec<[f32; 4]>>,
     /// Index into [`GltfScene::materials`].
     pub material: usize,
@@ -97,6 +99,8 @@ pub struct GltfScene {
     pub materials: Vec<GltfMaterial>,
     /// Per material, its base colour texture (linear texels) when it is rendered.
     pub textures: Vec<Option<Arc<Texture>>>,
+    /// Per material, its other textures when they are rendered.
+    pub maps: Vec<MapTextures>,
     /// The first camera of the default scene (perspective), if any.
     pub camera: Option<Camera>,
     pub lights: Vec<Light>,
@@ -104,6 +108,16 @@ pub struct GltfScene {
     pub bounds: (Vec3, Vec3),
     /// What is not rendered, one line each (`warning: ` is the printer's).
     pub warnings: Vec<String>,
+}
+
+/// A material's decoded textures beyond its base colour (each when rendered), with their
+/// scalars: the normal texture's `scale`, the occlusion texture's `strength`.
+#[derive(Clone, Default)]
+pub struct MapTextures {
+    pub metallic_roughness: Option<Arc<Texture>>,
+    pub normal: Option<(Arc<Texture>, f32)>,
+    pub occlusion: Option<(Arc<Texture>, f32)>,
+    pub emissive: Option<Arc<Texture>>,
 }
 
 /// Reads a `.gltf` or `.glb` file (bounded by [`MAX_SCENE_BYTES`]; buffers resolved beside it).
@@ -156,20 +170,43 @@ pub fn from_bytes(file: &str, bytes: &[u8], dir: &Path) -> Result<GltfScene> {
     meshes::unused_features(&doc, &mut warnings);
     let mut images = images::Images::default();
     let mut textures = Vec::new();
+    let mut maps = Vec::new();
     for (mi, m) in materials.iter().enumerate() {
         let used: Vec<&GltfObject> = walked.objects.iter().filter(|o| o.material == mi).collect();
-        textures.push(match m.base_color_texture {
-            Some(_) if used.iter().any(|o| o.mesh.uvs.is_empty()) => {
-                warnings.push(format!(
-                    "material {}: its baseColorTexture is not rendered: not every primitive has TEXCOORD_0",
-                    m.label()
-                ));
-                None
+        let no_uvs = used.iter().any(|o| o.mesh.uvs.is_empty());
+        let mut get = |t: Option<usize>, what: &str, srgb: bool| -> Result<Option<Arc<Texture>>> {
+            match t {
+                Some(_) if no_uvs => {
+                    warnings.push(format!(
+                        "material {}: its {what} is not rendered: not every primitive has TEXCOORD_0",
+                        m.label()
+                    ));
+                    Ok(None)
+                }
+                Some(t) if !used.is_empty() => Ok(Some(images.get(
+                    &ctx,
+                    &doc,
+                    &buffers,
+                    dir,
+                    (t, srgb),
+                    &mut warnings,
+                )?)),
+                _ => Ok(None),
             }
-            Some(t) if !used.is_empty() => {
-                Some(images.get(&ctx, &doc, &buffers, dir, t, &mut warnings)?)
-            }
-            _ => None,
+        };
+        textures.push(get(m.base_color_texture, "baseColorTexture", true)?);
+        let scaled = |t: Option<(usize, f64)>| t.map(|(i, _)| i);
+        let normal = get(scaled(m.normal_texture), "normalTexture", false)?;
+        let occlusion = get(scaled(m.occlusion_texture), "occlusionTexture", false)?;
+        maps.push(MapTextures {
+            metallic_roughness: get(
+                m.metallic_roughness_texture,
+                "metallicRoughnessTexture",
+                false,
+            )?,
+            normal: normal.zip(m.normal_texture.map(|(_, s)| s as f32)),
+            occlusion: occlusion.zip(m.occlusion_texture.map(|(_, s)| s as f32)),
+            emissive: get(m.emissive_texture, "emissiveTexture", true)?,
         });
     }
     Ok(GltfScene {
@@ -177,6 +214,7 @@ pub fn from_bytes(file: &str, bytes: &[u8], dir: &Path) -> Result<GltfScene> {
         objects: walked.objects,
         materials,
         textures,
+        maps,
         camera: walked.camera,
         lights: walked.lights,
         bounds: walked.bounds,
@@ -219,17 +257,10 @@ impl GltfScene {
         let speculars: Vec<Arc<Specular>> = specs
             .iter()
             .zip(&self.textures)
-            .map(|(s, tex)| {
-                let mut sp = Specular::new(s)?;
-                if let Some(texture) = tex {
-                    let zero = s.with("base_color", fastbrdf::Given::Num(0.0))?;
-                    sp.tint = Some(Tint {
-                        texture: texture.clone(),
-                        zero: Arc::new(Specular::new(&zero)?),
-                    });
-                }
-                Ok(Arc::new(sp))
-            })
+            .map(|(s, tex)| Ok(Arc::new(maps::tinted_specular(s, tex.as_ref())?)))
+            .collect::<Result<_>>()?;
+        let surface_maps: Vec<Option<Arc<SurfaceMaps>>> = (0..self.materials.len())
+            .map(|i| self.surface_maps(i, &specs[i]))
             .collect::<Result<_>>()?;
         let objects = self
             .objects
@@ -243,7 +274,7 @@ impl GltfScene {
                     texture: None,
                     bump: None,
                     specular: speculars[o.material].clone(),
-                    maps: None,
+                    maps: surface_maps[o.material].clone(),
                 },
             })
             .collect();
@@ -274,6 +305,37 @@ impl GltfScene {
                 samples: spec.env_samples.max(1),
             }),
         })
+    }
+
+    /// Material `i`'s textures beyond its base colour and its emission, with its spec `spec`;
+    /// `None` when it has neither.
+    fn surface_maps(&self, i: usize, spec: &ModelSpec) -> Result<Option<Arc<SurfaceMaps>>> {
+        let (m, t) = (&self.materials[i], &self.maps[i]);
+        let emission = Vec3::from_array(m.emission.map(|x| x as f32));
+        let out = SurfaceMaps {
+            metallic_roughness: t
+                .metallic_roughness
+                .clone()
+                .map(|tex| MetallicRoughness::new(tex, spec, self.textures[i].clone()))
+                .transpose()?,
+            normal: t
+                .normal
+                .clone()
+                .map(|(texture, scale)| NormalMap { texture, scale }),
+            occlusion: t
+                .occlusion
+                .clone()
+                .map(|(texture, strength)| Occlusion { texture, strength }),
+            emissive: (emission != Vec3::ZERO).then(|| Emissive {
+                factor: emission,
+                texture: t.emissive.clone(),
+            }),
+        };
+        let any = out.metallic_roughness.is_some()
+            || out.normal.is_some()
+            || out.occlusion.is_some()
+            || out.emissive.is_some();
+        Ok(any.then(|| Arc::new(out)))
     }
 
     /// Triangles in the scene (every instance counted).

@@ -1,5 +1,12 @@
 //! MikkTSpace tangents (the `mikktspace` crate, the algorithm glTF names) for primitives
 //! without a TANGENT attribute whose material needs one.
+//!
+//! The texture coordinates go in with v flipped (`1 - v`, v pointing up the image, as in
+//! Blender, whose exporter writes the TANGENTs of most files): so the bitangent
+//! `(N x T) w` points up the image, the +Y of a glTF normal texture ("+X is right and +Y is
+//! up"), as the Khronos sample viewer's fallback frame (`b = N x T`) has it. With v as glTF
+//! stores it (down the image) the sign `w` would reverse and a normal texture's green channel
+//! would tilt normals the wrong way.
 
 use glam::{Vec2, Vec3};
 
@@ -25,7 +32,8 @@ impl mikktspace::Geometry for Geometry<'_> {
         self.normals[self.triangles[face][vert] as usize].to_array()
     }
     fn tex_coord(&self, face: usize, vert: usize) -> [f32; 2] {
-        self.uvs[self.triangles[face][vert] as usize].to_array()
+        let uv = self.uvs[self.triangles[face][vert] as usize];
+        [uv.x, 1.0 - uv.y]
     }
     fn set_tangent_encoded(&mut self, tangent: [f32; 4], face: usize, vert: usize) {
         self.out[self.triangles[face][vert] as usize] = tangent;

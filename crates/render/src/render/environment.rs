@@ -123,11 +123,13 @@ pub(super) fn env_pass(
             let [u1, u2, u3, u4, u5, u6] = uniforms(ctx.opts.sampler, id, pass);
             // The specular term's local frame and view direction, once per hit.
             let frame = (m.ks > 0.0).then(|| {
-                let (t, b) = s.n.any_orthonormal_pair();
+                let (t, b) = (s.t, s.b);
                 (t, b, [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)])
             });
             // The map's direction: diffuse (MIS with the cosine strategy) and specular.
             let (l, le, pdf_l) = map.sample(u1, u2);
+            // Occlusion scales the environment's light (times one without a texture: exact).
+            let le = le * s.ao;
             let cos_i = s.n.dot(l);
             if pdf_l > 0.0 && cos_i > 0.0 && le != Vec3::ZERO && visible(scene, s, l) {
                 radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
@@ -156,6 +158,7 @@ pub(super) fn env_pass(
                 let cos_i = s.n.dot(l);
                 if cos_i > 0.0 {
                     let (le, pdf_l) = map.lookup(l);
+                    let le = le * s.ao;
                     if le != Vec3::ZERO && visible(scene, s, l) {
                         radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
                     }
@@ -220,6 +223,7 @@ pub(super) fn env_pass(
                     let inv = 1.0 / s.passes as f32;
                     let l = t * wi[0] + bt * wi[1] + s.n * wi[2];
                     let (le, pdf_l) = map.lookup(l);
+                    let le = le * s.ao;
                     if le != Vec3::ZERO && visible(scene, s, l) {
                         let w = power_heuristic(pdf, pdf_l);
                         let di = &es.draw_in;
