@@ -41,7 +41,8 @@ fastbrdf render --model pow --env white --weights 1,0 --albedo 1,1,1 --out furna
 fastbrdf render --model ward --material gold-paint --out gold-ward.png   (alpha = the fit's Ward alpha)\n  \
 fastbrdf render --model cook-torrance --param d=ggx --param g=smith-ggx-correlated --param alpha=0.2 --metal gold --out gold.png   (coloured: see `fastbrdf metals`)\n  \
 fastbrdf render --scene scene.glb --env sky --out scene.png   (a glTF scene: its camera, lights unless --light/--env, materials as gltf-pbr)\n  \
-fastbrdf render --scene scene.gltf --param f=schlick-sg --out sg.png   (a shortcut choice given to every material)",
+fastbrdf render --scene scene.gltf --param f=schlick-sg --out sg.png   (a shortcut choice given to every material)\n  \
+fastbrdf render --gpu --scene scene.glb --out scene-gpu.png   (the same picture on the GPU)",
     mut_arg("params", |a| a.help("A model parameter, NAME=VALUE; repeat for several")),
     mut_arg("material", |a| a.help(RENDER_MATERIAL_HELP)),
     mut_arg("metal", |a| a.help(RENDER_METAL_HELP))
@@ -72,10 +73,13 @@ pub struct RenderArgs {
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer, within 2/255 (fastbrdf-gpu's tests/render.rs).
     /// Grey models and users' models (file:PATH, their shader spliced into the GPU's): a
-    /// coloured registry model (--metal, R,G,B values) is CPU-only for now. Shadows as on the
-    /// CPU (--shadows on|off). With --env, the map sampled per sample with the CPU's random
-    /// numbers (--sampler), by map and cosine directions: without a specular term the CPU's
-    /// picture to rounding, with one the same in the limit (the CPU adds BRDF sampling).
+    /// coloured registry model (--metal, R,G,B values) is CPU-only for now. With --scene, the
+    /// glTF scene's materials (gltf-pbr, coloured, base colour textures) on the GPU; their
+    /// other textures (metallic-roughness, normal, occlusion, emissive) are CPU-only. Shadows
+    /// as on the CPU (--shadows on|off). With --env, the map sampled per sample with the CPU's
+    /// random numbers (--sampler), by map and cosine directions and a GGX lobe of the model's
+    /// roughness: without a specular term the CPU's picture to rounding, with one the same in
+    /// the limit (the CPU samples the BRDF itself).
     #[arg(long)]
     gpu: bool,
 }
@@ -230,19 +234,20 @@ fn render_gltf(
     spec: &SceneSpec,
     opts: &Options,
 ) -> Result<(), CliError> {
-    if a.gpu {
-        return Err(CliError::input(
-            "--gpu --scene: the GPU renderer does not draw glTF scenes yet: drop --gpu",
-        ));
-    }
     check_out(&a.out, &["png", "exr"])?;
     let overrides = a.model_args.param.pairs()?;
     let t = std::time::Instant::now();
     let loaded = gltf_scene::load(file, spec)?;
-    let (film, _) = gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false)?;
+    let (film, gpu) = if a.gpu {
+        let (film, label) = render_gltf_gpu(&loaded, spec, opts, &overrides)?;
+        (film, format!(", GPU: {label}"))
+    } else {
+        let (film, _) = gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false)?;
+        (film, String::new())
+    };
     let s = &loaded.scene;
     let on = format!(
-        ", scene {}: {} triangles, {} materials as {}, {} lights{}",
+        ", scene {}: {} triangles, {} materials as {}, {} lights{}{gpu}",
         s.file,
         s.triangles(),
         s.materials.len(),
@@ -261,6 +266,36 @@ fn render_gltf(
         }
     );
     finish(a, spec, opts, film, t, on)
+}
+
+/// Renders a glTF scene on the GPU (`fastbrdf_gpu::render`: coloured materials, base colour
+/// textures, shadows, the environment light); returns the film and the adapter's label. What
+/// the GPU renderer does not draw is refused (exit 2) before an adapter is looked for.
+fn render_gltf_gpu(
+    l: &gltf_scene::Loaded,
+    spec: &SceneSpec,
+    opts: &Options,
+    overrides: &[(String, String)],
+) -> Result<(Film, String), CliError> {
+    let specs = l.scene.specs(overrides)?;
+    let scene = l.scene.scene(spec, l.env.clone(), &specs)?;
+    fastbrdf_gpu::render::check(&scene)?;
+    let gpu = fastbrdf_gpu::Gpu::new()?;
+    let pb = bar(1, "render (GPU)");
+    let film = fastbrdf_gpu::render::render_with_progress(
+        &gpu.device,
+        &gpu.queue,
+        &scene,
+        opts,
+        &|d, t| {
+            pb.set_length(t as u64);
+            pb.set_position(d as u64);
+        },
+    )?;
+    pb.finish_and_clear();
+    film.check_finite()
+        .map_err(|e| CliError::input(format!("--scene {}: {e}", l.scene.file)))?;
+    Ok((film, gpu.label()))
 }
 
 /// Writes the picture and reports what was rendered, how and how long it took.

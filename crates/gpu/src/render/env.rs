@@ -147,7 +147,8 @@ impl EnvData {
 
 /// The roughness of the GGX lobe strategy for `scene` (see [`EnvData::params`]): the `alpha`
 /// of the first object's specular model with a specular term that has one (a Phong-like
-/// exponent `n` counts as `alpha = sqrt(2 / (n + 2))`), clamped to 0.001 to 1; 0 (no lobe
+/// exponent `n` counts as `alpha = sqrt(2 / (n + 2))`, a `roughness` as `alpha = roughness^2`,
+/// glTF's rule; a coloured model's first channel), clamped to 0.001 to 1; 0 (no lobe
 /// strategy) when none has. Any value keeps the estimate unbiased (the balance heuristic
 /// weighs the strategies by their densities); one near the model's lobe lowers its noise.
 pub fn lobe_alpha(scene: &fastbrdf_render::scene::Scene) -> f32 {
@@ -155,15 +156,16 @@ pub fn lobe_alpha(scene: &fastbrdf_render::scene::Scene) -> f32 {
         let Some(p) = o
             .material
             .specular
-            .brdf
-            .as_ref()
-            .and_then(|b| b.params().ok())
+            .channels
+            .first()
+            .and_then(|c| c.spec.params().ok())
         else {
             continue;
         };
-        let a = match (p.opt_num("alpha"), p.opt_num("n")) {
-            (Some(a), _) => a,
-            (None, Some(n)) if n > -2.0 => (2.0 / (n + 2.0)).sqrt(),
+        let a = match (p.opt_num("alpha"), p.opt_num("n"), p.opt_num("roughness")) {
+            (Some(a), _, _) => a,
+            (None, Some(n), _) if n > -2.0 => (2.0 / (n + 2.0)).sqrt(),
+            (None, None, Some(r)) => r * r,
             _ => continue,
         };
         if a.is_finite() && a > 0.0 {
@@ -479,7 +481,7 @@ fn background_pipeline(
     layout: &wgpu::PipelineLayout,
 ) -> Result<wgpu::RenderPipeline, GpuError> {
     let src = format!(
-        "{SHADER}\n{ENV_SHADER}\n{DFG_STUB}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>(0.0);\n}}\n"
+        "{SHADER}\n{ENV_SHADER}\n{DFG_STUB}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> RdSpec {{\n    return RdSpec(vec3<f32>(0.0), vec3<f32>(0.0));\n}}\n"
     );
     validated(device, "the environment's background shader", || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

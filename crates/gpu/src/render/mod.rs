@@ -37,6 +37,18 @@
 //!   sphere uvs with `atan2`/`asin` written out (WGSL's built-ins are too loose: lavapipe's
 //!   moved texels by 6e-4), ambient, and per light `li base cos/pi + li ks brdf(wi, wo) cos`
 //!   in the local frame of glam's `any_orthonormal_pair`, accumulated in the CPU's order.
+//! - Specular models (`models.rs`, issue 33): `rd_brdf` gives the object's model per colour
+//!   channel: a grey model's one instance in R, G and B, a coloured model's three channel
+//!   instances (`Specular::channels`, as the CPU evaluates them), each weighting its own
+//!   channel with the grey path's operations (`li (ks f cos)`), so channel c of a coloured
+//!   render is the grey render of channel c's model, on both renderers. A tinted term
+//!   (`Specular::tint`, a glTF base colour texture) also evaluates the zero model and mixes
+//!   the two weighted terms per channel as `f0 + t (f1 - f0)`, `t` the texel of the tint's
+//!   texture (uploaded below the albedo texture's rows in the object's texture, filtered by
+//!   the same bilinear rule). The channels and the zero model are slots of one loop over
+//!   coefficient offsets in `fb_k`, so each distinct model function is compiled once.
+//!   A glTF material's other textures (metallic-roughness, normal, occlusion, emissive) are
+//!   CPU-only ([`check`] refuses them).
 //! - Shadows (`scene.shadows`, the CPU's rule and arithmetic): every object goes up once
 //!   more, for the shadow rays (`Occluders`): spheres and planes as records, each mesh as its
 //!   CPU BVH (`TriMesh::bvh`, nodes flattened into one array with rebased indices) and its
@@ -79,10 +91,13 @@
 //! and likewise where a shadow ray passes within rounding of an occluder's edge (a shadow's
 //! edge: lit on one side, in shadow on the other).
 //! `tests/render.rs` holds GPU renders of the sphere and the face mesh to their CPU renders
-//! within stated tolerances: 8-bit on any adapter, and 1e-4 linear on software adapters.
+//! within stated tolerances: 8-bit on any adapter, and 1e-4 linear on software adapters;
+//! `tests/render_gltf.rs` a glTF scene's coloured and textured `gltf-pbr` materials likewise
+//! (and, under the environment light, in the limit, as `tests/render_env.rs`).
 
 pub mod env;
 mod layouts;
+mod models;
 mod objects;
 mod passes;
 mod scene_data;
@@ -90,7 +105,6 @@ pub mod split_sum;
 pub mod web;
 
 use crate::context::{GpuError, validated};
-use crate::spec::Instance;
 use crate::user::{ParamValue, UserShader};
 use fastbrdf_render::film::{Film, check_size};
 use fastbrdf_render::render::Options;
@@ -127,7 +141,8 @@ const ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Uint;
 /// picture as the CPU's in the limit of many samples (`tests/render_env.rs`). Errors: sizes
 /// outside `film::check_size` or `opts.spp` outside 1..=16 (as on the CPU), a mesh (its vertices,
 /// corners, or with shadows its BVH and triangles) or texture larger than the device's limits,
-/// a model that is not a BRDF instance, an RGB BRDF (see [`render_user`]), and GPU failures.
+/// a model that is not a BRDF instance, an RGB BRDF (see [`render_user`]), what [`check`]
+/// refuses, and GPU failures.
 pub fn render(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
@@ -192,8 +207,60 @@ struct User<'a> {
     block: Vec<f32>,
 }
 
-/// The pipelines' key of the user's shader (a model's key is `id [params]`, never this).
+/// The pipelines' key of the user's shader (a model's key is WGSL text, never this).
 const USER_KEY: &str = "file:";
+
+/// Refuses what only the CPU renderer draws, before any device is needed (a command line
+/// checks its scene with it before looking for an adapter): a glTF material's textures other
+/// than its base colour (metallic-roughness, normal, occlusion, emissive; `Material::maps`),
+/// a mesh with tangents (the CPU's shading frame follows them: an anisotropic glTF material),
+/// and a tinted RGB BRDF. [`render`] and its siblings check it too.
+pub fn check(scene: &Scene) -> Result<(), GpuError> {
+    for (i, obj) in scene.objects.iter().enumerate() {
+        if let Some(which) = cpu_only_maps(&obj.material) {
+            return Err(GpuError::Input(format!(
+                "--gpu: the glTF material's {which} is CPU-only: drop --gpu"
+            )));
+        }
+        if matches!(&obj.shape, fastbrdf_render::scene::Shape::Mesh(m) if !m.tangents.is_empty())
+        {
+            return Err(GpuError::Input(format!(
+                "--gpu: object {i} ({}): its shading frame follows the mesh's tangents (an \
+                 anisotropic glTF material), CPU-only: drop --gpu",
+                obj.material.specular.id
+            )));
+        }
+        let spec = &obj.material.specular;
+        if spec.rgb.is_some() && spec.tint.is_some() {
+            return Err(GpuError::Input(format!(
+                "'{}': a textured RGB BRDF is CPU-only: drop --gpu",
+                spec.id
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// What of `m` only the CPU renderer draws (a glTF material's metallic-roughness, normal,
+/// occlusion or emissive texture, or its emission), if anything: the first, named.
+fn cpu_only_maps(m: &fastbrdf_render::scene::Material) -> Option<&'static str> {
+    let maps = m.maps.as_ref()?;
+    if maps.metallic_roughness.is_some() {
+        Some("metallic-roughness texture")
+    } else if maps.normal.is_some() {
+        Some("normal texture")
+    } else if maps.occlusion.is_some() {
+        Some("occlusion texture")
+    } else if let Some(e) = &maps.emissive {
+        Some(if e.texture.is_some() {
+            "emissive texture"
+        } else {
+            "emission (emissiveFactor)"
+        })
+    } else {
+        None
+    }
+}
 
 fn render_scene(
     device: &wgpu::Device,
@@ -211,6 +278,7 @@ fn render_scene(
             opts.spp
         )));
     }
+    check(scene)?;
     let limits = device.limits();
     let (w, h, n) = (opts.width, opts.height, opts.spp);
     // Tile side in whole pixels.
@@ -264,24 +332,12 @@ fn render_scene(
                 spec.id
             )));
         }
-        if spec.is_coloured() {
-            return Err(GpuError::Input(format!(
-                "coloured specular ({}: a parameter given as R,G,B, e.g. --metal) is CPU-only for now: drop --gpu",
-                spec.id
-            )));
-        }
-        // The BRDF the CPU renderer shades with, its plan built once with the scene.
-        let Some(brdf) = &spec.brdf else {
-            return Err(GpuError::Input(format!(
-                "'{}' is not a model spec: the GPU renderer shades with model instances",
-                spec.id
-            )));
-        };
-        let instance = Instance::with_storage(brdf)?;
-        let key = format!("{} {:?}", instance.info.id, instance.params);
-        if !pipelines.contains_key(&key) {
-            let p = Pipelines::new(device, &layouts, &instance, env.as_ref())?;
-            pipelines.insert(key.clone(), p);
+        // The model the CPU renderer shades with (its channels, and a tint's zero model), its
+        // plans built once with the scene; one pipeline per distinct shader text.
+        let model = models::model_shader(spec)?;
+        if !pipelines.contains_key(&model.key) {
+            let p = Pipelines::new(device, &layouts, &model, env.as_ref())?;
+            pipelines.insert(model.key.clone(), p);
         }
         objects.push(upload_object(
             device,
@@ -290,8 +346,8 @@ fn render_scene(
             &limits,
             obj,
             i,
-            (&instance.coefs, &[]),
-            key,
+            (&model.coefs, &[]),
+            model.key,
             &reach,
         )?);
     }

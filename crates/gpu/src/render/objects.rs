@@ -21,7 +21,8 @@ pub(super) struct GpuObject {
 }
 
 /// What one object puts on the GPU, as plain data: its uniform (`struct Object`), its linear
-/// albedo texels (RGBA f32, at least 1 x 1), its mesh buffers (`mesh_v`, `mesh_t`) and, for a
+/// texels (RGBA f32, at least 1 x 1: the albedo texture's rows, then the specular tint's,
+/// [`stacked_texels`]), its mesh buffers (`mesh_v`, `mesh_t`) and, for a
 /// mesh, the rasteriser's triangle corners (dilated at boundary edges) with their count. The
 /// native renderer uploads it ([`upload_object`]); `render::web` sends it to a browser.
 pub(super) struct ObjectData {
@@ -95,21 +96,27 @@ pub(super) fn object_data(
             2
         }
     };
-    let (tex_w, tex_h, texels) = match &m.texture {
-        Some(t) => {
-            let max = limits.max_texture_dimension_2d;
-            if t.width > max || t.height > max {
-                return Err(GpuError::Input(format!(
-                    "the texture is {}x{}, larger than the GPU's largest texture side ({max})",
-                    t.width, t.height
-                )));
-            }
-            (t.width, t.height, linear_texels(t))
-        }
-        None => (1, 1, vec![0.0; 4]),
-    };
+    let tint = m.specular.tint.as_ref().map(|t| &*t.texture);
+    let (tex_w, tex_h) = m.texture.as_ref().map_or((1, 1), |t| (t.width, t.height));
+    let (tint_w, tint_h) = tint.map_or((0, 0), |t| (t.width, t.height));
+    let texture = stacked_texels(m.texture.as_deref(), tint);
+    let max = limits.max_texture_dimension_2d;
+    if texture.0 > max || texture.1 > max {
+        return Err(GpuError::Input(format!(
+            "object {index}: its textures (albedo {}, specular tint {}) take {}x{} texels, more \
+             than the GPU's largest texture side ({max})",
+            m.texture
+                .as_ref()
+                .map_or("none".into(), |t| format!("{}x{}", t.width, t.height)),
+            tint.map_or("none".into(), |t| format!("{}x{}", t.width, t.height)),
+            texture.0,
+            texture.1
+        )));
+    }
+    // The tint's rows follow the albedo texture's (none without one).
+    let tint_row = m.texture.as_ref().map_or(0, |t| t.height);
     let (bump_scale, bump_depth) = m.bump.map_or((0.0, 0.0), |b| (b.scale, b.depth));
-    let mut uniform: Vec<u32> = Vec::with_capacity(36);
+    let mut uniform: Vec<u32> = Vec::with_capacity(40);
     for v in [
         a,
         normal,
@@ -131,11 +138,12 @@ pub(super) fn object_data(
     let id = u32::try_from(index + 1)
         .map_err(|_| GpuError::Input(format!("object {index}: too many objects")))?;
     uniform.extend([tex_w, tex_h, id, 0]);
+    uniform.extend([tint_w, tint_h, tint_row, u32::from(tint.is_some())]);
     debug_assert_eq!(uniform[KD_WORD], m.kd.to_bits());
     debug_assert_eq!(uniform[KS_WORD], m.ks.to_bits());
     Ok(ObjectData {
         uniform,
-        texture: (tex_w, tex_h, texels),
+        texture,
         vertices,
         triangles,
         corners,
@@ -348,6 +356,27 @@ fn linear_texels(t: &Texture) -> Vec<f32> {
         .collect()
 }
 
+/// One object's texture: the albedo texture's rows ([`linear_texels`]), then the specular
+/// tint's, each row padded with zeros to the wider of the two; 1 x 1 zero without either.
+/// As (width, height, texels).
+fn stacked_texels(albedo: Option<&Texture>, tint: Option<&Texture>) -> (u32, u32, Vec<f32>) {
+    let parts: Vec<&Texture> = [albedo, tint].into_iter().flatten().collect();
+    if parts.is_empty() {
+        return (1, 1, vec![0.0; 4]);
+    }
+    let w = parts.iter().map(|t| t.width).max().unwrap_or(1);
+    let h = parts.iter().map(|t| t.height).sum();
+    let mut out = Vec::with_capacity(4 * (w * h) as usize);
+    for t in parts {
+        let texels = linear_texels(t);
+        for row in texels.chunks_exact(4 * t.width as usize) {
+            out.extend_from_slice(row);
+            out.resize(out.len() + 4 * (w - t.width) as usize, 0.0);
+        }
+    }
+    (w, h, out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -359,6 +388,26 @@ mod tests {
         let got = linear_texels(&Texture::from_linear(3, 2, texels));
         assert_eq!(&got[..8], &[0.0, 0.5, 0.25, 1.0, 1.0, 0.5, 0.25, 1.0]);
         assert_eq!(got.len(), 24);
+    }
+
+    /// The tint's rows follow the albedo texture's, each row padded to the wider.
+    #[test]
+    fn textures_stack_albedo_then_tint() {
+        let a = Texture::from_linear(1, 2, vec![Vec3::splat(0.5), Vec3::splat(0.25)]);
+        let t = Texture::from_linear(2, 1, vec![Vec3::X, Vec3::Y]);
+        let (w, h, texels) = stacked_texels(Some(&a), Some(&t));
+        assert_eq!((w, h), (2, 3));
+        assert_eq!(
+            texels,
+            [
+                [0.5, 0.5, 0.5, 1.0, 0.0, 0.0, 0.0, 0.0],
+                [0.25, 0.25, 0.25, 1.0, 0.0, 0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0]
+            ]
+            .concat()
+        );
+        assert_eq!(stacked_texels(None, Some(&t)).0, 2);
+        assert_eq!(stacked_texels(None, None), (1, 1, vec![0.0; 4]));
     }
 
     /// Boundary edges: a quad of two triangles has four, its diagonal is shared.

@@ -5,10 +5,10 @@ use super::env::GpuEnv;
 use super::env::env_module_source;
 use super::layouts::Layouts;
 use super::layouts::USER_PARAMS_BINDING;
+use super::models::ModelShader;
 use super::objects::GpuObject;
 use super::{COLOR_FORMAT, DEPTH_FORMAT, ID_FORMAT, SHADER, Tile};
 use crate::context::{GpuError, validated};
-use crate::spec::Instance;
 use crate::user::UserShader;
 use std::collections::HashMap;
 
@@ -98,28 +98,18 @@ impl ScenePass<'_> {
 }
 
 impl Pipelines {
-    /// Compiles the render shader with the model `instance` (a BRDF) as `rd_brdf` (its value
-    /// in R, G and B); with `env`, the shading pipelines are the environment's
+    /// Compiles the render shader with an object's specular model (`model`: its functions
+    /// and `rd_brdf`, `models.rs`); with `env`, the shading pipelines are the environment's
     /// (`rd_fs_*_env`, `shaders/env.wgsl` spliced in).
     pub(super) fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
-        instance: &Instance,
+        model: &ModelShader,
         env: Option<&GpuEnv>,
     ) -> Result<Self, GpuError> {
-        if instance.info.kind != fastbrdf::Kind::Brdf {
-            return Err(GpuError::Input(format!(
-                "'{}' is not a BRDF: the renderer shades with BRDF instances",
-                instance.info.id
-            )));
-        }
-        let glue = format!(
-            "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>({}(wi, wo));\n}}\n",
-            instance.function
-        );
-        let module = instance.module_source();
-        let src = format!("{module}\n{SHADER}\n{}{glue}", env_source(env, &module)?);
-        let what = format!("render shader of {}", instance.info.id);
+        let module = &model.source;
+        let src = format!("{SHADER}\n{}{module}", env_source(env, module)?);
+        let what = format!("render shader of {}", model.id);
         Self::compile(device, layouts, &what, src, env)
     }
 
@@ -134,7 +124,7 @@ impl Pipelines {
         let user = shader
             .wgsl_at(1, USER_PARAMS_BINDING)
             .map_err(|e| GpuError::Input(e.message))?;
-        let glue = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {\n    return fb_user_brdf(wi, wo);\n}\n";
+        let glue = USER_GLUE;
         let src = format!("{user}\n{SHADER}\n{}{glue}", env_source(env, &user)?);
         let what = format!("render shader of {}", shader.name());
         Self::compile(device, layouts, &what, src, env)
@@ -215,6 +205,9 @@ impl Pipelines {
         })
     }
 }
+
+/// `rd_brdf` of a user's shader: its `fb_user_brdf` (R, G, B: the whole BRDF), no tint.
+pub(super) const USER_GLUE: &str = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> RdSpec {\n    return RdSpec(fb_user_brdf(wi, wo), vec3<f32>(0.0));\n}\n";
 
 /// The environment's shader and its `rd_dfg` (for a module whose other code is `module`)
 /// when there is one, else nothing (the module of an environment-less scene is unchanged).

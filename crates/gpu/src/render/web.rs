@@ -112,6 +112,12 @@ pub fn scene(scene: &Scene, opts: &Options) -> Result<WebScene, GpuError> {
     };
     let mut objects = Vec::with_capacity(scene.objects.len());
     for (i, obj) in scene.objects.iter().enumerate() {
+        if obj.material.specular.tint.is_some() {
+            return Err(GpuError::Input(format!(
+                "object {i}: a textured specular term (a glTF base colour texture): the page \
+                 does not draw it (the server does)"
+            )));
+        }
         let d = object_data(&limits, obj, i, &reach)?;
         let mut whole = d.uniform.clone();
         whole[KD_WORD] = 0f32.to_bits();
@@ -207,7 +213,7 @@ pub fn model_module(spec: &ModelSpec, meshes: bool, env: Env) -> Result<WebModul
         .collect();
     let glue = format!(
         "@group(1) @binding({USER_PARAMS_BINDING}) var<uniform> {PARAMS_NAME}: array<vec4<f32>, {k}>;\n\
-         fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {{\n    return vec3<f32>({}(wi, wo{args}));\n}}\n",
+         fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> RdSpec {{\n    return RdSpec(vec3<f32>({}(wi, wo{args})), vec3<f32>(0.0));\n}}\n",
         inst.function
     );
     Ok(WebModule {
@@ -222,10 +228,5 @@ pub fn user_module(shader: &UserShader, meshes: bool, env: Env) -> Result<String
     let user = shader
         .wgsl_at(1, USER_PARAMS_BINDING)
         .map_err(|e| GpuError::Input(e.message))?;
-    assemble(
-        &user,
-        meshes,
-        env,
-        "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {\n    return fb_user_brdf(wi, wo);\n}\n",
-    )
+    assemble(&user, meshes, env, super::passes::USER_GLUE)
 }

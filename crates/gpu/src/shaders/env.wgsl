@@ -255,7 +255,8 @@ fn rd_env_visible(s: RdSurface, l: vec3<f32>) -> bool {
         || !rd_shadowed(s.p, s.g, l, 0.0, true);
 }
 
-/// The integrand without the radiance: base cos / pi + ks f(wi, wo) cos (R, G, B).
+/// The integrand without the radiance: base cos / pi + ks f(wi, wo) cos (R, G, B; a tinted
+/// term mixed by its texel, `rd_specular`).
 fn rd_env_f(s: RdSurface, l: vec3<f32>, cos_i: f32) -> vec3<f32> {
     var f = s.base * (cos_i / RD_PI);
     let ks = object.mat.x;
@@ -263,7 +264,7 @@ fn rd_env_f(s: RdSurface, l: vec3<f32>, cos_i: f32) -> vec3<f32> {
         let b = rd_orthonormal_pair(s.n);
         let wi = vec3<f32>(rd_dot(l, b.t), rd_dot(l, b.b), cos_i);
         let wo = vec3<f32>(rd_dot(s.v, b.t), rd_dot(s.v, b.b), rd_dot(s.v, s.n));
-        f += ks * rd_brdf(wi, wo) * cos_i;
+        f += rd_specular(s, vec3<f32>(1.0), wi, wo);
     }
     return f;
 }

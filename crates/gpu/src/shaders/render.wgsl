@@ -7,10 +7,11 @@
 // GPU to do differently (fused multiply-adds, looser division, sqrt, atan2, asin) and by the
 // model functions' own CPU-GPU differences (tests/parity.rs).
 //
-// The module is completed at run time by the model library (`spec::Instance::module_source`)
-// and a function `rd_brdf(wi, wo) -> vec3<f32>` calling the model's `fb_<id>` (its value in
-// R, G and B), or by a user's shader (`user::UserShader::wgsl_at`, its parameters at group 1
-// binding 5) and `rd_brdf` calling its `fb_user_brdf` (R, G, B: the whole BRDF).
+// The module is completed at run time by the model library and a function
+// `rd_brdf(wi, wo) -> RdSpec` (render/models.rs: the object's model per colour channel, and
+// with a tint its zero model), or by a user's shader (`user::UserShader::wgsl_at`, its
+// parameters at group 1 binding 5) and `rd_brdf` calling its `fb_user_brdf` (R, G, B: the
+// whole BRDF).
 
 /// Per-frame (per-tile) data. Vectors are vec4 to keep the uniform layout obvious.
 struct Frame {
@@ -63,6 +64,15 @@ struct Object {
     /// Texture width and height, the object's index in the scene plus one (its id in the
     /// visibility pass), 0.
     tex_size: vec4<u32>,
+    /// The specular tint's texture (Specular::tint): width, height, its first row in the
+    /// object's texture (below the albedo texture's rows), and 1 when there is one.
+    tint: vec4<u32>,
+}
+
+/// `rd_brdf`'s value: the model per channel, and its tint's zero model (Specular::tint).
+struct RdSpec {
+    f: vec3<f32>,
+    zero: vec3<f32>,
 }
 
 @group(0) @binding(0) var<uniform> frame: Frame;
@@ -93,7 +103,8 @@ struct BvhNode {
 @group(0) @binding(4) var<storage, read> sh_tris: array<f32>;
 
 @group(1) @binding(0) var<uniform> object: Object;
-/// Linear albedo texels (rgb), read with textureLoad: the bilinear filter is texture.rs's.
+/// Linear albedo texels (rgb), then the specular tint's rows, read with textureLoad: the
+/// bilinear filter is texture.rs's.
 @group(1) @binding(1) var albedo_tex: texture_2d<f32>;
 /// Mesh vertices: 8 floats each (position, normal, uv).
 @group(1) @binding(2) var<storage, read> mesh_v: array<f32>;
@@ -368,24 +379,27 @@ fn rd_rem1(x: f32) -> f32 {
     return select(r, r + 1.0, r < 0.0);
 }
 
-fn rd_texel(xi: f32, yi: f32) -> vec3<f32> {
-    let w = i32(object.tex_size.x);
-    let h = i32(object.tex_size.y);
+/// Texel (xi, yi) of the w x h texture whose rows start at `row0`, wrapping.
+fn rd_texel(xi: f32, yi: f32, size: vec2<u32>, row0: u32) -> vec3<f32> {
+    let w = i32(size.x);
+    let h = i32(size.y);
     let x = ((i32(xi) % w) + w) % w;
     let y = ((i32(yi) % h) + h) % h;
-    return textureLoad(albedo_tex, vec2<i32>(x, y), 0).xyz;
+    return textureLoad(albedo_tex, vec2<i32>(x, y + i32(row0)), 0).xyz;
 }
 
-/// Texture::sample: bilinear, wrapping, v = 0 at the bottom.
-fn rd_texture(uv: vec2<f32>) -> vec3<f32> {
-    let x = rd_rem1(uv.x) * object.tex.x - 0.5;
-    let y = (1.0 - rd_rem1(uv.y)) * object.tex.y - 0.5;
+/// Texture::sample of the texture of `size` texels (`sf` as f32) at rows `row0..`: bilinear,
+/// wrapping, v = 0 at the bottom.
+fn rd_texture(uv: vec2<f32>, sf: vec2<f32>, size: vec2<u32>, row0: u32) -> vec3<f32> {
+    let x = rd_rem1(uv.x) * sf.x - 0.5;
+    let y = (1.0 - rd_rem1(uv.y)) * sf.y - 0.5;
     let x0 = floor(x);
     let y0 = floor(y);
     let fx = x - x0;
     let fy = y - y0;
-    let top = rd_lerp3(rd_texel(x0, y0), rd_texel(x0 + 1.0, y0), fx);
-    let bottom = rd_lerp3(rd_texel(x0, y0 + 1.0), rd_texel(x0 + 1.0, y0 + 1.0), fx);
+    let top = rd_lerp3(rd_texel(x0, y0, size, row0), rd_texel(x0 + 1.0, y0, size, row0), fx);
+    let bottom = rd_lerp3(rd_texel(x0, y0 + 1.0, size, row0),
+        rd_texel(x0 + 1.0, y0 + 1.0, size, row0), fx);
     return rd_lerp3(top, bottom, fy);
 }
 
@@ -614,13 +628,15 @@ fn rd_light_at(l: Light, p: vec3<f32>) -> RdPair {
 }
 
 /// A hit as shading sees it: point, view direction, shading normal (two-sided, bumped),
-/// unbumped normal (shadow rays leave along it), kd x albedo (textured).
+/// unbumped normal (shadow rays leave along it), kd x albedo (textured), the specular tint's
+/// texel (one without a tint).
 struct RdSurface {
     p: vec3<f32>,
     v: vec3<f32>,
     n: vec3<f32>,
     g: vec3<f32>,
     base: vec3<f32>,
+    tint: vec3<f32>,
 }
 
 /// The shading prologue of render_tile (and of the environment's passes, env.wgsl).
@@ -640,9 +656,26 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
     }
     var albedo = object.albedo.xyz;
     if object.flags.y != 0u {
-        albedo = albedo * rd_texture(hit.uv);
+        albedo = albedo * rd_texture(hit.uv, object.tex.xy, object.tex_size.xy, 0u);
     }
-    return RdSurface(p, v, n, g, albedo * object.albedo.w);
+    var tint = vec3<f32>(1.0);
+    if object.tint.w != 0u {
+        tint = rd_texture(hit.uv, vec2<f32>(object.tint.xy), object.tint.xy, object.tint.z);
+    }
+    return RdSurface(p, v, n, g, albedo * object.albedo.w, tint);
+}
+
+/// The specular term `li ks f cos` per channel (render.rs, `add_specular`): with a tint,
+/// `f_zero + t (f - f_zero)` of the two terms so weighted, t the texel.
+fn rd_specular(s: RdSurface, li: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
+    let ks = object.mat.x;
+    let f = rd_brdf(wi, wo);
+    let f1 = li * (ks * f.f * wi.z);
+    if object.tint.w == 0u {
+        return f1;
+    }
+    let f0 = li * (ks * f.zero * wi.z);
+    return f0 + s.tint * (f1 - f0);
 }
 
 /// The radiance of a hit: two-sided normal, micro-relief, texture, ambient, then per light
@@ -682,9 +715,8 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
             let f = rd_orthonormal_pair(n);
             let wi = vec3<f32>(rd_dot(l, f.t), rd_dot(l, f.b), cos_i);
             let wo = vec3<f32>(rd_dot(v, f.t), rd_dot(v, f.b), rd_dot(v, n));
-            // rd_brdf is R, G, B (a model's one value in all three): per channel the CPU's
-            // `li * (ks * f * cos)`, grey or RGB (render.rs, `add_specular`).
-            radiance += li * (ks * rd_brdf(wi, wo) * cos_i);
+            // Per channel the CPU's `li * (ks * f * cos)`, grey, coloured or RGB.
+            radiance += rd_specular(s, li, wi, wo);
         }
     }
     return radiance;
