@@ -48,6 +48,7 @@ pub mod plot;
 pub mod range;
 pub mod render_json;
 pub mod reproduce;
+pub mod sheen_ledger;
 pub mod simplex;
 pub mod speed;
 

@@ -50,10 +50,16 @@ impl EnvRow {
     }
 }
 
+/// A split-sum model: an env model other than the sheen albedo rows
+/// ([`crate::sheen_ledger`], `fastbrdf pareto --sheen`).
+fn split_sum(info: &fastbrdf::ModelInfo) -> bool {
+    info.kind == Kind::Env && !crate::sheen_ledger::is_sheen(info.id)
+}
+
 /// Every configuration of every env model: `(id, choices besides term)`.
 pub fn configs() -> Vec<(&'static str, Vec<(String, String)>)> {
     let mut out = vec![];
-    for e in registry::all().iter().filter(|e| e.info.kind == Kind::Env) {
+    for e in registry::all().iter().filter(|e| split_sum(&e.info)) {
         let mut sets: Vec<Vec<(String, String)>> = vec![vec![]];
         for p in e.info.params.iter().filter(|p| p.name != "term") {
             if let ParamKind::Choice { options, .. } = p.kind {
@@ -157,7 +163,7 @@ mod tests {
         let c = configs();
         let tables = c.iter().filter(|(id, _)| *id == "env-brdf-table").count();
         assert_eq!(tables, 4 * 3);
-        for e in registry::all().iter().filter(|e| e.info.kind == Kind::Env) {
+        for e in registry::all().iter().filter(|e| split_sum(&e.info)) {
             assert!(c.iter().any(|(id, _)| *id == e.info.id), "{}", e.info.id);
         }
         let r = Reference::new(REFERENCE).unwrap();

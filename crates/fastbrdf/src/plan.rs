@@ -30,7 +30,7 @@ use crate::brdf::{cook_torrance, gltf_pbr, lambert, phong, ward};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg};
 use crate::microfacet::{
     beckmann, beckmann_pow, env_brdf, env_rational, env_table, fresnel, ggx, kelemen_neumann, ms,
-    shadowing, sheen, smith_ggx,
+    shadowing, sheen, sheen_albedo, smith_ggx,
 };
 
 // The family traits live in the leaf module `forms` (no family, no registry below them);
@@ -202,6 +202,7 @@ families!($ EnvPlan: EnvForm, with_env {
     Approx(env_brdf::Approx),
     Rational(env_rational::Rational),
     Table(env_table::Table),
+    SheenAlbedo(sheen_albedo::SheenAlbedo),
 });
 
 /// A model instance of any kind (large for `gltf-pbr`: see `families!`).

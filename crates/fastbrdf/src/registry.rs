@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::lobes::{cubic, flog, gauss, pow, power, rational, schlick, sg, tuned};
 use crate::microfacet::{
     beckmann, beckmann_pow, env_brdf, env_rational, env_table, fresnel, ggx, kelemen_neumann,
-    shadowing, smith_ggx,
+    shadowing, sheen_albedo, smith_ggx,
 };
 use crate::model::{Kind, Lobe};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
@@ -75,6 +75,10 @@ pub static REGISTRY: &[Entry] = &[
     env_rational::ENTRY_MATERIALX,
     env_rational::ENTRY_MATERIALX_TUNED,
     env_table::ENTRY,
+    sheen_albedo::ENTRY_EXACT,
+    sheen_albedo::ENTRY_TABLE,
+    sheen_albedo::ENTRY_KHRONOS,
+    sheen_albedo::ENTRY_TUNED,
     // Full BRDFs.
     cook_torrance::ENTRY,
     ward::ENTRY,

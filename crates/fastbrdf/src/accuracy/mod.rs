@@ -67,8 +67,16 @@ pub struct Curve {
 impl Curve {
     /// Builds `id` with the parameter `name = value` (other parameters at their defaults).
     pub fn new(id: &str, name: &str, value: f64) -> Result<Self> {
-        if registry::find(id).is_ok_and(|e| e.info.kind == crate::Kind::Env) && name == "alpha" {
-            let term = |t: &str| ModelSpec::new(id, &[("term", Given::Choice(t.into()))]);
+        if let Some(e) = registry::find(id)
+            .ok()
+            .filter(|e| e.info.kind == crate::Kind::Env && name == "alpha")
+        {
+            // A term-less env model (the sheen albedo rows) is its own "bias" half.
+            let has_term = e.info.params.iter().any(|p| p.name == "term");
+            let term = |t: &str| match has_term {
+                true => ModelSpec::new(id, &[("term", Given::Choice(t.into()))]),
+                false => ModelSpec::new(id, &[]),
+            };
             return Ok(Self {
                 model: term("scale")?.model()?,
                 env: Some((term("bias")?.model()?, value)),

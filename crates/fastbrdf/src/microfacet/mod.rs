@@ -11,4 +11,5 @@ pub mod kelemen_neumann;
 pub mod ms;
 pub mod shadowing;
 pub mod sheen;
+pub mod sheen_albedo;
 pub mod smith_ggx;

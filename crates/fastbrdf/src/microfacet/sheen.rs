@@ -172,11 +172,17 @@ fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     out
 }
 
+/// The albedo quadrature's Gauss-Legendre rule on [0, 1], `(node, weight)`, computed once
+/// (`sheen_albedo`'s WGSL twin holds it as constants).
+pub(crate) fn quadrature_nodes() -> &'static [(f64, f64)] {
+    static NODES: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
+    NODES.get_or_init(|| gauss_legendre(QUAD_N))
+}
+
 /// `E(mu, alpha)` of `D V` with visibility `vis` (sheen colour 1) by product Gauss-Legendre
 /// in `(cos theta_i, phi)`, f64.
 pub fn albedo_quadrature(mu: f64, alpha: f64, vis: Vis) -> f64 {
-    static NODES: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
-    let nodes = NODES.get_or_init(|| gauss_legendre(QUAD_N));
+    let nodes = quadrature_nodes();
     let c = Charlie::new(alpha);
     let wo = [(1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu];
     let mut sum = 0.0;
