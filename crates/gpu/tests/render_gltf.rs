@@ -9,11 +9,15 @@
 //!   Measured on lavapipe: every 8-bit value equal, linear 99.9th percentile about 1e-7.
 //!   It can fail: the CPU's picture of the scene without the floor's texture misses it, and
 //!   the GPU's picture is coloured (the spheres' R and B differ).
-//! - Environment light (the built-in sky): the GPU draws its third direction from a GGX lobe,
-//!   the CPU from the model's sampler (`tests/render_env.rs`), so the pictures agree in the
-//!   limit: the GPU's 128 passes against the CPU's 256, linear RMSE at most 0.02 and the means
-//!   within 1% (measured: see the test's output). It can fail: the GPU's picture without the
-//!   floor's texture misses the mean.
+//! - Environment light (the built-in sky, its sun included): the GPU draws its third direction
+//!   from a GGX lobe, the CPU from the model's sampler (`tests/render_env.rs`), so the pictures
+//!   agree in the limit: the GPU's 256 passes against the CPU's 512, linear RMSE at most 0.015
+//!   and the means within 0.5%. Measured on lavapipe against the CPU's 2048 passes: the GPU's
+//!   RMSE 0.0033 at 256 passes and 0.00096 at 1024 (the CPU's own 0.0030 and 0.00091), means
+//!   within 1e-4. This is the test that found lavapipe's loop limit (`render/env.rs`,
+//!   `PASSES_PER_DRAW`): with every pass in one draw the GPU's picture was 1% dark at 256
+//!   passes and a third at 1024. It can fail: the GPU's picture without the floor's texture
+//!   misses the mean (by 24%).
 
 mod common;
 #[path = "../../render/tests/gltf_build/mod.rs"]
@@ -230,7 +234,7 @@ fn under_the_sky_the_gpu_converges_to_the_cpus_picture() {
     let gs = read();
     let sky = Arc::new(EnvMap::from_spec("sky").unwrap());
     let reference = cpu_render(
-        &scene(&gs, Some(sky.clone()), 256, true),
+        &scene(&gs, Some(sky.clone()), 512, true),
         &opts(),
         &|_, _| {},
     )
@@ -239,7 +243,7 @@ fn under_the_sky_the_gpu_converges_to_the_cpus_picture() {
     let gpu = gpu_render(
         &g.device,
         &g.queue,
-        &scene(&gs, Some(sky.clone()), 128, true),
+        &scene(&gs, Some(sky.clone()), 256, true),
         &opts(),
     )
     .unwrap();
@@ -247,19 +251,19 @@ fn under_the_sky_the_gpu_converges_to_the_cpus_picture() {
     gpu.check_finite().unwrap();
     let (e, m, mref) = rmse(&gpu, &reference);
     eprintln!("glTF scene, sky: RMSE {e:.4}, mean {m:.4} vs {mref:.4}");
-    assert!(e <= 0.02, "RMSE {e}");
-    assert!((m - mref).abs() <= 0.01 * mref, "mean {m} vs {mref}");
+    assert!(e <= 0.015, "RMSE {e}");
+    assert!((m - mref).abs() <= 0.005 * mref, "mean {m} vs {mref}");
     // It can fail: without the floor's texture the mean moves.
     let plain = gpu_render(
         &g.device,
         &g.queue,
-        &scene(&gs, Some(sky), 128, false),
+        &scene(&gs, Some(sky), 16, false),
         &opts(),
     )
     .unwrap();
     let (_, m, _) = rmse(&plain, &reference);
     assert!(
-        (m - mref).abs() > 0.01 * mref,
+        (m - mref).abs() > 0.05 * mref,
         "without the texture: {m} vs {mref}"
     );
 }

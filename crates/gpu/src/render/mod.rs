@@ -69,7 +69,10 @@
 //!   hint `--shadows off` (no such buffers then).
 //! - Environment light (`scene.environment`): `env.rs` and `shaders/env.wgsl`, spliced in
 //!   only then; per sample and pass a map direction and a cosine direction (balance
-//!   heuristic), with the CPU's shadow rays; `samples` passes in a few draws per tile, summed.
+//!   heuristic), with the CPU's shadow rays; `samples` passes in a few draws per tile, summed
+//!   (at most 4 passes per draw with shadow rays through meshes, 64 without: lavapipe cuts a
+//!   shader invocation's loops short after 65535 iterations in all, `env.rs`).
+//!   Under the environment the CPU's own BRDF sampling is the one estimator the GPU lacks.
 //! - Large images are cut into tiles of at most 2048 x 2048 samples (and at most the device's
 //!   largest texture side), whole pixels each, so the image size is only limited by
 //!   `film::check_size`, like the CPU's.

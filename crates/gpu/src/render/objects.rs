@@ -102,15 +102,19 @@ pub(super) fn object_data(
     let texture = stacked_texels(m.texture.as_deref(), tint);
     let max = limits.max_texture_dimension_2d;
     if texture.0 > max || texture.1 > max {
+        let size = |t: &Texture| format!("{}x{}", t.width, t.height);
+        let what = match (&m.texture, tint) {
+            (Some(t), None) => format!("the texture is {}", size(t)),
+            (a, t) => format!(
+                "object {index}'s textures (albedo {}, specular tint {}) stacked are {}x{}",
+                a.as_deref().map_or("none".into(), size),
+                t.map_or("none".into(), size),
+                texture.0,
+                texture.1
+            ),
+        };
         return Err(GpuError::Input(format!(
-            "object {index}: its textures (albedo {}, specular tint {}) take {}x{} texels, more \
-             than the GPU's largest texture side ({max})",
-            m.texture
-                .as_ref()
-                .map_or("none".into(), |t| format!("{}x{}", t.width, t.height)),
-            tint.map_or("none".into(), |t| format!("{}x{}", t.width, t.height)),
-            texture.0,
-            texture.1
+            "{what}, larger than the GPU's largest texture side ({max})"
         )));
     }
     // The tint's rows follow the albedo texture's (none without one).
