@@ -59,7 +59,10 @@ fn mean_grid(n: usize, vis: Vis) -> Grid {
 }
 
 /// Where this project's form starts, per visibility (a hand search on the form).
-const START: [[f64; 5]; 2] = [[-0.42, -1.63, 0.088, -1.0, 0.2], [-0.6, 0.63, 0.28, -1.7, -0.14]];
+const START: [[f64; 5]; 2] = [
+    [-0.42, -1.63, 0.088, -1.0, 0.2],
+    [-0.6, 0.63, 0.28, -1.7, -0.14],
+];
 
 type X = fastbrdf::math::Exact;
 

@@ -114,7 +114,10 @@ fn furnace(e_o: f64, es_o: f64, es_nodes: &[f64]) -> f64 {
 impl Reference {
     /// `sheen-albedo` at visibility `v` (`charlie`, `neubelt`) on the ledger's grids.
     pub fn new(v: &str) -> Result<Self> {
-        let r = env(&ModelSpec::new(REFERENCE, &[("v", Given::Choice(v.into()))])?)?;
+        let r = env(&ModelSpec::new(
+            REFERENCE,
+            &[("v", Given::Choice(v.into()))],
+        )?)?;
         let span = 1.0 - ALPHA_MIN;
         let max_alphas: Vec<f64> = (0..64)
             .map(|j| ALPHA_MIN + span * j as f64 / 63.0)
@@ -166,7 +169,8 @@ impl Reference {
         let on = |cols: &[Column]| -> Vec<Col> {
             cols.par_iter()
                 .map(|c| {
-                    let es_nodes: Vec<f64> = (0..NODES).map(|k| eval(&m, node(k), c.alpha)).collect();
+                    let es_nodes: Vec<f64> =
+                        (0..NODES).map(|k| eval(&m, node(k), c.alpha)).collect();
                     let mut out: Col = Default::default();
                     for (&mu, &want) in c.mus.iter().zip(&c.at_mus) {
                         let got = eval(&m, mu, c.alpha);
@@ -397,4 +401,47 @@ pub fn mark_front(rows: &mut [SheenRow]) {
             .cmp(&b.errors.v)
             .then(a.ns_per_eval.total_cmp(&b.ns_per_eval))
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sheen rows are the four sheen albedo models and none of the split-sum ones; every
+    /// configuration is listed once; the reference against itself has no error; Khronos' fit
+    /// has the grazing error of its fixed `(1 - mu)^3`; with the exact `E` the furnace never
+    /// exceeds 1 (Charlie's albedo is below 1: `A <= E + (1 - E)`), with the fit it does.
+    #[test]
+    fn the_sheen_ledger_measures_what_it_says() {
+        for id in [
+            "sheen-albedo",
+            "sheen-albedo-table",
+            "sheen-albedo-khronos",
+            "sheen-albedo-tuned",
+        ] {
+            assert!(is_sheen(id), "{id}");
+        }
+        assert!(!is_sheen("env-brdf") && !is_sheen("env-brdf-table") && !is_sheen("gltf-pbr"));
+        assert_eq!(configs().len(), 2 + 2 * 3 + 1 + 2);
+        assert!(
+            crate::pareto_env::configs()
+                .iter()
+                .all(|(id, _)| !is_sheen(id))
+        );
+        let r = Reference::new("charlie").unwrap();
+        let same = r.measure(&spec(REFERENCE, &[]).unwrap()).unwrap();
+        assert!(
+            same.albedo.max_abs < 1e-12 && same.furnace.max_abs < 1e-12,
+            "{same:?}"
+        );
+        assert!(same.furnace_peak_exact <= 1.0 + 1e-9 && same.furnace_peak_exact > 0.99);
+        let k = r
+            .measure(&spec("sheen-albedo-khronos", &[]).unwrap())
+            .unwrap();
+        assert!(k.albedo.max_abs > 0.3 && k.albedo.cos_v < 0.01, "{k:?}");
+        assert!(k.albedo.mean_abs < k.albedo.max_abs && k.furnace.mean_abs > 0.0);
+        assert!(
+            k.furnace_peak > 1.2 && k.furnace_gain.max(k.furnace_loss) <= k.furnace.max_abs + 1e-12
+        );
+    }
 }

@@ -6,6 +6,7 @@
 mod env;
 mod measured;
 mod over_materials;
+mod sheen;
 mod user;
 
 use super::common::numbers::{csv_num, swept};
@@ -61,11 +62,17 @@ fastbrdf errors --over materials                         (every approximation, 8
 fastbrdf errors --over materials --model ward-pow --threshold 0.05 --json\n  \
 fastbrdf errors --model ward --measured blue-rubber.binary --m 0.1..0.5:0.05   (residuals against the data)\n  \
 fastbrdf errors --model cook-torrance --param d=ggx --measured brass.binary --m 0.005..1:log10 --json\n  \
-fastbrdf errors --model env-brdf-table --param size=128 --param bits=16   (a split-sum model: the DFG ledger row)\n\n\
+fastbrdf errors --model env-brdf-table --param size=128 --param bits=16   (a split-sum model: the DFG ledger row)\n  \
+fastbrdf errors --model sheen-albedo-table --param v=neubelt --param bits=8   (a sheen albedo row)\n\n\
 A split-sum model (kind env) without --m: both terms and the white furnace (scale + bias)\n\
 against --reference (default env-brdf) over cos_v in (0, 1] and alpha in [0.005, 1]: max\n\
 absolute error and where (cos_v, alpha), mean absolute error (uniform in cos_v and alpha), and\n\
 the furnace's largest gain and loss; --param sets its parameters (size, bits).\n\n\
+A sheen albedo row (sheen-albedo-*) without --m: its albedo E against sheen-albedo at the same\n\
+visibility v over mu in [0.001, 1] and alpha in [0.07, 1] (max absolute error and where, mean),\n\
+and the furnace of gltf-pbr's white Lambertian base under a white sheen with that E in the\n\
+scaling (A' - A: max, mean, largest gain and loss; the largest albedo); --param v=V picks the\n\
+reference's visibility of a row without v (sheen-albedo-khronos).\n\n\
 --over materials measures each approximation against its reference at every MERL material's\n\
 own fitted parameter (Ngan, Matusik and Durand, EGSR 2005; see `fastbrdf materials`): lobes at\n\
 the Blinn-Phong n, Beckmann approximations and smith-rational at the Beckmann m, Ward's at\n\
@@ -154,6 +161,18 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         && a.over.is_none()
         && a.measured.is_none()
         && a.material.material.is_none();
+    if env && a.model.as_deref().is_some_and(fastbrdf_analysis::sheen_ledger::is_sheen) {
+        return sheen::run(&sheen::Args {
+            model: a.model.as_deref().unwrap_or_default(),
+            reference: a
+                .reference
+                .as_deref()
+                .unwrap_or(fastbrdf_analysis::sheen_ledger::REFERENCE),
+            params: &a.params.pairs()?,
+            json: a.json,
+            csv: a.csv,
+        });
+    }
     if env {
         return env::run(&env::Args {
             model: a.model.as_deref().unwrap_or_default(),

@@ -1,9 +1,10 @@
 //! `fastbrdf pareto`: error against cost for every lobe (fastbrdf-analysis::pareto), and with
 //! `--brdf` for Cook-Torrance configurations ([`brdf`]), with `--env` for the split-sum models
-//! (the DFG ledger, [`env`]).
+//! (the DFG ledger, [`env`]) and with `--sheen` for the sheen albedo rows ([`sheen`]).
 
 mod brdf;
 mod env;
+mod sheen;
 
 use super::common::figures::save_error;
 use super::common::progress::bar;
@@ -17,7 +18,7 @@ use std::path::PathBuf;
 #[derive(clap::Args)]
 #[command(
     after_help = "Examples:\n  fastbrdf pareto\n  fastbrdf pareto --json\n  fastbrdf pareto --markdown --out fastbrdf-out/pareto\n  \
-fastbrdf pareto --brdf --mesh face.obj\n  fastbrdf pareto --env --markdown\n  fastbrdf pareto --brdf --alpha 0.1,0.3,0.6 --reference d=beckmann,g=smith,f=dielectric,eta=1.5 --json\n\n\
+fastbrdf pareto --brdf --mesh face.obj\n  fastbrdf pareto --env --markdown\n  fastbrdf pareto --sheen --markdown\n  fastbrdf pareto --brdf --alpha 0.1,0.3,0.6 --reference d=beckmann,g=smith,f=dielectric,eta=1.5 --json\n\n\
 Output: a table on stdout (text, --json or --markdown). The plot (PNG and SVG, written both or\n\
 neither) is written only with --out; nothing is written to disk otherwise. A model whose\n\
 error or throughput is unknown has null in JSON.\n\n\
@@ -35,7 +36,15 @@ the scale term's batch kernel (4096 values, one core, measured now); per term an
 white furnace (scale + bias) the max absolute error, where (cos_v, alpha), and the mean\n\
 (uniform in cos_v and alpha); the front on (ns, the larger term's max). JSON: {reference,\n\
 rows: [{label, model, params, ops, ns_per_eval, max_abs, scale, bias, furnace: {max_abs, cos_v,\n\
-alpha, mean_abs, mean_abs_r}, furnace_gain, furnace_loss, pareto}]}."
+alpha, mean_abs, mean_abs_r}, furnace_gain, furnace_loss, pareto}]}.\n\n\
+--sheen: every sheen albedo row (sheen-albedo-*, each visibility v and storage) against\n\
+sheen-albedo at its v over mu in [0.001, 1] and alpha in [0.07, 1] (sheen-albedo-khronos, which\n\
+has no v, at both): ns per evaluation (4096 values, one core, measured now); the albedo's max\n\
+absolute error, where (mu, alpha), and mean; the furnace of gltf-pbr's white Lambertian base\n\
+under a white sheen with that E in the scaling (A' - A: max, where, mean, gain and loss; the\n\
+largest albedo A'); the front per v on (ns, E max). JSON: {reference, rows: [{label, model, v,\n\
+params, ops, ns_per_eval, albedo, furnace: {max_abs, cos_v, alpha, mean_abs, mean_abs_r},\n\
+furnace_gain, furnace_loss, furnace_peak, furnace_peak_exact, pareto}]}."
 )]
 pub struct Args {
     /// Print JSON: {"models": [{model, ops, simd_evals_per_s, max_abs_1_1e5, max_abs_8_1e5,
@@ -57,11 +66,18 @@ pub struct Args {
     /// ledger (docs/book/src/dfg-ledger.md).
     #[arg(long, conflicts_with_all = ["brdf", "bench", "out"])]
     env: bool,
+    /// The sheen albedo rows (sheen-albedo-*) against sheen-albedo at their visibility: the
+    /// sheen rows of the DFG ledger (docs/book/src/dfg-ledger.md).
+    #[arg(long, conflicts_with_all = ["brdf", "bench", "out", "env"])]
+    sheen: bool,
 }
 
 pub fn run(a: &Args) -> Result<(), CliError> {
     if a.env {
         return env::run(a.json, a.markdown);
+    }
+    if a.sheen {
+        return sheen::run(a.json, a.markdown);
     }
     if a.brdf.brdf {
         return brdf::run(&a.brdf, a.json, a.markdown, a.out.as_deref());
