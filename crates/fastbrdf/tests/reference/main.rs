@@ -49,6 +49,12 @@ const REFERENCED: &[&str] = &[
     "env-brdf-materialx",
     "env-brdf-materialx-tuned",
     "env-brdf-table",
+    // The sheen albedo rows: their independent reference (adaptive quadrature of the lobe)
+    // is tests/sheen_albedo.rs.
+    "sheen-albedo",
+    "sheen-albedo-table",
+    "sheen-albedo-khronos",
+    "sheen-albedo-tuned",
     "fresnel-dielectric",
     "fresnel-conductor",
     "cook-torrance",

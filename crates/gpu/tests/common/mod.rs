@@ -43,6 +43,11 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
         .iter()
         .map(|s| s.pairs())
         .filter(|c| {
+            // sheen-albedo-table: the sheen tables are such arrays too (two 32 x 32): one
+            // configuration, the 8-bit rounding.
+            if info.id == "sheen-albedo-table" {
+                return get(c, "v") == "charlie" && get(c, "bits") == "8";
+            }
             // env-brdf-table: its tables are such arrays too (~14 s per configuration at 16 x
             // 16): one configuration, the half-float storage's bit rounding, at the smallest size.
             if info.id == "env-brdf-table" {
