@@ -477,4 +477,21 @@ fn gltf_pbr_furnace_is_as_documented() {
     none.push(("sheen_albedo", "none"));
     let u = at(&none, 60.0);
     assert!(u > 1.2, "Lambert + sheen without scaling at 60: {u}");
+    // Energy compensation: a rough white metal (F = 1) loses about a third to single
+    // scattering; Kulla and Conty's lobe gives it back (the table's furnace tolerance), and
+    // Filament's factor seen from wo likewise.
+    let white = [("metallic", "1"), ("roughness", "1")];
+    for deg in [0.0, 60.0, 80.0] {
+        let single = at(&white, deg);
+        assert!(single < 0.8, "white rough metal at {deg}: {single}");
+        for ms in ["kulla-conty", "filament"] {
+            let mut w = white.to_vec();
+            w.push(("ms", ms));
+            let e = at(&w, deg);
+            assert!(
+                (e - 1.0).abs() <= fastbrdf::microfacet::ms::FURNACE_TOL,
+                "{ms} at {deg}: {e}"
+            );
+        }
+    }
 }

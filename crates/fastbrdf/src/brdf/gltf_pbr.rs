@@ -22,6 +22,7 @@
 //! | `diffuse` | `lambert`, `burley` | `lambert` | the base's diffuse lobe |
 //! | `sheen_v` | `charlie`, `neubelt` | `charlie` | the sheen visibility (`microfacet::sheen`) |
 //! | `sheen_albedo` | `table`, `fit`, `none` | `table` | the sheen's directional albedo `E` that scales the layers below |
+//! | `ms` | `none`, `kulla-conty`, `filament` | `none` | energy compensation of the base's specular lobe (`microfacet::ms`, as `cook-torrance`'s): only with `d = ggx`, `g = smith-ggx-correlated`; with anisotropy, the isotropic table at `sqrt(alpha_t alpha)` (an approximation, as engines make it) |
 //!
 //! The value, per channel (`spec = D G / (4 cos_i cos_o)`, `c = wi . h`):
 //! - `f0_d = min(((ior - 1) / (ior + 1))^2 specular_color, 1) specular`, `f90_d = specular`;
@@ -36,6 +37,9 @@
 //!   schlick(0.04, 1, cos_o)`, the coat's D and G at `max(clearcoat_roughness^2, 0.005)`
 //!   (`fresnel_coat` of `KHR_materials_clearcoat`: the Fresnel of `N . V`, so a coated
 //!   material is not reciprocal).
+//! - Energy compensation (`ms`): the dielectric's `F_d spec` and the metal's `F_m spec` each
+//!   go through `microfacet::ms::apply` with their own Fresnel ends (`F(1)`, `F(0)`): Kulla
+//!   and Conty's lobe added, or Filament's factor; the coat is not compensated.
 //! - Anisotropy: `alpha_t = alpha + (1 - alpha) anisotropy^2` along the direction
 //!   `(cos r, sin r)` of the frame, `alpha` across it; D and G as `cook-torrance`'s anisotropic
 //!   forms (the parts at `sqrt(alpha_t alpha)` on stretched arguments); needs an anisotropic
@@ -60,6 +64,7 @@ use crate::entry::Entry;
 use crate::error::{Error, Result};
 use crate::forms::{BrdfForm, DistForm, FresnelForm, ShadowForm};
 use crate::math::Math;
+use crate::microfacet::ms::{self, Ms};
 use crate::microfacet::sheen::{self, Charlie, Vis};
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
@@ -67,7 +72,7 @@ use crate::plan::{DistPlan, FresnelPlan, Models, Plan, ShadowPlan};
 use crate::real::{K, Real, pos};
 use crate::sample::{self, Micro, Strategy};
 use crate::vec3::{COS_MIN, Pair, V3};
-use crate::wgsl::{Emit, PAIR};
+use crate::wgsl::Emit;
 
 const fn num(name: &'static str, min: f64, max: f64, default: f64, doc: &'static str) -> ParamSpec {
     ParamSpec {
@@ -221,6 +226,7 @@ pub const PARAMS: &[ParamSpec] = &[
         &sheen::Vis::NAMES,
         "sheen visibility: Charlie's fit (Estevez and Kulla 2017) or Neubelt and Pettineo's",
     ),
+    crate::brdf::cook_torrance::MS,
     list(
         "sheen_albedo",
         &["table", "fit", "none"],
@@ -246,13 +252,6 @@ pub const ENTRY: Entry = Entry::new(INFO, |p, models| {
 
 /// The smallest slope of the base and the coat.
 const A_MIN: f64 = params::ALPHA_MIN;
-
-/// The runtime expression of the base's alpha.
-const ALPHA_EXPR: &str = "max(p_roughness * p_roughness, 0.005)";
-/// The runtime expression of the coat's alpha.
-const COAT_ALPHA_EXPR: &str = "max(p_clearcoat_roughness * p_clearcoat_roughness, 0.005)";
-/// The runtime expression of the dielectric f0.
-const F0D_EXPR: &str = "min((p_ior - 1.0) * (p_ior - 1.0) / ((p_ior + 1.0) * (p_ior + 1.0)) * p_specular_color, 1.0) * p_specular";
 
 /// The anisotropic stretch, rotated by `anisotropy_rotation`.
 #[derive(Clone, Copy, Debug)]
@@ -331,6 +330,8 @@ pub struct GltfPbr {
     pub coat: Coat,
     /// Sampling weights: the base's specular, the coat's, the cosine lobe (sum 1).
     pub weights: [f64; 3],
+    /// The base's energy compensation (`microfacet::ms`).
+    pub ms: Ms,
 }
 
 fn invalid(param: &str, value: String, expected: String) -> Error {
@@ -374,6 +375,10 @@ impl GltfPbr {
                 ),
             ));
         }
+        let ms_id = p.choice("ms");
+        // With anisotropy, the isotropic table at the parts' slope (as engines do).
+        let ms = Ms::new(ms_id, parts_alpha)
+            .ok_or_else(|| invalid("ms", ms_id.into(), ms::NAMES.join(", ")))?;
         let rot = p.num("anisotropy_rotation");
         let f_id = format!("fresnel-{}", p.choice("f"));
         let fresnel = |f0: f64, f90: f64| -> Result<FresnelPlan> {
@@ -465,6 +470,7 @@ impl GltfPbr {
             sheen,
             coat,
             weights: [ws / sum, wc / sum, wd / sum],
+            ms,
         })
     }
 
@@ -499,10 +505,11 @@ impl BrdfForm for GltfPbr {
     const WGSL: &'static str = include_str!("gltf_pbr.wgsl");
     fn simd(&self) -> bool {
         // The sheen table's reads are gathers.
-        !(self.sheen.on && self.sheen.albedo == Albedo::Table)
+        // The sheen's and the compensation's table reads are gathers.
+        !(self.sheen.on && self.sheen.albedo == Albedo::Table) && self.ms == Ms::None
     }
     fn reciprocal(&self) -> bool {
-        !self.coat.on
+        !self.coat.on && !matches!(self.ms, Ms::Filament { .. })
     }
     fn strategies(&self) -> &'static [Strategy] {
         if self.d.sampler().exact && self.coat.d.sampler().exact {
@@ -592,7 +599,18 @@ impl BrdfForm for GltfPbr {
             diff = diff * (w(p.cos_i) * w(p.cos_o));
         }
         let m = self.metallic.t::<T>();
-        let mut v = (one - m) * ((one - fd) * diff + fd * spec) + m * fm * spec;
+        let mut v = match self.ms {
+            Ms::None => (one - m) * ((one - fd) * diff + fd * spec) + m * fm * spec,
+            _ => {
+                let z = T::zero();
+                let (ci, co) = (p.cos_i, p.cos_o);
+                let (fd1, fd0) = (self.fd.f::<T, M>(one), self.fd.f::<T, M>(z));
+                let (fm1, fm0) = (self.fm.f::<T, M>(one), self.fm.f::<T, M>(z));
+                let sd = ms::apply::<T, M>(&self.ms, fd * spec, ci, co, fd1, fd0);
+                let sm = ms::apply::<T, M>(&self.ms, fm * spec, ci, co, fm1, fm0);
+                (one - m) * ((one - fd) * diff + sd) + m * sm
+            }
+        };
         let s = &self.sheen;
         if s.on {
             let ds = s.c.d::<T, M>(p.sin2_h);
@@ -624,166 +642,7 @@ impl BrdfForm for GltfPbr {
         v
     }
     fn wgsl_body(&self, e: &Emit) -> String {
-        wgsl_body(self, e)
+        // Written per instance from its parts (`brdf/gltf_pbr_wgsl.rs`).
+        self.wgsl_parts(e)
     }
-}
-
-/// The sheen slope at runtime.
-const SHEEN_ALPHA: &str = "max(p_sheen_roughness, 0.07)";
-
-/// The WGSL body, assembled per instance from its parts' calls (as `cook-torrance` does), in
-/// the three coefficient forms. The runtime form always carries the sheen and the coat (and
-/// the anisotropic stretch when `d` and `g` have one): its parameters may turn them on; with
-/// their defaults they add exactly nothing.
-fn wgsl_body(b: &GltfPbr, e: &Emit) -> String {
-    let rt = e.is_runtime();
-    let mut s = String::from(PAIR);
-    let aniso = b.aniso.is_some() || (rt && b.d.aniso() && b.g.aniso());
-    let at = format!("({ALPHA_EXPR} + (1.0 - {ALPHA_EXPR}) * p_anisotropy * p_anisotropy)");
-    let (s2, v, l) = if aniso {
-        let one = K::new(1.0);
-        let (xy, yx, c, sn) = match &b.aniso {
-            Some(r) => (r.s.x_over_y, r.s.y_over_x, r.cos, r.sin),
-            None => (one, one, one, K::new(0.0)),
-        };
-        let ra = ["roughness", "anisotropy"];
-        s += &format!(
-            "    let xy = {};\n    let yx = {};\n    let rc = {};\n    let rs = {};\n    let s2 = fb_aniso_sin2(fb_gltf_rot(p.h, rc, rs), xy, yx);\n    let cv = fb_aniso_cos(fb_gltf_rot(p.wo, rc, rs), xy, yx);\n    let cl = fb_aniso_cos(fb_gltf_rot(p.wi, rc, rs), xy, yx);\n",
-            e.kx(xy, &format!("{at} / {ALPHA_EXPR}"), &ra),
-            e.kx(yx, &format!("{ALPHA_EXPR} / {at}"), &ra),
-            e.kx(c, "cos(p_anisotropy_rotation)", &["anisotropy_rotation"]),
-            e.kx(sn, "sin(p_anisotropy_rotation)", &["anisotropy_rotation"]),
-        );
-        ("s2", "cv", "cl")
-    } else {
-        ("p.sin2_h", "p.cos_o", "p.cos_i")
-    };
-    let (alpha, alpha_params): (String, &[&str]) = if aniso {
-        (
-            format!("sqrt({ALPHA_EXPR} * {at})"),
-            &["roughness", "anisotropy"],
-        )
-    } else {
-        (ALPHA_EXPR.into(), &["roughness"])
-    };
-    let (d, g) = e.with_alias("alpha", &alpha, alpha_params, || {
-        (
-            b.d.wgsl("p.h.z", s2, e),
-            b.g.wgsl(v, l, "p.h.z", "p.cos_ih", e),
-        )
-    });
-    let fresnel = |f: &FresnelPlan, f0: (&str, &[&str]), f90: (&str, &[&str]), c: &str| {
-        e.with_alias("f0", f0.0, f0.1, || {
-            e.with_alias("f90", f90.0, f90.1, || f.wgsl(c, e))
-        })
-    };
-    let fd = fresnel(
-        &b.fd,
-        (F0D_EXPR, &["ior", "specular_color", "specular"]),
-        ("p_specular", &["specular"]),
-        "p.cos_ih",
-    );
-    let fm = fresnel(
-        &b.fm,
-        ("p_base_color", &["base_color"]),
-        ("1.0", &[]),
-        "p.cos_ih",
-    );
-    let base = e.kx(b.base, "p_base_color", &["base_color"]);
-    let diff = match b.burley {
-        None => format!("{base} * 0.3183098861837907"),
-        Some(r) => format!(
-            "{base} * 0.3183098861837907 * fb_gltf_burley(p.cos_i, p.cos_o, p.cos_ih, {})",
-            e.kx(r, "p_roughness", &["roughness"])
-        ),
-    };
-    let m = e.kx(b.metallic, "p_metallic", &["metallic"]);
-    s += &format!(
-        "    let d = select(0.0, {d}, p.h.z >= FB_COS_MIN);\n    let g = {g};\n    let denom = 4.0 * (p.cos_i * p.cos_o);\n    let spec = d * g / denom;\n    let fd = {fd};\n    let fm = {fm};\n    let diff = {diff};\n    let m = {m};\n    var v = (1.0 - m) * ((1.0 - fd) * diff + fd * spec) + m * fm * spec;\n"
-    );
-    let sh = &b.sheen;
-    if sh.on || rt {
-        let sr = ["sheen_roughness"];
-        let mix = |k: K, x: f64, y: f64| {
-            e.kx(
-                k,
-                &format!(
-                    "({x:?}) + (({y:?}) - ({x:?})) * (1.0 - {SHEEN_ALPHA}) * (1.0 - {SHEEN_ALPHA})"
-                ),
-                &sr,
-            )
-        };
-        const L0: [f64; 5] = [21.5473, 3.82987, 0.19823, -1.97760, -4.32054];
-        const L1: [f64; 5] = [25.3245, 3.32435, 0.16801, -1.27393, -4.85967];
-        let ls: Vec<String> = (0..5).map(|k| mix(sh.c.l[k], L0[k], L1[k])).collect();
-        s += &format!(
-            "    let ls = array<f32, 5>({});\n    let lh = {};\n    let ds = fb_sheen_d(p.sin2_h, {}, {});\n",
-            ls.join(", "),
-            e.kx(sh.c.l_half, "fb_sheen_l(0.5, ls)", &sr),
-            e.kx(
-                sh.c.norm,
-                &format!("(2.0 + 1.0 / {SHEEN_ALPHA}) / 6.283185307179586"),
-                &sr
-            ),
-            e.kx(sh.c.expo, &format!("0.5 / {SHEEN_ALPHA}"), &sr),
-        );
-        s += match sh.vis {
-            Vis::Charlie => "    let vs = fb_sheen_v_charlie(p.cos_o, p.cos_i, ls, lh);\n",
-            Vis::Neubelt => "    let vs = fb_sheen_v_neubelt(p.cos_o, p.cos_i);\n",
-        };
-        let smax = if sh.max_given {
-            e.kx(sh.max, "p_sheen_max", &["sheen_max"])
-        } else {
-            e.kx(sh.max, "p_sheen_color", &["sheen_color"])
-        };
-        let scale = match sh.albedo {
-            Albedo::None => "1.0".to_string(),
-            Albedo::Fit => {
-                let k = e.kx(
-                    sh.fit_k,
-                    &format!(
-                        "1.0 / (4.16526551 + exp(-7.97291361 * sqrt({SHEEN_ALPHA}) + 6.33516894))"
-                    ),
-                    &sr,
-                );
-                s += &format!(
-                    "    let eo = fb_sheen_fit(p.cos_o, {k});\n    let ei = fb_sheen_fit(p.cos_i, {k});\n"
-                );
-                format!("max(min(1.0 - {smax} * eo, 1.0 - {smax} * ei), 0.0)")
-            }
-            Albedo::Table => {
-                let ri = e.kx(
-                    sh.row.0 as f64,
-                    &format!("fb_sheen_row({SHEEN_ALPHA}).x"),
-                    &sr,
-                );
-                let rtt = e.kx(sh.row.1, &format!("fb_sheen_row({SHEEN_ALPHA}).y"), &sr);
-                let charlie = sh.vis == Vis::Charlie;
-                s += &format!(
-                    "    let si = i32({ri});\n    let st = {rtt};\n    let eo = fb_sheen_table({charlie}, si, st, p.cos_o);\n    let ei = fb_sheen_table({charlie}, si, st, p.cos_i);\n"
-                );
-                format!("max(min(1.0 - {smax} * eo, 1.0 - {smax} * ei), 0.0)")
-            }
-        };
-        s += &format!(
-            "    v = {} * ds * vs + v * {scale};\n",
-            e.kx(sh.color, "p_sheen_color", &["sheen_color"])
-        );
-    }
-    let c = &b.coat;
-    if c.on || rt {
-        let (dc, gc) = e.with_alias("alpha", COAT_ALPHA_EXPR, &["clearcoat_roughness"], || {
-            (
-                c.d.wgsl("p.h.z", "p.sin2_h", e),
-                c.g.wgsl("p.cos_o", "p.cos_i", "p.h.z", "p.cos_ih", e),
-            )
-        });
-        let fc = fresnel(&c.f, ("0.04", &[]), ("1.0", &[]), "p.cos_o");
-        s += &format!(
-            "    let dc = select(0.0, {dc}, p.h.z >= FB_COS_MIN);\n    let gc = {gc};\n    let wc = {} * {fc};\n    v = v * (1.0 - wc) + wc * dc * gc / denom;\n",
-            e.kx(c.weight, "p_clearcoat", &["clearcoat"])
-        );
-    }
-    s += "    return select(0.0, v, p.valid);\n";
-    s
 }

@@ -1,5 +1,5 @@
 // WGSL twin of brdf/gltf_pbr.rs: the helpers its body calls (the body itself is written per
-// instance from its parts: brdf/gltf_pbr/emit.rs).
+// instance from its parts: brdf/gltf_pbr_wgsl.rs).
 
 /// `v` in the frame whose x axis is (c, s, 0) (as gltf_pbr::Rotated::to).
 fn fb_gltf_rot(v: vec3<f32>, c: f32, s: f32) -> vec3<f32> {

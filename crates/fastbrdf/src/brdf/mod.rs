@@ -3,6 +3,7 @@
 
 pub mod cook_torrance;
 pub mod gltf_pbr;
+mod gltf_pbr_wgsl;
 pub mod lambert;
 pub mod phong;
 pub mod ward;

@@ -79,6 +79,8 @@ struct Mat {
     rot: f64,
     burley: bool,
     fit: bool,
+    /// The energy compensation: 0 none, 1 Kulla and Conty, 2 Filament.
+    ms: u8,
 }
 
 const PLAIN: Mat = Mat {
@@ -96,6 +98,7 @@ const PLAIN: Mat = Mat {
     rot: 0.0,
     burley: false,
     fit: false,
+    ms: 0,
 };
 
 /// The specification's material, written from its text.
@@ -119,8 +122,24 @@ fn spec(m: &Mat, l: [f64; 3], v: [f64; 3]) -> f64 {
     } else {
         m.base / PI
     };
-    let dielectric = (1.0 - fd) * diffuse + fd * specular_brdf;
-    let metal = schlick(m.base, 1.0, vh) * specular_brdf;
+    // Energy compensation of a specular term ss whose Fresnel is f1 at normal incidence and
+    // f0g at grazing (Kulla and Conty 2017; Filament's documentation); E from the crate's
+    // table of GGX's albedo (`microfacet::ms`, tested against its quadrature there).
+    let compensate = |ss: f64, f1: f64, f0g: f64| {
+        use fastbrdf::microfacet::ms::{avg_loss, loss};
+        match m.ms {
+            0 => ss,
+            1 => {
+                let e_avg = 1.0 - avg_loss(alpha);
+                let favg = (20.0 * f1 + f0g) / 21.0;
+                let f_ms = favg * favg * e_avg / (1.0 - favg * (1.0 - e_avg));
+                ss + loss(nl, alpha) * loss(nv, alpha) / (PI * (1.0 - e_avg)) * f_ms
+            }
+            _ => ss * (1.0 + f1 * (1.0 / (1.0 - loss(nv, alpha)) - 1.0)),
+        }
+    };
+    let dielectric = (1.0 - fd) * diffuse + compensate(fd * specular_brdf, f0d, m.specular);
+    let metal = compensate(schlick(m.base, 1.0, vh) * specular_brdf, m.base, 1.0);
     let mut material = dielectric * (1.0 - m.metallic) + metal * m.metallic;
     if m.sheen > 0.0 {
         let a = m.sheen_rough.max(0.07);
@@ -163,6 +182,10 @@ fn model(m: &Mat) -> Box<dyn fastbrdf::Brdf<f64>> {
             (if m.burley { "burley" } else { "lambert" }).into(),
         ),
         ("sheen_albedo", (if m.fit { "fit" } else { "none" }).into()),
+        (
+            "ms",
+            ["none", "kulla-conty", "filament"][m.ms as usize].into(),
+        ),
     ];
     let given: Vec<(&str, &str)> = vals.iter().map(|(a, b)| (*a, b.as_str())).collect();
     brdf64("gltf-pbr", &given)
@@ -171,6 +194,39 @@ fn model(m: &Mat) -> Box<dyn fastbrdf::Brdf<f64>> {
 fn materials() -> Vec<(&'static str, Mat)> {
     vec![
         ("dielectric", PLAIN),
+        (
+            "rough gold, Kulla-Conty",
+            Mat {
+                base: 0.9,
+                metallic: 1.0,
+                rough: 0.8,
+                ms: 1,
+                ..PLAIN
+            },
+        ),
+        (
+            "half metal, Filament's compensation, sheen and coat",
+            Mat {
+                metallic: 0.5,
+                rough: 0.6,
+                ms: 2,
+                sheen: 0.4,
+                sheen_rough: 0.5,
+                fit: true,
+                coat: 0.5,
+                coat_rough: 0.3,
+                ..PLAIN
+            },
+        ),
+        (
+            "dielectric, Kulla-Conty, Burley",
+            Mat {
+                rough: 0.9,
+                ms: 1,
+                burley: true,
+                ..PLAIN
+            },
+        ),
         (
             "gold metal",
             Mat {

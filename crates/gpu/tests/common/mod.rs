@@ -60,6 +60,14 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
             // runtime form always carries; slow in lavapipe as above) in one configuration
             // only. The CPU tests run them all.
             if info.id == "gltf-pbr" {
+                // The energy compensation's table is such an array too: one configuration
+                // (Kulla and Conty's, without the sheen table) checks its wiring.
+                let ms = get(c, "ms");
+                if !ms.is_empty() && ms != "none" {
+                    return ms == "kulla-conty"
+                        && get(c, "sheen_albedo") != "table"
+                        && seen.insert("gltf-pbr ms".to_string());
+                }
                 if get(c, "sheen_albedo") == "table" {
                     return get(c, "sheen_color") != "0"
                         && seen.insert("gltf-pbr sheen table".to_string());
