@@ -31,6 +31,7 @@ pub mod mesh;
 pub mod render;
 pub mod scene;
 pub mod setup;
+mod specular;
 pub mod texture;
 pub mod user;
 

@@ -29,7 +29,7 @@
 //! textures (metallic-roughness, normal, occlusion) are stored linear, not sRGB-decoded.
 
 use crate::error::Result;
-use crate::scene::{Specular, Tint};
+use crate::specular::{Specular, Tint};
 use crate::texture::Texture;
 use fastbrdf::{Given, ModelSpec};
 use glam::{Vec2, Vec3, Vec4};

@@ -21,7 +21,7 @@ mod images;
 pub mod material;
 mod meshes;
 mod pointer;
-mod tangents;
+pub(crate) mod tangents;
 mod view;
 
 use crate::env::{EnvMap, Environment};

@@ -43,7 +43,7 @@ impl mikktspace::Geometry for Geometry<'_> {
 /// Per-vertex tangents (xyz, w the bitangent's sign); a vertex shared by corners whose
 /// tangents differ takes the last one (glTF files split vertices at UV seams). Zero where
 /// MikkTSpace finds none (degenerate texture coordinates).
-pub(super) fn mikktspace(
+pub(crate) fn mikktspace(
     positions: &[Vec3],
     normals: &[Vec3],
     uvs: &[Vec2],

@@ -1,5 +1,7 @@
 //! The built-in demo scene (`fastbrdf demo` writes it as `scene.glb`): the embedded MediaPipe
-//! face over a row of five spheres of real materials, each showing one extension of the
+//! face with textures (the built-in skin as its base colour, and a pore normal texture and an
+//! occlusion-roughness-metallic texture made here from one height field, [`face_images`])
+//! over a row of five spheres of real materials, each showing one extension of the
 //! `gltf-pbr` model (gold, a clear-coated car paint, a velvet with sheen, brushed aluminium
 //! with anisotropy, a plastic with KHR_materials_specular), a perspective camera, a directional
 //! key light and a point fill light. Built at run time by the writer (the same bytes every
@@ -7,8 +9,8 @@
 //! Units are metres: the face (in centimetres in its OBJ) is scaled by 0.01 by its node.
 
 use super::{
-    Anisotropy, Camera, Clearcoat, Document, Geometry, Light, LightKind, Material, Node, Sheen,
-    Specular,
+    Anisotropy, Camera, Clearcoat, Document, Geometry, Image, Light, LightKind, Material, Node,
+    Sheen, Specular,
 };
 use glam::{Vec2, Vec3, Vec4};
 use std::f32::consts::PI;
@@ -117,16 +119,95 @@ pub fn demo_materials() -> Vec<Material> {
     ]
 }
 
-/// The face's material: a skin-like dielectric (KHR_materials_ior 1.4).
+/// The face's material: a skin-like dielectric (KHR_materials_ior 1.4) with the textures of
+/// [`face_images`] (images 0, 1, 2 of the demo document): the base colour is the texture's,
+/// the roughness its G channel (factor 1), the occlusion its R channel.
 pub fn face_material() -> Material {
     Material {
         name: "skin".into(),
-        base_color: [0.8, 0.5, 0.38, 1.0],
+        base_color: [1.0, 1.0, 1.0, 1.0],
         metallic: 0.0,
-        roughness: 0.5,
+        roughness: 1.0,
         ior: Some(1.4),
+        base_color_texture: Some(0),
+        normal_texture: Some((1, 1.0)),
+        occlusion_texture: Some((2, 1.0)),
+        metallic_roughness_texture: Some(2),
         ..Material::default()
     }
+}
+
+/// Side of the face's textures, texels.
+pub const FACE_TEXTURE_SIDE: u32 = 256;
+
+/// Periodic value noise on a `cells` x `cells` grid over the texture (PCG-hashed cell values,
+/// smoothstep-interpolated), in [0, 1], at texel (x, y) of a `side`-texel texture.
+fn noise(x: u32, y: u32, side: u32, cells: u32, seed: u32) -> f32 {
+    let cell = side as f32 / cells as f32;
+    let (fx, fy) = (x as f32 / cell, y as f32 / cell);
+    let (ix, iy) = (fx.floor() as u32, fy.floor() as u32);
+    let (tx, ty) = (fx - ix as f32, fy - iy as f32);
+    let v = |i: u32, j: u32| {
+        let h = crate::hash::pcg((i % cells) ^ crate::hash::pcg((j % cells) ^ seed));
+        h as f32 / u32::MAX as f32
+    };
+    let s = |t: f32| t * t * (3.0 - 2.0 * t);
+    let (sx, sy) = (s(tx), s(ty));
+    let top = v(ix, iy) + (v(ix + 1, iy) - v(ix, iy)) * sx;
+    let bottom = v(ix, iy + 1) + (v(ix + 1, iy + 1) - v(ix, iy + 1)) * sx;
+    top + (bottom - top) * sy
+}
+
+/// The face's images: the built-in skin (`texture::skin`, averaged down to
+/// [`FACE_TEXTURE_SIDE`]) as the base colour (sRGB); a tangent-space normal texture of pores
+/// and fine wrinkles from a height field `h` (value noise at 64 and 16 cells); and an
+/// occlusion-roughness-metallic texture from the same field: occlusion `0.7 + 0.3 h` (the pores
+/// darker), roughness `0.35 + 0.35` of a broad noise (oily and dry areas), metallic 0.
+/// Deterministic and periodic, as the skin.
+pub fn face_images() -> [Image; 3] {
+    let n = FACE_TEXTURE_SIDE;
+    let skin = crate::texture::skin();
+    let k = (skin.width / n) as usize;
+    let srgb = |c: f32| (crate::texture::linear_to_srgb(c) * 255.0).round() as u8;
+    let mut colour = Vec::with_capacity((n * n) as usize);
+    for y in 0..n as usize {
+        for x in 0..n as usize {
+            let mut sum = Vec3::ZERO;
+            for j in 0..k {
+                for i in 0..k {
+                    sum += skin.texels()[(y * k + j) * skin.width as usize + x * k + i];
+                }
+            }
+            let c = sum / (k * k) as f32;
+            colour.push([srgb(c.x), srgb(c.y), srgb(c.z)]);
+        }
+    }
+    let h = |x: u32, y: u32| {
+        let (x, y) = (x % n, y % n);
+        0.7 * noise(x, y, n, 64, 17) + 0.3 * noise(x, y, n, 16, 29)
+    };
+    let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    let mut normal = Vec::with_capacity((n * n) as usize);
+    let mut orm = Vec::with_capacity((n * n) as usize);
+    for y in 0..n {
+        for x in 0..n {
+            // Slopes per texel; +Y of the texture is up the image (rows grow downwards).
+            let dx = 0.5 * (h(x + 1, y) - h(x + n - 1, y));
+            let dy = 0.5 * (h(x, y + n - 1) - h(x, y + 1));
+            let t = Vec3::new(-6.0 * dx, -6.0 * dy, 1.0).normalize();
+            normal.push([t.x, t.y, t.z].map(|c| byte(0.5 + 0.5 * c)));
+            let rough = 0.35 + 0.35 * noise(x, y, n, 4, 41);
+            orm.push([byte(0.7 + 0.3 * h(x, y)), byte(rough), 0]);
+        }
+    }
+    let img = |name: &str, t: &[[u8; 3]]| {
+        Image::from_rgb8(name, n, n, t).expect("the texel count matches the size")
+    };
+    [
+        img("skin base colour", &colour),
+        img("skin normal", &normal),
+        img("skin occlusion-roughness-metallic", &orm),
+    ]
 }
 
 /// The demo's materials as table rows (the face's first): name, base colour (linear RGB),
@@ -174,6 +255,19 @@ pub fn material_rows() -> Vec<[String; 5]> {
                     x.strength, x.rotation
                 ));
             }
+            let textures: Vec<&str> = [
+                (m.base_color_texture.is_some(), "base colour"),
+                (m.normal_texture.is_some(), "normal"),
+                (m.occlusion_texture.is_some(), "occlusion"),
+                (m.metallic_roughness_texture.is_some(), "metallic-roughness"),
+                (m.emissive_texture.is_some(), "emissive"),
+            ]
+            .into_iter()
+            .filter_map(|(on, name)| on.then_some(name))
+            .collect();
+            if !textures.is_empty() {
+                ext.push(format!("textures: {}", textures.join(", ")));
+            }
             if ext.is_empty() {
                 ext.push("none".into());
             }
@@ -194,7 +288,31 @@ pub const SPHERE_RADIUS: f32 = 0.038;
 /// The demo scene as a document (see the module's documentation).
 pub fn demo_document() -> Document {
     let mut d = Document::new();
-    let face = d.add_geometry(Geometry::from_trimesh(&crate::mesh::face()));
+    for i in face_images() {
+        d.add_image(i);
+    }
+    // The face's TANGENTs (its normal texture needs them; the validator warns where a reader
+    // would have to generate them): MikkTSpace, as the reader would, a unit vector
+    // perpendicular to the normal where it finds none.
+    let mut face = Geometry::from_trimesh(&crate::mesh::face());
+    face.tangents = crate::gltf::tangents::mikktspace(
+        &face.positions,
+        &face.normals,
+        &face.uvs,
+        &face.triangles,
+    )
+    .iter()
+    .zip(&face.normals)
+    .map(|(t, n)| {
+        let v = Vec3::new(t[0], t[1], t[2]);
+        if (v.length() - 1.0).abs() < 1e-3 {
+            Vec4::new(v.x, v.y, v.z, if t[3] < 0.0 { -1.0 } else { 1.0 })
+        } else {
+            n.any_orthonormal_vector().extend(1.0)
+        }
+    })
+    .collect();
+    let face = d.add_geometry(face);
     let skin = d.add_material(face_material());
     let face_mesh = d.add_mesh("face", face, Some(skin));
     d.add_node(Node {

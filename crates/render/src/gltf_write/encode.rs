@@ -143,6 +143,15 @@ fn check_material(k: usize, m: &Material) -> Result<()> {
         in_range(&what("anisotropyStrength"), a.strength, 0.0, 1.0)?;
         finite(&what("anisotropyRotation"), &[a.rotation])?;
     }
+    for c in m.emissive {
+        in_range(&what("emissiveFactor"), c, 0.0, 1.0)?;
+    }
+    if let Some((_, scale)) = m.normal_texture {
+        finite(&what("normalTexture.scale"), &[scale])?;
+    }
+    if let Some((_, strength)) = m.occlusion_texture {
+        in_range(&what("occlusionTexture.strength"), strength, 0.0, 1.0)?;
+    }
     Ok(())
 }
 
@@ -151,8 +160,21 @@ pub(super) fn check(d: &Document) -> Result<()> {
     for (k, g) in d.geometries.iter().enumerate() {
         check_geometry(k, g)?;
     }
+    for (k, i) in d.images.iter().enumerate() {
+        if !i.png.starts_with(b"\x89PNG\r\n\x1a\n") {
+            return Err(invalid(format!("image {k} ({}): not a PNG file", i.name)));
+        }
+    }
     for (k, m) in d.materials.iter().enumerate() {
         check_material(k, m)?;
+        for i in m.images() {
+            index(
+                &format!("material {k} ({}) texture", m.name),
+                i,
+                d.images.len(),
+                "images",
+            )?;
+        }
     }
     for (k, m) in d.meshes.iter().enumerate() {
         if m.primitives.is_empty() {
@@ -173,6 +195,13 @@ pub(super) fn check(d: &Document) -> Result<()> {
                     d.materials.len(),
                     "materials",
                 )?;
+                if !d.materials[mat].images().is_empty() && d.geometries[p.geometry].uvs.is_empty()
+                {
+                    return Err(invalid(format!(
+                        "{what}: material {mat} has textures and geometry {} no texture coordinates",
+                        p.geometry
+                    )));
+                }
             }
         }
     }
@@ -280,17 +309,21 @@ struct Packer {
 }
 
 impl Packer {
-    /// Appends `bytes` (4-byte aligned) as a buffer view; returns its index.
+    /// Appends `bytes` (4-byte aligned) as a buffer view; returns its index. `target` 0: none
+    /// (an image's view).
     fn view(&mut self, bytes: &[u8], target: u32) -> usize {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
-        self.views.push(json!({
+        let mut v = json!({
             "buffer": 0,
             "byteOffset": self.bin.len(),
             "byteLength": bytes.len(),
-            "target": target,
-        }));
+        });
+        if target != 0 {
+            v["target"] = target.into();
+        }
+        self.views.push(v);
         self.bin.extend_from_slice(bytes);
         self.views.len() - 1
     }
@@ -402,6 +435,25 @@ fn material_json(m: &Material, used: &mut Vec<&'static str>) -> Value {
             "roughnessFactor": num(m.roughness),
         },
     });
+    // Texture k is image k (one texture per image).
+    if let Some(t) = m.base_color_texture {
+        v["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": t });
+    }
+    if let Some(t) = m.metallic_roughness_texture {
+        v["pbrMetallicRoughness"]["metallicRoughnessTexture"] = json!({ "index": t });
+    }
+    if let Some((t, scale)) = m.normal_texture {
+        v["normalTexture"] = json!({ "index": t, "scale": num(scale) });
+    }
+    if let Some((t, strength)) = m.occlusion_texture {
+        v["occlusionTexture"] = json!({ "index": t, "strength": num(strength) });
+    }
+    if let Some(t) = m.emissive_texture {
+        v["emissiveTexture"] = json!({ "index": t });
+    }
+    if m.emissive != [0.0; 3] {
+        v["emissiveFactor"] = nums(&m.emissive);
+    }
     if m.double_sided {
         v["doubleSided"] = true.into();
     }
@@ -438,6 +490,21 @@ pub(super) fn json(d: &Document) -> (Value, Vec<u8>) {
         let indices = p.indices(&g.triangles, g.positions.len());
         geometry.push((Value::Object(attributes), indices));
     }
+    // Images: PNG bytes in buffer views; texture k samples image k (linear, REPEAT).
+    let images: Vec<Value> = d
+        .images
+        .iter()
+        .map(|i| {
+            let view = p.view(&i.png, 0);
+            named(
+                json!({ "bufferView": view, "mimeType": "image/png" }),
+                &i.name,
+            )
+        })
+        .collect();
+    let textures: Vec<Value> = (0..d.images.len())
+        .map(|k| json!({ "sampler": 0, "source": k }))
+        .collect();
     let mut used = Vec::new();
     let materials: Vec<Value> = d
         .materials
@@ -563,6 +630,14 @@ pub(super) fn json(d: &Document) -> (Value, Vec<u8>) {
     put("nodes", nodes);
     put("meshes", meshes);
     put("materials", materials);
+    let samplers = if images.is_empty() {
+        vec![]
+    } else {
+        vec![json!({ "magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497 })]
+    };
+    put("samplers", samplers);
+    put("images", images);
+    put("textures", textures);
     put("cameras", cameras);
     put("accessors", p.accessors);
     put("bufferViews", p.views);

@@ -1,6 +1,7 @@
 //! A small glTF 2.0 writer: triangle meshes (positions, normals, optional texture coordinates
-//! and tangents), nodes with transforms, metallic-roughness materials with the
-//! KHR_materials_ior, _specular, _clearcoat, _sheen and _anisotropy extensions, perspective
+//! and tangents), nodes with transforms, metallic-roughness materials with their textures
+//! (PNG images in the buffer: base colour, metallic-roughness, normal, occlusion, emissive) and
+//! the KHR_materials_ior, _specular, _clearcoat, _sheen and _anisotropy extensions, perspective
 //! cameras and KHR_lights_punctual lights, written as `.gltf` (JSON with the buffer as a
 //! base64 data URI, [`Document::to_gltf`]) or `.glb` (binary container, [`Document::to_glb`]).
 //!
@@ -127,6 +128,65 @@ pub struct Material {
     pub clearcoat: Option<Clearcoat>,
     pub sheen: Option<Sheen>,
     pub anisotropy: Option<Anisotropy>,
+    /// The textures, each an index into [`Document::images`] read on `TEXCOORD_0` (a mesh
+    /// using the material needs texture coordinates): `baseColorTexture` (sRGB),
+    pub base_color_texture: Option<usize>,
+    /// `metallicRoughnessTexture` (linear; G roughness, B metallic),
+    pub metallic_roughness_texture: Option<usize>,
+    /// `normalTexture` (linear, tangent space) and its `scale`,
+    pub normal_texture: Option<(usize, f32)>,
+    /// `occlusionTexture` (linear, R) and its `strength` ([0, 1]),
+    pub occlusion_texture: Option<(usize, f32)>,
+    /// `emissiveTexture` (sRGB).
+    pub emissive_texture: Option<usize>,
+    /// `emissiveFactor` (linear RGB, each in [0, 1]).
+    pub emissive: [f32; 3],
+}
+
+impl Material {
+    /// The images the material refers to.
+    pub fn images(&self) -> Vec<usize> {
+        [
+            self.base_color_texture,
+            self.metallic_roughness_texture,
+            self.normal_texture.map(|t| t.0),
+            self.occlusion_texture.map(|t| t.0),
+            self.emissive_texture,
+        ]
+        .into_iter()
+        .flatten()
+        .collect()
+    }
+}
+
+/// A PNG image, stored in the buffer; each image is one texture (linear filtering, REPEAT).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub name: String,
+    /// The PNG file's bytes.
+    pub png: Vec<u8>,
+}
+
+impl Image {
+    /// An RGB image of `w` x `h` 8-bit texels (row-major from the top), PNG-encoded.
+    pub fn from_rgb8(name: &str, w: u32, h: u32, texels: &[[u8; 3]]) -> Result<Self> {
+        if texels.len() as u64 != u64::from(w) * u64::from(h) || w == 0 || h == 0 {
+            return Err(RenderError::Invalid(format!(
+                "image '{name}': {} texels for {w} x {h}",
+                texels.len()
+            )));
+        }
+        let img = image::RgbImage::from_fn(w, h, |x, y| {
+            image::Rgb(texels[(y as usize) * (w as usize) + x as usize])
+        });
+        let mut out = std::io::Cursor::new(Vec::new());
+        img.write_to(&mut out, image::ImageFormat::Png)
+            .map_err(|e| RenderError::Invalid(format!("image '{name}': {e}")))?;
+        Ok(Image {
+            name: name.into(),
+            png: out.into_inner(),
+        })
+    }
 }
 
 impl Default for Material {
@@ -143,6 +203,12 @@ impl Default for Material {
             clearcoat: None,
             sheen: None,
             anisotropy: None,
+            base_color_texture: None,
+            metallic_roughness_texture: None,
+            normal_texture: None,
+            occlusion_texture: None,
+            emissive_texture: None,
+            emissive: [0.0; 3],
         }
     }
 }
@@ -244,6 +310,7 @@ pub struct Document {
     pub cameras: Vec<Camera>,
     pub lights: Vec<Light>,
     pub nodes: Vec<Node>,
+    pub images: Vec<Image>,
 }
 
 impl Document {
@@ -259,6 +326,12 @@ impl Document {
     pub fn add_geometry(&mut self, g: Geometry) -> usize {
         self.geometries.push(g);
         self.geometries.len() - 1
+    }
+
+    /// Adds an image, returning its index.
+    pub fn add_image(&mut self, i: Image) -> usize {
+        self.images.push(i);
+        self.images.len() - 1
     }
 
     /// Adds a material, returning its index.
