@@ -37,10 +37,7 @@ const NODES: usize = 128;
 
 /// Whether `id` is a sheen albedo row (measured here, not against `env-brdf`).
 pub fn is_sheen(id: &str) -> bool {
-    registry::find(id).is_ok_and(|e| {
-        e.info.kind == fastbrdf::Kind::Env
-            && (e.info.id == REFERENCE || e.info.bounds.iter().any(|b| b.reference == REFERENCE))
-    })
+    fastbrdf::microfacet::sheen_albedo::IDS.contains(&id)
 }
 
 /// The ledger row of one configuration.
