@@ -230,3 +230,26 @@ pub fn user_module(shader: &UserShader, meshes: bool, env: Env) -> Result<String
         .map_err(|e| GpuError::Input(e.message))?;
     assemble(&user, meshes, env, super::passes::USER_GLUE)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The page's module of a registry model validates (naga, as a browser's WGSL compiler
+    /// would parse it): with and without meshes and an environment.
+    #[test]
+    fn model_modules_validate() {
+        let spec = ModelSpec::parse("cook-torrance", &[("alpha", "0.3")]).unwrap();
+        for (meshes, env) in [(true, Env::None), (false, Env::Lit(None))] {
+            let m = model_module(&spec, meshes, env).unwrap();
+            let module = naga::front::wgsl::parse_str(&m.wgsl)
+                .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&m.wgsl)));
+            naga::valid::Validator::new(
+                naga::valid::ValidationFlags::all(),
+                naga::valid::Capabilities::empty(),
+            )
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{e:?}"));
+        }
+    }
+}
