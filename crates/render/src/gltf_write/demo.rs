@@ -160,7 +160,7 @@ fn noise(x: u32, y: u32, side: u32, cells: u32, seed: u32) -> f32 {
 
 /// The face's images: the built-in skin (`texture::skin`, averaged down to
 /// [`FACE_TEXTURE_SIDE`]) as the base colour (sRGB); a tangent-space normal texture of pores
-/// and fine wrinkles from a height field `h` (value noise at 64 and 16 cells); and an
+/// and fine wrinkles from a height field `h` (value noise at 128 and 32 cells); and an
 /// occlusion-roughness-metallic texture from the same field: occlusion `0.7 + 0.3 h` (the pores
 /// darker), roughness `0.35 + 0.35` of a broad noise (oily and dry areas), metallic 0.
 /// Deterministic and periodic, as the skin.
@@ -184,7 +184,7 @@ pub fn face_images() -> [Image; 3] {
     }
     let h = |x: u32, y: u32| {
         let (x, y) = (x % n, y % n);
-        0.7 * noise(x, y, n, 64, 17) + 0.3 * noise(x, y, n, 16, 29)
+        0.7 * noise(x, y, n, 128, 17) + 0.3 * noise(x, y, n, 32, 29)
     };
     let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
     let mut normal = Vec::with_capacity((n * n) as usize);
@@ -194,7 +194,7 @@ pub fn face_images() -> [Image; 3] {
             // Slopes per texel; +Y of the texture is up the image (rows grow downwards).
             let dx = 0.5 * (h(x + 1, y) - h(x + n - 1, y));
             let dy = 0.5 * (h(x, y + n - 1) - h(x, y + 1));
-            let t = Vec3::new(-6.0 * dx, -6.0 * dy, 1.0).normalize();
+            let t = Vec3::new(-1.5 * dx, -1.5 * dy, 1.0).normalize();
             normal.push([t.x, t.y, t.z].map(|c| byte(0.5 + 0.5 * c)));
             let rough = 0.35 + 0.35 * noise(x, y, n, 4, 41);
             orm.push([byte(0.7 + 0.3 * h(x, y)), byte(rough), 0]);
