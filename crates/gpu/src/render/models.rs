@@ -188,6 +188,19 @@ mod tests {
         Specular::new(&ModelSpec::parse(id, given).unwrap()).unwrap()
     }
 
+    /// The render module with `m` validates (naga).
+    fn validates(m: &ModelShader) {
+        let src = format!("{}\n{}", super::super::SHADER, m.source);
+        let module = naga::front::wgsl::parse_str(&src)
+            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&src)));
+        naga::valid::Validator::new(
+            naga::valid::ValidationFlags::all(),
+            naga::valid::Capabilities::empty(),
+        )
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{e:?}"));
+    }
+
     /// A grey model: one slot, a plain call; coefficients after the header.
     #[test]
     fn a_grey_model_is_one_slot() {
@@ -199,6 +212,7 @@ mod tests {
         assert!(m.key.contains("rd_model_0(wi, wo, 4u)"), "{}", m.key);
         assert!(m.key.contains("fb_k[o + 0u]"), "{}", m.key);
         assert!(!m.key.contains("fb_k[0]"), "{}", m.key);
+        validates(&m);
     }
 
     /// A coloured model whose channels differ only in numbers: one function, three slots;
@@ -218,8 +232,34 @@ mod tests {
         assert!(m.key.contains("fn rd_model_0(") && !m.key.contains("rd_model_1"));
         let other = specular("cook-torrance", &[("f0", "0.2,0.6,0.3"), ("alpha", "0.5")]);
         assert_eq!(model_shader(&other).unwrap().key, m.key);
+        validates(&m);
         let g = Instance::with_storage(&s.channels[1].spec).unwrap();
         assert_eq!(&m.coefs[8 + n as usize..8 + 2 * n as usize], &g.coefs[..]);
+    }
+
+    /// A tinted term: the model's channels, then its zero model's (here grey), one function.
+    #[test]
+    fn a_tint_adds_the_zero_models_slots() {
+        let given = [("base_color", "0.8,0.5,0.2"), ("metallic", "0")];
+        let mut s = specular("gltf-pbr", &given);
+        let zero = ModelSpec::parse("gltf-pbr", &[("base_color", "0"), ("metallic", "0")]);
+        s.tint = Some(fastbrdf_render::scene::Tint {
+            texture: std::sync::Arc::new(fastbrdf_render::texture::Texture::from_linear(
+                1,
+                1,
+                vec![glam::Vec3::ONE],
+            )),
+            zero: std::sync::Arc::new(Specular::new(&zero.unwrap()).unwrap()),
+        });
+        let m = model_shader(&s).unwrap();
+        assert_eq!(&m.coefs[..2], &[3.0, 1.0]);
+        assert!(!m.key.contains("rd_model_1"), "{}", m.key);
+        // The zero model's slot reads its own coefficients.
+        let z = Instance::with_storage(&s.tint.as_ref().unwrap().zero.channels[0].spec).unwrap();
+        let at = m.coefs[2 + 2 * 3 + 1] as usize;
+        assert_eq!(&m.coefs[at..at + z.coefs.len()], &z.coefs[..]);
+        assert_eq!(m.coefs.len(), at + z.coefs.len());
+        validates(&m);
     }
 
     /// Channels whose functions differ (one with a sheen, one without) get one function each.
@@ -233,5 +273,6 @@ mod tests {
         assert!(m.key.contains("fn rd_model_1("), "{}", m.key);
         assert_eq!(m.coefs[2], 0.0);
         assert_eq!(m.coefs[4], 1.0);
+        validates(&m);
     }
 }
