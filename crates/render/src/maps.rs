@@ -9,10 +9,11 @@
 //!   in it: the value at a hit is `(1 - m) f(metallic 0) + m f(metallic 1)`, exact (as the base
 //!   colour texture's `Specular::tint`, which each of the two models carries).
 //! - Roughness is not affine: the models are built per roughness level, `k / LEVELS` for `k` in
-//!   `0..=LEVELS` ([`LEVELS`] = 1024), each when first needed (at most `2 (LEVELS + 1)` models
-//!   per material), and a hit takes the level nearest its roughness `roughnessFactor x texel`:
-//!   the roughness shaded differs from the texture's by at most `1 / 2048` (an 8-bit texel's
-//!   step is `1 / 255`).
+//!   `0..=LEVELS` ([`LEVELS`] = 256), each when first needed (at most `2 (LEVELS + 1)` models
+//!   per material, each its channels' kernels and the tint's: tens of kilobytes, so a few
+//!   megabytes per material at worst), and a hit takes the level nearest its roughness
+//!   `roughnessFactor x texel`: the roughness shaded differs from the texture's by at most
+//!   `1 / 512`, half an 8-bit texel's own step (`1 / 255`).
 //! - BRDF sampling under the environment light keeps the material's own model (its factors):
 //!   the estimate stays unbiased (each draw is weighted by that sampler's own density), only
 //!   its variance grows where the texture moves the roughness far from the factor.
@@ -36,7 +37,7 @@ use glam::{Vec2, Vec3, Vec4};
 use std::sync::{Arc, OnceLock};
 
 /// Roughness levels per unit of roughness (see the module's documentation).
-pub const LEVELS: u32 = 1024;
+pub const LEVELS: u32 = 256;
 
 /// The textures of a material beyond its base colour; each optional.
 #[derive(Default)]

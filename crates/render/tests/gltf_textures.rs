@@ -264,7 +264,7 @@ fn a_metallic_roughness_texture_is_rendered_as_its_factors_would_be() {
     if fastbrdf::registry::find(gltf::MODEL_ID).is_err() {
         return;
     }
-    // One texel: roughness 102/255 = 0.4 (level 410 of 1024), metallic 191/255, times the
+    // One texel: roughness 102/255 = 0.4 (level 102 of 256), metallic 191/255, times the
     // factors 1 and 0.8; against those values as factors (the level's roughness).
     let pbr = |m: f64, r: f64, tex: bool| {
         let mut p = json!({"baseColorFactor": [0.9, 0.6, 0.3, 1.0], "metallicFactor": m,
@@ -279,7 +279,8 @@ fn a_metallic_roughness_texture_is_rendered_as_its_factors_would_be() {
     quad_scene(&mut a, pbr(0.8, 1.0, true));
     let sa = gltf::from_bytes("t.gltf", &a.gltf(), Path::new(".")).unwrap();
     assert!(sa.maps[0].metallic_roughness.is_some(), "{:?}", sa.warnings);
-    let level = (102.0f32 / 255.0 * 1024.0).round() as f64 / 1024.0;
+    let levels = fastbrdf_render::maps::LEVELS as f32;
+    let level = (102.0f32 / 255.0 * levels).round() as f64 / levels as f64;
     let mut b = Doc::new();
     quad_scene(&mut b, pbr(0.8 * 191.0 / 255.0, level, false));
     same(
@@ -297,7 +298,10 @@ fn a_metallic_roughness_texture_is_rendered_as_its_factors_would_be() {
     let px = render_doc(&d.glb(), 32, 16);
     for (x, r) in [
         (9, 1.0),
-        (22, (40.0f32 / 255.0 * 1024.0).round() as f64 / 1024.0),
+        (
+            22,
+            (40.0f32 / 255.0 * levels).round() as f64 / levels as f64,
+        ),
     ] {
         let mut e = Doc::new();
         quad_scene(&mut e, pbr(0.0, r, false));

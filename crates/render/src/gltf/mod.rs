@@ -12,7 +12,7 @@
 //! accessor 7 does not exist (2 accessors)`). The base colour texture is rendered exactly
 //! (`Specular::tint`: the model is affine in its base colour); the metallic-roughness, normal,
 //! occlusion and emissive textures and the emission as [`crate::maps`] says (metallic exactly,
-//! roughness to 1/2048, the normal in the mesh's tangent frame). What the renderer does not
+//! roughness to 1/512, the normal in the mesh's tangent frame). What the renderer does not
 //! use (the extensions' textures, animations, skins, morph targets, alpha modes, other
 //! extensions...) is named in [`GltfScene::warnings`], never dropped silently.
 
