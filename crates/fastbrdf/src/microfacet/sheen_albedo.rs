@@ -328,15 +328,15 @@ impl EnvForm for SheenAlbedo {
     fn wgsl(&self, v: &str, a: &str, e: &Emit) -> String {
         let charlie = self.vis == Vis::Charlie;
         match self.form {
-            Form::Exact => format!("fb_sheen_albedo_quadrature({v}, {a}, {charlie})"),
-            Form::Table { bits } => format!("fb_sheen_albedo_table({v}, {a}, {charlie}, {bits}u)"),
+            Form::Exact => format!("fb_sheen_e_quadrature({v}, {a}, {charlie})"),
+            Form::Table { bits } => format!("fb_sheen_e_table({v}, {a}, {charlie}, {bits}u)"),
             Form::Fit(c) => {
                 let k: Vec<String> = c.iter().map(|&x| e.constant(x)).collect();
-                format!("fb_sheen_albedo_fit({v}, {a}, {})", k.join(", "))
+                format!("fb_sheen_e_fit({v}, {a}, {})", k.join(", "))
             }
             Form::Own(c) => {
                 let k: Vec<String> = c.iter().map(|&x| e.constant(x)).collect();
-                format!("fb_sheen_albedo_own({v}, {a}, {})", k.join(", "))
+                format!("fb_sheen_e_own({v}, {a}, {})", k.join(", "))
             }
         }
     }

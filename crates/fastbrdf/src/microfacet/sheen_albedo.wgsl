@@ -56,14 +56,14 @@ const FB_SHEEN_GL48 = array<vec2<f32>, 48>(
 );
 
 /// mu in [0.001, 1] and alpha in [0.07, 1] (as sheen_albedo::clamp).
-fn fb_sheen_albedo_clamp(mu: f32, alpha: f32) -> vec2<f32> {
+fn fb_sheen_e_clamp(mu: f32, alpha: f32) -> vec2<f32> {
     return vec2<f32>(min(max(mu, 0.001), 1.0), min(max(alpha, 0.07), 1.0));
 }
 
 /// sheen-albedo: E(mu, alpha) by the 48 x 48 product rule in (cos theta_i, phi), phi on [0, pi]
 /// doubled (as sheen::albedo_quadrature, in f32).
-fn fb_sheen_albedo_quadrature(mu_in: f32, alpha_in: f32, charlie: bool) -> f32 {
-    let c = fb_sheen_albedo_clamp(mu_in, alpha_in);
+fn fb_sheen_e_quadrature(mu_in: f32, alpha_in: f32, charlie: bool) -> f32 {
+    let c = fb_sheen_e_clamp(mu_in, alpha_in);
     let mu = c.x;
     let a = c.y;
     let t = (1.0 - a) * (1.0 - a);
@@ -104,8 +104,8 @@ fn fb_sheen_albedo_quadrature(mu_in: f32, alpha_in: f32, charlie: bool) -> f32 {
 
 /// sheen-albedo-table: gltf-pbr's 32 x 32 table of the visibility, bilinear, each node stored
 /// at `bits` (as sheen_albedo::table).
-fn fb_sheen_albedo_table(mu_in: f32, alpha_in: f32, charlie: bool, bits: u32) -> f32 {
-    let c = fb_sheen_albedo_clamp(mu_in, alpha_in);
+fn fb_sheen_e_table(mu_in: f32, alpha_in: f32, charlie: bool, bits: u32) -> f32 {
+    let c = fb_sheen_e_clamp(mu_in, alpha_in);
     var tab = FB_SHEEN_E_NEUBELT;
     if charlie {
         tab = FB_SHEEN_E_CHARLIE;
@@ -127,16 +127,16 @@ fn fb_sheen_albedo_table(mu_in: f32, alpha_in: f32, charlie: bool, bits: u32) ->
 }
 
 /// sheen-albedo-khronos: k0 (1 - mu)^3 + 1 / (k1 + exp(k2 sqrt(alpha) + k3)).
-fn fb_sheen_albedo_fit(mu_in: f32, alpha_in: f32, k0: f32, k1: f32, k2: f32, k3: f32) -> f32 {
-    let c = fb_sheen_albedo_clamp(mu_in, alpha_in);
+fn fb_sheen_e_fit(mu_in: f32, alpha_in: f32, k0: f32, k1: f32, k2: f32, k3: f32) -> f32 {
+    let c = fb_sheen_e_clamp(mu_in, alpha_in);
     let m = 1.0 - c.x;
     return k0 * (m * m * m) + 1.0 / (k1 + exp(k2 * sqrt(c.y) + k3));
 }
 
 /// sheen-albedo-tuned: max(0, exp((k0 + k1 mu) + (k2 + k3 mu) / sqrt(alpha)) + k4 alpha)
 /// (as sheen_albedo::own).
-fn fb_sheen_albedo_own(mu_in: f32, alpha_in: f32, k0: f32, k1: f32, k2: f32, k3: f32, k4: f32) -> f32 {
-    let c = fb_sheen_albedo_clamp(mu_in, alpha_in);
+fn fb_sheen_e_own(mu_in: f32, alpha_in: f32, k0: f32, k1: f32, k2: f32, k3: f32, k4: f32) -> f32 {
+    let c = fb_sheen_e_clamp(mu_in, alpha_in);
     let inv = 1.0 / sqrt(c.y);
     return max(k4 * c.y + exp(inv * (c.x * k3 + k2) + (c.x * k1 + k0)), 0.0);
 }
