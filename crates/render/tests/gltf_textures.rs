@@ -458,3 +458,26 @@ fn anisotropy_follows_the_files_tangents() {
         .fold(0.0f32, f32::max);
     assert!(diff > 1e-2, "the tangent turns the highlight: {diff}");
 }
+
+#[test]
+fn bad_texture_scalars_are_errors_at_their_pointers() {
+    for (mat, ptr) in [
+        (
+            json!({"occlusionTexture": {"index": 0, "strength": 2.0}}),
+            "/materials/0/occlusionTexture/strength",
+        ),
+        // A wrong type fails in the gltf crate's parser, which names the line and column.
+        (
+            json!({"normalTexture": {"index": 0, "scale": "big"}}),
+            "expected f32 at line",
+        ),
+    ] {
+        let mut d = with_images(&[png(1, 1, &[[128, 128, 255]])]);
+        quad_scene(&mut d, mat);
+        let e = gltf::from_bytes("t.gltf", &d.gltf(), Path::new("."))
+            .err()
+            .expect("refused")
+            .to_string();
+        assert!(e.contains(ptr), "{e}");
+    }
+}
