@@ -1,14 +1,16 @@
 //! The GPU renderer on a glTF scene (issue 33) against the CPU renderer: two coloured `gltf-pbr`
 //! spheres (a dielectric and a metal) on a floor with a base colour texture (a coloured
-//! material tinted by its texels, `Specular::tint`), read from a `.glb` built here by the
-//! reader the CLI uses, 32 x 32 at one sample per pixel, shadows on.
+//! material tinted by its texels, `Specular::tint`) and anisotropy (its frame the mesh's
+//! MikkTSpace tangents), read from a `.glb` built here by the reader the CLI uses, 32 x 32 at
+//! one sample per pixel, shadows on.
 //!
 //! - Direct light (the file's directional light): the tolerance of `tests/render.rs`, every
 //!   8-bit channel within 2/255 but on 0.1% of the pixels, PSNR at least 45 dB, and on a
 //!   software adapter 1e-4 linear (relative to max(1, value)) on 99.9% of the pixels.
-//!   Measured on lavapipe: every 8-bit value equal, linear 99.9th percentile about 1e-7.
-//!   It can fail: the CPU's picture of the scene without the floor's texture misses it, and
-//!   the GPU's picture is coloured (the spheres' R and B differ).
+//!   Measured on lavapipe: every 8-bit value equal, linear 99.9th percentile 2.4e-7.
+//!   It can fail: the CPU's pictures of the scene without the floor's texture and without its
+//!   tangents miss it (the latter: 27% of the pixels over 2/255), and the GPU's picture is
+//!   coloured (the spheres' R and B differ).
 //! - Environment light (the built-in sky, its sun included): the GPU draws its third direction
 //!   from a GGX lobe, the CPU from the model's sampler (`tests/render_env.rs`), so the pictures
 //!   agree in the limit: the GPU's 256 passes against the CPU's 512, linear RMSE at most 0.015
@@ -27,9 +29,10 @@ use fastbrdf_gpu::render::render as gpu_render;
 use fastbrdf_render::compare;
 use fastbrdf_render::env::EnvMap;
 use fastbrdf_render::film::Film;
+use fastbrdf_render::geometry::TriMesh;
 use fastbrdf_render::gltf::{self, GltfScene};
 use fastbrdf_render::render::{Antialias, Options, Sampler, Shading, render as cpu_render};
-use fastbrdf_render::scene::Scene;
+use fastbrdf_render::scene::{Scene, Shape};
 use fastbrdf_render::setup::SceneSpec;
 use glam::Vec3;
 use gltf_build::Doc;
@@ -69,6 +72,7 @@ fn texture_png() -> Vec<u8> {
 fn doc() -> Doc {
     let mut d = Doc::new();
     d.uses("KHR_lights_punctual", false);
+    d.uses("KHR_materials_anisotropy", false);
     d.json["extensions"] = json!({"KHR_lights_punctual": {"lights": [
         {"type": "directional", "intensity": 3.0}]}});
     let dielectric = d.push(
@@ -84,7 +88,8 @@ fn doc() -> Doc {
     let floor = d.push(
         "materials",
         json!({"pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.6, 1.0],
-            "metallicFactor": 0.0, "roughnessFactor": 0.6, "baseColorTexture": {"index": 0}}}),
+            "metallicFactor": 0.0, "roughnessFactor": 0.6, "baseColorTexture": {"index": 0}},
+            "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8, "anisotropyRotation": 0.6}}}),
     );
     let uri = format!(
         "data:image/png;base64,{}",
@@ -97,11 +102,13 @@ fn doc() -> Doc {
     let q = d.quad(true, Some(floor));
     let na = d.push("nodes", json!({"mesh": a, "translation": [-1.1, 0.0, 0.0]}));
     let nb = d.push("nodes", json!({"mesh": b, "translation": [1.1, 0.0, 0.0]}));
-    let h = std::f32::consts::FRAC_1_SQRT_2;
+    // The floor: the quad turned to face up, then 60 degrees about y, so that its tangents
+    // (along its u) differ from any_orthonormal_pair's frame about +y (+x).
+    let (h, s, c) = (std::f32::consts::FRAC_1_SQRT_2, 0.5f32, 0.75f32.sqrt());
     let nf = d.push(
         "nodes",
         json!({"mesh": q, "translation": [0.0, -1.0, 0.0], "scale": [6.0, 6.0, 6.0],
-               "rotation": [-h, 0.0, 0.0, h]}),
+               "rotation": [-c * h, s * h, s * h, c * h]}),
     );
     let cam = d.push(
         "cameras",
@@ -138,6 +145,22 @@ fn scene(g: &GltfScene, env: Option<Arc<EnvMap>>, samples: u32, textured: bool) 
                     fastbrdf_render::scene::Specular::new(sp.brdf.as_ref().unwrap()).unwrap(),
                 );
             }
+        }
+    }
+    s
+}
+
+/// `s` with its meshes' tangents dropped (the local frame then any_orthonormal_pair's).
+fn without_tangents(mut s: Scene) -> Scene {
+    for o in &mut s.objects {
+        if let Shape::Mesh(m) = &o.shape {
+            let plain = TriMesh::new(
+                m.positions.clone(),
+                m.normals.clone(),
+                m.uvs.clone(),
+                m.triangles.clone(),
+            );
+            o.shape = Shape::Mesh(Arc::new(plain));
         }
     }
     s
@@ -193,6 +216,12 @@ fn coloured_and_textured_materials_render_as_on_the_cpu() {
             .count(),
         1
     );
+    // The floor is anisotropic: its mesh carries tangents (MikkTSpace), its frame theirs.
+    assert!(
+        s.objects
+            .iter()
+            .any(|o| matches!(&o.shape, Shape::Mesh(m) if !m.tangents.is_empty()))
+    );
     let t = std::time::Instant::now();
     let gpu = gpu_render(&g.device, &g.queue, &s, &opts()).unwrap();
     eprintln!("GPU render: {:.2} s", t.elapsed().as_secs_f64());
@@ -211,6 +240,16 @@ fn coloured_and_textured_materials_render_as_on_the_cpu() {
     let plain = cpu_render(&scene(&gs, None, 1, false), &opts(), &|_, _| {}).unwrap();
     let d = diff(&plain, &gpu);
     assert!(!passes(d, software), "without the texture: {d:?}");
+    // And the tangent frame turns the anisotropic floor's highlight.
+    let turned = cpu_render(
+        &without_tangents(scene(&gs, None, 1, true)),
+        &opts(),
+        &|_, _| {},
+    )
+    .unwrap();
+    let d = diff(&turned, &gpu);
+    eprintln!("against the CPU's picture without the tangents: {d:?}");
+    assert!(!passes(d, software), "without the tangents: {d:?}");
 }
 
 /// RMSE of the linear channels, and the two means.

@@ -49,6 +49,11 @@
 //!   coefficient offsets in `fb_k`, so each distinct model function is compiled once.
 //!   A glTF material's other textures (metallic-roughness, normal, occlusion, emissive) are
 //!   CPU-only ([`check`] refuses them).
+//! - Tangent frames: a mesh with tangents (a glTF mesh of an anisotropic material) carries
+//!   them per vertex (`mesh_v`, 12 floats instead of 8); the shader interpolates them as
+//!   `TriMesh::hit_tangent` and builds `maps::frame`'s local frame from them, so an
+//!   anisotropic model turns with the file's tangents as on the CPU. Elsewhere the frame is
+//!   `any_orthonormal_pair` of the shading normal.
 //! - Shadows (`scene.shadows`, the CPU's rule and arithmetic): every object goes up once
 //!   more, for the shadow rays (`Occluders`): spheres and planes as records, each mesh as its
 //!   CPU BVH (`TriMesh::bvh`, nodes flattened into one array with rebased indices) and its
@@ -216,21 +221,12 @@ const USER_KEY: &str = "file:";
 /// Refuses what only the CPU renderer draws, before any device is needed (a command line
 /// checks its scene with it before looking for an adapter): a glTF material's textures other
 /// than its base colour (metallic-roughness, normal, occlusion, emissive; `Material::maps`),
-/// a mesh with tangents (the CPU's shading frame follows them: an anisotropic glTF material),
 /// and a tinted RGB BRDF. [`render`] and its siblings check it too.
 pub fn check(scene: &Scene) -> Result<(), GpuError> {
-    for (i, obj) in scene.objects.iter().enumerate() {
+    for obj in &scene.objects {
         if let Some(which) = cpu_only_maps(&obj.material) {
             return Err(GpuError::Input(format!(
                 "--gpu: the glTF material's {which} is CPU-only: drop --gpu"
-            )));
-        }
-        if matches!(&obj.shape, fastbrdf_render::scene::Shape::Mesh(m) if !m.tangents.is_empty())
-        {
-            return Err(GpuError::Input(format!(
-                "--gpu: object {i} ({}): its shading frame follows the mesh's tangents (an \
-                 anisotropic glTF material), CPU-only: drop --gpu",
-                obj.material.specular.id
             )));
         }
         let spec = &obj.material.specular;

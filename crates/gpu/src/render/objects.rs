@@ -51,6 +51,7 @@ pub(super) fn object_data(
     let mut triangles: Vec<u32> = Vec::new();
     let mut corners = None;
     let mut has_uvs = 0;
+    let mut has_tangents = 0;
     let kind = match &obj.shape {
         Shape::Sphere(s) => {
             a = [s.center.x, s.center.y, s.center.z, s.radius];
@@ -79,12 +80,23 @@ pub(super) fn object_data(
                     "object {index}: triangle vertex index {bad} is out of range ({nv} vertices)"
                 )));
             }
+            if !(mesh.tangents.is_empty() || mesh.tangents.len() == nv) {
+                return Err(GpuError::Input(format!(
+                    "object {index}: the mesh has {nv} positions and {} tangents",
+                    mesh.tangents.len()
+                )));
+            }
             has_uvs = u32::from(!mesh.uvs.is_empty());
-            vertices.reserve(8 * nv);
+            has_tangents = u32::from(!mesh.tangents.is_empty());
+            // 8 floats per vertex, 12 with a tangent (the shader's `rd_vertex`).
+            vertices.reserve(if has_tangents != 0 { 12 } else { 8 } * nv);
             for i in 0..nv {
                 let (p, nn) = (mesh.positions[i], mesh.normals[i]);
                 let uv = mesh.uvs.get(i).copied().unwrap_or(Vec2::ZERO);
                 vertices.extend([p.x, p.y, p.z, nn.x, nn.y, nn.z, uv.x, uv.y]);
+                if let Some(t) = mesh.tangents.get(i) {
+                    vertices.extend(t.to_array());
+                }
             }
             triangles = with_boundary_edges(&mesh.positions, &mesh.triangles);
             let count = u32::try_from(3 * mesh.triangles.len())
@@ -141,7 +153,7 @@ pub(super) fn object_data(
     // The object's id in the visibility pass: its index plus one (0 is no hit).
     let id = u32::try_from(index + 1)
         .map_err(|_| GpuError::Input(format!("object {index}: too many objects")))?;
-    uniform.extend([tex_w, tex_h, id, 0]);
+    uniform.extend([tex_w, tex_h, id, has_tangents]);
     uniform.extend([tint_w, tint_h, tint_row, u32::from(tint.is_some())]);
     debug_assert_eq!(uniform[KD_WORD], m.kd.to_bits());
     debug_assert_eq!(uniform[KS_WORD], m.ks.to_bits());

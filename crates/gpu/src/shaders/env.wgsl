@@ -261,9 +261,8 @@ fn rd_env_f(s: RdSurface, l: vec3<f32>, cos_i: f32) -> vec3<f32> {
     var f = s.base * (cos_i / RD_PI);
     let ks = object.mat.x;
     if ks > 0.0 {
-        let b = rd_orthonormal_pair(s.n);
-        let wi = vec3<f32>(rd_dot(l, b.t), rd_dot(l, b.b), cos_i);
-        let wo = vec3<f32>(rd_dot(s.v, b.t), rd_dot(s.v, b.b), rd_dot(s.v, s.n));
+        let wi = vec3<f32>(rd_dot(l, s.t), rd_dot(l, s.b), cos_i);
+        let wo = vec3<f32>(rd_dot(s.v, s.t), rd_dot(s.v, s.b), rd_dot(s.v, s.n));
         f += rd_specular(s, vec3<f32>(1.0), wi, wo);
     }
     return f;
@@ -280,13 +279,12 @@ struct RdLobe {
 }
 
 fn rd_lobe(s: RdSurface) -> RdLobe {
-    let f = rd_orthonormal_pair(s.n);
-    let wo = vec3<f32>(rd_dot(s.v, f.t), rd_dot(s.v, f.b), rd_dot(s.v, s.n));
+    let wo = vec3<f32>(rd_dot(s.v, s.t), rd_dot(s.v, s.b), rd_dot(s.v, s.n));
     var alpha = 0.0;
     if object.mat.x > 0.0 && wo.z > 0.0 {
         alpha = env.weights.z;
     }
-    return RdLobe(f.t, f.b, wo, alpha);
+    return RdLobe(s.t, s.b, wo, alpha);
 }
 
 /// The density of `rd_lobe_sample` at unit local direction `wi` (0 below the surface):

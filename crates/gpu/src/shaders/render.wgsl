@@ -62,7 +62,8 @@ struct Object {
     /// Shape (0 sphere, 1 plane, 2 mesh), has a texture, has a bump, mesh has uvs.
     flags: vec4<u32>,
     /// Texture width and height, the object's index in the scene plus one (its id in the
-    /// visibility pass), 0.
+    /// visibility pass), and 1 when the mesh has tangents (`mesh_v` then holds 12 floats per
+    /// vertex, the tangent last).
     tex_size: vec4<u32>,
     /// The specular tint's texture (Specular::tint): width, height, its first row in the
     /// object's texture (below the albedo texture's rows), and 1 when there is one.
@@ -106,7 +107,8 @@ struct BvhNode {
 /// Linear albedo texels (rgb), then the specular tint's rows, read with textureLoad: the
 /// bilinear filter is texture.rs's.
 @group(1) @binding(1) var albedo_tex: texture_2d<f32>;
-/// Mesh vertices: 8 floats each (position, normal, uv).
+/// Mesh vertices: 8 floats each (position, normal, uv), 12 with tangents (xyz, w the
+/// bitangent's sign).
 @group(1) @binding(2) var<storage, read> mesh_v: array<f32>;
 /// Mesh triangles: 4 u32 each, the vertex indices a, b, c and a mask of the triangle's
 /// boundary edges (edges no other triangle shares): 1 for a-b, 2 for b-c, 4 for c-a.
@@ -252,10 +254,12 @@ struct RdHit {
     t: f32,
     n: vec3<f32>,
     uv: vec2<f32>,
+    /// The interpolated tangent of a mesh with tangents (TriMesh::hit_tangent), else zero.
+    tangent: vec4<f32>,
 }
 
 fn rd_miss() -> RdHit {
-    return RdHit(false, 0.0, vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0, 0.0));
+    return RdHit(false, 0.0, vec3<f32>(0.0, 0.0, 1.0), vec2<f32>(0.0, 0.0), vec4<f32>(0.0));
 }
 
 /// Sphere::intersect with t in (RD_T_MIN, inf).
@@ -280,7 +284,7 @@ fn rd_sphere(r: RdRay) -> RdHit {
         0.5 + rd_atan2(n.z, n.x) / RD_TAU,
         0.5 - rd_asin(clamp(n.y, -1.0, 1.0)) / RD_PI,
     );
-    return RdHit(true, t, n, uv);
+    return RdHit(true, t, n, uv, vec4<f32>(0.0));
 }
 
 /// Plane::intersect with t in (RD_T_MIN, inf).
@@ -297,19 +301,32 @@ fn rd_plane(r: RdRay) -> RdHit {
     }
     let p = r.o + t * r.d;
     let uv = vec2<f32>(rd_dot(p - point, object.tu.xyz), rd_dot(p - point, object.tv.xyz));
-    return RdHit(true, t, normal, uv);
+    return RdHit(true, t, normal, uv, vec4<f32>(0.0));
+}
+
+/// The first float of vertex `i` in `mesh_v`.
+fn rd_vertex(i: u32) -> u32 {
+    return select(8u, 12u, object.tex_size.w != 0u) * i;
 }
 
 fn rd_vertex_p(i: u32) -> vec3<f32> {
-    return vec3<f32>(mesh_v[8u * i], mesh_v[8u * i + 1u], mesh_v[8u * i + 2u]);
+    let k = rd_vertex(i);
+    return vec3<f32>(mesh_v[k], mesh_v[k + 1u], mesh_v[k + 2u]);
 }
 
 fn rd_vertex_n(i: u32) -> vec3<f32> {
-    return vec3<f32>(mesh_v[8u * i + 3u], mesh_v[8u * i + 4u], mesh_v[8u * i + 5u]);
+    let k = rd_vertex(i);
+    return vec3<f32>(mesh_v[k + 3u], mesh_v[k + 4u], mesh_v[k + 5u]);
 }
 
 fn rd_vertex_uv(i: u32) -> vec2<f32> {
-    return vec2<f32>(mesh_v[8u * i + 6u], mesh_v[8u * i + 7u]);
+    let k = rd_vertex(i);
+    return vec2<f32>(mesh_v[k + 6u], mesh_v[k + 7u]);
+}
+
+fn rd_vertex_tangent(i: u32) -> vec4<f32> {
+    let k = rd_vertex(i);
+    return vec4<f32>(mesh_v[k + 8u], mesh_v[k + 9u], mesh_v[k + 10u], mesh_v[k + 11u]);
 }
 
 /// TriMesh::hit_triangle (Moller-Trumbore) and TriMesh::intersect's interpolation, for the
@@ -368,7 +385,14 @@ fn rd_triangle(r: RdRay, tri: u32) -> RdHit {
     if object.flags.w != 0u {
         uv = rd_vertex_uv(ia) * w + rd_vertex_uv(ib) * u + rd_vertex_uv(ic) * v;
     }
-    return RdHit(true, t, n, uv);
+    // TriMesh::hit_tangent: interpolated, the sign the first corner's.
+    var tangent = vec4<f32>(0.0);
+    if object.tex_size.w != 0u {
+        let ta = rd_vertex_tangent(ia);
+        let ts = ta * w + rd_vertex_tangent(ib) * u + rd_vertex_tangent(ic) * v;
+        tangent = vec4<f32>(ts.xyz, ta.w);
+    }
+    return RdHit(true, t, n, uv, tangent);
 }
 
 // ---- texture (twin: texture.rs) -------------------------------------------------------------
@@ -629,7 +653,7 @@ fn rd_light_at(l: Light, p: vec3<f32>) -> RdPair {
 
 /// A hit as shading sees it: point, view direction, shading normal (two-sided, bumped),
 /// unbumped normal (shadow rays leave along it), kd x albedo (textured), the specular tint's
-/// texel (one without a tint).
+/// texel (one without a tint), the specular term's local frame (t, b) about n.
 struct RdSurface {
     p: vec3<f32>,
     v: vec3<f32>,
@@ -637,6 +661,28 @@ struct RdSurface {
     g: vec3<f32>,
     base: vec3<f32>,
     tint: vec3<f32>,
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
+/// maps::frame without a normal texture: the local frame about the smooth normal `n` (facing
+/// the viewer; `back`: the hit's normal reversed) from the mesh's interpolated `tangent`, or
+/// any_orthonormal_pair without a usable one.
+fn rd_tangent_frame(n: vec3<f32>, tangent: vec4<f32>, back: bool) -> RdPair {
+    let sign = select(1.0, -1.0, back);
+    var t = sign * tangent.xyz;
+    t = rd_normalize_or(t - n * rd_dot(n, t), vec3<f32>(0.0));
+    if all(t == vec3<f32>(0.0)) {
+        return rd_orthonormal_pair(n);
+    }
+    let w = select(1.0, -1.0, tangent.w < 0.0);
+    let b = rd_cross(n, t) * w;
+    let t2 = rd_normalize_or(t - n * rd_dot(n, t), vec3<f32>(0.0));
+    if all(t2 == vec3<f32>(0.0)) {
+        return rd_orthonormal_pair(n);
+    }
+    let b2 = rd_cross(n, t2);
+    return RdPair(t2, select(b2, -b2, rd_dot(b2, b) < 0.0));
 }
 
 /// The shading prologue of render_tile (and of the environment's passes, env.wgsl).
@@ -648,11 +694,14 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
         n = -hit.n;
     }
     let g = n;
+    // The frame: a bumped normal's any_orthonormal_pair, else the mesh's tangent frame.
+    var f = rd_tangent_frame(n, hit.tangent, rd_dot(hit.n, v) < 0.0);
     if object.flags.z != 0u {
         let pn = rd_perturb(p, n);
         if rd_dot(pn, v) > 0.0 {
             n = pn;
         }
+        f = rd_orthonormal_pair(n);
     }
     var albedo = object.albedo.xyz;
     if object.flags.y != 0u {
@@ -662,7 +711,7 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
     if object.tint.w != 0u {
         tint = rd_texture(hit.uv, vec2<f32>(object.tint.xy), object.tint.xy, object.tint.z);
     }
-    return RdSurface(p, v, n, g, albedo * object.albedo.w, tint);
+    return RdSurface(p, v, n, g, albedo * object.albedo.w, tint, f.t, f.b);
 }
 
 /// The specular term `li ks f cos` per channel (render.rs, `add_specular`): with a tint,
@@ -712,9 +761,8 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
         }
         radiance += li * base * (cos_i / RD_PI);
         if ks > 0.0 {
-            let f = rd_orthonormal_pair(n);
-            let wi = vec3<f32>(rd_dot(l, f.t), rd_dot(l, f.b), cos_i);
-            let wo = vec3<f32>(rd_dot(v, f.t), rd_dot(v, f.b), rd_dot(v, n));
+            let wi = vec3<f32>(rd_dot(l, s.t), rd_dot(l, s.b), cos_i);
+            let wo = vec3<f32>(rd_dot(v, s.t), rd_dot(v, s.b), rd_dot(v, n));
             // Per channel the CPU's `li * (ks * f * cos)`, grey, coloured or RGB.
             radiance += rd_specular(s, li, wi, wo);
         }
