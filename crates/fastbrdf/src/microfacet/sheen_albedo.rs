@@ -198,12 +198,20 @@ pub const TUNED: [OwnCoeffs; 2] = [
     ],
 ];
 
+/// One ledger bound: `(id, choices, v of the reference, max abs error)`.
+pub type LedgerBound = (
+    &'static str,
+    &'static [(&'static str, &'static str)],
+    &'static str,
+    f64,
+);
+
 /// The ledger's maximum absolute error of every configuration against `sheen-albedo` (at its
 /// `v`; the Khronos fit, which has none, at both) over the whole domain, rounded up at the third
 /// significant digit: `(id, choices, v of the reference, bound)`. Measured by `fastbrdf pareto
 /// --sheen` (and `fastbrdf errors --model ID --param ...`); `tests/sheen_albedo.rs` holds every
 /// row to its bound against an independent adaptive quadrature of the lobe.
-pub const LEDGER: &[(&str, &[(&str, &str)], &str, f64)] = &[
+pub const LEDGER: &[LedgerBound] = &[
     (
         "sheen-albedo-table",
         &[("v", "charlie"), ("bits", "32")],
