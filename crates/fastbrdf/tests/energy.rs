@@ -477,6 +477,20 @@ fn gltf_pbr_furnace_is_as_documented() {
     none.push(("sheen_albedo", "none"));
     let u = at(&none, 60.0);
     assert!(u > 1.2, "Lambert + sheen without scaling at 60: {u}");
+    // Specular albedo scaling: the smooth dielectric's diffuse weighted by 1 - E of its
+    // specular layer instead of 1 - F(v.h) stays at most 1 (Filament's table's error), where
+    // the Fresnel mix gains 57% at 85 degrees; Karis's fit's error shows as a gain.
+    let smooth = [("metallic", "0"), ("roughness", "0.1")];
+    for deg in [0.0, 60.0, 85.0] {
+        let mut t = smooth.to_vec();
+        t.push(("spec_albedo", "table"));
+        let e = at(&t, deg);
+        assert!(e <= 1.002, "spec_albedo = table at {deg}: {e}");
+    }
+    let mut k = smooth.to_vec();
+    k.push(("spec_albedo", "karis"));
+    let e = at(&k, 85.0);
+    assert!(e > 1.05, "spec_albedo = karis at 85: {e}");
     // Energy compensation: a rough white metal (F = 1) loses about a third to single
     // scattering; Kulla and Conty's lobe gives it back (the table's furnace tolerance), and
     // Filament's factor seen from wo likewise.

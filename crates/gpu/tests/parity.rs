@@ -210,8 +210,18 @@ fn every_model_matches_the_cpu() {
     let Some(gpu) = common::gpu() else { return };
     let mut report = vec![];
     let mut failures = vec![];
+    // FASTBRDF_PARITY_ONLY=ID,ID... runs those models alone; FASTBRDF_PARITY_TIMES prints
+    // each model's time (lavapipe compiles some shaders slowly: which ones cost CI).
+    let only = std::env::var("FASTBRDF_PARITY_ONLY").ok();
     for e in registry::all() {
+        if only
+            .as_deref()
+            .is_some_and(|o| !o.split(',').any(|id| id == e.info.id))
+        {
+            continue;
+        }
         let configs = common::gpu_configs(&e.info);
+        let t = std::time::Instant::now();
         check(
             gpu,
             &e.info,
@@ -220,6 +230,14 @@ fn every_model_matches_the_cpu() {
             &mut report,
             &mut failures,
         );
+        if std::env::var_os("FASTBRDF_PARITY_TIMES").is_some() {
+            eprintln!(
+                "{:<28} {:>3} configurations {:>7.1} s",
+                e.info.id,
+                configs.len(),
+                t.elapsed().as_secs_f64()
+            );
+        }
     }
     finish(&report, &failures);
 }

@@ -22,6 +22,7 @@
 //! | `diffuse` | `lambert`, `burley` | `lambert` | the base's diffuse lobe |
 //! | `sheen_v` | `charlie`, `neubelt` | `charlie` | the sheen visibility (`microfacet::sheen`) |
 //! | `sheen_albedo` | `table`, `fit`, `none` | `table` | the sheen's directional albedo `E` that scales the layers below |
+//! | `spec_albedo` | `fresnel`, `table`, `materialx`, `karis` | `fresnel` | what weights the dielectric's diffuse: glTF's `1 - F_d(v . h)`, or the specular layer's albedo from a DFG ledger row (`env-brdf-table`: Filament's 32 x 32 half-float table; `env-brdf-materialx`; `env-brdf-approx`, Karis's mobile fit); only with `d = ggx`, `g = smith-ggx-correlated` |
 //! | `ms` | `none`, `kulla-conty`, `filament` | `none` | energy compensation of the base's specular lobe (`microfacet::ms`, as `cook-torrance`'s): only with `d = ggx`, `g = smith-ggx-correlated`; with anisotropy, the isotropic table at `sqrt(alpha_t alpha)` (an approximation, as engines make it) |
 //!
 //! The value, per channel (`spec = D G / (4 cos_i cos_o)`, `c = wi . h`):
@@ -37,6 +38,11 @@
 //!   schlick(0.04, 1, cos_o)`, the coat's D and G at `max(clearcoat_roughness^2, 0.005)`
 //!   (`fresnel_coat` of `KHR_materials_clearcoat`: the Fresnel of `N . V`, so a coated
 //!   material is not reciprocal).
+//! - Specular albedo scaling (`spec_albedo` other than `fresnel`): the diffuse weight `1 - F_d`
+//!   becomes `S_d = max(0, min(1 - E_d(cos_o), 1 - E_d(cos_i)))`, `E_d(mu) = F_d(1) A(mu,
+//!   alpha) + F_d(0) B(mu, alpha)` with the split-sum scale `A` and bias `B` of the chosen row
+//!   (the rule the sheen's albedo scaling uses; reciprocal, and with a white base and the
+//!   exact `E` at most 1 from either side).
 //! - Energy compensation (`ms`): the dielectric's `F_d spec` and the metal's `F_m spec` each
 //!   go through `microfacet::ms::apply` with their own Fresnel ends (`F(1)`, `F(0)`): Kulla
 //!   and Conty's lobe added, or Filament's factor; the coat is not compensated.
@@ -62,13 +68,13 @@
 use crate::brdf::cook_torrance::Aniso;
 use crate::entry::Entry;
 use crate::error::{Error, Result};
-use crate::forms::{BrdfForm, DistForm, FresnelForm, ShadowForm};
+use crate::forms::{BrdfForm, DistForm, EnvForm, FresnelForm, ShadowForm};
 use crate::math::Math;
 use crate::microfacet::ms::{self, Ms};
 use crate::microfacet::sheen::{self, Charlie, Vis};
 use crate::model::{Kind, ModelInfo, Ops};
 use crate::params::{self, Options, ParamKind, ParamSpec, Params, Value};
-use crate::plan::{DistPlan, FresnelPlan, Models, Plan, ShadowPlan};
+use crate::plan::{DistPlan, EnvPlan, FresnelPlan, Models, Plan, ShadowPlan};
 use crate::real::{K, Real, pos};
 use crate::sample::{self, Micro, Strategy};
 use crate::vec3::{COS_MIN, Pair, V3};
@@ -226,12 +232,32 @@ pub const PARAMS: &[ParamSpec] = &[
         &sheen::Vis::NAMES,
         "sheen visibility: Charlie's fit (Estevez and Kulla 2017) or Neubelt and Pettineo's",
     ),
+    ParamSpec {
+        name: "spec_albedo",
+        kind: ParamKind::Choice {
+            options: Options::Gated {
+                list: &SPEC_ALBEDO_NAMES,
+                requires: &[("d", &["ggx"]), ("g", &["smith-ggx-correlated"])],
+            },
+            default: "fresnel",
+        },
+        doc: "what weights the dielectric's diffuse: fresnel (glTF's 1 - F(v.h)), or the specular albedo scaling 1 - E(cos) with E from a DFG ledger row: table (env-brdf-table, 32 x 32 half float), materialx (env-brdf-materialx), karis (env-brdf-approx); needs d = ggx, g = smith-ggx-correlated",
+    },
     crate::brdf::cook_torrance::MS,
     list(
         "sheen_albedo",
         &["table", "fit", "none"],
         "the sheen's directional albedo E: 32 x 32 table of the quadrature, the analytic fit, or no scaling",
     ),
+];
+
+/// The choices of `spec_albedo` (a public contract) and the env rows they read.
+pub const SPEC_ALBEDO_NAMES: [&str; 4] = ["fresnel", "table", "materialx", "karis"];
+const SPEC_ALBEDO_ROWS: [Option<&str>; 4] = [
+    None,
+    Some("env-brdf-table"),
+    Some("env-brdf-materialx"),
+    Some("env-brdf-approx"),
 ];
 
 pub const INFO: ModelInfo = ModelInfo {
@@ -332,6 +358,16 @@ pub struct GltfPbr {
     pub weights: [f64; 3],
     /// The base's energy compensation (`microfacet::ms`).
     pub ms: Ms,
+    /// The specular albedo scaling of the dielectric's diffuse; `None`: `1 - F_d(v . h)`.
+    pub spec_albedo: Option<SpecAlbedo>,
+}
+
+/// The split-sum terms of the DFG ledger row that `spec_albedo` names, at the base's slope.
+#[derive(Clone, Copy, Debug)]
+pub struct SpecAlbedo {
+    pub scale: EnvPlan,
+    pub bias: EnvPlan,
+    pub alpha: K,
 }
 
 fn invalid(param: &str, value: String, expected: String) -> Error {
@@ -379,6 +415,33 @@ impl GltfPbr {
         // With anisotropy, the isotropic table at the parts' slope (as engines do).
         let ms = Ms::new(ms_id, parts_alpha)
             .ok_or_else(|| invalid("ms", ms_id.into(), ms::NAMES.join(", ")))?;
+        let sa_id = p.choice("spec_albedo");
+        let row = SPEC_ALBEDO_NAMES
+            .iter()
+            .position(|n| *n == sa_id)
+            .map(|i| SPEC_ALBEDO_ROWS[i])
+            .ok_or_else(|| invalid("spec_albedo", sa_id.into(), SPEC_ALBEDO_NAMES.join(", ")))?;
+        let spec_albedo = match row {
+            None => None,
+            Some(id) => {
+                let term = |t: &'static str| -> Result<EnvPlan> {
+                    let nums = move |name: &str| (name == "term").then(|| Value::Text(t.into()));
+                    match models.plan(id, &nums)? {
+                        Plan::Env(e) => Ok(e),
+                        _ => Err(invalid(
+                            "spec_albedo",
+                            sa_id.into(),
+                            "a split-sum row".into(),
+                        )),
+                    }
+                };
+                Some(SpecAlbedo {
+                    scale: term("scale")?,
+                    bias: term("bias")?,
+                    alpha: K::new(parts_alpha),
+                })
+            }
+        };
         let rot = p.num("anisotropy_rotation");
         let f_id = format!("fresnel-{}", p.choice("f"));
         let fresnel = |f0: f64, f90: f64| -> Result<FresnelPlan> {
@@ -471,6 +534,7 @@ impl GltfPbr {
             coat,
             weights: [ws / sum, wc / sum, wd / sum],
             ms,
+            spec_albedo,
         })
     }
 
@@ -506,7 +570,9 @@ impl BrdfForm for GltfPbr {
     fn simd(&self) -> bool {
         // The sheen table's reads are gathers.
         // The sheen's and the compensation's table reads are gathers.
-        !(self.sheen.on && self.sheen.albedo == Albedo::Table) && self.ms == Ms::None
+        !(self.sheen.on && self.sheen.albedo == Albedo::Table)
+            && self.ms == Ms::None
+            && self.spec_albedo.is_none()
     }
     fn reciprocal(&self) -> bool {
         !self.coat.on && !matches!(self.ms, Ms::Filament { .. })
@@ -599,8 +665,18 @@ impl BrdfForm for GltfPbr {
             diff = diff * (w(p.cos_i) * w(p.cos_o));
         }
         let m = self.metallic.t::<T>();
+        // The diffuse's weight: glTF's 1 - F_d(v . h), or the specular albedo scaling.
+        let wd = match &self.spec_albedo {
+            None => one - fd,
+            Some(sa) => {
+                let a = sa.alpha.t::<T>();
+                let (f1, f0) = (self.fd.f::<T, M>(one), self.fd.f::<T, M>(T::zero()));
+                let e = |mu: T| f1 * sa.scale.e::<T, M>(mu, a) + f0 * sa.bias.e::<T, M>(mu, a);
+                pos((one - e(p.cos_o)).min(one - e(p.cos_i)))
+            }
+        };
         let mut v = match self.ms {
-            Ms::None => (one - m) * ((one - fd) * diff + fd * spec) + m * fm * spec,
+            Ms::None => (one - m) * (wd * diff + fd * spec) + m * fm * spec,
             _ => {
                 let z = T::zero();
                 let (ci, co) = (p.cos_i, p.cos_o);
@@ -608,7 +684,7 @@ impl BrdfForm for GltfPbr {
                 let (fm1, fm0) = (self.fm.f::<T, M>(one), self.fm.f::<T, M>(z));
                 let sd = ms::apply::<T, M>(&self.ms, fd * spec, ci, co, fd1, fd0);
                 let sm = ms::apply::<T, M>(&self.ms, fm * spec, ci, co, fm1, fm0);
-                (one - m) * ((one - fd) * diff + sd) + m * sm
+                (one - m) * (wd * diff + sd) + m * sm
             }
         };
         let s = &self.sheen;

@@ -2,7 +2,7 @@
 //! parts' calls: kept apart from the model's Rust form to keep each file short.
 
 use crate::brdf::gltf_pbr::{Albedo, GltfPbr};
-use crate::forms::{DistForm, FresnelForm, ShadowForm};
+use crate::forms::{DistForm, EnvForm, FresnelForm, ShadowForm};
 use crate::microfacet::ms::Ms;
 use crate::microfacet::sheen::Vis;
 use crate::plan::FresnelPlan;
@@ -106,6 +106,26 @@ fn wgsl_body(b: &GltfPbr, e: &Emit) -> String {
         ("p_specular", &["specular"]),
     );
     let (fm1, fm0) = ends(&b.fm, ("p_base_color", &["base_color"]), ("1.0", &[]));
+    // The diffuse's weight: glTF's 1 - F_d(v . h), or the specular albedo scaling.
+    let wd = match &b.spec_albedo {
+        None => "(1.0 - fd)",
+        Some(sa) => {
+            let a = e.kx(sa.alpha, &alpha, alpha_params);
+            let ea = |mu: &str| {
+                format!(
+                    "{fd1} * {} + {fd0} * {}",
+                    sa.scale.wgsl(mu, "sa", e),
+                    sa.bias.wgsl(mu, "sa", e)
+                )
+            };
+            s += &format!(
+                "    let sa = {a};\n    let ea_o = {};\n    let ea_i = {};\n    let wd = max(min(1.0 - ea_o, 1.0 - ea_i), 0.0);\n",
+                ea("p.cos_o"),
+                ea("p.cos_i")
+            );
+            "wd"
+        }
+    };
     let comp = |ss: &str, f1: &str, f0: &str, a: K| match b.ms {
         Ms::None => unreachable!("only called with a compensation"),
         Ms::KullaConty { .. } => format!(
@@ -119,10 +139,10 @@ fn wgsl_body(b: &GltfPbr, e: &Emit) -> String {
     };
     s += &match b.ms {
         Ms::None => {
-            "    var v = (1.0 - m) * ((1.0 - fd) * diff + fd * spec) + m * fm * spec;\n".into()
+            format!("    var v = (1.0 - m) * ({wd} * diff + fd * spec) + m * fm * spec;\n")
         }
         Ms::KullaConty { alpha: a } | Ms::Filament { alpha: a } => format!(
-            "    let sd = {};\n    let sm = {};\n    var v = (1.0 - m) * ((1.0 - fd) * diff + sd) + m * sm;\n",
+            "    let sd = {};\n    let sm = {};\n    var v = (1.0 - m) * ({wd} * diff + sd) + m * sm;\n",
             comp("fd * spec", &fd1, &fd0, a),
             comp("fm * spec", &fm1, &fm0, a)
         ),

@@ -116,12 +116,14 @@ fn every_kernel_matches_its_scalar_model_on_every_isa() {
             || s.id().starts_with("sheen-albedo")
             || s.id() == "cook-torrance"
                 && matches!(choice(s, "ms").as_str(), "kulla-conty" | "filament")
-            // gltf-pbr's sheen albedo table (gathers), when its sheen is on, and its energy
-            // compensation (the same table gathers as Cook-Torrance's).
+            // gltf-pbr's sheen albedo table (gathers), when its sheen is on, its energy
+            // compensation (the same table gathers as Cook-Torrance's) and its specular
+            // albedo scaling (a split-sum row per direction: scalar).
             || s.id() == "gltf-pbr"
                 && (choice(s, "sheen_albedo") == "table"
                     && !matches!(s.get("sheen_color"), Some(Given::Num(x)) if *x == 0.0)
-                    || matches!(choice(s, "ms").as_str(), "kulla-conty" | "filament"))),
+                    || matches!(choice(s, "ms").as_str(), "kulla-conty" | "filament")
+                    || !matches!(choice(s, "spec_albedo").as_str(), "" | "fresnel"))),
         "{no_simd:?}"
     );
 }

@@ -81,6 +81,26 @@ struct Mat {
     fit: bool,
     /// The energy compensation: 0 none, 1 Kulla and Conty, 2 Filament.
     ms: u8,
+    /// The specular albedo scaling: 0 glTF's Fresnel mix, else the row of [`SPEC_ALBEDO`].
+    sa: u8,
+}
+
+/// `spec_albedo`'s choices and the split-sum rows they read (each tested against the
+/// quadrature of GGX's albedo in `reference/env.rs` and the DFG ledger).
+const SPEC_ALBEDO: [(&str, &str); 4] = [
+    ("fresnel", ""),
+    ("table", "env-brdf-table"),
+    ("materialx", "env-brdf-materialx"),
+    ("karis", "env-brdf-approx"),
+];
+
+/// The split-sum term `term` of env row `id` at (mu, alpha).
+fn env_term(id: &str, term: &str, mu: f64, alpha: f64) -> f64 {
+    let spec = fastbrdf::ModelSpec::parse(id, &[("term", term)]).unwrap();
+    let fastbrdf::Model::Env(e) = spec.model::<f64>().unwrap() else {
+        panic!("{id} is an env model")
+    };
+    e.e(mu, alpha)
 }
 
 const PLAIN: Mat = Mat {
@@ -99,6 +119,7 @@ const PLAIN: Mat = Mat {
     burley: false,
     fit: false,
     ms: 0,
+    sa: 0,
 };
 
 /// The specification's material, written from its text.
@@ -138,7 +159,18 @@ fn spec(m: &Mat, l: [f64; 3], v: [f64; 3]) -> f64 {
             _ => ss * (1.0 + f1 * (1.0 / (1.0 - loss(nv, alpha)) - 1.0)),
         }
     };
-    let dielectric = (1.0 - fd) * diffuse + compensate(fd * specular_brdf, f0d, m.specular);
+    // The diffuse's weight: the specification's 1 - F(v.h), or 1 - E of the specular layer
+    // seen from either side (E = F(1) scale + F(0) bias of a split-sum row).
+    let weight = if m.sa == 0 {
+        1.0 - fd
+    } else {
+        let id = SPEC_ALBEDO[m.sa as usize].1;
+        let e = |mu: f64| {
+            f0d * env_term(id, "scale", mu, alpha) + m.specular * env_term(id, "bias", mu, alpha)
+        };
+        (1.0 - e(nv)).min(1.0 - e(nl)).max(0.0)
+    };
+    let dielectric = weight * diffuse + compensate(fd * specular_brdf, f0d, m.specular);
     let metal = compensate(schlick(m.base, 1.0, vh) * specular_brdf, m.base, 1.0);
     let mut material = dielectric * (1.0 - m.metallic) + metal * m.metallic;
     if m.sheen > 0.0 {
@@ -186,6 +218,7 @@ fn model(m: &Mat) -> Box<dyn fastbrdf::Brdf<f64>> {
             "ms",
             ["none", "kulla-conty", "filament"][m.ms as usize].into(),
         ),
+        ("spec_albedo", SPEC_ALBEDO[m.sa as usize].0.into()),
     ];
     let given: Vec<(&str, &str)> = vals.iter().map(|(a, b)| (*a, b.as_str())).collect();
     brdf64("gltf-pbr", &given)
@@ -215,6 +248,40 @@ fn materials() -> Vec<(&'static str, Mat)> {
                 fit: true,
                 coat: 0.5,
                 coat_rough: 0.3,
+                ..PLAIN
+            },
+        ),
+        (
+            "dielectric, specular albedo scaling by Filament's table",
+            Mat {
+                rough: 0.3,
+                sa: 1,
+                ..PLAIN
+            },
+        ),
+        (
+            "half metal, MaterialX's fit, coloured specular, Kulla-Conty",
+            Mat {
+                metallic: 0.3,
+                rough: 0.7,
+                ior: 1.8,
+                specular: 0.7,
+                specular_color: 1.5,
+                sa: 2,
+                ms: 1,
+                ..PLAIN
+            },
+        ),
+        (
+            "dielectric, Karis's fit, sheen and coat",
+            Mat {
+                rough: 0.5,
+                sa: 3,
+                sheen: 0.5,
+                sheen_rough: 0.3,
+                fit: true,
+                coat: 0.4,
+                coat_rough: 0.2,
                 ..PLAIN
             },
         ),

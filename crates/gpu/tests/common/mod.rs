@@ -62,6 +62,15 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
             if info.id == "gltf-pbr" {
                 // The energy compensation's table is such an array too: one configuration
                 // (Kulla and Conty's, without the sheen table) checks its wiring.
+                // The specular albedo scaling: one configuration, MaterialX's fit (its WGSL
+                // has no table; env-brdf-table's twin is checked as its own model).
+                let sa = get(c, "spec_albedo");
+                if !sa.is_empty() && sa != "fresnel" {
+                    return sa == "materialx"
+                        && get(c, "ms") == "none"
+                        && get(c, "sheen_albedo") != "table"
+                        && seen.insert("gltf-pbr spec_albedo".to_string());
+                }
                 let ms = get(c, "ms");
                 if !ms.is_empty() && ms != "none" {
                     return ms == "kulla-conty"
