@@ -53,19 +53,32 @@ fn opts() -> Options {
     }
 }
 
-/// A 4 x 4 sRGB PNG: a checker of warm and cool texels of different brightness.
-fn texture_png() -> Vec<u8> {
-    let mut rgb = Vec::new();
-    for y in 0..4u32 {
-        for x in 0..4u32 {
-            rgb.extend(if (x + y) % 2 == 0 {
-                [250, 120 + 30 * x as u8, 40]
-            } else {
-                [30, 60 + 40 * y as u8, 220]
-            });
-        }
-    }
+/// A 4 x 4 PNG of the texels `f(x, y)`.
+fn png(f: impl Fn(u8, u8) -> [u8; 3]) -> Vec<u8> {
+    let rgb: Vec<u8> = (0..16u8).flat_map(|i| f(i % 4, i / 4)).collect();
     fastbrdf_render::film::png_bytes(&rgb, 4, 4).unwrap()
+}
+
+/// The data URI of `png`.
+fn uri(png: &[u8]) -> String {
+    format!("data:image/png;base64,{}", gltf_build::base64(png))
+}
+
+/// The floor's textures: base colour (a checker of warm and cool texels of different
+/// brightness), normal (tilts of up to about 30 degrees), occlusion (R: 0.3 to 1), emission.
+fn textures() -> [Vec<u8>; 4] {
+    [
+        png(|x, y| {
+            if (x + y) % 2 == 0 {
+                [250, 120 + 30 * x, 40]
+            } else {
+                [30, 60 + 40 * y, 220]
+            }
+        }),
+        png(|x, y| [68 + 40 * x, 188 - 40 * y, 230]),
+        png(|x, y| [80 + 25 * (x + y), 0, 0]),
+        png(|x, y| [40 * x, 200, 40 * y]),
+    ]
 }
 
 /// The scene: two coloured spheres and a textured floor, a camera, a directional light.
@@ -89,14 +102,15 @@ fn doc() -> Doc {
         "materials",
         json!({"pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.6, 1.0],
             "metallicFactor": 0.0, "roughnessFactor": 0.6, "baseColorTexture": {"index": 0}},
+            "normalTexture": {"index": 1, "scale": 0.8},
+            "occlusionTexture": {"index": 2, "strength": 0.7},
+            "emissiveTexture": {"index": 3}, "emissiveFactor": [0.2, 0.1, 0.05],
             "extensions": {"KHR_materials_anisotropy": {"anisotropyStrength": 0.8, "anisotropyRotation": 0.6}}}),
     );
-    let uri = format!(
-        "data:image/png;base64,{}",
-        gltf_build::base64(&texture_png())
-    );
-    d.push("images", json!({"uri": uri}));
-    d.push("textures", json!({"source": 0}));
+    for (i, t) in textures().iter().enumerate() {
+        d.push("images", json!({"uri": uri(t)}));
+        d.push("textures", json!({"source": i}));
+    }
     let a = d.sphere(16, Some(dielectric));
     let b = d.sphere(16, Some(metal));
     let q = d.quad(true, Some(floor));
@@ -146,6 +160,14 @@ fn scene(g: &GltfScene, env: Option<Arc<EnvMap>>, samples: u32, textured: bool) 
                 );
             }
         }
+    }
+    s
+}
+
+/// `s` without its glTF maps (normal, occlusion and emissive textures).
+fn without_maps(mut s: Scene) -> Scene {
+    for o in &mut s.objects {
+        o.material.maps = None;
     }
     s
 }
@@ -216,6 +238,7 @@ fn coloured_and_textured_materials_render_as_on_the_cpu() {
             .count(),
         1
     );
+    assert!(s.objects.iter().any(|o| o.material.maps.is_some()));
     // The floor is anisotropic: its mesh carries tangents (MikkTSpace), its frame theirs.
     assert!(
         s.objects
@@ -250,6 +273,16 @@ fn coloured_and_textured_materials_render_as_on_the_cpu() {
     let d = diff(&turned, &gpu);
     eprintln!("against the CPU's picture without the tangents: {d:?}");
     assert!(!passes(d, software), "without the tangents: {d:?}");
+    // And the normal and emissive textures change it too.
+    let bare = cpu_render(
+        &without_maps(scene(&gs, None, 1, true)),
+        &opts(),
+        &|_, _| {},
+    )
+    .unwrap();
+    let d = diff(&bare, &gpu);
+    eprintln!("against the CPU's picture without the maps: {d:?}");
+    assert!(!passes(d, software), "without the maps: {d:?}");
 }
 
 /// RMSE of the linear channels, and the two means.

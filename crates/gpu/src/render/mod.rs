@@ -47,8 +47,11 @@
 //!   texture (uploaded below the albedo texture's rows in the object's texture, filtered by
 //!   the same bilinear rule). The channels and the zero model are slots of one loop over
 //!   coefficient offsets in `fb_k`, so each distinct model function is compiled once.
-//!   A glTF material's other textures (metallic-roughness, normal, occlusion, emissive) are
-//!   CPU-only ([`check`] refuses them).
+//!   A glTF material's normal, occlusion and emissive textures (`maps.rs`) are stacked there
+//!   too: the normal texture tilts the shading normal in the tangent frame (below), the
+//!   occlusion scales the ambient and environment light, the emission is added once per
+//!   sample, each with the CPU's arithmetic. The metallic-roughness texture is CPU-only
+//!   ([`check`] refuses it): the CPU builds its models per roughness level.
 //! - Tangent frames: a mesh with tangents (a glTF mesh of an anisotropic material) carries
 //!   them per vertex (`mesh_v`, 12 floats instead of 8); the shader interpolates them as
 //!   `TriMesh::hit_tangent` and builds `maps::frame`'s local frame from them, so an
@@ -219,9 +222,8 @@ struct User<'a> {
 const USER_KEY: &str = "file:";
 
 /// Refuses what only the CPU renderer draws, before any device is needed (a command line
-/// checks its scene with it before looking for an adapter): a glTF material's textures other
-/// than its base colour (metallic-roughness, normal, occlusion, emissive; `Material::maps`),
-/// and a tinted RGB BRDF. [`render`] and its siblings check it too.
+/// checks its scene with it before looking for an adapter): a glTF material's
+/// metallic-roughness texture (`Material::maps`), and a tinted RGB BRDF. [`render`] and its siblings check it too.
 pub fn check(scene: &Scene) -> Result<(), GpuError> {
     for obj in &scene.objects {
         if let Some(which) = cpu_only_maps(&obj.material) {
@@ -240,25 +242,13 @@ pub fn check(scene: &Scene) -> Result<(), GpuError> {
     Ok(())
 }
 
-/// What of `m` only the CPU renderer draws (a glTF material's metallic-roughness, normal,
-/// occlusion or emissive texture, or its emission), if anything: the first, named.
+/// What of `m` only the CPU renderer draws (a glTF material's metallic-roughness texture: its
+/// models per roughness level), if anything, named.
 fn cpu_only_maps(m: &fastbrdf_render::scene::Material) -> Option<&'static str> {
     let maps = m.maps.as_ref()?;
-    if maps.metallic_roughness.is_some() {
-        Some("metallic-roughness texture")
-    } else if maps.normal.is_some() {
-        Some("normal texture")
-    } else if maps.occlusion.is_some() {
-        Some("occlusion texture")
-    } else if let Some(e) = &maps.emissive {
-        Some(if e.texture.is_some() {
-            "emissive texture"
-        } else {
-            "emission (emissiveFactor)"
-        })
-    } else {
-        None
-    }
+    maps.metallic_roughness
+        .as_ref()
+        .map(|_| "metallic-roughness texture")
 }
 
 fn render_scene(

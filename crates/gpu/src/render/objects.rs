@@ -109,18 +109,33 @@ pub(super) fn object_data(
         }
     };
     let tint = m.specular.tint.as_ref().map(|t| &*t.texture);
+    let maps = m.maps.as_deref();
+    let normal_map = maps.and_then(|x| x.normal.as_ref());
+    let occlusion = maps.and_then(|x| x.occlusion.as_ref());
+    let emissive = maps.and_then(|x| x.emissive.as_ref());
     let (tex_w, tex_h) = m.texture.as_ref().map_or((1, 1), |t| (t.width, t.height));
-    let (tint_w, tint_h) = tint.map_or((0, 0), |t| (t.width, t.height));
-    let texture = stacked_texels(m.texture.as_deref(), tint);
+    // The albedo texture's rows, then the tint's, the normal, occlusion and emissive textures'.
+    let parts = [
+        m.texture.as_deref(),
+        tint,
+        normal_map.map(|x| &*x.texture),
+        occlusion.map(|x| &*x.texture),
+        emissive.and_then(|x| x.texture.as_deref()),
+    ];
+    let (texture, rows) = stacked_texels(&parts);
     let max = limits.max_texture_dimension_2d;
     if texture.0 > max || texture.1 > max {
         let size = |t: &Texture| format!("{}x{}", t.width, t.height);
-        let what = match (&m.texture, tint) {
-            (Some(t), None) => format!("the texture is {}", size(t)),
-            (a, t) => format!(
-                "object {index}'s textures (albedo {}, specular tint {}) stacked are {}x{}",
-                a.as_deref().map_or("none".into(), size),
-                t.map_or("none".into(), size),
+        let what = match (&m.texture, parts[1..].iter().all(Option::is_none)) {
+            (Some(t), true) => format!("the texture is {}", size(t)),
+            _ => format!(
+                "object {index}'s textures ({}) stacked are {}x{}",
+                parts
+                    .iter()
+                    .flatten()
+                    .map(|t| size(t))
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 texture.0,
                 texture.1
             ),
@@ -129,10 +144,10 @@ pub(super) fn object_data(
             "{what}, larger than the GPU's largest texture side ({max})"
         )));
     }
-    // The tint's rows follow the albedo texture's (none without one).
-    let tint_row = m.texture.as_ref().map_or(0, |t| t.height);
+    // Per part: width, height, first row, and 1 when there is one.
+    let part = |k: usize| parts[k].map_or([0, 0, 0, 0], |t| [t.width, t.height, rows[k], 1]);
     let (bump_scale, bump_depth) = m.bump.map_or((0.0, 0.0), |b| (b.scale, b.depth));
-    let mut uniform: Vec<u32> = Vec::with_capacity(40);
+    let mut uniform: Vec<u32> = Vec::with_capacity(60);
     for v in [
         a,
         normal,
@@ -154,12 +169,22 @@ pub(super) fn object_data(
     let id = u32::try_from(index + 1)
         .map_err(|_| GpuError::Input(format!("object {index}: too many objects")))?;
     uniform.extend([tex_w, tex_h, id, has_tangents]);
-    uniform.extend([tint_w, tint_h, tint_row, u32::from(tint.is_some())]);
+    for k in 1..5 {
+        uniform.extend(part(k));
+    }
+    // The normal texture's scale, the occlusion's strength; the emission (its factor: zero
+    // without one).
+    let scale = normal_map.map_or(1.0, |x| x.scale);
+    let strength = occlusion.map_or(0.0, |x| x.strength);
+    let e = emissive.map_or(Vec3::ZERO, |x| x.factor);
+    for v in [[scale, strength, 0.0, 0.0], [e.x, e.y, e.z, 0.0]] {
+        uniform.extend(v.map(f32::to_bits));
+    }
     debug_assert_eq!(uniform[KD_WORD], m.kd.to_bits());
     debug_assert_eq!(uniform[KS_WORD], m.ks.to_bits());
     Ok(ObjectData {
         uniform,
-        texture,
+        texture: (texture.0, texture.1, texture.2),
         vertices,
         triangles,
         corners,
@@ -372,25 +397,32 @@ fn linear_texels(t: &Texture) -> Vec<f32> {
         .collect()
 }
 
-/// One object's texture: the albedo texture's rows ([`linear_texels`]), then the specular
-/// tint's, each row padded with zeros to the wider of the two; 1 x 1 zero without either.
-/// As (width, height, texels).
-fn stacked_texels(albedo: Option<&Texture>, tint: Option<&Texture>) -> (u32, u32, Vec<f32>) {
-    let parts: Vec<&Texture> = [albedo, tint].into_iter().flatten().collect();
-    if parts.is_empty() {
-        return (1, 1, vec![0.0; 4]);
+/// One object's texture: the rows of each of `parts` that is there, in order (the albedo
+/// texture's [`linear_texels`], the specular tint's, the glTF maps'), each row padded with
+/// zeros to the widest; 1 x 1 zero without any. As ((width, height, texels), the first row of
+/// each part: 0 for one that is absent).
+#[allow(clippy::type_complexity)]
+fn stacked_texels(parts: &[Option<&Texture>]) -> ((u32, u32, Vec<f32>), Vec<u32>) {
+    let present: Vec<&Texture> = parts.iter().flatten().copied().collect();
+    let mut rows = Vec::with_capacity(parts.len());
+    let mut h = 0;
+    for p in parts {
+        rows.push(if p.is_some() { h } else { 0 });
+        h += p.map_or(0, |t| t.height);
     }
-    let w = parts.iter().map(|t| t.width).max().unwrap_or(1);
-    let h = parts.iter().map(|t| t.height).sum();
+    if present.is_empty() {
+        return ((1, 1, vec![0.0; 4]), rows);
+    }
+    let w = present.iter().map(|t| t.width).max().unwrap_or(1);
     let mut out = Vec::with_capacity(4 * (w * h) as usize);
-    for t in parts {
+    for t in present {
         let texels = linear_texels(t);
         for row in texels.chunks_exact(4 * t.width as usize) {
             out.extend_from_slice(row);
             out.resize(out.len() + 4 * (w - t.width) as usize, 0.0);
         }
     }
-    (w, h, out)
+    ((w, h, out), rows)
 }
 
 #[cfg(test)]
@@ -411,7 +443,8 @@ mod tests {
     fn textures_stack_albedo_then_tint() {
         let a = Texture::from_linear(1, 2, vec![Vec3::splat(0.5), Vec3::splat(0.25)]);
         let t = Texture::from_linear(2, 1, vec![Vec3::X, Vec3::Y]);
-        let (w, h, texels) = stacked_texels(Some(&a), Some(&t));
+        let ((w, h, texels), rows) = stacked_texels(&[Some(&a), Some(&t)]);
+        assert_eq!(rows, [0, 2]);
         assert_eq!((w, h), (2, 3));
         assert_eq!(
             texels,
@@ -422,8 +455,10 @@ mod tests {
             ]
             .concat()
         );
-        assert_eq!(stacked_texels(None, Some(&t)).0, 2);
-        assert_eq!(stacked_texels(None, None), (1, 1, vec![0.0; 4]));
+        assert_eq!(stacked_texels(&[None, Some(&t)]).0.0, 2);
+        assert_eq!(stacked_texels(&[None, Some(&t)]).1, [0, 0]);
+        assert_eq!(stacked_texels(&[Some(&t), None, Some(&a)]).1, [0, 0, 1]);
+        assert_eq!(stacked_texels(&[None, None]).0, (1, 1, vec![0.0; 4]));
     }
 
     /// Boundary edges: a quad of two triangles has four, its diagonal is shared.

@@ -337,7 +337,7 @@ fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
     if m.pdf > 0.0 && cos_m > 0.0 && any(m.le != vec3<f32>(0.0)) && rd_env_visible(s, m.d) {
         let wi = vec3<f32>(rd_dot(m.d, lobe.t), rd_dot(m.d, lobe.b), cos_m);
         let p = m.pdf + cos_m / RD_PI + rd_lobe_pdf(lobe, wi);
-        sum += m.le * rd_env_f(s, m.d, cos_m) / p;
+        sum += m.le * s.ao * rd_env_f(s, m.d, cos_m) / p;
     }
     let l = rd_cosine_sample(s.n, u.a.z, u.a.w);
     let cos_c = rd_dot(s.n, l);
@@ -346,7 +346,7 @@ fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
         if any(e.xyz != vec3<f32>(0.0)) && rd_env_visible(s, l) {
             let wi = vec3<f32>(rd_dot(l, lobe.t), rd_dot(l, lobe.b), cos_c);
             let p = e.w + cos_c / RD_PI + rd_lobe_pdf(lobe, wi);
-            sum += e.xyz * rd_env_f(s, l, cos_c) / p;
+            sum += e.xyz * s.ao * rd_env_f(s, l, cos_c) / p;
         }
     }
     if lobe.alpha > 0.0 {
@@ -358,7 +358,7 @@ fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
             if cos_l > 0.0 {
                 let e = rd_env_lookup(d);
                 if any(e.xyz != vec3<f32>(0.0)) && rd_env_visible(s, d) {
-                    sum += e.xyz * rd_env_f(s, d, cos_l) / (e.w + cos_l / RD_PI + pl);
+                    sum += e.xyz * s.ao * rd_env_f(s, d, cos_l) / (e.w + cos_l / RD_PI + pl);
                 }
             }
         }

@@ -68,6 +68,14 @@ struct Object {
     /// The specular tint's texture (Specular::tint): width, height, its first row in the
     /// object's texture (below the albedo texture's rows), and 1 when there is one.
     tint: vec4<u32>,
+    /// A glTF material's normal, occlusion and emissive textures (maps.rs), likewise.
+    normal_map: vec4<u32>,
+    occlusion: vec4<u32>,
+    emissive: vec4<u32>,
+    /// The normal texture's scale, the occlusion's strength, 0, 0.
+    maps: vec4<f32>,
+    /// The emission (emissiveFactor x strength; zero without one), 0.
+    emission: vec4<f32>,
 }
 
 /// `rd_brdf`'s value: the model per channel, and its tint's zero model (Specular::tint).
@@ -663,26 +671,48 @@ struct RdSurface {
     tint: vec3<f32>,
     t: vec3<f32>,
     b: vec3<f32>,
+    /// The occlusion of the light that is not punctual (ambient, environment); emission.
+    ao: f32,
+    emit: vec3<f32>,
 }
 
-/// maps::frame without a normal texture: the local frame about the smooth normal `n` (facing
-/// the viewer; `back`: the hit's normal reversed) from the mesh's interpolated `tangent`, or
-/// any_orthonormal_pair without a usable one.
-fn rd_tangent_frame(n: vec3<f32>, tangent: vec4<f32>, back: bool) -> RdPair {
+/// maps::frame: the shading normal and local frame (t, b) about it from the smooth normal `n`
+/// (facing the viewer `v`; `back`: the hit's normal reversed), the mesh's interpolated
+/// `tangent` and the normal texture at `uv`; n and any_orthonormal_pair without a usable
+/// tangent.
+struct RdFrame {
+    n: vec3<f32>,
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
+fn rd_tangent_frame(n: vec3<f32>, tangent: vec4<f32>, back: bool, v: vec3<f32>, uv: vec2<f32>)
+    -> RdFrame {
     let sign = select(1.0, -1.0, back);
     var t = sign * tangent.xyz;
     t = rd_normalize_or(t - n * rd_dot(n, t), vec3<f32>(0.0));
     if all(t == vec3<f32>(0.0)) {
-        return rd_orthonormal_pair(n);
+        let f = rd_orthonormal_pair(n);
+        return RdFrame(n, f.t, f.b);
     }
     let w = select(1.0, -1.0, tangent.w < 0.0);
     let b = rd_cross(n, t) * w;
-    let t2 = rd_normalize_or(t - n * rd_dot(n, t), vec3<f32>(0.0));
-    if all(t2 == vec3<f32>(0.0)) {
-        return rd_orthonormal_pair(n);
+    var shading = n;
+    if object.normal_map.w != 0u {
+        let x = rd_part(uv, object.normal_map) * 2.0 - vec3<f32>(1.0);
+        let sc = object.maps.x;
+        let p = rd_normalize_or(t * (x.x * sc) + b * (x.y * sc) + n * x.z, vec3<f32>(0.0));
+        if rd_dot(p, v) > 0.0 {
+            shading = p;
+        }
     }
-    let b2 = rd_cross(n, t2);
-    return RdPair(t2, select(b2, -b2, rd_dot(b2, b) < 0.0));
+    let t2 = rd_normalize_or(t - shading * rd_dot(shading, t), vec3<f32>(0.0));
+    if all(t2 == vec3<f32>(0.0)) {
+        let f = rd_orthonormal_pair(shading);
+        return RdFrame(shading, f.t, f.b);
+    }
+    let b2 = rd_cross(shading, t2);
+    return RdFrame(shading, t2, select(b2, -b2, rd_dot(b2, b) < 0.0));
 }
 
 /// The shading prologue of render_tile (and of the environment's passes, env.wgsl).
@@ -694,14 +724,19 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
         n = -hit.n;
     }
     let g = n;
-    // The frame: a bumped normal's any_orthonormal_pair, else the mesh's tangent frame.
-    var f = rd_tangent_frame(n, hit.tangent, rd_dot(hit.n, v) < 0.0);
+    // The frame: a bumped normal's any_orthonormal_pair, else the mesh's tangent frame (and
+    // its normal texture).
+    var f: RdPair;
     if object.flags.z != 0u {
         let pn = rd_perturb(p, n);
         if rd_dot(pn, v) > 0.0 {
             n = pn;
         }
         f = rd_orthonormal_pair(n);
+    } else {
+        let tf = rd_tangent_frame(n, hit.tangent, rd_dot(hit.n, v) < 0.0, v, hit.uv);
+        n = tf.n;
+        f = RdPair(tf.t, tf.b);
     }
     var albedo = object.albedo.xyz;
     if object.flags.y != 0u {
@@ -709,9 +744,23 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
     }
     var tint = vec3<f32>(1.0);
     if object.tint.w != 0u {
-        tint = rd_texture(hit.uv, vec2<f32>(object.tint.xy), object.tint.xy, object.tint.z);
+        tint = rd_part(hit.uv, object.tint);
     }
-    return RdSurface(p, v, n, g, albedo * object.albedo.w, tint, f.t, f.b);
+    // maps::texels: occlusion and emission.
+    var ao = 1.0;
+    if object.occlusion.w != 0u {
+        ao = 1.0 + object.maps.y * (clamp(rd_part(hit.uv, object.occlusion).x, 0.0, 1.0) - 1.0);
+    }
+    var emit = object.emission.xyz;
+    if object.emissive.w != 0u {
+        emit = emit * rd_part(hit.uv, object.emissive);
+    }
+    return RdSurface(p, v, n, g, albedo * object.albedo.w, tint, f.t, f.b, ao, emit);
+}
+
+/// Texture::sample of the part `k` of the object's texture (width, height, first row, present).
+fn rd_part(uv: vec2<f32>, k: vec4<u32>) -> vec3<f32> {
+    return rd_texture(uv, vec2<f32>(k.xy), k.xy, k.z);
 }
 
 /// The specular term `li ks f cos` per channel (render.rs, `add_specular`): with a tint,
@@ -737,7 +786,7 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
     let g = s.g;
     let base = s.base;
     let ks = object.mat.x;
-    var radiance = frame.ambient.xyz * base;
+    var radiance = frame.ambient.xyz * base * s.ao + s.emit;
     for (var i = 0u; i < frame.size.w; i++) {
         let la = rd_light_at(lights[i], p);
         let l = la.t;
