@@ -65,8 +65,10 @@ fn uri(png: &[u8]) -> String {
 }
 
 /// The floor's textures: base colour (a checker of warm and cool texels of different
-/// brightness), normal (tilts of up to about 30 degrees), occlusion (R: 0.3 to 1), emission.
-fn textures() -> [Vec<u8>; 4] {
+/// brightness), normal (tilts of up to about 30 degrees), occlusion (R: 0.3 to 1), emission,
+/// metallic-roughness (G: roughness 0.4 to 0.55, B: metallic 0 to 1; a narrow range of
+/// roughness keeps the models to build few: one per level of 1/256 and metallic 0 and 1).
+fn textures() -> [Vec<u8>; 5] {
     [
         png(|x, y| {
             if (x + y) % 2 == 0 {
@@ -78,6 +80,7 @@ fn textures() -> [Vec<u8>; 4] {
         png(|x, y| [68 + 40 * x, 188 - 40 * y, 230]),
         png(|x, y| [80 + 25 * (x + y), 0, 0]),
         png(|x, y| [40 * x, 200, 40 * y]),
+        png(|x, y| [0, 102 + 13 * x, 85 * y]),
     ]
 }
 
@@ -101,7 +104,8 @@ fn doc() -> Doc {
     let floor = d.push(
         "materials",
         json!({"pbrMetallicRoughness": {"baseColorFactor": [0.7, 0.7, 0.6, 1.0],
-            "metallicFactor": 0.0, "roughnessFactor": 0.6, "baseColorTexture": {"index": 0}},
+            "metallicFactor": 1.0, "roughnessFactor": 1.0, "baseColorTexture": {"index": 0},
+            "metallicRoughnessTexture": {"index": 4}},
             "normalTexture": {"index": 1, "scale": 0.8},
             "occlusionTexture": {"index": 2, "strength": 0.7},
             "emissiveTexture": {"index": 3}, "emissiveFactor": [0.2, 0.1, 0.05],
@@ -164,7 +168,7 @@ fn scene(g: &GltfScene, env: Option<Arc<EnvMap>>, samples: u32, textured: bool) 
     s
 }
 
-/// `s` without its glTF maps (normal, occlusion and emissive textures).
+/// `s` without its glTF maps (normal, occlusion, emissive and metallic-roughness textures).
 fn without_maps(mut s: Scene) -> Scene {
     for o in &mut s.objects {
         o.material.maps = None;

@@ -75,8 +75,7 @@ pub struct RenderArgs {
     /// Grey models and users' models (file:PATH, their shader spliced into the GPU's): a
     /// coloured registry model (--metal, R,G,B values) is CPU-only for now. With --scene, the
     /// glTF scene's materials (gltf-pbr, coloured, anisotropy along the tangents; base colour,
-    /// normal, occlusion and emissive textures) on the GPU; a metallic-roughness texture is
-    /// CPU-only. Shadows
+    /// metallic-roughness, normal, occlusion and emissive textures) on the GPU. Shadows
     /// as on the CPU (--shadows on|off). With --env, the map sampled per sample with the CPU's
     /// random numbers (--sampler), by map and cosine directions and a GGX lobe of the model's
     /// roughness: without a specular term the CPU's picture to rounding, with one the same in

@@ -501,7 +501,7 @@ fn background_pipeline(
     layout: &wgpu::PipelineLayout,
 ) -> Result<wgpu::RenderPipeline, GpuError> {
     let src = format!(
-        "{SHADER}\n{ENV_SHADER}\n{DFG_STUB}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> RdSpec {{\n    return RdSpec(vec3<f32>(0.0), vec3<f32>(0.0));\n}}\n"
+        "{SHADER}\n{ENV_SHADER}\n{DFG_STUB}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>, h: u32) -> RdSpec {{\n    return RdSpec(vec3<f32>(0.0), vec3<f32>(0.0));\n}}\n"
     );
     validated(device, "the environment's background shader", || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {

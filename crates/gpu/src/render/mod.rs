@@ -47,11 +47,12 @@
 //!   texture (uploaded below the albedo texture's rows in the object's texture, filtered by
 //!   the same bilinear rule). The channels and the zero model are slots of one loop over
 //!   coefficient offsets in `fb_k`, so each distinct model function is compiled once.
-//!   A glTF material's normal, occlusion and emissive textures (`maps.rs`) are stacked there
-//!   too: the normal texture tilts the shading normal in the tangent frame (below), the
-//!   occlusion scales the ambient and environment light, the emission is added once per
-//!   sample, each with the CPU's arithmetic. The metallic-roughness texture is CPU-only
-//!   ([`check`] refuses it): the CPU builds its models per roughness level.
+//!   A glTF material's other textures (`maps.rs`) are stacked there too: the normal texture
+//!   tilts the shading normal in the tangent frame (below), the occlusion scales the ambient
+//!   and environment light, the emission is added once per sample, each with the CPU's
+//!   arithmetic; a metallic-roughness texture selects per sample the blocks of coefficients
+//!   of its roughness level's models at metallic 0 and 1 (uploaded for every level its
+//!   texels can select) and mixes the two by the metallic, as `mapped.rs` does.
 //! - Tangent frames: a mesh with tangents (a glTF mesh of an anisotropic material) carries
 //!   them per vertex (`mesh_v`, 12 floats instead of 8); the shader interpolates them as
 //!   `TriMesh::hit_tangent` and builds `maps::frame`'s local frame from them, so an
@@ -222,15 +223,10 @@ struct User<'a> {
 const USER_KEY: &str = "file:";
 
 /// Refuses what only the CPU renderer draws, before any device is needed (a command line
-/// checks its scene with it before looking for an adapter): a glTF material's
-/// metallic-roughness texture (`Material::maps`), and a tinted RGB BRDF. [`render`] and its siblings check it too.
+/// checks its scene with it before looking for an adapter): a tinted RGB BRDF. [`render`] and
+/// its siblings check it too.
 pub fn check(scene: &Scene) -> Result<(), GpuError> {
     for obj in &scene.objects {
-        if let Some(which) = cpu_only_maps(&obj.material) {
-            return Err(GpuError::Input(format!(
-                "--gpu: the glTF material's {which} is CPU-only: drop --gpu"
-            )));
-        }
         let spec = &obj.material.specular;
         if spec.rgb.is_some() && spec.tint.is_some() {
             return Err(GpuError::Input(format!(
@@ -240,15 +236,6 @@ pub fn check(scene: &Scene) -> Result<(), GpuError> {
         }
     }
     Ok(())
-}
-
-/// What of `m` only the CPU renderer draws (a glTF material's metallic-roughness texture: its
-/// models per roughness level), if anything, named.
-fn cpu_only_maps(m: &fastbrdf_render::scene::Material) -> Option<&'static str> {
-    let maps = m.maps.as_ref()?;
-    maps.metallic_roughness
-        .as_ref()
-        .map(|_| "metallic-roughness texture")
 }
 
 fn render_scene(
@@ -309,7 +296,7 @@ fn render_scene(
                 obj,
                 i,
                 (&[], &u.block),
-                USER_KEY.to_string(),
+                (USER_KEY.to_string(), [0; 4]),
                 &reach,
             )?);
             continue;
@@ -323,7 +310,12 @@ fn render_scene(
         }
         // The model the CPU renderer shades with (its channels, and a tint's zero model), its
         // plans built once with the scene; one pipeline per distinct shader text.
-        let model = models::model_shader(spec)?;
+        let mr = obj
+            .material
+            .maps
+            .as_ref()
+            .and_then(|x| x.metallic_roughness.as_ref());
+        let model = models::model_shader(spec, mr)?;
         if !pipelines.contains_key(&model.key) {
             let p = Pipelines::new(device, &layouts, &model, env.as_ref())?;
             pipelines.insert(model.key.clone(), p);
@@ -336,7 +328,7 @@ fn render_scene(
             obj,
             i,
             (&model.coefs, &[]),
-            model.key,
+            (model.key, model.mr),
             &reach,
         )?);
     }

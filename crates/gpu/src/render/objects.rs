@@ -36,6 +36,8 @@ pub(super) struct ObjectData {
 /// Index of kd (`albedo.w`) and ks (`mat.x`) in [`ObjectData::uniform`].
 pub(super) const KD_WORD: usize = 19;
 pub(super) const KS_WORD: usize = 20;
+/// Index of the metallic-roughness table's words (`mr`) in [`ObjectData::uniform`].
+pub(super) const MR_WORD: usize = 64;
 
 /// The object's data (see [`ObjectData`]), checked against `limits`.
 pub(super) fn object_data(
@@ -113,6 +115,7 @@ pub(super) fn object_data(
     let normal_map = maps.and_then(|x| x.normal.as_ref());
     let occlusion = maps.and_then(|x| x.occlusion.as_ref());
     let emissive = maps.and_then(|x| x.emissive.as_ref());
+    let mr = maps.and_then(|x| x.metallic_roughness.as_ref());
     let (tex_w, tex_h) = m.texture.as_ref().map_or((1, 1), |t| (t.width, t.height));
     // The albedo texture's rows, then the tint's, the normal, occlusion and emissive textures'.
     let parts = [
@@ -121,6 +124,7 @@ pub(super) fn object_data(
         normal_map.map(|x| &*x.texture),
         occlusion.map(|x| &*x.texture),
         emissive.and_then(|x| x.texture.as_deref()),
+        mr.map(|x| &*x.texture),
     ];
     let (texture, rows) = stacked_texels(&parts);
     let max = limits.max_texture_dimension_2d;
@@ -147,7 +151,7 @@ pub(super) fn object_data(
     // Per part: width, height, first row, and 1 when there is one.
     let part = |k: usize| parts[k].map_or([0, 0, 0, 0], |t| [t.width, t.height, rows[k], 1]);
     let (bump_scale, bump_depth) = m.bump.map_or((0.0, 0.0), |b| (b.scale, b.depth));
-    let mut uniform: Vec<u32> = Vec::with_capacity(60);
+    let mut uniform: Vec<u32> = Vec::with_capacity(72);
     for v in [
         a,
         normal,
@@ -169,7 +173,7 @@ pub(super) fn object_data(
     let id = u32::try_from(index + 1)
         .map_err(|_| GpuError::Input(format!("object {index}: too many objects")))?;
     uniform.extend([tex_w, tex_h, id, has_tangents]);
-    for k in 1..5 {
+    for k in 1..6 {
         uniform.extend(part(k));
     }
     // The normal texture's scale, the occlusion's strength; the emission (its factor: zero
@@ -180,6 +184,13 @@ pub(super) fn object_data(
     for v in [[scale, strength, 0.0, 0.0], [e.x, e.y, e.z, 0.0]] {
         uniform.extend(v.map(f32::to_bits));
     }
+    // The metallic-roughness table (`models::ModelShader::mr`, set by `upload_object`), the
+    // factors and the number of levels.
+    debug_assert_eq!(uniform.len(), MR_WORD);
+    uniform.extend([0u32; 4]);
+    let (metallic, roughness) = mr.map_or((0.0, 0.0), |x| (x.metallic, x.roughness));
+    let levels = fastbrdf_render::maps::LEVELS as f32;
+    uniform.extend([metallic, roughness, levels, 0.0].map(f32::to_bits));
     debug_assert_eq!(uniform[KD_WORD], m.kd.to_bits());
     debug_assert_eq!(uniform[KS_WORD], m.ks.to_bits());
     Ok(ObjectData {
@@ -203,10 +214,11 @@ pub(super) fn upload_object(
     obj: &Object,
     index: usize,
     (coefs, params): (&[f32], &[f32]),
-    model: String,
+    (model, mr): (String, [u32; 4]),
     reach: &Reach,
 ) -> Result<GpuObject, GpuError> {
-    let data = object_data(limits, obj, index, reach)?;
+    let mut data = object_data(limits, obj, index, reach)?;
+    data.uniform[MR_WORD..MR_WORD + 4].copy_from_slice(&mr);
     let corners = data.corners.map(|(pos, count)| {
         let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("fastbrdf render corners"),

@@ -207,7 +207,7 @@ impl Pipelines {
 }
 
 /// `rd_brdf` of a user's shader: its `fb_user_brdf` (R, G, B: the whole BRDF), no tint.
-pub(super) const USER_GLUE: &str = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> RdSpec {\n    return RdSpec(fb_user_brdf(wi, wo), vec3<f32>(0.0));\n}\n";
+pub(super) const USER_GLUE: &str = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>, h: u32) -> RdSpec {\n    return RdSpec(fb_user_brdf(wi, wo), vec3<f32>(0.0));\n}\n";
 
 /// The environment's shader and its `rd_dfg` (for a module whose other code is `module`)
 /// when there is one, else nothing (the module of an environment-less scene is unchanged).

@@ -112,10 +112,10 @@ pub fn scene(scene: &Scene, opts: &Options) -> Result<WebScene, GpuError> {
     };
     let mut objects = Vec::with_capacity(scene.objects.len());
     for (i, obj) in scene.objects.iter().enumerate() {
-        if obj.material.specular.tint.is_some() {
+        if obj.material.specular.tint.is_some() || obj.material.maps.is_some() {
             return Err(GpuError::Input(format!(
-                "object {i}: a textured specular term (a glTF base colour texture): the page \
-                 does not draw it (the server does)"
+                "object {i}: a textured glTF material: the page does not draw it (the server \
+                 does)"
             )));
         }
         let d = object_data(&limits, obj, i, &reach)?;
@@ -213,7 +213,7 @@ pub fn model_module(spec: &ModelSpec, meshes: bool, env: Env) -> Result<WebModul
         .collect();
     let glue = format!(
         "@group(1) @binding({USER_PARAMS_BINDING}) var<uniform> {PARAMS_NAME}: array<vec4<f32>, {k}>;\n\
-         fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>) -> RdSpec {{\n    return RdSpec(vec3<f32>({}(wi, wo{args})), vec3<f32>(0.0));\n}}\n",
+         fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>, h: u32) -> RdSpec {{\n    return RdSpec(vec3<f32>({}(wi, wo{args})), vec3<f32>(0.0));\n}}\n",
         inst.function
     );
     Ok(WebModule {

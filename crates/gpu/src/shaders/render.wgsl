@@ -68,14 +68,21 @@ struct Object {
     /// The specular tint's texture (Specular::tint): width, height, its first row in the
     /// object's texture (below the albedo texture's rows), and 1 when there is one.
     tint: vec4<u32>,
-    /// A glTF material's normal, occlusion and emissive textures (maps.rs), likewise.
+    /// A glTF material's normal, occlusion, emissive and metallic-roughness textures
+    /// (maps.rs), likewise.
     normal_map: vec4<u32>,
     occlusion: vec4<u32>,
     emissive: vec4<u32>,
+    mr_tex: vec4<u32>,
     /// The normal texture's scale, the occlusion's strength, 0, 0.
     maps: vec4<f32>,
     /// The emission (emissiveFactor x strength; zero without one), 0.
     emission: vec4<f32>,
+    /// A metallic-roughness texture's level table (render/models.rs): its first entry in
+    /// fb_k, the lowest and highest level in it, and 1 when there is one.
+    mr: vec4<u32>,
+    /// Its metallicFactor, roughnessFactor, the levels per unit of roughness (maps::LEVELS), 0.
+    mr_factors: vec4<f32>,
 }
 
 /// `rd_brdf`'s value: the model per channel, and its tint's zero model (Specular::tint).
@@ -674,6 +681,19 @@ struct RdSurface {
     /// The occlusion of the light that is not punctual (ambient, environment); emission.
     ao: f32,
     emit: vec3<f32>,
+    /// The specular term's blocks in fb_k (render/models.rs): one (`h0`), or with a
+    /// metallic-roughness texture two, the models at metallic 0 and 1 of the hit's roughness
+    /// level, mixed by `metal`.
+    corners: u32,
+    h0: u32,
+    h1: u32,
+    metal: f32,
+}
+
+/// Rust's f32::round for x >= 0 (halves away from zero; WGSL's round goes to even).
+fn rd_round(x: f32) -> f32 {
+    let t = trunc(x);
+    return select(t, t + 1.0, x - t >= 0.5);
 }
 
 /// maps::frame: the shading normal and local frame (t, b) about it from the smooth normal `n`
@@ -755,7 +775,23 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
     if object.emissive.w != 0u {
         emit = emit * rd_part(hit.uv, object.emissive);
     }
-    return RdSurface(p, v, n, g, albedo * object.albedo.w, tint, f.t, f.b, ao, emit);
+    // MetallicRoughness::at: metallic (B) and the roughness level (G), and their blocks.
+    var corners = 1u;
+    var h0 = 0u;
+    var h1 = 0u;
+    var metal = 0.0;
+    if object.mr.w != 0u {
+        let t = rd_part(hit.uv, object.mr_tex);
+        metal = clamp(object.mr_factors.x * t.z, 0.0, 1.0);
+        let r = clamp(object.mr_factors.y * t.y, 0.0, 1.0);
+        let level = clamp(u32(rd_round(r * object.mr_factors.z)), object.mr.y, object.mr.z);
+        let e = object.mr.x + 2u * (level - object.mr.y);
+        corners = 2u;
+        h0 = u32(fb_k[e]);
+        h1 = u32(fb_k[e + 1u]);
+    }
+    return RdSurface(p, v, n, g, albedo * object.albedo.w, tint, f.t, f.b, ao, emit, corners,
+        h0, h1, metal);
 }
 
 /// Texture::sample of the part `k` of the object's texture (width, height, first row, present).
@@ -767,13 +803,23 @@ fn rd_part(uv: vec2<f32>, k: vec4<u32>) -> vec3<f32> {
 /// `f_zero + t (f - f_zero)` of the two terms so weighted, t the texel.
 fn rd_specular(s: RdSurface, li: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec3<f32> {
     let ks = object.mat.x;
-    let f = rd_brdf(wi, wo);
-    let f1 = li * (ks * f.f * wi.z);
-    if object.tint.w == 0u {
-        return f1;
+    // One block, or two mixed by metallic (mapped.rs, `add_specular_mapped`): a loop, so that
+    // the model's code is compiled once.
+    var v = array<vec3<f32>, 2>();
+    for (var c = 0u; c < s.corners; c++) {
+        let f = rd_brdf(wi, wo, select(s.h0, s.h1, c == 1u));
+        let f1 = li * (ks * f.f * wi.z);
+        if object.tint.w == 0u {
+            v[c] = f1;
+        } else {
+            let f0 = li * (ks * f.zero * wi.z);
+            v[c] = f0 + s.tint * (f1 - f0);
+        }
     }
-    let f0 = li * (ks * f.zero * wi.z);
-    return f0 + s.tint * (f1 - f0);
+    if s.corners == 1u {
+        return v[0];
+    }
+    return v[0] * (1.0 - s.metal) + v[1] * s.metal;
 }
 
 /// The radiance of a hit: two-sided normal, micro-relief, texture, ambient, then per light
