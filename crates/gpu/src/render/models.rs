@@ -1,4 +1,4 @@
-//! The WGSL of an object's specular term (issue 33): `rd_brdf(wi, wo) -> RdSpec`, the value of
+//! The WGSL of an object's specular term (issue 33): `rd_brdf(wi, wo, h) -> RdSpec`, the value of
 //! its model per colour channel (`RdSpec::f`) and, for a tinted term (`Specular::tint`, a glTF
 //! base colour texture), of the model with the textured parameter at 0 (`RdSpec::zero`).
 //!

@@ -8,8 +8,8 @@
 // model functions' own CPU-GPU differences (tests/parity.rs).
 //
 // The module is completed at run time by the model library and a function
-// `rd_brdf(wi, wo) -> RdSpec` (render/models.rs: the object's model per colour channel, and
-// with a tint its zero model), or by a user's shader (`user::UserShader::wgsl_at`, its
+// `rd_brdf(wi, wo, h) -> RdSpec` (render/models.rs: the object's model per colour channel, and
+// with a tint its zero model, from the block of coefficients at fb_k[h]), or by a user's shader (`user::UserShader::wgsl_at`, its
 // parameters at group 1 binding 5) and `rd_brdf` calling its `fb_user_brdf` (R, G, B: the
 // whole BRDF).
 
