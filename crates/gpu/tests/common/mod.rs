@@ -62,20 +62,16 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
             if info.id == "gltf-pbr" {
                 // The energy compensation's table is such an array too: one configuration
                 // (Kulla and Conty's, without the sheen table) checks its wiring.
-                // The specular albedo scaling: one configuration, MaterialX's fit (its WGSL
-                // has no table; env-brdf-table's twin is checked as its own model).
-                let sa = get(c, "spec_albedo");
-                if !sa.is_empty() && sa != "fresnel" {
+                // The specular albedo scaling and the energy compensation (whose table is
+                // such an array too): one configuration with both, MaterialX's fit (no table;
+                // env-brdf-table's twin is checked as its own model) and Kulla and Conty's.
+                let (sa, ms) = (get(c, "spec_albedo"), get(c, "ms"));
+                let plain = |x: &str, none: &str| x.is_empty() || x == none;
+                if !plain(&sa, "fresnel") || !plain(&ms, "none") {
                     return sa == "materialx"
-                        && get(c, "ms") == "none"
+                        && ms == "kulla-conty"
                         && get(c, "sheen_albedo") != "table"
-                        && seen.insert("gltf-pbr spec_albedo".to_string());
-                }
-                let ms = get(c, "ms");
-                if !ms.is_empty() && ms != "none" {
-                    return ms == "kulla-conty"
-                        && get(c, "sheen_albedo") != "table"
-                        && seen.insert("gltf-pbr ms".to_string());
+                        && seen.insert("gltf-pbr spec_albedo ms".to_string());
                 }
                 if get(c, "sheen_albedo") == "table" {
                     return get(c, "sheen_color") != "0"

@@ -4,7 +4,7 @@
 // Formula: mix(sheen_color D_s V_s + S [(1 - m)((1 - F_d) diffuse + F_d D G / 4 cos_i cos_o) + m F_m D G / 4 cos_i cos_o], D_c G_c / 4 cos_i cos_o, clearcoat F_c(cos_o))
 // Source: glTF 2.0 Appendix B; KHR_materials_ior, _specular, _clearcoat, _sheen, _anisotropy; Estevez & Kulla 2017; Burley 2012
 // Note: ops exclude D, G and F; the whole material (diffuse included): a renderer gives it kd = 0, ks = 1; f32: 3.5e-2 found by the adversarial search (tests/precision.rs) at cos 1e-6 with anisotropy, where the stretch of directions rounded to f32 dominates
-// Parameters (this export: anisotropy = 0, anisotropy_rotation = 0, base_color = 1, clearcoat = 0, clearcoat_roughness = 0, d = ggx, diffuse = lambert, f = schlick, g = smith-ggx-correlated, ior = 1.5, metallic = 1, roughness = 1, sheen_albedo = table, sheen_color = 0, sheen_roughness = 0, sheen_v = charlie, specular = 1, specular_color = 1):
+// Parameters (this export: anisotropy = 0, anisotropy_rotation = 0, base_color = 1, clearcoat = 0, clearcoat_roughness = 0, d = ggx, diffuse = lambert, f = schlick, g = smith-ggx-correlated, ior = 1.5, metallic = 1, ms = none, roughness = 1, sheen_albedo = table, sheen_color = 0, sheen_roughness = 0, sheen_v = charlie, spec_albedo = fresnel, specular = 1, specular_color = 1):
 //   base_color: baseColorFactor (R,G,B for a colour) (range [0, 1], default 1)
 //   metallic: metallicFactor (range [0, 1], default 1)
 //   roughness: roughnessFactor; alpha = max(roughness^2, 0.005) (range [0, 1], default 1)
@@ -23,6 +23,8 @@
 //   f: the curve of every Schlick Fresnel term (one of schlick, schlick-sg, schlick-sg-tuned, default schlick)
 //   diffuse: the base's diffuse lobe (one of lambert, burley, default lambert)
 //   sheen_v: sheen visibility: Charlie's fit (Estevez and Kulla 2017) or Neubelt and Pettineo's (one of charlie, neubelt, default charlie)
+//   spec_albedo: what weights the dielectric's diffuse: fresnel (glTF's 1 - F(v.h)), or the specular albedo scaling 1 - E(cos) with E from a DFG ledger row: table (env-brdf-table, 32 x 32 half float), materialx (env-brdf-materialx), karis (env-brdf-approx); needs d = ggx, g = smith-ggx-correlated (one of fresnel, table, materialx, karis, default fresnel)
+//   ms: energy compensation for multiple scattering: none, kulla-conty (Kulla and Conty 2017), filament (Filament's, view direction wo only; not reciprocal); needs d = ggx, g = smith-ggx-correlated (one of none, kulla-conty, filament, default none)
 //   sheen_albedo: the sheen's directional albedo E: 32 x 32 table of the quadrature, the analytic fit, or no scaling (one of table, fit, none, default table)
 // Error bounds: none documented (an exact model or a reference).
 // Precision: f32 on the CPU within 5e-2 of f64 (mixed error); on GPUs see fastbrdf's tests/parity.rs (WGSL exp2/log2/pow are looser than libm; compilers may reassociate).
