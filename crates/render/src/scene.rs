@@ -239,7 +239,7 @@ pub struct Material {
     pub bump: Option<Bump>,
     pub specular: Arc<Specular>,
     /// A glTF material's textures beyond its base colour (metallic-roughness, normal,
-    /// occlusion, emission: [`crate::maps`]); CPU renderer only.
+    /// occlusion, emission: [`crate::maps`]); the GPU renderer reads them too.
     pub maps: Option<Arc<crate::maps::SurfaceMaps>>,
 }
 
