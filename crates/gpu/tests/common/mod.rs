@@ -38,7 +38,6 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
             .unwrap_or_default()
     };
     let mut seen = std::collections::BTreeSet::new();
-    let mut gltf = 0usize;
     fastbrdf::accuracy::domain_configs(info, true)
         .iter()
         .map(|s| s.pairs())
@@ -55,16 +54,19 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
                     && get(c, "bits") == "16"
                     && get(c, "term") == "bias";
             }
-            // gltf-pbr: its choice product is about 500 sets; every 48th configuration without
-            // the sheen albedo table, and the table (two 32 x 32 constant arrays, which the
-            // runtime form always carries; slow in lavapipe as above) in one configuration
-            // only. The CPU tests run them all.
+            // gltf-pbr: its choice product is about 1,000 sets and lavapipe compiles each
+            // configuration's shader in three coefficient forms (tens of seconds each, cold:
+            // the longest part of CI). So: the configurations that bring a choice value not
+            // seen yet among d, f, diffuse, sheen_v and the untabled sheen albedos (3; the
+            // seven g terms are the same WGSL functions cook-torrance's configurations check,
+            // and one call site wires them in); the
+            // sheen albedo table (two 32 x 32 constant arrays, which the runtime form always
+            // carries: slow as above) in one configuration; the specular albedo scaling and
+            // the energy compensation (whose table is such an array too) in one configuration
+            // with both, MaterialX's fit (no table; env-brdf-table's and the compensation's
+            // twins are checked as their own models) and Kulla and Conty's. The CPU tests run
+            // them all.
             if info.id == "gltf-pbr" {
-                // The energy compensation's table is such an array too: one configuration
-                // (Kulla and Conty's, without the sheen table) checks its wiring.
-                // The specular albedo scaling and the energy compensation (whose table is
-                // such an array too): one configuration with both, MaterialX's fit (no table;
-                // env-brdf-table's twin is checked as its own model) and Kulla and Conty's.
                 let (sa, ms) = (get(c, "spec_albedo"), get(c, "ms"));
                 let plain = |x: &str, none: &str| x.is_empty() || x == none;
                 if !plain(&sa, "fresnel") || !plain(&ms, "none") {
@@ -77,8 +79,13 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
                     return get(c, "sheen_color") != "0"
                         && seen.insert("gltf-pbr sheen table".to_string());
                 }
-                gltf += 1;
-                return gltf % 48 == 1;
+                let pairs: Vec<String> = ["d", "f", "diffuse", "sheen_v", "sheen_albedo"]
+                    .iter()
+                    .map(|k| format!("gltf-pbr {k}={}", get(c, k)))
+                    .collect();
+                let new = pairs.iter().any(|p| !seen.contains(p));
+                seen.extend(pairs);
+                return new;
             }
             let ms = get(c, "ms");
             if ms.is_empty() || ms == "none" {

@@ -161,7 +161,11 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         && a.over.is_none()
         && a.measured.is_none()
         && a.material.material.is_none();
-    if env && a.model.as_deref().is_some_and(fastbrdf_analysis::sheen_ledger::is_sheen) {
+    if env
+        && a.model
+            .as_deref()
+            .is_some_and(fastbrdf_analysis::sheen_ledger::is_sheen)
+    {
         return sheen::run(&sheen::Args {
             model: a.model.as_deref().unwrap_or_default(),
             reference: a
