@@ -28,10 +28,8 @@ fn png(w: u32, h: u32, texels: &[[u8; 3]]) -> Vec<u8> {
     out.into_inner()
 }
 
-/// A quad facing the camera with material `mat`, lit from the camera's side.
-fn quad_scene(d: &mut Doc, mat: serde_json::Value) {
-    let m = d.push("materials", mat);
-    let q = d.quad(true, Some(m));
+/// The scene of mesh `q` and a camera 3 units up +z looking at it.
+fn viewed(d: &mut Doc, q: usize) {
     let n = d.push("nodes", json!({"mesh": q}));
     let c = d.push(
         "cameras",
@@ -42,6 +40,13 @@ fn quad_scene(d: &mut Doc, mat: serde_json::Value) {
         json!({"camera": c, "translation": [0.0, 0.0, 3.0]}),
     );
     d.scene(&[n, cam]);
+}
+
+/// A quad facing the camera with material `mat`, lit from the camera's side.
+fn quad_scene(d: &mut Doc, mat: serde_json::Value) {
+    let m = d.push("materials", mat);
+    let q = d.quad(true, Some(m));
+    viewed(d, q);
 }
 
 fn render_doc(bytes: &[u8], w: u32, h: u32) -> Vec<Vec3> {
@@ -234,16 +239,7 @@ fn quad_with(d: &mut Doc, mat: serde_json::Value, normal: [f32; 3], tangent: Opt
         attrs["TANGENT"] = json!(d.floats(&t.repeat(4), "VEC4"));
     }
     let q = d.mesh(attrs, Some(idx), Some(m));
-    let n = d.push("nodes", json!({"mesh": q}));
-    let c = d.push(
-        "cameras",
-        json!({"type": "perspective", "perspective": {"yfov": 0.3, "znear": 0.1}}),
-    );
-    let cam = d.push(
-        "nodes",
-        json!({"camera": c, "translation": [0.0, 0.0, 3.0]}),
-    );
-    d.scene(&[n, cam]);
+    viewed(d, q);
 }
 
 /// Asserts two renders agree to `tol` relative, and that the quad is lit in most pixels.
