@@ -59,9 +59,7 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
             // the longest part of CI). So: the configurations that bring a choice value not
             // seen yet among d, f, diffuse, sheen_v and the untabled sheen albedos (3; the
             // seven g terms are the same WGSL functions cook-torrance's configurations check,
-            // and one call site wires them in); the
-            // sheen albedo table (two 32 x 32 constant arrays, which the runtime form always
-            // carries: slow as above) in one configuration; the specular albedo scaling in one,
+            // and one call site wires them in); the specular albedo scaling in one,
             // MaterialX's fit (no table; env-brdf-table's twin is checked as its own model).
             // The energy compensation's table is such an array too (about 30 s a form, cold):
             // its twin is checked through cook-torrance's configurations, and gltf-pbr's call
@@ -76,9 +74,12 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
                         && get(c, "sheen_albedo") != "table"
                         && seen.insert("gltf-pbr spec_albedo".to_string());
                 }
+                // Not the sheen albedo table: lavapipe compiles its two 32 x 32 constant arrays
+                // (copied into a local per call, `fb_sheen_table`) for minutes per form, cold;
+                // the table's data is checked on the GPU by sheen-albedo-table, gltf-pbr's call
+                // by naga (`fastbrdf shader --model gltf-pbr`, the default). See issue 33's note.
                 if get(c, "sheen_albedo") == "table" {
-                    return get(c, "sheen_color") != "0"
-                        && seen.insert("gltf-pbr sheen table".to_string());
+                    return false;
                 }
                 let pairs: Vec<String> = ["d", "f", "diffuse", "sheen_v", "sheen_albedo"]
                     .iter()
