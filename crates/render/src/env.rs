@@ -21,6 +21,9 @@ use std::f32::consts::PI;
 use std::path::Path;
 use std::sync::Arc;
 
+mod trig;
+pub mod wave;
+
 /// Largest environment map file read: 512 MiB.
 pub const MAX_ENV_BYTES: u64 = 512 << 20;
 /// Largest environment map width (the height is half of it): 8192 x 4096.
@@ -69,10 +72,15 @@ pub struct EnvMap {
     /// Per row, the cumulative distribution over its columns (width + 1 entries each).
     conditional: Vec<f32>,
     /// Guide tables ([`guide_of`]) of `marginal` (one bucket per row) and of each row of
-    /// `conditional` ([`ROW_GUIDE`] buckets per row, so that they stay in cache: the rows'
-    /// own tables are what a draw misses).
-    marginal_guide: Vec<u32>,
-    conditional_guide: Vec<u32>,
+    /// `conditional` ([`row_guide`] buckets per row, about one per 4 columns, so that the
+    /// search after the guide reads one or two cache lines of the row: on a large map the
+    /// rows are not in cache, and each line a search reads is a miss on the draw's path).
+    /// Entries are u16: a map is at most [`MAX_ENV_WIDTH`] wide.
+    marginal_guide: Vec<u16>,
+    conditional_guide: Vec<u16>,
+    /// Per row, the last entry of its cumulative distribution (1, or 0 for a black row): a
+    /// draw scales its uniform number by it before it has read the row ([`wave`]).
+    row_total: Vec<f32>,
 }
 
 /// A texel's radiance and probability mass.
@@ -83,35 +91,47 @@ struct Cell {
     mass: f32,
 }
 
-/// Buckets of each row's guide table (at most the row's width).
-const ROW_GUIDE: usize = 32;
+/// Buckets of the guide table of a row `w` texels wide: one per 4 columns (at least one).
+fn row_guide(w: usize) -> usize {
+    (w / 4).max(1)
+}
 
 fn lum(c: Vec3) -> f32 {
     0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
 }
 
-/// The map position (u, v) in [0, 1]^2 of unit direction `d`.
+/// The map position (u, v) in [0, 1]^2 of unit direction `d` (the fast `atan2` and `acos`
+/// of [`trig`]: within a few 1e-7 rad of f64's).
 pub fn dir_to_uv(d: Vec3) -> (f32, f32) {
-    let u = d.x.atan2(-d.z) / (2.0 * PI) + 0.5;
-    let v = d.y.clamp(-1.0, 1.0).acos() / PI;
+    let u = trig::atan2(d.x, -d.z) / (2.0 * PI) + 0.5;
+    let v = trig::acos(d.y) / PI;
     (u, v)
 }
 
-/// The unit direction at map position (u, v), and sin theta.
+/// The unit direction at map position (u, v), and sin theta ([`trig::sin_cos`]).
 pub fn uv_to_dir(u: f32, v: f32) -> (Vec3, f32) {
     let (phi, theta) = ((u - 0.5) * 2.0 * PI, v * PI);
-    let (st, ct) = theta.sin_cos();
-    let (sp, cp) = phi.sin_cos();
+    let (st, ct) = trig::sin_cos(theta);
+    let (sp, cp) = trig::sin_cos(phi);
     (Vec3::new(st * sp, ct, -st * cp), st)
 }
 
 /// The index in `cdf` (n + 1 entries from 0 to 1) of the bin holding `u`, and where in it.
 /// `guide` ([`guide_of`] of `cdf`) narrows the binary search to the few entries around `u`:
 /// the same index as a search of the whole table, to the bit.
-fn sample_cdf(cdf: &[f32], guide: &[u32], u: f32) -> (usize, f32) {
+fn sample_cdf(cdf: &[f32], guide: &[u16], u: f32) -> (usize, f32) {
     let n = cdf.len() - 1;
     let u = u.clamp(0.0, 1.0 - f32::EPSILON) * cdf[n];
-    let i = (search(cdf, guide, u).max(1) - 1).min(n - 1);
+    bin_of(cdf, search(cdf, guide, u), u)
+}
+
+/// The bin of `cdf` and the place in it of `u` (already scaled by the table's total) from its
+/// partition point `p` ([`search`]): [`sample_cdf`]'s second half, shared with the staged
+/// draws of [`wave`].
+#[inline(always)]
+fn bin_of(cdf: &[f32], p: usize, u: f32) -> (usize, f32) {
+    let n = cdf.len() - 1;
+    let i = (p.max(1) - 1).min(n - 1);
     let width = cdf[i + 1] - cdf[i];
     let frac = if width > 0.0 {
         ((u - cdf[i]) / width).clamp(0.0, 1.0 - f32::EPSILON)
@@ -130,29 +150,46 @@ fn sample_cdf(cdf: &[f32], guide: &[u32], u: f32) -> (usize, f32) {
 /// which would undo the stratification of the Sobol sampler; inverting the CDF keeps it, and
 /// the guide makes the inversion about as cheap.
 #[inline]
-fn search(cdf: &[f32], guide: &[u32], u: f32) -> usize {
-    let n = cdf.len() - 1;
-    let total = cdf[n];
-    let g = guide.len() - 1;
-    if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || g == 0 {
-        return cdf.partition_point(|&c| c <= u);
+fn search(cdf: &[f32], guide: &[u16], u: f32) -> usize {
+    let total = cdf[cdf.len() - 1];
+    match bucket(total, guide.len() - 1, u) {
+        None => cdf.partition_point(|&c| c <= u),
+        Some(k) => {
+            let (lo, hi) = guide_range(guide, k);
+            lo + cdf[lo..hi].partition_point(|&c| c <= u)
+        }
     }
-    // guide[k] = the partition point of k / g x total; u lies in bucket k up to rounding, so
-    // the buckets k - 1 to k + 1 hold its partition point for certain.
-    let k = ((u as f64 / total as f64) * g as f64) as usize;
+}
+
+/// The guide bucket of `u` (scaled by `total`, the table's last entry) in a guide of `g`
+/// buckets, or none where the table is empty (a total of 0) or has no guide: search it all.
+#[inline(always)]
+fn bucket(total: f32, g: usize, u: f32) -> Option<usize> {
+    if total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) || g == 0 {
+        return None;
+    }
+    Some(((u as f64 / total as f64) * g as f64) as usize)
+}
+
+/// The range of a table holding the partition point of a `u` in bucket `k`: guide[k] = the
+/// partition point of k / g x total, and `u` lies in bucket k up to rounding, so the buckets
+/// k - 1 to k + 1 hold its partition point for certain.
+#[inline(always)]
+fn guide_range(guide: &[u16], k: usize) -> (usize, usize) {
+    let g = guide.len() - 1;
     let lo = guide[k.saturating_sub(1).min(g)] as usize;
     let hi = guide[(k + 2).min(g)] as usize;
-    lo + cdf[lo..hi].partition_point(|&c| c <= u)
+    (lo, hi)
 }
 
 /// The guide table of `cdf` (n + 1 entries, non-decreasing) with `g` buckets: g + 1 entries,
 /// entry k the partition point of `k / g x cdf[n]` (compared in f64, so that each entry
 /// bounds the f32 searches of its bucket).
-fn guide_of(cdf: &[f32], g: usize) -> Vec<u32> {
+fn guide_of(cdf: &[f32], g: usize) -> Vec<u16> {
     let n = cdf.len() - 1;
     let total = cdf[n] as f64;
     (0..=g)
-        .map(|k| cdf.partition_point(|&c| c as f64 <= k as f64 / g as f64 * total) as u32)
+        .map(|k| cdf.partition_point(|&c| c as f64 <= k as f64 / g as f64 * total) as u16)
         .collect()
 }
 
@@ -233,8 +270,9 @@ impl EnvMap {
         let marginal_guide = guide_of(&marginal, h);
         let conditional_guide = conditional
             .chunks_exact(w + 1)
-            .flat_map(|row| guide_of(row, ROW_GUIDE.min(w)))
+            .flat_map(|row| guide_of(row, row_guide(w)))
             .collect();
+        let row_total = conditional.chunks_exact(w + 1).map(|r| r[w]).collect();
         Ok(Self {
             width,
             height,
@@ -243,6 +281,7 @@ impl EnvMap {
             conditional,
             marginal_guide,
             conditional_guide,
+            row_total,
         })
     }
 
@@ -363,14 +402,26 @@ impl EnvMap {
     /// The radiance from unit direction `d` and [`EnvMap::sample`]'s density there, from one
     /// map position (one `atan2` and one `acos`).
     pub fn lookup(&self, d: Vec3) -> (Vec3, f32) {
+        let (i, st) = self.texel_of(d);
+        self.cell_at(i, st)
+    }
+
+    /// The texel of unit direction `d` and its sin theta (`sqrt(1 - y^2)`, without a sin of
+    /// the acos): [`EnvMap::lookup`]'s first half.
+    #[inline(always)]
+    fn texel_of(&self, d: Vec3) -> (usize, f32) {
         let (u, v) = dir_to_uv(d);
-        let i = self.texel(u, v);
-        // sin theta = sqrt(1 - y^2), without a sin of the acos.
-        let st = (1.0 - d.y * d.y).max(0.0).sqrt();
-        if st <= 0.0 {
-            return (self.cells[i].rgb, 0.0);
-        }
+        (self.texel(u, v), (1.0 - d.y * d.y).max(0.0).sqrt())
+    }
+
+    /// Texel `i`'s radiance and the solid-angle density there, `sin theta` = `st` (density 0
+    /// at the poles): the second half of [`EnvMap::lookup`] and [`EnvMap::sample`].
+    #[inline(always)]
+    fn cell_at(&self, i: usize, st: f32) -> (Vec3, f32) {
         let Cell { rgb, mass } = self.cells[i];
+        if st <= 0.0 {
+            return (rgb, 0.0);
+        }
         let m = mass * (self.width * self.height) as f32;
         (rgb, m / (2.0 * PI * PI * st))
     }
@@ -380,21 +431,23 @@ impl EnvMap {
     pub fn sample(&self, u1: f32, u2: f32) -> (Vec3, Vec3, f32) {
         let (r, fr) = sample_cdf(&self.marginal, &self.marginal_guide, u1);
         let w = self.width as usize;
-        let g = ROW_GUIDE.min(w) + 1;
+        let g = row_guide(w) + 1;
         let (c, fc) = sample_cdf(
             &self.conditional[r * (w + 1)..(r + 1) * (w + 1)],
             &self.conditional_guide[r * g..(r + 1) * g],
             u2,
         );
+        self.drawn(r, fr, c, fc)
+    }
+
+    /// The draw of texel (column `c`, row `r`) at (`fc`, `fr`) within it: [`EnvMap::sample`]'s
+    /// last step, shared with the staged draws of [`wave`].
+    #[inline(always)]
+    fn drawn(&self, r: usize, fr: f32, c: usize, fc: f32) -> (Vec3, Vec3, f32) {
         let u = (c as f32 + fc) / self.width as f32;
         let v = (r as f32 + fr) / self.height as f32;
         let (d, st) = uv_to_dir(u, v);
-        let i = r * w + c;
-        if st <= 0.0 {
-            return (d, self.cells[i].rgb, 0.0);
-        }
-        let Cell { rgb, mass } = self.cells[i];
-        let pdf = mass * (self.width * self.height) as f32 / (2.0 * PI * PI * st);
+        let (rgb, pdf) = self.cell_at(r * self.width as usize + c, st);
         (d, rgb, pdf)
     }
 }
@@ -468,7 +521,7 @@ impl Rng {
 pub fn cosine_sample(n: Vec3, u1: f32, u2: f32) -> Vec3 {
     let (t, b) = n.any_orthonormal_pair();
     let r = u1.sqrt();
-    let (s, c) = (2.0 * PI * u2).sin_cos();
+    let (s, c) = trig::sin_cos(2.0 * PI * u2);
     (t * (r * c) + b * (r * s) + n * (1.0 - u1).max(0.0).sqrt()).normalize()
 }
 
@@ -574,7 +627,7 @@ mod tests {
         for map in [EnvMap::sky(), EnvMap::from_texels(64, 32, random).unwrap()] {
             let w = map.width as usize;
             let mut tables = vec![(&map.marginal[..], &map.marginal_guide[..])];
-            let g = ROW_GUIDE.min(w) + 1;
+            let g = row_guide(w) + 1;
             for r in (0..map.height as usize).step_by(7) {
                 tables.push((
                     &map.conditional[r * (w + 1)..(r + 1) * (w + 1)],

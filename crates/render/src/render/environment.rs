@@ -16,6 +16,17 @@ fn visible(scene: &Scene, s: &Sample, l: Vec3) -> bool {
 /// sample it belongs to, as structures of arrays for [`BrdfSampler`].
 #[derive(Default)]
 pub(super) struct EnvScratch {
+    /// The stages ([`env_pass`]): per hit of the object in this pass, its sample, its six
+    /// uniform numbers and its map draw; per cosine direction, its hit (index in `hit`),
+    /// direction, cosine and look-up; per BRDF draw with a density, its direction's look-up.
+    hit: Vec<usize>,
+    u: [Vec<f32>; 6],
+    drawn: Vec<(Vec3, Vec3, f32)>,
+    cos_hit: Vec<usize>,
+    cos_dir: Vec<(Vec3, f32)>,
+    cos_le: Vec<(Vec3, f32)>,
+    draw_le: Vec<(Vec3, f32)>,
+    wave: crate::env::wave::Wave,
     /// Per map direction: its sample, radiance x 1 / (pdf x samples), density; then `wo`
     /// x, y, z, `wi` x, y, z and the BRDF's density there.
     map_i: Vec<usize>,
@@ -33,6 +44,13 @@ pub(super) struct EnvScratch {
 
 impl EnvScratch {
     fn clear(&mut self) {
+        self.hit.clear();
+        self.u.iter_mut().for_each(Vec::clear);
+        self.drawn.clear();
+        self.cos_hit.clear();
+        self.cos_dir.clear();
+        self.cos_le.clear();
+        self.draw_le.clear();
         self.map_i.clear();
         self.map_le.clear();
         self.map_pdf.clear();
@@ -111,23 +129,50 @@ pub(super) fn env_pass(
         let m = &obj.material;
         let sampler = ctx.samplers[oi].as_ref();
         es.clear();
+        // The hits of this object in this pass, and their uniform numbers.
         for (i, s) in samples.iter().enumerate() {
             if s.object != Some(oi) || pass >= s.passes {
                 continue;
             }
-            let inv = 1.0 / s.passes as f32;
             let (px, py) = (at.x0 + s.pixel % at.tw, at.y0 + s.pixel / at.tw);
             let id = (py.wrapping_mul(at.w).wrapping_add(px))
                 .wrapping_mul(nn)
                 .wrapping_add(s.sub);
-            let [u1, u2, u3, u4, u5, u6] = uniforms(ctx.opts.sampler, id, pass);
+            es.hit.push(i);
+            for (col, x) in es.u.iter_mut().zip(uniforms(ctx.opts.sampler, id, pass)) {
+                col.push(x);
+            }
+        }
+        if es.hit.is_empty() {
+            continue;
+        }
+        // The map's directions, all at once (`EnvMap::sample_many`: their cache misses
+        // overlap).
+        map.sample_many(&es.u[0], &es.u[1], &mut es.wave, &mut es.drawn);
+        // The cosine-weighted directions (diffuse only) and their look-ups, all at once.
+        for (j, &i) in es.hit.iter().enumerate() {
+            let s = &samples[i];
+            if s.base != Vec3::ZERO {
+                let l = cosine_sample(s.n, es.u[2][j], es.u[3][j]);
+                let cos_i = s.n.dot(l);
+                if cos_i > 0.0 {
+                    es.cos_hit.push(j);
+                    es.cos_dir.push((l, cos_i));
+                }
+            }
+        }
+        map.lookup_many(es.cos_dir.iter().map(|c| c.0), &mut es.wave, &mut es.cos_le);
+        let mut next_cos = 0;
+        for (j, &i) in es.hit.iter().enumerate() {
+            let s = &samples[i];
+            let inv = 1.0 / s.passes as f32;
             // The specular term's local frame and view direction, once per hit.
             let frame = (m.ks > 0.0).then(|| {
                 let (t, b) = (s.t, s.b);
                 (t, b, [s.v.dot(t), s.v.dot(b), s.v.dot(s.n)])
             });
             // The map's direction: diffuse (MIS with the cosine strategy) and specular.
-            let (l, le, pdf_l) = map.sample(u1, u2);
+            let (l, le, pdf_l) = es.drawn[j];
             // Occlusion scales the environment's light (times one without a texture: exact).
             let le = le * s.ao;
             let cos_i = s.n.dot(l);
@@ -148,20 +193,18 @@ pub(super) fn env_pass(
             if let (Some((t, b, wo)), Some(_)) = (frame, sampler) {
                 es.draw_i.push(i);
                 es.draw_frame.push((t, b));
+                let (u5, u6) = (es.u[4][j], es.u[5][j]);
                 for (col, x) in es.draw_in.iter_mut().zip([wo[0], wo[1], wo[2], u5, u6]) {
                     col.push(x);
                 }
             }
             // The cosine-weighted direction: diffuse only.
-            if s.base != Vec3::ZERO {
-                let l = cosine_sample(s.n, u3, u4);
-                let cos_i = s.n.dot(l);
-                if cos_i > 0.0 {
-                    let (le, pdf_l) = map.lookup(l);
-                    let le = le * s.ao;
-                    if le != Vec3::ZERO && visible(scene, s, l) {
-                        radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
-                    }
+            if es.cos_hit.get(next_cos) == Some(&j) {
+                let ((l, cos_i), (le, pdf_l)) = (es.cos_dir[next_cos], es.cos_le[next_cos]);
+                next_cos += 1;
+                let le = le * s.ao;
+                if le != Vec3::ZERO && visible(scene, s, l) {
+                    radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
                 }
             }
         }
@@ -195,6 +238,16 @@ pub(super) fn env_pass(
             )
             .expect("equal lengths, the default strategy");
         }
+        // The drawn directions (world space) with a density, and their look-ups, all at once.
+        let world = |b: usize| {
+            let s = &samples[es.draw_i[b]];
+            let (t, bt) = es.draw_frame[b];
+            let o = &es.draw_out;
+            t * o[0][b] + bt * o[1][b] + s.n * o[2][b]
+        };
+        let drawn = (0..nd).filter(|&b| es.draw_out[4][b] > 0.0).map(world);
+        map.lookup_many(drawn, &mut es.wave, &mut es.draw_le);
+        let mut next_draw = 0;
         // Every specular term in the order of the hits, each hit's map direction first.
         spec.clear();
         let (mut a, mut b) = (0, 0);
@@ -222,7 +275,8 @@ pub(super) fn env_pass(
                 if pdf > 0.0 {
                     let inv = 1.0 / s.passes as f32;
                     let l = t * wi[0] + bt * wi[1] + s.n * wi[2];
-                    let (le, pdf_l) = map.lookup(l);
+                    let (le, pdf_l) = es.draw_le[next_draw];
+                    next_draw += 1;
                     let le = le * s.ao;
                     if le != Vec3::ZERO && visible(scene, s, l) {
                         let w = power_heuristic(pdf, pdf_l);
