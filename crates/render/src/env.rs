@@ -21,6 +21,7 @@ use std::f32::consts::PI;
 use std::path::Path;
 use std::sync::Arc;
 
+pub(crate) mod sobol;
 mod trig;
 pub mod wave;
 

@@ -72,7 +72,10 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
     const DP1: f32 = 1.570_312_5;
     const DP2: f32 = 4.837_513e-4;
     const DP3: f32 = 7.549_79e-8;
-    let j = (x * (2.0 / PI)).round();
+    // The nearest multiple (halves away from zero), without `f32::round`: a libm call
+    // where the target lacks SSE4.1's rounding instruction.
+    let t = x * (2.0 / PI);
+    let j = (t + 0.5f32.copysign(t)) as i32 as f32;
     let r = ((x - j * DP1) - j * DP2) - j * DP3;
     let z = r * r;
     let s = ((-1.951_529_6e-4 * z + 8.332_161e-3) * z - 1.666_665_5e-1) * z * r + r;

@@ -20,6 +20,7 @@ pub(super) struct EnvScratch {
     /// uniform numbers and its map draw; per cosine direction, its hit (index in `hit`),
     /// direction, cosine and look-up; per BRDF draw with a density, its direction's look-up.
     hit: Vec<usize>,
+    id: Vec<u32>,
     u: [Vec<f32>; 6],
     drawn: Vec<(Vec3, Vec3, f32)>,
     cos_hit: Vec<usize>,
@@ -45,6 +46,7 @@ pub(super) struct EnvScratch {
 impl EnvScratch {
     fn clear(&mut self) {
         self.hit.clear();
+        self.id.clear();
         self.u.iter_mut().for_each(Vec::clear);
         self.drawn.clear();
         self.cos_hit.clear();
@@ -61,29 +63,26 @@ impl EnvScratch {
     }
 }
 
-/// The six uniform numbers of one primary sample's environment pass: (map direction),
-/// (cosine direction), (BRDF direction).
-fn uniforms(sampler: Sampler, id: u32, pass: u32) -> [f32; 6] {
+/// The six uniform numbers of each primary sample of `ids` in `pass`, appended to `u` column
+/// by column: (map direction), (cosine direction), (BRDF direction).
+fn uniforms(sampler: Sampler, ids: &[u32], pass: u32, u: &mut [Vec<f32>; 6]) {
     match sampler {
         Sampler::Independent => {
-            let mut rng = crate::env::Rng::new(id, pass);
-            let (u1, u2, u3, u4) = (rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform());
-            let (u5, u6) = (rng.uniform(), rng.uniform());
-            [u1, u2, u3, u4, u5, u6]
+            for &id in ids {
+                let mut rng = crate::env::Rng::new(id, pass);
+                for col in u.iter_mut() {
+                    col.push(rng.uniform());
+                }
+            }
         }
-        Sampler::Sobol => {
-            // Pass k takes point k of two Owen-scrambled Sobol sequences seeded by the sample:
-            // its first four dimensions (the map's pair and the cosine pair) and, from a
-            // second seed, the first two again (the BRDF's pair), so that each pair the pass
-            // uses is stratified over the passes and the pairs are independent. The crate
-            // holds 2^16 points per seed: passes beyond (at most 4096 x 256 with adaptive
-            // antialiasing) continue in sequences of further seeds.
-            let seed = crate::hash::pcg(id ^ crate::hash::pcg(pass >> 16));
-            let k = pass & 0xffff;
-            let a = sobol_burley::sample_4d(k, 0, seed);
-            let b = sobol_burley::sample_4d(k, 0, crate::hash::pcg(seed ^ 0x68bc_21eb));
-            [a[0], a[1], a[2], a[3], b[0], b[1]]
-        }
+        // Pass k takes point k of two Owen-scrambled Sobol sequences seeded by the sample:
+        // its first four dimensions (the map's pair and the cosine pair) and, from a second
+        // seed, the first two again (the BRDF's pair), so that each pair the pass uses is
+        // stratified over the passes and the pairs are independent. The crate holds 2^16
+        // points per seed: passes beyond (at most 4096 x 256 with adaptive antialiasing)
+        // continue in sequences of further seeds. All the wavefront's at once
+        // (`env::sobol::fill`: `sobol_burley::sample_4d`'s numbers, vectorised over the hits).
+        Sampler::Sobol => crate::env::sobol::fill(ids, pass, u),
     }
 }
 
@@ -139,13 +138,12 @@ pub(super) fn env_pass(
                 .wrapping_mul(nn)
                 .wrapping_add(s.sub);
             es.hit.push(i);
-            for (col, x) in es.u.iter_mut().zip(uniforms(ctx.opts.sampler, id, pass)) {
-                col.push(x);
-            }
+            es.id.push(id);
         }
         if es.hit.is_empty() {
             continue;
         }
+        uniforms(ctx.opts.sampler, &es.id, pass, &mut es.u);
         // The map's directions, all at once (`EnvMap::sample_many`: their cache misses
         // overlap).
         map.sample_many(&es.u[0], &es.u[1], &mut es.wave, &mut es.drawn);
