@@ -103,6 +103,7 @@ fn lum(c: Vec3) -> f32 {
 
 /// The map position (u, v) in [0, 1]^2 of unit direction `d` (the fast `atan2` and `acos`
 /// of [`trig`]: within a few 1e-7 rad of f64's).
+#[inline(always)]
 pub fn dir_to_uv(d: Vec3) -> (f32, f32) {
     let u = trig::atan2(d.x, -d.z) / (2.0 * PI) + 0.5;
     let v = trig::acos(d.y) / PI;
@@ -110,6 +111,7 @@ pub fn dir_to_uv(d: Vec3) -> (f32, f32) {
 }
 
 /// The unit direction at map position (u, v), and sin theta ([`trig::sin_cos`]).
+#[inline(always)]
 pub fn uv_to_dir(u: f32, v: f32) -> (Vec3, f32) {
     let (phi, theta) = ((u - 0.5) * 2.0 * PI, v * PI);
     let (st, ct) = trig::sin_cos(theta);
@@ -383,10 +385,14 @@ impl EnvMap {
         Self::from_texels(w, h, texels).map_err(bad)
     }
 
+    /// The texel at map position (u, v) (in i32, which vectorises: a map is at most
+    /// [`MAX_ENV_WIDTH`] wide; a NaN goes to 0 as it would in usize).
+    #[inline(always)]
     fn texel(&self, u: f32, v: f32) -> usize {
-        let c = ((u * self.width as f32) as usize).min(self.width as usize - 1);
-        let r = ((v * self.height as f32) as usize).min(self.height as usize - 1);
-        r * self.width as usize + c
+        let (w, h) = (self.width as i32, self.height as i32);
+        let c = ((u * self.width as f32) as i32).clamp(0, w - 1);
+        let r = ((v * self.height as f32) as i32).clamp(0, h - 1);
+        (r * w + c) as usize
     }
 
     /// The radiance arriving from unit direction `d`.
@@ -445,11 +451,17 @@ impl EnvMap {
     /// last step, shared with the staged draws of [`wave`].
     #[inline(always)]
     fn drawn(&self, r: usize, fr: f32, c: usize, fc: f32) -> (Vec3, Vec3, f32) {
-        let u = (c as f32 + fc) / self.width as f32;
-        let v = (r as f32 + fr) / self.height as f32;
-        let (d, st) = uv_to_dir(u, v);
+        let (d, st) = self.drawn_dir(r, fr, c, fc);
         let (rgb, pdf) = self.cell_at(r * self.width as usize + c, st);
         (d, rgb, pdf)
+    }
+
+    /// The direction and sin theta of [`EnvMap::drawn`].
+    #[inline(always)]
+    fn drawn_dir(&self, r: usize, fr: f32, c: usize, fc: f32) -> (Vec3, f32) {
+        let u = (c as f32 + fc) / self.width as f32;
+        let v = (r as f32 + fr) / self.height as f32;
+        uv_to_dir(u, v)
     }
 }
 

@@ -37,8 +37,65 @@ pub struct Wave {
     /// Per draw: the range of its row that holds its column; per look-up: its texel and
     /// sin theta.
     range: Vec<(u32, u32)>,
-    texel: Vec<(u32, f32)>,
+    /// Per draw or look-up: its texel, sin theta and (draws) direction.
+    texel: Vec<u32>,
+    st: Vec<f32>,
+    dir: Vec<Vec3>,
 }
+
+/// Defines `fn $name` running its body compiled for AVX2 where the CPU has it (8 lanes for
+/// the trigonometry of the stages below, which the compiler vectorises), else for the
+/// target's baseline: the same arithmetic either way (no fused multiply-adds), so the same
+/// bits.
+macro_rules! with_avx2 {
+    ($name:ident($($arg:ident: $ty:ty),*) $body:block) => {
+        fn $name($($arg: $ty),*) {
+            #[inline(always)]
+            fn body($($arg: $ty),*) $body
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "avx2")]
+                fn avx2($($arg: $ty),*) {
+                    body($($arg),*)
+                }
+                if std::arch::is_x86_feature_detected!("avx2") {
+                    // SAFETY: the CPU has AVX2 (checked just above).
+                    unsafe { avx2($($arg),*) };
+                    return;
+                }
+            }
+            body($($arg),*)
+        }
+    };
+}
+
+with_avx2!(texels_of(map: &EnvMap, dirs: &[Vec3], texel: &mut [u32], st: &mut [f32]) {
+    for ((d, t), s) in dirs.iter().zip(texel.iter_mut()).zip(st.iter_mut()) {
+        let (i, sin) = map.texel_of(*d);
+        (*t, *s) = (i as u32, sin);
+    }
+});
+
+with_avx2!(dirs_of(
+    map: &EnvMap,
+    row: &[(u32, f32)],
+    col: &[(u32, u32)],
+    dir: &mut [Vec3],
+    texel: &mut [u32],
+    st: &mut [f32]
+) {
+    let w = map.width;
+    for ((((&(r, fr), &(c, fc)), d), t), s) in row
+        .iter()
+        .zip(col)
+        .zip(dir.iter_mut())
+        .zip(texel.iter_mut())
+        .zip(st.iter_mut())
+    {
+        let (dd, sin) = map.drawn_dir(r as usize, fr, c as usize, f32::from_bits(fc));
+        (*d, *t, *s) = (dd, r * w + c, sin);
+    }
+});
 
 impl EnvMap {
     /// [`EnvMap::sample`] of each pair (`u1[j]`, `u2[j]`), appended to `out` in order: the
@@ -97,27 +154,40 @@ impl EnvMap {
             prefetch(self.cells.as_ptr().wrapping_add(r * w + c));
             *rg = (c as u32, fc.to_bits());
         }
-        out.extend(row.iter().zip(range.iter()).map(|(&(r, fr), &(c, fc))| {
-            self.drawn(r as usize, fr, c as usize, f32::from_bits(fc))
-        }));
+        // The directions (vectorised), then the cells.
+        let n = row.len();
+        let (texel, st, dir) = (&mut wave.texel, &mut wave.st, &mut wave.dir);
+        texel.resize(n, 0);
+        st.resize(n, 0.0);
+        dir.resize(n, Vec3::ZERO);
+        dirs_of(self, row, range, dir, texel, st);
+        out.extend(
+            dir.iter()
+                .zip(texel.iter())
+                .zip(st.iter())
+                .map(|((&d, &i), &s)| {
+                    let (rgb, pdf) = self.cell_at(i as usize, s);
+                    (d, rgb, pdf)
+                }),
+        );
     }
 
     /// [`EnvMap::lookup`] of each unit direction of `dirs`, appended to `out` in order: the
-    /// texels first (prefetching their cells), then the cells.
-    pub fn lookup_many(
-        &self,
-        dirs: impl IntoIterator<Item = Vec3>,
-        wave: &mut Wave,
-        out: &mut Vec<(Vec3, f32)>,
-    ) {
-        let texel = &mut wave.texel;
-        texel.clear();
-        for d in dirs {
-            let (i, st) = self.texel_of(d);
-            prefetch(self.cells.as_ptr().wrapping_add(i));
-            texel.push((i as u32, st));
+    /// texels first (vectorised), then their cells' prefetches, then the cells.
+    pub fn lookup_many(&self, dirs: &[Vec3], wave: &mut Wave, out: &mut Vec<(Vec3, f32)>) {
+        let (texel, st) = (&mut wave.texel, &mut wave.st);
+        texel.resize(dirs.len(), 0);
+        st.resize(dirs.len(), 0.0);
+        texels_of(self, dirs, texel, st);
+        for &i in texel.iter() {
+            prefetch(self.cells.as_ptr().wrapping_add(i as usize));
         }
-        out.extend(texel.iter().map(|&(i, st)| self.cell_at(i as usize, st)));
+        out.extend(
+            texel
+                .iter()
+                .zip(st.iter())
+                .map(|(&i, &s)| self.cell_at(i as usize, s)),
+        );
     }
 }
 
@@ -160,7 +230,7 @@ mod tests {
             }
             let dirs: Vec<Vec3> = out.iter().map(|o| o.0).chain([Vec3::Y, -Vec3::Y]).collect();
             let mut looked = Vec::new();
-            map.lookup_many(dirs.iter().copied(), &mut wave, &mut looked);
+            map.lookup_many(&dirs, &mut wave, &mut looked);
             for (d, l) in dirs.iter().zip(&looked) {
                 assert_eq!(*l, map.lookup(*d), "{d}");
             }

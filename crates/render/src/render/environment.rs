@@ -24,8 +24,10 @@ pub(super) struct EnvScratch {
     u: [Vec<f32>; 6],
     drawn: Vec<(Vec3, Vec3, f32)>,
     cos_hit: Vec<usize>,
-    cos_dir: Vec<(Vec3, f32)>,
+    cos_dir: Vec<Vec3>,
+    cos_cos: Vec<f32>,
     cos_le: Vec<(Vec3, f32)>,
+    draw_dir: Vec<Vec3>,
     draw_le: Vec<(Vec3, f32)>,
     wave: crate::env::wave::Wave,
     /// Per map direction: its sample, radiance x 1 / (pdf x samples), density; then `wo`
@@ -51,6 +53,8 @@ impl EnvScratch {
         self.drawn.clear();
         self.cos_hit.clear();
         self.cos_dir.clear();
+        self.cos_cos.clear();
+        self.draw_dir.clear();
         self.cos_le.clear();
         self.draw_le.clear();
         self.map_i.clear();
@@ -155,11 +159,12 @@ pub(super) fn env_pass(
                 let cos_i = s.n.dot(l);
                 if cos_i > 0.0 {
                     es.cos_hit.push(j);
-                    es.cos_dir.push((l, cos_i));
+                    es.cos_dir.push(l);
+                    es.cos_cos.push(cos_i);
                 }
             }
         }
-        map.lookup_many(es.cos_dir.iter().map(|c| c.0), &mut es.wave, &mut es.cos_le);
+        map.lookup_many(&es.cos_dir, &mut es.wave, &mut es.cos_le);
         let mut next_cos = 0;
         for (j, &i) in es.hit.iter().enumerate() {
             let s = &samples[i];
@@ -198,7 +203,8 @@ pub(super) fn env_pass(
             }
             // The cosine-weighted direction: diffuse only.
             if es.cos_hit.get(next_cos) == Some(&j) {
-                let ((l, cos_i), (le, pdf_l)) = (es.cos_dir[next_cos], es.cos_le[next_cos]);
+                let (l, cos_i) = (es.cos_dir[next_cos], es.cos_cos[next_cos]);
+                let (le, pdf_l) = es.cos_le[next_cos];
                 next_cos += 1;
                 let le = le * s.ao;
                 if le != Vec3::ZERO && visible(scene, s, l) {
@@ -244,7 +250,8 @@ pub(super) fn env_pass(
             t * o[0][b] + bt * o[1][b] + s.n * o[2][b]
         };
         let drawn = (0..nd).filter(|&b| es.draw_out[4][b] > 0.0).map(world);
-        map.lookup_many(drawn, &mut es.wave, &mut es.draw_le);
+        es.draw_dir.extend(drawn);
+        map.lookup_many(&es.draw_dir, &mut es.wave, &mut es.draw_le);
         let mut next_draw = 0;
         // Every specular term in the order of the hits, each hit's map direction first.
         spec.clear();
@@ -267,13 +274,11 @@ pub(super) fn env_pass(
             } else {
                 let i = es.draw_i[b];
                 let s = &samples[i];
-                let (t, bt) = es.draw_frame[b];
                 let o = &es.draw_out;
                 let (wi, pdf) = ([o[0][b], o[1][b], o[2][b]], o[4][b]);
                 if pdf > 0.0 {
                     let inv = 1.0 / s.passes as f32;
-                    let l = t * wi[0] + bt * wi[1] + s.n * wi[2];
-                    let (le, pdf_l) = es.draw_le[next_draw];
+                    let (l, (le, pdf_l)) = (es.draw_dir[next_draw], es.draw_le[next_draw]);
                     next_draw += 1;
                     let le = le * s.ao;
                     if le != Vec3::ZERO && visible(scene, s, l) {
