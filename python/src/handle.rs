@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 use rows::{Outs3, Rows, Soa, for_chunks, for_chunks3};
 use std::ops::Range;
 
+mod interleave;
 mod rows;
 
 /// One model, built once in both precisions (and its batch kernel when it has one).
@@ -77,7 +78,7 @@ fn rows_par<T: Real>(m: &Model<T>, cols: &[&[T]], r: Range<usize>, out: &mut [T]
 }
 
 /// Two per-thread buffers of `A` and `B` columns.
-fn soa2<const A: usize, const B: usize, T: Copy + Default>() -> (Soa<T, A>, Soa<T, B>) {
+fn soa2<const A: usize, const B: usize, T: Copy + Default + 'static>() -> (Soa<T, A>, Soa<T, B>) {
     (Soa::new(), Soa::new())
 }
 

@@ -7,9 +7,11 @@
 //! row count alone, never by the thread count, and each element's value depends only on its
 //! own inputs: results do not depend on the number of threads.
 
+use super::interleave;
 use crate::arrays::CHUNK;
 use numpy::ndarray::{ArrayView2, s};
 use rayon::prelude::*;
+use std::any::TypeId;
 use std::ops::Range;
 
 /// (N, k) rows of any strides.
@@ -18,7 +20,7 @@ pub(crate) type Rows<'a, T> = ArrayView2<'a, T>;
 /// One thread's buffers: `K` columns of [`CHUNK`] values.
 pub(crate) struct Soa<T, const K: usize>([Vec<T>; K]);
 
-impl<T: Copy + Default, const K: usize> Soa<T, K> {
+impl<T: Copy + Default + 'static, const K: usize> Soa<T, K> {
     pub(crate) fn new() -> Self {
         Self(std::array::from_fn(|_| vec![T::default(); CHUNK]))
     }
@@ -26,7 +28,15 @@ impl<T: Copy + Default, const K: usize> Soa<T, K> {
     /// The `K` columns of rows `r` of `v` (at most [`CHUNK`] rows), copied into the buffers.
     pub(crate) fn load(&mut self, v: &Rows<'_, T>, r: Range<usize>) -> [&[T]; K] {
         let len = r.len();
-        if let Some(all) = v.as_slice() {
+        if let (Some(all), Some(cols)) = (v.as_slice(), f32s(&mut self.0)) {
+            // C-contiguous f32 rows of 3 or 2: the vectorised copies.
+            let all = f32s_of(&all[K * r.start..K * r.end]);
+            match cols {
+                [x, y, z] => interleave::split3(all, [&mut x[..len], &mut y[..len], &mut z[..len]]),
+                [x, y] => interleave::split2(all, [&mut x[..len], &mut y[..len]]),
+                _ => unreachable!(),
+            }
+        } else if let Some(all) = v.as_slice() {
             // C-contiguous: one pass over the rows.
             let mut cols: [&mut [T]; K] = self.0.each_mut().map(|c| &mut c[..len]);
             for (j, row) in all[K * r.start..K * r.end].chunks_exact(K).enumerate() {
@@ -52,6 +62,10 @@ impl<T: Copy + Default, const K: usize> Soa<T, K> {
     /// The first `len` values of the buffers interleaved into `out` (`K` values a row).
     pub(crate) fn store(&self, out: &mut [T]) {
         let len = out.len() / K;
+        if let Some([x, y, z]) = f32s_ref(&self.0) {
+            let out = f32s_mut(out);
+            return interleave::join3([&x[..len], &y[..len], &z[..len]], out);
+        }
         let cols = self.0.each_ref().map(|c| &c[..len]);
         for (j, row) in out.chunks_exact_mut(K).enumerate() {
             for (c, x) in row.iter_mut().enumerate() {
@@ -59,6 +73,41 @@ impl<T: Copy + Default, const K: usize> Soa<T, K> {
             }
         }
     }
+}
+
+/// The columns as f32 when `T` is f32 and there are 2 or 3 of them (the vectorised copies'
+/// cases), else `None`.
+fn f32s<T: 'static, const K: usize>(cols: &mut [Vec<T>; K]) -> Option<&mut [Vec<f32>]> {
+    if TypeId::of::<T>() == TypeId::of::<f32>() && (K == 2 || K == 3) {
+        // SAFETY: `T` is `f32`.
+        Some(unsafe { &mut *(cols.as_mut_slice() as *mut [Vec<T>] as *mut [Vec<f32>]) })
+    } else {
+        None
+    }
+}
+
+/// [`f32s`] read-only, 3 columns only.
+fn f32s_ref<T: 'static, const K: usize>(cols: &[Vec<T>; K]) -> Option<&[Vec<f32>; 3]> {
+    if TypeId::of::<T>() == TypeId::of::<f32>() && K == 3 {
+        // SAFETY: `T` is `f32` and `K` is 3.
+        Some(unsafe { &*(cols as *const [Vec<T>; K] as *const [Vec<f32>; 3]) })
+    } else {
+        None
+    }
+}
+
+/// A slice of `T` that is f32 (checked by the caller through [`f32s`]) as f32.
+fn f32s_of<T: 'static>(v: &[T]) -> &[f32] {
+    assert_eq!(TypeId::of::<T>(), TypeId::of::<f32>());
+    // SAFETY: `T` is `f32`.
+    unsafe { std::slice::from_raw_parts(v.as_ptr().cast(), v.len()) }
+}
+
+/// [`f32s_of`], writable.
+fn f32s_mut<T: 'static>(v: &mut [T]) -> &mut [f32] {
+    assert_eq!(TypeId::of::<T>(), TypeId::of::<f32>());
+    // SAFETY: `T` is `f32`.
+    unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast(), v.len()) }
 }
 
 /// Runs `f(scratch, rows, out)` over `out` cut into chunks of [`CHUNK`] rows of `w` values,

@@ -14,7 +14,7 @@
 //!   `f cos_i / pdf` with `f` from the SIMD eval kernel (`Kernel`), whose values differ from
 //!   the scalar model's by the fast elementary functions' few ulp.
 
-use crate::vec3::{V3, above_cos_min, unit};
+use crate::vec3::{COS_MIN, V3, above_cos_min, unit};
 
 /// `sin(2 pi u)` and `cos(2 pi u)` for `u` in [0, 1] (the unit interval of turns), branch-free
 /// and vectorisable: the quarter turn nearest `u` is taken exactly (`u - q/4` is exact in f32
@@ -59,12 +59,13 @@ impl Vndf {
 
     /// `Micro::pdf_vndf(wo, h) / (4 wo.h)` of the unit `wo`, `wi` (`CookTorrance::pdf_wi`
     /// with `sample::half`), 0 where the scalar code returns 0; not yet checked for being
-    /// positive and finite.
+    /// positive and finite. With `FAST` ([`unit_of`]) the flag says whether the value is
+    /// the exact path's (the half vector's length in the direct range), else it is true.
     #[inline(always)]
-    fn pdf_unit(&self, wo: V3<f32>, wi: V3<f32>) -> f32 {
+    fn pdf_unit<const FAST: bool>(&self, wo: V3<f32>, wi: V3<f32>) -> (f32, bool) {
         let (ax, ay) = (self.ax, self.ay);
         // sample::half.
-        let (h, hv) = unit([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]]);
+        let (h, hv) = unit_of::<FAST>([wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2]]);
         let d = wo[0] * h[0] + wo[1] * h[1] + wo[2] * h[2];
         let ok = hv && h[2] > 0.0 && d > 0.0 && wo[2] > 0.0;
         // Micro::g1 (GGX lambda).
@@ -78,7 +79,7 @@ impl Vndf {
         let dh = self.k / (t * t);
         let ph = g1 * d * dh / wo[2];
         let p = ph / (4.0 * d);
-        if ok { p } else { 0.0 }
+        (if ok { p } else { 0.0 }, hv || !FAST)
     }
 
     /// `Brdf::<f32>::pdf(wo, wi, Vndf)` (raw directions).
@@ -87,7 +88,7 @@ impl Vndf {
         let valid = above_cos_min(wo) && above_cos_min(wi);
         let (wo, vo) = unit(wo);
         let (wi, vi) = unit(wi);
-        let p = self.pdf_unit(wo, wi);
+        let (p, _) = self.pdf_unit::<false>(wo, wi);
         if valid && vo && vi && p > 0.0 && p.is_finite() {
             p
         } else {
@@ -95,16 +96,47 @@ impl Vndf {
         }
     }
 
-    /// `Brdf::<f32>::sample(wo, u, Vndf)` up to the weight: `(wo normalised, wi, pdf)`, with
-    /// `wi = 0` and `pdf = 0` for no sample.
+    /// [`Self::pdf`] without its f64 horizon checks and scale-safe normalisations
+    /// ([`unit_direct`], [`horizon`]): `(value, sure)`, the value [`Self::pdf`]'s bit for bit
+    /// where `sure`.
     #[inline(always)]
-    pub fn sample(&self, wo: V3<f32>, u: [f32; 2]) -> (V3<f32>, V3<f32>, f32) {
+    fn pdf_fast(&self, wo: V3<f32>, wi: V3<f32>) -> (f32, bool) {
+        let (wo, so) = unit_direct(wo);
+        let (wi, si) = unit_direct(wi);
+        let ((ao, co), (ai, ci)) = (horizon(wo[2]), horizon(wi[2]));
+        let valid = ao && ai;
+        let (p, sh) = self.pdf_unit::<true>(wo, wi);
+        let p = if valid && p > 0.0 && p.is_finite() {
+            p
+        } else {
+            0.0
+        };
+        (p, so && si && co && ci && (sh || !valid))
+    }
+
+    /// `Brdf::<f32>::sample(wo, u, Vndf)` up to the weight: `(wo normalised, wi, pdf, sure)`,
+    /// with `wi = 0` and `pdf = 0` for no sample. With `FAST` as [`Self::pdf_fast`]: `sure`
+    /// says whether the others are the exact path's bit for bit (always true without it).
+    #[inline(always)]
+    fn sample_as<const FAST: bool>(
+        &self,
+        wo: V3<f32>,
+        u: [f32; 2],
+    ) -> (V3<f32>, V3<f32>, f32, bool) {
         let (ax, ay) = (self.ax, self.ay);
-        let valid_o = above_cos_min(wo);
-        let (wo, vo) = unit(wo);
+        let (valid_o, wo, vo, mut sure) = if FAST {
+            let (wo, so) = unit_direct(wo);
+            let (above, clear) = horizon(wo[2]);
+            (above, wo, true, so && clear)
+        } else {
+            let valid_o = above_cos_min(wo);
+            let (wo, vo) = unit(wo);
+            (valid_o, wo, vo, true)
+        };
         let u = u.map(crate::sample::unit_interval);
         // Micro::sample_vndf, GGX.
-        let (vh, ok) = unit([ax * wo[0], ay * wo[1], wo[2]]);
+        let (vh, ok) = unit_of::<FAST>([ax * wo[0], ay * wo[1], wo[2]]);
+        sure &= ok || !FAST;
         let vh = if ok { vh } else { [0.0, 0.0, 1.0] };
         let lensq = vh[0] * vh[0] + vh[1] * vh[1];
         let inv = 1.0 / lensq.sqrt();
@@ -130,19 +162,69 @@ impl Vndf {
             p1 * t1[1] + p2 * t2[1] + pz * vh[1],
             p1 * t1[2] + p2 * t2[2] + pz * vh[2],
         ];
-        let (h, ok) = unit([ax * nh[0], ay * nh[1], nh[2].max(0.0)]);
+        let (h, ok) = unit_of::<FAST>([ax * nh[0], ay * nh[1], nh[2].max(0.0)]);
+        sure &= ok || !FAST;
         let h = if ok { h } else { [0.0, 0.0, 1.0] };
         // sample::reflect_about.
         let d = wo[0] * h[0] + wo[1] * h[1] + wo[2] * h[2];
         let k = d + d;
         let wi = [k * h[0] - wo[0], k * h[1] - wo[1], k * h[2] - wo[2]];
         // Brdf::sample: normalise, the horizon, the density.
-        let (wi, vi) = unit(wi);
-        let above = above_cos_min(wi);
-        let p = self.pdf_unit(wo, wi);
+        let (wi, vi) = unit_of::<FAST>(wi);
+        let above = if FAST {
+            // `wi` is unit to an ulp or two: its f64 renormalisation moves its z by less
+            // than `horizon`'s margin.
+            let (above, clear) = horizon(wi[2]);
+            sure &= vi && clear;
+            above
+        } else {
+            above_cos_min(wi)
+        };
+        let vi = vi || FAST;
+        let (p, sh) = self.pdf_unit::<FAST>(wo, wi);
+        sure &= sh;
         let ok = valid_o && vo && d > 0.0 && vi && above && p > 0.0 && p.is_finite();
-        (wo, if ok { wi } else { [0.0; 3] }, if ok { p } else { 0.0 })
+        (
+            wo,
+            if ok { wi } else { [0.0; 3] },
+            if ok { p } else { 0.0 },
+            sure,
+        )
     }
+}
+
+/// `vec3::unit`'s range of `|v|^2` normalised directly (its `LEN2_LO`, `LEN2_HI`: 2^-100,
+/// 2^100, exact in f32).
+const LEN2_LO: f32 = 7.888_609_052_210_118e-31;
+const LEN2_HI: f32 = 1.267_650_600_228_229_4e30;
+
+/// `v / |v|` as `vec3::unit` computes it where `|v|^2` is in its direct range (there its
+/// divisions by 1 change nothing and its validity flag is true), and whether it is: where
+/// it is not (zero, tiny, huge, infinite or NaN components) the caller takes the exact path.
+#[inline(always)]
+fn unit_direct(v: V3<f32>) -> (V3<f32>, bool) {
+    let len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let safe = len2 >= LEN2_LO && len2 <= LEN2_HI;
+    let inv = 1.0 / len2.sqrt();
+    ([v[0] * inv, v[1] * inv, v[2] * inv], safe)
+}
+
+/// [`unit_direct`] with `FAST` (its flag: direct), else `vec3::unit` (its flag: valid).
+#[inline(always)]
+fn unit_of<const FAST: bool>(v: V3<f32>) -> (V3<f32>, bool) {
+    if FAST { unit_direct(v) } else { unit(v) }
+}
+
+/// `vec3::above_cos_min` of a vector whose f32 unit z is `c` (from [`unit_direct`], or of
+/// a unit vector): `(above, sure)`. The f64 cosine of `above_cos_min` and `c` differ by a
+/// few f32 ulp (relative, about 3e-7 at most); away from `COS_MIN` by more than 1e-5
+/// (relative) the answer is the f64 one, else `sure` is false.
+#[inline(always)]
+fn horizon(c: f32) -> (bool, bool) {
+    const M: f32 = COS_MIN as f32;
+    const HI: f32 = (COS_MIN * (1.0 + 1e-5)) as f32;
+    const LO: f32 = (COS_MIN * (1.0 - 1e-5)) as f32;
+    (c >= M, c >= HI || c < LO)
 }
 
 // ---------- the loops, compiled per instruction set ----------
@@ -157,18 +239,54 @@ pub struct SampleBlock<'a> {
     pub pdf: &'a mut [f32],
 }
 
+/// Elements per try of the fast path: where one of them is unsure, these are redone on the
+/// exact path.
+const SUB: usize = 128;
+
 #[inline(always)]
 fn sample_body(v: &Vndf, b: SampleBlock<'_>) {
     let n = b.pdf.len();
-    let (ox, oy, oz) = (&b.wo[0][..n], &b.wo[1][..n], &b.wo[2][..n]);
-    let (u0, u1) = (&b.u[0][..n], &b.u[1][..n]);
     let [nx, ny, nz] = b.won;
-    let (nx, ny, nz) = (&mut nx[..n], &mut ny[..n], &mut nz[..n]);
     let [ix, iy, iz] = b.wi;
+    let mut lo = 0;
+    while lo < n {
+        let hi = (lo + SUB).min(n);
+        let wo = b.wo.map(|x| &x[lo..hi]);
+        let u = b.u.map(|x| &x[lo..hi]);
+        let mut outs = (
+            [&mut nx[lo..hi], &mut ny[lo..hi], &mut nz[lo..hi]],
+            [&mut ix[lo..hi], &mut iy[lo..hi], &mut iz[lo..hi]],
+            &mut b.pdf[lo..hi],
+        );
+        if !sample_run::<true>(v, wo, u, &mut outs) {
+            sample_run::<false>(v, wo, u, &mut outs);
+        }
+        lo = hi;
+    }
+}
+
+/// `won`, `wi` and `pdf` of a sub-block.
+type SampleOuts<'a> = ([&'a mut [f32]; 3], [&'a mut [f32]; 3], &'a mut [f32]);
+
+/// [`Vndf::sample_as`] over slices of equal length: whether every element was sure.
+#[inline(always)]
+fn sample_run<const FAST: bool>(
+    v: &Vndf,
+    wo: [&[f32]; 3],
+    u: [&[f32]; 2],
+    (won, wi, pdf): &mut SampleOuts<'_>,
+) -> bool {
+    let n = pdf.len();
+    let (ox, oy, oz) = (&wo[0][..n], &wo[1][..n], &wo[2][..n]);
+    let (u0, u1) = (&u[0][..n], &u[1][..n]);
+    let [nx, ny, nz] = won;
+    let (nx, ny, nz) = (&mut nx[..n], &mut ny[..n], &mut nz[..n]);
+    let [ix, iy, iz] = wi;
     let (ix, iy, iz) = (&mut ix[..n], &mut iy[..n], &mut iz[..n]);
-    let pdf = &mut b.pdf[..n];
+    let pdf = &mut pdf[..n];
+    let mut unsure = 0u32;
     for i in 0..n {
-        let (wo, wi, p) = v.sample([ox[i], oy[i], oz[i]], [u0[i], u1[i]]);
+        let (wo, wi, p, sure) = v.sample_as::<FAST>([ox[i], oy[i], oz[i]], [u0[i], u1[i]]);
         nx[i] = wo[0];
         ny[i] = wo[1];
         nz[i] = wo[2];
@@ -176,17 +294,45 @@ fn sample_body(v: &Vndf, b: SampleBlock<'_>) {
         iy[i] = wi[1];
         iz[i] = wi[2];
         pdf[i] = p;
+        unsure |= u32::from(!sure);
     }
+    unsure == 0
 }
 
 #[inline(always)]
 fn pdf_body(v: &Vndf, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]) {
     let n = out.len();
+    let mut lo = 0;
+    while lo < n {
+        let hi = (lo + SUB).min(n);
+        let (wo, wi) = (wo.map(|x| &x[lo..hi]), wi.map(|x| &x[lo..hi]));
+        let out = &mut out[lo..hi];
+        if !pdf_run::<true>(v, wo, wi, out) {
+            pdf_run::<false>(v, wo, wi, out);
+        }
+        lo = hi;
+    }
+}
+
+/// [`Vndf::pdf_fast`] (`FAST`) or [`Vndf::pdf`] over slices of equal length: whether every
+/// element was sure. (Not a closure: closures do not inherit `#[target_feature]`.)
+#[inline(always)]
+fn pdf_run<const FAST: bool>(v: &Vndf, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]) -> bool {
+    let n = out.len();
     let (ox, oy, oz) = (&wo[0][..n], &wo[1][..n], &wo[2][..n]);
     let (ix, iy, iz) = (&wi[0][..n], &wi[1][..n], &wi[2][..n]);
+    let mut unsure = 0u32;
     for i in 0..n {
-        out[i] = v.pdf([ox[i], oy[i], oz[i]], [ix[i], iy[i], iz[i]]);
+        let (a, b) = ([ox[i], oy[i], oz[i]], [ix[i], iy[i], iz[i]]);
+        let (p, sure) = if FAST {
+            v.pdf_fast(a, b)
+        } else {
+            (v.pdf(a, b), true)
+        };
+        out[i] = p;
+        unsure |= u32::from(!sure);
     }
+    unsure == 0
 }
 
 /// `weight = f cos_i / pdf` (0 where `pdf` is 0), in place over `f`.
