@@ -545,3 +545,60 @@ fn ggx_vndf_simd_passes_chi_square() {
         );
     }
 }
+
+/// The SIMD path's fast steps (f32 horizon test with a margin, direct normalisation; the
+/// exact steps redone for a block where one element is outside their ranges): directions
+/// whose cosine sweeps `COS_MIN` within 64 ulp (the margin is 1e-5 relative, about 84 ulp;
+/// the f32 cosine's error a few ulp), at lengths around the direct range's ends (`|v|^2` near 2^-100
+/// and 2^100) and ordinary ones, as `wo` and as `wi`: the density is the generic path's bit
+/// for bit, and a draw exists exactly where the scalar sampler's does.
+#[test]
+fn ggx_vndf_simd_fast_steps_keep_the_exact_answers() {
+    let p = [("d", "ggx"), ("alpha", "0.3")];
+    let (b, simd) = build("cook-torrance", &p);
+    let (_, mut generic) = build("cook-torrance", &p);
+    generic.set_simd(false);
+    let cos_min = fastbrdf::vec3::COS_MIN as f32;
+    let mut edge: [Vec<f32>; 3] = Default::default();
+    // z within 64 f32 ulp of COS_MIN (a power of 2), x and y of about unit length: the f64
+    // cosine falls on both sides of COS_MIN within the f32 cosine's error.
+    // One length after the other: a block of the fast path (128 elements) with one element
+    // outside the direct range (2^-51) is redone whole on the exact steps.
+    for len in [1.0, 0.3, 0.7, 2f64.powi(-50), 2f64.powi(-51), 2f64.powi(50)] {
+        for k in -64..=64 {
+            let z = cos_min * (1.0 + k as f32 * f32::EPSILON / 2.0);
+            for j in 0..50 {
+                let phi = j as f64 * 0.1234;
+                let v = [phi.cos() * len, phi.sin() * len, z as f64 * len].map(|x| x as f32);
+                for (e, x) in edge.iter_mut().zip(v) {
+                    e.push(x);
+                }
+            }
+        }
+    }
+    let n = edge[0].len();
+    let good: [Vec<f32>; 3] = [vec![0.3; n], vec![-0.2; n], vec![0.8; n]];
+    for (wo, wi) in [(&edge, &good), (&good, &edge), (&edge, &edge)] {
+        let (mut got, mut want) = (vec![-7.0; n], vec![-7.0; n]);
+        simd.pdf(Strategy::Vndf, refs(wo), refs(wi), &mut got)
+            .unwrap();
+        generic
+            .pdf(Strategy::Vndf, refs(wo), refs(wi), &mut want)
+            .unwrap();
+        for i in 0..n {
+            assert_eq!(got[i].to_bits(), want[i].to_bits(), "element {i}");
+        }
+    }
+    let u: [Vec<f32>; 2] = [
+        (0..n).map(|i| (i % 97) as f32 / 97.0).collect(),
+        (0..n).map(|i| (i % 89) as f32 / 89.0).collect(),
+    ];
+    let mut o = Outs::new(n);
+    simd.sample(Strategy::Vndf, refs(&edge), refs(&u), o.out())
+        .unwrap();
+    for i in 0..n {
+        let w = [edge[0][i], edge[1][i], edge[2][i]];
+        let r = b.sample(w, [u[0][i], u[1][i]], Strategy::Vndf);
+        assert_eq!(r.is_some(), o.pdf[i] != 0.0, "wo {w:?}: {r:?}");
+    }
+}

@@ -13,6 +13,15 @@
 //! - its `pdf` is the scalar density at its `wi` bit for bit, and its weight is
 //!   `f cos_i / pdf` with `f` from the SIMD eval kernel (`Kernel`), whose values differ from
 //!   the scalar model's by the fast elementary functions' few ulp.
+//!
+//! Each block of [`SUB`] elements first runs a fast form of those steps: `vec3::unit` as its
+//! direct `v / |v|` ([`unit_direct`], what it computes where `|v|^2` is in its direct range)
+//! and the f64 horizon test `above_cos_min` as an f32 comparison ([`horizon`], the f64
+//! answer away from `COS_MIN` by more than its margin). Where every element of the block is
+//! in those ranges (all but degenerate inputs and cosines within 1e-5 of `COS_MIN`) its
+//! values are the exact steps' bit for bit; else the block is redone on the exact steps. So
+//! the values above hold unchanged, at about half the cost (no f64 square roots and
+//! divisions, no divisions by 1).
 
 use crate::vec3::{COS_MIN, V3, above_cos_min, unit};
 
@@ -195,8 +204,8 @@ impl Vndf {
 
 /// `vec3::unit`'s range of `|v|^2` normalised directly (its `LEN2_LO`, `LEN2_HI`: 2^-100,
 /// 2^100, exact in f32).
-const LEN2_LO: f32 = 7.888_609_052_210_118e-31;
-const LEN2_HI: f32 = 1.267_650_600_228_229_4e30;
+const LEN2_LO: f32 = 7.888_609_052_210_118e-31_f64 as f32;
+const LEN2_HI: f32 = 1.267_650_600_228_229_4e30_f64 as f32;
 
 /// `v / |v|` as `vec3::unit` computes it where `|v|^2` is in its direct range (there its
 /// divisions by 1 change nothing and its validity flag is true), and whether it is: where
@@ -204,7 +213,7 @@ const LEN2_HI: f32 = 1.267_650_600_228_229_4e30;
 #[inline(always)]
 fn unit_direct(v: V3<f32>) -> (V3<f32>, bool) {
     let len2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    let safe = len2 >= LEN2_LO && len2 <= LEN2_HI;
+    let safe = (LEN2_LO..=LEN2_HI).contains(&len2);
     let inv = 1.0 / len2.sqrt();
     ([v[0] * inv, v[1] * inv, v[2] * inv], safe)
 }
@@ -220,6 +229,7 @@ fn unit_of<const FAST: bool>(v: V3<f32>) -> (V3<f32>, bool) {
 /// few f32 ulp (relative, about 3e-7 at most); away from `COS_MIN` by more than 1e-5
 /// (relative) the answer is the f64 one, else `sure` is false.
 #[inline(always)]
+#[allow(clippy::manual_range_contains)] // NaN: not sure (`!contains` would say sure)
 fn horizon(c: f32) -> (bool, bool) {
     const M: f32 = COS_MIN as f32;
     const HI: f32 = (COS_MIN * (1.0 + 1e-5)) as f32;
