@@ -385,13 +385,14 @@ impl EnvMap {
         Self::from_texels(w, h, texels).map_err(bad)
     }
 
-    /// The texel at map position (u, v) (in i32, which vectorises: a map is at most
-    /// [`MAX_ENV_WIDTH`] wide; a NaN goes to 0 as it would in usize).
+    /// The texel at map position (u, v), in i32 (a map is at most [`MAX_ENV_WIDTH`] wide; a
+    /// NaN goes to 0 as it would in usize) and by `max` and `min` rather than `clamp` (whose
+    /// check of its bounds kept the loops of [`wave`] from vectorising).
     #[inline(always)]
     fn texel(&self, u: f32, v: f32) -> usize {
         let (w, h) = (self.width as i32, self.height as i32);
-        let c = ((u * self.width as f32) as i32).clamp(0, w - 1);
-        let r = ((v * self.height as f32) as i32).clamp(0, h - 1);
+        let c = ((u * self.width as f32) as i32).max(0).min(w - 1);
+        let r = ((v * self.height as f32) as i32).max(0).min(h - 1);
         (r * w + c) as usize
     }
 
