@@ -532,6 +532,7 @@ impl Rng {
 }
 
 /// A cosine-weighted direction about unit normal `n` (density `cos / pi`).
+#[inline(always)]
 pub fn cosine_sample(n: Vec3, u1: f32, u2: f32) -> Vec3 {
     let (t, b) = n.any_orthonormal_pair();
     let r = u1.sqrt();

@@ -97,6 +97,27 @@ with_avx2!(dirs_of(
     }
 });
 
+with_avx2!(cosine_dirs(n: &[Vec3], u1: &[f32], u2: &[f32], dir: &mut [Vec3], cos: &mut [f32]) {
+    for ((((n, a), b), d), c) in n.iter().zip(u1).zip(u2).zip(dir.iter_mut()).zip(cos.iter_mut()) {
+        let l = super::cosine_sample(*n, *a, *b);
+        (*d, *c) = (l, n.dot(l));
+    }
+});
+
+/// [`super::cosine_sample`] about each unit normal of `n` by the numbers `u1`, `u2`, and its
+/// cosine to the normal, written to `dir` and `cos` (as long as `n`): vectorised (the
+/// sample's frame, square roots, `sin_cos` and normalisation were 7% of an environment render
+/// one hit at a time).
+pub fn cosine_many(n: &[Vec3], u1: &[f32], u2: &[f32], dir: &mut Vec<Vec3>, cos: &mut Vec<f32>) {
+    assert!(
+        u1.len() == n.len() && u2.len() == n.len(),
+        "one u1 and u2 per normal"
+    );
+    dir.resize(n.len(), Vec3::ZERO);
+    cos.resize(n.len(), 0.0);
+    cosine_dirs(n, u1, u2, dir, cos);
+}
+
 impl EnvMap {
     /// [`EnvMap::sample`] of each pair (`u1[j]`, `u2[j]`), appended to `out` in order: the
     /// rows first (the marginal table is small and stays in cache), then the rows' guide
@@ -195,6 +216,28 @@ impl EnvMap {
 mod tests {
     use super::*;
     use crate::env::Rng;
+
+    /// The vectorised cosine directions are `cosine_sample`'s to the bit.
+    #[test]
+    fn the_cosine_stage_changes_no_value() {
+        let mut rng = Rng::new(2, 4);
+        let mut n: Vec<Vec3> = (0..1001)
+            .map(|_| {
+                let (u, v) = (rng.uniform(), rng.uniform());
+                crate::env::uv_to_dir(u, v).0
+            })
+            .collect();
+        n.extend([Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z, Vec3::X]);
+        let u1: Vec<f32> = n.iter().map(|_| rng.uniform()).collect();
+        let mut u2: Vec<f32> = n.iter().map(|_| rng.uniform()).collect();
+        u2[0] = 0.0;
+        let (mut dir, mut cos) = (Vec::new(), Vec::new());
+        cosine_many(&n, &u1, &u2, &mut dir, &mut cos);
+        for j in 0..n.len() {
+            let l = crate::env::cosine_sample(n[j], u1[j], u2[j]);
+            assert_eq!((dir[j], cos[j]), (l, n[j].dot(l)), "{}", n[j]);
+        }
+    }
 
     /// The staged draws and look-ups are the one-by-one ones to the bit, on the sky, a map
     /// with black rows and the constant map, including the ends of the unit interval.

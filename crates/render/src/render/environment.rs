@@ -16,13 +16,16 @@ fn visible(scene: &Scene, s: &Sample, l: Vec3) -> bool {
 /// sample it belongs to, as structures of arrays for [`BrdfSampler`].
 #[derive(Default)]
 pub(super) struct EnvScratch {
-    /// The stages ([`env_pass`]): per hit of the object in this pass, its sample, its six
-    /// uniform numbers and its map draw; per cosine direction, its hit (index in `hit`),
-    /// direction, cosine and look-up; per BRDF draw with a density, its direction's look-up.
+    /// The stages ([`env_pass`]): per hit of the object in this pass, its sample, seed id, six
+    /// uniform numbers, map draw, shading normal and cosine direction with its cosine; per
+    /// cosine direction kept, its hit (index in `hit`), direction, cosine and look-up; per
+    /// BRDF draw with a density, its direction and look-up.
     hit: Vec<usize>,
     id: Vec<u32>,
     u: [Vec<f32>; 6],
     drawn: Vec<(Vec3, Vec3, f32)>,
+    normal: Vec<Vec3>,
+    cos_all: (Vec<Vec3>, Vec<f32>),
     cos_hit: Vec<usize>,
     cos_dir: Vec<Vec3>,
     cos_cos: Vec<f32>,
@@ -122,7 +125,8 @@ pub(super) fn env_pass(
     es: &mut EnvScratch,
     spec: &mut Spec,
 ) {
-    use crate::env::{cosine_sample, power_heuristic, specular_light_weight};
+    use crate::env::wave::cosine_many;
+    use crate::env::{power_heuristic, specular_light_weight};
     use fastbrdf::sample::Strategy;
     use std::f32::consts::PI;
     let scene = ctx.scene;
@@ -151,17 +155,17 @@ pub(super) fn env_pass(
         // The map's directions, all at once (`EnvMap::sample_many`: their cache misses
         // overlap).
         map.sample_many(&es.u[0], &es.u[1], &mut es.wave, &mut es.drawn);
-        // The cosine-weighted directions (diffuse only) and their look-ups, all at once.
+        // The cosine-weighted directions (diffuse only: every hit's drawn in one vectorised
+        // loop, those with a diffuse term and a positive cosine kept) and their look-ups.
+        es.normal.clear();
+        es.normal.extend(es.hit.iter().map(|&i| samples[i].n));
+        let (dirs, coss) = (&mut es.cos_all.0, &mut es.cos_all.1);
+        cosine_many(&es.normal, &es.u[2], &es.u[3], dirs, coss);
         for (j, &i) in es.hit.iter().enumerate() {
-            let s = &samples[i];
-            if s.base != Vec3::ZERO {
-                let l = cosine_sample(s.n, es.u[2][j], es.u[3][j]);
-                let cos_i = s.n.dot(l);
-                if cos_i > 0.0 {
-                    es.cos_hit.push(j);
-                    es.cos_dir.push(l);
-                    es.cos_cos.push(cos_i);
-                }
+            if samples[i].base != Vec3::ZERO && coss[j] > 0.0 {
+                es.cos_hit.push(j);
+                es.cos_dir.push(dirs[j]);
+                es.cos_cos.push(coss[j]);
             }
         }
         map.lookup_many(&es.cos_dir, &mut es.wave, &mut es.cos_le);
