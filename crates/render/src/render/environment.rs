@@ -105,12 +105,17 @@ fn uniforms(sampler: Sampler, ids: &[u32], pass: u32, u: &mut [Vec<f32>; 6]) {
 /// direct light. The BRDF's density does not depend on the Fresnel term, so a coloured model
 /// samples and weighs with its first channel.
 ///
-/// A wavefront per object: a first loop over the hits draws the map's and the cosine
-/// directions (diffuse term, shadow rays) and collects the specular queries; the BRDF's
-/// densities at the map's directions and its own draws then go through the batch sampler
-/// (`fastbrdf::batch::sample`) in one call each; a last loop traces the drawn directions'
-/// shadow rays and queues every specular term, in the order of the hits (map direction
-/// first), for one batch evaluation.
+/// A wavefront per object, in stages over all its hits (issue 30: one hit at a time, the
+/// cache misses of the map's cells and tables came one after another, and the trigonometry
+/// and the Sobol points ran scalar; staged, the misses overlap and the arithmetic vectorises):
+/// the uniform numbers (`env::sobol::fill`); the map's draws (`EnvMap::sample_many`); the
+/// cosine directions (`env::wave::cosine_many`) and their look-ups (`EnvMap::lookup_many`);
+/// then a loop over the hits adds the diffuse terms (shadow rays) and collects the specular
+/// queries; the BRDF's densities at the map's directions and its own draws go through the
+/// batch sampler (`fastbrdf::batch::sample`) in one call each; the drawn directions are looked
+/// up at once; a last loop traces their shadow rays and queues every specular term, in the
+/// order of the hits (map direction first), for one batch evaluation. Each stage computes what
+/// the one-hit-at-a-time loop did, to the bit, in the same order of additions.
 ///
 /// Random numbers ([`uniforms`]): per primary sample, id `(pixel y * width + pixel x) * N^2 +
 /// subsample`, and pass; deterministic whatever the threads.
