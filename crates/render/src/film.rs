@@ -116,7 +116,17 @@ impl Film {
     /// Errors if any pixel is NaN or infinite (the last guard before a file is written: no
     /// NaN or inf ever reaches a PNG or EXR). The message names the first such pixel.
     pub fn check_finite(&self) -> Result<()> {
-        if let Some(i) = self.pixels.par_iter().position_first(|p| !p.is_finite()) {
+        // In chunks of 4096 pixels: `position_first` over single pixels checks a shared
+        // bound per item, which showed in a directly lit render's profile.
+        let first = self
+            .pixels
+            .par_chunks(4096)
+            .position_first(|c| c.iter().any(|p| !p.is_finite()))
+            .and_then(|k| {
+                let c = &self.pixels[k * 4096..];
+                c.iter().position(|p| !p.is_finite()).map(|i| k * 4096 + i)
+            });
+        if let Some(i) = first {
             // Counted only on the error path: a finite film is scanned once.
             let bad = self.pixels[i..].iter().filter(|p| !p.is_finite()).count();
             let (x, y) = (i as u32 % self.width, i as u32 / self.width);

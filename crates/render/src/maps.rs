@@ -165,6 +165,12 @@ pub fn frame(
     normal: Option<&NormalMap>,
     uv: Vec2,
 ) -> (Vec3, Vec3, Vec3) {
+    if tangent == Vec4::ZERO && normal.is_none() {
+        // No tangent frame and no normal texture (every built-in scene): the frame below
+        // would come to this after a normalisation of the zero vector.
+        let (t, b) = n.any_orthonormal_pair();
+        return (n, t, b);
+    }
     let sign = if back { -1.0 } else { 1.0 };
     let t = sign * tangent.truncate();
     let t = (t - n * n.dot(t)).normalize_or_zero();

@@ -93,7 +93,13 @@ pub struct Options {
     pub aa: Antialias,
 }
 
+/// Tile height, and tile width with an environment (a tile's passes then keep its
+/// wavefront's arrays in cache).
 const TILE: u32 = 16;
+/// Tile width without an environment. Adaptive antialiasing probes a ring of pixels around
+/// each tile for its edge test: 16 x 16 tiles traced 27% more primary rays than pixels,
+/// 64-wide ones 16%, and a directly lit render is little more than its primary rays.
+const TILE_DIRECT: u32 = 64;
 
 #[derive(Clone, Copy)]
 struct Sample {
@@ -131,7 +137,7 @@ struct Sample {
 
 /// Per-worker buffers of [`render_tile`], reused from tile to tile (allocating them per tile
 /// made the thread heaps grow and shrink: page faults and `mprotect` calls were 10% of a
-/// render).
+/// render); one set per worker thread for the whole render ([`render_until`]).
 #[derive(Default)]
 struct Scratch {
     /// The tile's primary rays, sample by sample.
@@ -146,6 +152,9 @@ struct Scratch {
     /// radiance (then that of the kept ones), and per pixel whether it takes the grid.
     probe: Vec<Sample>,
     probe_radiance: Vec<Vec3>,
+    /// The probe's direct light alone, and its distances from the eye (the edge test's).
+    probe_direct: Vec<Vec3>,
+    probe_depth: Vec<f32>,
     refine: Vec<bool>,
 }
 
@@ -168,6 +177,7 @@ impl Spec {
         self.cols.iter_mut().for_each(Vec::clear);
     }
 
+    #[inline]
     fn push(&mut self, i: usize, wi: [f32; 3], wo: [f32; 3], li: Vec3) {
         self.idx.push(i);
         self.li.push(li);
@@ -205,7 +215,12 @@ pub fn render_until(
         )));
     }
     let (w, h) = (opts.width, opts.height);
-    let tiles_x = w.div_ceil(TILE);
+    let tile_w = if scene.environment.is_some() {
+        TILE
+    } else {
+        TILE_DIRECT
+    };
+    let tiles_x = w.div_ceil(tile_w);
     let rays = scene.camera.rays(w, h);
     // With an environment, one pass per environment sample, each adding its share to the
     // pixels (pass 0 also holds the direct light and the background). The passes of a tile
@@ -221,6 +236,7 @@ pub fn render_until(
         scene,
         opts,
         rays,
+        tile_w,
         passes_max,
         total: (tiles_x * h.div_ceil(TILE) * passes_max) as usize,
         done: std::sync::atomic::AtomicUsize::new(0),
@@ -229,6 +245,12 @@ pub fn render_until(
         samplers: samplers(scene)?,
     };
     let mut film = Film::try_new(w, h)?;
+    // Per worker thread, buffers reused from tile to tile for the whole render (rayon's
+    // `map_init` made a set per split of each band's tiles: 9,000 reallocations and their
+    // copies were 5% of a directly lit 512 x 512 render's instructions).
+    let scratch: Vec<std::sync::Mutex<Scratch>> = (0..rayon::current_num_threads())
+        .map(|_| std::sync::Mutex::default())
+        .collect();
     let stopped = std::sync::atomic::AtomicBool::new(false);
     // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies its
     // tiles into the film itself, so assembling the film is parallel too.
@@ -238,8 +260,14 @@ pub fn render_until(
         .for_each(|(ty, band)| {
             let tiles: Vec<Option<Vec<Vec3>>> = (0..tiles_x)
                 .into_par_iter()
-                .map_init(Scratch::default, |scratch, tx| {
-                    render_tile(&ctx, tx, ty as u32, scratch)
+                .map(|tx| {
+                    // The worker's own buffers; a fresh set if they are in use (a tile that
+                    // waits inside rayon may run another tile on this thread).
+                    let slot = rayon::current_thread_index().and_then(|i| scratch.get(i));
+                    match slot.and_then(|m| m.try_lock().ok()) {
+                        Some(mut s) => render_tile(&ctx, tx, ty as u32, &mut s),
+                        None => render_tile(&ctx, tx, ty as u32, &mut Scratch::default()),
+                    }
                 })
                 .collect();
             if tiles.iter().any(Option::is_none) {
@@ -248,8 +276,8 @@ pub fn render_until(
             }
             for (row, line) in band.chunks_mut(w as usize).enumerate() {
                 for (tx, px) in tiles.iter().flatten().enumerate() {
-                    let x0 = tx * TILE as usize;
-                    let tw = (TILE as usize).min(w as usize - x0);
+                    let x0 = tx * tile_w as usize;
+                    let tw = (tile_w as usize).min(w as usize - x0);
                     line[x0..x0 + tw].copy_from_slice(&px[row * tw..(row + 1) * tw]);
                 }
             }
@@ -265,6 +293,8 @@ struct Ctx<'a> {
     scene: &'a Scene,
     opts: &'a Options,
     rays: Rays,
+    /// Tile width ([`TILE`] or [`TILE_DIRECT`]); tiles are [`TILE`] rows high.
+    tile_w: u32,
     /// The most passes a tile runs (the progress counts this many per tile).
     passes_max: u32,
     total: usize,
@@ -298,8 +328,8 @@ fn samplers(scene: &Scene) -> Result<Vec<Option<BrdfSampler>>> {
 fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec<Vec3>> {
     let (scene, opts) = (ctx.scene, ctx.opts);
     let (w, h, n) = (opts.width, opts.height, opts.spp);
-    let (x0, y0) = (tx * TILE, ty * TILE);
-    let (tw, th) = (TILE.min(w - x0), TILE.min(h - y0));
+    let (x0, y0) = (tx * ctx.tile_w, ty * TILE);
+    let (tw, th) = (ctx.tile_w.min(w - x0), TILE.min(h - y0));
     let at = Tile { x0, y0, tw, w };
     if (ctx.stop)() {
         return None;
@@ -399,6 +429,8 @@ fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
         count,
         probe,
         probe_radiance,
+        probe_direct,
+        probe_depth,
         refine,
         spec,
         ..
@@ -442,29 +474,35 @@ fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
     };
     trace(ctx.scene, rays, |_| (0, 0), kept_passes, probe);
     let env = ctx.scene.environment.as_ref().map(|e| &e.map);
+    let eye = ctx.scene.camera.eye;
     probe_radiance.clear();
     probe_radiance.extend(probe.iter().map(|s| initial(ctx.scene, env, s)));
     // The direct light of the probe: for the edge test and, where the centre sample stays,
     // as its pass-0 radiance (the environment's share is added per pass).
-    let mut direct_only = probe_radiance.clone();
+    let direct_only = probe_direct;
+    direct_only.clear();
     if env.is_some() {
-        direct_only.fill(Vec3::ZERO);
+        direct_only.resize(probe_radiance.len(), Vec3::ZERO);
+    } else {
+        direct_only.extend_from_slice(probe_radiance);
     }
-    direct(ctx.scene, opts, probe, &mut direct_only, spec);
+    direct(ctx.scene, opts, probe, direct_only, spec);
+    // Each probe sample's distance from the eye, once (the edge test reads it five times).
+    probe_depth.clear();
+    probe_depth.extend(probe.iter().map(|s| (s.p - eye).length()));
     if env.is_some() {
         probe_radiance
             .iter_mut()
-            .zip(&direct_only)
+            .zip(direct_only.iter())
             .for_each(|(r, d)| *r += *d);
     } else {
-        probe_radiance.copy_from_slice(&direct_only);
+        probe_radiance.copy_from_slice(direct_only);
     }
-    let eye = ctx.scene.camera.eye;
     refine.clear();
     for py in 0..th {
         for px in 0..tw {
             let c = ((py + 1) * pw + px + 1) as usize;
-            let hit = |i: usize| (&probe[i], direct_only[i], (probe[i].p - eye).length());
+            let hit = |i: usize| (&probe[i], direct_only[i], probe_depth[i]);
             let centre = hit(c);
             // The four neighbours: an edge that passes between diagonal neighbours passes
             // between two of them too (the eight refined a third more pixels for no less
