@@ -3,7 +3,7 @@ float32 direction pairs, in millions of elements per second, measured interleave
 
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so \\
         target/python-wheel-venv/bin/python python/examples/sample_cost.py [--n 1e6,1e7] [--repeats 5]
-        [--variant llvm_ad_rgb] [--mitsuba-max-n 1e7] [--no-mitsuba]
+        [--variant llvm_ad_rgb] [--mitsuba-max-n 1e7] [--no-mitsuba] [--input-sets 1]
 
 fastbrdf: ``Model("cook-torrance", d="ggx", alpha=0.3)`` on (N, 3) and (N, 2) float32 arrays,
 with fresh outputs and with ``out=`` buffers reused from call to call. Mitsuba:
@@ -17,7 +17,9 @@ printed apart. Each figure is the best of --repeats rounds, every method timed o
 (interleaved, so that a busy machine slows all of them alike). Prints the CPU's name, the
 thread counts and a markdown table, with ns per element (to see any super-linear cost at large
 N; 1e8 needs about 6 GB of memory for fastbrdf's arrays, which is why Mitsuba stops at
---mitsuba-max-n).
+--mitsuba-max-n). ``--input-sets K`` makes K sets of inputs and round r uses set r mod K, so
+that no call finds the previous call's inputs in the CPU's caches (each set has its own
+``out=`` buffers and Mitsuba columns; every set is warmed up).
 """
 
 import argparse
@@ -118,40 +120,51 @@ def main():
     ap.add_argument("--variant", default="llvm_ad_rgb")
     ap.add_argument("--mitsuba-max-n", type=float, default=1e7)
     ap.add_argument("--no-mitsuba", action="store_true")
+    ap.add_argument("--input-sets", type=int, default=1, help="input sets used in turn (1: the same every call)")
     a = ap.parse_args()
     sizes = [int(float(x)) for x in a.n.split(",")]
     print(f"CPU: {cpu_name()}, {os.cpu_count()} logical cores; "
           f"RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset (all cores)')}")
-    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds; float32 inputs\n")
+    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds; float32 inputs; "
+          f"{max(1, a.input_sets)} input set(s) in turn\n")
     print("| op | N | who | M elements/s | ns/element | vs Mitsuba | Mitsuba's first (JIT) call |")
     print("|---|---|---|---|---|---|---|", flush=True)
     for n in sizes:
         rows = []
         rng = np.random.default_rng(1)
-        wi, wo = hemisphere(rng, n), hemisphere(rng, n)
-        u = rng.random((n, 2), dtype=np.float32)
-        ops = fastbrdf_ops(n, wi, wo, u)
-        first = {}
-        if not a.no_mitsuba and n <= a.mitsuba_max_n:
-            mops, first = mitsuba_ops(a.variant, n, wi, wo, u)
-            if isinstance(mops, str):
-                print(mops)
-            else:
-                ops.update(mops)
-        for f in ops.values():
-            f()  # warm-up (fastbrdf: page in the out= buffers)
-        best = dict.fromkeys(ops, float("inf"))
-        for _ in range(a.repeats):
-            for k, f in ops.items():
+        sets, first = [], {}
+        for i in range(max(1, a.input_sets)):
+            wi, wo = hemisphere(rng, n), hemisphere(rng, n)
+            u = rng.random((n, 2), dtype=np.float32)
+            ops = fastbrdf_ops(n, wi, wo, u)
+            if not a.no_mitsuba and n <= a.mitsuba_max_n:
+                mops, f1 = mitsuba_ops(a.variant, n, wi, wo, u)
+                if isinstance(mops, str):
+                    print(mops)
+                else:
+                    ops.update(mops)
+                    first = first or f1  # the first set's calls compile the kernels
+            for f in ops.values():
+                f()  # warm-up (fastbrdf: page in the out= buffers)
+            sets.append(ops)
+        best = dict.fromkeys(sets[0], float("inf"))
+        for rep in range(a.repeats):
+            for k, f in sets[rep % len(sets)].items():
                 t0 = time.perf_counter()
                 r = f()
                 best[k] = min(best[k], time.perf_counter() - t0)
                 del r
+        pk = ("pdf", a.variant)
+        if pk in sets[0]:
+            # Mitsuba's pdf against fastbrdf's on the same pairs: its figure is of real values.
+            mine, theirs = sets[0][("pdf", "fastbrdf")](), sets[0][pk]()
+            ok = int(np.count_nonzero(np.abs(mine - theirs) <= 1e-4 * np.maximum(mine, 1)))
+            print(f"pdf, N = {n:.0e}: {a.variant}'s values within 1e-4 (relative) of fastbrdf's at {ok} of {n} pairs")
         for (op, who), t in best.items():
             mit = best.get((op, a.variant))
             ratio = f"{mit / t:.2f}x" if mit and not who.startswith(a.variant) else ""
             rows.append((op, n, who, n / t / 1e6, t / n * 1e9, ratio, first.get(op) if who == a.variant else None))
-        del ops, wi, wo, u
+        del sets, ops, wi, wo, u
         rows.sort(key=lambda r: ["eval", "sample", "pdf"].index(r[0]))
         for op, n, who, rate, ns, ratio, jit in rows:  # one size's rows, printed as it ends
             jit_s = f"{jit:.2f} s" if jit is not None else ""
