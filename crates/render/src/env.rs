@@ -72,7 +72,8 @@ pub struct EnvMap {
     marginal: Vec<f32>,
     /// Per row, the cumulative distribution over its columns (width + 1 entries each).
     conditional: Vec<f32>,
-    /// Guide tables ([`guide_of`]) of `marginal` (one bucket per row) and of each row of
+    /// Guide tables ([`guide_of`]) of `marginal` (four buckets per row: 32 KB at most, in
+    /// cache, and the search after it reads one or two entries) and of each row of
     /// `conditional` ([`row_guide`] buckets per row, about one per 4 columns, so that the
     /// search after the guide reads one or two cache lines of the row: on a large map the
     /// rows are not in cache, and each line a search reads is a miss on the draw's path).
@@ -270,7 +271,7 @@ impl EnvMap {
                 mass: (x / total) as f32,
             })
             .collect();
-        let marginal_guide = guide_of(&marginal, h);
+        let marginal_guide = guide_of(&marginal, 4 * h);
         let conditional_guide = conditional
             .chunks_exact(w + 1)
             .flat_map(|row| guide_of(row, row_guide(w)))
