@@ -226,6 +226,21 @@ fn render_gpu_matches_the_cpu_render_and_rejects_bad_input() {
         "the adapter is named: {}",
         stderr(&o)
     );
+    // The set-up (device, pipelines) and the draws are timed apart: two numbers whose sum is
+    // at most the render's time (tools/equal_error.py reads the draws').
+    let err = stderr(&o);
+    let number = |key: &str| -> f64 {
+        let at = err
+            .find(key)
+            .unwrap_or_else(|| panic!("no '{key}' in: {err}"))
+            + key.len();
+        err[at..].split(' ').next().unwrap().parse().unwrap()
+    };
+    let (setup, draws, render) = (number("set-up "), number("draws "), number("render "));
+    assert!(
+        setup >= 0.0 && draws > 0.0 && setup + draws <= render + 0.002,
+        "{err}"
+    );
     // Shadows on both (the default, the floor catching the sphere's): no note any more.
     assert!(!stderr(&o).contains("shadows"), "{}", stderr(&o));
     let a = image::open(&cpu).unwrap().to_rgb8();
