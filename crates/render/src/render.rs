@@ -155,6 +155,9 @@ struct Scratch {
     /// The probe's direct light alone, and its distances from the eye (the edge test's).
     probe_direct: Vec<Vec3>,
     probe_depth: Vec<f32>,
+    /// Per probe sample, whether an edge separates it from its right (bit 0) and lower (bit
+    /// 1) neighbour.
+    edges: Vec<u8>,
     refine: Vec<bool>,
 }
 
@@ -431,6 +434,7 @@ fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
         probe_radiance,
         probe_direct,
         probe_depth,
+        edges,
         refine,
         spec,
         ..
@@ -498,25 +502,42 @@ fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
     } else {
         probe_radiance.copy_from_slice(direct_only);
     }
+    // The four neighbours: an edge that passes between diagonal neighbours passes between two
+    // of them too (the eight refined a third more pixels for no less error on the default
+    // scenes). [`edge`] is symmetric, so each pair of the probe is tested once: `edges[c]`
+    // bit 0 for (c, c + 1), bit 1 for (c, c + pw).
+    let hit = |i: usize| (&probe[i], direct_only[i], probe_depth[i]);
+    let pwu = pw as usize;
+    edges.clear();
+    edges.resize(probe.len(), 0);
+    for py in 0..ph as usize {
+        for px in 0..pwu {
+            let c = py * pwu + px;
+            // Only the pairs that touch the tile's pixels (probe rows and columns 1..=th,
+            // 1..=tw; the ring is 0 and th + 1, tw + 1).
+            let (row, col) = (
+                (1..=th as usize).contains(&py),
+                (1..=tw as usize).contains(&px),
+            );
+            let right = row && px <= tw as usize && edge(hit(c), hit(c + 1));
+            let down = col && py <= th as usize && edge(hit(c), hit(c + pwu));
+            edges[c] = u8::from(right) | (u8::from(down) << 1);
+        }
+    }
     refine.clear();
     for py in 0..th {
         for px in 0..tw {
             let c = ((py + 1) * pw + px + 1) as usize;
-            let hit = |i: usize| (&probe[i], direct_only[i], probe_depth[i]);
-            let centre = hit(c);
-            // The four neighbours: an edge that passes between diagonal neighbours passes
-            // between two of them too (the eight refined a third more pixels for no less
-            // error on the default scenes).
             // A bumped surface varies inside a pixel more than its neighbours show: always
             // the grid there.
-            let bumped = centre
-                .0
+            let bumped = probe[c]
                 .object
                 .is_some_and(|o| ctx.scene.objects[o].material.bump.is_some());
             let any = bumped
-                || [c - 1, c + 1, c - pw as usize, c + pw as usize]
-                    .into_iter()
-                    .any(|j| edge(centre, hit(j)));
+                || edges[c] & 1 != 0
+                || edges[c - 1] & 1 != 0
+                || edges[c] & 2 != 0
+                || edges[c - pwu] & 2 != 0;
             refine.push(any);
         }
     }
