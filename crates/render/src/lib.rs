@@ -2,7 +2,7 @@
 //! of the fastbrdf registry, and compares renders of several models.
 //!
 //! Data flow: [`scene::Scene`] (camera, lights, objects with materials) -> [`render::render`]
-//! (rayon over 16x16 tiles; primary rays, N x N supersampling; per tile, the hits' light and
+//! (rayon over tiles, 16x16 with an environment, 64x32 without; primary rays, N x N supersampling; per tile, the hits' light and
 //! view directions in each hit's local frame go through one batch kernel call per light,
 //! `fastbrdf::batch::Kernel`) -> [`film::Film`] (linear HDR) -> PNG (sRGB, exposure) or EXR
 //! (linear). [`compare`] renders several models, lays them out with labels and heat maps, and

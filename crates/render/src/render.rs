@@ -93,13 +93,13 @@ pub struct Options {
     pub aa: Antialias,
 }
 
-/// Tile height, and tile width with an environment (a tile's passes then keep its
-/// wavefront's arrays in cache).
+/// Tile side with an environment (a tile's passes then keep its wavefront's arrays in cache).
 const TILE: u32 = 16;
-/// Tile width without an environment. Adaptive antialiasing probes a ring of pixels around
-/// each tile for its edge test: 16 x 16 tiles traced 27% more primary rays than pixels,
-/// 64-wide ones 16%, and a directly lit render is little more than its primary rays.
-const TILE_DIRECT: u32 = 64;
+/// Tile width and height without an environment. Adaptive antialiasing probes a ring of
+/// pixels around each tile for its edge test: 16 x 16 tiles traced 27% more primary rays
+/// than pixels, 64 x 32 ones 10%, and a directly lit render is little more than its primary
+/// rays.
+const TILE_DIRECT: (u32, u32) = (64, 32);
 
 #[derive(Clone, Copy)]
 struct Sample {
@@ -218,8 +218,8 @@ pub fn render_until(
         )));
     }
     let (w, h) = (opts.width, opts.height);
-    let tile_w = if scene.environment.is_some() {
-        TILE
+    let (tile_w, tile_h) = if scene.environment.is_some() {
+        (TILE, TILE)
     } else {
         TILE_DIRECT
     };
@@ -240,8 +240,9 @@ pub fn render_until(
         opts,
         rays,
         tile_w,
+        tile_h,
         passes_max,
-        total: (tiles_x * h.div_ceil(TILE) * passes_max) as usize,
+        total: (tiles_x * h.div_ceil(tile_h) * passes_max) as usize,
         done: std::sync::atomic::AtomicUsize::new(0),
         progress,
         stop,
@@ -255,10 +256,10 @@ pub fn render_until(
         .map(|_| std::sync::Mutex::default())
         .collect();
     let stopped = std::sync::atomic::AtomicBool::new(false);
-    // Parallel over bands of TILE rows and, inside each, over its tiles; each band copies its
+    // Parallel over bands of `tile_h` rows and, inside each, over its tiles; each band copies its
     // tiles into the film itself, so assembling the film is parallel too.
     film.pixels
-        .par_chunks_mut((w * TILE) as usize)
+        .par_chunks_mut((w * tile_h) as usize)
         .enumerate()
         .for_each(|(ty, band)| {
             let tiles: Vec<Option<Vec<Vec3>>> = (0..tiles_x)
@@ -296,8 +297,9 @@ struct Ctx<'a> {
     scene: &'a Scene,
     opts: &'a Options,
     rays: Rays,
-    /// Tile width ([`TILE`] or [`TILE_DIRECT`]); tiles are [`TILE`] rows high.
+    /// Tile width and height ([`TILE`] or [`TILE_DIRECT`]).
     tile_w: u32,
+    tile_h: u32,
     /// The most passes a tile runs (the progress counts this many per tile).
     passes_max: u32,
     total: usize,
@@ -331,8 +333,8 @@ fn samplers(scene: &Scene) -> Result<Vec<Option<BrdfSampler>>> {
 fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec<Vec3>> {
     let (scene, opts) = (ctx.scene, ctx.opts);
     let (w, h, n) = (opts.width, opts.height, opts.spp);
-    let (x0, y0) = (tx * ctx.tile_w, ty * TILE);
-    let (tw, th) = (ctx.tile_w.min(w - x0), TILE.min(h - y0));
+    let (x0, y0) = (tx * ctx.tile_w, ty * ctx.tile_h);
+    let (tw, th) = (ctx.tile_w.min(w - x0), ctx.tile_h.min(h - y0));
     let at = Tile { x0, y0, tw, w };
     if (ctx.stop)() {
         return None;
