@@ -1,9 +1,9 @@
 //! Deinterleaving f32 rows of 3 and 2 values into columns, and interleaving 3 columns back:
 //! the copies between numpy's (N, 3) / (N, 2) arrays and the structure-of-arrays kernels.
 //! With AVX-512, 16 rows per step through two-source permutes (`vpermt2ps`); elsewhere a
-//! plain loop. Copies only: the values are the same bits on every path (python/tests/test_interleave.py
-//! compares C-contiguous inputs, copied here, with strided ones, read by `Soa::load`'s
-//! per-column path).
+//! plain loop. Copies only: the values are the same bits on every path
+//! (python/tests/test_batch_threads.py compares C-contiguous inputs, copied here, with
+//! transposed, strided and reversed ones, read by `Soa::load`'s per-column path).
 
 /// Whether this CPU runs the AVX-512 copies (checked once).
 #[cfg(target_arch = "x86_64")]
