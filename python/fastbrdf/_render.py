@@ -179,7 +179,8 @@ def render(
     distribution does not take go to the BRDF it is shaded as (Blinn-Phong, Cook-Torrance).
 
     ``gpu=True`` renders on the GPU (wgpu; Mesa's lavapipe without one), as ``render --gpu``:
-    grey models and no ``env`` only (else ``ValueError``); no adapter is a ``RuntimeError``.
+    grey models only (else ``ValueError``), with or without ``env``; no adapter is a
+    ``RuntimeError``.
     The CPU film equals the CLI's exactly (deterministic). Ctrl-C stops it.
 
     >>> img = fastbrdf.render("ggx", alpha=0.3, size="32x24", metal="gold", env="sky", env_samples=2)

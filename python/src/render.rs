@@ -77,11 +77,6 @@ fn gpu_refusals(model: &str, spec: &ModelSpec, sc: &scene::Scene) -> PyResult<()
             "gpu=True: coloured specular ({model} with a parameter given as R,G,B, e.g. by metal=) is CPU-only for now: drop gpu=True"
         )));
     }
-    if sc.spec.env.is_some() {
-        return Err(value_error(
-            "gpu=True: environment lighting (env=) is CPU-only: drop gpu=True (the GPU renderer is a rasteriser without rays to sample the map with)",
-        ));
-    }
     Ok(())
 }
 

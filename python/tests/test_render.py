@@ -164,7 +164,6 @@ def test_bad_options_name_the_argument():
         (ValueError, "metal 'gold': model 'flog' has no conductor Fresnel term", dict(model="flog", metal="gold")),
         (ValueError, "material 'gold-metallic-paint': model 'lambert' takes none", dict(model="lambert", material="gold-metallic-paint")),
         (ValueError, "gpu=True: coloured specular", dict(metal="gold", gpu=True)),
-        (ValueError, "gpu=True: environment lighting", dict(env="sky", gpu=True)),
         (ValueError, "size: give size or width and height", dict(size="8x8", width=8)),
         (ValueError, "size 'big'", dict(size="big")),
         (ValueError, r"bump \(0.0, 1.0\): expected \(SCALE, DEPTH\)", dict(bump=(0, 1))),
@@ -209,6 +208,16 @@ def test_gpu_equals_the_cli_gpu(cli, tmp_path, monkeypatch):
     # on the linear film, a loose check that it is the same scene.
     cpu = fastbrdf.render("flog", n=50, floor=True, lights=["point:2,3,3:1,1,1:20"], size="32x24", spp=1)
     assert np.abs(got - cpu).mean() < 0.02 * cpu.mean()
+
+
+def test_gpu_environment_light_equals_the_cli_gpu(cli, tmp_path, monkeypatch):
+    # Environment light on the GPU (as `render --gpu --env`, issue 32): the CLI's film to the bit.
+    gpu_env(monkeypatch)
+    flags = ["--model", "cook-torrance", "--param", "alpha=0.3", "--env", "sky", "--env-samples", "2", "--size", "16x12", "--spp", "1"]
+    want = cli_film(cli, tmp_path, flags + ["--gpu"])
+    got = fastbrdf.render("cook-torrance", alpha=0.3, env="sky", env_samples=2, size="16x12", spp=1, gpu=True)
+    assert got.shape == (12, 16, 3) and got.max() > 0
+    np.testing.assert_array_equal(got, want)
 
 
 def test_gpu_without_an_adapter_is_a_runtime_error(tmp_path):
