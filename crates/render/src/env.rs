@@ -542,8 +542,25 @@ pub fn cosine_sample(n: Vec3, u1: f32, u2: f32) -> Vec3 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
+
+    /// A 64 x 32 test map of grey texels spread over four decades, with every fifth row
+    /// black (empty rows of the sampling tables), drawn by `Rng::new(id, pass)`.
+    pub(crate) fn rough_map(id: u32, pass: u32) -> EnvMap {
+        let mut rng = Rng::new(id, pass);
+        let texels = (0..64 * 32)
+            .map(|i| {
+                let x = rng.uniform();
+                if i / 64 % 5 == 0 {
+                    Vec3::ZERO
+                } else {
+                    Vec3::splat(x * x * x * 100.0)
+                }
+            })
+            .collect();
+        EnvMap::from_texels(64, 32, texels).unwrap()
+    }
 
     #[test]
     fn directions_and_map_positions_invert() {
@@ -629,18 +646,8 @@ mod tests {
             let u = u.clamp(0.0, 1.0 - f32::EPSILON) * cdf[n];
             cdf.partition_point(|&c| c <= u)
         };
-        let mut rng = Rng::new(3, 1);
-        let random: Vec<Vec3> = (0..64 * 32)
-            .map(|i| {
-                let x = rng.uniform();
-                if i / 64 % 5 == 0 {
-                    Vec3::ZERO
-                } else {
-                    Vec3::splat(x * x * x * 100.0)
-                }
-            })
-            .collect();
-        for map in [EnvMap::sky(), EnvMap::from_texels(64, 32, random).unwrap()] {
+        let mut rng = Rng::new(3, 2);
+        for map in [EnvMap::sky(), rough_map(3, 1)] {
             let w = map.width as usize;
             let mut tables = vec![(&map.marginal[..], &map.marginal_guide[..])];
             let g = row_guide(w) + 1;

@@ -243,20 +243,10 @@ mod tests {
     /// with black rows and the constant map, including the ends of the unit interval.
     #[test]
     fn the_stages_change_no_value() {
-        let mut rng = Rng::new(5, 9);
-        let random: Vec<Vec3> = (0..64 * 32)
-            .map(|i| {
-                let x = rng.uniform();
-                if i / 64 % 5 == 0 {
-                    Vec3::ZERO
-                } else {
-                    Vec3::splat(x * x * x * 100.0)
-                }
-            })
-            .collect();
+        let mut rng = Rng::new(5, 10);
         let maps = [
             EnvMap::sky(),
-            EnvMap::from_texels(64, 32, random).unwrap(),
+            crate::env::tests::rough_map(5, 9),
             EnvMap::constant(Vec3::ONE),
         ];
         let mut wave = Wave::default();
