@@ -1,0 +1,288 @@
+//! The tile's primary samples ([`primary`]): the grid, or adaptive antialiasing's probe of
+//! centre samples with its edge test ([`edge`]), and the hits they trace ([`trace`]).
+
+use super::{Antialias, Ctx, Sample, Scratch, Tile, direct, initial, mapped};
+use crate::geometry::Ray;
+use crate::scene::Scene;
+use glam::Vec3;
+
+/// The tile's primary samples (`scratch.samples`) and each pixel's sample count
+/// (`scratch.count`). Grid: N x N per pixel, in pixel order. Adaptive (N > 1): one sample at
+/// the centre of each pixel and of the ring of pixels around the tile (the probe), with its
+/// direct light; a pixel with an [`edge`] among its four neighbours then takes the N x N
+/// grid, the others keep their centre sample (first in `samples`, their pass-0 radiance in
+/// `scratch.probe_radiance`). Returns how many samples lead `samples` with a known pass-0
+/// radiance.
+pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
+    let (opts, n) = (ctx.opts, ctx.opts.spp);
+    let (x0, y0, tw) = (at.x0, at.y0, at.tw);
+    let e = ctx
+        .scene
+        .environment
+        .as_ref()
+        .map_or(1, |e| e.samples.max(1));
+    let Scratch {
+        rays,
+        samples,
+        count,
+        probe,
+        probe_radiance,
+        probe_direct,
+        probe_depth,
+        edges,
+        refine,
+        spec,
+        ..
+    } = scratch;
+    samples.clear();
+    count.clear();
+    count.resize((tw * th) as usize, n * n);
+    if opts.aa == Antialias::Grid || n == 1 {
+        rays.clear();
+        for py in 0..th {
+            for px in 0..tw {
+                for sy in 0..n {
+                    for sx in 0..n {
+                        let x = (x0 + px) as f32 + (sx as f32 + 0.5) / n as f32;
+                        let y = (y0 + py) as f32 + (sy as f32 + 0.5) / n as f32;
+                        rays.push(ctx.rays.ray(x, y));
+                    }
+                }
+            }
+        }
+        let pixel = |i: usize| (i as u32 / (n * n), i as u32 % (n * n));
+        trace(ctx.scene, rays, pixel, e, samples);
+        probe_radiance.clear();
+        return 0;
+    }
+    // The probe: centre samples of the tile and the ring around it (clamped to the image).
+    let (pw, ph) = (tw + 2, th + 2);
+    rays.clear();
+    for py in 0..ph {
+        for px in 0..pw {
+            let x = (x0 + px).saturating_sub(1).min(opts.width - 1);
+            let y = (y0 + py).saturating_sub(1).min(opts.height - 1);
+            rays.push(ctx.rays.ray(x as f32 + 0.5, y as f32 + 0.5));
+        }
+    }
+    probe.clear();
+    let kept_passes = if ctx.scene.environment.is_some() {
+        e * n * n
+    } else {
+        1
+    };
+    trace(ctx.scene, rays, |_| (0, 0), kept_passes, probe);
+    let env = ctx.scene.environment.as_ref().map(|e| &e.map);
+    let eye = ctx.scene.camera.eye;
+    probe_radiance.clear();
+    probe_radiance.extend(probe.iter().map(|s| initial(ctx.scene, env, s)));
+    // The direct light of the probe: for the edge test and, where the centre sample stays,
+    // as its pass-0 radiance (the environment's share is added per pass).
+    let direct_only = probe_direct;
+    direct_only.clear();
+    if env.is_some() {
+        direct_only.resize(probe_radiance.len(), Vec3::ZERO);
+    } else {
+        direct_only.extend_from_slice(probe_radiance);
+    }
+    direct(ctx.scene, opts, probe, direct_only, spec);
+    // Each probe sample's distance from the eye, once (the edge test reads it five times).
+    probe_depth.clear();
+    probe_depth.extend(probe.iter().map(|s| (s.p - eye).length()));
+    if env.is_some() {
+        probe_radiance
+            .iter_mut()
+            .zip(direct_only.iter())
+            .for_each(|(r, d)| *r += *d);
+    } else {
+        probe_radiance.copy_from_slice(direct_only);
+    }
+    // The four neighbours: an edge that passes between diagonal neighbours passes between two
+    // of them too (the eight refined a third more pixels for no less error on the default
+    // scenes). [`edge`] is symmetric, so each pair of the probe is tested once: `edges[c]`
+    // bit 0 for (c, c + 1), bit 1 for (c, c + pw).
+    let hit = |i: usize| (&probe[i], direct_only[i], probe_depth[i]);
+    let pwu = pw as usize;
+    edges.clear();
+    edges.resize(probe.len(), 0);
+    for py in 0..ph as usize {
+        for px in 0..pwu {
+            let c = py * pwu + px;
+            // Only the pairs that touch the tile's pixels (probe rows and columns 1..=th,
+            // 1..=tw; the ring is 0 and th + 1, tw + 1).
+            let (row, col) = (
+                (1..=th as usize).contains(&py),
+                (1..=tw as usize).contains(&px),
+            );
+            let right = row && px <= tw as usize && edge(hit(c), hit(c + 1));
+            let down = col && py <= th as usize && edge(hit(c), hit(c + pwu));
+            edges[c] = u8::from(right) | (u8::from(down) << 1);
+        }
+    }
+    refine.clear();
+    for py in 0..th {
+        for px in 0..tw {
+            let c = ((py + 1) * pw + px + 1) as usize;
+            // A bumped surface varies inside a pixel more than its neighbours show: always
+            // the grid there.
+            let bumped = probe[c]
+                .object
+                .is_some_and(|o| ctx.scene.objects[o].material.bump.is_some());
+            let any = bumped
+                || edges[c] & 1 != 0
+                || edges[c - 1] & 1 != 0
+                || edges[c] & 2 != 0
+                || edges[c - pwu] & 2 != 0;
+            refine.push(any);
+        }
+    }
+    // The pixels that keep their centre sample first (their pass-0 radiance is known).
+    let mut kept = 0;
+    for py in 0..th {
+        for px in 0..tw {
+            let p = (py * tw + px) as usize;
+            if !refine[p] {
+                let c = ((py + 1) * pw + px + 1) as usize;
+                samples.push(Sample {
+                    pixel: p as u32,
+                    ..probe[c]
+                });
+                probe_radiance[kept] = probe_radiance[c];
+                count[p] = 1;
+                kept += 1;
+            }
+        }
+    }
+    probe_radiance.truncate(kept);
+    rays.clear();
+    let mut pixels = Vec::new();
+    for py in 0..th {
+        for px in 0..tw {
+            let p = py * tw + px;
+            if refine[p as usize] {
+                for sy in 0..n {
+                    for sx in 0..n {
+                        let x = (x0 + px) as f32 + (sx as f32 + 0.5) / n as f32;
+                        let y = (y0 + py) as f32 + (sy as f32 + 0.5) / n as f32;
+                        rays.push(ctx.rays.ray(x, y));
+                        pixels.push((p, sy * n + sx));
+                    }
+                }
+            }
+        }
+    }
+    trace(ctx.scene, rays, |i| pixels[i], e, samples);
+    kept
+}
+
+/// Whether two neighbouring centre samples (sample, direct light, distance from the eye)
+/// straddle an edge: another object or the background, normals more than ~25 degrees apart, a
+/// depth step of more than 5%, or a contrast in albedo or direct light of more than 5% (with a
+/// floor of 0.01 for dark pixels). The thresholds err towards refining: a refined pixel costs
+/// N x N samples, a missed edge aliases.
+fn edge(a: (&Sample, Vec3, f32), b: (&Sample, Vec3, f32)) -> bool {
+    let (sa, la, da) = a;
+    let (sb, lb, db) = b;
+    let contrast =
+        |x: Vec3, y: Vec3| (x - y).abs().max_element() > 0.01 + 0.05 * x.max(y).max_element();
+    sa.object != sb.object
+        || (sa.object.is_some()
+            && (sa.n.dot(sb.n) < 0.9
+                || (da - db).abs() > 0.05 * da.min(db)
+                || contrast(sa.base, sb.base)))
+        || contrast(la, lb)
+}
+
+/// Appends the samples of `rays` (ray `i` belongs to `pixel(i)` = (pixel, grid position)),
+/// each taking `passes` environment passes.
+fn trace(
+    scene: &Scene,
+    rays: &[Ray],
+    pixel: impl Fn(usize) -> (u32, u32),
+    passes: u32,
+    samples: &mut Vec<Sample>,
+) {
+    for (i, ray) in rays.iter().enumerate() {
+        let (pixel, sub) = pixel(i);
+        samples.push(match scene.intersect_shading(ray) {
+            None => {
+                let (t, b) = Vec3::Z.any_orthonormal_pair();
+                Sample {
+                    pixel,
+                    sub,
+                    passes,
+                    object: None,
+                    p: Vec3::ZERO,
+                    n: Vec3::Z,
+                    g: Vec3::Z,
+                    v: -ray.d,
+                    base: Vec3::ZERO,
+                    tint: Vec3::ONE,
+                    t,
+                    b,
+                    metal: 0.0,
+                    level: 0,
+                    ao: 1.0,
+                    emit: Vec3::ZERO,
+                }
+            }
+            Some(hit) => {
+                let m = &scene.objects[hit.object].material;
+                let v = -ray.d;
+                // Two-sided shading: face the viewer, then perturb; a perturbed
+                // normal that turns away from the viewer (at silhouettes) falls
+                // back to the smooth one rather than flipping.
+                let back = hit.n.dot(v) < 0.0;
+                let smooth = if back { -hit.n } else { hit.n };
+                let (nrm, t, b) = match m.bump {
+                    Some(b) => {
+                        let n = Some(b.perturb(hit.p, smooth))
+                            .filter(|n| n.dot(v) > 0.0)
+                            .unwrap_or(smooth);
+                        let (t, b) = n.any_orthonormal_pair();
+                        (n, t, b)
+                    }
+                    // The mesh's tangent frame and the normal texture, where there are.
+                    None => crate::maps::frame(
+                        smooth,
+                        hit.tangent,
+                        back,
+                        v,
+                        m.maps.as_ref().and_then(|x| x.normal.as_ref()),
+                        hit.uv,
+                    ),
+                };
+                let (metal, level, ao, emit) = m
+                    .maps
+                    .as_ref()
+                    .map_or((0.0, 0, 1.0, Vec3::ZERO), |x| mapped::texels(x, hit.uv));
+                let albedo = m
+                    .texture
+                    .as_ref()
+                    .map_or(m.albedo, |t| m.albedo * t.sample(hit.uv));
+                Sample {
+                    pixel,
+                    sub,
+                    passes,
+                    object: Some(hit.object),
+                    p: hit.p,
+                    n: nrm,
+                    g: smooth,
+                    v,
+                    base: albedo * m.kd,
+                    tint: m
+                        .specular
+                        .tint
+                        .as_ref()
+                        .map_or(Vec3::ONE, |t| t.texture.sample(hit.uv)),
+                    t,
+                    b,
+                    metal,
+                    level,
+                    ao,
+                    emit,
+                }
+            }
+        });
+    }
+}
