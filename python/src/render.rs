@@ -48,7 +48,7 @@ pub(crate) fn render<'py>(
         let spec = model_spec::spec(model, &params, colour.material, colour.metal, Use::Shaded)
             .map_err(spec_error)?;
         if gpu {
-            gpu_refusals(model, &spec, &sc)?;
+            gpu_refusals(model, &spec)?;
         }
         let (w, h) = (sc.opts.width, sc.opts.height);
         // The output first: a size the process cannot have is numpy's MemoryError before any
@@ -71,7 +71,7 @@ pub(crate) fn render<'py>(
 
 /// What the GPU renderer cannot draw, refused before an adapter is looked for (the answer
 /// does not depend on the machine): the CLI's `--gpu` refusals, named as Python's arguments.
-fn gpu_refusals(model: &str, spec: &ModelSpec, sc: &scene::Scene) -> PyResult<()> {
+fn gpu_refusals(model: &str, spec: &ModelSpec) -> PyResult<()> {
     if spec.is_coloured() {
         return Err(value_error(format!(
             "gpu=True: coloured specular ({model} with a parameter given as R,G,B, e.g. by metal=) is CPU-only for now: drop gpu=True"
