@@ -8,8 +8,10 @@
 //!
 //! SIMD path (Cook-Torrance with GGX and `vndf`, its default; `Sampler::simd` says where it
 //! runs): the scalar steps branch-free in `#[target_feature]` loops and the weight's `f` from
-//! the eval [`super::Kernel`] (`ggx`'s header for what differs from the scalar values and by
-//! how much: `pdf` not at all; drawn directions within the scalar f32 sampler's own error).
+//! the eval [`super::Kernel`], or, for inputs of near unit length, closed forms (`ggx`'s
+//! header for what differs from the scalar values and by how much: `pdf` not at all but for
+//! near-unit inputs, there within 1e-6 relative times a conditioning factor; drawn
+//! directions within the scalar f32 sampler's own error).
 //! Blocks of 512 elements; the threaded calls split into fixed chunks of 4096, so their
 //! values are the sequential ones bit for bit.
 //!
@@ -19,6 +21,9 @@
 
 mod ggx;
 
+/// The unit tier's range of `|v|^2 - 1` (`ggx`'s header): directions whose squared length
+/// is within it of 1 take the closed forms.
+pub use ggx::NEAR;
 pub use ggx::sincos_2pi;
 
 use super::{Input, Isa, Kernel};
@@ -122,6 +127,24 @@ struct Simd {
 /// Elements per block of the SIMD path (its scratch, the normalised `wo`, stays in L1).
 const BLOCK: usize = 512;
 
+/// The closed-form weight `4 k G2 / G1(wo)` of the unit tier (`ggx`'s header), where the
+/// model has one: no Fresnel term, no energy compensation, G the exact separable or
+/// height-correlated Smith term of GGX. Else `None`: the weight is `f cos_i / pdf` with `f`
+/// from the eval kernel.
+fn closed_weight(ct: &crate::brdf::cook_torrance::CookTorrance) -> Option<ggx::Weight> {
+    use crate::microfacet::ms::Ms;
+    use crate::plan::{FresnelPlan, ShadowPlan};
+    let correlated = match ct.g {
+        ShadowPlan::SmithGgx(_) => false,
+        ShadowPlan::SmithGgxCorrelated(_) => true,
+        _ => return None,
+    };
+    (matches!(ct.f, FresnelPlan::None(_)) && matches!(ct.ms, Ms::None)).then_some(ggx::Weight {
+        scale: (4.0 * ct.k.x) as f32,
+        correlated,
+    })
+}
+
 impl Sampler {
     /// A BRDF spec (kind brdf; anything else: an error naming the kind, as `Kernel::new`
     /// does; a coloured spec: an error, build one sampler per channel).
@@ -146,8 +169,10 @@ impl Sampler {
                     m.ax *= a.x_over_y.x.sqrt();
                     m.ay *= a.y_over_x.x.sqrt();
                 }
+                let mut vndf = ggx::Vndf::new(&m);
+                vndf.weight = closed_weight(ct);
                 Some(Simd {
-                    vndf: ggx::Vndf::new(&m),
+                    vndf,
                     kernel: Kernel::from_plan(id, plan)?,
                     isa: Isa::best(),
                 })
@@ -198,6 +223,7 @@ impl Sampler {
         let SampleOut { wi, weight, pdf } = out;
         let [wx, wy, wz] = wi;
         let mut won = [[0.0f32; BLOCK]; 3];
+        let mut f_buf = [0.0f32; BLOCK];
         for lo in (0..n).step_by(BLOCK) {
             let hi = (lo + BLOCK).min(n);
             let m = hi - lo;
@@ -211,9 +237,14 @@ impl Sampler {
                     won: [&mut nx[..m], &mut ny[..m], &mut nz[..m]],
                     wi: [&mut wx[lo..hi], &mut wy[lo..hi], &mut wz[lo..hi]],
                     pdf: &mut pdf[lo..hi],
+                    weight: &mut weight[lo..hi],
                 },
             );
-            let f = &mut weight[lo..hi];
+            let w = &mut weight[lo..hi];
+            if !w.iter().fold(false, |a, x| a | x.is_nan()) {
+                continue; // every weight in closed form (the unit tier)
+            }
+            let f = &mut f_buf[..m];
             let input = Input::Dirs([
                 &wx[lo..hi],
                 &wy[lo..hi],
@@ -226,7 +257,7 @@ impl Sampler {
             if simd.kernel.eval(input, f).is_err() {
                 f.fill(0.0);
             }
-            ggx::weight_block(simd.isa, &wz[lo..hi], &pdf[lo..hi], f);
+            ggx::weight_block(simd.isa, &wz[lo..hi], &pdf[lo..hi], f, w);
         }
     }
 

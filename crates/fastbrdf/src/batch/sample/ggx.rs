@@ -4,24 +4,40 @@
 //! compiled inside `#[target_feature]` loops (AVX-512, AVX2+FMA, SSE2) as the eval kernels
 //! are (`batch`'s header), so that LLVM vectorises them.
 //!
-//! The same operations in the same order as the scalar code (IEEE `+ - * / sqrt`, the f64
-//! domain cuts of `vec3::above_cos_min`, the normalisation of `vec3::unit`), except for the
-//! azimuth's `sin_cos(2 pi u1)`, which is [`sincos_2pi`] here (libm there). Hence:
-//! - `pdf` (a density of given directions) is the scalar one bit for bit;
-//! - `sample`'s `wi` is the scalar one up to the propagation of `sincos_2pi`'s error (and of
-//!   the scalar's own rounding of `2 pi u1` before its `sin_cos`): the tests bound it;
-//! - its `pdf` is the scalar density at its `wi` bit for bit, and its weight is
-//!   `f cos_i / pdf` with `f` from the SIMD eval kernel (`Kernel`), whose values differ from
-//!   the scalar model's by the fast elementary functions' few ulp.
+//! Three tiers, tried per block of [`SUB`] elements, each element's value depending on its own
+//! inputs alone (where a tier is unsure of one element, the block is redone on the next tier
+//! and the earlier tier's values put back where it was sure):
 //!
-//! Each block of [`SUB`] elements first runs a fast form of those steps: `vec3::unit` as its
-//! direct `v / |v|` ([`unit_direct`], what it computes where `|v|^2` is in its direct range)
-//! and the f64 horizon test `above_cos_min` as an f32 comparison ([`horizon`], the f64
-//! answer away from `COS_MIN` by more than its margin). Where every element of the block is
-//! in those ranges (all but degenerate inputs and cosines within 1e-5 of `COS_MIN`) its
-//! values are the exact steps' bit for bit; else the block is redone on the exact steps. So
-//! the values above hold unchanged, at about half the cost (no f64 square roots and
-//! divisions, no divisions by 1).
+//! 1. **The unit tier** (issue 30), for inputs of squared length within [`NEAR`] of 1 (what
+//!    renderers and numpy callers pass): closed forms, no normalisation (one Newton step from
+//!    1, [`near_unit`]). `pdf` is `k |h|^4 / (2 H^2 (wo.z + sqrt(A)))` on the unnormalised
+//!    half vector (one square root and one division; the scalar steps take three and ten);
+//!    `sample` draws as the fast steps do up to the microfacet normal, reflects without
+//!    renormalising `wi`, takes the density at that normal and, where the model has it in
+//!    closed form (no Fresnel term, no energy compensation, `smith-ggx` or
+//!    `smith-ggx-correlated`: `Vndf::weight`), the weight `4 k G2 / G1(wo)` in place of the
+//!    eval kernel's `f cos_i / pdf`. Values: not the scalar model's bits; `pdf` within
+//!    `1e-6 (1 + 1 / (alpha |wo + wi|))` relative of the scalar model's (the half vector's
+//!    direction, rounded differently, moves `D` by up to about `2 / alpha` times its angle),
+//!    the weight within 1e-5 of the f64 model's beyond the scalar sampler's own error (it is
+//!    in fact about 40x closer to f64 than the scalar `f cos_i / pdf`: its `D` cancels), both
+//!    tested (`tests/batch_sample_unit.rs`, 5e-7 and 6e-7 measured). Unsure (next tier) where
+//!    an input is not near unit length, a cosine is within the margin of `COS_MIN`, the pair
+//!    is nearly opposite, `wo.h` or `h.z` is below 1e-3, or `wi.z` is within 1e-5 of 0.
+//! 2. **The fast steps**: the scalar steps with `vec3::unit` as its direct `v / |v|`
+//!    ([`unit_direct`], what it computes where `|v|^2` is in its direct range) and the f64
+//!    horizon test `above_cos_min` as an f32 comparison ([`horizon`], the f64 answer away from
+//!    `COS_MIN` by more than its margin): the exact steps' values bit for bit where sure.
+//! 3. **The exact steps**: the same operations in the same order as the scalar code (IEEE
+//!    `+ - * / sqrt`, the f64 domain cuts of `vec3::above_cos_min`, the normalisation of
+//!    `vec3::unit`), except for the azimuth's `sin_cos(2 pi u1)`, which is [`sincos_2pi`]
+//!    here (libm there). Hence, on tiers 2 and 3:
+//!    - `pdf` (a density of given directions) is the scalar one bit for bit;
+//!    - `sample`'s `wi` is the scalar one up to the propagation of `sincos_2pi`'s error (and
+//!      of the scalar's own rounding of `2 pi u1` before its `sin_cos`): the tests bound it;
+//!    - its `pdf` is the scalar density at its `wi` bit for bit, and its weight is
+//!      `f cos_i / pdf` with `f` from the SIMD eval kernel (`Kernel`), whose values differ
+//!      from the scalar model's by the fast elementary functions' few ulp.
 
 use crate::vec3::{COS_MIN, V3, above_cos_min, unit};
 
@@ -55,6 +71,23 @@ pub struct Vndf {
     pub ay: f32,
     /// `1 / (pi ax ay)` (in f64, then rounded, as `Micro::d`).
     pub k: f32,
+    /// `1 / ax^2`, `1 / ay^2` (the unit tier's `D`).
+    iax2: f32,
+    iay2: f32,
+    /// The unit tier's weight `F G2 / G1` where the model's terms give it in closed form
+    /// ([`Weight`]), else `None` (the weight comes from the eval kernel).
+    pub weight: Option<Weight>,
+}
+
+/// The unit tier's closed-form weight of a Cook-Torrance with GGX, no Fresnel term and no
+/// energy compensation: `f cos_i / pdf = 4 k G2(wo, wi) / G1(wo)` (Heitz 2018, sec. 3), `k`
+/// the model's denominator constant (1/4 for microfacet theory's `4 cos_i cos_o`).
+#[derive(Clone, Copy, Debug)]
+pub struct Weight {
+    /// `4 k`.
+    pub scale: f32,
+    /// `smith-ggx-correlated` (`G2 = 2 / (S(o) + S(i))`), else `smith-ggx` (`G1(o) G1(i)`).
+    pub correlated: bool,
 }
 
 impl Vndf {
@@ -63,6 +96,9 @@ impl Vndf {
             ax: m.ax as f32,
             ay: m.ay as f32,
             k: (1.0 / (std::f64::consts::PI * m.ax * m.ay)) as f32,
+            iax2: (1.0 / (m.ax * m.ax)) as f32,
+            iay2: (1.0 / (m.ay * m.ay)) as f32,
+            weight: None,
         }
     }
 
@@ -123,6 +159,106 @@ impl Vndf {
         (p, so && si && co && ci && (sh || !valid))
     }
 
+    /// The unit tier of [`Self::pdf`] (module header): `(value, sure)`. Both inputs of
+    /// squared length within [`NEAR`] of 1 are normalised by [`near_unit`]'s one Newton step
+    /// (no square root, no division), and the density is the closed form of
+    /// `G1(wo) D(h) / (4 wo.z)` on the unnormalised half vector `h = wo + wi`:
+    /// `k |h|^4 / (2 H^2 (wo.z + sqrt(A)))`, `H = h_x^2 / ax^2 + h_y^2 / ay^2 + h_z^2`,
+    /// `A = wo.z^2 + (ax wo.x)^2 + (ay wo.y)^2` (one square root, one division; the scalar
+    /// steps take three and ten). Not sure (the caller takes the exact tiers) where an input
+    /// is not near unit length, a cosine is within the margin of `COS_MIN` ([`horizon`]), the
+    /// pair is nearly opposite (`|h|^2 < 1e-4`) or the value is outside [1e-30, 1e30].
+    #[inline(always)]
+    fn pdf_unit_tier(&self, wo: V3<f32>, wi: V3<f32>) -> (f32, bool) {
+        let (o, no) = near_unit(wo);
+        let (i, ni) = near_unit(wi);
+        let ((ao, co), (ai, ci)) = (horizon(o[2]), horizon(i[2]));
+        let valid = ao && ai;
+        let h = [o[0] + i[0], o[1] + i[1], o[2] + i[2]];
+        let l = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+        let hh = h[0] * h[0] * self.iax2 + h[1] * h[1] * self.iay2 + h[2] * h[2];
+        let so = self.s_num(o);
+        let p = self.k * (l * l) / (2.0 * (hh * hh) * (o[2] + so));
+        let fine = l >= L_MIN && (P_MIN..=P_MAX).contains(&p);
+        (
+            if valid { p } else { 0.0 },
+            no && ni && co && ci && (fine || !valid),
+        )
+    }
+
+    /// `sqrt(w.z^2 + (ax w.x)^2 + (ay w.y)^2)`: GGX's `S(w) = sqrt(1 + a^2 tan^2)` times
+    /// `w.z`, for `w` of any length (`1 + Lambda = (1 + S) / 2`).
+    #[inline(always)]
+    fn s_num(&self, w: V3<f32>) -> f32 {
+        let (x, y) = (self.ax * w[0], self.ay * w[1]);
+        (w[2] * w[2] + x * x + y * y).sqrt()
+    }
+
+    /// The unit tier of `sample` (module header): `(wo normalised, wi, pdf, weight, sure)`,
+    /// zeros for no sample; the weight is NaN where [`Self::weight`] is `None` (the caller
+    /// takes it from the eval kernel). `wo` near unit length is normalised by [`near_unit`];
+    /// the draw is the fast steps' ([`Self::sample_as`]) up to the microfacet normal `h`; `wi`,
+    /// reflected about `h`, is unit to a few ulp and not renormalised; the density is
+    /// `G1(wo) D(h) / (4 wo.z)` at that `h` (`D` from the stretched normal before its
+    /// normalisation: `k |n_s|^4 / |n|^4`, no square root) and the weight
+    /// `4 k G2 / G1(wo)`. Not sure where `wo` is not near unit length or its cosine near
+    /// `COS_MIN`, `wi.z` is within 1e-5 of 0 (its absolute error, a few 1e-7, decides the
+    /// horizon there), `wo.h` or `h.z` is below 1e-3 (the scalar sampler's `h`, recomputed
+    /// from `wi`, is ill-conditioned there) or the density is outside [1e-30, 1e30].
+    #[inline(always)]
+    fn sample_unit_tier(&self, wo: V3<f32>, u: [f32; 2]) -> ([V3<f32>; 2], [f32; 2], bool) {
+        let (ax, ay) = (self.ax, self.ay);
+        let (wo, no) = near_unit(wo);
+        let (valid_o, co) = horizon(wo[2]);
+        let mut sure = no && co;
+        // `Micro::sample_vndf`: the stretched view direction (its length is `s(wo)`,
+        // [`Self::s_num`], reused below), the normal drawn about it.
+        let v = [ax * wo[0], ay * wo[1], wo[2]];
+        let lv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+        let so = lv.sqrt();
+        let inv = 1.0 / so;
+        sure &= (LEN2_LO..=LEN2_HI).contains(&lv);
+        let vh = [v[0] * inv, v[1] * inv, v[2] * inv];
+        let nh = sample_disk(vh, u.map(crate::sample::unit_interval));
+        // The unstretched normal `hs` (not normalised: `h = hs / |hs|`) and `wi` reflected
+        // about it, `2 (wo.hs) hs / |hs|^2 - wo`: no square root.
+        let hs = [ax * nh[0], ay * nh[1], nh[2].max(0.0)];
+        let len2 = hs[0] * hs[0] + hs[1] * hs[1] + hs[2] * hs[2];
+        sure &= (LEN2_LO..=LEN2_HI).contains(&len2);
+        let dh = wo[0] * hs[0] + wo[1] * hs[1] + wo[2] * hs[2];
+        let k = (dh + dh) / len2;
+        let wi = [k * hs[0] - wo[0], k * hs[1] - wo[1], k * hs[2] - wo[2]];
+        let above = wi[2] >= COS_MIN as f32;
+        sure &= wi[2] >= WIZ_BAND || wi[2] < -WIZ_BAND;
+        // `wo.h >= GEOM_MIN` and `h.z >= GEOM_MIN`, squared (both sides positive).
+        let g2 = GEOM_MIN * GEOM_MIN * len2;
+        let fine = dh > 0.0 && dh * dh >= g2 && hs[2] * hs[2] >= g2;
+        // The density `G1(wo) D(h) / (4 wo.z) = D(h) / (2 (wo.z + s(wo)))`, `D(h) = k_D
+        // |hs|^4 / |n|^4`, and the weight `4 k G2 / G1(wo)` with `G1(w) = 2 w.z / (w.z +
+        // s(w))`: for the correlated term `G2 = 2 w_o.z w_i.z / (w_i.z s(wo) + w_o.z s(wi))`,
+        // for the separable one `G1(wo) G1(wi)`: both `wi.z (wo.z + t) / (wi.z t + wo.z
+        // s(wi))`, `t = s(wo)` or `wo.z` (a loop-invariant select); NaN without a closed
+        // form. One division for the two.
+        let (scale, correlated) = match self.weight {
+            Some(w) => (w.scale, w.correlated),
+            None => (f32::NAN, false),
+        };
+        let t = if correlated { so } else { wo[2] };
+        let si = self.s_num(wi);
+        let n2 = nh[0] * nh[0] + nh[1] * nh[1] + hs[2] * hs[2];
+        let (pn, pd) = (self.k * (len2 * len2), (n2 * n2) * (2.0 * (wo[2] + so)));
+        let (wn, wd) = (scale * wi[2] * (wo[2] + t), wi[2] * t + wo[2] * si);
+        let r = 1.0 / (pd * wd);
+        let (p, w) = (pn * wd * r, wn * pd * r);
+        let ok = valid_o && above && dh > 0.0 && hs[2] > 0.0 && p > 0.0 && p.is_finite();
+        sure &= (fine && (P_MIN..=P_MAX).contains(&p)) || !(valid_o && above);
+        (
+            [wo, if ok { wi } else { [0.0; 3] }],
+            [if ok { p } else { 0.0 }, if ok { w } else { 0.0 }],
+            sure,
+        )
+    }
+
     /// `Brdf::<f32>::sample(wo, u, Vndf)` up to the weight: `(wo normalised, wi, pdf, sure)`,
     /// with `wi = 0` and `pdf = 0` for no sample. With `FAST` as [`Self::pdf_fast`]: `sure`
     /// says whether the others are the exact path's bit for bit (always true without it).
@@ -147,30 +283,7 @@ impl Vndf {
         let (vh, ok) = unit_of::<FAST>([ax * wo[0], ay * wo[1], wo[2]]);
         sure &= ok || !FAST;
         let vh = if ok { vh } else { [0.0, 0.0, 1.0] };
-        let lensq = vh[0] * vh[0] + vh[1] * vh[1];
-        let inv = 1.0 / lensq.sqrt();
-        let t1 = if lensq > 0.0 {
-            [-vh[1] * inv, vh[0] * inv, 0.0]
-        } else {
-            [1.0, 0.0, 0.0]
-        };
-        let t2 = [
-            vh[1] * t1[2] - vh[2] * t1[1],
-            vh[2] * t1[0] - vh[0] * t1[2],
-            vh[0] * t1[1] - vh[1] * t1[0],
-        ];
-        let r = u[0].sqrt();
-        let (sp, cp) = sincos_2pi(u[1]);
-        let p1 = r * cp;
-        let p2 = r * sp;
-        let s = 0.5 * (1.0 + vh[2]);
-        let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * p2;
-        let pz = (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
-        let nh = [
-            p1 * t1[0] + p2 * t2[0] + pz * vh[0],
-            p1 * t1[1] + p2 * t2[1] + pz * vh[1],
-            p1 * t1[2] + p2 * t2[2] + pz * vh[2],
-        ];
+        let nh = sample_disk(vh, u);
         let (h, ok) = unit_of::<FAST>([ax * nh[0], ay * nh[1], nh[2].max(0.0)]);
         sure &= ok || !FAST;
         let h = if ok { h } else { [0.0, 0.0, 1.0] };
@@ -200,6 +313,62 @@ impl Vndf {
             sure,
         )
     }
+}
+
+/// `Micro::sample_vndf`'s normal in the stretched space: the point `u` of the unit disk
+/// projected onto the hemisphere about the unit stretched view direction `vh` (its half
+/// disk warped by `vh.z`), in the scalar code's operations (`sincos_2pi` for the azimuth).
+#[inline(always)]
+fn sample_disk(vh: V3<f32>, u: [f32; 2]) -> V3<f32> {
+    let lensq = vh[0] * vh[0] + vh[1] * vh[1];
+    let inv = 1.0 / lensq.sqrt();
+    let t1 = if lensq > 0.0 {
+        [-vh[1] * inv, vh[0] * inv, 0.0]
+    } else {
+        [1.0, 0.0, 0.0]
+    };
+    let t2 = [
+        vh[1] * t1[2] - vh[2] * t1[1],
+        vh[2] * t1[0] - vh[0] * t1[2],
+        vh[0] * t1[1] - vh[1] * t1[0],
+    ];
+    let r = u[0].sqrt();
+    let (sp, cp) = sincos_2pi(u[1]);
+    let p1 = r * cp;
+    let p2 = r * sp;
+    let s = 0.5 * (1.0 + vh[2]);
+    let p2 = (1.0 - s) * (1.0 - p1 * p1).max(0.0).sqrt() + s * p2;
+    let pz = (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
+    [
+        p1 * t1[0] + p2 * t2[0] + pz * vh[0],
+        p1 * t1[1] + p2 * t2[1] + pz * vh[1],
+        p1 * t1[2] + p2 * t2[2] + pz * vh[2],
+    ]
+}
+
+/// The unit tier's range of `|v|^2 - 1` ([`near_unit`]): there one Newton step from 1
+/// gives `1 / |v|` within `3 e^2 / 8 < 2.3e-8` (relative), under half an ulp.
+pub const NEAR: f32 = 1.0 / 4096.0;
+/// The unit tier's smallest `|wo + wi|^2` (pdf): nearer to opposite, the half vector's
+/// direction is too ill-conditioned for its value to track the scalar one.
+const L_MIN: f32 = 1e-4;
+/// The unit tier's range of densities (the scalar model's, within ulps, is then positive and
+/// finite too).
+const P_MIN: f32 = 1e-30;
+const P_MAX: f32 = 1e30;
+/// `sample`'s unit tier: `wi.z` within this of 0 is decided by the exact tiers.
+const WIZ_BAND: f32 = 1e-5;
+/// `sample`'s unit tier: the smallest `wo.h` and `h.z` it decides.
+const GEOM_MIN: f32 = 1e-3;
+
+/// `v` of squared length `l` near 1 divided by its length as one Newton step from 1,
+/// `v (3 - l) / 2` (exact to `3 (l - 1)^2 / 8`), and whether `|l - 1| <= NEAR` (where it is
+/// below half an ulp: the unit tier's inputs). NaN: not near.
+#[inline(always)]
+fn near_unit(v: V3<f32>) -> (V3<f32>, bool) {
+    let l = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    let s = 1.5 - 0.5 * l;
+    ([v[0] * s, v[1] * s, v[2] * s], (l - 1.0).abs() <= NEAR)
 }
 
 /// `vec3::unit`'s range of `|v|^2` normalised directly (its `LEN2_LO`, `LEN2_HI`: 2^-100,
@@ -247,6 +416,9 @@ pub struct SampleBlock<'a> {
     pub won: [&'a mut [f32]; 3],
     pub wi: [&'a mut [f32]; 3],
     pub pdf: &'a mut [f32],
+    /// The unit tier's weight; NaN where the caller computes it (`f cos_i / pdf` with the
+    /// eval kernel): elements of the exact tiers, or every element without `Vndf::weight`.
+    pub weight: &'a mut [f32],
 }
 
 /// Elements per try of the fast path: where one of them is unsure, these are redone on the
@@ -268,10 +440,66 @@ fn sample_body(v: &Vndf, b: SampleBlock<'_>) {
             [&mut ix[lo..hi], &mut iy[lo..hi], &mut iz[lo..hi]],
             &mut b.pdf[lo..hi],
         );
-        if !sample_run::<true>(v, wo, u, &mut outs) {
-            sample_run::<false>(v, wo, u, &mut outs);
+        let weight = &mut b.weight[lo..hi];
+        if !sample_run_unit(v, wo, u, &mut outs, weight) {
+            // Some element is unsure: the exact tiers for all, then the unit tier's values
+            // back where it was sure (each element's value depends on it alone).
+            if !sample_run::<true>(v, wo, u, &mut outs) {
+                sample_run::<false>(v, wo, u, &mut outs);
+            }
+            sample_merge_unit(v, wo, u, &mut outs, weight);
         }
         lo = hi;
+    }
+}
+
+/// [`Vndf::sample_unit_tier`] over slices of equal length: whether every element was sure.
+#[inline(always)]
+fn sample_run_unit(
+    v: &Vndf,
+    wo: [&[f32]; 3],
+    u: [&[f32]; 2],
+    (won, wi, pdf): &mut SampleOuts<'_>,
+    weight: &mut [f32],
+) -> bool {
+    let n = pdf.len();
+    let (ox, oy, oz) = (&wo[0][..n], &wo[1][..n], &wo[2][..n]);
+    let (u0, u1) = (&u[0][..n], &u[1][..n]);
+    let [nx, ny, nz] = won;
+    let (nx, ny, nz) = (&mut nx[..n], &mut ny[..n], &mut nz[..n]);
+    let [ix, iy, iz] = wi;
+    let (ix, iy, iz) = (&mut ix[..n], &mut iy[..n], &mut iz[..n]);
+    let (pdf, weight) = (&mut pdf[..n], &mut weight[..n]);
+    let mut unsure = 0u32;
+    for i in 0..n {
+        let ([o, w], [p, f], sure) = v.sample_unit_tier([ox[i], oy[i], oz[i]], [u0[i], u1[i]]);
+        (nx[i], ny[i], nz[i]) = (o[0], o[1], o[2]);
+        (ix[i], iy[i], iz[i]) = (w[0], w[1], w[2]);
+        (pdf[i], weight[i]) = (p, f);
+        unsure |= u32::from(!sure);
+    }
+    unsure == 0
+}
+
+/// After the exact tiers: the unit tier's values where it is sure, NaN weights elsewhere.
+#[inline(always)]
+fn sample_merge_unit(
+    v: &Vndf,
+    wo: [&[f32]; 3],
+    u: [&[f32]; 2],
+    (won, wi, pdf): &mut SampleOuts<'_>,
+    weight: &mut [f32],
+) {
+    for i in 0..pdf.len() {
+        let ([o, w], [p, f], sure) =
+            v.sample_unit_tier([wo[0][i], wo[1][i], wo[2][i]], [u[0][i], u[1][i]]);
+        if sure {
+            (won[0][i], won[1][i], won[2][i]) = (o[0], o[1], o[2]);
+            (wi[0][i], wi[1][i], wi[2][i]) = (w[0], w[1], w[2]);
+            (pdf[i], weight[i]) = (p, f);
+        } else {
+            weight[i] = f32::NAN;
+        }
     }
 }
 
@@ -317,11 +545,36 @@ fn pdf_body(v: &Vndf, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]) {
         let hi = (lo + SUB).min(n);
         let (wo, wi) = (wo.map(|x| &x[lo..hi]), wi.map(|x| &x[lo..hi]));
         let out = &mut out[lo..hi];
-        if !pdf_run::<true>(v, wo, wi, out) {
-            pdf_run::<false>(v, wo, wi, out);
+        if !pdf_run_unit(v, wo, wi, out) {
+            // As in `sample_body`: the exact tiers, then the unit tier where it is sure.
+            if !pdf_run::<true>(v, wo, wi, out) {
+                pdf_run::<false>(v, wo, wi, out);
+            }
+            for (i, o) in out.iter_mut().enumerate() {
+                let a = [wo[0][i], wo[1][i], wo[2][i]];
+                let (p, sure) = v.pdf_unit_tier(a, [wi[0][i], wi[1][i], wi[2][i]]);
+                if sure {
+                    *o = p;
+                }
+            }
         }
         lo = hi;
     }
+}
+
+/// [`Vndf::pdf_unit_tier`] over slices of equal length: whether every element was sure.
+#[inline(always)]
+fn pdf_run_unit(v: &Vndf, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]) -> bool {
+    let n = out.len();
+    let (ox, oy, oz) = (&wo[0][..n], &wo[1][..n], &wo[2][..n]);
+    let (ix, iy, iz) = (&wi[0][..n], &wi[1][..n], &wi[2][..n]);
+    let mut unsure = 0u32;
+    for i in 0..n {
+        let (p, sure) = v.pdf_unit_tier([ox[i], oy[i], oz[i]], [ix[i], iy[i], iz[i]]);
+        out[i] = p;
+        unsure |= u32::from(!sure);
+    }
+    unsure == 0
 }
 
 /// [`Vndf::pdf_fast`] (`FAST`) or [`Vndf::pdf`] over slices of equal length: whether every
@@ -345,14 +598,16 @@ fn pdf_run<const FAST: bool>(v: &Vndf, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &m
     unsure == 0
 }
 
-/// `weight = f cos_i / pdf` (0 where `pdf` is 0), in place over `f`.
+/// `weight = f cos_i / pdf` (0 where `pdf` is 0) where `weight` is NaN (the unit tier left
+/// it to the eval kernel's `f`).
 #[inline(always)]
-fn weight_body(wiz: &[f32], pdf: &[f32], f: &mut [f32]) {
-    let n = f.len();
-    let (wiz, pdf) = (&wiz[..n], &pdf[..n]);
+fn weight_body(wiz: &[f32], pdf: &[f32], f: &[f32], weight: &mut [f32]) {
+    let n = weight.len();
+    let (wiz, pdf, f) = (&wiz[..n], &pdf[..n], &f[..n]);
     for i in 0..n {
         let w = f[i] * wiz[i] / pdf[i];
-        f[i] = if pdf[i] > 0.0 { w } else { 0.0 };
+        let w = if pdf[i] > 0.0 { w } else { 0.0 };
+        weight[i] = if weight[i].is_nan() { w } else { weight[i] };
     }
 }
 
@@ -376,7 +631,7 @@ macro_rules! variants {
 
 variants!(sample_body, sample_avx512, sample_avx2, sample_plain, (v: &Vndf, b: SampleBlock<'_>));
 variants!(pdf_body, pdf_avx512, pdf_avx2, pdf_plain, (v: &Vndf, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut [f32]));
-variants!(weight_body, weight_avx512, weight_avx2, weight_plain, (wiz: &[f32], pdf: &[f32], f: &mut [f32]));
+variants!(weight_body, weight_avx512, weight_avx2, weight_plain, (wiz: &[f32], pdf: &[f32], f: &[f32], weight: &mut [f32]));
 
 use crate::batch::Isa;
 
@@ -404,14 +659,14 @@ pub fn pdf_block(isa: Isa, v: &Vndf, wo: [&[f32]; 3], wi: [&[f32]; 3], out: &mut
     }
 }
 
-/// The weight from `f` in place.
-pub fn weight_block(isa: Isa, wiz: &[f32], pdf: &[f32], f: &mut [f32]) {
+/// The weight from the eval kernel's `f` where the unit tier left it NaN.
+pub fn weight_block(isa: Isa, wiz: &[f32], pdf: &[f32], f: &[f32], weight: &mut [f32]) {
     match isa {
         // SAFETY: as in `sample_block`.
         #[cfg(target_arch = "x86_64")]
-        Isa::Avx512 => unsafe { weight_avx512(wiz, pdf, f) },
+        Isa::Avx512 => unsafe { weight_avx512(wiz, pdf, f, weight) },
         #[cfg(target_arch = "x86_64")]
-        Isa::Avx2Fma => unsafe { weight_avx2(wiz, pdf, f) },
-        _ => weight_plain(wiz, pdf, f),
+        Isa::Avx2Fma => unsafe { weight_avx2(wiz, pdf, f, weight) },
+        _ => weight_plain(wiz, pdf, f, weight),
     }
 }
