@@ -161,6 +161,9 @@ struct Scratch {
     /// 1) neighbour.
     edges: Vec<u8>,
     refine: Vec<bool>,
+    /// Without an environment, the pixels that keep their centre sample (their radiance is
+    /// `probe_radiance`, in order); their samples are not in `samples`.
+    kept_px: Vec<u32>,
 }
 
 /// The specular terms to evaluate for one object: which sample each adds to, the light's
@@ -350,6 +353,7 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         spec,
         probe_radiance,
         count,
+        kept_px,
         ..
     } = scratch;
     let passes = samples.iter().map(|s| s.passes).max().unwrap_or(1);
@@ -374,6 +378,10 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         px.fill(Vec3::ZERO);
         for (s, r) in samples.iter().zip(radiance.iter()) {
             px[s.pixel as usize] += *r;
+        }
+        // Without an environment (one pass), the pixels left at their centre sample.
+        for (&p, r) in kept_px.iter().zip(probe_radiance.iter()) {
+            px[p as usize] += *r;
         }
         px.iter_mut().zip(count.iter()).for_each(|(p, &c)| {
             *p *= if c == n * n {

@@ -10,7 +10,8 @@ use glam::Vec3;
 /// (`scratch.count`). Grid: N x N per pixel, in pixel order. Adaptive (N > 1): one sample at
 /// the centre of each pixel and of the ring of pixels around the tile (the probe), with its
 /// direct light; a pixel with an [`edge`] among its four neighbours then takes the N x N
-/// grid, the others keep their centre sample (first in `samples`, their pass-0 radiance in
+/// grid, the others keep their centre sample (with an environment first in `samples`, without
+/// one only their pixels, in `scratch.kept_px`; their pass-0 radiance in
 /// `scratch.probe_radiance`). Returns how many samples lead `samples` with a known pass-0
 /// radiance.
 pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
@@ -32,9 +33,11 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         edges,
         refine,
         spec,
+        kept_px,
         ..
     } = scratch;
     samples.clear();
+    kept_px.clear();
     count.clear();
     count.resize((tw * th) as usize, n * n);
     if opts.aa == Antialias::Grid || n == 1 {
@@ -136,17 +139,25 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
             refine.push(any);
         }
     }
-    // The pixels that keep their centre sample first (their pass-0 radiance is known).
+    // The pixels that keep their centre sample first (their pass-0 radiance is known). With
+    // an environment their samples lead `samples` (the passes shade them again); without
+    // one their radiance is final, so only their pixels are kept (`kept_px`): copying the
+    // sample (152 bytes) was 8% of a directly lit render's instructions.
     let mut kept = 0;
+    kept_px.clear();
     for py in 0..th {
         for px in 0..tw {
             let p = (py * tw + px) as usize;
             if !refine[p] {
                 let c = ((py + 1) * pw + px + 1) as usize;
-                samples.push(Sample {
-                    pixel: p as u32,
-                    ..probe[c]
-                });
+                if env.is_some() {
+                    samples.push(Sample {
+                        pixel: p as u32,
+                        ..probe[c]
+                    });
+                } else {
+                    kept_px.push(p as u32);
+                }
                 probe_radiance[kept] = probe_radiance[c];
                 count[p] = 1;
                 kept += 1;
@@ -172,7 +183,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         }
     }
     trace(ctx.scene, rays, |i| pixels[i], e, samples);
-    kept
+    if env.is_some() { kept } else { 0 }
 }
 
 /// Whether two neighbouring centre samples (sample, direct light, distance from the eye)
