@@ -12,7 +12,7 @@ use fastbrdf::{Brdf, Model, ModelSpec, Real};
 use numpy::{Element, PyArray1, PyArray2, PyReadonlyArray};
 use pyo3::exceptions::{PyRuntimeError, PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use rows::{Outs3, Rows, Soa, for_chunks, for_chunks3};
+use rows::{Outs3, Rows, Soa, for_chunks, for_chunks3, prefetch};
 use std::ops::Range;
 
 mod interleave;
@@ -190,16 +190,24 @@ fn sampler_rows(
     };
     let run = for_chunks3(r.start, outs, [3, 1, 1], init, |(x, y, z), r, outs| {
         check_u(&u, r.clone()).map_err(|_| None)?;
-        let (wo, u) = (x.load(&wo, r.clone()), y.load(&u, r));
         let (wi, weight, pdf) = outs;
-        let wi_soa = z.cols_mut(weight.len());
-        let out = SampleOut {
-            wi: wi_soa,
-            weight,
-            pdf,
-        };
-        sp.sample(s, wo, u, out).map_err(|e| Some(e.to_string()))?;
-        z.store(wi);
+        // Deinterleaved, sampled and interleaved back `FUSED` rows at a time: the columns
+        // stay in L1, and the next rows, prefetched, stream in while these are computed.
+        for lo in (0..r.len()).step_by(FUSED) {
+            let hi = (lo + FUSED).min(r.len());
+            let rows = r.start + lo..r.start + hi;
+            let (a, b) = (x.load(&wo, rows.clone()), y.load(&u, rows));
+            let next = r.start + hi..(r.start + hi + FUSED).min(r.end);
+            prefetch(&wo, next.clone());
+            prefetch(&u, next);
+            let out = SampleOut {
+                wi: z.cols_mut(hi - lo),
+                weight: &mut weight[lo..hi],
+                pdf: &mut pdf[lo..hi],
+            };
+            sp.sample(s, a, b, out).map_err(|e| Some(e.to_string()))?;
+            z.store(&mut wi[3 * lo..3 * hi]);
+        }
         Ok(())
     });
     match run {
@@ -218,9 +226,23 @@ fn sampler_pdf_rows(
     out: &mut [f32],
 ) -> Res {
     for_chunks(r.start, (out, 1), soa2::<3, 3, f32>, |(x, y), r, o| {
-        sp.pdf(s, x.load(&wo, r.clone()), y.load(&wi, r), o)
+        // `FUSED` rows at a time, as in `sampler_rows`.
+        for lo in (0..r.len()).step_by(FUSED) {
+            let hi = (lo + FUSED).min(r.len());
+            let rows = r.start + lo..r.start + hi;
+            let (a, b) = (x.load(&wo, rows.clone()), y.load(&wi, rows));
+            let next = r.start + hi..(r.start + hi + FUSED).min(r.end);
+            prefetch(&wo, next.clone());
+            prefetch(&wi, next);
+            sp.pdf(s, a, b, &mut o[lo..hi])?;
+        }
+        Ok(())
     })
 }
+
+/// Rows per step of the sampler's fused passes (deinterleave, compute, interleave): the SIMD
+/// path's block. Every value depends on its own row alone, so the step changes none.
+const FUSED: usize = 512;
 
 /// The density per element over rows `r` with the scalar model in precision `T`, threaded.
 fn pdf_rows<T: Real>(

@@ -315,10 +315,18 @@ type Sampled<'py, T> = (
     Bound<'py, PyArray1<T>>,
 );
 
-/// Element draws as `Model.sample` draws them: the scalar model in f64, the batched
-/// `Sampler` of the element's value set in f32 (built once per value set in a step).
+/// Element draws and densities as `Model.sample` and `Model.pdf` compute them: the scalar
+/// model in f64, the batched `Sampler` of the element's value set in f32 (built once per
+/// value set in a step; its SIMD path's unit tier is not the scalar model's bits).
 trait Draw: Real + Element {
     type Cache: Default;
+    fn density(
+        cache: &mut Self::Cache,
+        at: (&PerElement, Vec<f64>),
+        b: &dyn fastbrdf::Brdf<Self>,
+        wo_wi: ([Self; 3], [Self; 3]),
+        s: Strategy,
+    ) -> Result<Self, Msg>;
     fn draw(
         cache: &mut Self::Cache,
         at: (&PerElement, Vec<f64>),
@@ -330,6 +338,15 @@ trait Draw: Real + Element {
 
 impl Draw for f64 {
     type Cache = ();
+    fn density(
+        _: &mut (),
+        _: (&PerElement, Vec<f64>),
+        b: &dyn fastbrdf::Brdf<f64>,
+        (wo, wi): ([f64; 3], [f64; 3]),
+        s: Strategy,
+    ) -> Result<f64, Msg> {
+        Ok(b.pdf(wo, wi, s))
+    }
     fn draw(
         _: &mut (),
         _: (&PerElement, Vec<f64>),
@@ -341,8 +358,41 @@ impl Draw for f64 {
     }
 }
 
+/// The batched sampler of one value set, built once per step.
+fn sampler_at<'c>(
+    cache: &'c mut std::collections::HashMap<Vec<u64>, Sampler>,
+    pe: &PerElement,
+    values: &[f64],
+) -> Result<&'c Sampler, Msg> {
+    let key: Vec<u64> = values.iter().map(|v| v.to_bits()).collect();
+    Ok(match cache.entry(key) {
+        std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
+        std::collections::hash_map::Entry::Vacant(e) => {
+            let spec = pe.spec_at(values)?;
+            e.insert(Sampler::from_plan(spec.id(), spec.plan()?)?)
+        }
+    })
+}
+
 impl Draw for f32 {
     type Cache = std::collections::HashMap<Vec<u64>, Sampler>;
+    fn density(
+        cache: &mut Self::Cache,
+        (pe, values): (&PerElement, Vec<f64>),
+        _: &dyn fastbrdf::Brdf<f32>,
+        (wo, wi): ([f32; 3], [f32; 3]),
+        s: Strategy,
+    ) -> Result<f32, Msg> {
+        let sp = sampler_at(cache, pe, &values)?;
+        let mut p = [0.0f32];
+        sp.pdf(
+            s,
+            wo.each_ref().map(std::slice::from_ref),
+            wi.each_ref().map(std::slice::from_ref),
+            &mut p,
+        )?;
+        Ok(p[0])
+    }
     fn draw(
         cache: &mut Self::Cache,
         (pe, values): (&PerElement, Vec<f64>),
@@ -350,14 +400,7 @@ impl Draw for f32 {
         (wo, u): ([f32; 3], [f32; 2]),
         s: Strategy,
     ) -> Result<Option<fastbrdf::sample::Sample<f32>>, Msg> {
-        let key: Vec<u64> = values.iter().map(|v| v.to_bits()).collect();
-        let sp = match cache.entry(key) {
-            std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
-            std::collections::hash_map::Entry::Vacant(e) => {
-                let spec = pe.spec_at(&values)?;
-                e.insert(Sampler::from_plan(spec.id(), spec.plan()?)?)
-            }
-        };
+        let sp = sampler_at(cache, pe, &values)?;
         let (mut wi, mut weight, mut pdf) = ([[0.0f32]; 3], [0.0f32], [0.0f32]);
         let [x, y, z] = &mut wi;
         let out = SampleOut {
@@ -449,7 +492,7 @@ fn sample<'py, T: Draw>(
 }
 
 /// The density of `wi` given `wo` (both (N, 3)) with per-element parameters.
-fn pdf<'py, T: Real + Element>(
+fn pdf<'py, T: Draw>(
     py: Python<'py>,
     handle: &Handle,
     names: Vec<String>,
@@ -471,13 +514,15 @@ fn pdf<'py, T: Real + Element>(
         let o = rw.as_slice_mut().map_err(value_error)?;
         steps(py, n, |r| {
             let ps: Vec<&[f64]> = p.iter().map(|p| &p[r.clone()]).collect();
+            let mut cache = T::Cache::default();
             pe.each_model::<T, Msg>(&ps, r.len(), |j, m| {
                 let i = r.start + j;
                 let b = brdf_of(m).map_err(Msg)?;
                 let st = b
                     .resolve(s)
                     .map_err(|e| Msg(format!("{}: {e}", handle.model_spec().id())))?;
-                o[i] = b.pdf(v3(wo, i), v3(wi, i), st);
+                let values = ps.iter().map(|p| p[j]).collect();
+                o[i] = T::density(&mut cache, (&pe, values), b, (v3(wo, i), v3(wi, i)), st)?;
                 Ok(())
             })
         })?;

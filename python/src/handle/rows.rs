@@ -75,6 +75,27 @@ impl<T: Copy + Default + 'static, const K: usize> Soa<T, K> {
     }
 }
 
+/// Asks the CPU to bring rows `r` of `v` (C-contiguous only; else nothing) into its caches,
+/// one prefetch per 64-byte line: the fused passes call it for their next rows before
+/// computing the current ones, so that the memory reads overlap the arithmetic.
+pub(crate) fn prefetch<T>(v: &Rows<'_, T>, r: Range<usize>) {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(all) = v.as_slice() {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        let k = v.ncols();
+        let (lo, hi) = ((k * r.start).min(all.len()), (k * r.end).min(all.len()));
+        let bytes = all[lo..hi].as_ptr_range();
+        let mut p = bytes.start.cast::<i8>();
+        while p < bytes.end.cast() {
+            // SAFETY: a prefetch never faults, and `p` points into `all`.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(p) };
+            p = p.wrapping_add(64);
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (v, r);
+}
+
 /// The columns as f32 when `T` is f32 and there are 2 or 3 of them (the vectorised copies'
 /// cases), else `None`.
 fn f32s<T: 'static, const K: usize>(cols: &mut [Vec<T>; K]) -> Option<&mut [Vec<f32>]> {
