@@ -5,7 +5,10 @@
 //! the bounds below, tested here; elsewhere the exact tiers, bit for bit
 //! (`tests/batch_sample.rs`).
 
-use fastbrdf::batch::sample::{NEAR, SampleOut, Sampler};
+// Elements are compared by index across several parallel arrays.
+#![allow(clippy::needless_range_loop)]
+
+use fastbrdf::batch::sample::{SampleOut, Sampler};
 use fastbrdf::sample::{Rng, Strategy};
 use fastbrdf::{Brdf, Model, ModelSpec};
 
