@@ -22,6 +22,8 @@ const SNAPSHOT: &str = r##"JSON.stringify({
       flip: r.querySelector(".flip").dataset.value, flip_text: r.querySelector(".flip").textContent}])),
   status: document.getElementById("status").className,
   status_text: document.getElementById("status").textContent,
+  render_info: document.getElementById("render-info").textContent,
+  dropped: window.fastbrdfDropped || [],
   albedo_estimate: document.getElementById("albedo").dataset.estimate,
   verdicts: document.getElementById("verdicts").textContent,
   hash: location.hash,
@@ -37,8 +39,8 @@ fn snapshot(b: &mut cdp::Browser, s: &str) -> Value {
     let v: Value = serde_json::from_str(b.eval(s, SNAPSHOT).unwrap().as_str().unwrap()).unwrap();
     assert_eq!(
         v["status"], "",
-        "the page shows an error: {}",
-        v["status_text"]
+        "the page shows an error: {}; dropped {}",
+        v["status_text"], v["dropped"]
     );
     // Once everything has arrived, the precise albedo has replaced the quick estimate, and the
     // verdict shown is the precise computation's.
@@ -59,35 +61,60 @@ fn snapshot(b: &mut cdp::Browser, s: &str) -> Value {
     v
 }
 
-/// The numbers the page shows for `model` equal `fastbrdf errors` at the page's n.
-fn check_numbers(v: &Value, model: &str) {
+/// What a failure message adds about the page: its status line, the pictures' `render-info`,
+/// what its requests ended without drawing (`window.fastbrdfDropped`: aborted, 409, errors),
+/// and the server's log.
+fn page_context(v: &Value, log: &str) -> String {
+    format!(
+        "status {:?}; render-info {:?}; dropped {}; rows {}; server log: {log:?}",
+        v["status_text"], v["render_info"], v["dropped"], v["rows"]
+    )
+}
+
+/// A number the page shows (`key` of `model`'s row), or a failure naming the page's state.
+fn shown(v: &Value, model: &str, key: &str, log: &str) -> f64 {
+    let text = v["rows"][model][key].as_str().unwrap_or("");
+    text.parse().unwrap_or_else(|_| {
+        panic!(
+            "{model}: {key} {text:?} is not a number; {}",
+            page_context(v, log)
+        )
+    })
+}
+
+/// The numbers the page shows for `model` equal `fastbrdf errors` at the page's n (`log`:
+/// the server's, for the failure messages).
+fn check_numbers(v: &Value, model: &str, log: &str) {
     let n = v["n"].as_str().unwrap();
     let c = cli_errors(model, "pow", "--n", n);
     let row = &v["rows"][model];
-    let shown: f64 = row["abs"].as_str().unwrap().parse().unwrap();
-    assert_eq!(shown, c["max_abs"].as_f64().unwrap(), "{model} at n = {n}");
+    let abs = shown(v, model, "abs", log);
+    assert_eq!(abs, c["max_abs"].as_f64().unwrap(), "{model} at n = {n}");
     // An infinite relative error is null in the CLI's JSON and "inf" on the page.
     match c["max_rel"].as_f64() {
-        Some(r) => assert_eq!(row["rel"].as_str().unwrap().parse::<f64>().unwrap(), r),
+        Some(r) => assert_eq!(shown(v, model, "rel", log), r),
         None => assert_eq!(row["rel"], "inf"),
     }
-    let text: f64 = row["abs_text"].as_str().unwrap().parse().unwrap();
-    assert!(
-        (text - shown).abs() <= 1e-3 * shown,
-        "{text} shown for {shown}"
-    );
-    assert!(
-        row["psnr"].as_str().unwrap().parse::<f64>().is_ok(),
-        "PSNR shown: {row}"
-    );
+    let text = shown(v, model, "abs_text", log);
+    assert!((text - abs).abs() <= 1e-3 * abs, "{text} shown for {abs}");
+    shown(v, model, "psnr", log);
     // FLIP comes after the pictures (a second request): once the page is ready it is shown.
-    let flip: f64 = row["flip"].as_str().unwrap().parse().unwrap();
-    assert!(flip > 0.0 && flip <= 1.0, "FLIP shown: {row}");
-    let text: f64 = row["flip_text"].as_str().unwrap().parse().unwrap();
+    let flip = shown(v, model, "flip", log);
+    assert!(
+        flip > 0.0 && flip <= 1.0,
+        "FLIP {flip} shown; {}",
+        page_context(v, log)
+    );
+    let text = shown(v, model, "flip_text", log);
     assert!(
         (text - flip).abs() <= 1e-3 * flip,
         "{text} shown for {flip}"
     );
+}
+
+/// What the server has written on stderr so far.
+fn log(s: &served::Served) -> String {
+    s.log.lock().unwrap().clone()
 }
 
 #[test]
@@ -99,7 +126,7 @@ fn page_end_to_end_in_headless_chromium() {
     let page = b.open(&url, 1400, 1050).unwrap();
     let before = snapshot(&mut b, &page);
     assert_eq!(before["n"], "100");
-    check_numbers(&before, "flog");
+    check_numbers(&before, "flog", &log(&s));
 
     // Drag the n slider with real mouse events.
     let rect: Value = b
@@ -130,7 +157,7 @@ fn page_end_to_end_in_headless_chromium() {
         moved["images"], before["images"],
         "pictures unchanged after the slider"
     );
-    check_numbers(&moved, "flog");
+    check_numbers(&moved, "flog", &log(&s));
 
     // Choose a second model.
     b.eval(&page, "(() => { const s = document.getElementById('add'); s.value = 'schlick'; s.dispatchEvent(new Event('change')); })()")
@@ -146,8 +173,8 @@ fn page_end_to_end_in_headless_chromium() {
         "{}",
         two["images"]
     );
-    check_numbers(&two, "flog");
-    check_numbers(&two, "schlick");
+    check_numbers(&two, "flog", &log(&s));
+    check_numbers(&two, "schlick", &log(&s));
 
     // The URL reproduces the view.
     let again = b

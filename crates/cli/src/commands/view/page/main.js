@@ -25,7 +25,15 @@ function el(tag, attrs, ...kids) {
   return e;
 }
 
-function setStatus(t, err) { const s = $("status"); s.textContent = t; s.className = err ? "err" : ""; }
+// The status line. `of`: the view (a count of update() calls) the message is about. An error
+// stays until a later view's news replaces it: the plots of its own view, arriving after its
+// pictures failed, do not hide it (they did, and a failure went unseen).
+let view = 0, errView = -1;
+function setStatus(t, err, of = view) {
+  if (!err && of <= errView) return;
+  const s = $("status"); s.textContent = t; s.className = err ? "err" : "";
+  if (err) errView = Math.max(errView, of);
+}
 function ready() { document.body.dataset.ready = pending === 0 ? "1" : "0"; }
 window.addEventListener("error", e => setStatus("script error: " + e.message, true));
 
@@ -313,15 +321,31 @@ function drawNumbers() {
 }
 
 // ---- requests ------------------------------------------------------------------------
+// A request's JSON; a failed one throws its error (with `status`). An answer whose body is
+// cut short by an abort (the headers were in, a newer request took over) rejects with the
+// AbortError: it used to come back as a success `{error: "HTTP 200"}`, which became
+// lastPlots, so the next drawNumbers() threw and the newest pictures' task ended before its
+// full picture and FLIP (the flaky view_page test, #30).
 async function getJSON(url, signal) {
   const r = await fetch(url, { signal });
-  const body = await r.json().catch(() => ({ error: "HTTP " + r.status }));
-  if (!r.ok) throw Object.assign(new Error(body.error || ("HTTP " + r.status)), { status: r.status });
-  return body;
+  if (r.ok) return await r.json();
+  const body = await r.json().catch(e => { if (e.name === "AbortError") throw e; return { error: "HTTP " + r.status }; });
+  throw Object.assign(new Error(body.error || ("HTTP " + r.status)), { status: r.status });
 }
-async function task(fn) {
+// What task() ended without drawing, newest last, at most 40 (window.fastbrdfDropped, for
+// the end-to-end tests' failure messages and a user's console): aborted or superseded (409)
+// requests, which the page drops without a word, and errors, which the status line shows
+// only until another one replaces them.
+const DROPPED = window.fastbrdfDropped = [];
+async function task(fn, what) {
+  const born = view;
   pending++; ready();
-  try { await fn(); } catch (e) { if (e.name !== "AbortError" && e.status !== 409) setStatus(e.message, true); }
+  try { await fn(); } catch (e) {
+    const quiet = e.name === "AbortError" || e.status === 409;
+    if (!quiet) setStatus(e.message, true, born);
+    DROPPED.push(`${typeof what === "function" ? what() : what || "?"} (view ${born}, now ${view}, render ${gen}): ${quiet ? (e.status === 409 ? "409 " + e.message : "aborted") : "error: " + e.message}`);
+    if (DROPPED.length > 40) DROPPED.shift();
+  }
   finally { pending--; ready(); }
 }
 // While a control moves and the browser draws the pictures (WebGPU), the server's numbers
@@ -331,6 +355,7 @@ async function task(fn) {
 const LAZY_MS = 300;
 let lazyTimer = null;
 function update(structure) {
+  view++;
   const q = paramQuery();
   if (lazyTimer !== null) { clearTimeout(lazyTimer); lazyTimer = null; pending--; }
   if (!structure && document.body.dataset.renderer === "webgpu") {
@@ -343,14 +368,14 @@ function update(structure) {
 }
 // The server's numbers of the view `q` (and its pictures too when `pictures`).
 function numbers(q, pictures) {
-  if (plotCtl) plotCtl.abort(); plotCtl = new AbortController(); const ps = plotCtl.signal;
+  if (plotCtl) plotCtl.abort(); plotCtl = new AbortController(); const ps = plotCtl.signal, v = view;
   task(async () => {
     const t = performance.now();
     const d = await getJSON("/api/plots?" + q, ps);
     lastPlots = d; drawPlots(d); drawNumbers();
     for (const h of HOOKS.plots) h(d);
-    setStatus(`plots ${(performance.now() - t).toFixed(0)} ms (server ${d.ms.toFixed(0)} ms)`);
-  });
+    setStatus(`plots ${(performance.now() - t).toFixed(0)} ms (server ${d.ms.toFixed(0)} ms)`, false, v);
+  }, "plots");
   if (albedoCtl) albedoCtl.abort(); albedoCtl = new AbortController(); const as = albedoCtl.signal;
   // A quick estimate first (looser quadrature, drawn dashed, no verdict), then the precise
   // curve and the white-furnace verdict replace it.
@@ -358,7 +383,7 @@ function numbers(q, pictures) {
     const qq = new URLSearchParams(q); qq.set("quick", "1");
     drawAlbedo(await getJSON("/api/albedo?" + qq, as));
     drawAlbedo(await getJSON("/api/albedo?" + q, as));
-  });
+  }, "albedo");
   if (pictures) renderAll(q);
   exportShader();
   for (const h of HOOKS.update) h(q);
@@ -371,19 +396,21 @@ function renderAll(q) {
   const g = ++gen;
   const rq = new URLSearchParams(q); rq.set("mesh", state.mesh); rq.set("light", state.light); rq.set("client", client); rq.set("gen", String(g));
   flipPending = true;
+  let stage = "128 px";
   task(async () => {
     try {
       // A quick low-resolution preview first (no FLIP), then the full picture, shown as soon
       // as it is rendered, with RMSE and PSNR; its FLIP follows from the server's FLIP pool.
       let d = null;
       for (const [size, spp, flip] of [[128, 1, "none"], [512, 2, "later"]]) {
-        rq.set("size", size); rq.set("spp", spp); rq.set("flip", flip);
+        rq.set("size", size); rq.set("spp", spp); rq.set("flip", flip); stage = `${size} px`;
         d = await getJSON("/api/render?" + rq, rs);
         if (g !== gen) return;
         lastRender = d; showPictures(d); drawNumbers();
         $("render-info").textContent = `(${serverWhy()}${d.width}x${d.height}, ${d.spp * d.spp} spp, ${d.ms.toFixed(0)} ms)`;
       }
       if (d.flip_job === null || d.flip_job === undefined) return;
+      stage = `FLIP job ${d.flip_job}`;
       const f = await getJSON("/api/flip?" + new URLSearchParams({ job: d.flip_job }), rs);
       // Only onto the picture it was computed for: a newer request has replaced lastRender.
       if (g !== gen || lastRender !== d) return;
@@ -391,7 +418,7 @@ function renderAll(q) {
       flipPending = false; drawNumbers();
       $("render-info").textContent = `(${serverWhy()}${d.width}x${d.height}, ${d.spp * d.spp} spp, ${d.ms.toFixed(0)} ms; FLIP after, ${f.flip_ms.toFixed(0)} ms of work)`;
     } finally { if (g === gen) { flipPending = false; drawNumbers(); } }
-  });
+  }, () => `render gen ${g}, ${stage}`);
 }
 // Who draws the server's pictures and why the browser does not (gpu.js leaves the reason).
 function serverWhy() {
@@ -431,7 +458,7 @@ function exportShader() {
     const r = await fetch("/api/shader?" + q, { signal: s });
     const t = await r.text();
     $("shader").textContent = r.ok ? t : JSON.parse(t).error;
-  });
+  }, "shader");
 }
 
 // ---- start ---------------------------------------------------------------------------

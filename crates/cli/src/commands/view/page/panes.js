@@ -32,7 +32,7 @@ function panesFetch() {
   task(async () => {
     const d = await getJSON("/api/panes?" + q, sig);
     PANES.last = d; panesDraw(d);
-  });
+  }, "panes");
 }
 function panesShowSliders() {
   for (const [k] of PANE_SLIDERS) {
