@@ -128,6 +128,34 @@ fn page_end_to_end_in_headless_chromium() {
     assert_eq!(before["n"], "100");
     check_numbers(&before, "flog", &log(&s));
 
+    // An answer whose body an abort cuts short (a newer move took over after its headers) is
+    // an abort for the page's getJSON, a successful answer whose body fails is an error, and
+    // a failed answer that is not JSON is an error naming its status: never an answer. (The
+    // first two came back as {error: "HTTP 200"} and broke the newest pictures' task.)
+    let cut = b
+        .eval(&page, r##"(async () => {
+  const real = window.fetch, out = [];
+  const failing = c => new ReadableStream({ pull(s) { if (c) c.abort(); s.error(new TypeError("body failed")); } });
+  try {
+    for (const [abort, status] of [[true, 200], [false, 200], [false, 502]]) {
+      const c = new AbortController();
+      window.fetch = async () => new Response(status === 200 ? failing(abort && c) : "not json", { status });
+      try { out.push("answered " + JSON.stringify(await getJSON("/api/plots", c.signal))); }
+      catch (e) { out.push(`${e.name} ${e.message} ${e.status}`); }
+    }
+  } finally { window.fetch = real; }
+  return out.join("; ");
+})()"##)
+        .unwrap();
+    let parts: Vec<&str> = cut.as_str().unwrap().split("; ").collect();
+    assert!(
+        parts.len() == 3
+            && parts[0] == "AbortError aborted while its answer arrived undefined"
+            && parts[1].starts_with("TypeError ")
+            && parts[2] == "Error HTTP 502 502",
+        "{cut}"
+    );
+
     // Drag the n slider with real mouse events.
     let rect: Value = b
         .eval(&page, "(() => { const r = document.getElementById('slider-n').getBoundingClientRect(); return [r.left, r.top, r.width, r.height]; })()")

@@ -321,16 +321,21 @@ function drawNumbers() {
 }
 
 // ---- requests ------------------------------------------------------------------------
-// A request's JSON; a failed one throws its error (with `status`). An answer whose body is
-// cut short by an abort (the headers were in, a newer request took over) rejects with the
-// AbortError: it used to come back as a success `{error: "HTTP 200"}`, which became
-// lastPlots, so the next drawNumbers() threw and the newest pictures' task ended before its
-// full picture and FLIP (the flaky view_page test, #30).
+// A request's JSON; a failed one throws its error (with `status`). A body cut short by an
+// abort (the headers were in, then a newer request took over) is an AbortError, and a
+// successful answer whose body cannot be read is an error: both used to come back as the
+// answer `{error: "HTTP 200"}`, which became lastPlots, so that the next drawNumbers() threw
+// and the newest pictures' task ended before its full picture and FLIP (the flaky
+// view_page test, #30).
 async function getJSON(url, signal) {
   const r = await fetch(url, { signal });
-  if (r.ok) return await r.json();
-  const body = await r.json().catch(e => { if (e.name === "AbortError") throw e; return { error: "HTTP " + r.status }; });
-  throw Object.assign(new Error(body.error || ("HTTP " + r.status)), { status: r.status });
+  const body = await r.json().catch(e => {
+    if (signal && signal.aborted) throw new DOMException("aborted while its answer arrived", "AbortError");
+    if (r.ok || e.name === "AbortError") throw e;
+    return { error: "HTTP " + r.status };
+  });
+  if (!r.ok) throw Object.assign(new Error(body.error || ("HTTP " + r.status)), { status: r.status });
+  return body;
 }
 // What task() ended without drawing, newest last, at most 40 (window.fastbrdfDropped, for
 // the end-to-end tests' failure messages and a user's console): aborted or superseded (409)
