@@ -120,8 +120,9 @@ fn choice_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
 fn every_hlsl_export_compiles_with_glslang() {
     let Some(tool) = glslang() else { return };
     let dir = scratch();
-    let mut failures = vec![];
-    let mut count = 0;
+    // The exports first, then glslang on every core (one process per export: 2x on CI's
+    // two cores, where the test took minutes).
+    let mut jobs: Vec<(String, String, String)> = vec![];
     let mut tables = 0;
     for e in registry::all() {
         let id = e.info.id;
@@ -142,21 +143,42 @@ fn every_hlsl_export_compiles_with_glslang() {
                 let text = export_form(&common::spec(id, &given), Lang::Hlsl, form)
                     .unwrap_or_else(|err| panic!("{id} {given:?}: {err}"));
                 tables += usize::from(text.contains("] = { "));
-                let name = format!("{id}-{count}");
-                if let Err(msg) = compile(
-                    tool,
-                    &dir,
-                    &name,
-                    &text,
-                    &hlsl_call(&f, e.info.kind, extra),
-                    "float",
-                ) {
-                    failures.push(format!("{id} {given:?} {form:?}: {msg}"));
-                }
-                count += 1;
+                jobs.push((
+                    format!("{id} {given:?} {form:?}"),
+                    text,
+                    hlsl_call(&f, e.info.kind, extra),
+                ));
             }
         }
     }
+    let count = jobs.len();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let mut failures: Vec<(usize, String)> = std::thread::scope(|sc| {
+        let workers: Vec<_> = (0..threads)
+            .map(|_| {
+                sc.spawn(|| {
+                    let mut failed = vec![];
+                    loop {
+                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        let Some((what, text, call)) = jobs.get(k) else {
+                            return failed;
+                        };
+                        let name = format!("export-{k}");
+                        if let Err(msg) = compile(tool, &dir, &name, text, call, "float") {
+                            failed.push((k, format!("{what}: {msg}")));
+                        }
+                    }
+                })
+            })
+            .collect();
+        workers
+            .into_iter()
+            .flat_map(|w| w.join().unwrap())
+            .collect()
+    });
+    failures.sort();
+    let mut failures: Vec<String> = failures.into_iter().map(|(_, m)| m).collect();
     // A coloured export: three grey instances and the vector function.
     let text = export_form(
         &common::spec(
