@@ -59,7 +59,8 @@ fn check_bound(id: &str, b: &fastbrdf::ErrorBound) -> (String, Vec<String>) {
     }
     // A bound more than 2x the measured maximum (grid or adversarial search) would be a
     // loose, uninformative claim.
-    if !(w.err.max(s.err) > 0.5 * b.bound) {
+    let most = w.err.max(s.err);
+    if most.is_nan() || most <= 0.5 * b.bound {
         failures.push(format!(
             "{id}: documented {} is loose (measured {}, searched {})",
             b.bound, w.err, s.err
