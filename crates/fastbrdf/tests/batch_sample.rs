@@ -4,7 +4,10 @@
 //! zero, NaN and infinite directions and `u` outside [0, 1); the threaded calls against the
 //! sequential ones; the errors.
 
-use fastbrdf::batch::sample::{NEAR, SampleOut, Sampler};
+mod common;
+
+use common::Outs;
+use fastbrdf::batch::sample::{NEAR, Sampler};
 use fastbrdf::sample::{Rng, Strategy};
 use fastbrdf::{Brdf, Kind, Model, ModelSpec, registry};
 
@@ -121,45 +124,6 @@ fn inputs(seed: u64, n: usize) -> ([Vec<f32>; 3], [Vec<f32>; 2]) {
 
 fn refs<const N: usize>(v: &[Vec<f32>; N]) -> [&[f32]; N] {
     std::array::from_fn(|k| v[k].as_slice())
-}
-
-/// Output buffers of `n` elements, filled with a marker the sampler must overwrite.
-struct Outs {
-    wi: [Vec<f32>; 3],
-    weight: Vec<f32>,
-    pdf: Vec<f32>,
-}
-
-impl Outs {
-    fn new(n: usize) -> Self {
-        Self {
-            wi: std::array::from_fn(|_| vec![-7.0; n]),
-            weight: vec![-7.0; n],
-            pdf: vec![-7.0; n],
-        }
-    }
-    fn out(&mut self) -> SampleOut<'_> {
-        let [x, y, z] = &mut self.wi;
-        SampleOut {
-            wi: [x, y, z],
-            weight: &mut self.weight,
-            pdf: &mut self.pdf,
-        }
-    }
-    fn bits(&self) -> Vec<[u32; 5]> {
-        (0..self.pdf.len())
-            .map(|i| {
-                [
-                    self.wi[0][i],
-                    self.wi[1][i],
-                    self.wi[2][i],
-                    self.weight[i],
-                    self.pdf[i],
-                ]
-                .map(f32::to_bits)
-            })
-            .collect()
-    }
 }
 
 /// The strategies to run: `auto` and every one the BRDF supports.

@@ -8,7 +8,10 @@
 // Elements are compared by index across several parallel arrays.
 #![allow(clippy::needless_range_loop)]
 
-use fastbrdf::batch::sample::{SampleOut, Sampler};
+mod common;
+
+use common::Outs;
+use fastbrdf::batch::sample::Sampler;
 use fastbrdf::sample::{Rng, Strategy};
 use fastbrdf::{Brdf, Model, ModelSpec};
 
@@ -242,7 +245,7 @@ fn unit_tier_values_do_not_depend_on_the_neighbours() {
         .unwrap();
     let mut exact_differ = 0;
     for i in 0..n {
-        let (x, y) = (sa.bits(i), sb.bits(i));
+        let (x, y) = (sa.bits_at(i), sb.bits_at(i));
         if i % 97 == 0 {
             exact_differ += usize::from(a[i].to_bits() != b[i].to_bits() || x != y);
         } else {
@@ -252,39 +255,4 @@ fn unit_tier_values_do_not_depend_on_the_neighbours() {
     }
     // The scaled elements took the exact tiers: their values differ from the unit tier's.
     assert!(exact_differ > 0);
-}
-
-/// Output buffers of `n` elements, filled with a marker the sampler must overwrite.
-struct Outs {
-    wi: [Vec<f32>; 3],
-    weight: Vec<f32>,
-    pdf: Vec<f32>,
-}
-
-impl Outs {
-    fn new(n: usize) -> Self {
-        Self {
-            wi: std::array::from_fn(|_| vec![-7.0; n]),
-            weight: vec![-7.0; n],
-            pdf: vec![-7.0; n],
-        }
-    }
-    fn out(&mut self) -> SampleOut<'_> {
-        let [x, y, z] = &mut self.wi;
-        SampleOut {
-            wi: [x, y, z],
-            weight: &mut self.weight,
-            pdf: &mut self.pdf,
-        }
-    }
-    fn bits(&self, i: usize) -> [u32; 5] {
-        [
-            self.wi[0][i],
-            self.wi[1][i],
-            self.wi[2][i],
-            self.weight[i],
-            self.pdf[i],
-        ]
-        .map(f32::to_bits)
-    }
 }

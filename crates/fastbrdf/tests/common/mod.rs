@@ -111,3 +111,47 @@ pub fn brdf(id: &str, given: &[(&str, &str)]) -> Box<dyn fastbrdf::Brdf<f64>> {
         _ => panic!("{id} is not a BRDF"),
     }
 }
+
+/// The batch sampler's output buffers of `n` elements, filled with a marker (-7) the sampler
+/// must overwrite (`tests/batch_sample.rs`, `tests/batch_sample_unit.rs`).
+pub struct Outs {
+    pub wi: [Vec<f32>; 3],
+    pub weight: Vec<f32>,
+    pub pdf: Vec<f32>,
+}
+
+impl Outs {
+    pub fn new(n: usize) -> Self {
+        Self {
+            wi: std::array::from_fn(|_| vec![-7.0; n]),
+            weight: vec![-7.0; n],
+            pdf: vec![-7.0; n],
+        }
+    }
+
+    pub fn out(&mut self) -> fastbrdf::batch::sample::SampleOut<'_> {
+        let [x, y, z] = &mut self.wi;
+        fastbrdf::batch::sample::SampleOut {
+            wi: [x, y, z],
+            weight: &mut self.weight,
+            pdf: &mut self.pdf,
+        }
+    }
+
+    /// Element `i`'s `wi`, weight and pdf as bits.
+    pub fn bits_at(&self, i: usize) -> [u32; 5] {
+        [
+            self.wi[0][i],
+            self.wi[1][i],
+            self.wi[2][i],
+            self.weight[i],
+            self.pdf[i],
+        ]
+        .map(f32::to_bits)
+    }
+
+    /// Every element's [`Outs::bits_at`].
+    pub fn bits(&self) -> Vec<[u32; 5]> {
+        (0..self.pdf.len()).map(|i| self.bits_at(i)).collect()
+    }
+}
