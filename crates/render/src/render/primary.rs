@@ -144,7 +144,6 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     // one their radiance is final, so only their pixels are kept (`kept_px`): copying the
     // sample (152 bytes) was 8% of a directly lit render's instructions.
     let mut kept = 0;
-    kept_px.clear();
     for py in 0..th {
         for px in 0..tw {
             let p = (py * tw + px) as usize;
