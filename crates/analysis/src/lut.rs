@@ -126,14 +126,28 @@ pub fn check_size(size: usize) -> Result<()> {
 /// The two kernels (scale, bias) of env model `id`; errors for an unknown id or another kind.
 pub fn kernels(id: &str) -> Result<(Kernel, Kernel)> {
     let e = registry::find(id)?;
-    if e.info.kind != Kind::Env {
+    // The split-sum models have a `term` (scale or bias); the sheen albedo models, env
+    // models too, have one value and no `term`.
+    let split_sum = |info: &fastbrdf::ModelInfo| {
+        info.kind == Kind::Env && info.params.iter().any(|p| p.name == "term")
+    };
+    if !split_sum(&e.info) {
+        let ids: Vec<&str> = registry::all()
+            .iter()
+            .filter(|m| split_sum(&m.info))
+            .map(|m| m.info.id)
+            .collect();
         return Err(Error::WrongKind {
             model: e.info.id.into(),
             expected: format!(
-                "split-sum (env) model ({})",
-                registry::ids_of(Kind::Env).join(", ")
+                "split-sum (env) model with a scale and a bias ({})",
+                ids.join(", ")
             ),
-            found: e.info.kind.name().into(),
+            found: if e.info.kind == Kind::Env {
+                "one-value env model (a sheen albedo: no `term`)".into()
+            } else {
+                e.info.kind.name().into()
+            },
         });
     }
     let term = |t: &str| {
@@ -286,6 +300,14 @@ mod tests {
     fn non_env_models_and_bad_sizes_are_refused() {
         assert!(matches!(kernels("ggx"), Err(Error::WrongKind { .. })));
         assert!(matches!(kernels("nope"), Err(Error::UnknownModel(_))));
+        // An env model of one value: refused by kind, naming the models that work.
+        let e = kernels("sheen-albedo-table").err().map(|e| e.to_string());
+        let e = e.expect("sheen-albedo-table has no split-sum table");
+        assert!(
+            e.contains("no `term`") && e.contains("env-brdf-table"),
+            "{e}"
+        );
+        assert!(!e.contains("sheen-albedo-khronos,"), "{e}");
         assert!(check_size(0).is_err());
         assert!(check_size(MAX_SIZE + 1).is_err());
         assert!(check_size(MAX_SIZE).is_ok());
