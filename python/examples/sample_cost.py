@@ -6,7 +6,10 @@ float32 direction pairs, in millions of elements per second, measured interleave
         [--variant llvm_ad_rgb] [--mitsuba-max-n 1e7] [--no-mitsuba] [--input-sets 1]
 
 fastbrdf: ``Model("cook-torrance", d="ggx", alpha=0.3)`` on (N, 3) and (N, 2) float32 arrays,
-with fresh outputs and with ``out=`` buffers reused from call to call. Mitsuba:
+with fresh outputs and with ``out=`` buffers reused from call to call, and on column-major
+copies of the same arrays (``fastbrdf columns``: ``np.asfortranarray``, Mitsuba's layout, made
+outside the timing as Mitsuba's columns are; read in place), with fresh outputs and with
+``out=``. Mitsuba:
 ``roughconductor`` (GGX, alpha 0.3, its default visible-normal sampling) through
 ``bsdf.eval/sample/pdf`` on ``mi.Vector3f`` built from the same values given as float32 numpy
 columns (its own layout, made outside the timing), the results converted back to numpy arrays
@@ -59,13 +62,22 @@ def fastbrdf_ops(n, wi, wo, u):
     m = fastbrdf.Model("cook-torrance", d="ggx", alpha=0.3)
     f, p = np.empty(n, np.float32), np.empty(n, np.float32)
     bufs = (np.empty((n, 3), np.float32), np.empty(n, np.float32), np.empty(n, np.float32))
+    # Column-major copies (Mitsuba's layout, made outside the timing as its columns are): read
+    # in place, with no deinterleaving.
+    wic, woc, uc = (np.asfortranarray(a) for a in (wi, wo, u))
     return {
         ("eval", "fastbrdf"): lambda: m.eval(wi, wo),
         ("eval", "fastbrdf out="): lambda: m.eval(wi, wo, out=f),
+        ("eval", "fastbrdf columns"): lambda: m.eval(wic, woc),
+        ("eval", "fastbrdf columns out="): lambda: m.eval(wic, woc, out=f),
         ("sample", "fastbrdf"): lambda: m.sample(wo, u),
         ("sample", "fastbrdf out="): lambda: m.sample(wo, u, out=bufs),
+        ("sample", "fastbrdf columns"): lambda: m.sample(woc, uc),
+        ("sample", "fastbrdf columns out="): lambda: m.sample(woc, uc, out=bufs),
         ("pdf", "fastbrdf"): lambda: m.pdf(wo, wi),
         ("pdf", "fastbrdf out="): lambda: m.pdf(wo, wi, out=p),
+        ("pdf", "fastbrdf columns"): lambda: m.pdf(woc, wic),
+        ("pdf", "fastbrdf columns out="): lambda: m.pdf(woc, wic, out=p),
     }
 
 

@@ -107,18 +107,19 @@ fn strategy(name: &str) -> PyResult<Strategy> {
 /// and column.
 fn check_u<T: Real>(u: &Rows<'_, T>, r: Range<usize>) -> Result<(), String> {
     let bad = |x: T| !(x >= T::zero() && x < T::one());
+    let any_bad = |v: &[T]| v.iter().fold(false, |b, x| b | bad(*x));
+    if let Some([x, y]) = rows::columns::<T, 2>(u, r.clone()) {
+        // Column-major: the same branch-free pass, per column.
+        if !(any_bad(x) | any_bad(y)) {
+            return Ok(());
+        }
+    }
     let first = match u.as_slice() {
         // A branch-free pass (vectorised) first; the search only where it fails.
-        Some(all)
-            if all[2 * r.start..2 * r.end]
-                .iter()
-                .fold(false, |b, x| b | bad(*x)) =>
-        {
-            all[2 * r.start..2 * r.end]
-                .iter()
-                .position(|x| bad(*x))
-                .map(|i| (r.start + i / 2, i % 2))
-        }
+        Some(all) if any_bad(&all[2 * r.start..2 * r.end]) => all[2 * r.start..2 * r.end]
+            .iter()
+            .position(|x| bad(*x))
+            .map(|i| (r.start + i / 2, i % 2)),
         Some(_) => None,
         None => r.clone().find_map(|i| {
             let row = u.row(i);

@@ -212,6 +212,13 @@ def test_sample_refuses_u_outside_the_unit_interval(precision, bad):
     f = h.sample_f32 if precision == "f32" else h.sample_f64
     with pytest.raises(ValueError, match=r"^u: .* is outside \[0, 1\)"):
         f(np.tile(np.array([0, 0, 1], dtype), (3, 1)), u.astype(dtype), "auto")
+    # Column-major u (read in place) and u already of the precision's dtype (checked by the
+    # native call alone): the same refusal, naming the same element.
+    for given in (u.astype(dtype), np.asfortranarray(u.astype(dtype))):
+        with pytest.raises(ValueError, match=r"^u: .* \(row 1, column 1\) is outside \[0, 1\)"):
+            m.sample(np.tile([0.0, 0.0, 1.0], (3, 1)).astype(dtype), given, precision=precision)
+        with pytest.raises(ValueError, match=r"^u: .* \(row 1, column 1\) is outside \[0, 1\)"):
+            f(np.tile(np.array([0, 0, 1], dtype), (3, 1)), given, "auto")
 
 
 def test_sample_u_just_below_one_in_f64_still_samples_in_f32():

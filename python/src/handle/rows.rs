@@ -25,8 +25,14 @@ impl<T: Copy + Default + 'static, const K: usize> Soa<T, K> {
         Self(std::array::from_fn(|_| vec![T::default(); CHUNK]))
     }
 
-    /// The `K` columns of rows `r` of `v` (at most [`CHUNK`] rows), copied into the buffers.
-    pub(crate) fn load(&mut self, v: &Rows<'_, T>, r: Range<usize>) -> [&[T]; K] {
+    /// The `K` columns of rows `r` of `v` (at most [`CHUNK`] rows): read in place where each
+    /// column of those rows is contiguous (a column-major array, e.g. `np.asfortranarray`, the
+    /// transpose of a C-contiguous (k, N) array: the layout Mitsuba and Dr.Jit keep), else
+    /// copied into the buffers.
+    pub(crate) fn load<'s, 'a: 's>(&'s mut self, v: &Rows<'a, T>, r: Range<usize>) -> [&'s [T]; K] {
+        if let Some(cols) = columns(v, r.clone()) {
+            return cols;
+        }
         let len = r.len();
         if let (Some(all), Some(cols)) = (v.as_slice(), f32s(&mut self.0)) {
             // C-contiguous f32 rows of 3 or 2: the vectorised copies.
@@ -73,6 +79,27 @@ impl<T: Copy + Default + 'static, const K: usize> Soa<T, K> {
             }
         }
     }
+}
+
+/// Rows `r` of `v`'s `K` columns in place, where each is contiguous (row stride 1, more than
+/// one row; a single row is a C-contiguous row, copied as one), else `None`.
+pub(crate) fn columns<'a, T, const K: usize>(
+    v: &Rows<'a, T>,
+    r: Range<usize>,
+) -> Option<[&'a [T]; K]> {
+    if v.strides()[0] != 1 || r.len() < 2 || v.ncols() != K {
+        return None;
+    }
+    assert!(r.end <= v.nrows(), "rows {r:?} of {}", v.nrows());
+    let (base, step) = (v.as_ptr(), v.strides()[1]);
+    Some(std::array::from_fn(|c| {
+        // SAFETY: element (i, c) of the view lies at `base + i + c * step` (row stride 1,
+        // whatever the sign of `step`), and rows `r` are within the view's rows (asserted), so
+        // these `r.len()` elements are the view's, borrowed for `'a` as the view is.
+        unsafe {
+            std::slice::from_raw_parts(base.offset(c as isize * step + r.start as isize), r.len())
+        }
+    }))
 }
 
 /// Asks the CPU to bring rows `r` of `v` (C-contiguous only; else nothing) into its caches,
