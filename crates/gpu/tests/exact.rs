@@ -68,7 +68,11 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
             }
             Kind::Fresnel | Kind::Shadowing | Kind::Env => continue,
         };
-        for config in common::gpu_configs(info) {
+        // FASTBRDF_PARITY_TIMES prints each model's time, as in parity.rs (on lavapipe,
+        // cold, the shader compilations: which models cost CI).
+        let t = std::time::Instant::now();
+        let configs = common::gpu_configs(info);
+        for config in &configs {
             let given: Vec<(&str, &str)> = config
                 .iter()
                 .map(|(k, v)| (k.as_str(), v.as_str()))
@@ -77,7 +81,7 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
                 .and_then(|s| s.model::<f64>())
                 .unwrap();
             let peak = exact.eval_row(&row64) as f32;
-            for form in ["storage", "literals", "symbolic"] {
+            for &form in common::forms(info, config) {
                 let instance = match form {
                     "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
                     "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
@@ -110,6 +114,14 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
                     ));
                 }
             }
+        }
+        if std::env::var_os("FASTBRDF_PARITY_TIMES").is_some() {
+            let s = t.elapsed().as_secs_f64();
+            eprintln!(
+                "{:<28} {:>4} configurations {s:>7.1} s",
+                info.id,
+                configs.len()
+            );
         }
     }
     assert!(checked > 300, "only {checked} checks");

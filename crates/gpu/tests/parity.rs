@@ -361,7 +361,7 @@ fn check(
             // Every form: coefficients in storage (compute and render paths), as literals
             // (exported code), which a compiler may fold into reassociated expressions, and as
             // f32 expressions of the parameters (BRDF Explorer's sliders), where they exist.
-            for form in ["storage", "literals", "symbolic"] {
+            for &form in common::forms(info, config) {
                 let instance = match form {
                     "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
                     "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
@@ -578,4 +578,53 @@ fn every_shadowing_v_form_is_g_over_four_cosines() {
     }
     assert!(checked >= 10, "only {checked} shadowing configurations");
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The CI size of cook-torrance's configurations (`common::gpu_configs`, an all-pairs cover)
+/// keeps every pair of parameter values that occurs together in the full list, and far fewer
+/// configurations; checked here pair by pair, independently of the cover's own bookkeeping.
+/// No GPU needed.
+#[test]
+fn the_ci_size_covers_every_pair_of_cook_torrances_values() {
+    use std::collections::HashSet;
+    let info = &fastbrdf::registry::all()
+        .iter()
+        .find(|e| e.info.id == "cook-torrance")
+        .unwrap()
+        .info;
+    assert!(common::all_pairs(vec![]).is_empty());
+    let full = common::gpu_configs_full(info);
+    let kept = common::all_pairs(full.clone());
+    let pairs = |c: &Vec<(String, String)>| {
+        let mut v = vec![];
+        for (i, a) in c.iter().enumerate() {
+            for b in &c[i + 1..] {
+                v.push(format!("{a:?} {b:?}"));
+            }
+        }
+        v
+    };
+    let have: HashSet<String> = kept.iter().flat_map(pairs).collect();
+    let missing: Vec<String> = full
+        .iter()
+        .flat_map(pairs)
+        .filter(|p| !have.contains(p))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "{} pairs not covered: {:?}",
+        missing.len(),
+        &missing[..missing.len().min(5)]
+    );
+    assert!(
+        kept.len() * 20 < full.len() && kept.iter().all(|c| full.contains(c)),
+        "{} of {}",
+        kept.len(),
+        full.len()
+    );
+    // Every choice value is kept (the pairs imply it; stated for the reader).
+    let values = |cs: &[Vec<(String, String)>]| -> HashSet<(String, String)> {
+        cs.iter().flatten().cloned().collect()
+    };
+    assert_eq!(values(&kept), values(&full));
 }

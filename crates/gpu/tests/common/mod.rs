@@ -31,34 +31,99 @@ pub fn gpu() -> Option<&'static Gpu> {
 /// configuration; the compensated WGSL reads the same table with the same arithmetic as the
 /// CPU (`fastbrdf::microfacet::ms`), so one configuration per method checks the twin.
 ///
-/// CI size: cook-torrance's light domain is about 6,500 configurations, 90% of `parity`'s time
-/// (each builds three kernels on lavapipe) and most of `exact`'s and `finite`'s. The GPU tests
-/// keep every fourth of them and, whatever its place, each configuration that brings a
-/// combination of its choice parameters (the values that are not numbers: `d`, `g`, `f`, `ms`,
-/// ...) not kept yet, so that every combination the full set has is still compiled and run.
-/// `FASTBRDF_FULL=1` runs them all (docs/book/src/test-suite.md).
+/// CI size: cook-torrance's light domain is about 6,500 configurations of 1,640 combinations
+/// of its choice parameters (the values that are not numbers: `d`, `g`, `f`, `ms`,
+/// `denominator`, `remap`, ...). Each combination is its own shader, and each shader costs
+/// lavapipe's LLVM about 0.15 s to compile in each of three coefficient forms, cold: `exact`
+/// alone took 12.6 minutes on a fresh machine (the shaders then cached for `parity` and
+/// `finite`), most of CI's time. The CI size is an all-pairs cover (combinatorial testing):
+/// a set of configurations, picked greedily from the full list in its order, in which every
+/// pair of parameter values (choices and numbers alike) that occurs together in some full
+/// configuration occurs together in at least one kept configuration. Every choice value is
+/// thus compiled and run beside every value of every other parameter; what only a combination
+/// of three or more would show is left to `FASTBRDF_FULL=1`, which runs them all
+/// (docs/book/src/test-suite.md).
 pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
     let all = gpu_configs_full(info);
     if info.id != "cook-torrance" || std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1") {
         return all;
     }
-    let mut combos = std::collections::BTreeSet::new();
-    all.into_iter()
-        .enumerate()
-        .filter(|(k, c)| {
-            let combo: Vec<&(String, String)> = c
+    all_pairs(all)
+}
+
+/// The coefficient forms a GPU test compiles configuration `config` of `info` in: storage,
+/// literals and symbolic (BRDF Explorer's sliders), except, in CI size, cook-torrance's
+/// energy compensation (`ms` other than `none`): storage alone. Its shader carries the 32 x 32
+/// table, which lavapipe's LLVM took 135 s (kulla-conty) and 40 s (filament) to compile per
+/// form, cold: 525 s of `exact`'s 620. The table's code is the same in every form (the forms
+/// differ in how the coefficients reach it), and every form of every other configuration is
+/// still checked; `FASTBRDF_FULL=1` checks all three.
+pub fn forms(info: &fastbrdf::ModelInfo, config: &[(String, String)]) -> &'static [&'static str] {
+    let compensated = config.iter().any(|(k, v)| k == "ms" && v != "none");
+    if info.id == "cook-torrance"
+        && compensated
+        && !std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1")
+    {
+        &["storage"]
+    } else {
+        &["storage", "literals", "symbolic"]
+    }
+}
+
+/// The configurations of `all` kept by a greedy all-pairs cover ([`gpu_configs`]): repeatedly
+/// the first configuration that covers the most pairs not covered yet, until every pair of
+/// `all` is covered; in the order of `all`.
+pub fn all_pairs(all: Vec<Vec<(String, String)>>) -> Vec<Vec<(String, String)>> {
+    use std::collections::HashMap;
+    // Each configuration as the ids of its pairs of (name, value)s.
+    let mut value_id = HashMap::new();
+    let mut pair_id = HashMap::new();
+    let covers: Vec<Vec<usize>> = all
+        .iter()
+        .map(|c| {
+            let ids: Vec<usize> = c
                 .iter()
-                .filter(|(_, v)| v.parse::<f64>().is_err())
+                .map(|nv| {
+                    let n = value_id.len();
+                    *value_id.entry(nv).or_insert(n)
+                })
                 .collect();
-            let new = combos.insert(format!("{combo:?}"));
-            new || k % 4 == 0
+            let mut v = vec![];
+            for (i, &a) in ids.iter().enumerate() {
+                for &b in &ids[i + 1..] {
+                    let n = pair_id.len();
+                    v.push(*pair_id.entry((a, b)).or_insert(n));
+                }
+            }
+            v
         })
-        .map(|(_, c)| c)
+        .collect();
+    let mut open = vec![true; pair_id.len()];
+    let mut left = open.len();
+    let mut keep = vec![false; all.len()];
+    while left > 0 {
+        let (best, gain) = covers
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| !keep[*k])
+            .map(|(k, c)| (k, c.iter().filter(|&&p| open[p]).count()))
+            .fold((0, 0), |a, b| if b.1 > a.1 { b } else { a });
+        assert!(gain > 0, "an open pair no configuration covers");
+        keep[best] = true;
+        for &p in &covers[best] {
+            left -= open[p] as usize;
+            open[p] = false;
+        }
+    }
+    all.into_iter()
+        .zip(keep)
+        .filter(|(_, k)| *k)
+        .map(|(c, _)| c)
         .collect()
 }
 
 /// [`gpu_configs`] before its CI size: every configuration the GPU tests can run.
-fn gpu_configs_full(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
+pub fn gpu_configs_full(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
     let get = |c: &[(String, String)], k: &str| {
         c.iter()
             .find(|(n, _)| n == k)
