@@ -33,10 +33,11 @@ pub fn gpu() -> Option<&'static Gpu> {
 ///
 /// CI size: cook-torrance's light domain is about 6,500 configurations of 1,640 combinations
 /// of its choice parameters (the values that are not numbers: `d`, `g`, `f`, `ms`,
-/// `denominator`, `remap`, ...). Each combination is its own shader, and each shader costs
-/// lavapipe's LLVM about 0.15 s to compile in each of three coefficient forms, cold: `exact`
-/// alone took 12.6 minutes on a fresh machine (the shaders then cached for `parity` and
-/// `finite`), most of CI's time. The CI size is an all-pairs cover (combinatorial testing):
+/// `denominator`, `remap`, ...). Each combination is its own shader, which lavapipe's LLVM
+/// compiles in about 0.05 s per coefficient form, cold (measured with
+/// `MESA_SHADER_CACHE_DISABLE=true`): minutes over three forms, on a fresh machine, before
+/// each configuration is run (the rest of `exact`'s 12.6 cold minutes were the compensated
+/// shaders, [`forms`]). The CI size is an all-pairs cover (combinatorial testing):
 /// a set of configurations, picked greedily from the full list in its order, in which every
 /// pair of parameter values (choices and numbers alike) that occurs together in some full
 /// configuration occurs together in at least one kept configuration. Every choice value is
