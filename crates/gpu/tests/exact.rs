@@ -68,8 +68,6 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
             }
             Kind::Fresnel | Kind::Shadowing | Kind::Env => continue,
         };
-        // FASTBRDF_PARITY_TIMES prints each model's time, as in parity.rs (on lavapipe,
-        // cold, the shader compilations: which models cost CI).
         let t = std::time::Instant::now();
         let configs = common::gpu_configs(info);
         for config in &configs {
@@ -115,14 +113,7 @@ fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
                 }
             }
         }
-        if std::env::var_os("FASTBRDF_PARITY_TIMES").is_some() {
-            let s = t.elapsed().as_secs_f64();
-            eprintln!(
-                "{:<28} {:>4} configurations {s:>7.1} s",
-                info.id,
-                configs.len()
-            );
-        }
+        common::report_time(info.id, configs.len(), t);
     }
     assert!(checked > 300, "only {checked} checks");
     assert!(

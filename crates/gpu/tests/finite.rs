@@ -133,7 +133,6 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
                     .collect(),
             ),
         };
-        // FASTBRDF_PARITY_TIMES prints each model's time, as in parity.rs and exact.rs.
         let t = std::time::Instant::now();
         let configs = common::gpu_configs(info);
         for config in &configs {
@@ -166,14 +165,7 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
                 }
             }
         }
-        if std::env::var_os("FASTBRDF_PARITY_TIMES").is_some() {
-            let s = t.elapsed().as_secs_f64();
-            eprintln!(
-                "{:<28} {:>4} configurations {s:>7.1} s",
-                info.id,
-                configs.len()
-            );
-        }
+        common::report_time(info.id, configs.len(), t);
     }
     assert!(checked > 100_000, "only {checked}");
     assert!(

@@ -230,14 +230,7 @@ fn every_model_matches_the_cpu() {
             &mut report,
             &mut failures,
         );
-        if std::env::var_os("FASTBRDF_PARITY_TIMES").is_some() {
-            eprintln!(
-                "{:<28} {:>3} configurations {:>7.1} s",
-                e.info.id,
-                configs.len(),
-                t.elapsed().as_secs_f64()
-            );
-        }
+        common::report_time(e.info.id, configs.len(), t);
     }
     finish(&report, &failures);
 }

@@ -46,7 +46,7 @@ pub fn gpu() -> Option<&'static Gpu> {
 /// (docs/book/src/test-suite.md).
 pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
     let all = gpu_configs_full(info);
-    if info.id != "cook-torrance" || std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1") {
+    if info.id != "cook-torrance" || full() {
         return all;
     }
     all_pairs(all)
@@ -61,10 +61,7 @@ pub fn gpu_configs(info: &fastbrdf::ModelInfo) -> Vec<Vec<(String, String)>> {
 /// still checked; `FASTBRDF_FULL=1` checks all three.
 pub fn forms(info: &fastbrdf::ModelInfo, config: &[(String, String)]) -> &'static [&'static str] {
     let compensated = config.iter().any(|(k, v)| k == "ms" && v != "none");
-    if info.id == "cook-torrance"
-        && compensated
-        && !std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1")
-    {
+    if info.id == "cook-torrance" && compensated && !full() {
         &["storage"]
     } else {
         &["storage", "literals", "symbolic"]
@@ -121,6 +118,21 @@ pub fn all_pairs(all: Vec<Vec<(String, String)>>) -> Vec<Vec<(String, String)>> 
         .filter(|(_, k)| *k)
         .map(|(c, _)| c)
         .collect()
+}
+
+/// Whether `FASTBRDF_FULL=1` asks for the full sizes ([`gpu_configs`], [`forms`]).
+pub fn full() -> bool {
+    std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1")
+}
+
+/// With `FASTBRDF_PARITY_TIMES` set, prints model `id`'s time since `t` over its `n`
+/// configurations (`parity`, `exact`, `finite`: on lavapipe, cold, mostly its shaders'
+/// compilation, which shows the models that cost CI).
+pub fn report_time(id: &str, n: usize, t: std::time::Instant) {
+    if std::env::var_os("FASTBRDF_PARITY_TIMES").is_some() {
+        let s = t.elapsed().as_secs_f64();
+        eprintln!("{id:<28} {n:>4} configurations {s:>7.1} s");
+    }
 }
 
 /// [`gpu_configs`] before its CI size: every configuration the GPU tests can run.
