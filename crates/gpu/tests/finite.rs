@@ -51,9 +51,13 @@ fn dirs() -> Vec<[f32; 3]> {
     v
 }
 
-#[test]
-fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
-    let Some(gpu) = common::gpu() else { return };
+/// The finiteness checks of `configs` of model `info` on `gpu`: how many values were checked,
+/// and the failures (at most 40).
+fn finite_checks(
+    gpu: &fastbrdf_gpu::Gpu,
+    info: &fastbrdf::ModelInfo,
+    configs: &[Vec<(String, String)>],
+) -> (usize, Vec<String>) {
     let (d, q) = (&gpu.device, &gpu.queue);
     let ds = dirs();
     let mut cols6: [Vec<f32>; 6] = Default::default();
@@ -89,84 +93,119 @@ fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
     // FASTBRDF_FINITE_REPORT=1 lists the finite rows where GPU and CPU differ (by more than
     // 1e-3, mixed): inputs the GPU twins do not treat as the CPU does.
     let report = std::env::var_os("FASTBRDF_FINITE_REPORT").is_some();
-    for e in registry::all() {
-        let info = &e.info;
-        let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>) = match info.kind {
-            Kind::Lobe | Kind::Distribution | Kind::Fresnel => (
-                GpuInput::Cos(&COS),
-                COS.iter().map(|c| vec![Some(*c)]).collect(),
-            ),
-            Kind::Shadowing => (
-                GpuInput::Shadow([&cols4[0], &cols4[1], &cols4[2], &cols4[3]]),
-                {
-                    let half_vector = fastbrdf::ModelSpec::parse(info.id, &[])
-                        .and_then(|s| s.model::<f32>())
-                        .unwrap()
-                        .columns()
-                        .0
-                        .contains(&"cos_vh");
-                    (0..cols4[0].len())
-                        .map(|i| {
-                            let [v, l, h, vh] = [0, 1, 2, 3].map(|k| cols4[k][i]);
-                            // The half-vector terms (v-cavity, kelemen) read cos_h, cos_vh.
-                            if half_vector {
-                                vec![Some(v), Some(h), Some(vh), Some(l)]
-                            } else {
-                                vec![Some(v), Some(l)]
-                            }
-                        })
-                        .collect()
-                },
-            ),
-            Kind::Brdf => (
-                GpuInput::Dirs([
-                    &cols6[0], &cols6[1], &cols6[2], &cols6[3], &cols6[4], &cols6[5],
-                ]),
-                (0..cols6[0].len())
-                    .map(|i| cols6.iter().map(|c| Some(c[i])).collect())
-                    .collect(),
-            ),
-            Kind::Env => (
-                GpuInput::Env([&cols2[0], &cols2[1]]),
-                (0..cols2[0].len())
-                    .map(|i| vec![Some(cols2[0][i]), Some(cols2[1][i])])
-                    .collect(),
-            ),
-        };
-        let t = std::time::Instant::now();
-        let configs = common::gpu_configs(info);
-        for config in &configs {
-            let given: Vec<(&str, &str)> = config
-                .iter()
-                .map(|(k, v)| (k.as_str(), v.as_str()))
-                .collect();
-            let cpu = fastbrdf::ModelSpec::parse(info.id, &given)
-                .and_then(|s| s.model::<f32>())
-                .unwrap();
-            let kernel = GpuKernel::new(
-                d,
-                Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
-            )
+    let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>) = match info.kind {
+        Kind::Lobe | Kind::Distribution | Kind::Fresnel => (
+            GpuInput::Cos(&COS),
+            COS.iter().map(|c| vec![Some(*c)]).collect(),
+        ),
+        Kind::Shadowing => (
+            GpuInput::Shadow([&cols4[0], &cols4[1], &cols4[2], &cols4[3]]),
+            {
+                let half_vector = fastbrdf::ModelSpec::parse(info.id, &[])
+                    .and_then(|s| s.model::<f32>())
+                    .unwrap()
+                    .columns()
+                    .0
+                    .contains(&"cos_vh");
+                (0..cols4[0].len())
+                    .map(|i| {
+                        let [v, l, h, vh] = [0, 1, 2, 3].map(|k| cols4[k][i]);
+                        // The half-vector terms (v-cavity, kelemen) read cos_h, cos_vh.
+                        if half_vector {
+                            vec![Some(v), Some(h), Some(vh), Some(l)]
+                        } else {
+                            vec![Some(v), Some(l)]
+                        }
+                    })
+                    .collect()
+            },
+        ),
+        Kind::Brdf => (
+            GpuInput::Dirs([
+                &cols6[0], &cols6[1], &cols6[2], &cols6[3], &cols6[4], &cols6[5],
+            ]),
+            (0..cols6[0].len())
+                .map(|i| cols6.iter().map(|c| Some(c[i])).collect())
+                .collect(),
+        ),
+        Kind::Env => (
+            GpuInput::Env([&cols2[0], &cols2[1]]),
+            (0..cols2[0].len())
+                .map(|i| vec![Some(cols2[0][i]), Some(cols2[1][i])])
+                .collect(),
+        ),
+    };
+    for config in configs {
+        let given: Vec<(&str, &str)> = config
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        let cpu = fastbrdf::ModelSpec::parse(info.id, &given)
+            .and_then(|s| s.model::<f32>())
             .unwrap();
-            let mut out = vec![0.0f32; rows.len()];
-            kernel.eval(d, q, inputs, &mut out).unwrap();
-            for (row, got) in rows.iter().zip(&out) {
-                checked += 1;
-                let want = cpu.eval_row(row);
-                if report && (*got as f64 - want as f64).abs() > 1e-3 * (want.abs() as f64).max(1.0)
-                {
-                    eprintln!("{} {config:?} at {row:?}: gpu {got}, cpu {want}", info.id);
-                }
-                if want.is_finite() && !got.is_finite() && failures.len() < 40 {
-                    failures.push(format!(
-                        "{} {config:?} at {row:?}: gpu {got}, cpu {want}",
-                        info.id
-                    ));
-                }
+        let kernel = GpuKernel::new(
+            d,
+            Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
+        )
+        .unwrap();
+        let mut out = vec![0.0f32; rows.len()];
+        kernel.eval(d, q, inputs, &mut out).unwrap();
+        for (row, got) in rows.iter().zip(&out) {
+            checked += 1;
+            let want = cpu.eval_row(row);
+            if report && (*got as f64 - want as f64).abs() > 1e-3 * (want.abs() as f64).max(1.0) {
+                eprintln!("{} {config:?} at {row:?}: gpu {got}, cpu {want}", info.id);
+            }
+            if want.is_finite() && !got.is_finite() && failures.len() < 40 {
+                failures.push(format!(
+                    "{} {config:?} at {row:?}: gpu {got}, cpu {want}",
+                    info.id
+                ));
             }
         }
+    }
+    (checked, failures)
+}
+
+#[test]
+fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
+    let Some(gpu) = common::gpu() else { return };
+    // The shaders lavapipe takes minutes over, each on a device of its own, beside the rest.
+    let mut slow = vec![];
+    for e in registry::all() {
+        let info = &e.info;
+        for config in common::gpu_configs(info) {
+            if common::slow_to_compile(info.id, &config) {
+                slow.push(common::on_own_gpu(move |g| {
+                    let t = std::time::Instant::now();
+                    let r = finite_checks(g, info, std::slice::from_ref(&config));
+                    common::report_time(info.id, 1, t);
+                    r
+                }));
+            }
+        }
+    }
+    let mut failures = vec![];
+    let mut checked = 0usize;
+    for e in registry::all() {
+        let info = &e.info;
+        let t = std::time::Instant::now();
+        let configs: Vec<_> = common::gpu_configs(info)
+            .into_iter()
+            .filter(|c| !common::slow_to_compile(info.id, c))
+            .collect();
+        let (n, f) = finite_checks(gpu, info, &configs);
+        checked += n;
+        failures.extend(f);
         common::report_time(info.id, configs.len(), t);
     }
+    for h in slow {
+        if let Some((n, f)) = h.join().expect("a finiteness check panicked") {
+            checked += n;
+            failures.extend(f);
+        }
+    }
+    failures.truncate(40);
     assert!(checked > 100_000, "only {checked}");
     assert!(
         failures.is_empty(),

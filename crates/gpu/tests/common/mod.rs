@@ -121,6 +121,36 @@ pub fn all_pairs(all: Vec<Vec<(String, String)>>) -> Vec<Vec<(String, String)>> 
 }
 
 /// Whether `FASTBRDF_FULL=1` asks for the full sizes ([`gpu_configs`], [`forms`]).
+/// Whether configuration `config` of model `id` has one of the shaders lavapipe takes minutes
+/// to compile, cold: its 32 x 32 tables are constant arrays that WGSL indexes at run time
+/// through a local copy, and LLVM chews on the copy (measured with
+/// `MESA_SHADER_CACHE_DISABLE=true`, one shader: cook-torrance `ms=kulla-conty` 130 s,
+/// `ms=filament` 40 s, sheen-albedo-table 133 s). Such shaders are compiled on their own device
+/// ([`on_own_gpu`]), beside the rest.
+pub fn slow_to_compile(id: &str, config: &[(String, String)]) -> bool {
+    id == "sheen-albedo-table"
+        || (id == "cook-torrance" && config.iter().any(|(k, v)| k == "ms" && v != "none"))
+}
+
+/// Runs `f` on a thread with a device of its own, and returns its handle. lavapipe compiles a
+/// shader on its device's queue thread, one at a time, so the tests' shared device ([`gpu`])
+/// compiles one shader at once, on one core; a second device compiles beside it, and CI's
+/// second core is used. Under CI a missing adapter fails, as in [`gpu`]; otherwise the thread
+/// returns `None`.
+pub fn on_own_gpu<T: Send + 'static>(
+    f: impl FnOnce(&Gpu) -> T + Send + 'static,
+) -> std::thread::JoinHandle<Option<T>> {
+    std::thread::spawn(move || match Gpu::new() {
+        Ok(g) => Some(f(&g)),
+        Err(e) => {
+            if std::env::var_os("CI").is_some() {
+                panic!("CI is set and there is no GPU adapter: {e}");
+            }
+            None
+        }
+    })
+}
+
 pub fn full() -> bool {
     std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1")
 }
