@@ -118,41 +118,7 @@ fn peak_checks(
 #[test]
 fn every_lobe_distribution_and_brdf_is_exactly_its_peak_at_its_peak() {
     let Some(gpu) = common::gpu() else { return };
-    // The shaders lavapipe takes minutes over, each on a device of its own, beside the rest.
-    let mut slow = vec![];
-    for e in registry::all() {
-        let info = &e.info;
-        for config in common::gpu_configs(info) {
-            if common::slow_to_compile(info.id, &config) {
-                slow.push(common::on_own_gpu(move |g| {
-                    let t = std::time::Instant::now();
-                    let r = peak_checks(g, info, std::slice::from_ref(&config));
-                    common::report_time(info.id, 1, t);
-                    r
-                }));
-            }
-        }
-    }
-    let mut failures = vec![];
-    let mut checked = 0;
-    for e in registry::all() {
-        let info = &e.info;
-        let t = std::time::Instant::now();
-        let configs: Vec<_> = common::gpu_configs(info)
-            .into_iter()
-            .filter(|c| !common::slow_to_compile(info.id, c))
-            .collect();
-        let (n, f) = peak_checks(gpu, info, &configs);
-        checked += n;
-        failures.extend(f);
-        common::report_time(info.id, configs.len(), t);
-    }
-    for h in slow {
-        if let Some((n, f)) = h.join().expect("a peak check panicked") {
-            checked += n;
-            failures.extend(f);
-        }
-    }
+    let (checked, failures) = common::check_every_model(gpu, peak_checks);
     assert!(checked > 300, "only {checked} checks");
     assert!(
         failures.is_empty(),

@@ -170,41 +170,7 @@ fn finite_checks(
 #[test]
 fn no_gpu_twin_is_non_finite_where_the_cpu_is_finite() {
     let Some(gpu) = common::gpu() else { return };
-    // The shaders lavapipe takes minutes over, each on a device of its own, beside the rest.
-    let mut slow = vec![];
-    for e in registry::all() {
-        let info = &e.info;
-        for config in common::gpu_configs(info) {
-            if common::slow_to_compile(info.id, &config) {
-                slow.push(common::on_own_gpu(move |g| {
-                    let t = std::time::Instant::now();
-                    let r = finite_checks(g, info, std::slice::from_ref(&config));
-                    common::report_time(info.id, 1, t);
-                    r
-                }));
-            }
-        }
-    }
-    let mut failures = vec![];
-    let mut checked = 0usize;
-    for e in registry::all() {
-        let info = &e.info;
-        let t = std::time::Instant::now();
-        let configs: Vec<_> = common::gpu_configs(info)
-            .into_iter()
-            .filter(|c| !common::slow_to_compile(info.id, c))
-            .collect();
-        let (n, f) = finite_checks(gpu, info, &configs);
-        checked += n;
-        failures.extend(f);
-        common::report_time(info.id, configs.len(), t);
-    }
-    for h in slow {
-        if let Some((n, f)) = h.join().expect("a finiteness check panicked") {
-            checked += n;
-            failures.extend(f);
-        }
-    }
+    let (checked, mut failures) = common::check_every_model(gpu, finite_checks);
     failures.truncate(40);
     assert!(checked > 100_000, "only {checked}");
     assert!(

@@ -151,6 +151,50 @@ pub fn on_own_gpu<T: Send + 'static>(
     })
 }
 
+/// A check of some configurations of one model on a GPU: how many checks it made, and the
+/// failures.
+pub type Check = fn(&Gpu, &fastbrdf::ModelInfo, &[Vec<(String, String)>]) -> (usize, Vec<String>);
+
+/// Runs `check` over every model's [`gpu_configs`]: those [`slow_to_compile`] each on a device
+/// of its own ([`on_own_gpu`], started first), the rest on `gpu`, model by model
+/// ([`report_time`]). Returns the checks made and the failures.
+pub fn check_every_model(gpu: &Gpu, check: Check) -> (usize, Vec<String>) {
+    let mut slow = vec![];
+    for e in fastbrdf::registry::all() {
+        let info = &e.info;
+        for config in gpu_configs(info) {
+            if slow_to_compile(info.id, &config) {
+                slow.push(on_own_gpu(move |g| {
+                    let t = std::time::Instant::now();
+                    let r = check(g, info, std::slice::from_ref(&config));
+                    report_time(info.id, 1, t);
+                    r
+                }));
+            }
+        }
+    }
+    let (mut checked, mut failures) = (0, vec![]);
+    for e in fastbrdf::registry::all() {
+        let info = &e.info;
+        let t = std::time::Instant::now();
+        let configs: Vec<_> = gpu_configs(info)
+            .into_iter()
+            .filter(|c| !slow_to_compile(info.id, c))
+            .collect();
+        let (n, f) = check(gpu, info, &configs);
+        checked += n;
+        failures.extend(f);
+        report_time(info.id, configs.len(), t);
+    }
+    for h in slow {
+        if let Some((n, f)) = h.join().expect("a check on its own device panicked") {
+            checked += n;
+            failures.extend(f);
+        }
+    }
+    (checked, failures)
+}
+
 pub fn full() -> bool {
     std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1")
 }
