@@ -120,7 +120,6 @@ pub fn all_pairs(all: Vec<Vec<(String, String)>>) -> Vec<Vec<(String, String)>> 
         .collect()
 }
 
-/// Whether `FASTBRDF_FULL=1` asks for the full sizes ([`gpu_configs`], [`forms`]).
 /// Whether configuration `config` of model `id` has one of the shaders lavapipe takes minutes
 /// to compile, cold: its 32 x 32 tables are constant arrays that WGSL indexes at run time
 /// through a local copy, and LLVM chews on the copy (measured with
@@ -195,6 +194,7 @@ pub fn check_every_model(gpu: &Gpu, check: Check) -> (usize, Vec<String>) {
     (checked, failures)
 }
 
+/// Whether `FASTBRDF_FULL=1` asks for the full sizes ([`gpu_configs`], [`forms`]).
 pub fn full() -> bool {
     std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1")
 }
