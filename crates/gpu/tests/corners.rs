@@ -17,7 +17,6 @@
 mod common;
 
 use fastbrdf_gpu::compute::{GpuInput, GpuKernel};
-use fastbrdf_gpu::spec::Instance;
 
 /// A corner: the model, its parameters and the bound on the GPU's mixed error there. The
 /// bounds are lavapipe's maxima (LLVM 15), rounded up: Fresnel 1.20e-2 (CPU f32 3.8e-7) at
@@ -161,13 +160,7 @@ fn gpu_corners_at_the_ends_of_the_ranges_are_measured_and_bounded() {
             })
             .fold(0.0, f64::max);
         for form in ["storage", "literals", "runtime"] {
-            let instance = match form {
-                "storage" => Instance::with_storage(&common::spec(c.id, c.params)).unwrap(),
-                "literals" => Instance::new(&common::spec(c.id, c.params)).unwrap(),
-                _ => Instance::runtime(&common::spec(c.id, c.params))
-                    .unwrap()
-                    .runtime_entry(),
-            };
+            let instance = common::instance(c.id, c.params, form);
             let kernel = GpuKernel::new(d, instance).unwrap();
             let mut out = vec![0.0f32; rows.len()];
             kernel.eval(d, q, inputs, &mut out).unwrap();

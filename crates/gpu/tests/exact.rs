@@ -17,7 +17,6 @@ use fastbrdf::model::Kind;
 use fastbrdf::registry;
 use fastbrdf_gpu::GpuKernel;
 use fastbrdf_gpu::compute::GpuInput;
-use fastbrdf_gpu::spec::Instance;
 
 /// Allowed distance from the peak, in f32 ulp of the peak.
 const ULPS: f64 = 4.0;
@@ -79,13 +78,7 @@ fn peak_checks(
             .unwrap();
         let peak = exact.eval_row(&row64) as f32;
         for &form in common::forms(info, config) {
-            let instance = match form {
-                "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
-                "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
-                _ => Instance::runtime(&common::spec(info.id, &given))
-                    .unwrap()
-                    .runtime_entry(),
-            };
+            let instance = common::instance(info.id, &given, form);
             let rt_norm = instance.wrapper.contains("fb_rt_lobe_integral_");
             let kernel = GpuKernel::new(d, instance).unwrap();
             let mut out = [0.0f32];
@@ -171,13 +164,7 @@ fn every_lobe_is_accurate_near_its_peak() {
                 .collect();
             let peak = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for form in ["storage", "literals", "symbolic"] {
-                let instance = match form {
-                    "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
-                    "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
-                    _ => Instance::runtime(&common::spec(info.id, &given))
-                        .unwrap()
-                        .runtime_entry(),
-                };
+                let instance = common::instance(info.id, &given, form);
                 let kernel = GpuKernel::new(d, instance).unwrap();
                 let mut out = vec![0.0f32; cos.len()];
                 kernel.eval(d, q, GpuInput::Cos(&cos), &mut out).unwrap();

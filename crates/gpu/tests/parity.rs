@@ -355,13 +355,7 @@ fn check(
             // (exported code), which a compiler may fold into reassociated expressions, and as
             // f32 expressions of the parameters (BRDF Explorer's sliders), where they exist.
             for &form in common::forms(info, config) {
-                let instance = match form {
-                    "storage" => Instance::with_storage(&common::spec(info.id, &given)).unwrap(),
-                    "literals" => Instance::new(&common::spec(info.id, &given)).unwrap(),
-                    _ => Instance::runtime(&common::spec(info.id, &given))
-                        .unwrap()
-                        .runtime_entry(),
-                };
+                let instance = common::instance(info.id, &given, form);
                 let kernel = GpuKernel::new(d, instance).unwrap();
                 let (inputs, rows): (GpuInput, Vec<Vec<Option<f32>>>);
                 let cos;

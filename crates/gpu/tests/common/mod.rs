@@ -194,6 +194,18 @@ pub fn check_every_model(gpu: &Gpu, check: Check) -> (usize, Vec<String>) {
     (checked, failures)
 }
 
+/// Model `id` with parameters `given` in coefficient form `form`: "storage" (coefficients in a
+/// buffer), "literals" (inline) or any other name for the runtime form (BRDF Explorer's
+/// sliders); panics on a bad spec.
+pub fn instance(id: &str, given: &[(&str, &str)], form: &str) -> fastbrdf_gpu::spec::Instance {
+    use fastbrdf_gpu::spec::Instance;
+    match form {
+        "storage" => Instance::with_storage(&spec(id, given)).unwrap(),
+        "literals" => Instance::new(&spec(id, given)).unwrap(),
+        _ => Instance::runtime(&spec(id, given)).unwrap().runtime_entry(),
+    }
+}
+
 /// Whether `FASTBRDF_FULL=1` asks for the full sizes ([`gpu_configs`], [`forms`]).
 pub fn full() -> bool {
     std::env::var("FASTBRDF_FULL").is_ok_and(|v| v == "1")
