@@ -450,7 +450,7 @@ fn direct(
                 // ray would start inside the object and always hit it, a hard black line (the
                 // "shadow terminator problem" of shading normals): no shadow ray there, the
                 // light reaches as without shadows.
-                if scene.shadows && s.g.dot(l) > 0.0 && scene.shadowed(s.p, s.g, l, dist) {
+                if scene.shadows && s.g.dot(l) > 0.0 && scene.shadowed_from(oi, s.p, s.g, l, dist) {
                     continue;
                 }
                 radiance[i] += li * s.base * (cos_i / std::f32::consts::PI);

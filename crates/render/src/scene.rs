@@ -307,9 +307,33 @@ impl Scene {
     /// magnitude (f32 rounding of the hit point grows with it), so a surface does not shadow
     /// itself (acne); a point light's ray stops just short of the light.
     pub fn shadowed(&self, p: Vec3, n: Vec3, l: Vec3, dist: f32) -> bool {
+        self.shadowed_from(usize::MAX, p, n, l, dist)
+    }
+
+    /// [`Scene::shadowed`] for a point of object `from`, with `n` its geometric normal and
+    /// `l` on the side `n` faces (`n . l > 0`, as the renderer's shadow rule asks). A sphere
+    /// or a plane is then left out of its own points' search: a ray leaving a convex surface
+    /// on the side its normal faces never meets it again (the origin, offset along `n`, lies
+    /// outside it: the sphere's quadratic has two negative roots or none, the plane's
+    /// crossing is behind the origin), so the test could only say no. The same answers as
+    /// [`Scene::shadowed`] (`tests/shadows.rs` compares them), at the cost of the other
+    /// objects alone: nothing at all for a lone sphere. `from` beyond the objects (as
+    /// [`Scene::shadowed`] passes) searches them all.
+    pub fn shadowed_from(&self, from: usize, p: Vec3, n: Vec3, l: Vec3, dist: f32) -> bool {
         let eps = SHADOW_EPS * (1.0 + p.abs().max_element());
-        let o = p + n * eps;
-        self.occluded(&Ray { o, d: l }, eps, dist * (1.0 - 1e-5) - eps)
+        let ray = Ray {
+            o: p + n * eps,
+            d: l,
+        };
+        let (t_min, t_max) = (eps, dist * (1.0 - 1e-5) - eps);
+        self.objects
+            .iter()
+            .enumerate()
+            .any(|(i, o)| match &o.shape {
+                Shape::Sphere(s) => i != from && s.hit(&ray, t_min, t_max, false).is_some(),
+                Shape::Plane(p) => i != from && p.hit(&ray, t_min, t_max, false).is_some(),
+                Shape::Mesh(m) => m.occluded(&ray, t_min, t_max),
+            })
     }
 
     #[inline]

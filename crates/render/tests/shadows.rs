@@ -140,3 +140,55 @@ fn a_lit_sphere_does_not_shadow_itself() {
         );
     }
 }
+
+/// `Scene::shadowed_from` (the renderer's shadow test, which leaves a sphere or a plane out
+/// of its own points' search) answers as `Scene::shadowed` (every object searched) for points
+/// on the sphere and on the floor of the sphere-on-a-floor scene, towards directions on the
+/// side the normal faces, grazing ones included: 20,000 rays each, both answers seen.
+#[test]
+fn leaving_a_convex_object_out_of_its_own_shadow_rays_changes_no_answer() {
+    let mut spec = SceneSpec::new();
+    spec.floor = true;
+    let s = scene(&spec);
+    assert_eq!(s.objects.len(), 2, "the sphere and the floor");
+    let mut rng = fastbrdf_render::env::Rng::new(7, 11);
+    let mut unit = || {
+        let z = 2.0 * rng.uniform() - 1.0;
+        let phi = std::f32::consts::TAU * rng.uniform();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    };
+    let mut seen = [[0u32; 2]; 2];
+    for k in 0..40_000 {
+        let on_sphere = k % 2 == 0;
+        let (from, p, n) = if on_sphere {
+            let n = unit();
+            (0, n, n)
+        } else {
+            let q = unit() * 3.0;
+            (1, Vec3::new(q.x, -1.0, q.z), Vec3::Y)
+        };
+        let mut l = unit();
+        if l.dot(n) < 0.0 {
+            l = -l;
+        }
+        if k % 5 == 0 {
+            // Grazing: within a few thousandths of the tangent plane.
+            l = (l - n * l.dot(n) + n * (0.004 * unit().x.abs())).normalize();
+        }
+        if l.dot(n) <= 0.0 {
+            continue;
+        }
+        let want = s.shadowed(p, n, l, f32::INFINITY);
+        assert_eq!(
+            s.shadowed_from(from, p, n, l, f32::INFINITY),
+            want,
+            "from object {from}, p {p}, l {l}"
+        );
+        seen[usize::from(on_sphere)][usize::from(want)] += 1;
+    }
+    assert!(
+        seen.iter().flatten().all(|&c| c > 100),
+        "both answers from both objects: {seen:?}"
+    );
+}

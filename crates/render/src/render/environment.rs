@@ -6,9 +6,10 @@ use super::{Ctx, Sample, Sampler, Spec, Tile, add_specular};
 use crate::scene::Scene;
 use glam::Vec3;
 
-/// Whether light from `l` reaches sample `s` (see the shadow rule in [`super::direct`]).
-fn visible(scene: &Scene, s: &Sample, l: Vec3) -> bool {
-    !scene.shadows || s.g.dot(l) <= 0.0 || !scene.shadowed(s.p, s.g, l, f32::INFINITY)
+/// Whether light from `l` reaches sample `s` of object `from` (see the shadow rule in
+/// [`super::direct`]).
+fn visible(scene: &Scene, from: usize, s: &Sample, l: Vec3) -> bool {
+    !scene.shadows || s.g.dot(l) <= 0.0 || !scene.shadowed_from(from, s.p, s.g, l, f32::INFINITY)
 }
 
 /// The environment pass's queries to the specular BRDF, batched per object: the densities of
@@ -188,7 +189,7 @@ pub(super) fn env_pass(
             // Occlusion scales the environment's light (times one without a texture: exact).
             let le = le * s.ao;
             let cos_i = s.n.dot(l);
-            if pdf_l > 0.0 && cos_i > 0.0 && le != Vec3::ZERO && visible(scene, s, l) {
+            if pdf_l > 0.0 && cos_i > 0.0 && le != Vec3::ZERO && visible(scene, oi, s, l) {
                 radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
                 if let Some((t, b, wo)) = frame {
                     let wi = [l.dot(t), l.dot(b), cos_i];
@@ -216,7 +217,7 @@ pub(super) fn env_pass(
                 let (le, pdf_l) = es.cos_le[next_cos];
                 next_cos += 1;
                 let le = le * s.ao;
-                if le != Vec3::ZERO && visible(scene, s, l) {
+                if le != Vec3::ZERO && visible(scene, oi, s, l) {
                     radiance[i] += le * s.base * (cos_i / PI / (pdf_l + cos_i / PI) * inv);
                 }
             }
@@ -290,7 +291,7 @@ pub(super) fn env_pass(
                     let (l, (le, pdf_l)) = (es.draw_dir[next_draw], es.draw_le[next_draw]);
                     next_draw += 1;
                     let le = le * s.ao;
-                    if le != Vec3::ZERO && visible(scene, s, l) {
+                    if le != Vec3::ZERO && visible(scene, oi, s, l) {
                         let w = power_heuristic(pdf, pdf_l);
                         let di = &es.draw_in;
                         spec.push(i, wi, [di[0][b], di[1][b], di[2][b]], le * (w / pdf * inv));
