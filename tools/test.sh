@@ -11,8 +11,9 @@
 # with CI set a missing Chromium fails that test, without CI it is skipped with a message.
 # Extra arguments go to `cargo test` (e.g. `tools/test.sh -p fastbrdf-gpu`).
 #
-# Then the Python package (python/, issues 17 and 29), with no arguments (the whole suite) or
-# with `--python` alone (only this step). It builds a wheel with maturin (from a virtual
+# Then the Python package (python/, issues 17 and 29), with no arguments (the whole suite: this
+# step runs beside the Rust tests, once every test is built, and prints its output after
+# theirs) or with `--python` alone (only this step). It builds a wheel with maturin (from a virtual
 # environment target/python-venv that holds maturin) into target/python-wheels/, in cargo's dev
 # profile, which reuses what `cargo test` just built; then it makes a fresh virtual environment
 # target/python-wheel-venv with no Rust toolchain on PATH, installs the test dependencies from
@@ -242,7 +243,36 @@ if [ "$#" -eq 1 ] && [ "$1" = "--python" ]; then
     python_tests
     exit 0
 fi
-cargo test --workspace --locked "$@"
-if [ "$#" -eq 0 ]; then
+if [ "$#" -ne 0 ]; then
+    cargo test --workspace --locked "$@"
+    exit 0
+fi
+# The whole suite: build every test first, then run the Rust tests and the Python step side by
+# side. The Rust tests leave a core idle for minutes at a time (a shader compiling on one core,
+# a browser test waiting on its page: 19% of the two cores idle over the 18 minutes, vmstat,
+# the 2-core machine), which the wheel's build and pytest fill. Cargo holds its build lock
+# only while building, so the wheel's `maturin build` in the same target folder does not wait
+# for the tests; it compiles only the Python crate and what `cargo test` did not build. The
+# Python step's output is kept in a file and printed after the Rust tests; either failing
+# fails the script.
+cargo test --workspace --locked --no-run
+python_log="$(mktemp)" rust_log="$(mktemp)"
+# The wheel's build waits until `cargo test` has checked that every test is built and runs
+# the first binary (its first "Running" line): the two must not queue on the build lock.
+(
+    while ! grep -q "Running" "$rust_log" && [ ! -e "$rust_log.done" ]; do sleep 1; done
     python_tests
+) > "$python_log" 2>&1 &
+python_pid=$!
+rust_status=0
+cargo test --workspace --locked 2> >(tee "$rust_log" >&2) || rust_status=$?
+echo "$rust_status" > "$rust_log.done"
+python_status=0
+wait "$python_pid" || python_status=$?
+echo "test.sh: the Python step, which ran beside the Rust tests:" >&2
+cat "$python_log" >&2
+rm -f "$python_log" "$rust_log" "$rust_log.done"
+if [ "$rust_status" -ne 0 ] || [ "$python_status" -ne 0 ]; then
+    echo "test.sh: failed (cargo test: exit $rust_status; the Python step: exit $python_status)" >&2
+    exit 1
 fi
