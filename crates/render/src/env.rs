@@ -9,10 +9,13 @@
 //! contribution has no lookup bias.
 //!
 //! Multiple importance sampling: [`balance_heuristic`] and [`power_heuristic`] weight two
-//! strategies; the renderer combines the map's samples with cosine-weighted hemisphere
-//! samples for the diffuse term (balance heuristic), and the map's samples with the specular
-//! BRDF's own (`fastbrdf::Brdf::sample`) for the specular term (power heuristic,
-//! [`specular_light_weight`] for the map's side).
+//! strategies. The renderer's light strategy draws one direction per pass from the map or,
+//! where the map has a compact bright part (a sun), one from the bright texels
+//! ([`EnvMap::sample_bright`]) and one from the rest ([`EnvMap::sample_rest`]), whose
+//! densities do not overlap ([`EnvMap::light_pdf`]). It combines them with cosine-weighted
+//! hemisphere samples for the diffuse term (balance heuristic), and with the specular BRDF's
+//! own (`fastbrdf::Brdf::sample`) for the specular term (power heuristic,
+//! [`power_weight_over_pdf`]).
 
 use crate::error::{RenderError, Result};
 pub use crate::hash::pcg;
@@ -83,6 +86,165 @@ pub struct EnvMap {
     /// Per row, the last entry of its cumulative distribution (1, or 0 for a black row): a
     /// draw scales its uniform number by it before it has read the row ([`wave`]).
     row_total: Vec<f32>,
+    /// The bright texels as a strategy of their own ([`EnvMap::sample_bright`]), where the map
+    /// has a compact bright part (a sun); `None` otherwise or when turned off
+    /// ([`EnvMap::without_bright`]).
+    bright: Option<Bright>,
+}
+
+/// A map's bright texels (luminance above `threshold`), drawn in proportion to their weight
+/// (luminance times sin theta, as the whole map's distribution weighs them), and the rest of the
+/// map: the renderer's two light strategies, one direction of each per pass.
+///
+/// Why split. The built-in sky's sun is 39% of its weight in 122 texels: drawn from the whole
+/// map, the number of a pixel's draws that hit it is what fluctuates (half the sky scenes'
+/// error). One draw from the sun and one from the rest each pass, the sun's share is exact.
+#[derive(Clone, Debug)]
+struct Bright {
+    threshold: f32,
+    /// The whole map's weight over the bright texels' (one over their share): under this
+    /// strategy a bright texel's density is the map's density there times `ratio` ...
+    ratio: f32,
+    /// ... and under the rest's, a texel's that is not bright times `rest_ratio` (one over
+    /// the rest's share).
+    rest_ratio: f32,
+    /// The bright texels (row-major indices) and the cumulative distribution of their weights
+    /// (one more entry, 0 to 1).
+    texels: Vec<u32>,
+    cdf: Vec<f32>,
+    /// The rest's distribution over rows (height + 1 entries) with its guide, and per row the
+    /// row of `EnvMap::conditional` holding its distribution over columns: the row itself, or
+    /// for a row holding bright texels one appended after the map's rows without them.
+    rest_marginal: Vec<f32>,
+    rest_marginal_guide: Vec<u16>,
+    rest_row: Vec<u32>,
+    /// A cone holding every bright texel: its axis and `-sin` of its half-angle (a surface
+    /// whose normal has `n . axis <= below` sees none of them above its horizon).
+    axis: Vec3,
+    below: f32,
+}
+
+/// A texel is bright when its luminance exceeds this many times the map's mean (over solid
+/// angle): the built-in sky's sun is 1,200 times its mean, a captured sun 10^3 to 10^6 times.
+pub const BRIGHT_FACTOR: f32 = 64.0;
+/// The bright texels form a strategy of their own only when they carry at least this share of
+/// the map's weight (below it, the extra direction costs more than the noise it removes) ...
+pub const BRIGHT_MIN_SHARE: f64 = 0.05;
+/// ... and are at most one texel in this many (a compact light, not half the sky).
+pub const BRIGHT_MAX_TEXELS: usize = 256;
+
+/// The cumulative distribution of weights `xs`: n + 1 entries from 0 to 1, all 0 where the
+/// weights sum to 0.
+fn cdf_of(xs: &[f64]) -> Vec<f32> {
+    let sum: f64 = xs.iter().sum();
+    let mut acc = 0.0f64;
+    let running = xs.iter().map(|&x| {
+        acc += x;
+        if sum > 0.0 { (acc / sum) as f32 } else { 0.0 }
+    });
+    std::iter::once(0.0).chain(running).collect()
+}
+
+/// The bright part of a map of `texels` (row-major, `w` wide) whose weights are `weights`
+/// (summing to `total`), per [`BRIGHT_FACTOR`], [`BRIGHT_MIN_SHARE`] and
+/// [`BRIGHT_MAX_TEXELS`], with the rest of the map's distribution: the distributions over
+/// columns of the rows that hold bright texels, without them, are appended to `conditional`
+/// (the map's, `w + 1` entries a row).
+fn bright_part(
+    texels: &[Vec3],
+    weights: &[f64],
+    total: f64,
+    w: usize,
+    conditional: &mut Vec<f32>,
+) -> Option<Bright> {
+    let h = texels.len() / w;
+    let area: f64 = (0..h)
+        .map(|r| (PI * (r as f32 + 0.5) / h as f32).sin() as f64 * w as f64)
+        .sum();
+    let threshold = (BRIGHT_FACTOR as f64 * total / area) as f32;
+    let chosen: Vec<u32> = (0..texels.len())
+        .filter(|&i| lum(texels[i]) > threshold)
+        .map(|i| i as u32)
+        .collect();
+    if chosen.is_empty() || chosen.len() > texels.len() / BRIGHT_MAX_TEXELS {
+        return None;
+    }
+    let sum: f64 = chosen.iter().map(|&i| weights[i as usize]).sum();
+    if sum < BRIGHT_MIN_SHARE * total {
+        return None;
+    }
+    let cdf = cdf_of(
+        &chosen
+            .iter()
+            .map(|&i| weights[i as usize])
+            .collect::<Vec<_>>(),
+    );
+    // The rest: per row its weight without its bright texels (none left: the map is its
+    // bright texels, drawn whole); a row holding some gets a distribution over its columns
+    // without them, after the map's rows.
+    let mut is_bright = vec![false; texels.len()];
+    chosen.iter().for_each(|&i| is_bright[i as usize] = true);
+    let rest_of = |r: usize| -> Vec<f64> {
+        let rest = |i: usize| if is_bright[i] { 0.0 } else { weights[i] };
+        (r * w..(r + 1) * w).map(rest).collect()
+    };
+    let rest_sums: Vec<f64> = (0..h).map(|r| rest_of(r).iter().sum()).collect();
+    let rest_total: f64 = rest_sums.iter().sum();
+    if rest_total <= 0.0 {
+        return None;
+    }
+    let rest_marginal = cdf_of(&rest_sums);
+    let mut rest_row: Vec<u32> = (0..h as u32).collect();
+    for (r, row) in rest_row.iter_mut().enumerate() {
+        if is_bright[r * w..(r + 1) * w].contains(&true) {
+            *row = (conditional.len() / (w + 1)) as u32;
+            conditional.extend(cdf_of(&rest_of(r)));
+        }
+    }
+    // The cone: the axis along the texels' mean direction, the half-angle the largest angle
+    // to a texel's centre plus the texel's half-diagonal (its widest extent from the centre).
+    let centre = |i: u32| {
+        let (r, c) = (i as usize / w, i as usize % w);
+        uv_to_dir((c as f32 + 0.5) / w as f32, (r as f32 + 0.5) / h as f32).0
+    };
+    let axis = chosen
+        .iter()
+        .fold(Vec3::ZERO, |a, &i| a + centre(i))
+        .normalize_or(Vec3::Y);
+    let half_diagonal = |i: u32| {
+        let r = i as usize / w;
+        let st = (PI * (r as f32 + 1.0) / h as f32)
+            .sin()
+            .max((PI * r as f32 / h as f32).sin());
+        0.5 * ((PI / h as f32).powi(2) + (2.0 * PI * st / w as f32).powi(2)).sqrt()
+    };
+    let half_angle = chosen
+        .iter()
+        .map(|&i| axis.dot(centre(i)).clamp(-1.0, 1.0).acos() + half_diagonal(i))
+        .fold(0.0f32, f32::max);
+    Some(Bright {
+        threshold,
+        ratio: (total / sum) as f32,
+        rest_ratio: (total / rest_total) as f32,
+        texels: chosen,
+        cdf,
+        rest_marginal_guide: guide_of(&rest_marginal, 4 * h),
+        rest_marginal,
+        rest_row,
+        axis,
+        below: if half_angle < PI / 2.0 {
+            -half_angle.sin()
+        } else {
+            -1.0
+        },
+    })
+}
+
+/// What a draw reads: the whole map, or the rest without the bright texels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Part {
+    Whole,
+    Rest,
 }
 
 /// A texel's radiance and probability mass.
@@ -246,23 +408,16 @@ impl EnvMap {
                 weights[r * w + c] = l * st;
             }
         }
-        let total: f64 = weights.iter().sum();
-        let mut marginal = Vec::with_capacity(h + 1);
-        let mut conditional = Vec::with_capacity(h * (w + 1));
-        let mut acc = 0.0f64;
-        marginal.push(0.0);
-        for r in 0..h {
-            let row = &weights[r * w..(r + 1) * w];
-            let sum: f64 = row.iter().sum();
-            let mut a = 0.0f64;
-            conditional.push(0.0);
-            for &x in row {
-                a += x;
-                conditional.push(if sum > 0.0 { (a / sum) as f32 } else { 0.0 });
-            }
-            acc += sum;
-            marginal.push((acc / total) as f32);
-        }
+        let row_sums: Vec<f64> = weights.chunks_exact(w).map(|r| r.iter().sum()).collect();
+        let total: f64 = row_sums.iter().sum();
+        let marginal = cdf_of(&row_sums);
+        let mut conditional: Vec<f32> = weights.chunks_exact(w).flat_map(cdf_of).collect();
+        // The bright part, and the rest's rows after the map's.
+        let bright = if black {
+            None
+        } else {
+            bright_part(&texels, &weights, total, w, &mut conditional)
+        };
         let cells = texels
             .iter()
             .zip(&weights)
@@ -286,7 +441,66 @@ impl EnvMap {
             marginal_guide,
             conditional_guide,
             row_total,
+            bright,
         })
+    }
+
+    /// The map without its bright strategy: the renderer then draws one direction per pass
+    /// from the whole map, as the GPU renderer does (its Lambert pictures equal the CPU's to
+    /// rounding only so; `fastbrdf-gpu`'s `tests/render_env.rs`).
+    pub fn without_bright(mut self) -> Self {
+        let (w, h) = (self.width as usize, self.height as usize);
+        self.bright = None;
+        self.conditional.truncate(h * (w + 1));
+        self.conditional_guide.truncate(h * (row_guide(w) + 1));
+        self.row_total.truncate(h);
+        self
+    }
+
+    /// Whether the map has a bright strategy ([`EnvMap::sample_bright`]): how many texels,
+    /// and their share of the map's weight.
+    pub fn bright(&self) -> Option<(usize, f32)> {
+        self.bright
+            .as_ref()
+            .map(|b| (b.texels.len(), 1.0 / b.ratio))
+    }
+
+    /// A direction drawn from the bright texels alone, in proportion to their weight, by two
+    /// uniform numbers in [0, 1): (unit direction, radiance, this strategy's density there);
+    /// `None` without a bright part. Uniform within the texel in longitude and latitude, as
+    /// [`EnvMap::sample`]: its density is the map's times the bright part's `ratio` (one over
+    /// its share of the weight).
+    pub fn sample_bright(&self, u1: f32, u2: f32) -> Option<(Vec3, Vec3, f32)> {
+        let b = self.bright.as_ref()?;
+        let u = u1.clamp(0.0, 1.0 - f32::EPSILON);
+        let (k, fr) = bin_of(&b.cdf, b.cdf.partition_point(|&c| c <= u), u);
+        let i = b.texels[k] as usize;
+        let w = self.width as usize;
+        let (d, rgb, pdf) = self.drawn(i / w, fr, i % w, u2.clamp(0.0, 1.0 - f32::EPSILON));
+        Some((d, rgb, pdf * b.ratio))
+    }
+
+    /// Whether a surface of shading normal `n` may see a bright texel above its horizon (else
+    /// every direction of the bright strategy has a zero cosine there and adds nothing).
+    #[inline]
+    pub fn bright_faces(&self, n: Vec3) -> bool {
+        self.bright
+            .as_ref()
+            .is_some_and(|b| n.dot(b.axis) > b.below)
+    }
+
+    /// The density of the renderer's light strategies together, one draw of each per pass
+    /// ([`EnvMap::sample_rest`] and [`EnvMap::sample_bright`], whose texels do not overlap), at
+    /// a direction whose look-up gave radiance `rgb` and the whole map's density `pdf`: a
+    /// bright texel's (one whose radiance is bright) under the bright strategy, any other's
+    /// under the rest's; without a bright part, the map's own.
+    #[inline]
+    pub fn light_pdf(&self, rgb: Vec3, pdf: f32) -> f32 {
+        match &self.bright {
+            Some(b) if lum(rgb) > b.threshold => pdf * b.ratio,
+            Some(b) => pdf * b.rest_ratio,
+            None => pdf,
+        }
     }
 
     /// Per texel (row-major), its radiance and probability mass (the masses sum to 1): the
@@ -299,7 +513,8 @@ impl EnvMap {
     /// per row the one over its columns (width + 1 entries each), as [`EnvMap::sample`] reads
     /// them.
     pub fn tables(&self) -> (&[f32], &[f32]) {
-        (&self.marginal, &self.conditional)
+        let rows = self.height as usize * (self.width as usize + 1);
+        (&self.marginal, &self.conditional[..rows])
     }
 
     /// A constant map of radiance `c` (the furnace: `c` = 1).
@@ -438,15 +653,47 @@ impl EnvMap {
     /// A direction drawn from the map's distribution by two uniform numbers in [0, 1):
     /// (unit direction, radiance, solid-angle density); density 0 at the poles (skip it).
     pub fn sample(&self, u1: f32, u2: f32) -> (Vec3, Vec3, f32) {
-        let (r, fr) = sample_cdf(&self.marginal, &self.marginal_guide, u1);
+        self.draw(Part::Whole, u1, u2)
+    }
+
+    /// A direction drawn from the rest of the map, without its bright texels
+    /// ([`EnvMap::sample_bright`]; the whole map where it has none), as [`EnvMap::sample`]:
+    /// its density is the map's times the rest's ratio (one over its share of the weight), 0
+    /// on the bright texels.
+    pub fn sample_rest(&self, u1: f32, u2: f32) -> (Vec3, Vec3, f32) {
+        self.draw(Part::Rest, u1, u2)
+    }
+
+    /// [`EnvMap::sample`] or [`EnvMap::sample_rest`].
+    fn draw(&self, part: Part, u1: f32, u2: f32) -> (Vec3, Vec3, f32) {
+        let (marginal, guide, rows, scale) = self.part(part);
+        let (r, fr) = sample_cdf(marginal, guide, u1);
+        let t = rows.map_or(r, |rows| rows[r] as usize);
         let w = self.width as usize;
         let g = row_guide(w) + 1;
         let (c, fc) = sample_cdf(
-            &self.conditional[r * (w + 1)..(r + 1) * (w + 1)],
-            &self.conditional_guide[r * g..(r + 1) * g],
+            &self.conditional[t * (w + 1)..(t + 1) * (w + 1)],
+            &self.conditional_guide[t * g..(t + 1) * g],
             u2,
         );
-        self.drawn(r, fr, c, fc)
+        let (d, rgb, pdf) = self.drawn(r, fr, c, fc);
+        (d, rgb, pdf * scale)
+    }
+
+    /// The tables a draw from `part` reads: the distribution over rows and its guide, per row
+    /// the row of the conditional tables (`None`: the row itself), and the factor from the
+    /// map's density to the part's.
+    #[inline(always)]
+    fn part(&self, part: Part) -> (&[f32], &[u16], Option<&[u32]>, f32) {
+        match &self.bright {
+            Some(b) if part == Part::Rest => (
+                &b.rest_marginal,
+                &b.rest_marginal_guide,
+                Some(&b.rest_row),
+                b.rest_ratio,
+            ),
+            _ => (&self.marginal, &self.marginal_guide, None, 1.0),
+        }
     }
 
     /// The draw of texel (column `c`, row `r`) at (`fc`, `fr`) within it: [`EnvMap::sample`]'s
@@ -507,12 +754,17 @@ pub fn power_heuristic(pa: f32, pb: f32) -> f32 {
     }
 }
 
-/// The MIS weight of a map sample for the specular term, whose density is `pdf_light`:
-/// `power_heuristic(pdf_light, brdf_pdf)` against the BRDF's own sample of the same pass (the
-/// renderer's environment pass, `render.rs`), or 1 when no BRDF density is given (a map-only
-/// estimate).
-pub fn specular_light_weight(pdf_light: f32, brdf_pdf: Option<f32>) -> f32 {
-    brdf_pdf.map_or(1.0, |b| power_heuristic(pdf_light, b))
+/// The power heuristic's weight of a strategy's sample divided by that strategy's density
+/// `p`, against another strategy of density `q` there: `p / (p^2 + q^2)`, which multiplies
+/// the integrand. Formed from the ratio `q / p`, so that narrow lobes' large densities cannot
+/// overflow f32; 0 when `p` is 0 (the sample cannot occur).
+pub fn power_weight_over_pdf(p: f32, q: f32) -> f32 {
+    if p > 0.0 {
+        let r = q / p;
+        1.0 / (p * (1.0 + r * r))
+    } else {
+        0.0
+    }
 }
 
 /// A small deterministic generator (PCG hash, 24-bit uniforms).
@@ -601,6 +853,154 @@ pub(crate) mod tests {
         }
     }
 
+    /// The sky's bright part is its sun: 122 texels, 39% of the weight, in a cone of about
+    /// 2.3 degrees about `SUN_DIR`. The light strategies' density integrates to 1 over the
+    /// bright texels and to 1 over the rest; `sample_bright` and `sample_rest` return it; the
+    /// bright draws fall on each texel in proportion to its weight (chi-square, 121 degrees of
+    /// freedom), the rest's on 16 x 16 blocks of texels in proportion to their weight without
+    /// the sun (chi-square) and never on a bright texel; a surface `bright_faces` turns away
+    /// sees no bright draw. Maps without a compact bright part, and `without_bright`, have
+    /// none, and draw their rest from the whole map.
+    #[test]
+    fn the_bright_strategy_is_the_sun_and_its_density_is_consistent() {
+        let map = EnvMap::sky();
+        let (count, share) = map.bright().expect("the sky has a sun");
+        assert_eq!(count, 122);
+        assert!((share - 0.390).abs() < 0.005, "{share}");
+        let b = map.bright.as_ref().unwrap();
+        assert!(b.axis.dot(Vec3::from(SUN_DIR).normalize()) > 0.9999);
+        assert!(
+            b.below < -(2.0f32.to_radians().sin()) && b.below > -0.06,
+            "{}",
+            b.below
+        );
+        // The density over the sphere, on a grid fine enough for the 2-degree disc.
+        let (n, mut bright, mut rest) = (3000, 0.0f64, 0.0f64);
+        for i in 0..n {
+            for j in 0..2 * n {
+                let (u, v) = (
+                    (j as f32 + 0.5) / (2 * n) as f32,
+                    (i as f32 + 0.5) / n as f32,
+                );
+                let (d, st) = uv_to_dir(u, v);
+                let (rgb, pdf) = map.lookup(d);
+                let dw = ((2.0 * PI / (2 * n) as f32) * (PI / n as f32) * st) as f64;
+                let part = if lum(rgb) > b.threshold {
+                    &mut bright
+                } else {
+                    &mut rest
+                };
+                *part += map.light_pdf(rgb, pdf) as f64 * dw;
+            }
+        }
+        assert!((bright - 1.0).abs() < 0.01, "{bright}");
+        assert!((rest - 1.0).abs() < 0.002, "{rest}");
+        let mut rng = Rng::new(3, 1);
+        let mut hits = vec![0u32; map.cells.len()];
+        let (draws, mut edge) = (200_000, 0);
+        for _ in 0..draws {
+            let (d, rgb, pdf) = map.sample_bright(rng.uniform(), rng.uniform()).unwrap();
+            assert!(pdf > 0.0 && lum(rgb) > b.threshold);
+            let (l, p) = map.lookup(d);
+            // A draw at a texel's very edge may look up its neighbour (f32 rounding).
+            if l != rgb {
+                edge += 1;
+                continue;
+            }
+            assert!((map.light_pdf(l, p) - pdf).abs() <= 1e-3 * pdf, "{pdf}");
+            hits[map.texel_of(d).0] += 1;
+        }
+        assert!(edge < draws / 1000, "{edge} draws looked up another texel");
+        let chi2: f64 = b
+            .texels
+            .iter()
+            .zip(b.cdf.windows(2))
+            .map(|(&i, c)| {
+                let want = (c[1] - c[0]) as f64 * (draws - edge) as f64;
+                (hits[i as usize] as f64 - want).powi(2) / want
+            })
+            .sum();
+        assert!(
+            chi2 < 121.0 + 6.0 * (2.0f64 * 121.0).sqrt(),
+            "chi-square {chi2}"
+        );
+        assert_eq!(
+            hits.iter().map(|&h| h as usize).sum::<usize>(),
+            draws - edge
+        );
+        // The rest: by blocks of 16 x 16 texels, blocks expecting fewer than 10 draws pooled.
+        let (w, bs) = (map.width as usize, 16);
+        let blocks = |i: usize| (i / w / bs) * (w / bs) + (i % w) / bs;
+        let mut want = vec![0.0f64; map.cells.len() / (bs * bs)];
+        for (i, c) in map.cells.iter().enumerate() {
+            if lum(c.rgb) <= b.threshold {
+                want[blocks(i)] += c.mass as f64 * b.rest_ratio as f64;
+            }
+        }
+        let (draws, mut got) = (400_000, vec![0u32; want.len()]);
+        for _ in 0..draws {
+            let (d, rgb, pdf) = map.sample_rest(rng.uniform(), rng.uniform());
+            assert!(lum(rgb) <= b.threshold, "a rest draw on the sun");
+            // Near the poles, sin theta from the direction's y loses digits to cancellation.
+            let (l, p) = map.lookup(d);
+            if l == rgb && pdf > 0.0 && d.y.abs() < 0.99 {
+                assert!(
+                    (map.light_pdf(l, p) - pdf).abs() <= 1e-3 * pdf,
+                    "{pdf} at {d}"
+                );
+            }
+            got[blocks(map.texel_of(d).0)] += 1;
+        }
+        let (mut chi2, mut bins, mut pool) = (0.0, 0, (0.0, 0.0));
+        for (&p, &g) in want.iter().zip(&got) {
+            let e = p * draws as f64;
+            if e < 10.0 {
+                pool = (pool.0 + e, pool.1 + g as f64);
+            } else {
+                chi2 += (g as f64 - e).powi(2) / e;
+                bins += 1;
+            }
+        }
+        chi2 += (pool.1 - pool.0).powi(2) / pool.0.max(1e-9);
+        let df = bins as f64;
+        assert!(
+            chi2 < df + 6.0 * (2.0 * df).sqrt(),
+            "chi-square {chi2} over {bins} blocks"
+        );
+        // Normals turned away: no draw above their horizon; normals facing: the sun's centre.
+        for _ in 0..2000 {
+            let z = 2.0 * rng.uniform() - 1.0;
+            let phi = 2.0 * PI * rng.uniform();
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let nrm = Vec3::new(r * phi.cos(), r * phi.sin(), z);
+            if !map.bright_faces(nrm) {
+                for _ in 0..20 {
+                    let (d, ..) = map.sample_bright(rng.uniform(), rng.uniform()).unwrap();
+                    assert!(nrm.dot(d) <= 0.0, "{nrm} sees {d}");
+                }
+            }
+        }
+        assert!(map.bright_faces(Vec3::from(SUN_DIR).normalize()));
+        assert!(!map.bright_faces(-Vec3::from(SUN_DIR).normalize()));
+        // Without a bright part the rest is the whole map.
+        let whole = EnvMap::sky().without_bright();
+        for m in [&whole, &EnvMap::constant(Vec3::ONE), &rough_map(1, 2)] {
+            assert!(m.bright().is_none());
+            for _ in 0..100 {
+                let (u1, u2) = (rng.uniform(), rng.uniform());
+                assert_eq!(m.sample_rest(u1, u2), m.sample(u1, u2));
+            }
+        }
+        assert_eq!(whole.tables(), map.tables());
+        assert_eq!(whole.conditional.len(), whole.tables().1.len());
+        // A map that is all its bright texel has no rest: drawn whole.
+        let mut lone = vec![Vec3::ZERO; 32 * 16];
+        lone[5 * 32 + 7] = Vec3::splat(100.0);
+        let lone = EnvMap::from_texels(32, 16, lone).unwrap();
+        assert!(lone.bright().is_none());
+        assert!(lone.sample_rest(0.4, 0.6).2.is_finite());
+    }
+
     /// Toy MIS: integral of x^2 over [0, 1] (1/3) from a uniform strategy and a linear one
     /// (density 2x), one sample of each per estimate, by the balance and power heuristics:
     /// the weights sum to 1 and the estimate is unbiased.
@@ -632,8 +1032,15 @@ pub(crate) mod tests {
         assert!(power_heuristic(1e20, 1e30) < 1e-19);
         assert!((power_heuristic(3e25, 3e25) - 0.5).abs() < 1e-7);
         assert_eq!(power_heuristic(0.0, 0.0), 0.0);
-        assert_eq!(specular_light_weight(2.0, None), 1.0);
-        assert!((specular_light_weight(1.0, Some(1.0)) - 0.5).abs() < 1e-7);
+        // The weight over the density is the heuristic's weight over the density, without
+        // its overflow.
+        for (p, q) in [(1.0f32, 2.0), (0.5, 0.0), (3.0, 1e-3)] {
+            let w = power_weight_over_pdf(p, q);
+            assert!((w * p - power_heuristic(p, q)).abs() < 1e-6, "{p} {q}");
+        }
+        assert!((power_weight_over_pdf(1e30, 1e20) * 1e30 - 1.0).abs() < 1e-6);
+        assert_eq!(power_weight_over_pdf(0.0, 1.0), 0.0);
+        assert_eq!(power_weight_over_pdf(1e-30, 1e30), 0.0);
     }
 
     /// The guided search finds the index a search of the whole table finds, to the bit, on

@@ -294,20 +294,11 @@ impl Scene {
     /// Whether anything lies along `ray` strictly between `t_min` and `t_max` (a shadow ray:
     /// any hit ends the search).
     pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        self.occluded_except(usize::MAX, ray, t_min, t_max)
-    }
-
-    /// [`Scene::occluded`] with object `skip` left out when it is a sphere or a plane (a mesh
-    /// is always searched: it may shadow itself); `skip` beyond the objects leaves none out.
-    fn occluded_except(&self, skip: usize, ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        self.objects
-            .iter()
-            .enumerate()
-            .any(|(i, o)| match &o.shape {
-                Shape::Sphere(s) => i != skip && s.hit(ray, t_min, t_max, false).is_some(),
-                Shape::Plane(p) => i != skip && p.hit(ray, t_min, t_max, false).is_some(),
-                Shape::Mesh(m) => m.occluded(ray, t_min, t_max),
-            })
+        self.objects.iter().any(|o| match &o.shape {
+            Shape::Sphere(s) => s.hit(ray, t_min, t_max, false).is_some(),
+            Shape::Plane(p) => p.hit(ray, t_min, t_max, false).is_some(),
+            Shape::Mesh(m) => m.occluded(ray, t_min, t_max),
+        })
     }
 
     /// Whether light from direction `l` (unit) is blocked at `p` (on a surface with the
@@ -334,7 +325,15 @@ impl Scene {
             o: p + n * eps,
             d: l,
         };
-        self.occluded_except(from, &ray, eps, dist * (1.0 - 1e-5) - eps)
+        let (t_min, t_max) = (eps, dist * (1.0 - 1e-5) - eps);
+        self.objects
+            .iter()
+            .enumerate()
+            .any(|(i, o)| match &o.shape {
+                Shape::Sphere(s) => i != from && s.hit(&ray, t_min, t_max, false).is_some(),
+                Shape::Plane(p) => i != from && p.hit(&ray, t_min, t_max, false).is_some(),
+                Shape::Mesh(m) => m.occluded(&ray, t_min, t_max),
+            })
     }
 
     #[inline]

@@ -11,7 +11,7 @@
 use crate::hash::pcg;
 use sobol_burley::parts::{hash, owen_scramble_rev, sobol_rev, u32_to_f32_norm};
 
-/// The second sequence's seed: `pcg(seed ^ SECOND)` (the BRDF's pair).
+/// The second sequence's seed: `pcg(seed ^ SECOND)` (the BRDF's pair, then the bright texels').
 const SECOND: u32 = 0x68bc_21eb;
 
 /// The direction vectors of dimensions 0 to 3 for the index's top 16 bits (the crate uses no
@@ -40,24 +40,16 @@ fn point<const D: usize>(k_rev: u32, seed: u32, dirs: &[[u32; 4]; 16]) -> [f32; 
     })
 }
 
-/// The six numbers of each hit of `ids` in `pass`, appended to `out` column by column:
+/// The eight numbers of each hit of `ids` in `pass`, appended to `out` column by column:
 /// point `pass mod 2^16` of the sequence seeded by `pcg(id ^ pcg(pass >> 16))` (its four
-/// dimensions), then dimensions 0 and 1 of the sequence seeded by `pcg(seed ^ 0x68bc21eb)`;
-/// the numbers of `render::environment::uniforms` with the Sobol sampler.
-pub fn fill(ids: &[u32], pass: u32, out: &mut [Vec<f32>; 6]) {
+/// dimensions), then the four of the sequence seeded by `pcg(seed ^ 0x68bc21eb)`; the numbers
+/// of `render::environment::uniforms` with the Sobol sampler.
+pub fn fill(ids: &[u32], pass: u32, out: &mut [Vec<f32>; 8]) {
     let start = out[0].len();
     for col in out.iter_mut() {
         col.resize(start + ids.len(), 0.0);
     }
-    let [a0, a1, a2, a3, b0, b1] = out;
-    let cols = [
-        &mut a0[start..],
-        &mut a1[start..],
-        &mut a2[start..],
-        &mut a3[start..],
-        &mut b0[start..],
-        &mut b1[start..],
-    ];
+    let cols = out.each_mut().map(|c| &mut c[start..]);
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2 (checked just above).
@@ -69,31 +61,23 @@ pub fn fill(ids: &[u32], pass: u32, out: &mut [Vec<f32>; 6]) {
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn fill_avx2(ids: &[u32], pass: u32, cols: [&mut [f32]; 6]) {
+fn fill_avx2(ids: &[u32], pass: u32, cols: [&mut [f32]; 8]) {
     fill_with(ids, pass, cols);
 }
 
 #[inline(always)]
-fn fill_with(ids: &[u32], pass: u32, cols: [&mut [f32]; 6]) {
+fn fill_with(ids: &[u32], pass: u32, cols: [&mut [f32]; 8]) {
     let dirs = directions();
     let k_rev = (pass & 0xffff).reverse_bits();
     let high = pcg(pass >> 16);
-    let [a0, a1, a2, a3, b0, b1] = cols;
     let n = ids.len();
-    let (a0, a1, a2, a3, b0, b1) = (
-        &mut a0[..n],
-        &mut a1[..n],
-        &mut a2[..n],
-        &mut a3[..n],
-        &mut b0[..n],
-        &mut b1[..n],
-    );
+    let [a0, a1, a2, a3, b0, b1, b2, b3] = cols.map(|c| &mut c[..n]);
     for j in 0..n {
         let seed = pcg(ids[j] ^ high);
         let a = point::<4>(k_rev, seed, &dirs);
-        let b = point::<2>(k_rev, pcg(seed ^ SECOND), &dirs);
+        let b = point::<4>(k_rev, pcg(seed ^ SECOND), &dirs);
         (a0[j], a1[j], a2[j], a3[j]) = (a[0], a[1], a[2], a[3]);
-        (b0[j], b1[j]) = (b[0], b[1]);
+        (b0[j], b1[j], b2[j], b3[j]) = (b[0], b[1], b[2], b[3]);
     }
 }
 
@@ -110,14 +94,14 @@ mod tests {
             .chain([0, u32::MAX])
             .collect();
         for pass in [0u32, 1, 2, 3, 7, 255, 4096, 65_535, 65_536, 65_537, 1 << 20] {
-            let mut out: [Vec<f32>; 6] = std::array::from_fn(|_| vec![9.0]);
+            let mut out: [Vec<f32>; 8] = std::array::from_fn(|_| vec![9.0]);
             fill(&ids, pass, &mut out);
             for (j, &id) in ids.iter().enumerate() {
                 let seed = pcg(id ^ pcg(pass >> 16));
                 let k = pass & 0xffff;
                 let a = sobol_burley::sample_4d(k, 0, seed);
                 let b = sobol_burley::sample_4d(k, 0, pcg(seed ^ SECOND));
-                let want = [a[0], a[1], a[2], a[3], b[0], b[1]];
+                let want = [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]];
                 for (c, col) in out.iter().enumerate() {
                     assert_eq!(col[0], 9.0);
                     assert_eq!(

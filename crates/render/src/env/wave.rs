@@ -10,7 +10,7 @@
 //! whole wavefront and prefetches what the next step reads, so that the misses of all the
 //! wavefront's samples overlap.
 
-use super::{EnvMap, bin_of, bucket, guide_range, row_guide, sample_cdf};
+use super::{EnvMap, Part, bin_of, bucket, guide_range, row_guide, sample_cdf};
 use glam::Vec3;
 
 /// Asks for the cache line holding `p` (no effect where the target has no prefetch).
@@ -30,9 +30,11 @@ fn prefetch<T>(p: *const T) {
 /// Per-worker buffers of the staged draws and look-ups, reused from call to call.
 #[derive(Default)]
 pub struct Wave {
-    /// Per draw: its row and place in it, its uniform number scaled by the row's total and its
-    /// guide bucket (`usize::MAX`: none, search the row).
+    /// Per draw: its row and place in it, its row of the conditional tables, its uniform
+    /// number scaled by the row's total and its guide bucket (`usize::MAX`: none, search the
+    /// row).
     row: Vec<(u32, f32)>,
+    table: Vec<u32>,
     col_u: Vec<(f32, usize)>,
     /// Per draw: the range of its row that holds its column; per look-up: its texel and
     /// sin theta.
@@ -130,29 +132,59 @@ impl EnvMap {
         wave: &mut Wave,
         out: &mut Vec<(Vec3, Vec3, f32)>,
     ) {
+        self.draw_many(Part::Whole, u1, u2, wave, out);
+    }
+
+    /// [`EnvMap::sample_rest`] of each pair, as [`EnvMap::sample_many`].
+    pub fn sample_rest_many(
+        &self,
+        u1: &[f32],
+        u2: &[f32],
+        wave: &mut Wave,
+        out: &mut Vec<(Vec3, Vec3, f32)>,
+    ) {
+        self.draw_many(Part::Rest, u1, u2, wave, out);
+    }
+
+    fn draw_many(
+        &self,
+        part: Part,
+        u1: &[f32],
+        u2: &[f32],
+        wave: &mut Wave,
+        out: &mut Vec<(Vec3, Vec3, f32)>,
+    ) {
         assert_eq!(u1.len(), u2.len(), "one u2 per u1");
         let w = self.width as usize;
         let g = row_guide(w);
+        let (marginal, marginal_guide, rows, scale) = self.part(part);
         let Wave {
-            row, col_u, range, ..
+            row,
+            table,
+            col_u,
+            range,
+            ..
         } = wave;
         row.clear();
+        table.clear();
         col_u.clear();
         range.clear();
         for (&a, &b) in u1.iter().zip(u2) {
-            let (r, fr) = sample_cdf(&self.marginal, &self.marginal_guide, a);
-            let total = self.row_total[r];
+            let (r, fr) = sample_cdf(marginal, marginal_guide, a);
+            let t = rows.map_or(r, |rows| rows[r] as usize);
+            let total = self.row_total[t];
             let u = b.clamp(0.0, 1.0 - f32::EPSILON) * total;
             let k = bucket(total, g, u);
             if let Some(k) = k {
-                let guide = &self.conditional_guide[r * (g + 1)..];
+                let guide = &self.conditional_guide[t * (g + 1)..];
                 prefetch(guide.as_ptr().wrapping_add(k.saturating_sub(1)));
                 prefetch(guide.as_ptr().wrapping_add((k + 2).min(g)));
             }
             row.push((r as u32, fr));
+            table.push(t as u32);
             col_u.push((u, k.unwrap_or(usize::MAX)));
         }
-        for (&(r, _), &(_, k)) in row.iter().zip(col_u.iter()) {
+        for (&r, &(_, k)) in table.iter().zip(col_u.iter()) {
             let r = r as usize;
             let cdf = &self.conditional[r * (w + 1)..(r + 1) * (w + 1)];
             let (lo, hi) = if k == usize::MAX {
@@ -166,13 +198,14 @@ impl EnvMap {
         }
         // The columns: the search within the range, then the cell's prefetch; the columns
         // are kept in `range` (column, place in it as bits).
-        for ((&(r, _), &(u, _)), rg) in row.iter().zip(col_u.iter()).zip(range.iter_mut()) {
-            let r = r as usize;
-            let cdf = &self.conditional[r * (w + 1)..(r + 1) * (w + 1)];
+        let drawn = row.iter().zip(table.iter()).zip(col_u.iter());
+        for (((&(r, _), &t), &(u, _)), rg) in drawn.zip(range.iter_mut()) {
+            let t = t as usize;
+            let cdf = &self.conditional[t * (w + 1)..(t + 1) * (w + 1)];
             let (lo, hi) = (rg.0 as usize, rg.1 as usize);
             let p = lo + cdf[lo..hi].partition_point(|&c| c <= u);
             let (c, fc) = bin_of(cdf, p, u);
-            prefetch(self.cells.as_ptr().wrapping_add(r * w + c));
+            prefetch(self.cells.as_ptr().wrapping_add(r as usize * w + c));
             *rg = (c as u32, fc.to_bits());
         }
         // The directions (vectorised), then the cells.
@@ -188,7 +221,7 @@ impl EnvMap {
                 .zip(st.iter())
                 .map(|((&d, &i), &s)| {
                     let (rgb, pdf) = self.cell_at(i as usize, s);
-                    (d, rgb, pdf)
+                    (d, rgb, pdf * scale)
                 }),
         );
     }
@@ -260,6 +293,11 @@ mod tests {
             assert_eq!(out.len(), u1.len() + 1);
             for (j, (&a, &b)) in u1.iter().zip(&u2).enumerate() {
                 assert_eq!(out[j + 1], map.sample(a, b), "u = ({a}, {b})");
+            }
+            out.truncate(1);
+            map.sample_rest_many(&u1, &u2, &mut wave, &mut out);
+            for (j, (&a, &b)) in u1.iter().zip(&u2).enumerate() {
+                assert_eq!(out[j + 1], map.sample_rest(a, b), "rest, u = ({a}, {b})");
             }
             let dirs: Vec<Vec3> = out.iter().map(|o| o.0).chain([Vec3::Y, -Vec3::Y]).collect();
             let mut looked = Vec::new();
