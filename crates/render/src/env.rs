@@ -830,18 +830,7 @@ pub(crate) mod tests {
     fn the_sampling_density_is_normalised_and_consistent() {
         let map = EnvMap::sky();
         let n = 400;
-        let mut sum = 0.0f64;
-        for i in 0..n {
-            for j in 0..2 * n {
-                let (u, v) = (
-                    (j as f32 + 0.5) / (2 * n) as f32,
-                    (i as f32 + 0.5) / n as f32,
-                );
-                let (d, st) = uv_to_dir(u, v);
-                let dw = (2.0 * PI / (2 * n) as f32) * (PI / n as f32) * st;
-                sum += (map.pdf(d) * dw) as f64;
-            }
-        }
+        let sum: f64 = sphere_grid(n).map(|(d, dw)| map.pdf(d) as f64 * dw).sum();
         assert!((sum - 1.0).abs() < 0.02, "{sum}");
         let mut rng = Rng::new(7, 0);
         for _ in 0..1000 {
@@ -851,6 +840,23 @@ pub(crate) mod tests {
                 assert_eq!(map.radiance(d), l);
             }
         }
+    }
+
+    /// The centres of a 2n x n grid over the map and their solid angles.
+    fn sphere_grid(n: usize) -> impl Iterator<Item = (Vec3, f64)> {
+        (0..n).flat_map(move |i| {
+            (0..2 * n).map(move |j| {
+                let (u, v) = (
+                    (j as f32 + 0.5) / (2 * n) as f32,
+                    (i as f32 + 0.5) / n as f32,
+                );
+                let (d, st) = uv_to_dir(u, v);
+                (
+                    d,
+                    ((2.0 * PI / (2 * n) as f32) * (PI / n as f32) * st) as f64,
+                )
+            })
+        })
     }
 
     /// The sky's bright part is its sun: 122 texels, 39% of the weight, in a cone of about
@@ -875,23 +881,15 @@ pub(crate) mod tests {
             b.below
         );
         // The density over the sphere, on a grid fine enough for the 2-degree disc.
-        let (n, mut bright, mut rest) = (3000, 0.0f64, 0.0f64);
-        for i in 0..n {
-            for j in 0..2 * n {
-                let (u, v) = (
-                    (j as f32 + 0.5) / (2 * n) as f32,
-                    (i as f32 + 0.5) / n as f32,
-                );
-                let (d, st) = uv_to_dir(u, v);
-                let (rgb, pdf) = map.lookup(d);
-                let dw = ((2.0 * PI / (2 * n) as f32) * (PI / n as f32) * st) as f64;
-                let part = if lum(rgb) > b.threshold {
-                    &mut bright
-                } else {
-                    &mut rest
-                };
-                *part += map.light_pdf(rgb, pdf) as f64 * dw;
-            }
+        let (mut bright, mut rest) = (0.0f64, 0.0f64);
+        for (d, dw) in sphere_grid(3000) {
+            let (rgb, pdf) = map.lookup(d);
+            let part = if lum(rgb) > b.threshold {
+                &mut bright
+            } else {
+                &mut rest
+            };
+            *part += map.light_pdf(rgb, pdf) as f64 * dw;
         }
         assert!((bright - 1.0).abs() < 0.01, "{bright}");
         assert!((rest - 1.0).abs() < 0.002, "{rest}");
