@@ -1,6 +1,7 @@
 //! The environment light's pass ([`env_pass`]): per object a wavefront of light (the map's, or
-//! a sun's and the rest's), cosine and BRDF directions, the BRDF's densities and draws batched, every specular term evaluated in
-//! one batch; and the random numbers of each primary sample and pass ([`uniforms`]).
+//! a sun's and the rest's), cosine and BRDF directions, the BRDF's densities and draws
+//! batched, every specular term evaluated in one batch; and the random numbers of each
+//! primary sample and pass ([`uniforms`]).
 
 use super::{Ctx, Sample, Sampler, Spec, Tile, add_specular};
 use crate::scene::Scene;
@@ -17,10 +18,10 @@ fn visible(scene: &Scene, from: usize, s: &Sample, l: Vec3) -> bool {
 /// sample it belongs to, as structures of arrays for [`BrdfSampler`].
 #[derive(Default)]
 pub(super) struct EnvScratch {
-    /// The stages ([`env_pass`]): per hit of the object in this pass, its sample, seed id, eight
-    /// uniform numbers, map draw, bright draw, shading normal and cosine direction with its cosine; per
-    /// cosine direction kept, its hit (index in `hit`), direction, cosine and look-up; per
-    /// BRDF draw with a density, its direction and look-up.
+    /// The stages ([`env_pass`]): per hit of the object in this pass, its sample, seed id,
+    /// eight uniform numbers, map draw, bright draw, shading normal and cosine direction with
+    /// its cosine; per cosine direction kept, its hit (index in `hit`), direction, cosine and
+    /// look-up; per BRDF draw with a density, its direction and look-up.
     hit: Vec<usize>,
     id: Vec<u32>,
     u: [Vec<f32>; 8],
@@ -171,13 +172,14 @@ fn uniforms(sampler: Sampler, ids: &[u32], pass: u32, u: &mut [Vec<f32>; 8]) {
 /// cache misses of the map's cells and tables came one after another, and the trigonometry
 /// and the Sobol points ran scalar; staged, the misses overlap and the arithmetic vectorises):
 /// the uniform numbers (`env::sobol::fill`); the map's draws (`EnvMap::sample_rest_many`)
-/// and the bright texels'; the cosine directions (`env::wave::cosine_many`) and their look-ups (`EnvMap::lookup_many`);
-/// then a loop over the hits adds the diffuse terms (shadow rays) and collects the specular
-/// queries; the BRDF's densities at the map's directions and its own draws go through the
-/// batch sampler (`fastbrdf::batch::sample`) in one call each; the drawn directions are looked
-/// up at once; a last loop traces their shadow rays and queues every specular term, in the
-/// order of the hits (light directions first), for one batch evaluation. Each stage computes what
-/// the one-hit-at-a-time loop did, to the bit, in the same order of additions.
+/// and the bright texels'; the cosine directions (`env::wave::cosine_many`) and their
+/// look-ups (`EnvMap::lookup_many`); then a loop over the hits adds the diffuse terms (shadow
+/// rays) and collects the specular queries; the BRDF's densities at the light directions and
+/// its own draws go through the batch sampler (`fastbrdf::batch::sample`) in one call each;
+/// the drawn directions are looked up at once; a last loop traces their shadow rays and
+/// queues every specular term, in the order of the hits (light directions first), for one
+/// batch evaluation. Each stage computes what the one-hit-at-a-time loop did, to the bit, in
+/// the same order of additions.
 ///
 /// Random numbers ([`uniforms`]): per primary sample, id `(pixel y * width + pixel x) * N^2 +
 /// subsample`, and pass; deterministic whatever the threads.
