@@ -96,6 +96,7 @@ def _scene(
     bump: Any,
     sampler: str = "sobol",
     aa: str = "adaptive",
+    env_sun: str = "apart",
 ) -> Dict[str, Any]:
     """The scene options as the native ``render`` and ``compare_json`` take them."""
     w, h = _size(size, width, height)
@@ -117,6 +118,7 @@ def _scene(
         "bump": None if bump is None else _bump(bump),
         "sampler": _str(sampler, "sampler"),
         "aa": _str(aa, "aa"),
+        "env_sun": _str(env_sun, "env_sun"),
     }
 
 
@@ -151,6 +153,7 @@ def render(
     env_samples: int = 16,
     sampler: str = "sobol",
     aa: str = "adaptive",
+    env_sun: str = "apart",
     material: Optional[str] = None,
     metal: Optional[str] = None,
     gpu: bool = False,
@@ -170,7 +173,9 @@ def render(
     ``size`` is ``"WxH"`` or (W, H), or give ``width`` and ``height`` (default 256 each; the
     CLI's default is 512x512); ``spp`` N gives up to N x N samples per pixel: ``aa``
     ``"adaptive"`` (the default: the grid only at edges) or ``"grid"`` (every pixel), as
-    ``--aa``; ``sampler`` ``"sobol"`` (default) or ``"independent"``, as ``--sampler``.
+    ``--aa``; ``sampler`` ``"sobol"`` (default) or ``"independent"``, as ``--sampler``;
+    ``env_sun`` ``"apart"`` (default: a map's sun drawn apart from the rest) or ``"with-map"``
+    (every light direction from the whole map), as ``--env-sun``.
 
     Colour: ``material`` (a MERL material's published fit, see ``materials()``: its n, alpha,
     f0, and its diffuse colour with weight 1 unless ``albedo``/``weights`` are given),
@@ -206,7 +211,7 @@ def render(
         model = model.id
     scene = _scene(
         size, width, height, spp, weights, albedo, lights, floor, shadows, env, env_samples,
-        mesh, texture, bump, sampler, aa,
+        mesh, texture, bump, sampler, aa, env_sun,
     )
     flat = _native.render(
         model,
@@ -241,6 +246,7 @@ def compare(
     env_samples: int = 16,
     sampler: str = "sobol",
     aa: str = "adaptive",
+    env_sun: str = "apart",
     material: Optional[str] = None,
     metal: Optional[str] = None,
     films: bool = False,
@@ -266,7 +272,7 @@ def compare(
         raise TypeError("models: expected model ids (a list of strings or 'a,b,...')")
     scene = _scene(
         size, width, height, spp, weights, albedo, lights, floor, shadows, env, env_samples,
-        mesh, texture, bump, sampler, aa,
+        mesh, texture, bump, sampler, aa, env_sun,
     )
     if isinstance(exposure, bool) or not isinstance(exposure, (int, float, np.integer, np.floating)):
         raise TypeError(f"exposure: expected a number, got {type(exposure).__name__}")

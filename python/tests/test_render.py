@@ -109,6 +109,10 @@ CASES = [
     ("the sky, Sobol numbers, adaptive antialiasing",
      dict(model="ggx", alpha=0.3, env="sky", env_samples=2, spp=2, sampler="sobol", aa="adaptive"),
      ["--model", "ggx", "--param", "alpha=0.3", "--env", "sky", "--env-samples", "2"]),
+    ("the sky, every light direction from the whole map",
+     dict(model="ggx", alpha=0.3, env="sky", env_samples=2, env_sun="with-map"),
+     ["--model", "ggx", "--param", "alpha=0.3", "--env", "sky", "--env-samples", "2",
+      "--env-sun", "with-map"]),
     ("the furnace",
      dict(model="pow", env="white", env_samples=1, weights=(1, 0), albedo=(1, 1, 1)),
      ["--model", "pow", "--env", "white", "--env-samples", "1", "--weights", "1,0", "--albedo", "1,1,1"]),
@@ -178,6 +182,7 @@ def test_bad_options_name_the_argument():
         (ValueError, "sampler 'halton': expected sobol or independent", dict(sampler="halton")),
         (ValueError, "aa 'msaa': expected adaptive or grid", dict(aa="msaa")),
         (TypeError, "aa: expected a string", dict(aa=2)),
+        (ValueError, "env_sun 'whole': expected apart or with-map", dict(env_sun="whole")),
     ]
     for kind, msg, kw in cases:
         kw = {"model": "cook-torrance", "size": "8x8", "spp": 1, **kw}

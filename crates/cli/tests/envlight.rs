@@ -1,7 +1,8 @@
 //! `--env` and `--shadows` end to end (issue 15): bad environment maps (missing, not HDR, not
 //! 2:1, NaN / infinite / negative texels, enormous) are refused with the file named, exit 2,
 //! nothing on stdout and no output file; good .hdr and .exr maps and the built-in sky render;
-//! bad `--sampler` and `--aa` values; the furnace through the CLI.
+//! bad `--sampler`, `--aa` and `--env-sun` values; `--env-sun with-map`; the furnace through the
+//! CLI.
 
 mod common;
 use common::{fastbrdf, hdr, stderr, temp_dir};
@@ -164,6 +165,7 @@ fn bad_environment_maps_exit_2_naming_the_file_and_write_nothing() {
         ("--sampler", "NaN"),
         ("--aa", "msaa"),
         ("--aa", ""),
+        ("--env-sun", "whole"),
     ] {
         let o = render(Path::new("sky"), &out, &[flag, bad]);
         assert_eq!(o.status.code(), Some(2), "{flag} {bad}: {}", stderr(&o));
@@ -193,6 +195,12 @@ fn hdr_exr_and_sky_environments_render() {
         assert!(out.exists());
         std::fs::remove_file(&out).unwrap();
     }
+    // --env-sun with-map: every light direction from the whole map, said in the summary.
+    let out = d.join("r.exr");
+    let o = render(Path::new("sky"), &out, &["--env-sun", "with-map"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("whole map"), "{}", stderr(&o));
+    assert!(out.exists());
     let _ = std::fs::remove_dir_all(&d);
 }
 

@@ -36,6 +36,31 @@ pub struct SceneSpec {
     pub env: Option<String>,
     /// Environment samples per primary hit (progressive passes); 16 in [`SceneSpec::new`].
     pub env_samples: u32,
+    /// How the environment's light directions are drawn: a sun apart from the rest of the map
+    /// (the default) or every direction from the whole map.
+    pub env_sun: SunDraw,
+}
+
+/// How a map's light directions are drawn ([`EnvMap::without_bright`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SunDraw {
+    /// A sun's texels (`crate::env::BRIGHT_FACTOR`, `BRIGHT_MIN_SHARE`, `BRIGHT_MAX_TEXELS`)
+    /// and the rest of the map as two strategies, one direction of each per pass.
+    #[default]
+    Apart,
+    /// Every light direction from the whole map: the estimator before the sun strategy (the
+    /// same expected picture, more noise under a sun), and what the GPU renderer draws.
+    WithMap,
+}
+
+impl SunDraw {
+    /// The map as this choice draws it.
+    pub fn apply(self, map: EnvMap) -> EnvMap {
+        match self {
+            Self::Apart => map,
+            Self::WithMap => map.without_bright(),
+        }
+    }
 }
 
 impl SceneSpec {
@@ -123,7 +148,7 @@ pub fn load(spec: &SceneSpec) -> Result<Loaded> {
             .as_deref()
             .map(EnvMap::from_spec)
             .transpose()?
-            .map(Arc::new),
+            .map(|m| Arc::new(spec.env_sun.apply(m))),
     })
 }
 

@@ -20,7 +20,7 @@ use std::path::PathBuf;
 const MAX_BUMP_SCALE: f64 = 1e4;
 
 /// The keys of the scene dict.
-const KEYS: [&str; 15] = [
+const KEYS: [&str; 16] = [
     "width",
     "height",
     "spp",
@@ -36,6 +36,7 @@ const KEYS: [&str; 15] = [
     "bump",
     "sampler",
     "aa",
+    "env_sun",
 ];
 
 /// A scene and its render options, with whether the weights and albedo were given (a material
@@ -104,7 +105,7 @@ fn flag(obj: &Bound<'_, PyAny>, name: &str) -> PyResult<bool> {
 /// None (the defaults); `lights` a sequence of the CLI's `--light` specs; `floor`, `shadows`
 /// booleans; `env` None or text; `mesh`, `texture` None or a path (`face`, `skin`: the
 /// built-ins); `bump` None or (SCALE, DEPTH); `sampler` (`sobol`, `independent`) and `aa`
-/// (`adaptive`, `grid`) absent or None for the defaults. Checked as the CLI checks its
+/// (`adaptive`, `grid`) and `env_sun` (`apart`, `with-map`) absent or None for the defaults. Checked as the CLI checks its
 /// options.
 pub(crate) fn scene_arg(d: &Bound<'_, PyDict>) -> PyResult<Scene> {
     for k in d.keys() {
@@ -201,6 +202,10 @@ pub(crate) fn scene_arg(d: &Bound<'_, PyDict>) -> PyResult<Scene> {
     let aa = match choice("aa", &["adaptive", "grid"])?.as_deref() {
         Some("grid") => fastbrdf_render::render::Antialias::Grid,
         _ => fastbrdf_render::render::Antialias::Adaptive,
+    };
+    spec.env_sun = match choice("env_sun", &["apart", "with-map"])?.as_deref() {
+        Some("with-map") => fastbrdf_render::setup::SunDraw::WithMap,
+        _ => fastbrdf_render::setup::SunDraw::Apart,
     };
     fastbrdf_render::film::check_size(width, height).map_err(value_error)?;
     if !(1..=16).contains(&spp) {

@@ -341,9 +341,14 @@ fn finish(
     let total = t.elapsed().as_secs_f64();
     let env = match &spec.env {
         Some(e) => format!(
-            ", environment {e} x {} samples, {} sampler",
+            ", environment {e} x {} samples, {} sampler{}",
             spec.env_samples,
-            opts.sampler.name()
+            opts.sampler.name(),
+            match spec.env_sun {
+                _ if a.gpu => "",
+                fastbrdf_render::setup::SunDraw::Apart => "",
+                fastbrdf_render::setup::SunDraw::WithMap => ", every direction from the whole map",
+            }
         ),
         None => String::new(),
     };

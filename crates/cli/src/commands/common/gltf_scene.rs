@@ -33,7 +33,7 @@ pub fn load(path: &Path, spec: &SceneSpec) -> Result<Loaded, CliError> {
         .as_deref()
         .map(EnvMap::from_spec)
         .transpose()?
-        .map(Arc::new);
+        .map(|m| Arc::new(spec.env_sun.apply(m)));
     Ok(Loaded { scene, env })
 }
 

@@ -79,6 +79,13 @@ pub struct SceneArgs {
     /// pass: the renderer before 0.2; same expected picture, more noise).
     #[arg(long, value_enum, default_value_t = SamplerArg::Sobol)]
     pub sampler: SamplerArg,
+    /// How the environment's light directions are drawn: apart (a sun, texels brighter than 64
+    /// times the map's mean holding at least 5% of its light in at most 1/256 of its texels,
+    /// and the rest of the map as two strategies, one direction of each per pass) or with-map
+    /// (every direction from the whole map: the renderer before the sun strategy and the GPU
+    /// renderer's; the same expected picture, more noise under a sun). CPU only.
+    #[arg(long, value_enum, default_value_t = SunArg::Apart)]
+    pub env_sun: SunArg,
     /// Antialiasing: adaptive (one sample at each pixel's centre, the N x N grid of --spp only
     /// where the neighbourhood shows an edge: an object's outline, a normal or depth step, an
     /// albedo or light contrast; with --env a centre-only pixel takes N x N times the passes)
@@ -138,6 +145,22 @@ impl From<SamplerArg> for fastbrdf_render::render::Sampler {
     }
 }
 
+/// `--env-sun`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SunArg {
+    Apart,
+    WithMap,
+}
+
+impl From<SunArg> for fastbrdf_render::setup::SunDraw {
+    fn from(s: SunArg) -> Self {
+        match s {
+            SunArg::Apart => Self::Apart,
+            SunArg::WithMap => Self::WithMap,
+        }
+    }
+}
+
 /// A switch given as `on` or `off`.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum OnOff {
@@ -188,6 +211,7 @@ impl SceneArgs {
             )));
         }
         spec.env_samples = self.env_samples;
+        spec.env_sun = self.env_sun.into();
         spec.texture = self.texture.clone();
         spec.lights = self
             .lights
