@@ -160,7 +160,27 @@ fn pareto_brdf_quick_json_has_every_field_and_a_front() {
     assert_eq!(reference[0]["cost_ratio"], 1.0);
     // The reference has zero error, so it is on the front (nothing is both cheaper and exact).
     assert_eq!(reference[0]["pareto"], true);
-    assert!(rows.iter().filter(|r| r["pareto"] == true).count() >= 2);
+    // How many rows the front holds depends on measured speed (under CI's load the reference
+    // can time cheapest and stand alone), so the test recomputes the front from the printed
+    // numbers instead: a row is on it exactly when no row is at least as cheap and as exact,
+    // and better on one of the two (the error named by "front_on").
+    let on = v["front_on"].as_str().unwrap();
+    assert_eq!(on, "rms_rel");
+    let point =
+        |r: &serde_json::Value| (r["ns_per_eval"].as_f64().unwrap(), r[on].as_f64().unwrap());
+    for (i, row) in rows.iter().enumerate() {
+        let (c, e) = point(row);
+        let dominated = rows.iter().enumerate().any(|(j, other)| {
+            let (cj, ej) = point(other);
+            j != i && cj <= c && ej <= e && (cj < c || ej < e)
+        });
+        assert_eq!(row["pareto"], !dominated, "{row}");
+    }
+    // The cheapest row is on the front unless a row as cheap is more exact.
+    assert!(
+        rows.iter()
+            .any(|r| r["pareto"] == true && r["ns_per_eval"] == rows[0]["ns_per_eval"])
+    );
     // Two alphas: one group each, the front per group; text and Markdown name the columns.
     let r = fastbrdf(
         &[
