@@ -127,7 +127,7 @@ fn render_model_gpu(
     pb.finish_and_clear();
     let label = match draws.get() {
         Some(start) => format!(
-            "{}; set-up {:.3} s, draws {:.3} s",
+            "{}; set-up {:.4} s, draws {:.4} s",
             gpu.label(),
             (start - t0).as_secs_f64(),
             start.elapsed().as_secs_f64()
@@ -353,7 +353,7 @@ fn finish(
         None => String::new(),
     };
     eprintln!(
-        "wrote {} ({}x{}, {} samples/pixel ({}x{} {}{env}), {:.3} s: render {:.3} s, encode and write {:.3} s{on})",
+        "wrote {} ({}x{}, {} samples/pixel ({}x{} {}{env}), {:.4} s: render {:.4} s, encode and write {:.4} s{on})",
         a.out.display(),
         opts.width,
         opts.height,

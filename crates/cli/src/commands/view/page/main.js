@@ -462,7 +462,13 @@ function exportShader() {
   task(async () => {
     const r = await fetch("/api/shader?" + q, { signal: s });
     const t = await r.text();
-    $("shader").textContent = r.ok ? t : JSON.parse(t).error;
+    // Like getJSON: a request replaced while its answer arrived draws nothing, and an error
+    // whose body is not the server's JSON still names its HTTP status.
+    if (s.aborted) throw new DOMException("aborted while its answer arrived", "AbortError");
+    let msg = "HTTP " + r.status;
+    if (!r.ok) try { msg = JSON.parse(t).error || msg; } catch (_) { /* not the server's JSON */ }
+    // The pane says why it holds no shader rather than keep the last view's.
+    $("shader").textContent = r.ok ? t : msg;
   }, "shader");
 }
 
