@@ -236,6 +236,7 @@ mod tests {
             quick: true,
             gpu: None,
             peers: vec![],
+            skipped: vec![],
         };
         let ids: Vec<&str> = lobes().iter().map(|i| i.id).collect();
         assert!(ids.contains(&"schlick") && ids.contains(&"flog"));

@@ -360,3 +360,83 @@ fn saved_runs_with_impossible_figures_are_refused() {
     assert!(fastbrdf(&["bench", "--from", saved], "").status.success());
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A quadrature reference (`sheen-albedo`, about 12 k evaluations per second) gets its
+/// 4096-element rows and, instead of large-batch rows that would take minutes per call, a
+/// `skipped` entry with the projected seconds, and a note on stderr; a cheap model beside it
+/// keeps its large-batch rows. Before, `fastbrdf bench` without --models ran for hours.
+#[test]
+fn bench_leaves_out_the_large_batch_of_a_model_too_slow_for_it() {
+    let large = 1 << 20;
+    let o = fastbrdf(
+        &[
+            "bench",
+            "--quick",
+            "--models",
+            "sheen-albedo,power16",
+            "--large",
+            &large.to_string(),
+            "--json",
+        ],
+        "",
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let kernels = v["kernels"].as_array().unwrap();
+    let has = |m: &str, variant: &str, batch: u64| {
+        kernels
+            .iter()
+            .any(|k| k["model"] == m && k["variant"] == variant && k["batch"] == batch)
+    };
+    for variant in ["scalar", "simd"] {
+        assert!(
+            has("sheen-albedo", variant, 4096),
+            "no sheen-albedo {variant} row"
+        );
+    }
+    for variant in ["simd", "simd-threads"] {
+        assert!(
+            !has("sheen-albedo", variant, large),
+            "sheen-albedo {variant} was timed"
+        );
+        assert!(has("power16", variant, large), "no power16 {variant} row");
+    }
+    let skipped = v["skipped"].as_array().unwrap();
+    let simd = skipped
+        .iter()
+        .find(|s| s["model"] == "sheen-albedo" && s["variant"] == "simd")
+        .unwrap_or_else(|| panic!("no skipped entry: {skipped:?}"));
+    assert_eq!(simd["batch"], large);
+    // Projected from the measured 4096-element rate: large / rate.
+    let rate = kernels
+        .iter()
+        .find(|k| k["model"] == "sheen-albedo" && k["variant"] == "simd" && k["batch"] == 4096)
+        .unwrap()["evals_per_s"]
+        .as_f64()
+        .unwrap();
+    let projected = simd["projected_s"].as_f64().unwrap();
+    assert!(projected > 3.0, "{projected}");
+    assert!((projected * rate / large as f64 - 1.0).abs() < 1e-9);
+    assert!(!skipped.iter().any(|s| s["model"] == "power16"));
+    let err = stderr(&o);
+    assert!(
+        err.contains("sheen-albedo") && err.contains("left out"),
+        "{err}"
+    );
+    // The saved run renders, the missing figures as "-".
+    let dir = temp_dir("bench-skipped");
+    let path = dir.join("run.json");
+    std::fs::write(&path, &o.stdout).unwrap();
+    let md = fastbrdf(
+        &["bench", "--from", path.to_str().unwrap(), "--markdown"],
+        "",
+    );
+    assert!(md.status.success(), "{}", stderr(&md));
+    let row = stdout(&md)
+        .lines()
+        .find(|l| l.starts_with("| `sheen-albedo` |"))
+        .map(str::to_string)
+        .unwrap_or_else(|| panic!("{}", stdout(&md)));
+    assert!(row.contains("| - |"), "{row}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -200,6 +200,56 @@ fn bench_gpu_adds_labelled_gpu_rows_to_the_cpu_run() {
     assert_eq!(o.status.code(), Some(2));
 }
 
+/// A model whose GPU dispatch is projected (from 65536 elements) to take over 3 s gets
+/// `skipped` entries instead of rows: the quadrature reference `sheen-albedo` on lavapipe
+/// (about 20 s per 4M-element dispatch, and timing takes seven). Before, `bench --gpu` spent
+/// minutes on it there. On a real GPU it is timed, and its rows must then be there.
+#[test]
+fn bench_gpu_leaves_out_a_model_too_slow_to_time() {
+    if !have_gpu() {
+        return;
+    }
+    let o = fastbrdf(&[
+        "bench",
+        "--gpu",
+        "--quick",
+        "--json",
+        "--models",
+        "sheen-albedo",
+        "--large",
+        "4194304",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let label = j["gpu"].as_str().unwrap();
+    let skipped = j["skipped"].as_array().unwrap();
+    let rows = j["kernels"].as_array().unwrap();
+    for v in ["gpu", "gpu+transfer"] {
+        let s = skipped
+            .iter()
+            .find(|s| s["model"] == "sheen-albedo" && s["variant"] == v);
+        let row = rows
+            .iter()
+            .find(|r| r["model"] == "sheen-albedo" && r["variant"] == v);
+        // Exactly one of the two, for each variant.
+        assert!(s.is_some() != row.is_some(), "{v}: {s:?} {row:?}");
+        if let Some(s) = s {
+            assert_eq!(s["batch"], 4194304);
+            assert!(s["projected_s"].as_f64().unwrap() > 3.0, "{s}");
+        }
+        if label.contains("llvmpipe") {
+            assert!(s.is_some(), "{label}: sheen-albedo {v} was timed");
+        }
+    }
+    if label.contains("llvmpipe") {
+        assert!(
+            stderr(&o).contains("GPU figures are left out"),
+            "{}",
+            stderr(&o)
+        );
+    }
+}
+
 #[test]
 fn render_gpu_matches_the_cpu_render_and_rejects_bad_input() {
     if !have_gpu() {

@@ -10,6 +10,26 @@ use crate::compute::{GpuInput, GpuKernel};
 use crate::context::GpuError;
 use std::time::{Duration, Instant};
 
+/// Elements of the probe dispatch that projects a model's cost before its full batch is timed.
+pub const PROBE: usize = 1 << 16;
+
+/// Longest projected dispatch of the full batch, in seconds, that is timed: a quadrature
+/// reference (`sheen-albedo`, 48 x 48 points per value) on a software adapter takes about 20 s
+/// per 4M-element dispatch, and timing it needs at least seven; such a model gets
+/// [`Timing::TooSlow`] instead (on a real GPU it is timed).
+pub const CALL_LIMIT_S: f64 = 3.0;
+
+/// A model's GPU figures, or why there are none.
+#[derive(Clone, Copy, Debug)]
+pub enum Timing {
+    Measured(Measured),
+    /// One dispatch of the full batch was projected (from a [`PROBE`]-element dispatch) to
+    /// take `projected_s` seconds, over [`CALL_LIMIT_S`].
+    TooSlow {
+        projected_s: f64,
+    },
+}
+
 /// One measurement.
 #[derive(Clone, Copy, Debug)]
 pub struct Measured {
@@ -34,9 +54,15 @@ pub fn measure(
     spec: &fastbrdf::ModelSpec,
     input: GpuInput,
     budget: Duration,
-) -> Result<Measured, GpuError> {
+) -> Result<Timing, GpuError> {
     let n = input.len();
     let k = GpuKernel::from_spec(device, spec)?;
+    if n > PROBE {
+        let p = k.upload(device, input.slice(0, PROBE))?;
+        if let Some(projected_s) = too_slow(device, n, &|| k.dispatch(device, queue, &p, 1))? {
+            return Ok(Timing::TooSlow { projected_s });
+        }
+    }
     let r = k.upload(device, input)?;
     let mut out = vec![0.0f32; n];
     time(
@@ -46,6 +72,24 @@ pub fn measure(
         &|repeat| k.dispatch(device, queue, &r, repeat),
         &mut || k.eval(device, queue, input, &mut out),
     )
+    .map(Timing::Measured)
+}
+
+/// The projected seconds of one dispatch of `n` elements when over [`CALL_LIMIT_S`], from
+/// `probe`, one dispatch of [`PROBE`] elements (run twice: the first compiles the pipeline
+/// on some drivers).
+pub(crate) fn too_slow(
+    device: &wgpu::Device,
+    n: usize,
+    probe: &dyn Fn(),
+) -> Result<Option<f64>, GpuError> {
+    probe();
+    wait(device)?;
+    let t = Instant::now();
+    probe();
+    wait(device)?;
+    let projected_s = t.elapsed().as_secs_f64() * n as f64 / PROBE as f64;
+    Ok((projected_s > CALL_LIMIT_S).then_some(projected_s))
 }
 
 /// The timing method of every GPU figure (built-in models and users' shaders alike, so their

@@ -41,7 +41,7 @@ impl<'a> GpuInput<'a> {
     }
 
     /// Elements `lo..hi` of every column.
-    fn slice(&self, lo: usize, hi: usize) -> Self {
+    pub(crate) fn slice(&self, lo: usize, hi: usize) -> Self {
         match *self {
             GpuInput::Cos(x) => GpuInput::Cos(&x[lo..hi]),
             GpuInput::Shadow(c) => GpuInput::Shadow(c.map(|s| &s[lo..hi])),

@@ -42,7 +42,8 @@ pub use peers::{
     ftz_daz, ftz_note, max_mixed_error, peer_rows, peers,
 };
 pub use report::{
-    CompareRow, Instructions, KernelRow, Report, SAVED_RUN_LIMIT, SLOWER_BELOW, SpeedupRow, compare,
+    CompareRow, Instructions, KernelRow, Report, SAVED_RUN_LIMIT, SLOWER_BELOW, Skipped,
+    SpeedupRow, compare,
 };
 pub use speedups::speedups;
 
@@ -181,6 +182,14 @@ pub fn configurations() -> Vec<(String, ModelSpec)> {
     v
 }
 
+/// Longest projected call on the large batch, in seconds, that the run times: a model slower
+/// than `large / LARGE_CALL_LIMIT_S` evaluations per second on one thread (a quadrature
+/// reference: `sheen-albedo` evaluates 48 x 48 points per value, about 12 k values per second,
+/// so 16M values would take 23 minutes per call) gets its 4096-element rows and a
+/// [`Skipped`] entry for each large-batch row instead. The slowest shading kernel
+/// (`gltf-pbr`, about 2e7 per second) projects well under it at the default batch.
+pub const LARGE_CALL_LIMIT_S: f64 = 3.0;
+
 /// The registry id of a configuration name (`cook-torrance[seed-000,d=...]` -> `cook-torrance`).
 pub fn registry_id(name: &str) -> &str {
     name.split('[').next().unwrap_or(name)
@@ -214,6 +223,7 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
     // The baselines (2 steps), the configurations, then the C peers.
     let total = configs.len() + 3;
     let mut kernels = Vec::new();
+    let mut skipped = Vec::new();
     // Naive baselines.
     let n = black_box(200.0f32);
     let t = time(
@@ -291,6 +301,25 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         );
         let e = small as f64 / t;
         kernels.push(row("simd", small, e, kernel.isa(), frac(e)));
+        let projected_s = opts.large as f64 / e;
+        if projected_s > LARGE_CALL_LIMIT_S {
+            for (variant, s) in [
+                ("simd", projected_s),
+                (
+                    "simd-threads",
+                    projected_s / rayon::current_num_threads() as f64,
+                ),
+            ] {
+                skipped.push(Skipped {
+                    model: name.clone(),
+                    variant: variant.into(),
+                    batch: opts.large,
+                    projected_s: s,
+                });
+            }
+            progress(i + 3, total);
+            continue;
+        }
         let large = large_in.input(info.kind, opts.large);
         let big_budget = if opts.quick { Duration::ZERO } else { budget };
         let t = time(
@@ -363,5 +392,6 @@ pub fn run(opts: &Options, progress: &dyn Fn(usize, usize)) -> fastbrdf::Result<
         quick: opts.quick,
         gpu: None,
         peers,
+        skipped,
     })
 }

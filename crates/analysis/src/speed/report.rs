@@ -4,6 +4,18 @@
 use super::PeerRow;
 use serde::{Deserialize, Serialize};
 
+/// A figure the run did not measure because one call would have taken too long
+/// ([`super::LARGE_CALL_LIMIT_S`]): a quadrature reference such as `sheen-albedo` runs at
+/// thousands of evaluations per second, and its large batch would take minutes per call.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct Skipped {
+    pub model: String,
+    pub variant: String,
+    pub batch: usize,
+    /// One call's projected seconds, from the same kernel's rate on the 4096-element batch.
+    pub projected_s: f64,
+}
+
 /// One throughput figure.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct KernelRow {
@@ -102,6 +114,10 @@ pub struct Report {
     /// which load with none).
     #[serde(default)]
     pub peers: Vec<PeerRow>,
+    /// The large-batch figures left out because one call would have taken too long (absent
+    /// from runs saved before it existed, which load with none).
+    #[serde(default)]
+    pub skipped: Vec<Skipped>,
 }
 
 /// Largest saved run read (`fastbrdf bench --from`, `pareto --bench`, `reproduce --speedups`).
@@ -282,6 +298,7 @@ mod tests {
             quick: true,
             gpu: None,
             peers: vec![],
+            skipped: vec![],
         };
         let old = run(vec![
             row("power4", "simd", 4096, 4e10),
@@ -358,6 +375,7 @@ mod tests {
             quick: true,
             gpu: Some("test".into()),
             peers: vec![],
+            skipped: vec![],
         };
         let dir = std::env::temp_dir().join(format!("fastbrdf-speed-instr-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();

@@ -212,6 +212,7 @@ mod tests {
             quick: true,
             gpu: None,
             peers: vec![],
+            skipped: vec![],
         };
         let pairs = r.measured_speedups();
         assert_eq!(pairs.len(), r.speedups.len());

@@ -9,7 +9,7 @@
 //! away; the timed work is the whole of `fb_user_brdf`, as the instruction count is.
 
 use super::{UserError, UserShader};
-use crate::bench::{Measured, time};
+use crate::bench::{PROBE, Timing, time, too_slow};
 use crate::compute::{CHUNK, read_buffer};
 use crate::context::{GpuError, validated};
 use crate::cost::{self, Counts};
@@ -266,9 +266,17 @@ pub fn measure(
     given: &[(String, String)],
     dirs: [&[f32]; 6],
     budget: Duration,
-) -> Result<Measured, UserError> {
+) -> Result<Timing, UserError> {
     let k = UserKernel::new(device, shader, given)?;
     let gpu = |e: GpuError| UserError::gpu(format!("{} on the GPU: {e}", shader.name()));
+    let n = dirs[0].len();
+    if n > PROBE {
+        let p = k.upload(device, dirs.map(|d| &d[..PROBE])).map_err(gpu)?;
+        let probe = || k.dispatch(device, queue, &p, 1);
+        if let Some(projected_s) = too_slow(device, n, &probe).map_err(gpu)? {
+            return Ok(Timing::TooSlow { projected_s });
+        }
+    }
     let r = k.upload(device, dirs).map_err(gpu)?;
     let mut out = vec![0.0f32; 3 * r.n];
     time(
@@ -278,5 +286,6 @@ pub fn measure(
         &|repeat| k.dispatch(device, queue, &r, repeat),
         &mut || k.eval(device, queue, dirs, &mut out),
     )
+    .map(Timing::Measured)
     .map_err(gpu)
 }

@@ -34,14 +34,17 @@ time; without spirv-opt it shows as - and a note says why). Its rows are named f
 declares, checked against the declared ranges)."
 )]
 pub struct Args {
-    /// About 10 s instead of about a minute (shorter timing rounds; one run of the large batch).
+    /// About 25 s instead of about a minute (shorter timing rounds; one run of the large batch).
     #[arg(long)]
     quick: bool,
     /// Print JSON: {"cpu", "isa", "threads", "fma_per_s", "div_per_s", "kernels": [{model,
     /// variant, batch, evals_per_s, isa, fma_fraction, limit, limit_fraction, instructions}], "speedups": [{name, measured, claimed, how}], "quick",
     /// "peers": [{model, params, batch, repeats, rounds, isa, kernel_evals_per_s,
     /// peer_evals_per_s, ratio, kernel_max_error, peer_max_error, peer, compiler, flags,
-    /// libmvec, ftz, daz, kernel_limit, kernel_limit_fraction, peer_limit_fraction}], and with --gpu "gpu" (the adapter's label)}; GPU rows have variant
+    /// libmvec, ftz, daz, kernel_limit, kernel_limit_fraction, peer_limit_fraction}], "skipped":
+    /// [{model, variant, batch, projected_s}] (large-batch figures not timed because one call
+    /// was projected to take over 3 s: quadrature references such as sheen-albedo), and with
+    /// --gpu "gpu" (the adapter's label)}; GPU rows have variant
     /// "gpu" or "gpu+transfer" and isa "gpu". Each peers row races the batch kernel against
     /// the C loop `peer` (crates/analysis/c/peer.c, built with `compiler` at `flags`):
     /// `kernel_evals_per_s`, `peer_evals_per_s` and `ratio` (kernel over peer, per round) are
@@ -105,6 +108,39 @@ pub struct Args {
     compare: Option<PathBuf>,
 }
 
+/// A model's GPU figures into `r`: the rows `gpu` and `gpu+transfer`, or, when one dispatch
+/// of the batch was projected too long to time, a `skipped` entry for each.
+fn push_gpu(
+    r: &mut Report,
+    name: &str,
+    batch: usize,
+    t: fastbrdf_gpu::bench::Timing,
+    instructions: Option<speed::Instructions>,
+) {
+    use fastbrdf_gpu::bench::Timing;
+    for (i, variant) in ["gpu", "gpu+transfer"].into_iter().enumerate() {
+        match t {
+            Timing::Measured(m) => r.kernels.push(speed::KernelRow {
+                model: name.into(),
+                variant: variant.into(),
+                batch,
+                evals_per_s: [m.kernel_evals_per_s, m.transfer_evals_per_s][i],
+                isa: "gpu".into(),
+                fma_fraction: None,
+                limit: None,
+                limit_fraction: None,
+                instructions,
+            }),
+            Timing::TooSlow { projected_s } => r.skipped.push(speed::Skipped {
+                model: name.into(),
+                variant: variant.into(),
+                batch,
+                projected_s,
+            }),
+        }
+    }
+}
+
 /// Adds the GPU rows and speedups to a CPU run.
 fn add_gpu(r: &mut Report, a: &Args, users: &[users::UserModel]) -> Result<(), CliError> {
     use fastbrdf_gpu::compute::{CHUNK, GpuInput};
@@ -123,28 +159,12 @@ fn add_gpu(r: &mut Report, a: &Args, users: &[users::UserModel]) -> Result<(), C
     let pb = bar((configs.len() + users.len()) as u64, "bench --gpu");
     for (name, spec) in &configs {
         let input = GpuInput::from(inputs.input(spec.kind(), inputs.cos.len()));
-        let m = fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, spec, input, budget)?;
-        for (variant, v) in [
-            ("gpu", m.kernel_evals_per_s),
-            ("gpu+transfer", m.transfer_evals_per_s),
-        ] {
-            r.kernels.push(speed::KernelRow {
-                model: name.clone(),
-                variant: variant.into(),
-                batch: n,
-                evals_per_s: v,
-                isa: "gpu".into(),
-                fma_fraction: None,
-                limit: None,
-                limit_fraction: None,
-                instructions: None,
-            });
-        }
+        let t = fastbrdf_gpu::bench::measure(&gpu.device, &gpu.queue, spec, input, budget)?;
+        push_gpu(r, name, n, t, None);
         pb.inc(1);
     }
     for u in users {
-        r.kernels
-            .extend(users::measure(&gpu, u, &inputs, n, budget)?);
+        users::measure(r, &gpu, u, &inputs, n, budget)?;
         pb.inc(1);
     }
     pb.finish_and_clear();
@@ -196,6 +216,22 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             r
         }
     };
+    for k in &report.skipped {
+        match k.variant.as_str() {
+            "simd" => eprintln!(
+                "bench: {}: one call on the large batch ({}) would take about {:.0} s (projected from the 4096-element batch): its large-batch figures are left out (`skipped` in --json)",
+                k.model, k.batch, k.projected_s
+            ),
+            "gpu" => eprintln!(
+                "bench: {}: one GPU dispatch of {} elements would take about {:.0} s (projected from {} elements): its GPU figures are left out (`skipped` in --json)",
+                k.model,
+                k.batch,
+                k.projected_s,
+                fastbrdf_gpu::bench::PROBE
+            ),
+            _ => {}
+        }
+    }
     if let (Some(old), Some(old_path)) = (&old, &a.compare) {
         let rows = speed::compare(old, &report);
         if rows.is_empty() {

@@ -532,6 +532,7 @@ mod tests {
             quick: true,
             gpu: None,
             peers: vec![],
+            skipped: vec![],
         }
     }
 

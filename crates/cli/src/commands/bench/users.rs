@@ -145,17 +145,18 @@ pub fn load(ids: &[String], params: &[String]) -> Result<Vec<UserModel>, CliErro
 }
 
 /// Times the user's model `u` on `gpu` over the first `n` direction pairs of `inputs` (the
-/// built-in BRDFs' batch), spending about `budget` on each figure: two rows, `gpu` and
-/// `gpu+transfer`, as each built-in model gets.
+/// built-in BRDFs' batch), spending about `budget` on each figure, into `r`: two rows, `gpu`
+/// and `gpu+transfer`, as each built-in model gets (or two `skipped` entries).
 pub fn measure(
+    r: &mut speed::Report,
     gpu: &fastbrdf_gpu::Gpu,
     u: &UserModel,
     inputs: &speed::Inputs,
     n: usize,
     budget: std::time::Duration,
-) -> Result<Vec<KernelRow>, CliError> {
+) -> Result<(), CliError> {
     let dirs: [&[f32]; 6] = std::array::from_fn(|k| &inputs.dirs[k][..n]);
-    let m = fastbrdf_gpu::user::bench::measure(
+    let t = fastbrdf_gpu::user::bench::measure(
         &gpu.device,
         &gpu.queue,
         &u.shader,
@@ -164,21 +165,8 @@ pub fn measure(
         budget,
     )
     .map_err(cli_error)?;
-    let row = |variant: &str, evals_per_s| KernelRow {
-        model: u.name.clone(),
-        variant: variant.into(),
-        batch: n,
-        evals_per_s,
-        isa: "gpu".into(),
-        fma_fraction: None,
-        limit: None,
-        limit_fraction: None,
-        instructions: u.instructions,
-    };
-    Ok(vec![
-        row("gpu", m.kernel_evals_per_s),
-        row("gpu+transfer", m.transfer_evals_per_s),
-    ])
+    super::push_gpu(r, &u.name, n, t, u.instructions);
+    Ok(())
 }
 
 /// Sets every built-in row's instruction counts from the committed table (by the
