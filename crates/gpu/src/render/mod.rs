@@ -112,6 +112,7 @@ mod layouts;
 mod models;
 mod objects;
 mod passes;
+mod resolve;
 mod scene_data;
 pub mod split_sum;
 pub mod web;
@@ -336,7 +337,7 @@ fn render_scene(
     let occluders = Occluders::new(device, &limits, scene)?;
 
     let (tw_max, th_max) = (w.min(tile_px) * n, h.min(tile_px) * n);
-    let target = |format, label| {
+    let target = |format, label, usage| {
         device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d {
@@ -348,12 +349,17 @@ fn render_scene(
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            usage,
             view_formats: &[],
         })
     };
-    let color = target(COLOR_FORMAT, "fastbrdf render colour");
-    let depth = target(DEPTH_FORMAT, "fastbrdf render depth");
+    let attachment = wgpu::TextureUsages::RENDER_ATTACHMENT;
+    let color = target(
+        COLOR_FORMAT,
+        "fastbrdf render colour",
+        attachment | wgpu::TextureUsages::TEXTURE_BINDING,
+    );
+    let depth = target(DEPTH_FORMAT, "fastbrdf render depth", attachment);
     let ids = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("fastbrdf render ids"),
         size: wgpu::Extent3d {
@@ -381,16 +387,9 @@ fn render_scene(
         color.create_view(&Default::default()),
         depth.create_view(&Default::default()),
     );
-    let row_bytes = (tw_max * 16).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-    let readback = device.create_buffer(&wgpu::BufferDescriptor {
-        label: Some("fastbrdf render readback"),
-        size: u64::from(row_bytes) * u64::from(th_max),
-        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-        mapped_at_creation: false,
-    });
+    let resolver = resolve::Resolver::new(device, u64::from(tw_max / n) * u64::from(th_max / n));
 
     let mut film = Film::try_new(w, h).map_err(|e| GpuError::Input(e.to_string()))?;
-    let inv = 1.0 / (n * n) as f32;
     let tiles = (w.div_ceil(tile_px) * h.div_ceil(tile_px)) as usize;
     // Under an environment, each tile takes its passes in a few draws (the first with the
     // direct light and the background), summed (`env::GpuEnv::chunks`).
@@ -420,6 +419,7 @@ fn render_scene(
                 h: ph * n,
             };
             let chunks = chunks_of(&tile);
+            let resolve = resolver.tile(device, &color_view, (pw, ph, n));
             // A smaller tile at an edge may take fewer draws: the progress still ends at
             // `total`.
             let extra = total / tiles - chunks.len();
@@ -509,56 +509,23 @@ fn render_scene(
                             &pipelines,
                         );
                     }
-                    enc.copy_texture_to_buffer(
-                        wgpu::TexelCopyTextureInfo {
-                            texture: &color,
-                            mip_level: 0,
-                            origin: wgpu::Origin3d::ZERO,
-                            aspect: wgpu::TextureAspect::All,
-                        },
-                        wgpu::TexelCopyBufferInfo {
-                            buffer: &readback,
-                            layout: wgpu::TexelCopyBufferLayout {
-                                offset: 0,
-                                bytes_per_row: Some(row_bytes),
-                                rows_per_image: None,
-                            },
-                        },
-                        wgpu::Extent3d {
-                            width: tile.w,
-                            height: tile.h,
-                            depth_or_array_layers: 1,
-                        },
-                    );
+                    // The draw's samples into the tile's pixels, on the GPU.
+                    resolver.record(&mut enc, &resolve, ci == 0);
                     queue.submit([enc.finish()]);
-                })?;
-                crate::compute::map_read(device, &readback, |bytes| {
-                    let texels: &[f32] = bytemuck::cast_slice(bytes);
-                    let stride = (row_bytes / 4) as usize;
-                    for py in 0..ph {
-                        for px in 0..pw {
-                            // The CPU's order: samples row by row within the pixel, then scaled.
-                            let mut sum = Vec3::ZERO;
-                            for sy in 0..n {
-                                for sx in 0..n {
-                                    let (x, y) = ((px * n + sx) as usize, (py * n + sy) as usize);
-                                    let t = &texels[y * stride + 4 * x..][..3];
-                                    sum += Vec3::new(t[0], t[1], t[2]);
-                                }
-                            }
-                            sum *= inv;
-                            let p = &mut film.pixels[((py0 + py) * w + px0 + px) as usize];
-                            if ci == 0 {
-                                *p = sum;
-                            } else {
-                                *p += sum;
-                            }
-                        }
-                    }
                 })?;
                 done += 1;
                 progress(done, total);
             }
+            // One read-back per tile, after its last draw.
+            resolver.read(device, queue, &resolve, |px| {
+                for py in 0..ph {
+                    for qx in 0..pw {
+                        let i = 3 * (py * pw + qx) as usize;
+                        film.pixels[((py0 + py) * w + px0 + qx) as usize] =
+                            Vec3::new(px[i], px[i + 1], px[i + 2]);
+                    }
+                }
+            })?;
             if extra > 0 {
                 done += extra;
                 progress(done, total);
