@@ -321,21 +321,30 @@ function drawNumbers() {
 }
 
 // ---- requests ------------------------------------------------------------------------
-// A request's JSON; a failed one throws its error (with `status`). A body cut short by an
-// abort (the headers were in, then a newer request took over) is an AbortError, and a
-// successful answer whose body cannot be read is an error: both used to come back as the
-// answer `{error: "HTTP 200"}`, which became lastPlots, so that the next drawNumbers() threw
-// and the newest pictures' task ended before its full picture and FLIP (the flaky
-// view_page test, #30).
-async function getJSON(url, signal) {
+// A request's answer, its body read whole: {ok, status, text, error}, `error` (when not ok)
+// the server's JSON `error`, else "HTTP <status>" for a body that is not the server's JSON. A
+// body cut short by an abort (the headers were in, then a newer request took over), or one
+// that arrived after its request was replaced, is an AbortError: the page draws nothing of it.
+async function fetchAnswer(url, signal) {
   const r = await fetch(url, { signal });
-  const body = await r.json().catch(e => {
-    if (signal && signal.aborted) throw new DOMException("aborted while its answer arrived", "AbortError");
-    if (r.ok || e.name === "AbortError") throw e;
-    return { error: "HTTP " + r.status };
-  });
-  if (!r.ok) throw Object.assign(new Error(body.error || ("HTTP " + r.status)), { status: r.status });
-  return body;
+  const aborted = () => new DOMException("aborted while its answer arrived", "AbortError");
+  const text = await r.text().catch(e => { throw (signal && signal.aborted) ? aborted() : e; });
+  if (signal && signal.aborted) throw aborted();
+  let error = null;
+  if (!r.ok) {
+    error = "HTTP " + r.status;
+    try { error = JSON.parse(text).error || error; } catch (_) { /* not the server's JSON */ }
+  }
+  return { ok: r.ok, status: r.status, text, error };
+}
+// A request's JSON; a failed one throws its error (with `status`), and a successful answer
+// whose body is not JSON throws too: both used to come back as the answer
+// `{error: "HTTP 200"}`, which became lastPlots, so that the next drawNumbers() threw and the
+// newest pictures' task ended before its full picture and FLIP (the flaky view_page test, #30).
+async function getJSON(url, signal) {
+  const a = await fetchAnswer(url, signal);
+  if (!a.ok) throw Object.assign(new Error(a.error), { status: a.status });
+  return JSON.parse(a.text);
 }
 // What task() ended without drawing, newest last, at most 40 (window.fastbrdfDropped, for
 // the end-to-end tests' failure messages and a user's console): aborted or superseded (409)
@@ -460,15 +469,9 @@ function exportShader() {
   const q = new URLSearchParams({ model: id, lang: state.lang });
   for (const p of (MODELS[id] ? MODELS[id].params : [])) if (state.params[p.name] !== undefined) q.set(p.name, state.params[p.name]);
   task(async () => {
-    const r = await fetch("/api/shader?" + q, { signal: s });
-    const t = await r.text();
-    // Like getJSON: a request replaced while its answer arrived draws nothing, and an error
-    // whose body is not the server's JSON still names its HTTP status.
-    if (s.aborted) throw new DOMException("aborted while its answer arrived", "AbortError");
-    let msg = "HTTP " + r.status;
-    if (!r.ok) try { msg = JSON.parse(t).error || msg; } catch (_) { /* not the server's JSON */ }
+    const a = await fetchAnswer("/api/shader?" + q, s);
     // The pane says why it holds no shader rather than keep the last view's.
-    $("shader").textContent = r.ok ? t : msg;
+    $("shader").textContent = a.ok ? a.text : a.error;
   }, "shader");
 }
 
