@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The figures a machine with a real GPU gives (docs/book/src/gpu.md, "On a real GPU"), in one
+# The figures a machine with a real GPU gives (docs/book/src/equal-error.md, "On a real GPU"), in one
 # prepared run: what the machine is, `fastbrdf bench --gpu --json`, and tools/equal_error.py's
 # fastbrdf columns (CPU and GPU renderer; Mitsuba where it is importable) at its --full settings.
 #

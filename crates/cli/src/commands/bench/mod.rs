@@ -118,25 +118,34 @@ fn push_gpu(
     instructions: Option<speed::Instructions>,
 ) {
     use fastbrdf_gpu::bench::Timing;
-    for (i, variant) in ["gpu", "gpu+transfer"].into_iter().enumerate() {
-        match t {
-            Timing::Measured(m) => r.kernels.push(speed::KernelRow {
-                model: name.into(),
-                variant: variant.into(),
-                batch,
-                evals_per_s: [m.kernel_evals_per_s, m.transfer_evals_per_s][i],
-                isa: "gpu".into(),
-                fma_fraction: None,
-                limit: None,
-                limit_fraction: None,
-                instructions,
-            }),
-            Timing::TooSlow { projected_s } => r.skipped.push(speed::Skipped {
-                model: name.into(),
-                variant: variant.into(),
-                batch,
-                projected_s,
-            }),
+    match t {
+        Timing::Measured(m) => {
+            for (variant, evals_per_s) in [
+                ("gpu", m.kernel_evals_per_s),
+                ("gpu+transfer", m.transfer_evals_per_s),
+            ] {
+                r.kernels.push(speed::KernelRow {
+                    model: name.into(),
+                    variant: variant.into(),
+                    batch,
+                    evals_per_s,
+                    isa: "gpu".into(),
+                    fma_fraction: None,
+                    limit: None,
+                    limit_fraction: None,
+                    instructions,
+                });
+            }
+        }
+        Timing::TooSlow { projected_s } => {
+            for variant in ["gpu", "gpu+transfer"] {
+                r.skipped.push(speed::Skipped {
+                    model: name.into(),
+                    variant: variant.into(),
+                    batch,
+                    projected_s,
+                });
+            }
         }
     }
 }
