@@ -28,6 +28,7 @@ mod bright;
 pub(crate) mod sobol;
 mod trig;
 pub mod wave;
+pub use bright::BrightTables;
 pub use bright::{BRIGHT_FACTOR, BRIGHT_MAX_TEXELS, BRIGHT_MIN_SHARE};
 use bright::{Bright, bright_part, cdf_of};
 
@@ -318,6 +319,22 @@ impl EnvMap {
         self.bright
             .as_ref()
             .map(|b| (b.texels.len(), 1.0 / b.ratio))
+    }
+
+    /// The bright strategy's tables, as a GPU twin reads them (`fastbrdf_gpu::render::env`,
+    /// `shaders/env.wgsl`): `None` without a bright part.
+    pub fn bright_tables(&self) -> Option<BrightTables<'_>> {
+        let b = self.bright.as_ref()?;
+        let rows = self.height as usize * (self.width as usize + 1);
+        Some(BrightTables {
+            texels: &b.texels,
+            cdf: &b.cdf,
+            rest_marginal: &b.rest_marginal,
+            rest_row: &b.rest_row,
+            rest_rows: &self.conditional[rows..],
+            axis: b.axis,
+            below: b.below,
+        })
     }
 
     /// A direction drawn from the bright texels alone, in proportion to their weight, by two

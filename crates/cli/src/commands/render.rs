@@ -77,9 +77,10 @@ pub struct RenderArgs {
     /// glTF scene's materials (gltf-pbr, coloured, anisotropy along the tangents; base colour,
     /// metallic-roughness, normal, occlusion and emissive textures) on the GPU. Shadows
     /// as on the CPU (--shadows on|off). With --env, the map sampled per sample with the CPU's
-    /// random numbers (--sampler), by map and cosine directions and a GGX lobe of the model's
-    /// roughness: without a specular term the CPU's picture to rounding, with one the same in
-    /// the limit (the CPU samples the BRDF itself).
+    /// random numbers (--sampler), by map directions (a sun apart as on the CPU, --env-sun),
+    /// cosine directions and a GGX lobe of the model's roughness: without a specular term the
+    /// CPU's picture to rounding, with one the same in the limit (the CPU samples the BRDF
+    /// itself).
     #[arg(long)]
     gpu: bool,
 }
@@ -345,7 +346,6 @@ fn finish(
             spec.env_samples,
             opts.sampler.name(),
             match spec.env_sun {
-                _ if a.gpu => "",
                 fastbrdf_render::setup::SunDraw::Apart => "",
                 fastbrdf_render::setup::SunDraw::WithMap => ", every direction from the whole map",
             }

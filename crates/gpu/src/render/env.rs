@@ -6,7 +6,9 @@
 //! # The estimator
 //!
 //! Per primary hit and pass, one direction drawn from the map by its importance tables
-//! (`EnvMap::sample`'s rows by their sin theta-weighted luminance, then columns), one
+//! (`EnvMap::sample`'s rows by their sin theta-weighted luminance, then columns; where the map
+//! has a compact bright part, a sun, one from the rest, `EnvMap::sample_rest`, and one from
+//! the bright texels, `EnvMap::sample_bright`, as the CPU's light strategies), one
 //! cosine-weighted about the shading normal and, on an object with a specular term, one drawn
 //! from a GGX lobe about the view's mirror direction (Heitz's visible normals, roughness
 //! [`lobe_alpha`]: the model's `alpha`), combined by the balance heuristic over the whole
@@ -25,8 +27,9 @@
 //! `sobol_burley`'s `sample_4d` ported with its first four dimensions' direction numbers) or
 //! the independent sampler (`fastbrdf_render::env::Rng`, a PCG hash), seeded by the CPU's
 //! sample id and pass, so that each sample and pass takes the very numbers the CPU's map,
-//! cosine and BRDF directions take: with no specular term (where neither draws a BRDF
-//! direction) the pictures agree to rounding (`tests/render_env.rs`). A
+//! cosine, BRDF and bright directions take: with no specular term (where neither draws a BRDF
+//! direction) the pictures agree to rounding, with a sun apart or without
+//! (`tests/render_env.rs`). A
 //! render is deterministic, and a draw of passes `[first, first + count)` adds new samples to
 //! the draws before it.
 //!
@@ -35,8 +38,8 @@
 //! | binding | type | content |
 //! |---|---|---|
 //! | 0 | `var<uniform>` 48 bytes | `EnvParams`: `size: vec4<u32>` (map width, height, first pass, pass count), `weights: vec4<f32>` (each pass's weight, the direct light's weight, the lobe strategy's roughness or the split-sum's alpha, the split-sum's f0), `options: vec4<u32>` (sampler: 0 Sobol, 1 independent; mode: 0 sampled, 1 split-sum; the prefiltered maps' level width and height): [`EnvData::params`], [`EnvData::split_sum_params`] |
-//! | 1 | `texture_2d<f32>`, `Rgba32Float`, non-filterable (textureLoad) | [`EnvData::texels_rgba32f`] |
-//! | 2 | `var<storage, read> array<f32>` | [`EnvData::tables`] |
+//! | 1 | `texture_2d<f32>`, `Rgba32Float`, non-filterable (textureLoad) | [`EnvData::texels_rgba32f`] (A: the light strategies' mass) |
+//! | 2 | `var<storage, read> array<f32>` | [`EnvData::tables`] (the map's, then [`sun_section`]) |
 //! | 3 | `texture_2d<f32>`, `Rgba32Float`, non-filterable (textureLoad) | the split-sum's prefiltered maps ([`super::split_sum::Prefiltered`]); any 1 x 1 texture in the sampled mode |
 //!
 //! All in the fragment stage. The module ends with `rd_dfg(cos_v, alpha) -> vec2<f32>`:
@@ -92,14 +95,44 @@ pub struct EnvData {
     pub width: u32,
     pub height: u32,
     /// `width x height` texels, row-major, top row straight up (`fastbrdf_render::env`'s
-    /// mapping): R, G, B radiance and A = the texel's probability mass x width x height (the
-    /// numerator of the density `A / (2 pi^2 sin theta)`). Upload as an `Rgba32Float`
-    /// texture (`bytemuck::cast_slice` for the bytes; little-endian f32 in a browser).
+    /// mapping): R, G, B radiance and A = the texel's probability mass under the light
+    /// strategies x width x height (the numerator of the density `A / (2 pi^2 sin theta)`):
+    /// the map's mass, times one over the bright texels' share on a bright texel and one over
+    /// the rest's elsewhere where the map has a bright part (`EnvMap::light_pdf`). Upload as
+    /// an `Rgba32Float` texture (`bytemuck::cast_slice` for the bytes; little-endian f32 in a
+    /// browser).
     pub texels_rgba32f: Vec<f32>,
     /// The sampling tables, one storage buffer: the marginal CDF over rows (`height + 1`
     /// entries, 0 to 1), then per row the conditional CDF over its columns (`width + 1`
-    /// entries each, 0 to 1; all 0 for a row of zero weight).
+    /// entries each, 0 to 1; all 0 for a row of zero weight), then the bright strategy's
+    /// section ([`sun_section`]: 8 entries, the first 0, where the map has no bright part).
     pub tables: Vec<f32>,
+}
+
+/// The bright strategy's part of [`EnvData::tables`] (after the map's rows), the twin of
+/// `EnvMap::sample_bright` and `EnvMap::sample_rest` for `env.wgsl`: a header of 8 entries
+/// (the number of bright texels `nb`, 0 for none; the rest's rows that differ from the
+/// map's, `k`; the cone's axis x, y, z and `below`; two zeros), then the bright texels' CDF
+/// (`nb + 1`), their rows (`nb`) and columns (`nb`), the rest's marginal CDF (`height + 1`),
+/// per row its row of the conditional tables (`height`: the map's own below `height`, else
+/// `height + j` = the `j`-th of the `k` rows that follow, `width + 1` entries each). Indices
+/// are stored as f32 values (at most 8192: exact).
+pub fn sun_section(map: &EnvMap) -> Vec<f32> {
+    let Some(b) = map.bright_tables() else {
+        return vec![0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0];
+    };
+    let (w, nb) = (map.width, b.texels.len());
+    let k = b.rest_rows.len() / (w as usize + 1);
+    let mut out = vec![
+        nb as f32, k as f32, b.axis.x, b.axis.y, b.axis.z, b.below, 0.0, 0.0,
+    ];
+    out.extend_from_slice(b.cdf);
+    out.extend(b.texels.iter().map(|&i| (i / w) as f32));
+    out.extend(b.texels.iter().map(|&i| (i % w) as f32));
+    out.extend_from_slice(b.rest_marginal);
+    out.extend(b.rest_row.iter().map(|&r| r as f32));
+    out.extend_from_slice(b.rest_rows);
+    out
 }
 
 impl EnvData {
@@ -109,14 +142,14 @@ impl EnvData {
         let n = (map.width * map.height) as f32;
         let texels_rgba32f = map
             .texels()
-            .flat_map(|(t, mass)| [t.x, t.y, t.z, mass * n])
+            .flat_map(|(t, mass)| [t.x, t.y, t.z, map.light_pdf(t, mass) * n])
             .collect();
         let (marginal, conditional) = map.tables();
         Self {
             width: map.width,
             height: map.height,
             texels_rgba32f,
-            tables: [marginal, conditional].concat(),
+            tables: [marginal, conditional, &sun_section(map)].concat(),
         }
     }
 
@@ -572,8 +605,10 @@ mod tests {
             let d = EnvData::new(&map);
             let (w, h) = (d.width as usize, d.height as usize);
             assert_eq!(d.texels_rgba32f.len(), 4 * w * h);
-            assert_eq!(d.tables.len(), h + 1 + h * (w + 1));
+            let sun = sun_section(&map);
+            assert_eq!(d.tables.len(), h + 1 + h * (w + 1) + sun.len());
             assert_eq!(d.tables[h], 1.0);
+            assert_eq!(sun[0] as usize, map.bright().map_or(0, |b| b.0));
             for _ in 0..2000 {
                 let (dir, le, pdf) = map.sample(rng.uniform(), rng.uniform());
                 let (u, v) = fastbrdf_render::env::dir_to_uv(dir);
@@ -583,8 +618,87 @@ mod tests {
                 assert_eq!(Vec3::new(t[0], t[1], t[2]), le);
                 let st = (1.0 - dir.y * dir.y).max(0.0).sqrt();
                 if pdf > 0.0 && st > 1e-3 {
-                    let mine = t[3] / (2.0 * PI * PI * st);
+                    // The light strategies' density (the map's own without a sun).
+                    let (mine, pdf) = (t[3] / (2.0 * PI * PI * st), map.light_pdf(le, pdf));
                     assert!((mine - pdf).abs() <= 1e-3 * pdf, "{mine} vs {pdf}");
+                }
+            }
+        }
+    }
+
+    /// `env.wgsl`'s draws, as it reads the flat tables (`rd_env_sample_rest`,
+    /// `rd_env_sample_bright`): the bin found in each table and where in it.
+    fn bin(t: &[f32], off: usize, n: usize, u: f32) -> (usize, f32) {
+        let p = t[off..=off + n].partition_point(|&c| c <= u);
+        let i = p.max(1).min(n) - 1;
+        let width = t[off + i + 1] - t[off + i];
+        let frac = if width > 0.0 {
+            ((u - t[off + i]) / width).clamp(0.0, 1.0 - f32::EPSILON)
+        } else {
+            0.5
+        };
+        (i, frac)
+    }
+
+    fn scaled(t: &[f32], off: usize, n: usize, u: f32) -> (usize, f32) {
+        bin(t, off, n, u.clamp(0.0, 1.0 - f32::EPSILON) * t[off + n])
+    }
+
+    /// (row, place, column, place) of the shader's draw from the rest, or from the bright
+    /// texels.
+    fn shader_draw(d: &EnvData, bright: bool, u1: f32, u2: f32) -> (usize, f32, usize, f32) {
+        let (w, h, t) = (d.width as usize, d.height as usize, &d.tables);
+        let b = h + 1 + h * (w + 1);
+        let nb = t[b] as usize;
+        if bright {
+            let (k, fr) = bin(t, b + 8, nb, u1.clamp(0.0, 1.0 - f32::EPSILON));
+            let (r, c) = (t[b + 9 + nb + k] as usize, t[b + 9 + 2 * nb + k] as usize);
+            return (r, fr, c, u2.clamp(0.0, 1.0 - f32::EPSILON));
+        }
+        let marginal = b + 9 + 3 * nb;
+        let rows = marginal + h + 1;
+        let (r, fr) = scaled(t, marginal, h, u1);
+        let row = t[rows + r] as usize;
+        let off = if row < h {
+            h + 1 + row * (w + 1)
+        } else {
+            rows + h + (row - h) * (w + 1)
+        };
+        let (c, fc) = scaled(t, off, w, u2);
+        (r, fr, c, fc)
+    }
+
+    /// The shader's reading of the sun section draws the CPU's directions: from the rest and
+    /// from the bright texels, on the sky (a 2-degree sun) and on a map with two bright
+    /// texels in different rows, the texel of each draw and its density the CPU's.
+    #[test]
+    fn the_sun_section_draws_the_cpus_directions() {
+        let mut texels = vec![Vec3::splat(0.5); 64 * 32];
+        texels[5 * 64 + 40] = Vec3::splat(2000.0);
+        texels[9 * 64 + 12] = Vec3::new(900.0, 1200.0, 3000.0);
+        let two = EnvMap::from_texels(64, 32, texels).unwrap();
+        let mut rng = Rng::new(9, 1);
+        for map in [EnvMap::sky(), two] {
+            assert!(map.bright().is_some());
+            let d = EnvData::new(&map);
+            let (w, h) = (d.width as f32, d.height as f32);
+            for j in 0..4000 {
+                let (u1, u2) = (rng.uniform(), rng.uniform());
+                let bright = j % 2 == 1;
+                let (dir, le, pdf) = if bright {
+                    map.sample_bright(u1, u2).unwrap()
+                } else {
+                    map.sample_rest(u1, u2)
+                };
+                let (r, fr, c, fc) = shader_draw(&d, bright, u1, u2);
+                let (mine, st) =
+                    fastbrdf_render::env::uv_to_dir((c as f32 + fc) / w, (r as f32 + fr) / h);
+                assert_eq!(mine, dir, "bright {bright}, u = ({u1}, {u2})");
+                let t = &d.texels_rgba32f[4 * (r * d.width as usize + c)..][..4];
+                assert_eq!(Vec3::new(t[0], t[1], t[2]), le);
+                if st > 1e-3 {
+                    let density = t[3] / (2.0 * PI * PI * st);
+                    assert!((density - pdf).abs() <= 1e-5 * pdf, "{density} vs {pdf}");
                 }
             }
         }

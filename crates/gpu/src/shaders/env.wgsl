@@ -4,10 +4,12 @@
 //
 //   @group(3) @binding(0) uniform EnvParams (48 bytes)
 //   @group(3) @binding(1) texture_2d<f32> (Rgba32Float, read with textureLoad): per texel,
-//                         rgb radiance and a = its probability mass x width x height
+//                         rgb radiance and a = its probability mass under the light
+//                         strategies x width x height (EnvMap::light_pdf)
 //   @group(3) @binding(2) storage array<f32>: the marginal CDF over rows (height + 1
 //                         entries), then per row the conditional CDF over its columns
-//                         (width + 1 entries each)
+//                         (width + 1 entries each), then the bright texels' section
+//                         (env.rs, `sun_section`; its first entry 0 where there are none)
 //   @group(3) @binding(3) texture_2d<f32> (Rgba32Float, textureLoad): the split-sum mode's
 //                         prefiltered maps, level after level (render/split_sum.rs)
 //
@@ -16,11 +18,13 @@
 //
 // The estimator (twin of crates/render/src/render/environment.rs, but for its BRDF
 // sampling: the GPU has the models' values, not their samplers): per primary hit and pass,
-// one direction drawn from the map (its importance tables), one cosine-weighted about the
+// one direction drawn from the map (its importance tables; where the map has a compact bright
+// part, a sun, one from the rest of the map and one from the bright texels, the CPU's two
+// light strategies with disjoint densities), one cosine-weighted about the
 // shading normal and, with a specular term, one from a GGX lobe of the model's roughness
 // about the view's mirror (env.weights.z; 0: none), combined by the balance heuristic over the
 // whole integrand (diffuse and specular): each contributes
-// L (base cos / pi + ks f cos) / (pdf_map + cos / pi + pdf_lobe), times the pass weight, with
+// L (base cos / pi + ks f cos) / (pdf_light + cos / pi + pdf_lobe), times the pass weight, with
 // the CPU's shadow rule (`visible`). The map and cosine strategies cover every direction the
 // integrand is non-zero in (the map's density is positive wherever its radiance is), so the
 // sum is unbiased whatever the lobe, and converges to the CPU's picture.
@@ -29,7 +33,8 @@
 // Sobol points (sobol_burley's `sample_4d`, its first four dimensions, ported with their
 // direction numbers) or the independent sampler (`env::Rng`: a PCG hash of the sample id
 // and the pass), the sample id `(pixel y * width + pixel x) * N^2 + subsample` as on the CPU:
-// the same six numbers per sample and pass as the CPU's map, cosine and BRDF directions take.
+// the same eight numbers per sample and pass as the CPU's map, cosine, BRDF and bright
+// directions take.
 // Deterministic, and a draw with passes [first, first + count) adds new samples to earlier
 // ones.
 
@@ -132,20 +137,24 @@ fn rd_sobol4(index: u32, seed: u32) -> vec4<f32> {
 }
 
 struct RdUniforms {
-    /// The map's pair, then the cosine pair.
+    /// The map's pair (the rest's, where the map has a bright part), then the cosine pair.
     a: vec4<f32>,
     /// The BRDF's pair (here the GGX lobe's).
     b: vec2<f32>,
+    /// The bright texels' pair.
+    c: vec2<f32>,
 }
 
-/// The six uniform numbers of sample `id` in pass `p` (environment.rs, `uniforms`).
+/// The eight uniform numbers of sample `id` in pass `p` (environment.rs, `uniforms`).
 fn rd_env_uniforms(id: u32, p: u32) -> RdUniforms {
     if env.options.x == 0u {
         // Pass k takes point k (mod 2^16) of the sequence seeded by the sample (and k / 2^16),
-        // the BRDF's pair the first two dimensions of a second seed.
+        // the BRDF's pair the first two dimensions of a second seed, the bright texels' its
+        // last two.
         let seed = rd_pcg(id ^ rd_pcg(p >> 16u));
         let k = p & 0xffffu;
-        return RdUniforms(rd_sobol4(k, seed), rd_sobol4(k, rd_pcg(seed ^ 0x68bc21ebu)).xy);
+        let second = rd_sobol4(k, rd_pcg(seed ^ 0x68bc21ebu));
+        return RdUniforms(rd_sobol4(k, seed), second.xy, second.zw);
     }
     var rng = rd_rng(id, p);
     let u1 = rd_uniform(&rng);
@@ -154,7 +163,9 @@ fn rd_env_uniforms(id: u32, p: u32) -> RdUniforms {
     let u4 = rd_uniform(&rng);
     let u5 = rd_uniform(&rng);
     let u6 = rd_uniform(&rng);
-    return RdUniforms(vec4<f32>(u1, u2, u3, u4), vec2<f32>(u5, u6));
+    let u7 = rd_uniform(&rng);
+    let u8 = rd_uniform(&rng);
+    return RdUniforms(vec4<f32>(u1, u2, u3, u4), vec2<f32>(u5, u6), vec2<f32>(u7, u8));
 }
 
 /// The CPU's sample id of the fragment at `pos` (environment.rs, `env_pass`).
@@ -173,9 +184,14 @@ struct RdBin {
 }
 
 /// sample_cdf on the table of `n` bins at `env_cdf[off ..= off + n]`: the bin holding `u`
-/// and where in it.
+/// (scaled by the table's last entry) and where in it.
 fn rd_env_bin(off: u32, n: u32, u_in: f32) -> RdBin {
-    let u = clamp(u_in, 0.0, 0.99999988) * env_cdf[off + n];
+    return rd_env_bin_at(off, n, clamp(u_in, 0.0, 0.99999988) * env_cdf[off + n]);
+}
+
+/// bin_of at the partition point of `u` (already scaled) in the table at `env_cdf[off ..=
+/// off + n]`.
+fn rd_env_bin_at(off: u32, n: u32, u: f32) -> RdBin {
     // The partition point: the first entry above u.
     var lo = 0u;
     var hi = n + 1u;
@@ -202,23 +218,82 @@ struct RdEnvSample {
     pdf: f32,
 }
 
-/// EnvMap::sample: (unit direction, radiance, solid-angle density; 0 at the poles).
+/// EnvMap::sample: (unit direction, radiance, solid-angle density under the light
+/// strategies; 0 at the poles).
 fn rd_env_sample(u1: f32, u2: f32) -> RdEnvSample {
     let w = env.size.x;
     let h = env.size.y;
     let r = rd_env_bin(0u, h, u1);
     let c = rd_env_bin(h + 1u + r.i * (w + 1u), w, u2);
-    let u = (f32(c.i) + c.frac) / f32(w);
-    let v = (f32(r.i) + r.frac) / f32(h);
+    return rd_env_drawn(r.i, r.frac, c.i, c.frac);
+}
+
+/// EnvMap::drawn: the direction at (`fc`, `fr`) within texel (column `c`, row `r`), its
+/// radiance and density (the texel's A: the light strategies' mass).
+fn rd_env_drawn(r: u32, fr: f32, c: u32, fc: f32) -> RdEnvSample {
+    let u = (f32(c) + fc) / f32(env.size.x);
+    let v = (f32(r) + fr) / f32(env.size.y);
     let phi = (u - 0.5) * 2.0 * RD_PI;
     let theta = v * RD_PI;
     let st = sin(theta);
     let d = vec3<f32>(st * sin(phi), cos(theta), -st * cos(phi));
-    let t = textureLoad(env_map, vec2<i32>(i32(c.i), i32(r.i)), 0);
+    let t = textureLoad(env_map, vec2<i32>(i32(c), i32(r)), 0);
     if st <= 0.0 {
         return RdEnvSample(d, t.xyz, 0.0);
     }
     return RdEnvSample(d, t.xyz, t.w / (2.0 * RD_PI * RD_PI * st));
+}
+
+// ---- a sun apart (twins: env/bright.rs; EnvData::tables' sun section, env.rs `sun_section`)
+
+/// Where the sun section starts in env_cdf (after the map's marginal and rows).
+fn rd_sun_off() -> u32 {
+    return env.size.y + 1u + env.size.y * (env.size.x + 1u);
+}
+
+/// How many bright texels the map has as a strategy of their own (0: none).
+fn rd_sun_count() -> u32 {
+    return u32(env_cdf[rd_sun_off()]);
+}
+
+/// EnvMap::bright_faces: whether a surface of shading normal `n` may see a bright texel.
+fn rd_sun_faces(n: vec3<f32>) -> bool {
+    let b = rd_sun_off();
+    let axis = vec3<f32>(env_cdf[b + 2u], env_cdf[b + 3u], env_cdf[b + 4u]);
+    return rd_sun_count() > 0u && rd_dot(n, axis) > env_cdf[b + 5u];
+}
+
+/// EnvMap::sample_bright: a direction drawn from the bright texels in proportion to their
+/// weight (needs rd_sun_count() > 0).
+fn rd_env_sample_bright(u1: f32, u2: f32) -> RdEnvSample {
+    let b = rd_sun_off();
+    let nb = rd_sun_count();
+    let k = rd_env_bin_at(b + 8u, nb, clamp(u1, 0.0, 0.99999988));
+    let texel = b + 9u + nb + k.i;
+    let r = u32(env_cdf[texel]);
+    let c = u32(env_cdf[texel + nb]);
+    return rd_env_drawn(r, k.frac, c, clamp(u2, 0.0, 0.99999988));
+}
+
+/// EnvMap::sample_rest: a direction drawn from the map without its bright texels (the whole
+/// map where it has none).
+fn rd_env_sample_rest(u1: f32, u2: f32) -> RdEnvSample {
+    let nb = rd_sun_count();
+    if nb == 0u {
+        return rd_env_sample(u1, u2);
+    }
+    let w = env.size.x;
+    let h = env.size.y;
+    let marginal = rd_sun_off() + 9u + 3u * nb;
+    let rows = marginal + h + 1u;
+    let r = rd_env_bin(marginal, h, u1);
+    let t = u32(env_cdf[rows + r.i]);
+    var off = h + 1u + t * (w + 1u);
+    if t >= h {
+        off = rows + h + (t - h) * (w + 1u);
+    }
+    let c = rd_env_bin(off, w, u2);
+    return rd_env_drawn(r.i, r.frac, c.i, c.frac);
 }
 
 /// EnvMap::lookup: the radiance from unit direction `d` (xyz) and the map's density there (w).
@@ -325,19 +400,28 @@ fn rd_lobe_sample(lobe: RdLobe, u1: f32, u2: f32) -> vec3<f32> {
     return h * (2.0 * rd_dot(lobe.wo, h)) - lobe.wo;
 }
 
-/// One pass's estimate at a hit: a map direction, a cosine direction and, with a specular
-/// term and a lobe roughness given (`env.weights.z`), a direction from a GGX lobe of that
-/// roughness about the view's mirror; the balance heuristic over the strategies taken.
-fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
-    let u = rd_env_uniforms(id, pass_index);
-    let lobe = rd_lobe(s);
-    var sum = vec3<f32>(0.0);
-    let m = rd_env_sample(u.a.x, u.a.y);
+/// A light direction's share: `m` drawn by a light strategy, its density theirs together.
+fn rd_env_light(s: RdSurface, lobe: RdLobe, m: RdEnvSample) -> vec3<f32> {
     let cos_m = rd_dot(s.n, m.d);
     if m.pdf > 0.0 && cos_m > 0.0 && any(m.le != vec3<f32>(0.0)) && rd_env_visible(s, m.d) {
         let wi = vec3<f32>(rd_dot(m.d, lobe.t), rd_dot(m.d, lobe.b), cos_m);
         let p = m.pdf + cos_m / RD_PI + rd_lobe_pdf(lobe, wi);
-        sum += m.le * s.ao * rd_env_f(s, m.d, cos_m) / p;
+        return m.le * s.ao * rd_env_f(s, m.d, cos_m) / p;
+    }
+    return vec3<f32>(0.0);
+}
+
+/// One pass's estimate at a hit: a map direction (where the map has a bright part, one from
+/// the rest and, where the hit may see them, one from the bright texels: together one light
+/// strategy, their densities disjoint, as the CPU's), a cosine direction and, with a
+/// specular term and a lobe roughness given (`env.weights.z`), a direction from a GGX lobe of
+/// that roughness about the view's mirror; the balance heuristic over the strategies taken.
+fn rd_env_pass(s: RdSurface, id: u32, pass_index: u32) -> vec3<f32> {
+    let u = rd_env_uniforms(id, pass_index);
+    let lobe = rd_lobe(s);
+    var sum = rd_env_light(s, lobe, rd_env_sample_rest(u.a.x, u.a.y));
+    if rd_sun_faces(s.n) {
+        sum += rd_env_light(s, lobe, rd_env_sample_bright(u.c.x, u.c.y));
     }
     let l = rd_cosine_sample(s.n, u.a.z, u.a.w);
     let cos_c = rd_dot(s.n, l);

@@ -37,6 +37,27 @@ pub(super) struct Bright {
     pub(super) below: f32,
 }
 
+/// A map's bright strategy as plain tables ([`super::EnvMap::bright_tables`]), for a GPU twin
+/// of [`super::EnvMap::sample_bright`] and [`super::EnvMap::sample_rest`].
+#[derive(Clone, Copy, Debug)]
+pub struct BrightTables<'a> {
+    /// The bright texels (row-major indices) and the cumulative distribution of their weights
+    /// (one more entry, 0 to 1), drawn without scaling the uniform number by its last entry.
+    pub texels: &'a [u32],
+    pub cdf: &'a [f32],
+    /// The rest's distribution over rows (height + 1 entries) and, per row, the row of the
+    /// conditional tables holding its distribution over columns: below the map's height the
+    /// map's own row, else row `height + k` = the `k`-th of `rest_rows`.
+    pub rest_marginal: &'a [f32],
+    pub rest_row: &'a [u32],
+    /// The rest's rows that differ from the map's (width + 1 entries each).
+    pub rest_rows: &'a [f32],
+    /// The cone holding every bright texel: a normal `n` with `n . axis <= below` sees none
+    /// of them above its horizon ([`super::EnvMap::bright_faces`]).
+    pub axis: Vec3,
+    pub below: f32,
+}
+
 /// A texel is bright when its luminance exceeds this many times the map's mean (over solid
 /// angle): the built-in sky's sun is 1,200 times its mean, a captured sun 10^3 to 10^6 times.
 pub const BRIGHT_FACTOR: f32 = 64.0;

@@ -66,7 +66,7 @@ pub struct SceneArgs {
     /// latitude-longitude HDR map FILE (Radiance .hdr or OpenEXR, 2:1, at most 8192x4096, 512
     /// MiB, finite non-negative texels; +y up, the centre column behind the subject).
     /// Importance-sampled; it replaces the ambient term and, unless --light is given, the
-    /// default key light. CPU only.
+    /// default key light. `render --gpu` renders it too.
     #[arg(long, value_name = "FILE|sky|white")]
     pub env: Option<String>,
     /// Environment samples per primary ray (each one map-sampled and one cosine-sampled
@@ -81,9 +81,9 @@ pub struct SceneArgs {
     pub sampler: SamplerArg,
     /// How the environment's light directions are drawn: apart (a sun, texels brighter than 64
     /// times the map's mean holding at least 5% of its light in at most 1/256 of its texels,
-    /// and the rest of the map as two strategies, one direction of each per pass) or with-map
-    /// (every direction from the whole map: the renderer before the sun strategy and the GPU
-    /// renderer's; the same expected picture, more noise under a sun). CPU only.
+    /// and the rest of the map as two strategies, one direction of each per pass; the CPU and
+    /// the GPU renderer) or with-map (every direction from the whole map: the renderers before
+    /// the sun strategy; the same expected picture, more noise under a sun).
     #[arg(long, value_enum, default_value_t = SunArg::Apart)]
     pub env_sun: SunArg,
     /// Antialiasing: adaptive (one sample at each pixel's centre, the N x N grid of --spp only
@@ -104,7 +104,7 @@ pub struct SceneFileArg {
     /// colour, metallic, roughness, KHR_materials_ior, _specular, _clearcoat, _sheen,
     /// _anisotropy, the base colour texture; --param values go to every material). What is
     /// not rendered (other textures, emission, animations...) is named in a warning on
-    /// stderr. CPU only.
+    /// stderr. `render --gpu` renders it too.
     #[arg(
         long = "scene",
         value_name = "FILE",
