@@ -319,7 +319,16 @@ impl Scene {
     /// [`Scene::shadowed`] (`tests/shadows.rs` compares them), at the cost of the other
     /// objects alone: nothing at all for a lone sphere. `from` beyond the objects (as
     /// [`Scene::shadowed`] passes) searches them all.
+    #[inline]
     pub fn shadowed_from(&self, from: usize, p: Vec3, n: Vec3, l: Vec3, dist: f32) -> bool {
+        // A lone sphere or plane (the default scene): nothing to search, and no ray to build
+        // (the call and the ray's set-up were 7% of the default directly lit render).
+        if let [only] = &self.objects[..]
+            && from == 0
+            && !matches!(only.shape, Shape::Mesh(_))
+        {
+            return false;
+        }
         let eps = SHADOW_EPS * (1.0 + p.abs().max_element());
         let ray = Ray {
             o: p + n * eps,

@@ -192,3 +192,55 @@ fn leaving_a_convex_object_out_of_its_own_shadow_rays_changes_no_answer() {
         "both answers from both objects: {seen:?}"
     );
 }
+
+/// A lone object: `Scene::shadowed_from` skips the search only for a sphere or a plane (the
+/// default scene's sphere: nothing can block it), and still searches a lone mesh, which can
+/// shadow itself (the face's nose and brows): both answers as `Scene::shadowed`, 20,000 rays
+/// each from random points of the object (vertices of the face) towards directions on the
+/// side of its normal.
+#[test]
+fn a_lone_object_skips_its_search_only_when_it_is_convex() {
+    let mut face = SceneSpec::new();
+    face.mesh = Some(std::path::PathBuf::from("face"));
+    let mut rng = fastbrdf_render::env::Rng::new(3, 5);
+    let mut unit = || {
+        let z = 2.0 * rng.uniform() - 1.0;
+        let phi = std::f32::consts::TAU * rng.uniform();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    };
+    for (what, spec) in [("sphere", SceneSpec::new()), ("face", face)] {
+        let s = scene(&spec);
+        assert_eq!(s.objects.len(), 1, "{what}: one object");
+        let points: Vec<(Vec3, Vec3)> = match &s.objects[0].shape {
+            fastbrdf_render::scene::Shape::Mesh(m) => (0..m.positions.len())
+                .map(|i| (m.positions[i], m.normals[i]))
+                .collect(),
+            _ => (0..1000).map(|_| unit()).map(|n| (n, n)).collect(),
+        };
+        let mut shadowed = 0;
+        for k in 0..20_000 {
+            let (p, n) = points[k % points.len()];
+            let mut l = unit();
+            if l.dot(n) < 0.0 {
+                l = -l;
+            }
+            if l.dot(n) <= 0.0 {
+                continue;
+            }
+            let want = s.shadowed(p, n, l, f32::INFINITY);
+            assert_eq!(
+                s.shadowed_from(0, p, n, l, f32::INFINITY),
+                want,
+                "{what}: p {p}, l {l}"
+            );
+            shadowed += u32::from(want);
+        }
+        eprintln!("{what}: {shadowed} of 20000 rays blocked");
+        assert_eq!(
+            shadowed > 100,
+            what == "face",
+            "{what}: {shadowed} rays blocked"
+        );
+    }
+}
