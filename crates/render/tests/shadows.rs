@@ -141,6 +141,14 @@ fn a_lit_sphere_does_not_shadow_itself() {
     }
 }
 
+/// A direction uniform on the sphere.
+fn unit_vector(rng: &mut fastbrdf_render::env::Rng) -> Vec3 {
+    let z = 2.0 * rng.uniform() - 1.0;
+    let phi = std::f32::consts::TAU * rng.uniform();
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
 /// `Scene::shadowed_from` (the renderer's shadow test, which leaves a sphere or a plane out
 /// of its own points' search) answers as `Scene::shadowed` (every object searched) for points
 /// on the sphere and on the floor of the sphere-on-a-floor scene, towards directions on the
@@ -152,12 +160,7 @@ fn leaving_a_convex_object_out_of_its_own_shadow_rays_changes_no_answer() {
     let s = scene(&spec);
     assert_eq!(s.objects.len(), 2, "the sphere and the floor");
     let mut rng = fastbrdf_render::env::Rng::new(7, 11);
-    let mut unit = || {
-        let z = 2.0 * rng.uniform() - 1.0;
-        let phi = std::f32::consts::TAU * rng.uniform();
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        Vec3::new(r * phi.cos(), r * phi.sin(), z)
-    };
+    let mut unit = || unit_vector(&mut rng);
     let mut seen = [[0u32; 2]; 2];
     for k in 0..40_000 {
         let on_sphere = k % 2 == 0;
@@ -203,12 +206,7 @@ fn a_lone_object_skips_its_search_only_when_it_is_convex() {
     let mut face = SceneSpec::new();
     face.mesh = Some(std::path::PathBuf::from("face"));
     let mut rng = fastbrdf_render::env::Rng::new(3, 5);
-    let mut unit = || {
-        let z = 2.0 * rng.uniform() - 1.0;
-        let phi = std::f32::consts::TAU * rng.uniform();
-        let r = (1.0 - z * z).max(0.0).sqrt();
-        Vec3::new(r * phi.cos(), r * phi.sin(), z)
-    };
+    let mut unit = || unit_vector(&mut rng);
     for (what, spec) in [("sphere", SceneSpec::new()), ("face", face)] {
         let s = scene(&spec);
         assert_eq!(s.objects.len(), 1, "{what}: one object");
