@@ -157,23 +157,23 @@ fn shader_writes_files_and_rejects_bad_input_without_writing() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// `fastbrdf bench --gpu --quick --json --models MODELS --large LARGE`, which must succeed,
+/// and its JSON.
+fn bench_gpu(models: &str, large: &str) -> (Output, serde_json::Value) {
+    let o = fastbrdf(&[
+        "bench", "--gpu", "--quick", "--json", "--models", models, "--large", large,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = serde_json::from_slice(&o.stdout).unwrap();
+    (o, j)
+}
+
 #[test]
 fn bench_gpu_adds_labelled_gpu_rows_to_the_cpu_run() {
     if !have_gpu() {
         return;
     }
-    let o = fastbrdf(&[
-        "bench",
-        "--gpu",
-        "--quick",
-        "--json",
-        "--models",
-        "power16,ward",
-        "--large",
-        "65536",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (_, j) = bench_gpu("power16,ward", "65536");
     let label = j["gpu"].as_str().expect("the adapter is named");
     let rows = j["kernels"].as_array().unwrap();
     for m in ["power16", "ward"] {
@@ -209,18 +209,7 @@ fn bench_gpu_leaves_out_a_model_too_slow_to_time() {
     if !have_gpu() {
         return;
     }
-    let o = fastbrdf(&[
-        "bench",
-        "--gpu",
-        "--quick",
-        "--json",
-        "--models",
-        "sheen-albedo",
-        "--large",
-        "4194304",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (o, j) = bench_gpu("sheen-albedo", "4194304");
     let label = j["gpu"].as_str().unwrap();
     let skipped = j["skipped"].as_array().unwrap();
     let rows = j["kernels"].as_array().unwrap();
