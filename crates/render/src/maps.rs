@@ -157,6 +157,7 @@ impl MetallicRoughness {
 /// back face (`n` reversed), the view direction `v` and the material's normal texture at
 /// `uv`: `(normal, t, b)`, an orthonormal frame with `b` along the bitangent. Without a usable
 /// tangent: `n` and `any_orthonormal_pair` (the renderer's frame for every other surface).
+#[inline]
 pub fn frame(
     n: Vec3,
     tangent: Vec4,
@@ -167,10 +168,24 @@ pub fn frame(
 ) -> (Vec3, Vec3, Vec3) {
     if tangent == Vec4::ZERO && normal.is_none() {
         // No tangent frame and no normal texture (every built-in scene): the frame below
-        // would come to this after a normalisation of the zero vector.
+        // would come to this after a normalisation of the zero vector. Inlined into the
+        // renderer's loop; the tangent frame's code is not.
         let (t, b) = n.any_orthonormal_pair();
         return (n, t, b);
     }
+    tangent_frame(n, tangent, back, v, normal, uv)
+}
+
+/// [`frame`] where the mesh has a tangent or the material a normal texture.
+#[inline(never)]
+fn tangent_frame(
+    n: Vec3,
+    tangent: Vec4,
+    back: bool,
+    v: Vec3,
+    normal: Option<&NormalMap>,
+    uv: Vec2,
+) -> (Vec3, Vec3, Vec3) {
     let sign = if back { -1.0 } else { 1.0 };
     let t = sign * tangent.truncate();
     let t = (t - n * n.dot(t)).normalize_or_zero();

@@ -284,11 +284,29 @@ impl Scene {
     /// cost an `atan2` and an `asin` per ray).
     #[inline]
     pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
-        self.nearest(ray, |o| {
+        let uv = |o: &Object| {
             o.material.texture.is_some()
                 || o.material.specular.tint.is_some()
                 || o.material.maps.is_some()
-        })
+        };
+        // A lone sphere (the default scene): its test alone, without the search's loop (the
+        // same operations as [`Scene::nearest`] on one object: 7% fewer instructions in a
+        // directly lit render).
+        if let [only] = &self.objects[..]
+            && let Shape::Sphere(s) = &only.shape
+        {
+            return s
+                .hit(ray, 1e-4, f32::INFINITY, uv(only))
+                .map(|(t, n, uv)| Hit {
+                    t,
+                    p: ray.o + t * ray.d,
+                    n,
+                    uv,
+                    tangent: glam::Vec4::ZERO,
+                    object: 0,
+                });
+        }
+        self.nearest(ray, uv)
     }
 
     /// Whether anything lies along `ray` strictly between `t_min` and `t_max` (a shadow ray:
@@ -323,10 +341,7 @@ impl Scene {
     pub fn shadowed_from(&self, from: usize, p: Vec3, n: Vec3, l: Vec3, dist: f32) -> bool {
         // A lone sphere or plane (the default scene): nothing to search, and no ray to build
         // (the call and the ray's set-up were 7% of the default directly lit render).
-        if let [only] = &self.objects[..]
-            && from == 0
-            && !matches!(only.shape, Shape::Mesh(_))
-        {
+        if !self.may_shadow(from) {
             return false;
         }
         let eps = SHADOW_EPS * (1.0 + p.abs().max_element());
@@ -343,6 +358,14 @@ impl Scene {
                 Shape::Plane(p) => i != from && p.hit(&ray, t_min, t_max, false).is_some(),
                 Shape::Mesh(m) => m.occluded(&ray, t_min, t_max),
             })
+    }
+
+    /// Whether anything can block light from the points of object `from` (as
+    /// [`Scene::shadowed_from`] takes it): false only for a lone sphere or plane, whose own
+    /// points it never shadows; a renderer's loop asks once per object, not per point.
+    #[inline]
+    pub fn may_shadow(&self, from: usize) -> bool {
+        !matches!(&self.objects[..], [only] if from == 0 && !matches!(only.shape, Shape::Mesh(_)))
     }
 
     #[inline]

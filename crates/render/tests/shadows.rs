@@ -240,5 +240,8 @@ fn a_lone_object_skips_its_search_only_when_it_is_convex() {
             what == "face",
             "{what}: {shadowed} rays blocked"
         );
+        // The renderer asks once per object whether to search at all.
+        assert_eq!(s.may_shadow(0), what == "face", "{what}: may_shadow(0)");
+        assert!(s.may_shadow(usize::MAX), "{what}: a point of no object");
     }
 }

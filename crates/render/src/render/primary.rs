@@ -29,7 +29,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         probe,
         probe_radiance,
         probe_direct,
-        probe_depth,
+        probe_keys,
         edges,
         refine,
         spec,
@@ -89,9 +89,24 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         direct_only.extend_from_slice(probe_radiance);
     }
     direct(ctx.scene, opts, probe, direct_only, spec);
-    // Each probe sample's distance from the eye, once (the edge test reads it five times).
-    probe_depth.clear();
-    probe_depth.extend(probe.iter().map(|s| (s.p - eye).length()));
+    // Each probe sample's edge-test inputs, once (the test reads each sample up to four
+    // times): 4% of a directly lit render's instructions went to reading them from the
+    // samples and taking the maxima again per pair.
+    probe_keys.clear();
+    probe_keys.extend(
+        probe
+            .iter()
+            .zip(direct_only.iter())
+            .map(|(s, &light)| EdgeKey {
+                object: s.object.map_or(u32::MAX, |o| o as u32),
+                depth: (s.p - eye).length(),
+                n: s.n,
+                base: s.base,
+                base_max: s.base.max_element(),
+                light,
+                light_max: light.max_element(),
+            }),
+    );
     if env.is_some() {
         probe_radiance
             .iter_mut()
@@ -104,7 +119,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     // of them too (the eight refined a third more pixels for no less error on the default
     // scenes). [`edge`] is symmetric, so each pair of the probe is tested once: `edges[c]`
     // bit 0 for (c, c + 1), bit 1 for (c, c + pw).
-    let hit = |i: usize| (&probe[i], direct_only[i], probe_depth[i]);
+    let keys = &probe_keys[..];
     let pwu = pw as usize;
     edges.clear();
     edges.resize(probe.len(), 0);
@@ -117,8 +132,8 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
                 (1..=th as usize).contains(&py),
                 (1..=tw as usize).contains(&px),
             );
-            let right = row && px <= tw as usize && edge(hit(c), hit(c + 1));
-            let down = col && py <= th as usize && edge(hit(c), hit(c + pwu));
+            let right = row && px <= tw as usize && edge(&keys[c], &keys[c + 1]);
+            let down = col && py <= th as usize && edge(&keys[c], &keys[c + pwu]);
             edges[c] = u8::from(right) | (u8::from(down) << 1);
         }
     }
@@ -190,17 +205,32 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
 /// depth step of more than 5%, or a contrast in albedo or direct light of more than 5% (with a
 /// floor of 0.01 for dark pixels). The thresholds err towards refining: a refined pixel costs
 /// N x N samples, a missed edge aliases.
-fn edge(a: (&Sample, Vec3, f32), b: (&Sample, Vec3, f32)) -> bool {
-    let (sa, la, da) = a;
-    let (sb, lb, db) = b;
-    let contrast =
-        |x: Vec3, y: Vec3| (x - y).abs().max_element() > 0.01 + 0.05 * x.max(y).max_element();
-    sa.object != sb.object
-        || (sa.object.is_some()
-            && (sa.n.dot(sb.n) < 0.9
-                || (da - db).abs() > 0.05 * da.min(db)
-                || contrast(sa.base, sb.base)))
-        || contrast(la, lb)
+#[inline]
+fn edge(a: &EdgeKey, b: &EdgeKey) -> bool {
+    // `x.max(y).max_element()` is the larger of the two maxima.
+    let contrast = |x: Vec3, y: Vec3, xm: f32, ym: f32| {
+        (x - y).abs().max_element() > 0.01 + 0.05 * if xm > ym { xm } else { ym }
+    };
+    a.object != b.object
+        || (a.object != u32::MAX
+            && (a.n.dot(b.n) < 0.9
+                || (a.depth - b.depth).abs() > 0.05 * a.depth.min(b.depth)
+                || contrast(a.base, b.base, a.base_max, b.base_max)))
+        || contrast(a.light, b.light, a.light_max, b.light_max)
+}
+
+/// What [`edge`] reads of a probe sample: its object (`u32::MAX` for the background), its
+/// distance from the eye, shading normal, diffuse colour and direct light, with the two
+/// colours' largest channels.
+#[derive(Clone, Copy)]
+pub(super) struct EdgeKey {
+    object: u32,
+    depth: f32,
+    n: Vec3,
+    base: Vec3,
+    base_max: f32,
+    light: Vec3,
+    light_max: f32,
 }
 
 /// Appends the samples of `rays` (ray `i` belongs to `pixel(i)` = (pixel, grid position)),
