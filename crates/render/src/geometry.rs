@@ -1,6 +1,6 @@
 //! Rays, analytic spheres and planes, and triangle meshes with a bounding volume hierarchy.
 
-mod bvh4;
+pub(crate) mod bvh4;
 use bvh4::Bvh4;
 use glam::{Vec2, Vec3, Vec4};
 

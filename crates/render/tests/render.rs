@@ -353,3 +353,43 @@ fn the_specular_model_is_the_shaded_spec() {
         "{err}"
     );
 }
+
+/// `Rays::extend_row` (four lanes at a time) gives `Rays::ray`'s rays to the bit: whole rows,
+/// lengths that leave a partial chunk, positions off the pixel centres and at the image's
+/// edges, for two cameras and image shapes.
+#[test]
+fn a_row_of_rays_is_ray_by_ray_to_the_bit() {
+    use fastbrdf_render::scene::Camera;
+    let sphere = Camera {
+        eye: Vec3::new(0.0, 0.0, 4.6),
+        target: Vec3::ZERO,
+        up: Vec3::Y,
+        fov_y_deg: 30.0,
+    };
+    let tilted = Camera::framing(
+        Vec3::new(-1.0, -2.0, 0.5),
+        Vec3::new(3.0, 1.0, 2.0),
+        Vec3::new(0.3, -0.2, -1.0),
+        42.0,
+    );
+    for (camera, w, h) in [(sphere, 512, 512), (tilted, 37, 19)] {
+        let rays = camera.rays(w, h);
+        let xs: Vec<f32> = (0..w)
+            .map(|x| x as f32 + 0.5)
+            .chain([0.0, 3.125, w as f32, 0.001])
+            .collect();
+        for y in [0.0, 0.5, 7.25, h as f32 - 0.5, h as f32] {
+            for len in [0, 1, 2, 3, 4, 5, 7, 8, 9, xs.len()] {
+                let mut out = vec![rays.ray(1.0, 1.0)];
+                rays.extend_row(&xs[..len], y, &mut out);
+                assert_eq!(out.len(), len + 1, "appends");
+                for (&x, r) in xs.iter().zip(&out[1..]) {
+                    let want = rays.ray(x, y);
+                    let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+                    assert_eq!(bits(r.o), bits(want.o), "origin at ({x}, {y})");
+                    assert_eq!(bits(r.d), bits(want.d), "direction at ({x}, {y}), {w}x{h}");
+                }
+            }
+        }
+    }
+}

@@ -58,7 +58,7 @@ pub(crate) struct Bvh4 {
 }
 
 #[cfg(target_arch = "x86_64")]
-mod lanes {
+pub(crate) mod lanes {
     use std::arch::x86_64::*;
 
     /// Four f32 lanes.
@@ -98,6 +98,11 @@ mod lanes {
         pub fn div(self, b: Self) -> Self {
             Self(unsafe { _mm_div_ps(self.0, b.0) })
         }
+        /// The correctly rounded square root per lane (SQRTPS), as `f32::sqrt`.
+        #[inline(always)]
+        pub fn sqrt(self) -> Self {
+            Self(unsafe { _mm_sqrt_ps(self.0) })
+        }
         /// `if self < b { self } else { b }` per lane (MINPS).
         #[inline(always)]
         pub fn min_first(self, b: Self) -> Self {
@@ -133,7 +138,7 @@ mod lanes {
 }
 
 #[cfg(not(target_arch = "x86_64"))]
-mod lanes {
+pub(crate) mod lanes {
     /// Four f32 lanes.
     #[derive(Clone, Copy)]
     pub struct F4([f32; 4]);
@@ -167,6 +172,9 @@ mod lanes {
         }
         pub fn div(self, b: Self) -> Self {
             self.map(b, |x, y| x / y)
+        }
+        pub fn sqrt(self) -> Self {
+            Self(self.0.map(f32::sqrt))
         }
         pub fn min_first(self, b: Self) -> Self {
             self.map(b, |x, y| if x < y { x } else { y })

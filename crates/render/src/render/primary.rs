@@ -40,7 +40,18 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     kept_px.clear();
     count.clear();
     count.resize((tw * th) as usize, n * n);
-    if opts.aa == Antialias::Grid || n == 1 {
+    if n == 1 {
+        // One sample per pixel: a row of rays at a time.
+        rays.clear();
+        let xs: Vec<f32> = (0..tw).map(|px| (x0 + px) as f32 + 0.5).collect();
+        for py in 0..th {
+            ctx.rays.extend_row(&xs, (y0 + py) as f32 + 0.5, rays);
+        }
+        trace(ctx.scene, rays, |i| (i as u32, 0), e, samples);
+        probe_radiance.clear();
+        return 0;
+    }
+    if opts.aa == Antialias::Grid {
         rays.clear();
         for py in 0..th {
             for px in 0..tw {
@@ -61,12 +72,12 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     // The probe: centre samples of the tile and the ring around it (clamped to the image).
     let (pw, ph) = (tw + 2, th + 2);
     rays.clear();
+    let xs: Vec<f32> = (0..pw)
+        .map(|px| (x0 + px).saturating_sub(1).min(opts.width - 1) as f32 + 0.5)
+        .collect();
     for py in 0..ph {
-        for px in 0..pw {
-            let x = (x0 + px).saturating_sub(1).min(opts.width - 1);
-            let y = (y0 + py).saturating_sub(1).min(opts.height - 1);
-            rays.push(ctx.rays.ray(x as f32 + 0.5, y as f32 + 0.5));
-        }
+        let y = (y0 + py).saturating_sub(1).min(opts.height - 1);
+        ctx.rays.extend_row(&xs, y as f32 + 0.5, rays);
     }
     probe.clear();
     let kept_passes = if ctx.scene.environment.is_some() {
