@@ -173,31 +173,35 @@ pub fn frame(
         let (t, b) = n.any_orthonormal_pair();
         return (n, t, b);
     }
-    tangent_frame(n, tangent, back, v, normal, uv)
+    let sign = if back { -1.0 } else { 1.0 };
+    tangent_frame(
+        n,
+        (sign * tangent.truncate(), tangent.w),
+        v,
+        normal.map(|m| (m, uv)),
+    )
 }
 
-/// [`frame`] where the mesh has a tangent or the material a normal texture.
+/// [`frame`] where the mesh has a tangent or the material a normal texture: `(t, w)` the
+/// tangent turned with the face and its bitangent sign, and the normal texture with the hit's
+/// texture coordinates.
 #[inline(never)]
 fn tangent_frame(
     n: Vec3,
-    tangent: Vec4,
-    back: bool,
+    (t, tw): (Vec3, f32),
     v: Vec3,
-    normal: Option<&NormalMap>,
-    uv: Vec2,
+    normal: Option<(&NormalMap, Vec2)>,
 ) -> (Vec3, Vec3, Vec3) {
-    let sign = if back { -1.0 } else { 1.0 };
-    let t = sign * tangent.truncate();
     let t = (t - n * n.dot(t)).normalize_or_zero();
     if t == Vec3::ZERO {
         let (t, b) = n.any_orthonormal_pair();
         return (n, t, b);
     }
-    let w = if tangent.w < 0.0 { -1.0 } else { 1.0 };
+    let w = if tw < 0.0 { -1.0 } else { 1.0 };
     // On a back face N and T are reversed, so B = (N x T) w is too.
     let b = n.cross(t) * w;
     let mut shading = n;
-    if let Some(nm) = normal {
+    if let Some((nm, uv)) = normal {
         let x = nm.texture.sample(uv) * 2.0 - Vec3::ONE;
         let p = (t * (x.x * nm.scale) + b * (x.y * nm.scale) + n * x.z).normalize_or_zero();
         if p.dot(v) > 0.0 {
