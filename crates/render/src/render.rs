@@ -377,8 +377,19 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         ..
     } = scratch;
     let passes = samples.iter().map(|s| s.passes).max().unwrap_or(1);
-    let mut acc = vec![Vec3::ZERO; (tw * th) as usize];
+    // The sum over passes; with one pass (no environment) the pass's pixels themselves.
+    let mut acc = Vec::new();
     let mut px = vec![Vec3::ZERO; (tw * th) as usize];
+    // 1 / (a pixel's sample count), once per count rather than a division per pixel.
+    let scale: Vec<f32> = (0..=n * n)
+        .map(|c| {
+            if c == n * n {
+                1.0 / (n * n) as f32
+            } else {
+                1.0 / c as f32
+            }
+        })
+        .collect();
     for pass in 0..passes {
         if (ctx.stop)() {
             return None;
@@ -403,15 +414,13 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         for (&p, r) in kept_px.iter().zip(probe_radiance.iter()) {
             px[p as usize] += *r;
         }
-        px.iter_mut().zip(count.iter()).for_each(|(p, &c)| {
-            *p *= if c == n * n {
-                1.0 / (n * n) as f32
-            } else {
-                1.0 / c as f32
-            }
-        });
+        px.iter_mut()
+            .zip(count.iter())
+            .for_each(|(p, &c)| *p *= scale[c as usize]);
         if pass == 0 {
-            acc.copy_from_slice(&px);
+            if passes > 1 {
+                acc.clone_from(&px);
+            }
         } else {
             acc.iter_mut().zip(&px).for_each(|(a, p)| *a += *p);
         }
@@ -430,7 +439,7 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
             ctx.total,
         );
     }
-    Some(acc)
+    Some(if passes > 1 { acc } else { px })
 }
 
 /// A sample's radiance before any light: the ambient term on an object, the environment or

@@ -91,41 +91,36 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     probe_radiance.clear();
     probe_radiance.extend(probe.iter().map(|s| initial(ctx.scene, env, s)));
     // The direct light of the probe: for the edge test and, where the centre sample stays,
-    // as its pass-0 radiance (the environment's share is added per pass).
-    let direct_only = probe_direct;
-    direct_only.clear();
-    if env.is_some() {
+    // as its pass-0 radiance. With an environment apart (its share is added per pass, and the
+    // edge test reads the direct light alone); without one straight into the radiance, which
+    // the edge test reads (a copy each way per tile before).
+    let light: &[Vec3] = if env.is_some() {
+        let direct_only = probe_direct;
+        direct_only.clear();
         direct_only.resize(probe_radiance.len(), Vec3::ZERO);
-    } else {
-        direct_only.extend_from_slice(probe_radiance);
-    }
-    direct(ctx.scene, opts, probe, direct_only, spec);
-    // Each probe sample's edge-test inputs, once (the test reads each sample up to four
-    // times): 4% of a directly lit render's instructions went to reading them from the
-    // samples and taking the maxima again per pair.
-    probe_keys.clear();
-    probe_keys.extend(
-        probe
-            .iter()
-            .zip(direct_only.iter())
-            .map(|(s, &light)| EdgeKey {
-                object: s.object.map_or(u32::MAX, |o| o as u32),
-                depth: (s.p - eye).length(),
-                n: s.n,
-                base: s.base,
-                base_max: s.base.max_element(),
-                light,
-                light_max: light.max_element(),
-            }),
-    );
-    if env.is_some() {
+        direct(ctx.scene, opts, probe, direct_only, spec);
         probe_radiance
             .iter_mut()
             .zip(direct_only.iter())
             .for_each(|(r, d)| *r += *d);
+        direct_only
     } else {
-        probe_radiance.copy_from_slice(direct_only);
-    }
+        direct(ctx.scene, opts, probe, probe_radiance, spec);
+        probe_radiance
+    };
+    // Each probe sample's edge-test inputs, once (the test reads each sample up to four
+    // times): 4% of a directly lit render's instructions went to reading them from the
+    // samples and taking the maxima again per pair.
+    probe_keys.clear();
+    probe_keys.extend(probe.iter().zip(light.iter()).map(|(s, &light)| EdgeKey {
+        object: s.object.map_or(u32::MAX, |o| o as u32),
+        depth: (s.p - eye).length(),
+        n: s.n,
+        base: s.base,
+        base_max: s.base.max_element(),
+        light,
+        light_max: light.max_element(),
+    }));
     // The four neighbours: an edge that passes between diagonal neighbours passes between two
     // of them too (the eight refined a third more pixels for no less error on the default
     // scenes). [`edge`] is symmetric, so each pair of the probe is tested once: `edges[c]`
