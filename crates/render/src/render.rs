@@ -272,6 +272,16 @@ pub fn render_until(
         progress,
         stop,
         samplers: samplers(scene)?,
+        // Once per render rather than a division per pixel (or a table per tile).
+        scale: (0..=opts.spp * opts.spp)
+            .map(|c| {
+                if c == opts.spp * opts.spp {
+                    1.0 / (opts.spp * opts.spp) as f32
+                } else {
+                    1.0 / c as f32
+                }
+            })
+            .collect(),
     };
     let mut film = Film::try_new(w, h)?;
     // Per worker thread, buffers reused from tile to tile for the whole render (rayon's
@@ -334,6 +344,8 @@ struct Ctx<'a> {
     /// Per object, the batch sampler of its specular model's first channel (none for an RGB
     /// BRDF or without an environment).
     samplers: Vec<Option<BrdfSampler>>,
+    /// 1 / (a pixel's sample count), by count: 0..=spp * spp.
+    scale: Vec<f32>,
 }
 
 /// The specular BRDF's sampling for the environment pass, per batch.
@@ -357,7 +369,7 @@ fn samplers(scene: &Scene) -> Result<Vec<Option<BrdfSampler>>> {
 /// pass's average over the pixel's samples, added in pass order. `None` when `stop` said so.
 fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec<Vec3>> {
     let (scene, opts) = (ctx.scene, ctx.opts);
-    let (w, h, n) = (opts.width, opts.height, opts.spp);
+    let (w, h) = (opts.width, opts.height);
     let (x0, y0) = (tx * ctx.tile_w, ty * ctx.tile_h);
     let (tw, th) = (ctx.tile_w.min(w - x0), ctx.tile_h.min(h - y0));
     let at = Tile { x0, y0, tw, w };
@@ -380,16 +392,6 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
     // The sum over passes; with one pass (no environment) the pass's pixels themselves.
     let mut acc = Vec::new();
     let mut px = vec![Vec3::ZERO; (tw * th) as usize];
-    // 1 / (a pixel's sample count), once per count rather than a division per pixel.
-    let scale: Vec<f32> = (0..=n * n)
-        .map(|c| {
-            if c == n * n {
-                1.0 / (n * n) as f32
-            } else {
-                1.0 / c as f32
-            }
-        })
-        .collect();
     for pass in 0..passes {
         if (ctx.stop)() {
             return None;
@@ -416,7 +418,7 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         }
         px.iter_mut()
             .zip(count.iter())
-            .for_each(|(p, &c)| *p *= scale[c as usize]);
+            .for_each(|(p, &c)| *p *= ctx.scale[c as usize]);
         if pass == 0 {
             if passes > 1 {
                 acc.clone_from(&px);
