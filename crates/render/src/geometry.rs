@@ -1,6 +1,8 @@
 //! Rays, analytic spheres and planes, and triangle meshes with a bounding volume hierarchy.
 
+pub(crate) mod bundle;
 pub(crate) mod bvh4;
+use bundle::Bundle;
 use bvh4::Bvh4;
 use glam::{Vec2, Vec3, Vec4};
 
@@ -478,6 +480,22 @@ impl TriMesh {
         self.shade(self.bvh4.hit(r, t_min, t_max)?, uv)
     }
 
+    /// The nearest hit as [`TriMesh::hit`] finds it (t, position in `order`, u, v): through
+    /// `bundle` where it covers the ray (`geometry::bundle`: the same hit), else the BVH.
+    #[inline]
+    fn nearest_in(
+        &self,
+        bundle: Option<&Bundle>,
+        r: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> Option<(f32, usize, f32, f32)> {
+        match bundle.and_then(|b| b.nearest(r, t_min, t_max)) {
+            Some(found) => found,
+            None => self.bvh4.hit(r, t_min, t_max),
+        }
+    }
+
     /// [`TriMesh::hit`] and the interpolated tangent (zero without [`TriMesh::tangents`]): the
     /// same hit, normal and uv.
     #[inline]
@@ -488,7 +506,20 @@ impl TriMesh {
         t_max: f32,
         uv: bool,
     ) -> Option<(f32, Vec3, Vec2, Vec4)> {
-        let found = self.bvh4.hit(r, t_min, t_max)?;
+        self.hit_tangent_in(None, r, t_min, t_max, uv)
+    }
+
+    /// [`TriMesh::hit_tangent`] through `bundle` where it covers the ray (the same hit).
+    #[inline]
+    pub(crate) fn hit_tangent_in(
+        &self,
+        bundle: Option<&Bundle>,
+        r: &Ray,
+        t_min: f32,
+        t_max: f32,
+        uv: bool,
+    ) -> Option<(f32, Vec3, Vec2, Vec4)> {
+        let found = self.nearest_in(bundle, r, t_min, t_max)?;
         let (t, n, uv) = self.shade(found, uv)?;
         let tangent = if self.tangents.is_empty() {
             Vec4::ZERO
@@ -612,6 +643,20 @@ impl TriMesh {
     #[inline]
     pub fn occluded(&self, r: &Ray, t_min: f32, t_max: f32) -> bool {
         self.bvh4.occluded(r, t_min, t_max)
+    }
+
+    /// [`TriMesh::occluded`] through `bundle` where it covers the ray (the same answer).
+    #[inline]
+    pub(crate) fn occluded_in(
+        &self,
+        bundle: Option<&Bundle>,
+        r: &Ray,
+        t_min: f32,
+        t_max: f32,
+    ) -> bool {
+        bundle
+            .and_then(|b| b.occluded(r, t_min, t_max))
+            .unwrap_or_else(|| self.bvh4.occluded(r, t_min, t_max))
     }
 
     /// [`TriMesh::occluded`] through the binary tree (see [`TriMesh::hit_binary`]).

@@ -10,7 +10,7 @@
 use crate::error::Result;
 use crate::film::{Film, check_size};
 use crate::geometry::Ray;
-use crate::scene::{Rays, Scene};
+use crate::scene::{Rays, Scene, Views};
 use fastbrdf::batch::Input;
 use glam::Vec3;
 use rayon::prelude::*;
@@ -264,6 +264,7 @@ pub fn render_until(
         scene,
         opts,
         rays,
+        views: scene.views(&rays),
         tile_w,
         tile_h,
         passes_max,
@@ -332,6 +333,8 @@ struct Ctx<'a> {
     scene: &'a Scene,
     opts: &'a Options,
     rays: Rays,
+    /// The meshes' bundles of the camera's and the directional lights' rays.
+    views: Views,
     /// Tile width and height ([`TILE`] or [`TILE_DIRECT`]).
     tile_w: u32,
     tile_h: u32,
@@ -403,7 +406,7 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
             radiance.extend_from_slice(&probe_radiance[..known]);
             let env = scene.environment.as_ref().map(|e| &e.map);
             radiance.extend(samples[known..].iter().map(|s| initial(scene, env, s)));
-            direct(scene, opts, &samples[known..], &mut radiance[known..], spec);
+            direct(ctx, &samples[known..], &mut radiance[known..], spec);
         }
         if let Some(env) = &scene.environment {
             env_pass(ctx, env, &at, pass, samples, radiance, env_scratch, spec);
@@ -456,17 +459,13 @@ fn initial(scene: &Scene, env: Option<&std::sync::Arc<crate::env::EnvMap>>, s: &
 
 /// The direct light: per object and light, the diffuse term and the specular term through one
 /// batch kernel call (shadow rays when `scene.shadows`).
-fn direct(
-    scene: &Scene,
-    opts: &Options,
-    samples: &[Sample],
-    radiance: &mut [Vec3],
-    spec: &mut Spec,
-) {
+fn direct(ctx: &Ctx, samples: &[Sample], radiance: &mut [Vec3], spec: &mut Spec) {
+    let (scene, opts) = (ctx.scene, ctx.opts);
     for (oi, obj) in scene.objects.iter().enumerate() {
         let m = &obj.material;
         let search = scene.shadows && scene.may_shadow(oi);
-        for light in &scene.lights {
+        for (li, light) in scene.lights.iter().enumerate() {
+            let along = ctx.views.light(li);
             // The specular terms go into columns sized for every sample and written by
             // index (eight pushes' capacity checks per lit sample were 4% of a directly lit
             // render's instructions), then cut to the `k` written.
@@ -486,7 +485,7 @@ fn direct(
                 // ray would start inside the object and always hit it, a hard black line (the
                 // "shadow terminator problem" of shading normals): no shadow ray there, the
                 // light reaches as without shadows.
-                if search && s.g.dot(l) > 0.0 && scene.shadowed_from(oi, s.p, s.g, l, dist) {
+                if search && s.g.dot(l) > 0.0 && scene.shadowed_in(oi, s.p, s.g, l, dist, along) {
                     continue;
                 }
                 radiance[i] += li * s.base * (cos_i / std::f32::consts::PI);

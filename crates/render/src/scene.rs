@@ -3,9 +3,10 @@
 
 use crate::bump::Bump;
 use crate::error::{RenderError, Result};
+use crate::geometry::bundle::Bundle;
 use crate::geometry::{Hit, Plane, Ray, Sphere, TriMesh};
 use crate::texture::Texture;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use std::sync::Arc;
 
 // The specular term lives in its own leaf module (`crate::maps` uses it too); its types are
@@ -311,7 +312,7 @@ pub struct Scene {
 impl Scene {
     /// The nearest hit along `ray`.
     pub fn intersect(&self, ray: &Ray) -> Option<Hit> {
-        self.nearest(ray, |_| true)
+        self.nearest(ray, |_| true, &[])
     }
 
     /// The nearest hit along `ray` for shading: texture coordinates only on objects whose
@@ -319,6 +320,13 @@ impl Scene {
     /// cost an `atan2` and an `asin` per ray).
     #[inline]
     pub fn intersect_shading(&self, ray: &Ray) -> Option<Hit> {
+        self.intersect_shading_in(ray, &[])
+    }
+
+    /// [`Scene::intersect_shading`] with each object's bundle of the camera's rays
+    /// ([`Views`], by object; fewer or `None`: the BVH): the same hit.
+    #[inline]
+    pub(crate) fn intersect_shading_in(&self, ray: &Ray, eye: &[Option<Bundle>]) -> Option<Hit> {
         let uv = |o: &Object| {
             o.material.texture.is_some()
                 || o.material.specular.tint.is_some()
@@ -337,11 +345,11 @@ impl Scene {
                     p: ray.o + t * ray.d,
                     n,
                     uv,
-                    tangent: glam::Vec4::ZERO,
+                    tangent: Vec4::ZERO,
                     object: 0,
                 });
         }
-        self.nearest(ray, uv)
+        self.nearest(ray, uv, eye)
     }
 
     /// Whether anything lies along `ray` strictly between `t_min` and `t_max` (a shadow ray:
@@ -374,6 +382,21 @@ impl Scene {
     /// [`Scene::shadowed`] passes) searches them all.
     #[inline]
     pub fn shadowed_from(&self, from: usize, p: Vec3, n: Vec3, l: Vec3, dist: f32) -> bool {
+        self.shadowed_in(from, p, n, l, dist, &[])
+    }
+
+    /// [`Scene::shadowed_from`] with each object's bundle of the light's rays ([`Views`], by
+    /// object; fewer or `None`: the BVH): the same answer.
+    #[inline]
+    pub(crate) fn shadowed_in(
+        &self,
+        from: usize,
+        p: Vec3,
+        n: Vec3,
+        l: Vec3,
+        dist: f32,
+        along: &[Option<Bundle>],
+    ) -> bool {
         // A lone sphere or plane (the default scene): nothing to search, and no ray to build
         // (the call and the ray's set-up were 7% of the default directly lit render).
         if !self.may_shadow(from) {
@@ -391,8 +414,47 @@ impl Scene {
             .any(|(i, o)| match &o.shape {
                 Shape::Sphere(s) => i != from && s.hit(&ray, t_min, t_max, false).is_some(),
                 Shape::Plane(p) => i != from && p.hit(&ray, t_min, t_max, false).is_some(),
-                Shape::Mesh(m) => m.occluded(&ray, t_min, t_max),
+                Shape::Mesh(m) => {
+                    m.occluded_in(along.get(i).and_then(Option::as_ref), &ray, t_min, t_max)
+                }
             })
+    }
+
+    /// Each mesh's bundles (`geometry::bundle`) for the primary rays of `rays` (this
+    /// scene's camera) and, with shadows, for each directional light's shadow rays: built
+    /// once per render, in parallel.
+    pub(crate) fn views(&self, rays: &Rays) -> Views {
+        use rayon::prelude::*;
+        let window = [rays.th * rays.aspect, rays.th];
+        let frame = (rays.f, rays.r, rays.u);
+        let (eye, lights) = rayon::join(
+            || {
+                self.objects
+                    .par_iter()
+                    .map(|o| match &o.shape {
+                        Shape::Mesh(m) => Bundle::from_eye(m, rays.eye, frame, window),
+                        _ => None,
+                    })
+                    .collect()
+            },
+            || {
+                self.lights
+                    .par_iter()
+                    .map(|l| match l.kind {
+                        LightKind::Directional { to_light } if self.shadows => self
+                            .objects
+                            .par_iter()
+                            .map(|o| match &o.shape {
+                                Shape::Mesh(m) => Bundle::along(m, to_light),
+                                _ => None,
+                            })
+                            .collect(),
+                        _ => Vec::new(),
+                    })
+                    .collect()
+            },
+        );
+        Views { eye, lights }
     }
 
     /// Whether anything can block light from the points of object `from` (as
@@ -404,41 +466,55 @@ impl Scene {
     }
 
     #[inline]
-    fn nearest(&self, ray: &Ray, uv: impl Fn(&Object) -> bool) -> Option<Hit> {
+    fn nearest(
+        &self,
+        ray: &Ray,
+        uv: impl Fn(&Object) -> bool,
+        eye: &[Option<Bundle>],
+    ) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut t_max = f32::INFINITY;
         for (i, o) in self.objects.iter().enumerate() {
+            let bundle = eye.get(i).and_then(Option::as_ref);
+            // A mesh's tangent is zero where it has none.
             let h = match &o.shape {
-                Shape::Sphere(s) => s.hit(ray, 1e-4, t_max, uv(o)),
-                Shape::Plane(p) => p.hit(ray, 1e-4, t_max, uv(o)),
-                Shape::Mesh(m) if !m.tangents.is_empty() => {
-                    if let Some((t, n, uv, tangent)) = m.hit_tangent(ray, 1e-4, t_max, uv(o)) {
-                        t_max = t;
-                        best = Some(Hit {
-                            t,
-                            p: ray.o + t * ray.d,
-                            n,
-                            uv,
-                            tangent,
-                            object: i,
-                        });
-                    }
-                    continue;
-                }
-                Shape::Mesh(m) => m.hit(ray, 1e-4, t_max, uv(o)),
+                Shape::Sphere(s) => s
+                    .hit(ray, 1e-4, t_max, uv(o))
+                    .map(|(t, n, uv)| (t, n, uv, Vec4::ZERO)),
+                Shape::Plane(p) => p
+                    .hit(ray, 1e-4, t_max, uv(o))
+                    .map(|(t, n, uv)| (t, n, uv, Vec4::ZERO)),
+                Shape::Mesh(m) => m.hit_tangent_in(bundle, ray, 1e-4, t_max, uv(o)),
             };
-            if let Some((t, n, uv)) = h {
+            if let Some((t, n, uv, tangent)) = h {
                 t_max = t;
                 best = Some(Hit {
                     t,
                     p: ray.o + t * ray.d,
                     n,
                     uv,
-                    tangent: glam::Vec4::ZERO,
+                    tangent,
                     object: i,
                 });
             }
         }
         best
+    }
+}
+
+/// Per render: each mesh's bundles ([`Scene::views`]).
+#[derive(Default)]
+pub(crate) struct Views {
+    /// By object: its bundle of the camera's rays.
+    pub(crate) eye: Vec<Option<Bundle>>,
+    /// By light, then object: its bundle of a directional light's shadow rays.
+    lights: Vec<Vec<Option<Bundle>>>,
+}
+
+impl Views {
+    /// Light `i`'s bundles by object (none for a point light or without shadows).
+    #[inline]
+    pub(crate) fn light(&self, i: usize) -> &[Option<Bundle>] {
+        self.lights.get(i).map_or(&[], |v| &v[..])
     }
 }

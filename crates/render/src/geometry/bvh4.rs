@@ -43,11 +43,34 @@ struct Node4 {
 /// binary tree's `order`.
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(16))]
-struct Leaf4 {
-    a: [[f32; 4]; 3],
-    e1: [[f32; 4]; 3],
-    e2: [[f32; 4]; 3],
-    index: [u32; 4],
+pub(super) struct Leaf4 {
+    pub(super) a: [[f32; 4]; 3],
+    pub(super) e1: [[f32; 4]; 3],
+    pub(super) e2: [[f32; 4]; 3],
+    pub(super) index: [u32; 4],
+}
+
+impl Leaf4 {
+    /// No triangles: every lane's edges are zero, so `hit4` never reports a lane unfilled.
+    pub(super) const EMPTY: Self = Self {
+        a: [[0.0; 4]; 3],
+        e1: [[0.0; 4]; 3],
+        e2: [[0.0; 4]; 3],
+        index: [0; 4],
+    };
+
+    /// Puts triangle (a, b, c) at position `i` of `order` in lane `k`, as the BVH's leaves
+    /// hold it: (a, b - a, c - a).
+    #[inline]
+    pub(super) fn set(&mut self, k: usize, [a, b, c]: [Vec3; 3], i: u32) {
+        let (e1, e2) = (b - a, c - a);
+        for ax in 0..3 {
+            self.a[ax][k] = a[ax];
+            self.e1[ax][k] = e1[ax];
+            self.e2[ax][k] = e2[ax];
+        }
+        self.index[k] = i;
+    }
 }
 
 /// The 4-wide BVH (empty for an empty mesh).
@@ -203,7 +226,7 @@ pub(crate) mod lanes {
 use lanes::F4;
 
 /// A ray splatted across lanes, with 1 / d.
-struct Ray4 {
+pub(super) struct Ray4 {
     o: [F4; 3],
     d: [F4; 3],
     inv: [F4; 3],
@@ -211,7 +234,7 @@ struct Ray4 {
 
 impl Ray4 {
     #[inline(always)]
-    fn new(r: &Ray) -> Self {
+    pub(super) fn new(r: &Ray) -> Self {
         let inv = r.d.recip();
         let s = |v: Vec3| [F4::splat(v.x), F4::splat(v.y), F4::splat(v.z)];
         Self {
@@ -240,7 +263,7 @@ fn slab4(n: &Node4, r: &Ray4, t_min: F4, t_max: F4) -> (u32, F4) {
 
 /// `geometry::hit_triangle` on four triangles: (lanes hit, t, u, v).
 #[inline(always)]
-fn hit4(l: &Leaf4, r: &Ray4, t_min: F4, t_max: F4) -> (u32, F4, F4, F4) {
+pub(super) fn hit4(l: &Leaf4, r: &Ray4, t_min: F4, t_max: F4) -> (u32, F4, F4, F4) {
     let v3 = |a: &[[f32; 4]; 3]| [F4::load(&a[0]), F4::load(&a[1]), F4::load(&a[2])];
     let cross = |a: [F4; 3], b: [F4; 3]| {
         [
@@ -264,6 +287,21 @@ fn hit4(l: &Leaf4, r: &Ray4, t_min: F4, t_max: F4) -> (u32, F4, F4, F4) {
     let t = dot(e2, q).mul(inv);
     ok &= t.gt(t_min) & t.lt(t_max);
     (ok, t, u, v)
+}
+
+/// Of the lanes `ok` (not none) hit at `t`, the nearest; ties go to the first lane.
+#[inline(always)]
+pub(super) fn nearest_lane(ok: u32, t: &[f32; 4]) -> usize {
+    let mut k = ok.trailing_zeros() as usize;
+    let mut rest = ok & (ok - 1);
+    while rest != 0 {
+        let j = rest.trailing_zeros() as usize;
+        if t[j] < t[k] {
+            k = j;
+        }
+        rest &= rest - 1;
+    }
+    k
 }
 
 impl Bvh4 {
@@ -358,22 +396,10 @@ impl Bvh4 {
             let child = if let Some(c) = inner {
                 self.collapse(nodes, spans, tri, c)
             } else {
-                let mut leaf = Leaf4 {
-                    a: [[0.0; 4]; 3],
-                    e1: [[0.0; 4]; 3],
-                    e2: [[0.0; 4]; 3],
-                    index: [0; 4],
-                };
+                let mut leaf = Leaf4::EMPTY;
                 for k in 0..count as usize {
                     let i = start as usize + k;
-                    let [a, b, c] = tri(i);
-                    let (e1, e2) = (b - a, c - a);
-                    for ax in 0..3 {
-                        leaf.a[ax][k] = a[ax];
-                        leaf.e1[ax][k] = e1[ax];
-                        leaf.e2[ax][k] = e2[ax];
-                    }
-                    leaf.index[k] = i as u32;
+                    leaf.set(k, tri(i), i as u32);
                 }
                 self.leaves.push(leaf);
                 LEAF_BIT | (count - 1) << 29 | (self.leaves.len() - 1) as u32
@@ -424,15 +450,7 @@ impl Bvh4 {
                 ok &= lanes;
                 if ok != 0 {
                     let t = t.store();
-                    let mut k = ok.trailing_zeros() as usize;
-                    let mut rest = ok & (ok - 1);
-                    while rest != 0 {
-                        let j = rest.trailing_zeros() as usize;
-                        if t[j] < t[k] {
-                            k = j;
-                        }
-                        rest &= rest - 1;
-                    }
+                    let k = nearest_lane(ok, &t);
                     t_max = t[k];
                     best = Some((t[k], leaf.index[k] as usize, u.store()[k], v.store()[k]));
                 }

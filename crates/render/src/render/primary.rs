@@ -3,7 +3,6 @@
 
 use super::{Antialias, Ctx, Sample, Scratch, Tile, direct, initial, mapped};
 use crate::geometry::Ray;
-use crate::scene::Scene;
 use glam::Vec3;
 
 /// The tile's primary samples (`scratch.samples`) and each pixel's sample count
@@ -47,7 +46,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         for py in 0..th {
             ctx.rays.extend_row(&xs, (y0 + py) as f32 + 0.5, rays);
         }
-        trace(ctx.scene, rays, |i| (i as u32, 0), e, samples);
+        trace(ctx, rays, |i| (i as u32, 0), e, samples);
         probe_radiance.clear();
         return 0;
     }
@@ -65,7 +64,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
             }
         }
         let pixel = |i: usize| (i as u32 / (n * n), i as u32 % (n * n));
-        trace(ctx.scene, rays, pixel, e, samples);
+        trace(ctx, rays, pixel, e, samples);
         probe_radiance.clear();
         return 0;
     }
@@ -85,7 +84,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     } else {
         1
     };
-    trace(ctx.scene, rays, |_| (0, 0), kept_passes, probe);
+    trace(ctx, rays, |_| (0, 0), kept_passes, probe);
     let env = ctx.scene.environment.as_ref().map(|e| &e.map);
     let eye = ctx.scene.camera.eye;
     probe_radiance.clear();
@@ -98,14 +97,14 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         let direct_only = probe_direct;
         direct_only.clear();
         direct_only.resize(probe_radiance.len(), Vec3::ZERO);
-        direct(ctx.scene, opts, probe, direct_only, spec);
+        direct(ctx, probe, direct_only, spec);
         probe_radiance
             .iter_mut()
             .zip(direct_only.iter())
             .for_each(|(r, d)| *r += *d);
         direct_only
     } else {
-        direct(ctx.scene, opts, probe, probe_radiance, spec);
+        direct(ctx, probe, probe_radiance, spec);
         probe_radiance
     };
     // Each probe sample's edge-test inputs, once (the test reads each sample up to four
@@ -202,7 +201,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
             }
         }
     }
-    trace(ctx.scene, rays, |i| pixels[i], e, samples);
+    trace(ctx, rays, |i| pixels[i], e, samples);
     if env.is_some() { kept } else { 0 }
 }
 
@@ -242,15 +241,16 @@ pub(super) struct EdgeKey {
 /// Appends the samples of `rays` (ray `i` belongs to `pixel(i)` = (pixel, grid position)),
 /// each taking `passes` environment passes.
 fn trace(
-    scene: &Scene,
+    ctx: &Ctx,
     rays: &[Ray],
     pixel: impl Fn(usize) -> (u32, u32),
     passes: u32,
     samples: &mut Vec<Sample>,
 ) {
+    let scene = ctx.scene;
     for (i, ray) in rays.iter().enumerate() {
         let (pixel, sub) = pixel(i);
-        samples.push(match scene.intersect_shading(ray) {
+        samples.push(match scene.intersect_shading_in(ray, &ctx.views.eye) {
             None => {
                 let (t, b) = Vec3::Z.any_orthonormal_pair();
                 Sample {
