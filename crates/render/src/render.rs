@@ -379,6 +379,28 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
     if (ctx.stop)() {
         return None;
     }
+    // A tile whose rays (its ring's too) all see the background, without an environment:
+    // each pixel is its samples' sum of the background times their share, as below.
+    let (lo, hi) = (
+        (x0 as f32 - 1.0, y0 as f32 - 1.0),
+        ((x0 + tw + 1) as f32, (y0 + th + 1) as f32),
+    );
+    if scene.environment.is_none() && !ctx.views.may_hit(&ctx.rays, lo, hi) {
+        let n = if opts.spp > 1 && opts.aa == Antialias::Adaptive {
+            1
+        } else {
+            opts.spp * opts.spp
+        };
+        let sum = (0..n).fold(Vec3::ZERO, |a, _| a + scene.background);
+        (ctx.progress)(
+            ctx.done.fetch_add(
+                ctx.passes_max as usize,
+                std::sync::atomic::Ordering::Relaxed,
+            ) + ctx.passes_max as usize,
+            ctx.total,
+        );
+        return Some(vec![sum * ctx.scale[n as usize]; (tw * th) as usize]);
+    }
     // The pixels' sample counts and the radiance of pass 0 already known (from the probe).
     let known = primary(ctx, &at, th, scratch);
     let Scratch {

@@ -103,6 +103,16 @@ pub struct Rays {
 }
 
 impl Rays {
+    /// The slopes (d.r / d.f, d.u / d.f) of the ray through image position (x, y) before
+    /// its rounding (`ray` normalises `f + sx r + sy u`).
+    #[inline]
+    pub(crate) fn slopes(&self, x: f32, y: f32) -> [f32; 2] {
+        [
+            (2.0 * x / self.w - 1.0) * self.th * self.aspect,
+            (1.0 - 2.0 * y / self.h) * self.th,
+        ]
+    }
+
     /// The ray through image position (x, y) in pixels (y down).
     #[inline]
     pub fn ray(&self, x: f32, y: f32) -> Ray {
@@ -454,7 +464,28 @@ impl Scene {
                     .collect()
             },
         );
-        Views { eye, lights }
+        // The slopes the objects cover: the eye's bundles' boxes, a sphere's box's corners'
+        // where they all lie in front of the eye; anything else covers every slope.
+        let eye: Vec<Option<Bundle>> = eye;
+        let covered = self.objects.iter().zip(&eye).try_fold(
+            ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]),
+            |(lo, hi), (o, b)| {
+                let (l, h) = match (&o.shape, b) {
+                    (Shape::Mesh(_), Some(b)) => b.slopes()?,
+                    (Shape::Sphere(s), _) => sphere_slopes(s, rays)?,
+                    _ => return None,
+                };
+                Some((
+                    [lo[0].min(l[0]), lo[1].min(l[1])],
+                    [hi[0].max(h[0]), hi[1].max(h[1])],
+                ))
+            },
+        );
+        Views {
+            eye,
+            lights,
+            covered,
+        }
     }
 
     /// Whether anything can block light from the points of object `from` (as
@@ -502,6 +533,18 @@ impl Scene {
     }
 }
 
+/// The box of slopes (as [`Rays::slopes`]) outside which no ray from `rays`' eye meets the
+/// sphere: its bounding box's corners', padded far above their rounding; `None` if a corner
+/// lies near or behind the eye's plane.
+fn sphere_slopes(s: &Sphere, rays: &Rays) -> Option<([f32; 2], [f32; 2])> {
+    let scale = 1.0 + rays.eye.abs().max_element() + s.center.abs().max_element() + s.radius;
+    let corners = (0..8).map(|k| {
+        let sign = |bit: i32| if k & bit == 0 { -1.0 } else { 1.0 };
+        s.center + Vec3::new(sign(1), sign(2), sign(4)) * s.radius.abs()
+    });
+    crate::geometry::bundle::slope_box(rays.eye, (rays.f, rays.r, rays.u), corners, 1e-4 * scale)
+}
+
 /// Per render: each mesh's bundles ([`Scene::views`]).
 #[derive(Default)]
 pub(crate) struct Views {
@@ -509,9 +552,23 @@ pub(crate) struct Views {
     pub(crate) eye: Vec<Option<Bundle>>,
     /// By light, then object: its bundle of a directional light's shadow rays.
     lights: Vec<Vec<Option<Bundle>>>,
+    /// The box of slopes outside which the camera's rays meet nothing (`None`: unbounded).
+    covered: Option<([f32; 2], [f32; 2])>,
 }
 
 impl Views {
+    /// Whether a ray of `rays` through a point of the pixel rectangle (x0, y0)..(x1, y1) may
+    /// meet an object (false: every such ray sees the background).
+    #[inline]
+    pub(crate) fn may_hit(&self, rays: &Rays, (x0, y0): (f32, f32), (x1, y1): (f32, f32)) -> bool {
+        let Some((lo, hi)) = self.covered else {
+            return true;
+        };
+        // Slopes grow with x and fall with y.
+        let (a, b) = (rays.slopes(x0, y1), rays.slopes(x1, y0));
+        a[0] <= hi[0] && b[0] >= lo[0] && a[1] <= hi[1] && b[1] >= lo[1]
+    }
+
     /// Light `i`'s bundles by object (none for a point light or without shadows).
     #[inline]
     pub(crate) fn light(&self, i: usize) -> &[Option<Bundle>] {

@@ -393,3 +393,79 @@ fn a_row_of_rays_is_ray_by_ray_to_the_bit() {
         }
     }
 }
+
+/// A tile whose rays all see the background is filled without tracing them (its pixels the
+/// background times their samples' share, as traced): the same pixels to the bit as the
+/// traced path, which a plane behind the camera forces (no ray reaches it, but a plane bounds
+/// no slopes, so nothing is skipped), for a small sphere and the face seen from afar, with
+/// and without the adaptive probe, one and N x N samples, sizes that leave partial tiles.
+#[test]
+fn tiles_that_see_only_the_background_are_the_traced_pixels() {
+    use fastbrdf_render::geometry::Plane;
+    use fastbrdf_render::render::Antialias;
+    use fastbrdf_render::scene::{Material, Object, Shape};
+    let mut mesh = SceneSpec::new();
+    mesh.mesh = Some(face());
+    for (what, spec, eye) in [
+        ("sphere", SceneSpec::new(), Vec3::new(1.5, -0.7, 14.0)),
+        ("face", mesh, Vec3::new(4.0, 2.0, 40.0)),
+    ] {
+        let loaded = setup::load(&spec).unwrap();
+        let specular = Arc::new(
+            Specular::new(&ModelSpec::parse("cook-torrance", &[("alpha", "0.3")]).unwrap())
+                .unwrap(),
+        );
+        let mut scene = setup::scene(&spec, &loaded, specular.clone());
+        scene.camera.eye += eye;
+        scene.camera.target += Vec3::new(0.6 * eye.x, 0.6 * eye.y, 0.0);
+        scene.shadows = false;
+        let mut traced = setup::scene(&spec, &loaded, specular.clone());
+        traced.camera = scene.camera;
+        traced.shadows = false;
+        let behind = scene.camera.eye + (scene.camera.eye - scene.camera.target);
+        traced.objects.push(Object {
+            shape: Shape::Plane(Plane {
+                point: behind,
+                normal: (scene.camera.eye - scene.camera.target).normalize(),
+            }),
+            material: Material {
+                kd: 0.5,
+                ks: 0.0,
+                albedo: Vec3::ONE,
+                texture: None,
+                bump: None,
+                specular,
+                maps: None,
+            },
+        });
+        for (aa, spp) in [
+            (Antialias::Adaptive, 2),
+            (Antialias::Adaptive, 3),
+            (Antialias::Adaptive, 1),
+            (Antialias::Grid, 2),
+            (Antialias::Grid, 3),
+        ] {
+            let o = Options {
+                aa,
+                ..opts(203, 141, spp)
+            };
+            let a = render(&scene, &o, &|_, _| {}).unwrap();
+            let b = render(&traced, &o, &|_, _| {}).unwrap();
+            let bits = |f: &Film| -> Vec<[u32; 3]> {
+                f.pixels
+                    .iter()
+                    .map(|p| p.to_array().map(f32::to_bits))
+                    .collect()
+            };
+            let object = a.pixels.iter().filter(|p| **p != a.pixels[0]).count();
+            assert!(
+                object > 50 && object < a.pixels.len() / 4,
+                "{what}: the object should cover a little of the picture ({object} pixels)"
+            );
+            assert!(
+                bits(&a) == bits(&b),
+                "{what}, {aa:?} {spp}: the pixels differ"
+            );
+        }
+    }
+}

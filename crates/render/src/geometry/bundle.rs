@@ -46,6 +46,39 @@ const MOST_ENTRIES: u64 = 1 << 22;
 /// Largest cell count per axis.
 const MOST_CELLS: u32 = 4096;
 
+/// The box of slopes (d.r / d.f, d.u / d.f) of the rays from `eye` through `points`, padded
+/// far above their rounding (1e-4, relative: a tenth of a pixel at 512 pixels over 30
+/// degrees, where the slopes' rounding is ~1e-7), `(f, r, u)` the camera's frame: it holds
+/// the slopes of every ray through their convex hull. `None` if a point lies less than
+/// `near` in front of the eye.
+pub(crate) fn slope_box(
+    eye: Vec3,
+    (f, r, u): (Vec3, Vec3, Vec3),
+    points: impl IntoIterator<Item = Vec3>,
+    near: f32,
+) -> Option<([f32; 2], [f32; 2])> {
+    let (mut lo, mut hi) = ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]);
+    for p in points {
+        let q = p - eye;
+        let z = q.dot(f);
+        if z.is_nan() || z < near {
+            return None;
+        }
+        let s = [q.dot(r) / z, q.dot(u) / z];
+        for k in 0..2 {
+            lo[k] = lo[k].min(s[k]);
+            hi[k] = hi[k].max(s[k]);
+        }
+    }
+    let pad = 1e-4
+        * (1.0
+            + lo[0]
+                .abs()
+                .max(hi[0].abs())
+                .max(lo[1].abs().max(hi[1].abs())));
+    Some(([lo[0] - pad, lo[1] - pad], [hi[0] + pad, hi[1] + pad]))
+}
+
 /// What the rays of a bundle share.
 #[derive(Clone, Copy, Debug)]
 enum Shared {
@@ -130,24 +163,9 @@ impl Bundle {
             if z.iter().any(|&z| z < near) {
                 return Place::Wide;
             }
-            let (mut lo, mut hi) = ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]);
-            for (p, z) in tri.iter().zip(z) {
-                let q = *p - eye;
-                let s = [q.dot(r) / z, q.dot(u) / z];
-                for k in 0..2 {
-                    lo[k] = lo[k].min(s[k]);
-                    hi[k] = hi[k].max(s[k]);
-                }
-            }
-            // The slopes' rounding is ~1e-7 relative; 1e-4 is a tenth of a pixel at 512
-            // pixels over 30 degrees.
-            let pad = 1e-4
-                * (1.0
-                    + lo[0]
-                        .abs()
-                        .max(hi[0].abs())
-                        .max(lo[1].abs().max(hi[1].abs())));
-            let (lo, hi) = ([lo[0] - pad, lo[1] - pad], [hi[0] + pad, hi[1] + pad]);
+            let Some((lo, hi)) = slope_box(eye, (f, r, u), tri, near) else {
+                return Place::Wide;
+            };
             if lo[0] > w[0] || hi[0] < -w[0] || lo[1] > w[1] || hi[1] < -w[1] {
                 return Place::Skip;
             }
@@ -354,6 +372,16 @@ impl Bundle {
         let c = (cy * self.n[0] + cx) as usize;
         let (s, e) = (self.start[c] as usize, self.start[c + 1] as usize);
         (&self.blocks[s..e], &self.key[s..e])
+    }
+
+    /// Of a bundle of rays from the eye: the box of slopes (lower, upper corner) outside which
+    /// a ray it covers meets no triangle; `None` if it holds triangles tested for every ray
+    /// (or runs along a direction). Empty (lower above upper) for no triangle.
+    pub(crate) fn slopes(&self) -> Option<([f32; 2], [f32; 2])> {
+        match self.shared {
+            Shared::Origin { .. } if self.wide.is_empty() => Some((self.lo, self.hi)),
+            _ => None,
+        }
     }
 
     /// The nearest hit with t in (t_min, t_max) as (t, position in `order`, u, v), as

@@ -143,19 +143,18 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         }
     }
     refine.clear();
+    let any_bump = ctx.scene.objects.iter().any(|o| o.material.bump.is_some());
     for py in 0..th {
         for px in 0..tw {
             let c = ((py + 1) * pw + px + 1) as usize;
             // A bumped surface varies inside a pixel more than its neighbours show: always
             // the grid there.
-            let bumped = probe[c]
-                .object
-                .is_some_and(|o| ctx.scene.objects[o].material.bump.is_some());
-            let any = bumped
-                || edges[c] & 1 != 0
-                || edges[c - 1] & 1 != 0
-                || edges[c] & 2 != 0
-                || edges[c - pwu] & 2 != 0;
+            // The edge bits first (the sample's object only where a material has a bump).
+            let any = (edges[c] | edges[c - 1] & 1 | edges[c - pwu] & 2) != 0
+                || any_bump
+                    && probe[c]
+                        .object
+                        .is_some_and(|o| ctx.scene.objects[o].material.bump.is_some());
             refine.push(any);
         }
     }
