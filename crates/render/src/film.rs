@@ -64,14 +64,15 @@ impl Film {
     /// have, and an allocation failure must not abort an embedding interpreter).
     pub fn try_new(width: u32, height: u32) -> Result<Self> {
         let n = width as usize * height as usize;
-        let mut pixels = Vec::new();
-        pixels.try_reserve_exact(n).map_err(|_| {
+        // Zeroed by the allocator (fresh pages from the kernel, untouched until the renderer's
+        // threads write them): writing the zeros here took a single thread 1.7 ms of page
+        // faults on a 512 x 512 film, 14% of a directly lit render.
+        let pixels = bytemuck::allocation::try_zeroed_vec::<Vec3>(n).map_err(|_| {
             RenderError::Memory(format!(
                 "cannot allocate {} MiB for a {width} x {height} film (out of memory)",
                 (n as u64).saturating_mul(12) >> 20
             ))
         })?;
-        pixels.resize(n, Vec3::ZERO);
         Ok(Self {
             width,
             height,
