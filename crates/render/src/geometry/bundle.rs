@@ -325,6 +325,11 @@ impl Bundle {
             }
             b.start = Vec::with_capacity(cells + 1);
             b.start.push(0);
+            let blocks = (0..cells)
+                .map(|c| (first[c + 1] - first[c]).div_ceil(4) as usize)
+                .sum();
+            b.blocks.reserve_exact(blocks);
+            b.key.reserve_exact(blocks);
             for c in 0..cells {
                 let list = &mut listed[first[c] as usize..first[c + 1] as usize];
                 // Stable: equal keys keep the BVH's order.
