@@ -397,8 +397,9 @@ fn a_row_of_rays_is_ray_by_ray_to_the_bit() {
 /// A tile whose rays all see the background is filled without tracing them (its pixels the
 /// background times their samples' share, as traced): the same pixels to the bit as the
 /// traced path, which a plane behind the camera forces (no ray reaches it, but a plane bounds
-/// no slopes, so nothing is skipped), for a small sphere and the face seen from afar, with
-/// and without the adaptive probe, one and N x N samples, sizes that leave partial tiles.
+/// no slopes, so nothing is skipped), for a small sphere and the face seen from afar (with its
+/// bundles and, in a smaller picture, without), with and without the adaptive probe, one and
+/// N x N samples, sizes that leave partial tiles.
 #[test]
 fn tiles_that_see_only_the_background_are_the_traced_pixels() {
     use fastbrdf_render::geometry::Plane;
@@ -406,9 +407,22 @@ fn tiles_that_see_only_the_background_are_the_traced_pixels() {
     use fastbrdf_render::scene::{Material, Object, Shape};
     let mut mesh = SceneSpec::new();
     mesh.mesh = Some(face());
-    for (what, spec, eye) in [
-        ("sphere", SceneSpec::new(), Vec3::new(1.5, -0.7, 14.0)),
-        ("face", mesh, Vec3::new(4.0, 2.0, 40.0)),
+    // The face at 203 x 141 has its bundles (32 pixels a triangle); at 96 x 64 (7) it has
+    // none, and its bounding box bounds its slopes.
+    for (what, spec, eye, (w, h)) in [
+        (
+            "sphere",
+            SceneSpec::new(),
+            Vec3::new(1.5, -0.7, 14.0),
+            (203, 141),
+        ),
+        ("face", mesh.clone(), Vec3::new(4.0, 2.0, 40.0), (203, 141)),
+        (
+            "face without bundles",
+            mesh,
+            Vec3::new(4.0, 2.0, 30.0),
+            (96, 64),
+        ),
     ] {
         let loaded = setup::load(&spec).unwrap();
         let specular = Arc::new(
@@ -447,7 +461,7 @@ fn tiles_that_see_only_the_background_are_the_traced_pixels() {
         ] {
             let o = Options {
                 aa,
-                ..opts(203, 141, spp)
+                ..opts(w, h, spp)
             };
             let a = render(&scene, &o, &|_, _| {}).unwrap();
             let b = render(&traced, &o, &|_, _| {}).unwrap();
