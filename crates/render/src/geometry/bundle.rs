@@ -12,11 +12,14 @@
 //!
 //! Exactness: a triangle a ray hits has its projection's box over the ray's point, so it is
 //! in the ray's cell, and the lanes' arithmetic is the BVH's: the same triangle with the same
-//! t, u, v, to the bit (tests/bundle.rs compares the two on the face, a torus and random
-//! triangles; tests pin whole pictures). As between the two BVH walks, only exact ties in t
-//! may resolve otherwise, and a hit that rounding alone makes (a ray within ~1e-6 radians of
-//! an edge-on triangle's plane, where Moller-Trumbore's answer is noise) could be missed by one
-//! and found by the other.
+//! t, u, v, to the bit (this module's tests compare the two on the face, random soups,
+//! stacked copies, slivers and a soup with huge triangles, from cameras outside and inside
+//! them). As between the two BVH walks, only exact ties in t may resolve otherwise (a ray
+//! exactly through an edge two triangles share, as on the face's symmetry seam at an odd image
+//! width), and a hit that rounding alone makes (a ray within ~1e-6 radians of an edge-on
+//! triangle's plane, where Moller-Trumbore's answer is noise) could be missed by one and found
+//! by the other. `Scene::views` builds a mesh's bundles per render, for meshes with enough
+//! pixels a triangle to pay for the build.
 //!
 //! A ray the bundle does not cover (another origin or direction, a slope outside the
 //! camera's window, an origin far from the mesh) gets `None`: the caller asks the BVH. A
