@@ -351,6 +351,14 @@ struct Ctx<'a> {
     scale: Vec<f32>,
 }
 
+impl Ctx<'_> {
+    /// Counts `k` more tile passes done and reports the progress.
+    fn advance(&self, k: usize) {
+        let done = self.done.fetch_add(k, std::sync::atomic::Ordering::Relaxed) + k;
+        (self.progress)(done, self.total);
+    }
+}
+
 /// The specular BRDF's sampling for the environment pass, per batch.
 type BrdfSampler = fastbrdf::batch::sample::Sampler;
 
@@ -392,13 +400,7 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
             opts.spp * opts.spp
         };
         let sum = (0..n).fold(Vec3::ZERO, |a, _| a + scene.background);
-        (ctx.progress)(
-            ctx.done.fetch_add(
-                ctx.passes_max as usize,
-                std::sync::atomic::Ordering::Relaxed,
-            ) + ctx.passes_max as usize,
-            ctx.total,
-        );
+        ctx.advance(ctx.passes_max as usize);
         return Some(vec![sum * ctx.scale[n as usize]; (tw * th) as usize]);
     }
     // The pixels' sample counts and the radiance of pass 0 already known (from the probe).
@@ -451,20 +453,12 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         } else {
             acc.iter_mut().zip(&px).for_each(|(a, p)| *a += *p);
         }
-        (ctx.progress)(
-            ctx.done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1,
-            ctx.total,
-        );
+        ctx.advance(1);
     }
     // A tile whose pixels all took the grid ran fewer passes than the progress counts.
     let skipped = ctx.passes_max.saturating_sub(passes) as usize;
     if skipped > 0 {
-        (ctx.progress)(
-            ctx.done
-                .fetch_add(skipped, std::sync::atomic::Ordering::Relaxed)
-                + skipped,
-            ctx.total,
-        );
+        ctx.advance(skipped);
     }
     Some(if passes > 1 { acc } else { px })
 }

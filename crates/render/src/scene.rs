@@ -443,7 +443,7 @@ impl Scene {
         // a 50k one 0.78x, a 200k one 0.28x).
         let pixels = f64::from(rays.w) * f64::from(rays.h);
         let worth = |m: &TriMesh| (m.triangles.len() as f64) * PIXELS_PER_TRIANGLE <= pixels;
-        let (eye, lights) = rayon::join(
+        let (eye, lights): (Vec<Option<Bundle>>, _) = rayon::join(
             || {
                 self.objects
                     .par_iter()
@@ -473,7 +473,6 @@ impl Scene {
         // The slopes the objects cover: the eye's bundles' boxes, else a mesh's or a sphere's
         // bounding box's corners' where they all lie in front of the eye; a plane covers
         // every slope.
-        let eye: Vec<Option<Bundle>> = eye;
         let covered = self.objects.iter().zip(&eye).try_fold(
             ([f32::INFINITY; 2], [f32::NEG_INFINITY; 2]),
             |(lo, hi), (o, b)| {
