@@ -172,8 +172,8 @@ def render(
     ``weights`` (KD, KS), default (0.6, 0.4); ``albedo`` (R, G, B), default 0.8 grey.
     ``size`` is ``"WxH"`` or (W, H), or give ``width`` and ``height`` (default 256 each; the
     CLI's default is 512x512); ``spp`` N gives up to N x N samples per pixel: ``aa``
-    ``"adaptive"`` (the default: the grid only at edges) or ``"grid"`` (every pixel), as
-    ``--aa``; ``sampler`` ``"sobol"`` (default) or ``"independent"``, as ``--sampler``;
+    ``"adaptive"`` (the default: N x N samples only at edges, 2N x 2N at outlines) or
+    ``"grid"`` (N x N in every pixel), as ``--aa``; ``sampler`` ``"sobol"`` (default) or ``"independent"``, as ``--sampler``;
     ``env_sun`` ``"apart"`` (default: a map's sun drawn apart from the rest) or ``"with-map"``
     (every light direction from the whole map), as ``--env-sun``.
 

@@ -55,9 +55,11 @@ impl Sampler {
 /// Where a pixel's primary samples go (`--aa`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Antialias {
-    /// Adaptive: first one sample at each pixel's centre; the full N x N grid only where the
-    /// 3 x 3 neighbourhood of centre samples shows an edge ([`edge`]: another object or the
-    /// background, a normal turning, a depth step, an albedo or direct-light contrast). A pixel
+    /// Adaptive: first one sample at each pixel's centre; N x N samples (on a rotated grid,
+    /// `primary::subpixel`) only where the 3 x 3 neighbourhood of centre samples shows an edge
+    /// (`primary::edge`: a normal turning, a depth step, an albedo or direct-light contrast),
+    /// 2N x 2N at an object's outline (another object or the background) without an
+    /// environment, where most of the error lies (`primary::OUTLINE`). A pixel
     /// left at its centre sample keeps it; with an environment it takes N x N times the
     /// passes, so it gets as many environment samples as a grid pixel (on one hit point,
     /// stratified over all of them). Measured on the default scenes (`tools/equal_error.py`):
@@ -157,10 +159,12 @@ struct Scratch {
     /// The probe's direct light alone, and its samples' edge-test inputs.
     probe_direct: Vec<Vec3>,
     probe_keys: Vec<primary::EdgeKey>,
-    /// Per probe sample, whether an edge separates it from its right (bit 0) and lower (bit
-    /// 1) neighbour.
+    /// Per probe sample, `primary::edge`'s verdict on its right (bits 0-1) and lower (bits
+    /// 2-3) neighbour.
     edges: Vec<u8>,
-    refine: Vec<bool>,
+    /// Per pixel, the side of the grid it takes (0: its centre sample alone) and whether
+    /// the grid is rotated (`primary::subpixel`).
+    refine: Vec<(u32, bool)>,
     /// Without an environment, the pixels that keep their centre sample (their radiance is
     /// `probe_radiance`, in order); their samples are not in `samples`.
     kept_px: Vec<u32>,
@@ -274,14 +278,9 @@ pub fn render_until(
         stop,
         samplers: samplers(scene)?,
         // Once per render rather than a division per pixel (or a table per tile).
-        scale: (0..=opts.spp * opts.spp)
-            .map(|c| {
-                if c == opts.spp * opts.spp {
-                    1.0 / (opts.spp * opts.spp) as f32
-                } else {
-                    1.0 / c as f32
-                }
-            })
+        // Up to an outline pixel's (2N)^2 samples (`primary::OUTLINE`).
+        scale: (0..=4 * opts.spp * opts.spp)
+            .map(|c| 1.0 / c as f32)
             .collect(),
     };
     let mut film = Film::try_new(w, h)?;
@@ -347,7 +346,7 @@ struct Ctx<'a> {
     /// Per object, the batch sampler of its specular model's first channel (none for an RGB
     /// BRDF or without an environment).
     samplers: Vec<Option<BrdfSampler>>,
-    /// 1 / (a pixel's sample count), by count: 0..=spp * spp.
+    /// 1 / (a pixel's sample count), by count: 0..=(2 spp)^2.
     scale: Vec<f32>,
 }
 

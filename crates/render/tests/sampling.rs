@@ -80,9 +80,12 @@ fn sobol_points_and_adaptive_pixels_lower_the_error_of_the_same_picture() {
 }
 
 /// Under a directional light (no Monte Carlo noise: the error is the antialiasing's), adaptive
-/// antialiasing's error against a 6 x 6 grid reference is within 10% of the 2 x 2 grid's,
-/// and far below one sample per pixel's; the face (self-occluding edges, a mesh) and a bumped
-/// sphere (always refined) included.
+/// antialiasing's error against a 16 x 16 grid reference is below the 2 x 2 grid's, and far
+/// below one sample per pixel's; the face (self-occluding edges, a mesh) and a bumped sphere
+/// (always refined) included. On the sphere and the face, whose error lies at their outlines
+/// (4 x 4 there, on a rotated grid), it is less than half the grid's. The reference shares
+/// no sample position with the 2 x 2 grid (a 6 x 6 one did: (k + 0.5) / 6 takes in 0.25 and
+/// 0.75, which flattered the grid).
 #[test]
 fn adaptive_antialiasing_matches_the_grid_where_it_matters() {
     let size = 96;
@@ -98,7 +101,7 @@ fn adaptive_antialiasing_matches_the_grid_where_it_matters() {
         ("face", face),
         ("bumpy", bumpy),
     ] {
-        let reference = shoot(&spec, size, 6, Sampler::Sobol, Antialias::Grid);
+        let reference = shoot(&spec, size, 16, Sampler::Sobol, Antialias::Grid);
         let grid = rel_mse(
             &shoot(&spec, size, 2, Sampler::Sobol, Antialias::Grid),
             &reference,
@@ -112,8 +115,9 @@ fn adaptive_antialiasing_matches_the_grid_where_it_matters() {
             &reference,
         );
         eprintln!("{name}: adaptive {adaptive:e} grid {grid:e} one {one:e}");
+        let most = if name == "bumpy" { 0.9 } else { 0.5 };
         assert!(
-            adaptive <= 1.1 * grid && adaptive < 0.5 * one,
+            adaptive < most * grid && adaptive < 0.5 * one,
             "{name}: adaptive {adaptive:e}, grid {grid:e}, one sample {one:e}"
         );
     }

@@ -86,10 +86,11 @@ pub struct SceneArgs {
     /// the sun strategy; the same expected picture, more noise under a sun).
     #[arg(long, value_enum, default_value_t = SunArg::Apart)]
     pub env_sun: SunArg,
-    /// Antialiasing: adaptive (one sample at each pixel's centre, the N x N grid of --spp only
-    /// where the neighbourhood shows an edge: an object's outline, a normal or depth step, an
-    /// albedo or light contrast; with --env a centre-only pixel takes N x N times the passes)
-    /// or grid (N x N samples in every pixel, as the GPU renderer)
+    /// Antialiasing: adaptive (one sample at each pixel's centre; N x N samples of --spp on a
+    /// rotated grid only where the neighbourhood shows an edge: a normal or depth step, an
+    /// albedo or light contrast; 2N x 2N at an object's outline without --env; with --env a
+    /// centre-only pixel takes N x N times the passes) or grid (the N x N axis-aligned grid in
+    /// every pixel, as the GPU renderer)
     #[arg(long, value_enum, default_value_t = AaArg::Adaptive)]
     pub aa: AaArg,
 }
