@@ -64,8 +64,8 @@ pub enum Antialias {
     /// passes, so it gets as many environment samples as a grid pixel (on one hit point,
     /// stratified over all of them). Measured on the default scenes (`tools/equal_error.py`):
     /// all of a grid render's error against its converged reference lies in 2-6% of the
-    /// pixels, at edges. A bumped object (`--bump`) always takes the grid: its relief varies
-    /// inside a pixel. The refined pixels depend on the whole picture's colours, so channel c
+    /// pixels, at edges. A bumped object (`--bump`) always takes N x N (axis-aligned): its
+    /// relief varies inside a pixel. The refined pixels depend on the whole picture's colours, so channel c
     /// of a coloured render equals the grey render of channel c's model only with `Grid`.
     #[default]
     Adaptive,
@@ -153,7 +153,7 @@ struct Scratch {
     /// Per pixel of the tile, its number of samples.
     count: Vec<u32>,
     /// Adaptive antialiasing: the centre samples of the tile and its ring, their pass-0
-    /// radiance (then that of the kept ones), and per pixel whether it takes the grid.
+    /// radiance (then that of the kept ones), and per pixel the grid it takes.
     probe: Vec<Sample>,
     probe_radiance: Vec<Vec3>,
     /// The probe's direct light alone, and its samples' edge-test inputs.
