@@ -22,7 +22,11 @@ thread counts and a markdown table, with ns per element (to see any super-linear
 N; 1e8 needs about 6 GB of memory for fastbrdf's arrays, which is why Mitsuba stops at
 --mitsuba-max-n). ``--input-sets K`` makes K sets of inputs and round r uses set r mod K, so
 that no call finds the previous call's inputs in the CPU's caches (each set has its own
-``out=`` buffers and Mitsuba columns; every set is warmed up).
+``out=`` buffers and Mitsuba columns; every set is warmed up). ``--warm-call`` calls each
+method once, untimed, right before its timed call: on the shared 2-core VM a call of a few
+milliseconds that follows the other library's calls (or any idle moment: its worker threads
+asleep, the caches cold) took up to twice as long as the same call repeated, whichever library
+it was; the warm call measures both in their steady state.
 """
 
 import argparse
@@ -133,11 +137,12 @@ def main():
     ap.add_argument("--mitsuba-max-n", type=float, default=1e7)
     ap.add_argument("--no-mitsuba", action="store_true")
     ap.add_argument("--input-sets", type=int, default=1, help="input sets used in turn (1: the same every call)")
+    ap.add_argument("--warm-call", action="store_true", help="call each method once, untimed, right before its timed call")
     a = ap.parse_args()
     sizes = [int(float(x)) for x in a.n.split(",")]
     print(f"CPU: {cpu_name()}, {os.cpu_count()} logical cores; "
           f"RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset (all cores)')}")
-    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds; float32 inputs; "
+    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds{'; each timed call after an untimed one' if a.warm_call else ''}; float32 inputs; "
           f"{max(1, a.input_sets)} input set(s) in turn\n")
     print("| op | N | who | M elements/s | ns/element | vs Mitsuba | Mitsuba's first (JIT) call |")
     print("|---|---|---|---|---|---|---|", flush=True)
@@ -162,6 +167,8 @@ def main():
         best = dict.fromkeys(sets[0], float("inf"))
         for rep in range(a.repeats):
             for k, f in sets[rep % len(sets)].items():
+                if a.warm_call:
+                    f()  # untimed: the same call's steady state follows
                 t0 = time.perf_counter()
                 r = f()
                 best[k] = min(best[k], time.perf_counter() - t0)
