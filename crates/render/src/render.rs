@@ -59,14 +59,14 @@ pub enum Antialias {
     /// `primary::subpixel`) only where the 3 x 3 neighbourhood of centre samples shows an edge
     /// (`primary::edge`: a normal turning, a depth step, an albedo or direct-light contrast),
     /// 2N x 2N at an object's outline (another object or the background) without an
-    /// environment, where most of the error lies (`primary::OUTLINE`). A pixel
-    /// left at its centre sample keeps it; with an environment it takes N x N times the
-    /// passes, so it gets as many environment samples as a grid pixel (on one hit point,
-    /// stratified over all of them). Measured on the default scenes (`tools/equal_error.py`):
-    /// all of a grid render's error against its converged reference lies in 2-6% of the
-    /// pixels, at edges. A bumped object (`--bump`) always takes N x N (axis-aligned): its
-    /// relief varies inside a pixel. The refined pixels depend on the whole picture's colours, so channel c
-    /// of a coloured render equals the grey render of channel c's model only with `Grid`.
+    /// environment, where most of the error lies (`primary::OUTLINE`). A pixel left at its
+    /// centre sample keeps it; with an environment it takes N x N times the passes, so it gets
+    /// as many environment samples as a grid pixel (on one hit point, stratified over all of
+    /// them). Measured on the default scenes (`tools/equal_error.py`): all of a grid render's
+    /// error against its converged reference lies in 2-6% of the pixels, at edges. A bumped
+    /// object (`--bump`) always takes N x N (axis-aligned): its relief varies inside a pixel.
+    /// The refined pixels depend on the whole picture's colours, so channel c of a coloured
+    /// render equals the grey render of channel c's model only with `Grid`.
     #[default]
     Adaptive,
     /// N x N samples in every pixel (the renderer before issue 30; the GPU renderer's).

@@ -57,9 +57,8 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
             for px in 0..tw {
                 for sy in 0..n {
                     for sx in 0..n {
-                        let x = (x0 + px) as f32 + (sx as f32 + 0.5) / n as f32;
-                        let y = (y0 + py) as f32 + (sy as f32 + 0.5) / n as f32;
-                        rays.push(ctx.rays.ray(x, y));
+                        let (dx, dy) = subpixel(sx, sy, n, false);
+                        rays.push(ctx.rays.ray((x0 + px) as f32 + dx, (y0 + py) as f32 + dy));
                     }
                 }
             }
@@ -228,10 +227,11 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     if env.is_some() { kept } else { 0 }
 }
 
-/// Whether two neighbouring centre samples (sample, direct light, distance from the eye)
-/// straddle an edge: another object or the background, normals more than ~25 degrees apart, a
-/// depth step of more than 5%, or a contrast in albedo or direct light of more than 5% (with a
-/// floor of 0.01 for dark pixels). The thresholds err towards refining: a refined pixel costs
+/// Which edge, if any, two neighbouring centre samples (sample, direct light, distance from
+/// the eye) straddle: [`OUTLINE`] where they see another object or the background, else
+/// [`EDGE`] for normals more than ~25 degrees apart, a depth step of more than 5%, or a
+/// contrast in albedo or direct light of more than 5% (with a floor of 0.01 for dark
+/// pixels), else 0. The thresholds err towards refining: a refined pixel costs
 /// N x N samples, a missed edge aliases.
 #[inline]
 fn edge(a: &EdgeKey, b: &EdgeKey) -> u8 {
