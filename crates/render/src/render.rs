@@ -168,6 +168,32 @@ struct Scratch {
     /// Without an environment, the pixels that keep their centre sample (their radiance is
     /// `probe_radiance`, in order); their samples are not in `samples`.
     kept_px: Vec<u32>,
+    /// The tile's pixels for one pass, and their sum over passes (with an environment).
+    px: Vec<Vec3>,
+    acc: Vec<Vec3>,
+}
+
+impl Scratch {
+    /// Buffers sized for a tile of `tw` x `th` pixels and its probe ring, so that they do not
+    /// grow by doubling through the first tiles: each size they pass through is fresh memory,
+    /// whose first touch (a page fault, the kernel zeroing the page) cost about 0.6 ns a byte
+    /// on the 2-core VM (1.2 ms for 2 MB). Capacity never written costs address space only.
+    fn sized(tw: u32, th: u32) -> Self {
+        let (px, probe) = ((tw * th) as usize, ((tw + 2) * (th + 2)) as usize);
+        let mut s = Self::default();
+        s.rays.reserve(probe);
+        s.samples.reserve(probe);
+        s.radiance.reserve(probe);
+        s.count.reserve(px);
+        s.probe.reserve(probe);
+        s.probe_radiance.reserve(probe);
+        s.probe_keys.reserve(probe);
+        s.edges.reserve(probe);
+        s.refine.reserve(px);
+        s.kept_px.reserve(px);
+        s.px.reserve(px);
+        s
+    }
 }
 
 /// The specular terms to evaluate for one object: which sample each adds to, the light's
@@ -288,38 +314,36 @@ pub fn render_until(
     // `map_init` made a set per split of each band's tiles: 9,000 reallocations and their
     // copies were 5% of a directly lit 512 x 512 render's instructions).
     let scratch: Vec<std::sync::Mutex<Scratch>> = (0..rayon::current_num_threads())
-        .map(|_| std::sync::Mutex::default())
+        .map(|_| std::sync::Mutex::new(Scratch::sized(tile_w, tile_h)))
         .collect();
     let stopped = std::sync::atomic::AtomicBool::new(false);
-    // Parallel over bands of `tile_h` rows and, inside each, over its tiles; each band copies its
-    // tiles into the film itself, so assembling the film is parallel too.
+    // Parallel over bands of `tile_h` rows and, inside each, over its tiles; each tile writes
+    // its rows of the film from its worker's buffers (a fresh Vec per tile, copied into the
+    // film after its band, was fresh memory too; see `Scratch::sized`).
     film.pixels
         .par_chunks_mut((w * tile_h) as usize)
         .enumerate()
         .for_each(|(ty, band)| {
-            let tiles: Vec<Option<Vec<Vec3>>> = (0..tiles_x)
-                .into_par_iter()
-                .map(|tx| {
-                    // The worker's own buffers; a fresh set if they are in use (a tile that
-                    // waits inside rayon may run another tile on this thread).
-                    let slot = rayon::current_thread_index().and_then(|i| scratch.get(i));
-                    match slot.and_then(|m| m.try_lock().ok()) {
-                        Some(mut s) => render_tile(&ctx, tx, ty as u32, &mut s),
-                        None => render_tile(&ctx, tx, ty as u32, &mut Scratch::default()),
-                    }
-                })
-                .collect();
-            if tiles.iter().any(Option::is_none) {
-                stopped.store(true, std::sync::atomic::Ordering::Relaxed);
-                return; // stopped: the render is dropped
-            }
-            for (row, line) in band.chunks_mut(w as usize).enumerate() {
-                for (tx, px) in tiles.iter().flatten().enumerate() {
-                    let x0 = tx * tile_w as usize;
-                    let tw = (tile_w as usize).min(w as usize - x0);
-                    line[x0..x0 + tw].copy_from_slice(&px[row * tw..(row + 1) * tw]);
+            let mut rows: Vec<Vec<&mut [Vec3]>> = (0..tiles_x).map(|_| Vec::new()).collect();
+            for line in band.chunks_mut(w as usize) {
+                for (tx, part) in line.chunks_mut(tile_w as usize).enumerate() {
+                    rows[tx].push(part);
                 }
             }
+            rows.into_par_iter().enumerate().for_each(|(tx, mut out)| {
+                // The worker's own buffers; a fresh set if they are in use (a tile that
+                // waits inside rayon may run another tile on this thread).
+                let slot = rayon::current_thread_index().and_then(|i| scratch.get(i));
+                let (tx, ty) = (tx as u32, ty as u32);
+                let done = match slot.and_then(|m| m.try_lock().ok()) {
+                    Some(mut s) => render_tile(&ctx, tx, ty, &mut s, &mut out),
+                    None => render_tile(&ctx, tx, ty, &mut Scratch::default(), &mut out),
+                };
+                if !done {
+                    // Stopped: the render is dropped.
+                    stopped.store(true, std::sync::atomic::Ordering::Relaxed);
+                }
+            });
         });
     if stopped.load(std::sync::atomic::Ordering::Relaxed) {
         return Ok(None);
@@ -376,15 +400,22 @@ fn samplers(scene: &Scene) -> Result<Vec<Option<BrdfSampler>>> {
 
 /// One tile, all passes: its primary hits once ([`primary`]), then per pass the direct
 /// light (pass 0) and the environment's samples; the pixels are the sum over passes of each
-/// pass's average over the pixel's samples, added in pass order. `None` when `stop` said so.
-fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec<Vec3>> {
+/// pass's average over the pixel's samples, added in pass order, written to `out` (the
+/// tile's rows of the film). False when `stop` said so.
+fn render_tile(
+    ctx: &Ctx,
+    tx: u32,
+    ty: u32,
+    scratch: &mut Scratch,
+    out: &mut [&mut [Vec3]],
+) -> bool {
     let (scene, opts) = (ctx.scene, ctx.opts);
     let (w, h) = (opts.width, opts.height);
     let (x0, y0) = (tx * ctx.tile_w, ty * ctx.tile_h);
     let (tw, th) = (ctx.tile_w.min(w - x0), ctx.tile_h.min(h - y0));
     let at = Tile { x0, y0, tw, w };
     if (ctx.stop)() {
-        return None;
+        return false;
     }
     // A tile whose rays (its ring's too) all see the background, without an environment:
     // each pixel is its samples' sum of the background times their share, as below.
@@ -400,7 +431,9 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         };
         let sum = (0..n).fold(Vec3::ZERO, |a, _| a + scene.background);
         ctx.advance(ctx.passes_max as usize);
-        return Some(vec![sum * ctx.scale[n as usize]; (tw * th) as usize]);
+        out.iter_mut()
+            .for_each(|row| row.fill(sum * ctx.scale[n as usize]));
+        return true;
     }
     // The pixels' sample counts and the radiance of pass 0 already known (from the probe).
     let known = primary(ctx, &at, th, scratch);
@@ -412,15 +445,16 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
         probe_radiance,
         count,
         kept_px,
+        px,
+        acc,
         ..
     } = scratch;
     let passes = samples.iter().map(|s| s.passes).max().unwrap_or(1);
     // The sum over passes; with one pass (no environment) the pass's pixels themselves.
-    let mut acc = Vec::new();
-    let mut px = vec![Vec3::ZERO; (tw * th) as usize];
+    px.resize((tw * th) as usize, Vec3::ZERO);
     for pass in 0..passes {
         if (ctx.stop)() {
-            return None;
+            return false;
         }
         radiance.clear();
         if pass > 0 {
@@ -447,10 +481,10 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
             .for_each(|(p, &c)| *p *= ctx.scale[c as usize]);
         if pass == 0 {
             if passes > 1 {
-                acc.clone_from(&px);
+                acc.clone_from(px);
             }
         } else {
-            acc.iter_mut().zip(&px).for_each(|(a, p)| *a += *p);
+            acc.iter_mut().zip(px.iter()).for_each(|(a, p)| *a += *p);
         }
         ctx.advance(1);
     }
@@ -459,7 +493,11 @@ fn render_tile(ctx: &Ctx, tx: u32, ty: u32, scratch: &mut Scratch) -> Option<Vec
     if skipped > 0 {
         ctx.advance(skipped);
     }
-    Some(if passes > 1 { acc } else { px })
+    let sum = if passes > 1 { acc } else { px };
+    for (row, part) in out.iter_mut().zip(sum.chunks_exact(tw as usize)) {
+        row.copy_from_slice(part);
+    }
+    true
 }
 
 /// A sample's radiance before any light: the ambient term on an object, the environment or
