@@ -12,7 +12,8 @@ use glam::Vec3;
 /// at [`subpixel`]'s positions (2N x 2N at an [`OUTLINE`] without an environment), the others
 /// keep their centre sample (with an environment first in `samples`, without
 /// one only their pixels, in `scratch.kept_px`; their pass-0 radiance in
-/// `scratch.probe_radiance`). Returns how many samples lead `samples` with a known pass-0
+/// `scratch.probe_radiance`); without an environment a pixel refined on an even rotated
+/// lattice keeps it too. Returns how many samples lead `samples` with a known pass-0
 /// radiance.
 pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
     let (opts, n) = (ctx.opts, ctx.opts.spp);
@@ -153,6 +154,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     // Per pixel, the side of its grid: 0 to keep the centre sample, N at an edge, and 2N at
     // an outline without an environment ([`OUTLINE`]).
     refine.clear();
+    let with_centre = |(m, rotated): (u32, bool)| env.is_none() && keeps_centre(m, rotated);
     let any_bump = ctx.scene.objects.iter().any(|o| o.material.bump.is_some());
     let outline_side = if env.is_some() { n } else { 2 * n };
     for py in 0..th {
@@ -188,20 +190,22 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
     for py in 0..th {
         for px in 0..tw {
             let p = (py * tw + px) as usize;
-            if refine[p].0 == 0 {
-                let c = ((py + 1) * pw + px + 1) as usize;
-                if env.is_some() {
-                    samples.push(Sample {
-                        pixel: p as u32,
-                        ..probe[c]
-                    });
-                } else {
-                    kept_px.push(p as u32);
-                }
-                probe_radiance[kept] = probe_radiance[c];
-                count[p] = 1;
-                kept += 1;
+            if refine[p].0 > 0 && !with_centre(refine[p]) {
+                continue;
             }
+            let c = ((py + 1) * pw + px + 1) as usize;
+            if env.is_some() {
+                samples.push(Sample {
+                    pixel: p as u32,
+                    ..probe[c]
+                });
+            } else {
+                kept_px.push(p as u32);
+            }
+            probe_radiance[kept] = probe_radiance[c];
+            // A refined pixel's count is set with its grid below.
+            count[p] = 1;
+            kept += 1;
         }
     }
     probe_radiance.truncate(kept);
@@ -212,7 +216,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
             let p = py * tw + px;
             let (m, rotated) = refine[p as usize];
             if m > 0 {
-                count[p as usize] = m * m;
+                count[p as usize] = m * m + u32::from(with_centre(refine[p as usize]));
                 for sy in 0..m {
                     for sx in 0..m {
                         let (dx, dy) = subpixel(sx, sy, m, rotated);
@@ -287,6 +291,17 @@ pub(super) fn subpixel(sx: u32, sy: u32, n: u32, rotated: bool) -> (f32, f32) {
         (sx as f32 + (sy as f32 + 0.5) / nf) / nf,
         (sy as f32 + ((n - 1 - sx) as f32 + 0.5) / nf) / nf,
     )
+}
+
+/// Whether a pixel refined on [`subpixel`]'s `m` x `m` grid (`rotated` or not) also keeps its
+/// centre sample, without an environment (traced and shaded in the probe: N x N + 1 samples):
+/// on a rotated lattice of even side, where no point of the lattice lies at the centre. On
+/// the face at 512 x 512, `--spp 2`, the error against the converged reference (relMSE) fell
+/// from 4.27e-5 to 4.02e-5, the sphere's from 1.39e-5 to 1.31e-5, at the same render time.
+/// Not on a bumped pixel's axis-aligned grid: the bumped sphere of `tests/sampling.rs` had
+/// 1.15x the error with it.
+fn keeps_centre(m: u32, rotated: bool) -> bool {
+    rotated && m > 0 && m.is_multiple_of(2)
 }
 
 /// What [`edge`] reads of a probe sample: its object (`u32::MAX` for the background), its
@@ -400,7 +415,21 @@ fn trace(
 
 #[cfg(test)]
 mod tests {
-    use super::subpixel;
+    use super::{keeps_centre, subpixel};
+
+    /// A refined pixel keeps its centre sample exactly where its rotated lattice has no point
+    /// there (even sides); an odd lattice has one, which would count the centre twice.
+    #[test]
+    fn the_centre_sample_is_kept_where_no_lattice_point_lies_there() {
+        for m in 1..=32u32 {
+            let at_centre = (0..m)
+                .flat_map(|sy| (0..m).map(move |sx| subpixel(sx, sy, m, true)))
+                .any(|(x, y)| (x - 0.5).abs() < 1e-6 && (y - 0.5).abs() < 1e-6);
+            assert_eq!(keeps_centre(m, true), !at_centre, "m {m}");
+            assert!(!keeps_centre(m, false), "m {m}: the axis-aligned grid");
+        }
+        assert!(!keeps_centre(0, true));
+    }
 
     /// The rotated lattice: every point inside the pixel, one in each cell of the n x n grid,
     /// in its own row and column of the n^2 x n^2 subgrid (so an axis-aligned edge meets the
