@@ -500,7 +500,8 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
         "metric": "relMSE: mean over pixels and channels of (x - ref)^2 / (ref^2 + 1e-2)",
         "timing": "render only (fastbrdf's printed 'render X s', on the GPU its 'draws X s' after the "
         "device and pipeline set-up; mi.render + dr.eval after a warm-up render of the same scene and "
-        "sample count), median of the repeats, renderers interleaved",
+        "sample count), median of the repeats, renderers interleaved"
+        + (", each timed call (but the GPU's) right after an untimed call of its own" if opts.warm_call else ""),
         "scenes": {},
     }
     for name in opts.scenes:
@@ -616,9 +617,18 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
                 log(f"{name}: {cname} {n} spp: error {err:.4g}")
                 if err < STOP * target and not (cname in (default_name, target_name) and n < default_samples):
                     break
-        log(f"{name}: timing {len(order)} ladder points x {repeats} repeats, interleaved")
+        log(f"{name}: timing {len(order)} ladder points x {repeats} repeats, interleaved"
+            + (", each after an untimed call of its own" if opts.warm_call else ""))
         for r in range(repeats):
             for cname, n, fn in order:
+                if opts.warm_call and cname != "fastbrdf-gpu":
+                    # Mitsuba runs in this process and its threads keep spinning a while after
+                    # a render: a fastbrdf render timed right after one took 12.3 ms (median of
+                    # 12) against 9.4 after a 0.3 s pause and 10.3 after another fastbrdf render
+                    # (the face, --spp 1). Each timed call so follows one of its own, which also
+                    # has Mitsuba's threads awake for its own timed call. The GPU's processes
+                    # time their draws after seconds of set-up, long after any spinning ended.
+                    fn(r + 1)
                 img, dt = fn(r + 1)
                 meas[(cname, n)]["times"].append(dt)
                 meas[(cname, n)]["errors"].append(rel_mse(img, ref_of(cname)))
@@ -742,6 +752,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     ap.add_argument("--repeats", type=int, help="timed repeats per ladder point (median)")
     ap.add_argument("--no-mitsuba", action="store_true", help="fastbrdf's columns only")
     ap.add_argument("--no-gpu", action="store_true", help="skip fastbrdf --gpu (always skipped with --quick)")
+    ap.add_argument("--no-warm-call", dest="warm_call", action="store_false",
+                    help="time each ladder point right after the previous renderer's (before the tenth "
+                    "pass: a fastbrdf render after Mitsuba's ran with Mitsuba's threads still spinning)")
     ap.add_argument("--mitsuba-variant", default="llvm_ad_rgb")
     ap.add_argument("--env-roll", type=int, default=512,
                     help="columns the sky is rolled by for Mitsuba's envmap (its u = fastbrdf's u - 1/2)")
