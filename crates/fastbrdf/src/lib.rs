@@ -43,6 +43,7 @@ pub mod math;
 pub mod measured;
 pub mod microfacet;
 pub mod model;
+pub mod par;
 pub mod params;
 pub mod plan;
 pub mod quad;

@@ -1,4 +1,5 @@
-//! Batches over the rows of numpy arrays, spread over rayon's threads.
+//! Batches over the rows of numpy arrays, spread over the calling thread and rayon's pool
+//! ([`fastbrdf::par::for_each_part`]).
 //!
 //! Inputs are (N, k) arrays read in place whatever their strides (C-contiguous rows, a
 //! transposed (k, N) array, a broadcast row of stride 0), deinterleaved [`CHUNK`] rows at a
@@ -10,7 +11,6 @@
 use super::interleave;
 use crate::arrays::CHUNK;
 use numpy::ndarray::{ArrayView2, s};
-use rayon::prelude::*;
 use std::any::TypeId;
 use std::ops::Range;
 
@@ -171,12 +171,11 @@ pub(crate) fn for_chunks<T: Send, S, E: Send>(
     if n <= CHUNK {
         return f(&mut init(), first..first + n, out);
     }
-    out.par_chunks_mut(w * CHUNK)
-        .enumerate()
-        .try_for_each_init(init, |s, (i, o)| {
-            let lo = first + i * CHUNK;
-            f(s, lo..lo + o.len() / w, o)
-        })
+    let parts: Vec<_> = out.chunks_mut(w * CHUNK).enumerate().collect();
+    fastbrdf::par::for_each_part(parts, init, |s, (i, o)| {
+        let lo = first + i * CHUNK;
+        f(s, lo..lo + o.len() / w, o)
+    })
 }
 
 /// Three outputs of widths `w` (rows counted as by the first), as [`for_chunks`].
@@ -194,12 +193,14 @@ pub(crate) fn for_chunks3<T: Send, S, E: Send>(
     if n <= CHUNK {
         return f(&mut init(), first..first + n, (a, b, c));
     }
-    a.par_chunks_mut(w[0] * CHUNK)
-        .zip(b.par_chunks_mut(w[1] * CHUNK))
-        .zip(c.par_chunks_mut(w[2] * CHUNK))
+    let parts: Vec<_> = a
+        .chunks_mut(w[0] * CHUNK)
+        .zip(b.chunks_mut(w[1] * CHUNK))
+        .zip(c.chunks_mut(w[2] * CHUNK))
         .enumerate()
-        .try_for_each_init(init, |s, (i, ((a, b), c))| {
-            let lo = first + i * CHUNK;
-            f(s, lo..lo + b.len() / w[1], (a, b, c))
-        })
+        .collect();
+    fastbrdf::par::for_each_part(parts, init, |s, (i, ((a, b), c))| {
+        let lo = first + i * CHUNK;
+        f(s, lo..lo + b.len() / w[1], (a, b, c))
+    })
 }

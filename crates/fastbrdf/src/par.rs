@@ -1,0 +1,117 @@
+//! Parallel loops in which the calling thread takes part.
+//!
+//! A rayon parallel iterator called from a thread outside rayon's pool (the Python thread, a
+//! command's main thread) hands the whole loop to the pool, sleeps, and is woken when the
+//! pool is done. On the project's 2-core VM that round trip cost about 0.27 ms (an empty
+//! `rayon::join` from outside the pool; 5-15 us from one of its workers), an eighth of a
+//! 2 ms batch of 10^6 elements. [`for_each_part`] lets the caller work from the start: it
+//! spawns helpers into the pool, claims parts from a shared counter as they do, and once the
+//! parts are all claimed spins (a part lasts tens of microseconds) until the helpers' last
+//! ones are done, so that neither side waits for a wake-up it could have skipped.
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Runs `f(state, part)` for every part of `parts`, on the calling thread and on up to
+/// (rayon's thread count - 1) helpers in rayon's pool, each thread with its own `init()`
+/// state (made when it claims its first part). Parts are claimed in order from a shared
+/// counter, so which thread runs a part varies; a result must not depend on it. The first
+/// error stops the claiming and is returned (parts already running finish).
+pub fn for_each_part<P: Send, S, E: Send>(
+    parts: Vec<P>,
+    init: impl Fn() -> S + Sync,
+    f: impl Fn(&mut S, P) -> Result<(), E> + Sync,
+) -> Result<(), E> {
+    let n = parts.len();
+    let slots: Vec<Mutex<Option<P>>> = parts.into_iter().map(|p| Mutex::new(Some(p))).collect();
+    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    let failed = AtomicBool::new(false);
+    let error: Mutex<Option<E>> = Mutex::new(None);
+    let work = || {
+        let mut state = None;
+        loop {
+            let i = next.fetch_add(1, Ordering::Relaxed);
+            if i >= n || failed.load(Ordering::Relaxed) {
+                return;
+            }
+            let part = slots[i]
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner)
+                .take();
+            if let Some(part) = part {
+                let s = state.get_or_insert_with(&init);
+                if let Err(e) = f(s, part) {
+                    failed.store(true, Ordering::Relaxed);
+                    error
+                        .lock()
+                        .unwrap_or_else(std::sync::PoisonError::into_inner)
+                        .get_or_insert(e);
+                }
+            }
+            done.fetch_add(1, Ordering::Release);
+        }
+    };
+    let helpers = rayon::current_num_threads().min(n).saturating_sub(1);
+    if helpers == 0 {
+        work();
+    } else {
+        rayon::in_place_scope(|scope| {
+            for _ in 0..helpers {
+                scope.spawn(|_| work());
+            }
+            work();
+            // Every part is claimed: wait for the helpers' last ones by spinning rather than
+            // by the scope's sleep (a part is short). After an error, the scope waits.
+            while done.load(Ordering::Acquire) < n && !failed.load(Ordering::Relaxed) {
+                std::hint::spin_loop();
+            }
+        });
+    }
+    match error
+        .into_inner()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+    {
+        Some(e) => Err(e),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::for_each_part;
+
+    /// Every part runs once, each thread with its own state, and the first error is returned
+    /// with the later parts left unclaimed.
+    #[test]
+    fn every_part_runs_once_and_an_error_stops_the_rest() {
+        for n in [0usize, 1, 2, 3, 64, 1000] {
+            let mut out = vec![0u32; n];
+            let parts: Vec<(usize, &mut u32)> = out.iter_mut().enumerate().collect();
+            for_each_part(
+                parts,
+                || 0usize,
+                |count, (i, o)| {
+                    *count += 1;
+                    *o += i as u32 + 1;
+                    Ok::<(), ()>(())
+                },
+            )
+            .unwrap();
+            assert!(
+                out.iter().enumerate().all(|(i, &o)| o == i as u32 + 1),
+                "n {n}"
+            );
+        }
+        let ran = std::sync::atomic::AtomicUsize::new(0);
+        let r = for_each_part(
+            (0..10_000).collect(),
+            || (),
+            |_, i: usize| {
+                ran.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                if i == 10 { Err(i) } else { Ok(()) }
+            },
+        );
+        assert_eq!(r, Err(10));
+        assert!(ran.load(std::sync::atomic::Ordering::Relaxed) < 10_000);
+    }
+}
