@@ -27,6 +27,15 @@ pub fn for_each_part<P: Send, S, E: Send>(
     let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
     let failed = AtomicBool::new(false);
     let error: Mutex<Option<E>> = Mutex::new(None);
+    // Counts a claimed part as done when dropped, so that a part that panics is counted too
+    // and the caller's spin below ends (the scope then resumes the panic) instead of spinning
+    // for ever.
+    struct Done<'a>(&'a AtomicUsize);
+    impl Drop for Done<'_> {
+        fn drop(&mut self) {
+            self.0.fetch_add(1, Ordering::Release);
+        }
+    }
     let work = || {
         let mut state = None;
         loop {
@@ -34,6 +43,7 @@ pub fn for_each_part<P: Send, S, E: Send>(
             if i >= n || failed.load(Ordering::Relaxed) {
                 return;
             }
+            let _done = Done(&done);
             let part = slots[i]
                 .lock()
                 .unwrap_or_else(std::sync::PoisonError::into_inner)
@@ -48,7 +58,6 @@ pub fn for_each_part<P: Send, S, E: Send>(
                         .get_or_insert(e);
                 }
             }
-            done.fetch_add(1, Ordering::Release);
         }
     };
     let helpers = rayon::current_num_threads().min(n).saturating_sub(1);
@@ -113,5 +122,30 @@ mod tests {
         );
         assert_eq!(r, Err(10));
         assert!(ran.load(std::sync::atomic::Ordering::Relaxed) < 10_000);
+    }
+
+    /// A part that panics reaches the caller as a panic (the Python package turns it into an
+    /// exception) rather than leaving it spinning: on the caller's own thread, and on a
+    /// helper's (the first part a helper claims panics; parts last 20 us, so a helper joins).
+    #[test]
+    fn a_panicking_part_panics_the_caller() {
+        let caller = std::thread::current().id();
+        let helpers = rayon::current_num_threads() > 1;
+        for on_helper in [false, true] {
+            let r = std::panic::catch_unwind(|| {
+                for_each_part(
+                    (0..2000).collect(),
+                    || (),
+                    |_, i: usize| {
+                        std::thread::sleep(std::time::Duration::from_micros(20));
+                        let here = std::thread::current().id() == caller;
+                        let bad = if on_helper && helpers { !here } else { i == 0 };
+                        assert!(!bad, "part {i}");
+                        Ok::<(), ()>(())
+                    },
+                )
+            });
+            assert!(r.is_err(), "on a helper: {on_helper}");
+        }
     }
 }
