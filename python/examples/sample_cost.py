@@ -16,8 +16,8 @@ columns (its own layout, made outside the timing), and as ``... from rows`` from
 and (N, 2) rows fastbrdf reads (the columns copied out with ``np.ascontiguousarray`` inside
 the timing, as a user holding rows would call it), the results converted back to numpy
 arrays (after ``dr.eval``); "vs Mitsuba" compares each fastbrdf figure with Mitsuba's given
-the same layout (rows with ``from rows``, columns with columns); its ``eval`` includes the cosine factor and its weight is RGB, as its
-variant computes them. Mitsuba's first call per operation and size (which JIT-compiles the
+the same layout (rows with ``from rows``, columns with columns); its ``eval`` includes the
+cosine factor and its weight is RGB, as its variant computes them. Mitsuba's first call per operation and size (which JIT-compiles the
 kernel) and a second warm-up call are excluded from the figures; the first call's time is
 printed apart. Each figure is the best of --repeats rounds, every method timed once per round
 (interleaved, so that a busy machine slows all of them alike). Prints the CPU's name, the
@@ -99,8 +99,11 @@ def mitsuba_ops(variant, n, wi, wo, u):
         return f"{variant} unavailable ({type(e).__name__}: {str(e).splitlines()[0][:120]})", {}
     bsdf = mi.load_dict({"type": "roughconductor", "distribution": "ggx", "alpha": 0.3})
     ctx = mi.BSDFContext()
-    # Mitsuba's own layout: one contiguous float32 column per component.
-    woc, wic, uc = ([np.ascontiguousarray(a[:, k]) for k in range(a.shape[1])] for a in (wo, wi, u))
+    def cols(a):
+        """Mitsuba's own layout: one contiguous float32 column per component of rows `a`."""
+        return [np.ascontiguousarray(a[:, k]) for k in range(a.shape[1])]
+
+    woc, wic, uc = (cols(a) for a in (wo, wi, u))
 
     def si():
         s = dr.zeros(mi.SurfaceInteraction3f, n)
@@ -124,9 +127,6 @@ def mitsuba_ops(variant, n, wi, wo, u):
 
     # From the same (N, 3) and (N, 2) rows fastbrdf reads: the columns made inside the timing
     # (numpy copies of the strided column views), as a user holding rows would call Mitsuba.
-    def cols(a):
-        return [np.ascontiguousarray(a[:, k]) for k in range(a.shape[1])]
-
     def si_rows():
         s = dr.zeros(mi.SurfaceInteraction3f, n)
         s.wi = mi.Vector3f(*cols(wo))
