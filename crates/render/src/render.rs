@@ -61,9 +61,9 @@ pub enum Antialias {
     /// 2N x 2N at an object's outline (another object or the background) without an
     /// environment, where most of the error lies (`primary::OUTLINE`). A pixel left at its
     /// centre sample keeps it (without an environment, a pixel refined on an even rotated
-    /// grid keeps it too: N x N + 1 samples); with an environment it takes N x N times the passes, so it gets
-    /// as many environment samples as a grid pixel (on one hit point, stratified over all of
-    /// them). Measured on the default scenes (`tools/equal_error.py`): all of a grid render's
+    /// grid keeps it too: N x N + 1 samples); with an environment it takes N x N times the
+    /// passes, so it gets as many environment samples as a grid pixel (on one hit point,
+    /// stratified over all of them). Measured on the default scenes (`tools/equal_error.py`): all of a grid render's
     /// error against its converged reference lies in 2-6% of the pixels, at edges. A bumped
     /// object (`--bump`) always takes N x N (axis-aligned): its relief varies inside a pixel.
     /// The refined pixels depend on the whole picture's colours, so channel c of a coloured

@@ -72,8 +72,8 @@ pub struct RenderArgs {
     out: PathBuf,
     /// Render on the GPU (wgpu: Vulkan, Metal, DX12 or GL; Mesa's lavapipe without a GPU):
     /// the same picture as the CPU renderer with --aa grid, within 2/255 (fastbrdf-gpu's
-    /// tests/render.rs). Grey models and users' models (file:PATH, their shader spliced into the GPU's): a
-    /// coloured registry model (--metal, R,G,B values) is CPU-only for now. With --scene, the
+    /// tests/render.rs). Grey models and users' models (file:PATH, their shader spliced into
+    /// the GPU's): a coloured registry model (--metal, R,G,B values) is CPU-only for now. With --scene, the
     /// glTF scene's materials (gltf-pbr, coloured, anisotropy along the tangents; base colour,
     /// metallic-roughness, normal, occlusion and emissive textures) on the GPU. Shadows
     /// as on the CPU (--shadows on|off). With --env, the map sampled per sample with the CPU's
