@@ -169,6 +169,8 @@ struct Scratch {
     /// Without an environment, the pixels that keep their centre sample (their radiance is
     /// `probe_radiance`, in order); their samples are not in `samples`.
     kept_px: Vec<u32>,
+    /// Per refined ray, its (pixel, grid position) (`primary::refined_rays`).
+    sub_px: Vec<(u32, u32)>,
     /// The tile's pixels for one pass, and their sum over passes (with an environment).
     px: Vec<Vec3>,
     acc: Vec<Vec3>,
@@ -193,6 +195,8 @@ impl Scratch {
         s.refine.reserve(px);
         s.kept_px.reserve(px);
         s.px.reserve(px);
+        s.sub_px.reserve(probe);
+        s.spec.reserve(probe);
         s
     }
 }
@@ -228,6 +232,14 @@ impl Spec {
             &mut self.li,
             self.cols.each_mut().map(Vec::as_mut_slice),
         )
+    }
+
+    /// Room for `n` entries in every buffer (see [`Scratch::sized`]).
+    fn reserve(&mut self, n: usize) {
+        self.idx.reserve(n);
+        self.li.reserve(n);
+        self.cols.iter_mut().for_each(|c| c.reserve(n));
+        self.out.iter_mut().for_each(|c| c.reserve(n));
     }
 
     fn close(&mut self, k: usize) {
@@ -402,7 +414,8 @@ fn samplers(scene: &Scene) -> Result<Vec<Option<BrdfSampler>>> {
 /// One tile, all passes: its primary hits once ([`primary`]), then per pass the direct
 /// light (pass 0) and the environment's samples; the pixels are the sum over passes of each
 /// pass's average over the pixel's samples, added in pass order, written to `out` (the
-/// tile's rows of the film). False when `stop` said so.
+/// tile's rows of the film). Without an environment and with N > 1, the refined samples
+/// are traced and lit in chunks ([`lit_tile`]). False when `stop` said so.
 fn render_tile(
     ctx: &Ctx,
     tx: u32,
@@ -438,6 +451,10 @@ fn render_tile(
     }
     // The pixels' sample counts and the radiance of pass 0 already known (from the probe).
     let known = primary(ctx, &at, th, scratch);
+    if scene.environment.is_none() && opts.spp > 1 {
+        lit_tile(ctx, &at, th, scratch, out);
+        return true;
+    }
     let Scratch {
         samples,
         radiance,
@@ -499,6 +516,61 @@ fn render_tile(
         row.copy_from_slice(part);
     }
     true
+}
+
+/// Samples traced and lit per chunk without an environment ([`lit_tile`]): the chunk's
+/// samples (152 bytes each) stay in the core's L2 cache, and a worker's buffers stay at the
+/// probe's size. Tracing a tile's refined samples at once grew them to a tile's worth (up to
+/// 35k samples, 5 MB, at `--spp 2` on 64 x 32 pixels of outline), each size they passed
+/// through fresh memory from the kernel: with that memory already touched, the face rendered
+/// 1.16x faster at `--spp 2`.
+const LIT_CHUNK: usize = 1024;
+
+/// The rest of a tile without an environment (one pass, N > 1), after [`primary`]: the
+/// refined (or grid) samples traced and lit [`LIT_CHUNK`] rays at a time and summed into
+/// their pixels, then the pixels that kept their centre sample, then each pixel scaled by
+/// its count: the same sums in the same order as tracing them all at once, so the same
+/// image to the bit.
+fn lit_tile(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch, out: &mut [&mut [Vec3]]) {
+    let Scratch {
+        rays,
+        samples,
+        radiance,
+        spec,
+        probe_radiance,
+        count,
+        kept_px,
+        refine,
+        sub_px,
+        px,
+        ..
+    } = scratch;
+    px.clear();
+    px.resize((at.tw * th) as usize, Vec3::ZERO);
+    let mut next = 0;
+    while next < refine.len() {
+        rays.clear();
+        sub_px.clear();
+        next = primary::refined_rays(&ctx.rays, at, refine, next, LIT_CHUNK, rays, sub_px);
+        samples.clear();
+        primary::trace(ctx, rays, |i| sub_px[i], 1, samples);
+        radiance.clear();
+        radiance.extend(samples.iter().map(|s| initial(ctx.scene, None, s)));
+        direct(ctx, samples, radiance, spec);
+        for (s, r) in samples.iter().zip(radiance.iter()) {
+            px[s.pixel as usize] += *r;
+        }
+    }
+    for (&p, r) in kept_px.iter().zip(probe_radiance.iter()) {
+        px[p as usize] += *r;
+    }
+    px.iter_mut()
+        .zip(count.iter())
+        .for_each(|(p, &c)| *p *= ctx.scale[c as usize]);
+    ctx.advance(1);
+    for (row, part) in out.iter_mut().zip(px.chunks_exact(at.tw as usize)) {
+        row.copy_from_slice(part);
+    }
 }
 
 /// A sample's radiance before any light: the ambient term on an object, the environment or

@@ -3,18 +3,21 @@
 
 use super::{Antialias, Ctx, Sample, Scratch, Tile, direct, initial, mapped};
 use crate::geometry::Ray;
+use crate::scene::Rays;
 use glam::Vec3;
 
 /// The tile's primary samples (`scratch.samples`) and each pixel's sample count
-/// (`scratch.count`). Grid: N x N per pixel, in pixel order. Adaptive (N > 1): one sample at
+/// (`scratch.count`). Grid: N x N per pixel, in pixel order (without an environment only
+/// `scratch.refine`, N for every pixel: the caller traces them). Adaptive (N > 1): one sample at
 /// the centre of each pixel and of the ring of pixels around the tile (the probe), with its
 /// direct light; a pixel with an [`edge`] among its four neighbours then takes N x N samples
 /// at [`subpixel`]'s positions (2N x 2N at an [`OUTLINE`] without an environment), the others
 /// keep their centre sample (with an environment first in `samples`, without
 /// one only their pixels, in `scratch.kept_px`; their pass-0 radiance in
 /// `scratch.probe_radiance`); without an environment a pixel refined on an even rotated
-/// lattice keeps it too. Returns how many samples lead `samples` with a known pass-0
-/// radiance.
+/// lattice keeps it too, and the refined samples are left to the caller, which traces and
+/// lights them in chunks from `scratch.refine` ([`refined_rays`]). Returns how many samples
+/// lead `samples` with a known pass-0 radiance.
 pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> usize {
     let (opts, n) = (ctx.opts, ctx.opts.spp);
     let (x0, y0, tw) = (at.x0, at.y0, at.tw);
@@ -35,6 +38,7 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         refine,
         spec,
         kept_px,
+        sub_px,
         ..
     } = scratch;
     samples.clear();
@@ -49,6 +53,14 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
             ctx.rays.extend_row(&xs, (y0 + py) as f32 + 0.5, rays);
         }
         trace(ctx, rays, |i| (i as u32, 0), e, samples);
+        probe_radiance.clear();
+        return 0;
+    }
+    if opts.aa == Antialias::Grid && ctx.scene.environment.is_none() {
+        // Every pixel on the axis-aligned grid, traced and lit in chunks by the caller
+        // ([`refined_rays`]); the counts are N x N already.
+        refine.clear();
+        refine.resize((tw * th) as usize, (n, false));
         probe_radiance.clear();
         return 0;
     }
@@ -204,31 +216,58 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
             }
             probe_radiance[kept] = probe_radiance[c];
             // A refined pixel's count is set with its grid below.
-            count[p] = 1;
+            if refine[p].0 == 0 {
+                count[p] = 1;
+            }
             kept += 1;
         }
     }
     probe_radiance.truncate(kept);
+    for (c, &r) in count.iter_mut().zip(refine.iter()) {
+        if r.0 > 0 {
+            *c = r.0 * r.0 + u32::from(with_centre(r));
+        }
+    }
+    if env.is_none() {
+        // The refined samples are traced and lit in chunks by the caller ([`refined_rays`]).
+        return 0;
+    }
     rays.clear();
-    let mut pixels = Vec::new();
-    for py in 0..th {
-        for px in 0..tw {
-            let p = py * tw + px;
-            let (m, rotated) = refine[p as usize];
-            if m > 0 {
-                count[p as usize] = m * m + u32::from(with_centre(refine[p as usize]));
-                for sy in 0..m {
-                    for sx in 0..m {
-                        let (dx, dy) = subpixel(sx, sy, m, rotated);
-                        rays.push(ctx.rays.ray((x0 + px) as f32 + dx, (y0 + py) as f32 + dy));
-                        pixels.push((p, sy * m + sx));
-                    }
-                }
+    sub_px.clear();
+    refined_rays(&ctx.rays, at, refine, 0, usize::MAX, rays, sub_px);
+    trace(ctx, rays, |i| sub_px[i], e, samples);
+    kept
+}
+
+/// The rays of the tile's refined pixels from pixel `from` on (`refine`: per pixel the side
+/// of its grid, 0 for none, and whether it is rotated; [`subpixel`]'s positions), appended
+/// to `rays` with each one's (pixel, grid position) in `pixels`, whole pixels at a time until
+/// there are at least `limit` rays or the tile ends. Returns the pixel to go on from
+/// (`refine.len()` at the end). Rays come in pixel order, each pixel's in grid order.
+pub(super) fn refined_rays(
+    camera: &Rays,
+    at: &Tile,
+    refine: &[(u32, bool)],
+    from: usize,
+    limit: usize,
+    rays: &mut Vec<Ray>,
+    pixels: &mut Vec<(u32, u32)>,
+) -> usize {
+    let tw = at.tw as usize;
+    for (p, &(m, rotated)) in refine.iter().enumerate().skip(from) {
+        if rays.len() >= limit {
+            return p;
+        }
+        let (px, py) = ((p % tw) as u32, (p / tw) as u32);
+        for sy in 0..m {
+            for sx in 0..m {
+                let (dx, dy) = subpixel(sx, sy, m, rotated);
+                rays.push(camera.ray((at.x0 + px) as f32 + dx, (at.y0 + py) as f32 + dy));
+                pixels.push((p as u32, sy * m + sx));
             }
         }
     }
-    trace(ctx, rays, |i| pixels[i], e, samples);
-    if env.is_some() { kept } else { 0 }
+    refine.len()
 }
 
 /// Which edge, if any, two neighbouring centre samples (sample, direct light, distance from
@@ -320,7 +359,7 @@ pub(super) struct EdgeKey {
 
 /// Appends the samples of `rays` (ray `i` belongs to `pixel(i)` = (pixel, grid position)),
 /// each taking `passes` environment passes.
-fn trace(
+pub(super) fn trace(
     ctx: &Ctx,
     rays: &[Ray],
     pixel: impl Fn(usize) -> (u32, u32),
@@ -415,7 +454,64 @@ fn trace(
 
 #[cfg(test)]
 mod tests {
-    use super::{keeps_centre, subpixel};
+    use super::{keeps_centre, refined_rays, subpixel};
+    use crate::render::Tile;
+    use crate::scene::Camera;
+    use glam::Vec3;
+
+    /// Refined rays made in chunks (as `lit_tile` traces them) are the rays made at once, in
+    /// the same order; each chunk ends at a pixel's end, with at least the limit's rays but
+    /// for the last.
+    #[test]
+    fn refined_rays_in_chunks_are_the_rays_at_once() {
+        let camera = Camera {
+            eye: Vec3::new(0.0, 0.0, 4.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fov_y_deg: 30.0,
+        }
+        .rays(40, 30);
+        let at = Tile {
+            x0: 8,
+            y0: 4,
+            tw: 13,
+            w: 40,
+        };
+        let refine: Vec<(u32, bool)> = (0..13 * 7u32)
+            .map(|p| ([0, 2, 0, 4, 3, 0, 1][(p * 5 % 7) as usize], p % 3 != 0))
+            .collect();
+        let (mut all, mut all_px) = (Vec::new(), Vec::new());
+        let end = refined_rays(&camera, &at, &refine, 0, usize::MAX, &mut all, &mut all_px);
+        assert_eq!(end, refine.len());
+        let expected: u32 = refine.iter().map(|r| r.0 * r.0).sum();
+        assert_eq!(all.len(), expected as usize);
+        for limit in [1, 7, 16, 100, 10_000] {
+            let (mut next, mut rays, mut px) = (0, Vec::new(), Vec::new());
+            while next < refine.len() {
+                let (mut r, mut p) = (Vec::new(), Vec::new());
+                let from = next;
+                next = refined_rays(&camera, &at, &refine, next, limit, &mut r, &mut p);
+                assert!(next > from);
+                assert!(r.len() >= limit || next == refine.len(), "limit {limit}");
+                // Whole pixels: the chunk's last ray is its pixel's last grid position.
+                if let Some(&(pixel, sub)) = p.last() {
+                    let m = refine[pixel as usize].0;
+                    assert_eq!(sub, m * m - 1);
+                }
+                rays.extend(r);
+                px.extend(p);
+            }
+            assert_eq!(px, all_px, "limit {limit}");
+            let same = rays.iter().zip(&all).all(|(a, b)| a.o == b.o && a.d == b.d);
+            assert!(same && rays.len() == all.len(), "limit {limit}");
+        }
+        // Ray i is pixel (x0 + p % tw, y0 + p / tw) at its subpixel position.
+        let (p, sub) = all_px[5];
+        let m = refine[p as usize].0;
+        let (dx, dy) = subpixel(sub % m, sub / m, m, refine[p as usize].1);
+        let r = camera.ray((8 + p % 13) as f32 + dx, (4 + p / 13) as f32 + dy);
+        assert!(r.o == all[5].o && r.d == all[5].d);
+    }
 
     /// A refined pixel keeps its centre sample exactly where its rotated lattice has no point
     /// there (even sides); an odd lattice has one, which would count the centre twice.
