@@ -2,7 +2,7 @@
 //! `--gpu`).
 
 use super::common::gltf_scene;
-use super::common::pictures::{render_model, render_rgb};
+use super::common::pictures::{render_rgb, render_specular, specular};
 use super::common::progress::bar;
 use super::common::scene::{SceneArgs, SceneFileArg, check_out, material_and_metal};
 use crate::CliError;
@@ -219,7 +219,7 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let t = std::time::Instant::now();
     if a.gpu && crate::model_args::is_user(&a.model) {
         let (film, label) = render_user_gpu(a, &spec, &loaded, &opts)?;
-        return finish(a, &spec, &opts, film, t, format!(", GPU: {label}"));
+        return finish(a, &spec, &opts, film, t, format!(", GPU: {label}"), None);
     }
     if let Some(user) = a.model_args.user(&a.model)? {
         // A user's model: the whole BRDF (weights 0, 1), shaded by the CPU renderer with its
@@ -231,19 +231,19 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
             &a.model,
             Arc::new(UserRgb::new(user)),
         )?;
-        return finish(a, &spec, &opts, film, t, String::new());
+        return finish(a, &spec, &opts, film, t, String::new(), None);
     }
     let model = a.model_args.spec(&a.model, Use::Shaded)?;
-    let (film, on) = if a.gpu {
+    if a.gpu {
         let (film, label) = render_model_gpu(&spec, &loaded, &opts, &a.model, &model)?;
-        (film, format!(", GPU: {label}"))
-    } else {
-        (
-            render_model(&spec, &loaded, &opts, &a.model, &model)?,
-            String::new(),
-        )
-    };
-    finish(a, &spec, &opts, film, t, on)
+        return finish(a, &spec, &opts, film, t, format!(", GPU: {label}"), None);
+    }
+    // The model's set-up (its spec and kernels) is timed apart from the render, as
+    // `tools/equal_error.py` times Mitsuba's `mi.render` apart from `load_dict`.
+    let specular = specular(&a.model, &model)?;
+    let set_up = t.elapsed().as_secs_f64();
+    let film = render_specular(&spec, &loaded, &opts, specular)?;
+    finish(a, &spec, &opts, film, t, String::new(), Some(set_up))
 }
 
 /// `render --scene FILE`: the glTF scene with its materials, `--param` given to every one.
@@ -284,7 +284,7 @@ fn render_gltf(
             ", a framing view"
         }
     );
-    finish(a, spec, opts, film, t, on)
+    finish(a, spec, opts, film, t, on, None)
 }
 
 /// Renders a glTF scene on the GPU (`fastbrdf_gpu::render`: coloured materials, base colour
@@ -317,7 +317,8 @@ fn render_gltf_gpu(
     Ok((film, gpu.label()))
 }
 
-/// Writes the picture and reports what was rendered, how and how long it took.
+/// Writes the picture and reports what was rendered, how and how long it took: from `t`, of
+/// which `set_up` seconds (where timed apart) went to the model's set-up before the render.
 fn finish(
     a: &RenderArgs,
     spec: &SceneSpec,
@@ -325,6 +326,7 @@ fn finish(
     film: Film,
     t: std::time::Instant,
     on: String,
+    set_up: Option<f64>,
 ) -> Result<(), CliError> {
     // The GPU renders the N x N grid in every pixel (no adaptive antialiasing).
     let gpu_opts;
@@ -337,9 +339,11 @@ fn finish(
     } else {
         opts
     };
-    let rendered = t.elapsed().as_secs_f64();
+    let until_rendered = t.elapsed().as_secs_f64();
+    let rendered = until_rendered - set_up.unwrap_or(0.0);
     film.save(&a.out, a.scene.exposure)?;
     let total = t.elapsed().as_secs_f64();
+    let set_up = set_up.map_or(String::new(), |s| format!("model set-up {s:.4} s, "));
     let env = match &spec.env {
         Some(e) => format!(
             ", environment {e} x {} samples, {} sampler{}",
@@ -353,7 +357,7 @@ fn finish(
         None => String::new(),
     };
     eprintln!(
-        "wrote {} ({}x{}, {} samples/pixel ({}x{} {}{env}), {:.4} s: render {:.4} s, encode and write {:.4} s{on})",
+        "wrote {} ({}x{}, {} samples/pixel ({}x{} {}{env}), {:.4} s: {set_up}render {:.4} s, encode and write {:.4} s{on})",
         a.out.display(),
         opts.width,
         opts.height,
@@ -363,7 +367,7 @@ fn finish(
         opts.aa.name(),
         total,
         rendered,
-        total - rendered
+        total - until_rendered
     );
     Ok(())
 }

@@ -22,9 +22,15 @@ pub fn render_model(
     label: &str,
     model: &ModelSpec,
 ) -> Result<Film, CliError> {
+    render_specular(spec, loaded, opts, specular(label, model)?)
+}
+
+/// The specular term that shading with `model` evaluates (its kernels built), labelled
+/// `label`: what [`render_model`] renders, built apart where the set-up is timed apart.
+pub fn specular(label: &str, model: &ModelSpec) -> Result<Arc<Specular>, CliError> {
     let mut specular = Specular::new(model)?;
     specular.id = label.into();
-    render_specular(spec, loaded, opts, Arc::new(specular))
+    Ok(Arc::new(specular))
 }
 
 /// Renders an RGB BRDF (a measured material, a fitted model): the whole BRDF, diffuse part
