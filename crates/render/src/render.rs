@@ -325,9 +325,11 @@ pub fn render_until(
     let mut film = Film::try_new(w, h)?;
     // Per worker thread, buffers reused from tile to tile for the whole render (rayon's
     // `map_init` made a set per split of each band's tiles: 9,000 reallocations and their
-    // copies were 5% of a directly lit 512 x 512 render's instructions).
-    let scratch: Vec<std::sync::Mutex<Scratch>> = (0..rayon::current_num_threads())
-        .map(|_| std::sync::Mutex::new(Scratch::sized(tile_w, tile_h)))
+    // copies were 5% of a directly lit 512 x 512 render's instructions), each made by its
+    // worker at its first tile: made here, on this thread, they took 0.45 ms before the
+    // first tile (the allocator's first writes into fresh huge pages) with the workers idle.
+    let scratch: Vec<std::sync::Mutex<Option<Scratch>>> = (0..rayon::current_num_threads())
+        .map(|_| std::sync::Mutex::new(None))
         .collect();
     let stopped = std::sync::atomic::AtomicBool::new(false);
     // Parallel over bands of `tile_h` rows and, inside each, over its tiles; each tile writes
@@ -349,7 +351,10 @@ pub fn render_until(
                 let slot = rayon::current_thread_index().and_then(|i| scratch.get(i));
                 let (tx, ty) = (tx as u32, ty as u32);
                 let done = match slot.and_then(|m| m.try_lock().ok()) {
-                    Some(mut s) => render_tile(&ctx, tx, ty, &mut s, &mut out),
+                    Some(mut s) => {
+                        let s = s.get_or_insert_with(|| Scratch::sized(tile_w, tile_h));
+                        render_tile(&ctx, tx, ty, s, &mut out)
+                    }
                     None => render_tile(&ctx, tx, ty, &mut Scratch::default(), &mut out),
                 };
                 if !done {
@@ -487,16 +492,9 @@ fn render_tile(
             env_pass(ctx, env, &at, pass, samples, radiance, env_scratch, spec);
         }
         px.fill(Vec3::ZERO);
-        for (s, r) in samples.iter().zip(radiance.iter()) {
-            px[s.pixel as usize] += *r;
-        }
+        add_samples(px, samples, radiance);
         // Without an environment (one pass), the pixels left at their centre sample.
-        for (&p, r) in kept_px.iter().zip(probe_radiance.iter()) {
-            px[p as usize] += *r;
-        }
-        px.iter_mut()
-            .zip(count.iter())
-            .for_each(|(p, &c)| *p *= ctx.scale[c as usize]);
+        average(ctx, px, kept_px, probe_radiance, count);
         if pass == 0 {
             if passes > 1 {
                 acc.clone_from(px);
@@ -557,20 +555,31 @@ fn lit_tile(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch, out: &mut [&mu
         radiance.clear();
         radiance.extend(samples.iter().map(|s| initial(ctx.scene, None, s)));
         direct(ctx, samples, radiance, spec);
-        for (s, r) in samples.iter().zip(radiance.iter()) {
-            px[s.pixel as usize] += *r;
-        }
+        add_samples(px, samples, radiance);
     }
-    for (&p, r) in kept_px.iter().zip(probe_radiance.iter()) {
-        px[p as usize] += *r;
-    }
-    px.iter_mut()
-        .zip(count.iter())
-        .for_each(|(p, &c)| *p *= ctx.scale[c as usize]);
+    average(ctx, px, kept_px, probe_radiance, count);
     ctx.advance(1);
     for (row, part) in out.iter_mut().zip(px.chunks_exact(at.tw as usize)) {
         row.copy_from_slice(part);
     }
+}
+
+/// Adds each sample's radiance to its pixel's.
+fn add_samples(px: &mut [Vec3], samples: &[Sample], radiance: &[Vec3]) {
+    for (s, r) in samples.iter().zip(radiance) {
+        px[s.pixel as usize] += *r;
+    }
+}
+
+/// The pixels' sums finished: the radiance of those that kept their centre sample added
+/// (`kept_px`, in the order of `kept`), then each divided by its sample count.
+fn average(ctx: &Ctx, px: &mut [Vec3], kept_px: &[u32], kept: &[Vec3], count: &[u32]) {
+    for (&p, r) in kept_px.iter().zip(kept) {
+        px[p as usize] += *r;
+    }
+    px.iter_mut()
+        .zip(count)
+        .for_each(|(p, &c)| *p *= ctx.scale[c as usize]);
 }
 
 /// A sample's radiance before any light: the ambient term on an object, the environment or
