@@ -12,6 +12,10 @@
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
+/// How many times [`for_each_part`]'s caller spins for the helpers' last parts before it
+/// yields between checks: about 50 us (a pause is tens of cycles), a few parts' time.
+const SPINS: u32 = 1 << 12;
+
 /// Runs `f(state, part)` for every part of `parts`, on the calling thread and on up to
 /// (rayon's thread count - 1) helpers in rayon's pool, each thread with its own `init()`
 /// state (made when it claims its first part). Parts are claimed in order from a shared
@@ -70,9 +74,17 @@ pub fn for_each_part<P: Send, S, E: Send>(
             }
             work();
             // Every part is claimed: wait for the helpers' last ones by spinning rather than
-            // by the scope's sleep (a part is short). After an error, the scope waits.
+            // by the scope's sleep (a part is short). After an error, the scope waits. Past
+            // SPINS the thread yields between checks: a helper the system took off its core
+            // (another process on a 2-core machine) may need this core to finish.
+            let mut spins = 0;
             while done.load(Ordering::Acquire) < n && !failed.load(Ordering::Relaxed) {
-                std::hint::spin_loop();
+                if spins < SPINS {
+                    spins += 1;
+                    std::hint::spin_loop();
+                } else {
+                    std::thread::yield_now();
+                }
             }
         });
     }
