@@ -20,9 +20,9 @@ and DRJIT_LIBLLVM_PATH); without it only fastbrdf's columns are filled. --quick 
 Error metric: relative MSE, mean over pixels and channels of (x - ref)^2 / (ref^2 + 1e-2)
 (Rousselle et al. 2011's relMSE with the epsilon of Mitsuba's and Bitterli's tools), so dark
 and bright regions count alike and the error is comparable across renderers whose references
-differ slightly. Time: the render alone (fastbrdf's printed "render X s"; Mitsuba's mi.render
-after a warm-up render of the same scene, sampler and sample count, so JIT compilation is
-excluded; fastbrdf --gpu's printed "draws X s", after the device and pipelines are set up, which
+differ slightly. Time: the render alone (fastbrdf's printed "render X s", which leaves out the
+model's set-up as Mitsuba's time leaves out load_dict; Mitsuba's mi.render after a warm-up
+render of the same scene, sampler and sample count, so JIT compilation is excluded; fastbrdf --gpu's printed "draws X s", after the device and pipelines are set up, which
 is mostly the driver compiling shaders), the median of --repeats runs, renderers interleaved.
 """
 
@@ -498,7 +498,8 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
         "size": [size, size],
         "repeats": repeats,
         "metric": "relMSE: mean over pixels and channels of (x - ref)^2 / (ref^2 + 1e-2)",
-        "timing": "render only (fastbrdf's printed 'render X s', on the GPU its 'draws X s' after the "
+        "timing": "render only (fastbrdf's printed 'render X s', the model's set-up apart as load_dict is "
+        "Mitsuba's; on the GPU its 'draws X s' after the "
         "device and pipeline set-up; mi.render + dr.eval after a warm-up render of the same scene and "
         "sample count), median of the repeats, renderers interleaved"
         + (", each timed call (but the GPU's) right after an untimed call of its own" if opts.warm_call else ""),
