@@ -22,8 +22,9 @@ Error metric: relative MSE, mean over pixels and channels of (x - ref)^2 / (ref^
 and bright regions count alike and the error is comparable across renderers whose references
 differ slightly. Time: the render alone (fastbrdf's printed "render X s", which leaves out the
 model's set-up as Mitsuba's time leaves out load_dict; Mitsuba's mi.render after a warm-up
-render of the same scene, sampler and sample count, so JIT compilation is excluded; fastbrdf --gpu's printed "draws X s", after the device and pipelines are set up, which
-is mostly the driver compiling shaders), the median of --repeats runs, renderers interleaved.
+render of the same scene, sampler and sample count, so JIT compilation is excluded; fastbrdf
+--gpu's printed "draws X s", after the device and pipelines are set up, which is mostly the
+driver compiling shaders), the median of --repeats runs, renderers interleaved.
 """
 
 from __future__ import annotations

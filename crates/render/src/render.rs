@@ -520,8 +520,8 @@ fn render_tile(
 /// samples (152 bytes each) stay in the core's L2 cache, and a worker's buffers stay at the
 /// probe's size. Tracing a tile's refined samples at once grew them to a tile's worth (up to
 /// 35k samples, 5 MB, at `--spp 2` on 64 x 32 pixels of outline), each size they passed
-/// through fresh memory from the kernel: with that memory already touched, the face rendered
-/// 1.16x faster at `--spp 2`.
+/// through fresh memory from the kernel; in chunks the face rendered about 1.04x faster at
+/// `--spp 2` (`tools/render_speed.sh`; 256 and 2048 timed as 1024).
 const LIT_CHUNK: usize = 1024;
 
 /// The rest of a tile without an environment (one pass, N > 1), after [`primary`]: the

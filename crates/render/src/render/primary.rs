@@ -56,29 +56,18 @@ pub(super) fn primary(ctx: &Ctx, at: &Tile, th: u32, scratch: &mut Scratch) -> u
         probe_radiance.clear();
         return 0;
     }
-    if opts.aa == Antialias::Grid && ctx.scene.environment.is_none() {
-        // Every pixel on the axis-aligned grid, traced and lit in chunks by the caller
-        // ([`refined_rays`]); the counts are N x N already.
+    if opts.aa == Antialias::Grid {
+        // Every pixel on the axis-aligned grid ([`refined_rays`]); the counts are N x N
+        // already. Without an environment the caller traces and lights them in chunks.
         refine.clear();
         refine.resize((tw * th) as usize, (n, false));
         probe_radiance.clear();
-        return 0;
-    }
-    if opts.aa == Antialias::Grid {
-        rays.clear();
-        for py in 0..th {
-            for px in 0..tw {
-                for sy in 0..n {
-                    for sx in 0..n {
-                        let (dx, dy) = subpixel(sx, sy, n, false);
-                        rays.push(ctx.rays.ray((x0 + px) as f32 + dx, (y0 + py) as f32 + dy));
-                    }
-                }
-            }
+        if ctx.scene.environment.is_some() {
+            rays.clear();
+            sub_px.clear();
+            refined_rays(&ctx.rays, at, refine, 0, usize::MAX, rays, sub_px);
+            trace(ctx, rays, |i| sub_px[i], e, samples);
         }
-        let pixel = |i: usize| (i as u32 / (n * n), i as u32 % (n * n));
-        trace(ctx, rays, pixel, e, samples);
-        probe_radiance.clear();
         return 0;
     }
     // The probe: centre samples of the tile and the ring around it (clamped to the image).
