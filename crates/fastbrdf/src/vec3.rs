@@ -94,7 +94,7 @@ pub const COS_MIN: f64 = 1.0 / 1_048_576.0;
 /// infinite vectors.
 #[inline(always)]
 pub fn above_cos_min<T: Real>(v: V3<T>) -> bool {
-    let (u, valid) = unit64(v);
+    let (u, valid) = unit64::<T, false>(v);
     valid && u[2] >= COS_MIN
 }
 
@@ -119,16 +119,48 @@ pub fn rsqrt64(x: f64) -> f64 {
     y + y * (0.5 - half * y * y)
 }
 
+/// `|v|^2 - 1` within which [`inv_len`] takes [`rsqrt_near_one`]: `2^-20`, exact in f32 and
+/// f64. Unit vectors rounded to f32 (what renderers and numpy callers pass) lie within a few
+/// `2^-24` of it.
+pub const NEAR_ONE: f64 = 1.0 / 1_048_576.0;
+
+/// `1 / sqrt(x)` for `x` within [`NEAR_ONE`] of 1: the series `1 - d/2 + 3 d^2 / 8` in
+/// `d = x - 1` (exact by Sterbenz's lemma), truncated after a term of at most `0.32 d^3`
+/// (`2.8e-19` relative, a 400th of an ulp), then one rounding in the final addition: within
+/// 0.51 ulps of `1.0 / x.sqrt()`'s exact value (tested), where [`rsqrt64`] is within 1.5. Two
+/// multiplications and two additions, where [`rsqrt64`] takes 13 and 6 in a chain of four
+/// Newton steps: most of the f64 pair set-up's time in the batch kernels (issue 30).
+#[inline(always)]
+pub fn rsqrt_near_one(x: f64) -> f64 {
+    let d = x - 1.0;
+    1.0 + d * (-0.5 + 0.375 * d)
+}
+
+/// `1 / sqrt(len2)` for a positive normal `len2`: [`rsqrt_near_one`] within [`NEAR_ONE`] of 1,
+/// [`rsqrt64`] elsewhere, a function of `len2` alone (the scalar code branches, the batch
+/// loops select per lane). `NEAR`: the caller knows that `len2` is within [`NEAR_ONE`] of 1
+/// (the batch kernels test whole blocks in f32 first), so only the series is
+/// computed: the same value.
+#[inline(always)]
+pub fn inv_len<const NEAR: bool>(len2: f64) -> f64 {
+    if NEAR || (len2 - 1.0).abs() <= NEAR_ONE {
+        rsqrt_near_one(len2)
+    } else {
+        rsqrt64(len2)
+    }
+}
+
 /// `v` in f64, normalised directly when `|v|^2` is a normal f64 (always, for f32
 /// components, whose squares neither overflow nor underflow in f64: a compile-time choice,
-/// so that the batch kernels carry no branch), scale-safely ([`unit`]) otherwise. The same
-/// arithmetic for f32 and f64 models fed the same f32 input.
+/// so that the batch kernels carry no branch), scale-safely ([`unit`]) otherwise; `1/|v|` by
+/// [`inv_len`] (`NEAR` as there). The same arithmetic for f32 and f64 models fed the same
+/// f32 input.
 #[inline(always)]
-fn unit64<T: Real>(v: V3<T>) -> (V3<f64>, bool) {
+fn unit64<T: Real, const NEAR: bool>(v: V3<T>) -> (V3<f64>, bool) {
     let v = v.map(|c| c.f64());
     let len2 = dot(v, v);
     if std::mem::size_of::<T>() == 4 || (f64::MIN_POSITIVE..=f64::MAX).contains(&len2) {
-        let inv = rsqrt64(len2);
+        let inv = inv_len::<NEAR>(len2);
         (
             [v[0] * inv, v[1] * inv, v[2] * inv],
             len2 > 0.0 && len2.is_finite(),
@@ -148,8 +180,16 @@ fn unit64<T: Real>(v: V3<T>) -> (V3<f64>, bool) {
 /// threshold representable in `T` (a cut, `COS_MIN`) decides as in f64.
 #[inline(always)]
 pub fn pair_setup<T: Real>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
-    let (ui, vi) = unit64(wi);
-    let (uo, vo) = unit64(wo);
+    pair_setup_as::<T, false>(wi, wo)
+}
+
+/// [`pair_setup`] for a caller that knows both `|wi|^2` and `|wo|^2` to be within
+/// [`NEAR_ONE`] of 1 (`NEAR`; the batch kernels test whole blocks in f32 first): the
+/// same values, without the lanes' [`rsqrt64`].
+#[inline(always)]
+pub fn pair_setup_as<T: Real, const NEAR: bool>(wi: V3<T>, wo: V3<T>) -> (bool, Pair<T>) {
+    let (ui, vi) = unit64::<T, NEAR>(wi);
+    let (uo, vo) = unit64::<T, NEAR>(wo);
     // The f64 unit vectors are the same for f32 and f64 models fed the same f32 input, so
     // this cut decides alike in both (as `above_cos_min` does for any input).
     let above = ui[2] >= COS_MIN && uo[2] >= COS_MIN;
@@ -243,5 +283,98 @@ mod rsqrt_tests {
             check(x);
         }
         eprintln!("worst: {worst} ulps");
+    }
+
+    /// `rsqrt_near_one(x)`'s error in ulps of the result, from the exact residual
+    /// `1 - x y^2` (error-free products by fused multiply-adds): `y = (1 - e/2 + ...) / sqrt(x)`.
+    fn near_one_ulps(x: f64) -> f64 {
+        let y = super::rsqrt_near_one(x);
+        let (p, p_lo) = (y * y, y.mul_add(y, -(y * y)));
+        let q = p * x;
+        let q_lo = p.mul_add(x, -q) + p_lo * x;
+        let e = (q - 1.0) + q_lo;
+        let ulp = if y < 1.0 {
+            f64::EPSILON / 2.0
+        } else {
+            f64::EPSILON
+        };
+        (0.5 * e * y).abs() / ulp
+    }
+
+    /// Within 0.51 ulps of exact over its whole range (`|x - 1| <= 2^-20`: random points, the
+    /// ends and the neighbours of 1); `inv_len` takes it there, with or without `NEAR`, and
+    /// `rsqrt64` just outside.
+    #[test]
+    fn the_series_near_one_is_within_half_an_ulp_and_taken_only_there() {
+        use super::{NEAR_ONE, inv_len, rsqrt_near_one};
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut worst = 0.0f64;
+        let mut xs = vec![
+            1.0,
+            1.0 + NEAR_ONE,
+            1.0 - NEAR_ONE,
+            1.0 + f64::EPSILON,
+            1.0 - f64::EPSILON / 2.0,
+        ];
+        for _ in 0..1_000_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let u = (seed >> 11) as f64 / (1u64 << 53) as f64;
+            xs.push(1.0 + NEAR_ONE * (2.0 * u - 1.0));
+        }
+        for x in xs {
+            let err = near_one_ulps(x);
+            worst = worst.max(err);
+            assert!(err <= 0.51, "rsqrt_near_one({x:e}): {err} ulps");
+            let y = rsqrt_near_one(x);
+            assert_eq!(inv_len::<true>(x).to_bits(), y.to_bits(), "{x:e}");
+            assert_eq!(inv_len::<false>(x).to_bits(), y.to_bits(), "{x:e}");
+        }
+        for x in [
+            1.0 + NEAR_ONE + f64::EPSILON,
+            1.0 - NEAR_ONE - f64::EPSILON / 2.0,
+            2.0,
+            0.25,
+        ] {
+            assert_eq!(inv_len::<false>(x).to_bits(), rsqrt64(x).to_bits(), "{x:e}");
+        }
+        eprintln!("worst: {worst} ulps");
+    }
+
+    /// `pair_setup_as::<_, true>` (no general `1/sqrt`) is `pair_setup` to the bit, f64 fields
+    /// included, on inputs of unit length to within `NEAR_ONE`: f32 unit vectors, f64 ones,
+    /// and f64 ones stretched to the ends of the range.
+    #[test]
+    fn the_near_one_set_up_is_the_set_up() {
+        use super::{NEAR_ONE, Pair, pair_setup, pair_setup_as};
+        fn same<T: crate::Real>(a: (bool, Pair<T>), b: (bool, Pair<T>)) -> bool {
+            let f = |p: &Pair<T>| {
+                let mut v: Vec<f64> = [p.cos_i, p.cos_o, p.cos_h, p.sin2_h, p.cos_ih, p.cos_r]
+                    .iter()
+                    .chain(&p.wi)
+                    .chain(&p.wo)
+                    .chain(&p.h)
+                    .map(|x| x.f64())
+                    .collect();
+                v.extend([p.cos_h64, p.cos_r64]);
+                v.into_iter().map(f64::to_bits).collect::<Vec<_>>()
+            };
+            a.0 == b.0 && f(&a.1) == f(&b.1)
+        }
+        let pairs = crate::accuracy::direction_pairs(20_000, 5);
+        for (k, (wi, wo)) in pairs.into_iter().enumerate() {
+            let (a32, b32) = (wi.map(|x| x as f32), wo.map(|x| x as f32));
+            assert!(
+                same(pair_setup(a32, b32), pair_setup_as::<f32, true>(a32, b32)),
+                "#{k} f32"
+            );
+            let s = [1.0, (1.0 + NEAR_ONE).sqrt(), (1.0 - NEAR_ONE).sqrt()][k % 3];
+            let (a, b) = (wi.map(|x| x * s), wo.map(|x| x / s.max(1.0)));
+            assert!(
+                same(pair_setup(a, b), pair_setup_as::<f64, true>(a, b)),
+                "#{k} f64"
+            );
+        }
     }
 }

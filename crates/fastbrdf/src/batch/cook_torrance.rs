@@ -70,8 +70,8 @@ pub const BLOCK: usize = 256;
 struct CtOp<D, G, F>(CookTorrance<D, G, F>);
 impl<D: DistForm, G: ShadowForm, F: FresnelForm> Op6 for CtOp<D, G, F> {
     #[inline(always)]
-    fn f<M: Math<f32>>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
-        let (valid, p) = crate::vec3::pair_setup(wi, wo);
+    fn f<M: Math<f32>, const NEAR: bool>(&self, wi: [f32; 3], wo: [f32; 3]) -> f32 {
+        let (valid, p) = crate::vec3::pair_setup_as::<f32, NEAR>(wi, wo);
         let v = self.0.single_scattering::<f32, M>(&p);
         if valid { v } else { 0.0 }
     }
@@ -232,9 +232,22 @@ struct Setup<'a, const ANISO: bool> {
     aniso: Aniso,
 }
 impl<const ANISO: bool> Pass for Setup<'_, ANISO> {
+    /// Without the general `1/sqrt` where the block's inputs are all of unit length (as
+    /// `batch::map6_body`).
     #[inline(always)]
     fn run<M: Math<f32>>(&self, s: &mut Scratch, n: usize) {
         let w = self.w.map(|x| &x[..n]);
+        if super::near_one_all::<M>(w) {
+            self.fill::<M, true>(w, s, n)
+        } else {
+            self.fill::<M, false>(w, s, n)
+        }
+    }
+}
+
+impl<const ANISO: bool> Setup<'_, ANISO> {
+    #[inline(always)]
+    fn fill<M: Math<f32>, const NEAR: bool>(&self, w: [&[f32]; 6], s: &mut Scratch, n: usize) {
         let (ch, s2, gv, gl) = (
             &mut s.cos_h[..n],
             &mut s.sin2_h[..n],
@@ -243,8 +256,10 @@ impl<const ANISO: bool> Pass for Setup<'_, ANISO> {
         );
         let (cih, den, ok) = (&mut s.cos_ih[..n], &mut s.denom[..n], &mut s.valid[..n]);
         for i in 0..n {
-            let (valid, p) =
-                crate::vec3::pair_setup([w[0][i], w[1][i], w[2][i]], [w[3][i], w[4][i], w[5][i]]);
+            let (valid, p) = crate::vec3::pair_setup_as::<f32, NEAR>(
+                [w[0][i], w[1][i], w[2][i]],
+                [w[3][i], w[4][i], w[5][i]],
+            );
             // `single_scattering`'s arguments: the stretched ones into D and G only.
             let (sin2, v, l) = if ANISO {
                 let a = &self.aniso;
