@@ -1,11 +1,15 @@
 //! `Kernel::eval` of GGX Cook-Torrance (alpha 0.3, the Python package's and the renderer's main
 //! case) on one thread, best instruction set, over `direction_pairs` (about N pairs): the
-//! median of R calls in ns per evaluation and M evaluations/s. What issue 30's `rsqrt64` pair
-//! set-up was measured with: run it on two builds, interleaved.
+//! median of R calls in ns per evaluation and M evaluations/s; then the batched sampler's `pdf`
+//! (visible normals) over the same pairs. What issue 30's `rsqrt64` pair set-up, the series
+//! near unit length and the fused `pdf` unit tier were measured with: run it on two builds,
+//! interleaved.
 //! Run: `cargo run --release -p fastbrdf --example eval_speed [N] [R]` (default 65536, 300).
 
 use fastbrdf::ModelSpec;
+use fastbrdf::batch::sample::Sampler;
 use fastbrdf::batch::{Input, Isa, Kernel};
+use fastbrdf::sample::Strategy;
 use std::time::Instant;
 
 mod common;
@@ -24,20 +28,35 @@ fn main() {
     let spec = ModelSpec::parse("cook-torrance", &[("d", "ggx"), ("alpha", "0.3")]).unwrap();
     let k = Kernel::new(&spec).unwrap();
     let mut out = vec![0.0f32; n];
-    let times: Vec<f64> = (0..rounds.max(1))
-        .map(|_| {
-            let t = Instant::now();
-            k.eval(input, &mut out).unwrap();
-            t.elapsed().as_secs_f64()
-        })
-        .collect();
-    let m = common::median(times);
-    println!(
-        "{spec}, {} pairs, {}: {:.2} ns per evaluation, {:.1} M/s (checksum {})",
-        n,
-        Isa::best().name(),
-        m / n as f64 * 1e9,
-        n as f64 / m / 1e6,
-        out.iter().map(|&x| x as f64).sum::<f64>()
+    let time = |f: &mut dyn FnMut()| {
+        let times: Vec<f64> = (0..rounds.max(1))
+            .map(|_| {
+                let t = Instant::now();
+                f();
+                t.elapsed().as_secs_f64()
+            })
+            .collect();
+        common::median(times)
+    };
+    let report = |what: &str, m: f64, out: &[f32]| {
+        println!(
+            "{spec}, {} pairs, {}: {:.2} ns per {what}, {:.1} M/s (checksum {})",
+            n,
+            Isa::best().name(),
+            m / n as f64 * 1e9,
+            n as f64 / m / 1e6,
+            out.iter().map(|&x| x as f64).sum::<f64>()
+        )
+    };
+    let m = time(&mut || k.eval(input, &mut out).unwrap());
+    report("evaluation", m, &out);
+    // The density of wi given wo by the default strategy (GGX's visible normals): the
+    // batched sampler's `pdf`, whose unit tier these unit pairs take.
+    let sampler = Sampler::new(&spec).unwrap();
+    let (wi, wo) = (
+        [&cols[0][..], &cols[1], &cols[2]],
+        [&cols[3][..], &cols[4], &cols[5]],
     );
+    let m = time(&mut || sampler.pdf(Strategy::Auto, wo, wi, &mut out).unwrap());
+    report("density", m, &out);
 }
