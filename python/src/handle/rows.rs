@@ -17,12 +17,23 @@ use std::ops::Range;
 /// (N, k) rows of any strides.
 pub(crate) type Rows<'a, T> = ArrayView2<'a, T>;
 
-/// One thread's buffers: `K` columns of [`CHUNK`] values.
+/// One thread's buffers: `K` columns of [`CHUNK`] values, allocated when first needed (inputs
+/// read in place as columns never need them).
 pub(crate) struct Soa<T, const K: usize>([Vec<T>; K]);
 
 impl<T: Copy + Default + 'static, const K: usize> Soa<T, K> {
     pub(crate) fn new() -> Self {
-        Self(std::array::from_fn(|_| vec![T::default(); CHUNK]))
+        Self(std::array::from_fn(|_| Vec::new()))
+    }
+
+    /// The buffers at their full size.
+    fn sized(&mut self) -> &mut [Vec<T>; K] {
+        if self.0.iter().any(|c| c.len() < CHUNK) {
+            for c in &mut self.0 {
+                c.resize(CHUNK, T::default());
+            }
+        }
+        &mut self.0
     }
 
     /// The `K` columns of rows `r` of `v` (at most [`CHUNK`] rows): read in place where each
@@ -34,6 +45,7 @@ impl<T: Copy + Default + 'static, const K: usize> Soa<T, K> {
             return cols;
         }
         let len = r.len();
+        self.sized();
         if let (Some(all), Some(cols)) = (v.as_slice(), f32s(&mut self.0)) {
             // C-contiguous f32 rows of 3 or 2: the vectorised copies.
             let all = f32s_of(&all[K * r.start..K * r.end]);
@@ -62,7 +74,7 @@ impl<T: Copy + Default + 'static, const K: usize> Soa<T, K> {
 
     /// The buffers as `len` writable values each (outputs of a structure-of-arrays kernel).
     pub(crate) fn cols_mut(&mut self, len: usize) -> [&mut [T]; K] {
-        self.0.each_mut().map(|c| &mut c[..len])
+        self.sized().each_mut().map(|c| &mut c[..len])
     }
 
     /// The first `len` values of the buffers interleaved into `out` (`K` values a row).
