@@ -253,6 +253,21 @@ fn map6_body<O: Op6, M: Math<f32>>(op: &O, w: [&[f32]; 6], out: &mut [f32]) {
     }
 }
 
+/// The six columns cut to `n` elements as six slices: LLVM then knows every length, and the
+/// loops over them vectorise without bounds checks (indexing the array of slices did not).
+#[inline(always)]
+#[allow(clippy::type_complexity)]
+fn six(w: [&[f32]; 6], n: usize) -> (&[f32], &[f32], &[f32], &[f32], &[f32], &[f32]) {
+    (
+        &w[0][..n],
+        &w[1][..n],
+        &w[2][..n],
+        &w[3][..n],
+        &w[4][..n],
+        &w[5][..n],
+    )
+}
+
 /// Whether the f32 squared length of every `wi` and `wo` of these columns is within `2^-21`
 /// of 1, which puts their f64 squared lengths (`vec3::pair_setup`'s) within
 /// `vec3::NEAR_ONE` (`2^-20`) of 1: however its additions round (fused or not), the f32 sum
@@ -261,14 +276,7 @@ fn map6_body<O: Op6, M: Math<f32>>(op: &O, w: [&[f32]; 6], out: &mut [f32]) {
 #[inline(always)]
 pub(crate) fn near_one_all<M: Math<f32>>(w: [&[f32]; 6]) -> bool {
     let n = w[0].len();
-    let (a, b, c, d, e, f) = (
-        &w[0][..n],
-        &w[1][..n],
-        &w[2][..n],
-        &w[3][..n],
-        &w[4][..n],
-        &w[5][..n],
-    );
+    let (a, b, c, d, e, f) = six(w, n);
     let tol = (crate::vec3::NEAR_ONE * 0.5) as f32;
     let near = |x: f32, y: f32, z: f32| (M::madd(x, x, M::madd(y, y, z * z)) - 1.0).abs() <= tol;
     let mut far = 0u32;
@@ -281,14 +289,7 @@ pub(crate) fn near_one_all<M: Math<f32>>(w: [&[f32]; 6]) -> bool {
 #[inline(always)]
 fn map6_loop<O: Op6, M: Math<f32>, const NEAR: bool>(op: &O, w: [&[f32]; 6], out: &mut [f32]) {
     let n = out.len();
-    let (a, b, c, d, e, f) = (
-        &w[0][..n],
-        &w[1][..n],
-        &w[2][..n],
-        &w[3][..n],
-        &w[4][..n],
-        &w[5][..n],
-    );
+    let (a, b, c, d, e, f) = six(w, n);
     for i in 0..n {
         out[i] = op.f::<M, NEAR>([a[i], b[i], c[i]], [d[i], e[i], f[i]]);
     }
