@@ -230,9 +230,6 @@ fn tiny_huge_and_subnormal_directions_evaluate_like_unit_ones() {
     }
 }
 
-/// `eval_par` gives `eval`'s bits on both sides of its cut-off: a cheap lobe on a batch that
-/// stays on one thread, and Cook-Torrance (tens of ns per element, so 2^17 elements are
-/// milliseconds of work, far above `PAR_MIN_WORK`) on the pool; odd lengths test the tails.
 /// Blocks whose directions are all of unit length take the pair set-up without its general
 /// `1/sqrt` (issue 30, `vec3::inv_len`); the others the general one. Neither may change a
 /// value: a pair evaluates to the same bits whether or not its block holds a direction of
@@ -303,6 +300,9 @@ fn a_pairs_value_does_not_depend_on_the_lengths_in_its_block() {
     assert!(checked > 20, "{checked} kernels checked");
 }
 
+/// `eval_par` gives `eval`'s bits on both sides of its cut-off: a cheap lobe on a batch that
+/// stays on one thread, and Cook-Torrance (tens of ns per element, so 2^17 elements are
+/// milliseconds of work, far above `PAR_MIN_WORK`) on the pool; odd lengths test the tails.
 #[test]
 fn eval_par_matches_eval_on_both_sides_of_its_cutoff() {
     for (id, n) in [("power16", 50_001usize), ("cook-torrance", (1 << 17) + 7)] {

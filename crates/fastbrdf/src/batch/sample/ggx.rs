@@ -26,8 +26,9 @@
 //!    the weight within 1e-5 of the f64 model's beyond the scalar sampler's own error (it is
 //!    in fact about 40x closer to f64 than the scalar `f cos_i / pdf`: its `D` cancels), both
 //!    tested (`tests/batch_sample_unit.rs`, 5e-7 and 6e-7 measured). Unsure (next tier) where
-//!    an input is not near unit length, a cosine is within the margin of `COS_MIN`, the pair
-//!    is nearly opposite, `wo.h` or `h.z` is below 1e-3, or `wi.z` is within 1e-5 of 0.
+//!    an input is not near unit length, a cosine is within the margin of `COS_MIN` (for `pdf`,
+//!    the smaller of the two), the pair is nearly opposite, `wo.h` or `h.z` is below 1e-3, or
+//!    `wi.z` is within 1e-5 of 0.
 //! 2. **The fast steps**: the scalar steps with `vec3::unit` as its direct `v / |v|`
 //!    ([`unit_direct`], what it computes where `|v|^2` is in its direct range) and the f64
 //!    horizon test `above_cos_min` as an f32 comparison ([`horizon`], the f64 answer away from
@@ -701,5 +702,81 @@ pub fn weight_block(isa: Isa, wiz: &[f32], pdf: &[f32], f: &[f32], weight: &mut 
         #[cfg(target_arch = "x86_64")]
         Isa::Avx2Fma => unsafe { weight_avx2(wiz, pdf, f, weight) },
         _ => weight_plain(wiz, pdf, f, weight),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sample::{Micro, MicroKind};
+
+    /// `pdf_block` on every instruction set this CPU has (the fused unit tier on AVX-512 and
+    /// AVX2+FMA, the unfused one on SSE2): the FMA sets give the same bits, and every set
+    /// stays within the unit tier's bound of the exact density (`Vndf::pdf`),
+    /// `1e-6 (1 + 1 / (alpha |wo + wi|))` relative, and is 0 where it is.
+    #[test]
+    fn pdf_block_on_every_instruction_set_keeps_the_unit_tiers_bound() {
+        for (ax, ay) in [(0.3, 0.3), (0.005, 0.005), (1.0, 1.0), (0.1, 0.4)] {
+            let v = Vndf::new(&Micro {
+                kind: MicroKind::Ggx,
+                ax,
+                ay,
+            });
+            // `accuracy::direction_pairs`: unit pairs over the hemisphere, grazing ones among
+            // them (some take the exact tiers).
+            let (mut wo, mut wi): ([Vec<f32>; 3], [Vec<f32>; 3]) = Default::default();
+            for (o, i) in crate::accuracy::direction_pairs(20_000, 5) {
+                for k in 0..3 {
+                    wo[k].push(o[k] as f32);
+                    wi[k].push(i[k] as f32);
+                }
+            }
+            let n = wo[0].len();
+            fn refs(w: &[Vec<f32>; 3]) -> [&[f32]; 3] {
+                [&w[0][..], &w[1][..], &w[2][..]]
+            }
+            let mut fused: Option<Vec<f32>> = None;
+            for &isa in Isa::available() {
+                let mut out = vec![-1.0f32; n];
+                pdf_block(isa, &v, refs(&wo), refs(&wi), &mut out);
+                for i in 0..n {
+                    let (o, w) = (
+                        [wo[0][i], wo[1][i], wo[2][i]],
+                        [wi[0][i], wi[1][i], wi[2][i]],
+                    );
+                    let want = v.pdf(o, w);
+                    assert_eq!(
+                        want == 0.0,
+                        out[i] == 0.0,
+                        "{} #{i}: {} {want}",
+                        isa.name(),
+                        out[i]
+                    );
+                    if want != 0.0 {
+                        let h = (0..3)
+                            .map(|k| (o[k] as f64 + w[k] as f64).powi(2))
+                            .sum::<f64>();
+                        let rel = (out[i] as f64 - want as f64).abs() / want as f64;
+                        let bound = 1e-6 * (1.0 + 1.0 / (ax.min(ay) * h.sqrt()));
+                        assert!(
+                            rel <= bound,
+                            "{} #{i}: {} {want} ({rel:.2e})",
+                            isa.name(),
+                            out[i]
+                        );
+                    }
+                }
+                if isa.fma() {
+                    match &fused {
+                        None => fused = Some(out),
+                        Some(f) => assert!(
+                            f.iter().zip(&out).all(|(a, b)| a.to_bits() == b.to_bits()),
+                            "{} differs from the other FMA set",
+                            isa.name()
+                        ),
+                    }
+                }
+            }
+        }
     }
 }
