@@ -232,8 +232,8 @@ struct Setup<'a, const ANISO: bool> {
     aniso: Aniso,
 }
 impl<const ANISO: bool> Pass for Setup<'_, ANISO> {
-    /// Without the general `1/sqrt` where the block's inputs are all of unit length (as
-    /// `batch::map6_body`).
+    /// The directions normalised by the series alone where the block's inputs are all of
+    /// unit length (as `batch::map6_body`; the half vector keeps `vec3::rsqrt64`).
     #[inline(always)]
     fn run<M: Math<f32>>(&self, s: &mut Scratch, n: usize) {
         let w = self.w.map(|x| &x[..n]);

@@ -230,8 +230,8 @@ fn tiny_huge_and_subnormal_directions_evaluate_like_unit_ones() {
     }
 }
 
-/// Blocks whose directions are all of unit length take the pair set-up without its general
-/// `1/sqrt` (issue 30, `vec3::inv_len`); the others the general one. Neither may change a
+/// Blocks whose directions are all of unit length normalise them by the series alone (issue
+/// 30, `vec3::inv_len`); the others choose per direction. Neither may change a
 /// value: a pair evaluates to the same bits whether or not its block holds a direction of
 /// another length (here every 97th `wi` doubled: exact in f32, the same direction, whose value
 /// must be the unit one's to within rounding), on every instruction set, for every BRDF's
