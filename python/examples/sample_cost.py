@@ -4,6 +4,7 @@ float32 direction pairs, in millions of elements per second, measured interleave
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so \\
         target/python-wheel-venv/bin/python python/examples/sample_cost.py [--n 1e6,1e7] [--repeats 5]
         [--variant llvm_ad_rgb] [--mitsuba-max-n 1e7] [--no-mitsuba] [--input-sets 1]
+        [--warm-call] [--settle 50]
 
 fastbrdf: ``Model("cook-torrance", d="ggx", alpha=0.3)`` on (N, 3) and (N, 2) float32 arrays,
 with fresh outputs and with ``out=`` buffers reused from call to call, and on column-major
@@ -29,11 +30,19 @@ that no call finds the previous call's inputs in the CPU's caches (each set has 
 method once, untimed, right before its timed call: on the shared 2-core VM a call of a few
 milliseconds that follows the other library's calls (or any idle moment: its worker threads
 asleep, the caches cold) took up to twice as long as the same call repeated, whichever library
-it was; the warm call measures both in their steady state.
+it was; the warm call measures both in their steady state. ``--settle MS`` sleeps MS
+milliseconds before each method's calls (before its warm call), as a script that calls now
+and then, between other work, would: no call then shares the cores with the other library's
+idle threads (after each call Dr.Jit's worker spins about 20 ms; fastbrdf's helpers linger
+as long as the call lasted, at most 5 ms, ``fastbrdf::par::linger``), and each library's
+threads must wake from idle. The script measures what each library's threads do after a
+call and prints it (the CPU time the process uses in the 100 ms after one ``pdf`` call of
+each, as ``idle threads after a call``).
 """
 
 import argparse
 import os
+import resource
 import time
 
 import numpy as np
@@ -63,6 +72,24 @@ def hemisphere(rng, n):
         v[:, 2] = np.abs(v[:, 2])
         out[lo:hi] = v / np.linalg.norm(v, axis=1, keepdims=True)
     return out
+
+
+def cpu_seconds():
+    """CPU time used by every thread of this process so far."""
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
+def idle_cpu_ms(f, window=0.1, tries=3):
+    """Milliseconds of CPU the process uses in the `window` seconds after a call of `f` (its
+    threads still running once the call returned), the least of `tries`."""
+    best = float("inf")
+    for _ in range(tries):
+        f()
+        c0 = cpu_seconds()
+        time.sleep(window)
+        best = min(best, cpu_seconds() - c0)
+    return best * 1e3
 
 
 def fastbrdf_ops(n, wi, wo, u):
@@ -174,11 +201,14 @@ def main():
     ap.add_argument("--no-mitsuba", action="store_true")
     ap.add_argument("--input-sets", type=int, default=1, help="input sets used in turn (1: the same every call)")
     ap.add_argument("--warm-call", action="store_true", help="call each method once, untimed, right before its timed call")
+    ap.add_argument("--settle", type=float, default=0.0, metavar="MS",
+                    help="sleep MS milliseconds before each method's calls, so that the other library's idle threads have stopped (0: no pause)")
     a = ap.parse_args()
     sizes = [int(float(x)) for x in a.n.split(",")]
     print(f"CPU: {cpu_name()}, {os.cpu_count()} logical cores; "
           f"RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset (all cores)')}")
-    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds{'; each timed call after an untimed one' if a.warm_call else ''}; float32 inputs; "
+    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds{'; each timed call after an untimed one' if a.warm_call else ''}"
+          f"{f'; {a.settle:g} ms pause before each method' if a.settle > 0 else ''}; float32 inputs; "
           f"{max(1, a.input_sets)} input set(s) in turn\n")
     print("| op | N | who | M elements/s | ns/element | vs Mitsuba (same layout) | Mitsuba's first (JIT) call |")
     print("|---|---|---|---|---|---|---|", flush=True)
@@ -200,9 +230,15 @@ def main():
             for f in ops.values():
                 f()  # warm-up (fastbrdf: page in the out= buffers)
             sets.append(ops)
+        idle = {w: idle_cpu_ms(sets[0][k]) for k, w in (
+            (("pdf", "fastbrdf columns"), "fastbrdf"), (("pdf", a.variant), a.variant)) if k in sets[0]}
+        print(f"idle threads after a call, N = {n:.0e} (pdf; CPU ms used in the 100 ms after it returned): "
+              + ", ".join(f"{w} {v:.1f}" for w, v in idle.items()), flush=True)
         best = dict.fromkeys(sets[0], float("inf"))
         for rep in range(a.repeats):
             for k, f in sets[rep % len(sets)].items():
+                if a.settle > 0:
+                    time.sleep(a.settle / 1e3)
                 if a.warm_call:
                     f()  # untimed: the same call's steady state follows
                 t0 = time.perf_counter()

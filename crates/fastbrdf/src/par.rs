@@ -8,9 +8,19 @@
 //! spawns helpers into the pool, claims parts from a shared counter as they do, and once the
 //! parts are all claimed spins (a part lasts tens of microseconds) until the helpers' last
 //! ones are done, so that neither side waits for a wake-up it could have skipped.
+//!
+//! After such a call the helpers **linger** ([`linger`]): they keep looking for work, spinning,
+//! for as long as the call lasted (at most [`LINGER_MAX`], or `FASTBRDF_LINGER_US`
+//! microseconds; 0 turns it off), so that the next call finds them awake. On the project's
+//! 2-core VM, after an idle moment, a helper that went to sleep between two calls 50 us to 5 ms
+//! apart took about 2 ms to join the second (its virtual CPU had halted), and a 2 ms batch of
+//! 10^6 elements then took 4.1-4.2 ms; with the linger, 2.1-2.4 ms (`cargo run --release -p
+//! fastbrdf --example par_wake`). Dr.Jit's worker spins about 20 ms after each call (measured by
+//! `python/examples/sample_cost.py`) and OpenMP's for a while by default, for the same reason.
 
-use std::sync::Mutex;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::{Mutex, OnceLock};
+use std::time::{Duration, Instant};
 
 /// How many times [`for_each_part`]'s caller spins for the helpers' last parts before it
 /// yields between checks: about 50 us (a pause is tens of cycles), a few parts' time.
@@ -68,6 +78,7 @@ pub fn for_each_part<P: Send, S, E: Send>(
     if helpers == 0 {
         work();
     } else {
+        let start = Instant::now();
         rayon::in_place_scope(|scope| {
             for _ in 0..helpers {
                 scope.spawn(|_| work());
@@ -87,6 +98,9 @@ pub fn for_each_part<P: Send, S, E: Send>(
                 }
             }
         });
+        if rayon::current_thread_index().is_none() {
+            linger(helpers, start.elapsed().min(linger_max()));
+        }
     }
     match error
         .into_inner()
@@ -95,6 +109,96 @@ pub fn for_each_part<P: Send, S, E: Send>(
         Some(e) => Err(e),
         None => Ok(()),
     }
+}
+
+/// The longest [`linger`] by default: 5 ms, a quarter of Dr.Jit's spin.
+pub const LINGER_MAX: Duration = Duration::from_millis(5);
+
+/// The longest linger now: [`set_linger_max`]'s, else `FASTBRDF_LINGER_US` microseconds when
+/// that is set to a whole number (read at the first call), else [`LINGER_MAX`].
+pub fn linger_max() -> Duration {
+    let ns = LINGER_MAX_NS.load(Ordering::Relaxed);
+    if ns != UNSET {
+        return Duration::from_nanos(ns);
+    }
+    let d = std::env::var("FASTBRDF_LINGER_US")
+        .ok()
+        .and_then(|v| v.trim().parse::<u64>().ok())
+        .map_or(LINGER_MAX, Duration::from_micros);
+    // A setter that ran meanwhile wins.
+    let _ = LINGER_MAX_NS.compare_exchange(
+        UNSET,
+        d.as_nanos() as u64,
+        Ordering::Relaxed,
+        Ordering::Relaxed,
+    );
+    Duration::from_nanos(LINGER_MAX_NS.load(Ordering::Relaxed))
+}
+
+/// Sets the longest linger for the rest of the process (`Duration::ZERO`: helpers never
+/// linger), whatever `FASTBRDF_LINGER_US` says.
+pub fn set_linger_max(d: Duration) {
+    LINGER_MAX_NS.store((d.as_nanos() as u64).min(UNSET - 1), Ordering::Relaxed);
+}
+
+const UNSET: u64 = u64::MAX;
+static LINGER_MAX_NS: AtomicU64 = AtomicU64::new(UNSET);
+
+/// The process's clock for [`LINGER_UNTIL`]: nanoseconds since its first use.
+fn clock_ns() -> u64 {
+    static EPOCH: OnceLock<Instant> = OnceLock::new();
+    EPOCH.get_or_init(Instant::now).elapsed().as_nanos() as u64
+}
+
+/// When the lingering helpers stop ([`clock_ns`]); calls only move it later.
+static LINGER_UNTIL: AtomicU64 = AtomicU64::new(0);
+/// How many helpers linger now.
+static LINGERING: AtomicUsize = AtomicUsize::new(0);
+
+/// Keeps up to `helpers` of rayon's threads looking for work (spinning, running any job that
+/// comes: the next call's parts) for `d` from now, then lets them sleep. A helper that is
+/// already lingering has its end moved; no more than `helpers` linger at once, so lingering
+/// jobs never pile up. Does nothing when `d` is zero.
+pub fn linger(helpers: usize, d: Duration) {
+    if d.is_zero() {
+        return;
+    }
+    LINGER_UNTIL.fetch_max(clock_ns() + d.as_nanos() as u64, Ordering::AcqRel);
+    while LINGERING
+        .fetch_update(Ordering::AcqRel, Ordering::Acquire, |k| {
+            (k < helpers).then_some(k + 1)
+        })
+        .is_ok()
+    {
+        rayon::spawn(move || {
+            loop {
+                while clock_ns() < LINGER_UNTIL.load(Ordering::Acquire) {
+                    if rayon::yield_now() != Some(rayon::Yield::Executed) {
+                        for _ in 0..64 {
+                            std::hint::spin_loop();
+                        }
+                    }
+                }
+                LINGERING.fetch_sub(1, Ordering::AcqRel);
+                // A call that ended just now may have moved the end and found every place
+                // taken: take one again.
+                if clock_ns() >= LINGER_UNTIL.load(Ordering::Acquire)
+                    || LINGERING
+                        .fetch_update(Ordering::AcqRel, Ordering::Acquire, |k| {
+                            (k < helpers).then_some(k + 1)
+                        })
+                        .is_err()
+                {
+                    break;
+                }
+            }
+        });
+    }
+}
+
+/// How many helpers linger now (for tests).
+pub fn lingering() -> usize {
+    LINGERING.load(Ordering::Acquire)
 }
 
 #[cfg(test)]
@@ -159,5 +263,56 @@ mod tests {
             });
             assert!(r.is_err(), "on a helper: {on_helper}");
         }
+    }
+
+    /// After a call from outside the pool the helpers linger, never more of them than the
+    /// call's helpers however many calls come, and stop once the linger ends; with the
+    /// longest linger set to zero none lingers. (The global setting is changed once each way
+    /// here; the other tests' calls only linger as it says.)
+    #[test]
+    fn helpers_linger_within_their_count_and_stop() {
+        use super::{LINGER_MAX, lingering, set_linger_max};
+        use std::time::{Duration, Instant};
+        let helpers = rayon::current_num_threads().saturating_sub(1);
+        let call = || {
+            for_each_part(
+                (0..8).collect(),
+                || (),
+                |_, _: usize| {
+                    std::thread::sleep(Duration::from_micros(50));
+                    Ok::<(), ()>(())
+                },
+            )
+            .unwrap()
+        };
+        let settles = |what: &str| {
+            let t = Instant::now();
+            while lingering() > 0 {
+                assert!(
+                    t.elapsed() < Duration::from_secs(10),
+                    "{what}: still lingering"
+                );
+                std::thread::sleep(Duration::from_millis(1));
+            }
+        };
+        set_linger_max(Duration::from_millis(20));
+        let mut seen = 0;
+        for _ in 0..300 {
+            call();
+            let k = lingering();
+            assert!(k <= helpers, "{k} lingering, {helpers} helpers");
+            seen = seen.max(k);
+        }
+        if helpers > 0 {
+            assert!(seen > 0, "no helper ever lingered");
+        }
+        settles("linger of 20 ms");
+        set_linger_max(Duration::ZERO);
+        settles("linger turned off");
+        for _ in 0..100 {
+            call();
+            assert_eq!(lingering(), 0);
+        }
+        set_linger_max(LINGER_MAX);
     }
 }
