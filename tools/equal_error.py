@@ -471,11 +471,11 @@ def spread(xs: List[float]) -> float:
     return (max(xs) - min(xs)) / m if m > 0 else 0.0
 
 
-def run(opts: argparse.Namespace) -> Dict[str, Any]:
+def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
+    """The benchmark; the renderers' files go in `tmp` (the caller removes it)."""
     L = ladders(opts.quick, opts.full)
     size = opts.size or L["size"]
     repeats = opts.repeats or L["repeats"]
-    tmp = pathlib.Path(tempfile.mkdtemp(prefix="equal-error-"))
     fb = Fastbrdf(pathlib.Path(opts.fastbrdf), size, tmp)
     samplers = ["sobol", "independent"] if fb.has_sampler else [None]
     mi_obj: Optional[Mitsuba] = None
@@ -562,8 +562,11 @@ def run(opts: argparse.Namespace) -> Dict[str, Any]:
                 "fastbrdf_ref": " ".join(ref_args),
             }
             log(f"{name}: validation {entry['validation']}")
-            np.save(tmp / f"{name}-fastbrdf-ref.npy", fb_ref)
-            np.save(tmp / f"{name}-mitsuba-ref.npy", mi_ref)
+            if opts.refs_dir:
+                refs = pathlib.Path(opts.refs_dir)
+                refs.mkdir(parents=True, exist_ok=True)
+                np.save(refs / f"{name}-fastbrdf-ref.npy", fb_ref)
+                np.save(refs / f"{name}-mitsuba-ref.npy", mi_ref)
         # The ladders: per renderer, its points in rising sample counts.
         jobs: Dict[str, List[Tuple[int, Callable[[int], Tuple[np.ndarray, float]]]]] = {}
         for cname, pts, samples in configs:
@@ -747,6 +750,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     ap.add_argument("--fastbrdf", default=str(ROOT / "target" / "release" / "fastbrdf"), help="the fastbrdf binary")
     ap.add_argument("--scenes", nargs="+", choices=list(SCENES), default=list(SCENES))
     ap.add_argument("--out-json", help="write the results here")
+    ap.add_argument("--refs-dir", metavar="DIR",
+                    help="keep each scene's two converged references there when Mitsuba runs "
+                    "(SCENE-fastbrdf-ref.npy, SCENE-mitsuba-ref.npy); by default they are not kept")
     mode = ap.add_mutually_exclusive_group()
     mode.add_argument("--quick", action="store_true", help="64x64, short ladders, 1 repeat: a smoke run")
     mode.add_argument("--full", action="store_true", help="5 repeats, references of 4096 samples per pixel")
@@ -764,7 +770,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     if not pathlib.Path(opts.fastbrdf).exists():
         print(f"equal_error: no fastbrdf binary at {opts.fastbrdf} (cargo build --release -p fastbrdf-cli)", file=sys.stderr)
         return 2
-    res = run(opts)
+    # The renders' files go in a temporary folder that goes with the run, however it ends.
+    with tempfile.TemporaryDirectory(prefix="equal-error-") as tmp:
+        res = run(opts, pathlib.Path(tmp))
     print(res["table_markdown"])
     if opts.out_json:
         pathlib.Path(opts.out_json).write_text(json.dumps(res, indent=1) + "\n")

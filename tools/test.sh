@@ -135,9 +135,13 @@ if [ -e "$icd" ] && [ -z "${VK_ICD_FILENAMES:-}" ] && [ -z "${VK_DRIVER_FILES:-}
     export VK_ICD_FILENAMES="$icd"
 fi
 export WGPU_BACKEND="${WGPU_BACKEND:-vulkan}"
+# What this script makes in the temporary folder goes when it exits, however it exits.
+scratch=()
+trap 'rm -rf "${scratch[@]}"' EXIT
 if [ -z "${XDG_RUNTIME_DIR:-}" ]; then
     XDG_RUNTIME_DIR="$(mktemp -d)"
     export XDG_RUNTIME_DIR
+    scratch+=("$XDG_RUNTIME_DIR")
 fi
 
 # The Python step. Prints why and fails under CI, or skips (returns 0) without CI.
@@ -256,7 +260,13 @@ fi
 # Python step's output is kept in a file and printed after the Rust tests; either failing
 # fails the script.
 cargo test --workspace --locked --no-run
+# The tests' temporary folder is a fresh one, removed at the end: what a test leaves there
+# (it must not: "nothing left behind") is named below, and fails the run under CI.
+tests_tmp="$(mktemp -d)"
+scratch+=("$tests_tmp")
+export TMPDIR="$tests_tmp"
 python_log="$(mktemp)" rust_log="$(mktemp)"
+scratch+=("$python_log" "$rust_log" "$rust_log.done")
 # The wheel's build waits until `cargo test` has checked that every test is built and runs
 # the first binary (its first "Running" line): the two must not queue on the build lock.
 (
@@ -272,7 +282,16 @@ wait "$python_pid" || python_status=$?
 echo "test.sh: the Python step, which ran beside the Rust tests:" >&2
 cat "$python_log" >&2
 rm -f "$python_log" "$rust_log" "$rust_log.done"
-if [ "$rust_status" -ne 0 ] || [ "$python_status" -ne 0 ]; then
-    echo "test.sh: failed (cargo test: exit $rust_status; the Python step: exit $python_status)" >&2
+# pytest keeps its own recent folders (pytest-of-USER) and dask its lock files
+# (dask-scratch-space) by design; anything else was left by a test.
+left_status=0
+left="$(find "$tests_tmp" -mindepth 1 -maxdepth 1 ! -name 'pytest-of-*' ! -name 'dask-scratch-space' -printf '%f\n' | sort)"
+if [ -n "$left" ]; then
+    echo "test.sh: the tests left these in the temporary folder (they must remove what they make):" >&2
+    echo "$left" | sed 's/^/  /' >&2
+    if [ -n "${CI:-}" ]; then left_status=1; fi
+fi
+if [ "$rust_status" -ne 0 ] || [ "$python_status" -ne 0 ] || [ "$left_status" -ne 0 ]; then
+    echo "test.sh: failed (cargo test: exit $rust_status; the Python step: exit $python_status; left files: $left_status)" >&2
     exit 1
 fi

@@ -26,12 +26,15 @@ def binary():
 def smoke(cli, tmp_path_factory):
     """The --quick run at 24x24 on the sphere under the key light and under the sky."""
     out = tmp_path_factory.mktemp("equal-error") / "r.json"
+    scratch = tmp_path_factory.mktemp("equal-error-tmpdir")
     p = subprocess.run(
         [sys.executable, str(TOOL), "--quick", "--no-mitsuba", "--size", "24", "--scenes",
          "sphere-directional", "sphere-sky", "--fastbrdf", str(binary()), "--out-json", str(out)],
-        capture_output=True, text=True, timeout=300,
+        capture_output=True, text=True, timeout=300, env={**os.environ, "TMPDIR": str(scratch)},
     )
     assert p.returncode == 0, p.stderr
+    # The renders' temporary folder went with the run.
+    assert list(scratch.iterdir()) == []
     return json.loads(out.read_text()), p.stdout
 
 

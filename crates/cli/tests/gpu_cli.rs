@@ -77,7 +77,8 @@ fn shader_runtime_params_takes_the_parameters_as_arguments() {
     assert_eq!(n, fastbrdf::registry::all().len());
     let _ = std::fs::remove_dir_all(&dir);
     // Bad input in the runtime form: exit 2, nothing on stdout, no file left behind.
-    let out = temp_dir("runtime-bad").join("x.glsl");
+    let bad_dir = temp_dir("runtime-bad");
+    let out = bad_dir.join("x.glsl");
     for bad in [
         vec!["--model", "cubic", "--param", "n=nan"],
         vec!["--model", "cubic", "--param", "n=1e9"],

@@ -49,8 +49,10 @@ fn pixels(b: &mut cdp::Browser, s: &str, id: &str) -> Vec<u8> {
 
 /// `fastbrdf render` of the explorer's scene, 8-bit RGB.
 fn cli_render(args: &[&str]) -> Vec<u8> {
-    let dir = std::env::temp_dir().join(format!("fastbrdf-webgpu-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    // A folder per call (tests run side by side), removed when done.
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let k = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = common::temp_dir(&format!("webgpu-{k}"));
     let out = dir.join(format!(
         "{}.png",
         args.join("_").replace(['/', ':', ','], "-")

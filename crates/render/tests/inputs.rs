@@ -17,10 +17,44 @@ use std::sync::Arc;
 
 const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
-fn tmp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("fastbrdf-render-inputs-{}", std::process::id()));
+/// The path `name` in a fresh folder of its own (tests run side by side), the folder removed
+/// when the guard is dropped unless the test is failing (then kept for a look).
+fn tmp(name: &str) -> Tmp {
+    let d = std::env::temp_dir().join(format!(
+        "fastbrdf-render-inputs-{}-{}",
+        std::process::id(),
+        name.replace('.', "-")
+    ));
+    let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
-    d.join(name)
+    Tmp(d.join(name))
+}
+
+/// A path of [`tmp`]; derefs to it.
+struct Tmp(PathBuf);
+
+impl std::ops::Deref for Tmp {
+    type Target = PathBuf;
+    fn deref(&self) -> &PathBuf {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Tmp {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Tmp {
+    fn drop(&mut self) {
+        let dir = self.0.parent().expect("a folder");
+        if std::thread::panicking() {
+            eprintln!("kept for a look: {}", dir.display());
+        } else {
+            let _ = std::fs::remove_dir_all(dir);
+        }
+    }
 }
 
 /// Bad OBJ texts, each with the line and column its error must name and a fragment of it.
@@ -288,7 +322,7 @@ fn a_mesh_is_read_once_so_a_named_pipe_works() {
     let fifo = tmp("face.fifo");
     let _ = std::fs::remove_file(&fifo);
     let ok = std::process::Command::new("mkfifo")
-        .arg(&fifo)
+        .arg(&*fifo)
         .status()
         .unwrap();
     assert!(ok.success());

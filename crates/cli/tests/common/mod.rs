@@ -28,12 +28,40 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8(o.stderr.clone()).unwrap()
 }
 
-/// An empty folder `fastbrdf-<tag>-<pid>` under the system's temporary folder.
-pub fn temp_dir(tag: &str) -> PathBuf {
+/// An empty folder `fastbrdf-<tag>-<pid>` under the system's temporary folder, removed with
+/// everything in it when the returned guard is dropped, unless the test is failing (a
+/// panicking thread): then it is kept for a look, and its path printed.
+pub fn temp_dir(tag: &str) -> TempDir {
     let d = std::env::temp_dir().join(format!("fastbrdf-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
-    d
+    TempDir(d)
+}
+
+/// A folder of [`temp_dir`]; derefs to its path.
+pub struct TempDir(PathBuf);
+
+impl std::ops::Deref for TempDir {
+    type Target = PathBuf;
+    fn deref(&self) -> &PathBuf {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for TempDir {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        if std::thread::panicking() {
+            eprintln!("kept for a look: {}", self.0.display());
+        } else {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
 }
 
 /// The names in folder `d`, sorted.
