@@ -40,7 +40,8 @@ fn merl_file() -> MerlFile {
     let mut m = MERL.lock().unwrap_or_else(|e| e.into_inner());
     m.0 += 1;
     if m.1.is_none() {
-        let dir = temp_dir("view-measured");
+        // Removed by the last hold (MerlFile), not by the guard.
+        let dir = temp_dir("view-measured").keep();
         let path = dir.join("ward-view.binary");
         let fastbrdf::Model::Brdf(b) = fastbrdf::ModelSpec::parse("ward", &[("alpha", "0.25")])
             .and_then(|s| s.model::<f64>())

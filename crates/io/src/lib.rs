@@ -38,5 +38,5 @@ pub use error::IoError;
 pub use output_set::OutputSet;
 pub use read::{human_size, read_bounded, read_reader_bounded, read_text_bounded};
 pub use resolve::{OutputTarget, resolve_output};
-pub use text::{line_col, shorten, utf8_text};
+pub use text::{line_col, shorten, shorten_middle, utf8_text};
 pub use write::{write_atomic, write_atomic_with};

@@ -48,9 +48,40 @@ pub fn shorten(s: &str, max: usize) -> String {
     out
 }
 
+/// Shortens a path (or any text whose end matters, as a file's extension does) for an error
+/// message: at most about `max` characters, its first and last halves kept and the middle
+/// replaced by "...(N bytes)...". Control characters are escaped as by [`shorten`].
+pub fn shorten_middle(s: &str, max: usize) -> String {
+    let n = s.chars().count();
+    if n <= max {
+        return s.chars().flat_map(char::escape_debug).collect();
+    }
+    let (head, tail) = (max / 2, max - max / 2);
+    let cut = s.char_indices().nth(head).map_or(s.len(), |(i, _)| i);
+    let resume = s.char_indices().nth(n - tail).map_or(s.len(), |(i, _)| i);
+    let mut out: String = s[..cut].chars().flat_map(char::escape_debug).collect();
+    out.push_str(&format!("...({} bytes)...", resume - cut));
+    out.extend(s[resume..].chars().flat_map(char::escape_debug));
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn shorten_middle_keeps_both_ends() {
+        assert_eq!(shorten_middle("a/b.txt", 7), "a/b.txt");
+        assert_eq!(
+            shorten_middle("abcdefghij.txt", 8),
+            "abcd...(6 bytes)....txt"
+        );
+        assert_eq!(shorten_middle("a\nbcdefg", 20), "a\\nbcdefg");
+        assert_eq!(
+            shorten_middle("\u{e9}\u{e9}\u{e9}\u{e9}x", 2),
+            "\u{e9}...(6 bytes)...x"
+        );
+    }
     #[test]
     fn non_utf8_names_line_and_column() {
         let e = utf8_text(b"a,b\n\n1,\xff2\n".to_vec(), Path::new("in.csv")).unwrap_err();

@@ -27,7 +27,7 @@ fn format_of(out: &Path, format: Option<&str>) -> PyResult<&'static str> {
     table_of::format_of(out, format).ok_or_else(|| {
         value_error(format!(
             "out {}: the file must end in .exr, .png or .csv (or give format)",
-            fastbrdf_io::shorten(&out.display().to_string(), 80)
+            fastbrdf_io::shorten_middle(&out.display().to_string(), 80)
         ))
     })
 }

@@ -4,7 +4,7 @@
 use super::common::progress::bar;
 use crate::CliError;
 use fastbrdf_analysis::lut::{self, Axis, MAX_SIZE};
-use fastbrdf_io::shorten;
+use fastbrdf_io::shorten_middle;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args)]
@@ -62,7 +62,7 @@ fn format_of(out: &Path, format: Option<&str>) -> Result<&'static str, CliError>
     fastbrdf_analysis::lut::format_of(out, format).ok_or_else(|| {
         CliError::input(format!(
             "--out {}: the file must end in .exr, .png or .csv (or give --format)",
-            shorten(&out.display().to_string(), 80)
+            shorten_middle(&out.display().to_string(), 80)
         ))
     })
 }

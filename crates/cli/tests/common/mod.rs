@@ -41,6 +41,15 @@ pub fn temp_dir(tag: &str) -> TempDir {
 /// A folder of [`temp_dir`]; derefs to its path.
 pub struct TempDir(PathBuf);
 
+impl TempDir {
+    /// The path, the folder no longer removed by the guard (the caller removes it).
+    pub fn keep(self) -> PathBuf {
+        let p = self.0.clone();
+        std::mem::forget(self);
+        p
+    }
+}
+
 impl std::ops::Deref for TempDir {
     type Target = PathBuf;
     fn deref(&self) -> &PathBuf {
