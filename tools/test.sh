@@ -285,13 +285,18 @@ rm -f "$python_log" "$rust_log" "$rust_log.done"
 # pytest keeps its own recent folders (pytest-of-USER) and dask its lock files
 # (dask-scratch-space) by design; anything else was left by a test.
 left_status=0
-left="$(find "$tests_tmp" -mindepth 1 -maxdepth 1 ! -name 'pytest-of-*' ! -name 'dask-scratch-space' -printf '%f\n' | sort)"
+left="$(find "$tests_tmp" -mindepth 1 -maxdepth 1 ! -name 'pytest-of-*' ! -name 'dask-scratch-space' -printf '%f\n' | sort || true)"
 if [ -n "$left" ]; then
     echo "test.sh: the tests left these in the temporary folder (they must remove what they make):" >&2
     echo "$left" | sed 's/^/  /' >&2
     if [ -n "${CI:-}" ]; then left_status=1; fi
 fi
 if [ "$rust_status" -ne 0 ] || [ "$python_status" -ne 0 ] || [ "$left_status" -ne 0 ]; then
+    # Kept for a look: a failing test keeps its folder there (and names it).
+    keep=()
+    for f in "${scratch[@]}"; do [ "$f" = "$tests_tmp" ] || keep+=("$f"); done
+    scratch=("${keep[@]}")
+    echo "test.sh: the tests' temporary folder is kept: $tests_tmp" >&2
     echo "test.sh: failed (cargo test: exit $rust_status; the Python step: exit $python_status; left files: $left_status)" >&2
     exit 1
 fi

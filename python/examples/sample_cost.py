@@ -35,9 +35,10 @@ milliseconds before each method's calls (before its warm call), as a script that
 and then, between other work, would: no call then shares the cores with the other library's
 idle threads (after each call Dr.Jit's worker spins about 20 ms; fastbrdf's helpers linger
 as long as the call lasted, at most 5 ms, ``fastbrdf::par::linger``), and each library's
-threads must wake from idle. The script measures what each library's threads do after a
-call and prints it (the CPU time the process uses in the 100 ms after one ``pdf`` call of
-each, as ``idle threads after a call``).
+threads have been idle before the warm call (with ``--warm-call`` the timed call follows it
+at once, as a script's second call would). The script measures what each library's threads
+do after a call and prints it: the CPU time the whole process uses in the 100 ms after one
+``pdf`` call of each (the least of three tries), as ``idle threads after a call``.
 """
 
 import argparse

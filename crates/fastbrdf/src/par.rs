@@ -128,87 +128,152 @@ pub fn linger_max() -> Duration {
     // A setter that ran meanwhile wins.
     let _ = LINGER_MAX_NS.compare_exchange(
         UNSET,
-        d.as_nanos() as u64,
+        nanos(d).min(UNSET - 1),
         Ordering::Relaxed,
         Ordering::Relaxed,
     );
     Duration::from_nanos(LINGER_MAX_NS.load(Ordering::Relaxed))
 }
 
-/// Sets the longest linger for the rest of the process (`Duration::ZERO`: helpers never
-/// linger), whatever `FASTBRDF_LINGER_US` says.
+/// Sets the longest linger for the rest of the process, whatever `FASTBRDF_LINGER_US` says;
+/// `Duration::ZERO` also ends the lingers running now.
 pub fn set_linger_max(d: Duration) {
-    LINGER_MAX_NS.store((d.as_nanos() as u64).min(UNSET - 1), Ordering::Relaxed);
+    LINGER_MAX_NS.store(nanos(d).min(UNSET - 1), Ordering::Relaxed);
+    if d.is_zero() {
+        LINGER_UNTIL.store(0, Ordering::SeqCst);
+    }
 }
 
 const UNSET: u64 = u64::MAX;
 static LINGER_MAX_NS: AtomicU64 = AtomicU64::new(UNSET);
 
+/// `d` in nanoseconds, saturating.
+fn nanos(d: Duration) -> u64 {
+    u64::try_from(d.as_nanos()).unwrap_or(u64::MAX)
+}
+
 /// The process's clock for [`LINGER_UNTIL`]: nanoseconds since its first use.
 fn clock_ns() -> u64 {
     static EPOCH: OnceLock<Instant> = OnceLock::new();
-    EPOCH.get_or_init(Instant::now).elapsed().as_nanos() as u64
+    nanos(EPOCH.get_or_init(Instant::now).elapsed())
 }
 
-/// When the lingering helpers stop ([`clock_ns`]); calls only move it later.
+/// When the lingering helpers stop ([`clock_ns`]); calls only move it later. The deadline
+/// and [`LINGERING`] are read and written in sequential consistency: a call that moves the
+/// deadline and a helper that gives up its place must not both miss the other's write.
 static LINGER_UNTIL: AtomicU64 = AtomicU64::new(0);
 /// How many helpers linger now.
 static LINGERING: AtomicUsize = AtomicUsize::new(0);
 
+thread_local! {
+    /// Whether this thread is lingering (a copy that reaches it inside its own linger, through
+    /// `rayon::yield_now`, returns at once).
+    static HERE: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
 /// Keeps up to `helpers` of rayon's threads looking for work (spinning, running any job that
-/// comes: the next call's parts) for `d` from now, then lets them sleep. A helper that is
-/// already lingering has its end moved; no more than `helpers` linger at once, so lingering
-/// jobs never pile up. Does nothing when `d` is zero.
+/// comes: the next call's parts) for `d` from now, then lets them sleep. Each worker of the
+/// pool gets its own copy (`rayon::spawn_broadcast`: another thread cannot run it, so the
+/// lingers do not pile up on one thread), and the first `helpers` to start take the places;
+/// the others return at once. Lingering helpers have their end moved. Does nothing when `d`
+/// or `helpers` is zero.
 pub fn linger(helpers: usize, d: Duration) {
-    if d.is_zero() {
+    if d.is_zero() || helpers == 0 {
         return;
     }
-    LINGER_UNTIL.fetch_max(clock_ns() + d.as_nanos() as u64, Ordering::AcqRel);
-    while LINGERING
-        .fetch_update(Ordering::AcqRel, Ordering::Acquire, |k| {
+    LINGER_UNTIL.fetch_max(clock_ns().saturating_add(nanos(d)), Ordering::SeqCst);
+    if LINGERING.load(Ordering::SeqCst) < helpers {
+        rayon::spawn_broadcast(move |_| linger_here(helpers));
+    }
+}
+
+/// Takes one of `helpers` places.
+fn take_place(helpers: usize) -> bool {
+    LINGERING
+        .fetch_update(Ordering::SeqCst, Ordering::SeqCst, |k| {
             (k < helpers).then_some(k + 1)
         })
         .is_ok()
-    {
-        rayon::spawn(move || {
-            loop {
-                while clock_ns() < LINGER_UNTIL.load(Ordering::Acquire) {
-                    if rayon::yield_now() != Some(rayon::Yield::Executed) {
-                        for _ in 0..64 {
-                            std::hint::spin_loop();
-                        }
-                    }
-                }
-                LINGERING.fetch_sub(1, Ordering::AcqRel);
-                // A call that ended just now may have moved the end and found every place
-                // taken: take one again.
-                if clock_ns() >= LINGER_UNTIL.load(Ordering::Acquire)
-                    || LINGERING
-                        .fetch_update(Ordering::AcqRel, Ordering::Acquire, |k| {
-                            (k < helpers).then_some(k + 1)
-                        })
-                        .is_err()
-                {
-                    break;
+}
+
+/// One worker's linger ([`linger`]): until the shared end, and for at most the longest
+/// linger at a time: a worker that took its copy while waiting inside a `join` or a scope
+/// (the copy runs there too) is held no longer than that. Past it, with the shared end
+/// still ahead, it hands over to a fresh copy, which the worker runs once it is free.
+fn linger_here(helpers: usize) {
+    if HERE.get() || !take_place(helpers) {
+        return;
+    }
+    #[cfg(test)]
+    tests::held_by();
+    HERE.set(true);
+    let own_end = clock_ns().saturating_add(nanos(linger_max()));
+    let mut handed_over = false;
+    loop {
+        loop {
+            let now = clock_ns();
+            if now >= LINGER_UNTIL.load(Ordering::SeqCst) {
+                break;
+            }
+            if now >= own_end {
+                handed_over = true;
+                break;
+            }
+            if rayon::yield_now() != Some(rayon::Yield::Executed) {
+                for _ in 0..64 {
+                    std::hint::spin_loop();
                 }
             }
-        });
+        }
+        LINGERING.fetch_sub(1, Ordering::SeqCst);
+        // A call that ended just now may have moved the end and found every place taken:
+        // take one again.
+        if handed_over || clock_ns() >= LINGER_UNTIL.load(Ordering::SeqCst) || !take_place(helpers)
+        {
+            break;
+        }
+    }
+    HERE.set(false);
+    if handed_over {
+        rayon::spawn_broadcast(move |_| linger_here(helpers));
     }
 }
 
 /// How many helpers linger now (for tests).
 pub fn lingering() -> usize {
-    LINGERING.load(Ordering::Acquire)
+    LINGERING.load(Ordering::SeqCst)
 }
 
 #[cfg(test)]
 mod tests {
     use super::for_each_part;
+    use std::sync::Mutex;
+    use std::thread::ThreadId;
+
+    /// The tests here run one at a time: the linger's settings and counts are the process's.
+    static SERIAL: Mutex<()> = Mutex::new(());
+
+    fn serial() -> std::sync::MutexGuard<'static, ()> {
+        SERIAL
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// The threads that took a place to linger, in order (see [`super::linger_here`]).
+    static HOLDERS: Mutex<Vec<ThreadId>> = Mutex::new(Vec::new());
+
+    pub(super) fn held_by() {
+        HOLDERS
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .push(std::thread::current().id());
+    }
 
     /// Every part runs once, each thread with its own state, and the first error is returned
     /// with the later parts left unclaimed.
     #[test]
     fn every_part_runs_once_and_an_error_stops_the_rest() {
+        let _serial = serial();
         for n in [0usize, 1, 2, 3, 64, 1000] {
             let mut out = vec![0u32; n];
             let parts: Vec<(usize, &mut u32)> = out.iter_mut().enumerate().collect();
@@ -245,6 +310,7 @@ mod tests {
     /// helper's (the first part a helper claims panics; parts last 20 us, so a helper joins).
     #[test]
     fn a_panicking_part_panics_the_caller() {
+        let _serial = serial();
         let caller = std::thread::current().id();
         let helpers = rayon::current_num_threads() > 1;
         for on_helper in [false, true] {
@@ -273,6 +339,7 @@ mod tests {
     fn helpers_linger_within_their_count_and_stop() {
         use super::{LINGER_MAX, lingering, set_linger_max};
         use std::time::{Duration, Instant};
+        let _serial = serial();
         let helpers = rayon::current_num_threads().saturating_sub(1);
         let call = || {
             for_each_part(
@@ -314,5 +381,57 @@ mod tests {
             assert_eq!(lingering(), 0);
         }
         set_linger_max(LINGER_MAX);
+    }
+
+    /// Each lingering helper is a thread of its own: on a pool of 3 threads with places for 4,
+    /// the copies (one per worker) take a place on each of the 3 threads, and a second round of
+    /// copies while they linger takes no more (a copy that reaches a lingering thread, through
+    /// its `yield_now`, returns at once). Only the pool's threads are counted: a linger of the
+    /// global pool left by another test may hold a place too.
+    #[test]
+    fn each_lingering_helper_is_a_thread_of_its_own() {
+        use super::{LINGER_MAX, LINGER_UNTIL, clock_ns, linger_here, lingering, set_linger_max};
+        use std::sync::atomic::Ordering;
+        use std::time::{Duration, Instant};
+        let _serial = serial();
+        /// Ends every linger when the test ends, passed or not.
+        struct End;
+        impl Drop for End {
+            fn drop(&mut self) {
+                set_linger_max(Duration::ZERO);
+                let t = Instant::now();
+                while lingering() > 0 && t.elapsed() < Duration::from_secs(10) {
+                    std::thread::sleep(Duration::from_millis(1));
+                }
+                set_linger_max(LINGER_MAX);
+            }
+        }
+        let _end = End;
+        set_linger_max(Duration::from_secs(2));
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .unwrap();
+        let mut threads = pool.broadcast(|_| std::thread::current().id());
+        threads.sort_by_key(|id| format!("{id:?}"));
+        let in_pool = || {
+            let h = HOLDERS.lock().unwrap();
+            h.iter()
+                .filter(|id| threads.contains(id))
+                .copied()
+                .collect::<Vec<_>>()
+        };
+        HOLDERS.lock().unwrap().clear();
+        LINGER_UNTIL.fetch_max(clock_ns() + 1_000_000_000, Ordering::SeqCst);
+        pool.spawn_broadcast(|_| linger_here(4));
+        let t = Instant::now();
+        while in_pool().len() < 3 && t.elapsed() < Duration::from_secs(5) {
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        pool.spawn_broadcast(|_| linger_here(4));
+        std::thread::sleep(Duration::from_millis(50));
+        let mut holders = in_pool();
+        holders.sort_by_key(|id| format!("{id:?}"));
+        assert_eq!(holders, threads, "the pool's threads holding a place");
     }
 }

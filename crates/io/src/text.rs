@@ -50,10 +50,11 @@ pub fn shorten(s: &str, max: usize) -> String {
 
 /// Shortens a path (or any text whose end matters, as a file's extension does) for an error
 /// message: at most about `max` characters, its first and last halves kept and the middle
-/// replaced by "...(N bytes)...". Control characters are escaped as by [`shorten`].
+/// replaced by "...(N bytes)..." (a text the marker would not make shorter is kept whole).
+/// Control characters are escaped as by [`shorten`].
 pub fn shorten_middle(s: &str, max: usize) -> String {
     let n = s.chars().count();
-    if n <= max {
+    if n <= max.saturating_add(16) {
         return s.chars().flat_map(char::escape_debug).collect();
     }
     let (head, tail) = (max / 2, max - max / 2);
@@ -72,16 +73,20 @@ mod tests {
     #[test]
     fn shorten_middle_keeps_both_ends() {
         assert_eq!(shorten_middle("a/b.txt", 7), "a/b.txt");
+        // The marker would not make these shorter.
+        assert_eq!(shorten_middle("abcdefghij.txt", 8), "abcdefghij.txt");
+        assert_eq!(shorten_middle("a\nbcdefg", 0), "a\\nbcdefg");
+        let long = format!("/tmp/{}/x.txt", "d".repeat(100));
         assert_eq!(
-            shorten_middle("abcdefghij.txt", 8),
-            "abcd...(6 bytes)....txt"
+            shorten_middle(&long, 20),
+            "/tmp/ddddd...(91 bytes)...dddd/x.txt"
         );
-        assert_eq!(shorten_middle("a\nbcdefg", 20), "a\\nbcdefg");
-        assert_eq!(
-            shorten_middle("\u{e9}\u{e9}\u{e9}\u{e9}x", 2),
-            "\u{e9}...(6 bytes)...x"
-        );
+        let accents = format!("{}x", "\u{e9}".repeat(30));
+        assert_eq!(shorten_middle(&accents, 2), "\u{e9}...(58 bytes)...x");
+        let controls = format!("\n{}\t", "y".repeat(40));
+        assert_eq!(shorten_middle(&controls, 4), "\\ny...(38 bytes)...y\\t");
     }
+
     #[test]
     fn non_utf8_names_line_and_column() {
         let e = utf8_text(b"a,b\n\n1,\xff2\n".to_vec(), Path::new("in.csv")).unwrap_err();
