@@ -142,7 +142,8 @@ pub(crate) fn chunked<E: std::fmt::Display + Send>(
     let mut lo = 0;
     while lo < n {
         let hi = n.min(lo.saturating_add(STEP));
-        py.detach(|| f(lo..hi)).map_err(value_error)?;
+        py.detach(|| crate::fork::run(|| f(lo..hi)))
+            .map_err(value_error)?;
         py.check_signals()?;
         lo = hi;
     }

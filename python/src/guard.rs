@@ -60,7 +60,7 @@ pub(crate) fn interruptible<R: Send>(
     std::thread::scope(|s| {
         let (cancel, done) = (&cancel, &done);
         let worker = s.spawn(move || {
-            let r = catch_unwind(AssertUnwindSafe(|| work(cancel)));
+            let r = catch_unwind(AssertUnwindSafe(|| crate::fork::run(|| work(cancel))));
             done.store(true, Ordering::Release);
             caller.unpark();
             r

@@ -42,6 +42,7 @@ mod analysis;
 mod args;
 mod arrays;
 mod conform;
+mod fork;
 mod guard;
 mod handle;
 mod measured;
@@ -66,6 +67,7 @@ pub(crate) const MAX_WEIGHT: f64 = 1e3;
 
 #[pymodule]
 fn _fastbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    fork::loaded();
     m.add_class::<handle::Handle>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add("MAX_VALUES", MAX_VALUES)?;

@@ -56,7 +56,7 @@ impl MeasuredData {
     fn new(py: Python<'_>, path: PathBuf) -> PyResult<Self> {
         guard(|| {
             let brdf = py
-                .detach(|| MeasuredBrdf::read(&path))
+                .detach(|| crate::fork::run(|| MeasuredBrdf::read(&path)))
                 .map_err(value_error)?;
             Ok(Self {
                 brdf: Arc::new(brdf),

@@ -103,21 +103,23 @@ fn run<T: Real + Element>(
         let r = lo..n.min(lo + step);
         let t0 = std::time::Instant::now();
         py.detach(|| {
-            let p: Vec<&[f64]> = params.iter().map(|p| &p[r.clone()]).collect();
-            match rows {
-                Rows::Cols(cols) => {
-                    let c: Vec<&[T]> = cols.iter().map(|c| &c[r.clone()]).collect();
-                    f(&p, Rows::Cols(&c), &mut o[r.clone()])
+            crate::fork::run(|| {
+                let p: Vec<&[f64]> = params.iter().map(|p| &p[r.clone()]).collect();
+                match rows {
+                    Rows::Cols(cols) => {
+                        let c: Vec<&[T]> = cols.iter().map(|c| &c[r.clone()]).collect();
+                        f(&p, Rows::Cols(&c), &mut o[r.clone()])
+                    }
+                    Rows::Dirs(wi, wo) => {
+                        let span = 3 * r.start..3 * r.end;
+                        f(
+                            &p,
+                            Rows::Dirs(&wi[span.clone()], &wo[span]),
+                            &mut o[r.clone()],
+                        )
+                    }
                 }
-                Rows::Dirs(wi, wo) => {
-                    let span = 3 * r.start..3 * r.end;
-                    f(
-                        &p,
-                        Rows::Dirs(&wi[span.clone()], &wo[span]),
-                        &mut o[r.clone()],
-                    )
-                }
-            }
+            })
         })
         .map_err(value_error)?;
         py.check_signals()?;
@@ -541,7 +543,8 @@ fn steps(
     let mut lo = 0;
     while lo < n {
         let hi = n.min(lo + STEP_MIN);
-        py.detach(|| f(lo..hi)).map_err(value_error)?;
+        py.detach(|| crate::fork::run(|| f(lo..hi)))
+            .map_err(value_error)?;
         py.check_signals()?;
         lo = hi;
     }
