@@ -49,6 +49,10 @@ def calls():
             [r["albedo"] for r in fastbrdf.albedo("cook-torrance", angles=[0, 60])["rows"]]
         ),
         "render": lambda: fastbrdf.render("cook-torrance", d="ggx", alpha=0.3, width=24, height=16, spp=1),
+        "lut": lambda: fastbrdf.lut(size=8)["table"],
+        "normalize": lambda: np.array([r["int"] for r in fastbrdf.normalize("pow", n=[10, 100])["rows"]]),
+        "measured": lambda: fastbrdf.Measured(fastbrdf._measured._tiny()).eval(WI, WO),
+        "conform": lambda: np.array(fastbrdf.conform("lambert")["passed"]),
     }
 
 
