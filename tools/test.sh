@@ -265,8 +265,7 @@ cargo test --workspace --locked --no-run
 tests_tmp="$(mktemp -d)"
 scratch+=("$tests_tmp")
 export TMPDIR="$tests_tmp"
-python_log="$(mktemp)" rust_log="$(mktemp)"
-scratch+=("$python_log" "$rust_log" "$rust_log.done")
+python_log="$(mktemp)" rust_log="$(mktemp)"  # in $tests_tmp
 # The wheel's build waits until `cargo test` has checked that every test is built and runs
 # the first binary (its first "Running" line): the two must not queue on the build lock.
 (

@@ -7,9 +7,10 @@
 
 use std::sync::Mutex;
 
-/// The process that loaded the module, and the pool made for a later process (a child made by
+/// The pool made for a process other than the one that loaded the module (a child made by
 /// `fork()`), with that process's id. Pools are leaked: one per generation of forks.
 static POOLS: Mutex<Option<(u32, &'static rayon::ThreadPool)>> = Mutex::new(None);
+/// The process that loaded the module.
 static LOADED_BY: std::sync::OnceLock<u32> = std::sync::OnceLock::new();
 
 /// Remembers the process that loads the module (called once, from the module's init).
@@ -24,8 +25,8 @@ fn child_pool() -> Option<&'static rayon::ThreadPool> {
     if LOADED_BY.get().is_none_or(|&p| p == me) {
         return None;
     }
-    // The lock may have been held by another thread of the parent at the fork: a child has no
-    // such thread, so take it whatever its state.
+    // Only forked processes take this lock, for as long as a pool takes to make. (A grandchild
+    // forked while its parent's other thread held it would wait on it: not handled.)
     let mut pools = POOLS
         .lock()
         .unwrap_or_else(std::sync::PoisonError::into_inner);

@@ -2,7 +2,10 @@
 //! input gives exit code 2, a message naming the file (and line), nothing on stdout and no
 //! file; inputs are read once (pipes work); write failures give exit code 3 and leave nothing.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use common::{TempDir, listing, temp_dir};
+use std::path::Path;
 use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_fastbrdf");
@@ -29,40 +32,9 @@ fn err(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// A fresh folder for one test.
-/// A scratch folder removed when the test ends (passing or not).
-struct Scratch(PathBuf);
-
-impl std::ops::Deref for Scratch {
-    type Target = PathBuf;
-    fn deref(&self) -> &PathBuf {
-        &self.0
-    }
-}
-
-impl Drop for Scratch {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
-fn dir(name: &str) -> Scratch {
-    let d = std::env::temp_dir().join(format!(
-        "fastbrdf-render-inputs-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    Scratch(d)
-}
-
-fn files(d: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(d)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+/// A fresh folder for one test (removed when it passes, kept and named when it fails).
+fn dir(name: &str) -> TempDir {
+    temp_dir(&format!("render-inputs-{name}"))
 }
 
 fn face() -> String {
@@ -141,7 +113,7 @@ fn bad_meshes_exit_2_with_file_line_and_column() {
         refused(&o, &out, &format!("{}", d.join(head).display()));
         assert!(err(&o).contains(col), "{}", err(&o));
     }
-    assert_eq!(files(&d), ["bad.obj", "tex.png"]);
+    assert_eq!(listing(&d), ["bad.obj", "tex.png"]);
 }
 
 #[test]
@@ -430,7 +402,7 @@ fn a_failed_write_exits_3_and_leaves_nothing() {
     );
     assert_eq!(o.status.code(), Some(3), "{}", err(&o));
     assert!(err(&o).contains("out.png"), "{}", err(&o));
-    assert!(files(&d).is_empty(), "{:?}", files(&d));
+    assert!(listing(&d).is_empty(), "{:?}", listing(&d));
     let o = run_limited(
         1,
         &[
@@ -448,7 +420,7 @@ fn a_failed_write_exits_3_and_leaves_nothing() {
         ],
     );
     assert_eq!(o.status.code(), Some(3), "{}", err(&o));
-    assert!(files(&d).is_empty(), "{:?}", files(&d));
+    assert!(listing(&d).is_empty(), "{:?}", listing(&d));
 }
 
 #[test]
@@ -478,7 +450,7 @@ fn demo_checks_the_mesh_before_writing_and_writes_all_or_nothing() {
     let o = run_limited(4, &["demo", "--size", "64", "--out", out.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(3), "{}", err(&o));
     assert!(!out.exists(), "nothing written");
-    assert_eq!(files(&d), ["bad.obj"]);
+    assert_eq!(listing(&d), ["bad.obj"]);
 }
 
 #[test]
@@ -543,5 +515,5 @@ fn builtin_face_and_skin_by_name_and_files_of_those_names_by_path() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", err(&o));
     assert!(err(&o).contains("./skin"), "{}", err(&o));
-    assert_eq!(files(&d), ["face", "face.png"]);
+    assert_eq!(listing(&d), ["face", "face.png"]);
 }

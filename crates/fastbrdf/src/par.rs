@@ -239,8 +239,9 @@ fn linger_here(helpers: usize) {
     }
 }
 
-/// How many helpers linger now (for tests).
-pub fn lingering() -> usize {
+/// How many helpers linger now.
+#[cfg(test)]
+fn lingering() -> usize {
     LINGERING.load(Ordering::SeqCst)
 }
 

@@ -21,9 +21,8 @@ const TRI: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 /// when the guard is dropped unless the test is failing (then kept for a look).
 fn tmp(name: &str) -> Tmp {
     let d = std::env::temp_dir().join(format!(
-        "fastbrdf-render-inputs-{}-{}",
-        std::process::id(),
-        name.replace('.', "-")
+        "fastbrdf-render-inputs-{}-{name}",
+        std::process::id()
     ));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
