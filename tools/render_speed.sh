@@ -3,7 +3,8 @@
 # shared machine's load hits both alike: OLD, NEW, OLD, NEW, ... RUNS times each, then the
 # median of each and their ratio. Times are whole processes (start, render, encode, write),
 # in milliseconds, and, when both binaries print it (`fastbrdf render` does since the render
-# speed work: "render 0.032 s, encode and write ..."), the render alone.
+# speed work: "render 0.032 s, encode and write ..."), the render alone; with --gpu, also
+# the GPU's draws after its set-up ("draws 0.27 s": what tools/equal_error.py times).
 #
 # Usage: tools/render_speed.sh OLD_BIN NEW_BIN [RUNS] [-- RENDER_ARGS...]
 #   default RUNS 9; default render: the 1024x1024 sphere, pow n=50, 1 sample per pixel, PNG
@@ -34,10 +35,11 @@ time_ms() {
   e=$(date +%s%N)
   echo $(((e - s) / 1000000)) >>"$f"
   sed -nE 's/.*render ([0-9.]+) s.*/\1/p' <<<"$err" | awk '{print $1 * 1000}' >>"$f.render"
+  sed -nE 's/.*draws ([0-9.]+) s.*/\1/p' <<<"$err" | awk '{print $1 * 1000}' >>"$f.draws"
 }
 median() { sort -n | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
 "$old" render "${args[@]}" 2>/dev/null; "$new" render "${args[@]}" 2>/dev/null # warm caches
-for f in old new; do : >"$tmp/$f"; : >"$tmp/$f.render"; done
+for f in old new; do : >"$tmp/$f"; : >"$tmp/$f.render"; : >"$tmp/$f.draws"; done
 for ((i = 0; i < runs; i++)); do
   time_ms "$tmp/old" "$old" render "${args[@]}"
   time_ms "$tmp/new" "$new" render "${args[@]}"
@@ -52,3 +54,4 @@ report() { # label file
 }
 report "process" ""
 if [[ -s $tmp/old.render && -s $tmp/new.render ]]; then report "render " .render; fi
+if [[ -s $tmp/old.draws && -s $tmp/new.draws ]]; then report "draws  " .draws; fi

@@ -202,23 +202,18 @@ pub(super) fn object_data(
     })
 }
 
-/// The object uniform, its texture, mesh buffers, model coefficients (`coefs`, the model
-/// instance's `fb_k`; empty for a user's shader) and a user's parameter block (`params`,
-/// [`crate::user::UserShader::param_block`]; empty for a model), bound together.
-#[allow(clippy::too_many_arguments)]
+/// An object's data (`object_data`, its metallic-roughness words set), its model
+/// coefficients (`coefs`, the model instance's `fb_k`; empty for a user's shader) and a
+/// user's parameter block (`params`, [`crate::user::UserShader::param_block`]; empty for a
+/// model) uploaded and bound together; `model` is its pipelines' key.
 pub(super) fn upload_object(
     device: &wgpu::Device,
     queue: &wgpu::Queue,
     layouts: &Layouts,
-    limits: &wgpu::Limits,
-    obj: &Object,
-    index: usize,
+    data: ObjectData,
     (coefs, params): (&[f32], &[f32]),
-    (model, mr): (String, [u32; 4]),
-    reach: &Reach,
+    model: String,
 ) -> Result<GpuObject, GpuError> {
-    let mut data = object_data(limits, obj, index, reach)?;
-    data.uniform[MR_WORD..MR_WORD + 4].copy_from_slice(&mr);
     let corners = data.corners.map(|(pos, count)| {
         let buf = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("fastbrdf render corners"),

@@ -3,6 +3,7 @@
 
 use super::env::GpuEnv;
 use super::env::env_module_source;
+use super::features::Features;
 use super::layouts::Layouts;
 use super::layouts::USER_PARAMS_BINDING;
 use super::models::ModelShader;
@@ -98,26 +99,30 @@ impl ScenePass<'_> {
 }
 
 impl Pipelines {
-    /// Compiles the render shader with an object's specular model (`model`: its functions
-    /// and `rd_brdf`, `models.rs`); with `env`, the shading pipelines are the environment's
-    /// (`rd_fs_*_env`, `shaders/env.wgsl` spliced in).
+    /// Compiles the render shader with the scene's `features` and an object's specular model
+    /// (`model`: its functions and `rd_brdf`, `models.rs`); with `env`, the shading pipelines
+    /// are the environment's (`rd_fs_*_env`, `shaders/env.wgsl` spliced in).
     pub(super) fn new(
         device: &wgpu::Device,
         layouts: &Layouts,
+        features: &Features,
         model: &ModelShader,
         env: Option<&GpuEnv>,
     ) -> Result<Self, GpuError> {
         let module = &model.source;
-        let src = format!("{SHADER}\n{}{module}", env_source(env, module)?);
+        let shader = features.apply(SHADER);
+        let src = format!("{shader}\n{}{module}", env_source(env, module)?);
         let what = format!("render shader of {}", model.id);
         Self::compile(device, layouts, &what, src, env)
     }
 
     /// Compiles the render shader with a user's shader as `rd_brdf` (R, G, B: the whole
-    /// BRDF), its parameters at group 1 binding [`USER_PARAMS_BINDING`].
+    /// BRDF), its parameters at group 1 binding [`USER_PARAMS_BINDING`], with the scene's
+    /// `features`.
     pub(super) fn user(
         device: &wgpu::Device,
         layouts: &Layouts,
+        features: &Features,
         shader: &UserShader,
         env: Option<&GpuEnv>,
     ) -> Result<Self, GpuError> {
@@ -125,7 +130,8 @@ impl Pipelines {
             .wgsl_at(1, USER_PARAMS_BINDING)
             .map_err(|e| GpuError::Input(e.message))?;
         let glue = USER_GLUE;
-        let src = format!("{user}\n{SHADER}\n{}{glue}", env_source(env, &user)?);
+        let renderer = features.apply(SHADER);
+        let src = format!("{user}\n{renderer}\n{}{glue}", env_source(env, &user)?);
         let what = format!("render shader of {}", shader.name());
         Self::compile(device, layouts, &what, src, env)
     }

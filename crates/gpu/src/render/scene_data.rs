@@ -107,17 +107,12 @@ pub(super) struct Occluders {
 }
 
 impl Occluders {
-    pub(super) fn new(
-        device: &wgpu::Device,
-        limits: &wgpu::Limits,
-        scene: &Scene,
-    ) -> Result<Self, GpuError> {
-        let d = OccluderData::new(limits, scene)?;
-        Ok(Self {
+    pub(super) fn new(device: &wgpu::Device, d: &OccluderData) -> Self {
+        Self {
             objects: storage(device, "fastbrdf render occluders", &d.objects),
             nodes: storage(device, "fastbrdf render bvh nodes", &d.nodes),
             triangles: storage(device, "fastbrdf render shadow triangles", &d.triangles),
-        })
+        }
     }
 }
 

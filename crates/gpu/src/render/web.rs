@@ -16,6 +16,7 @@
 
 use super::env::EnvData;
 use super::env::env_module_source;
+use super::features::Features;
 use super::layouts::USER_PARAMS_BINDING;
 use super::objects::{KD_WORD, KS_WORD, Reach, object_data};
 use super::scene_data::{OccluderData, frame_data, lights_data};
@@ -34,23 +35,23 @@ pub const MAX_SAMPLES: u32 = super::TILE_SAMPLES;
 /// The name of a registry model's parameter block in a [`model_module`].
 pub const PARAMS_NAME: &str = "fb_web_params";
 
-/// The mesh traversal's stack in `shaders/render.wgsl`, and what a module for a scene without
-/// meshes declares instead: `rd_occ_mesh` is then never called, but SwiftShader pays for the
-/// zero-initialised 64-entry array in every fragment (measured: about half of a frame).
-const MESH_STACK: &str = "var stack: array<u32, 64>;";
-const NO_MESH_STACK: &str = "var stack: array<u32, 2>; // no meshes in this scene";
-
-/// The renderer's shaders for a scene with or without meshes (see [`MESH_STACK`]).
+/// The renderer's shaders for a page's scene, with or without meshes: the page refuses glTF
+/// materials' textures and tints ([`scene`]), so their parts are off (`features.rs`), and
+/// without meshes the mesh occluders' (SwiftShader zero-initialises the traversal's stack in
+/// every fragment otherwise: about half of a frame, measured).
 fn renderer(meshes: bool) -> String {
-    assert!(
-        SHADER.contains(MESH_STACK),
-        "render.wgsl's mesh stack moved"
-    );
-    if meshes {
-        SHADER.to_string()
-    } else {
-        SHADER.replace(MESH_STACK, NO_MESH_STACK)
+    let mut f = Features::all();
+    for part in [
+        "RD_USE_TINT",
+        "RD_USE_NORMAL_MAP",
+        "RD_USE_OCCLUSION",
+        "RD_USE_EMISSIVE",
+        "RD_USE_MR",
+    ] {
+        f.set(part, false);
     }
+    f.set("RD_OCC_MESHES", meshes);
+    f.apply(SHADER)
 }
 
 /// One object of a [`WebScene`]: its uniform (`struct Object`; [`WebObject::whole`] is the

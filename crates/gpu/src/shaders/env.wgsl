@@ -326,7 +326,7 @@ fn rd_cosine_sample(n: vec3<f32>, u1: f32, u2: f32) -> vec3<f32> {
 /// environment.rs's `visible`: light from `l` reaches the hit (no shadow ray where only the
 /// bumped normal faces `l`).
 fn rd_env_visible(s: RdSurface, l: vec3<f32>) -> bool {
-    return frame.shadow.x == 0.0 || rd_dot(s.g, l) <= 0.0
+    return !RD_USE_SHADOWS || frame.shadow.x == 0.0 || rd_dot(s.g, l) <= 0.0
         || !rd_shadowed(s.p, s.g, l, 0.0, true);
 }
 

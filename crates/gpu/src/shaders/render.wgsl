@@ -142,6 +142,28 @@ const RD_T_MIN: f32 = 1e-4;
 /// The largest f32 below 1: depth values stay inside the depth attachment's range.
 const RD_DEPTH_MAX: f32 = 0.99999994;
 
+// ---- the scene's features ---------------------------------------------------------------
+// What the scene uses (render/features.rs sets false those no object needs): the code behind
+// a false constant is dead and compilers drop it. Adapters that run both sides of a branch as
+// masked SIMD code (lavapipe, SwiftShader) would otherwise pay for every part in every
+// fragment. Each guards a test of the object's (or the frame's) own flag, so the constants
+// change no value.
+const RD_USE_TEXTURE: bool = true;
+const RD_USE_BUMP: bool = true;
+const RD_USE_UVS: bool = true;
+const RD_USE_TANGENTS: bool = true;
+const RD_USE_TINT: bool = true;
+const RD_USE_NORMAL_MAP: bool = true;
+const RD_USE_OCCLUSION: bool = true;
+const RD_USE_EMISSIVE: bool = true;
+const RD_USE_MR: bool = true;
+/// Shadow rays: off where no object can be shadowed (a lone sphere or plane).
+const RD_USE_SHADOWS: bool = true;
+/// The occluder kinds the shadow rays test.
+const RD_OCC_SPHERES: bool = true;
+const RD_OCC_PLANES: bool = true;
+const RD_OCC_MESHES: bool = true;
+
 // ---- glam twins ------------------------------------------------------------------------
 
 /// glam Vec3::dot: (x x') + (y y') + (z z').
@@ -397,12 +419,12 @@ fn rd_triangle(r: RdRay, tri: u32) -> RdHit {
         n = rd_normalize_or(rd_cross(e1, e2), vec3<f32>(0.0));
     }
     var uv = vec2<f32>(u, v);
-    if object.flags.w != 0u {
+    if RD_USE_UVS && object.flags.w != 0u {
         uv = rd_vertex_uv(ia) * w + rd_vertex_uv(ib) * u + rd_vertex_uv(ic) * v;
     }
     // TriMesh::hit_tangent: interpolated, the sign the first corner's.
     var tangent = vec4<f32>(0.0);
-    if object.tex_size.w != 0u {
+    if RD_USE_TANGENTS && object.tex_size.w != 0u {
         let ta = rd_vertex_tangent(ia);
         let ts = ta * w + rd_vertex_tangent(ib) * u + rd_vertex_tangent(ic) * v;
         tangent = vec4<f32>(ts.xyz, ta.w);
@@ -586,7 +608,8 @@ fn rd_occ_triangle(r: RdRay, tri: u32, t_min: f32, t_max: f32) -> bool {
     return t > t_min && t < t_max;
 }
 
-/// TriMesh::hit as an any-hit test: the same slab test and stack (64 entries, children
+/// TriMesh::hit as an any-hit test: the same slab test and stack (64 entries, or the scene's
+/// deepest BVH's depth + 1, which never fills: render/features.rs; children
 /// skipped when full, as on the CPU), ending at the first triangle hit. Until a hit, the
 /// CPU's traversal visits and culls the same nodes with the same `t_max`, so the two agree.
 fn rd_occ_mesh(r: RdRay, root: u32, t_min: f32, t_max: f32) -> bool {
@@ -626,11 +649,11 @@ fn rd_occluded(r: RdRay, t_min: f32, t_max: f32) -> bool {
     for (var i = 0u; i < arrayLength(&sh_objects); i++) {
         let o = sh_objects[i];
         var hit = false;
-        if o.kind.x == 0u {
+        if RD_OCC_SPHERES && o.kind.x == 0u {
             hit = rd_occ_sphere(r, o.a.xyz, o.a.w, t_min, t_max);
-        } else if o.kind.x == 1u {
+        } else if RD_OCC_PLANES && o.kind.x == 1u {
             hit = rd_occ_plane(r, o.a.xyz, o.b.xyz, t_min, t_max);
-        } else if o.kind.x == 2u {
+        } else if RD_OCC_MESHES && o.kind.x == 2u {
             hit = rd_occ_mesh(r, o.kind.y, t_min, t_max);
         }
         if hit {
@@ -718,7 +741,7 @@ fn rd_tangent_frame(n: vec3<f32>, tangent: vec4<f32>, back: bool, v: vec3<f32>, 
     let w = select(1.0, -1.0, tangent.w < 0.0);
     let b = rd_cross(n, t) * w;
     var shading = n;
-    if object.normal_map.w != 0u {
+    if RD_USE_NORMAL_MAP && object.normal_map.w != 0u {
         let x = rd_part(uv, object.normal_map) * 2.0 - vec3<f32>(1.0);
         let sc = object.maps.x;
         let p = rd_normalize_or(t * (x.x * sc) + b * (x.y * sc) + n * x.z, vec3<f32>(0.0));
@@ -747,7 +770,7 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
     // The frame: a bumped normal's any_orthonormal_pair, else the mesh's tangent frame (and
     // its normal texture).
     var f: RdPair;
-    if object.flags.z != 0u {
+    if RD_USE_BUMP && object.flags.z != 0u {
         let pn = rd_perturb(p, n);
         if rd_dot(pn, v) > 0.0 {
             n = pn;
@@ -759,20 +782,20 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
         f = RdPair(tf.t, tf.b);
     }
     var albedo = object.albedo.xyz;
-    if object.flags.y != 0u {
+    if RD_USE_TEXTURE && object.flags.y != 0u {
         albedo = albedo * rd_texture(hit.uv, object.tex.xy, object.tex_size.xy, 0u);
     }
     var tint = vec3<f32>(1.0);
-    if object.tint.w != 0u {
+    if RD_USE_TINT && object.tint.w != 0u {
         tint = rd_part(hit.uv, object.tint);
     }
     // maps::texels: occlusion and emission.
     var ao = 1.0;
-    if object.occlusion.w != 0u {
+    if RD_USE_OCCLUSION && object.occlusion.w != 0u {
         ao = 1.0 + object.maps.y * (clamp(rd_part(hit.uv, object.occlusion).x, 0.0, 1.0) - 1.0);
     }
     var emit = object.emission.xyz;
-    if object.emissive.w != 0u {
+    if RD_USE_EMISSIVE && object.emissive.w != 0u {
         emit = emit * rd_part(hit.uv, object.emissive);
     }
     // MetallicRoughness::at: metallic (B) and the roughness level (G), and their blocks.
@@ -780,7 +803,7 @@ fn rd_surface(r: RdRay, hit: RdHit) -> RdSurface {
     var h0 = 0u;
     var h1 = 0u;
     var metal = 0.0;
-    if object.mr.w != 0u {
+    if RD_USE_MR && object.mr.w != 0u {
         let t = rd_part(hit.uv, object.mr_tex);
         metal = clamp(object.mr_factors.x * t.z, 0.0, 1.0);
         let r = clamp(object.mr_factors.y * t.y, 0.0, 1.0);
@@ -809,7 +832,7 @@ fn rd_specular(s: RdSurface, li: vec3<f32>, wi: vec3<f32>, wo: vec3<f32>) -> vec
     for (var c = 0u; c < s.corners; c++) {
         let f = rd_brdf(wi, wo, select(s.h0, s.h1, c == 1u));
         let f1 = li * (ks * f.f * wi.z);
-        if object.tint.w == 0u {
+        if !RD_USE_TINT || object.tint.w == 0u {
             v[c] = f1;
         } else {
             let f0 = li * (ks * f.zero * wi.z);
@@ -843,7 +866,7 @@ fn rd_shade(r: RdRay, hit: RdHit) -> vec3<f32> {
         }
         // The CPU's shadow rule (render.rs, `direct`): no shadow ray where only the bumped
         // normal faces the light.
-        if frame.shadow.x != 0.0 && rd_dot(g, l) > 0.0 {
+        if RD_USE_SHADOWS && frame.shadow.x != 0.0 && rd_dot(g, l) > 0.0 {
             let directional = lights[i].kind_pos.w == 0.0;
             var dist = 0.0;
             if !directional {
