@@ -50,14 +50,49 @@ pub const RUNTIME: &str = include_str!("runtime.wgsl");
 
 /// The WGSL library, in dependency order, as (name for messages, source): `common.wgsl`, then
 /// each kind's header (`<kind>/mod.wgsl`, comments only) and its families' files in the order of
-/// their family lists (lobes, distributions, shadowing, Fresnel, BRDFs), then `runtime.wgsl`.
+/// their family lists (lobes, distributions, shadowing, Fresnel, BRDFs, environment BRDFs), the
+/// sources generated from tables ([`GeneratedSource`]), then `runtime.wgsl`.
 /// A file shared by several families comes once. Adding a family adds its file here through its
 /// line in the family list; nothing else lists the files.
 pub fn library_sources() -> Vec<(&'static str, &'static str)> {
-    let mut out = Vec::new();
+    library_parts()
+        .into_iter()
+        .map(|p| match p {
+            LibraryPart::Text(name, src) => (name, src),
+            LibraryPart::Generated(g) => (g.file, (g.source)()),
+        })
+        .collect()
+}
+
+/// A part of the WGSL library in [`library_sources`]' order: a file's text, or a source
+/// generated from tables.
+#[derive(Clone, Copy)]
+pub enum LibraryPart {
+    Text(&'static str, &'static str),
+    Generated(GeneratedSource),
+}
+
+/// A library source generated from tables (Kulla-Conty's, sheen's, the split-sum tables):
+/// computing one takes up to tenths of a second (the split-sum tables' quadrature, 0.5 s of
+/// CPU for all four sizes), so the GPU library (`fastbrdf_gpu::library`) generates it only
+/// when a shader calls one of its items, which it knows by name beforehand (`items`, held to
+/// the generated text by that crate's tests).
+#[derive(Clone, Copy)]
+pub struct GeneratedSource {
+    /// The name for messages.
+    pub file: &'static str,
+    /// The items it defines, in its order.
+    pub items: &'static [&'static str],
+    /// Generates it (once; later calls return the same text).
+    pub source: fn() -> &'static str,
+}
+
+/// The library's parts: [`library_sources`] without generating the generated ones.
+pub fn library_parts() -> Vec<LibraryPart> {
+    let mut texts = Vec::new();
     let mut add = |list: Vec<(&'static str, &'static str)>| {
         for (name, src) in list {
-            push_source(&mut out, name, src);
+            push_source(&mut texts, name, src);
         }
     };
     add(vec![
@@ -75,15 +110,27 @@ pub fn library_sources() -> Vec<(&'static str, &'static str)> {
     add(vec![("brdf/mod.wgsl", include_str!("brdf/mod.wgsl"))]);
     add(BrdfPlan::wgsl_sources());
     add(EnvPlan::wgsl_sources());
-    // Generated from its table (`microfacet::ms::wgsl_source`), so not a family's `WGSL`.
-    add(vec![("microfacet/ms.wgsl", ms::wgsl_source())]);
-    // Generated from its tables (`microfacet::sheen::wgsl_source`), like ms.
-    add(vec![("microfacet/sheen.wgsl", sheen::wgsl_source())]);
-    add(vec![(
-        "microfacet/env_table_data.wgsl",
-        env_table::wgsl_source(),
-    )]);
-    add(vec![("runtime.wgsl", RUNTIME)]);
+    let mut out: Vec<LibraryPart> = texts
+        .into_iter()
+        .map(|(n, s)| LibraryPart::Text(n, s))
+        .collect();
+    // Generated from their tables, so not a family's `WGSL`.
+    out.push(LibraryPart::Generated(GeneratedSource {
+        file: "microfacet/ms.wgsl",
+        items: ms::WGSL_ITEMS,
+        source: ms::wgsl_source,
+    }));
+    out.push(LibraryPart::Generated(GeneratedSource {
+        file: "microfacet/sheen.wgsl",
+        items: sheen::WGSL_ITEMS,
+        source: sheen::wgsl_source,
+    }));
+    out.extend(
+        env_table::WGSL_TABLES
+            .iter()
+            .map(|t| LibraryPart::Generated(*t)),
+    );
+    out.push(LibraryPart::Text("runtime.wgsl", RUNTIME));
     out
 }
 

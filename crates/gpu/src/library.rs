@@ -8,7 +8,13 @@
 //! (ending at its `;`, or at a line that is exactly `}`). Items depend on the items whose names
 //! appear as whole words in their code (comments excluded). Written by hand, not with naga,
 //! because naga's IR drops the comments that must travel with exported code.
+//!
+//! The sources generated from tables (`fastbrdf::plan::GeneratedSource`: Kulla-Conty's,
+//! sheen's and the split-sum tables, the last 0.5 s of quadrature) are generated only when a
+//! shader needs one of their items, known by name beforehand: a GPU render's set-up no longer
+//! computes tables its model never reads.
 
+use fastbrdf::plan::{LibraryPart, library_parts};
 use std::collections::BTreeSet;
 use std::sync::OnceLock;
 
@@ -22,15 +28,72 @@ pub struct Item {
     code: String,
 }
 
-/// Every item of the library, in the order of `fastbrdf::plan::library_sources`.
+/// One part of the library (a file, or a generated source) and its items, parsed on first use.
+struct Part {
+    part: LibraryPart,
+    /// The names of its items, in order (a generated source's known without generating it).
+    names: Vec<String>,
+    items: OnceLock<Vec<Item>>,
+}
+
+impl Part {
+    fn items(&self) -> &[Item] {
+        self.items.get_or_init(|| match self.part {
+            LibraryPart::Text(_, src) => parse(src),
+            LibraryPart::Generated(g) => {
+                let items = parse((g.source)());
+                let names: Vec<&str> = items.iter().map(|i| i.name.as_str()).collect();
+                assert_eq!(
+                    names, g.items,
+                    "{} defines other items than it says",
+                    g.file
+                );
+                items
+            }
+        })
+    }
+}
+
+/// The library's parts in order; the files parsed at once (cheap), the generated ones not.
+fn parts() -> &'static [Part] {
+    static PARTS: OnceLock<Vec<Part>> = OnceLock::new();
+    PARTS.get_or_init(new_parts)
+}
+
+fn new_parts() -> Vec<Part> {
+    library_parts()
+        .into_iter()
+        .map(|part| {
+            let p = Part {
+                part,
+                names: Vec::new(),
+                items: OnceLock::new(),
+            };
+            let names = match part {
+                LibraryPart::Text(..) => p.items().iter().map(|i| i.name.clone()).collect(),
+                LibraryPart::Generated(g) => g.items.iter().map(|n| n.to_string()).collect(),
+            };
+            Part { names, ..p }
+        })
+        .collect()
+}
+
+/// Whether the library has an item of this name (nothing is generated to say so).
+pub fn defines(name: &str) -> bool {
+    parts().iter().any(|p| p.names.iter().any(|n| n == name))
+}
+
+/// The item of this name in `parts`, generating its source if it is a generated one.
+fn item<'a>(parts: &'a [Part], name: &str) -> Option<&'a Item> {
+    let p = parts.iter().find(|p| p.names.iter().any(|n| n == name))?;
+    p.items().iter().find(|i| i.name == name)
+}
+
+/// Every item of the library, in the order of `fastbrdf::plan::library_sources` (generating
+/// every generated source: for the whole library, not for one shader).
 pub fn items() -> &'static [Item] {
     static ITEMS: OnceLock<Vec<Item>> = OnceLock::new();
-    ITEMS.get_or_init(|| {
-        fastbrdf::plan::library_sources()
-            .iter()
-            .flat_map(|(_, src)| parse(src))
-            .collect()
-    })
+    ITEMS.get_or_init(|| parts().iter().flat_map(|p| p.items().to_vec()).collect())
 }
 
 /// The whole library as one WGSL source.
@@ -101,38 +164,52 @@ fn mentions(text: &str, word: &str) -> bool {
     })
 }
 
-/// The names of the library items `code` needs, directly or through other items.
+/// The names of the library items `code` needs, directly or through other items (generating
+/// only the generated sources among them).
 pub fn closure(code: &str) -> BTreeSet<String> {
-    let all = items();
-    let mut need: BTreeSet<String> = BTreeSet::new();
-    let mut todo: Vec<String> = all
+    closure_in(parts(), code)
+}
+
+fn closure_in(parts: &[Part], code: &str) -> BTreeSet<String> {
+    let names: Vec<&str> = parts
         .iter()
-        .filter(|i| mentions(code, &i.name))
-        .map(|i| i.name.clone())
+        .flat_map(|p| p.names.iter().map(String::as_str))
+        .collect();
+    let mut need: BTreeSet<String> = BTreeSet::new();
+    let mut todo: Vec<&str> = names
+        .iter()
+        .copied()
+        .filter(|n| mentions(code, n))
         .collect();
     while let Some(n) = todo.pop() {
-        if !need.insert(n.clone()) {
+        if !need.insert(n.to_string()) {
             continue;
         }
-        let item = all.iter().find(|i| i.name == n).expect("known item");
-        for other in all {
-            if other.name != n && !need.contains(&other.name) && mentions(&item.code, &other.name) {
-                todo.push(other.name.clone());
+        let item = item(parts, n).expect("known item");
+        for &other in &names {
+            if other != n && !need.contains(other) && mentions(&item.code, other) {
+                todo.push(other);
             }
         }
     }
     need
 }
 
-/// The library items `code` needs, in library order, as one source.
-pub fn closure_source(code: &str) -> String {
-    let need = closure(code);
-    items()
+/// The texts of the items named in `need`, in library order (generating only the generated
+/// sources among them).
+pub fn texts_of(need: &BTreeSet<String>) -> Vec<&'static str> {
+    parts()
         .iter()
+        .filter(|p| p.names.iter().any(|n| need.contains(n)))
+        .flat_map(|p| p.items())
         .filter(|i| need.contains(&i.name))
         .map(|i| i.text.as_str())
-        .collect::<Vec<_>>()
-        .join("\n")
+        .collect()
+}
+
+/// The library items `code` needs, in library order, as one source.
+pub fn closure_source(code: &str) -> String {
+    texts_of(&closure(code)).join("\n")
 }
 
 #[cfg(test)]
@@ -154,6 +231,74 @@ mod tests {
         let pair = items().iter().find(|i| i.name == "fb_pair").unwrap();
         assert!(pair.text.starts_with("/// Normalises"));
         assert!(pair.text.trim_end().ends_with('}'));
+    }
+
+    #[test]
+    fn generated_sources_define_what_they_say() {
+        let mut generated = 0;
+        for part in library_parts() {
+            if let LibraryPart::Generated(g) = part {
+                let names: Vec<String> = parse((g.source)()).into_iter().map(|i| i.name).collect();
+                assert_eq!(names, g.items, "{}", g.file);
+                generated += 1;
+            }
+        }
+        // Kulla-Conty's, sheen's and the four split-sum tables.
+        assert_eq!(generated, 6);
+    }
+
+    /// A shader's closure generates the generated sources it needs and no other: GGX alone
+    /// none; Kulla-Conty's energy compensation its table; the 32 x 32 split-sum table that one
+    /// table. The same items, in the same order, as from the whole library.
+    #[test]
+    fn only_the_needed_tables_are_generated() {
+        let generated = |parts: &[Part]| -> Vec<&'static str> {
+            parts
+                .iter()
+                .filter_map(|p| match p.part {
+                    LibraryPart::Generated(g) if p.items.get().is_some() => Some(g.file),
+                    _ => None,
+                })
+                .collect()
+        };
+        for (id, given, want) in [
+            ("cook-torrance", vec![("d", "ggx")], vec![]),
+            (
+                "cook-torrance",
+                vec![
+                    ("d", "ggx"),
+                    ("g", "smith-ggx-correlated"),
+                    ("ms", "kulla-conty"),
+                ],
+                vec!["microfacet/ms.wgsl"],
+            ),
+            (
+                "env-brdf-table",
+                vec![("size", "32")],
+                vec!["microfacet/env_table_data.wgsl (32)"],
+            ),
+        ] {
+            let spec = fastbrdf::ModelSpec::parse(id, &given).unwrap();
+            let wrapper = crate::spec::Instance::new(&spec).unwrap().wrapper;
+            let parts = new_parts();
+            let need = closure_in(&parts, &wrapper);
+            assert_eq!(generated(&parts), want, "{id} {given:?}");
+            // The whole library's closure: the same items.
+            let all: BTreeSet<String> = items()
+                .iter()
+                .filter(|i| need.contains(&i.name))
+                .map(|i| i.name.clone())
+                .collect();
+            assert_eq!(all, need);
+            assert_eq!(
+                texts_of(&need),
+                items()
+                    .iter()
+                    .filter(|i| need.contains(&i.name))
+                    .map(|i| i.text.as_str())
+                    .collect::<Vec<_>>()
+            );
+        }
     }
 
     #[test]

@@ -132,7 +132,7 @@ impl Instance {
             .wrapper
             .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
             .filter(|w| w.starts_with("fb_rt_"))
-            .filter(|w| !library::items().iter().any(|i| i.name == *w))
+            .filter(|w| !library::defines(w))
             .collect();
         if let Some(w) = missing.first() {
             return Err(fastbrdf::Error::MissingParam {

@@ -212,25 +212,64 @@ impl EnvForm for Table {
 pub fn wgsl_source() -> &'static str {
     static SRC: OnceLock<String> = OnceLock::new();
     SRC.get_or_init(|| {
-        let mut s = String::from(
-            "// WGSL twin of microfacet/env_table.rs: the split-sum tables (env-brdf at texel centres,\n\
-             // x = cos_v, y = perceptual roughness; f32, both terms interleaved), generated from it.\n",
-        );
-        for (k, n) in SIZES.iter().enumerate() {
-            let list: Vec<String> = texels(k)
-                .iter()
-                .flat_map(|t| t.iter().map(|x| format!("{x:?}f")))
-                .collect();
-            s.push_str(&format!(
-                "\n/// env-brdf's terms on the {n} x {n} table: (scale, bias) of texel (i, j) at 2 (j {n} + i).\n\
-                 const FB_ENV_TABLE_{n} = array<f32, {}>({});\n",
-                2 * n * n,
-                list.join(", ")
-            ));
+        let mut s = String::from(HEADER);
+        for k in 0..SIZES.len() {
+            s.push_str(&table_source(k)[HEADER.len()..]);
         }
         s
     })
 }
+
+const HEADER: &str = "// WGSL twin of microfacet/env_table.rs: the split-sum tables (env-brdf at texel centres,\n\
+     // x = cos_v, y = perceptual roughness; f32, both terms interleaved), generated from it.\n";
+
+/// The table of side `SIZES[k]` alone, after [`HEADER`] (generated once): its quadrature is
+/// the costly part, so a shader that reads one size computes only that one.
+fn table_source(k: usize) -> &'static str {
+    static SRC: [OnceLock<String>; 4] = [
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+    ];
+    SRC[k].get_or_init(|| {
+        let n = SIZES[k];
+        let list: Vec<String> = texels(k)
+            .iter()
+            .flat_map(|t| t.iter().map(|x| format!("{x:?}f")))
+            .collect();
+        format!(
+            "{HEADER}\n/// env-brdf's terms on the {n} x {n} table: (scale, bias) of texel (i, j) at 2 (j {n} + i).\n\
+             const FB_ENV_TABLE_{n} = array<f32, {}>({});\n",
+            2 * n * n,
+            list.join(", ")
+        )
+    })
+}
+
+/// The four tables as the library's generated sources, one per size.
+pub const WGSL_TABLES: [crate::plan::GeneratedSource; 4] = [
+    crate::plan::GeneratedSource {
+        file: "microfacet/env_table_data.wgsl (16)",
+        items: &["FB_ENV_TABLE_16"],
+        source: || table_source(0),
+    },
+    crate::plan::GeneratedSource {
+        file: "microfacet/env_table_data.wgsl (32)",
+        items: &["FB_ENV_TABLE_32"],
+        source: || table_source(1),
+    },
+    crate::plan::GeneratedSource {
+        file: "microfacet/env_table_data.wgsl (64)",
+        items: &["FB_ENV_TABLE_64"],
+        source: || table_source(2),
+    },
+    crate::plan::GeneratedSource {
+        file: "microfacet/env_table_data.wgsl (128)",
+        items: &["FB_ENV_TABLE_128"],
+        source: || table_source(3),
+    },
+];
 
 #[cfg(test)]
 mod tests {

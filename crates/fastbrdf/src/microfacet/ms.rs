@@ -294,6 +294,19 @@ pub fn apply<T: Real, M: Math<T>>(ms: &Ms, ss: T, cos_i: T, cos_o: T, f1: T, f0g
     }
 }
 
+/// The items [`wgsl_source`] defines, in its order (known without generating it:
+/// `plan::GeneratedSource`).
+pub const WGSL_ITEMS: &[&str] = &[
+    "FB_MS_LOSS",
+    "FB_MS_AVG",
+    "fb_ms_split",
+    "fb_ms_r",
+    "fb_ms_loss",
+    "fb_ms_avg",
+    "fb_ms_kulla_conty",
+    "fb_ms_filament",
+];
+
 /// The WGSL twin: the table as constant arrays and its look-ups (`fb_ms_loss`, `fb_ms_avg`,
 /// `fb_ms_kulla_conty`, `fb_ms_filament`), generated once from [`table`].
 pub fn wgsl_source() -> &'static str {

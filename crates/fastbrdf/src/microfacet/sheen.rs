@@ -255,6 +255,21 @@ pub fn table_albedo<T: Real>(tab: &[f32], i: usize, t: T, mu: T) -> T {
     r0 + (r1 - r0) * t
 }
 
+/// The items [`wgsl_source`] defines, in its order (known without generating it:
+/// `plan::GeneratedSource`).
+pub const WGSL_ITEMS: &[&str] = &[
+    "FB_SHEEN_E_CHARLIE",
+    "FB_SHEEN_E_NEUBELT",
+    "fb_sheen_d",
+    "fb_sheen_l",
+    "fb_sheen_lambda",
+    "fb_sheen_v_charlie",
+    "fb_sheen_v_neubelt",
+    "fb_sheen_fit",
+    "fb_sheen_table",
+    "fb_sheen_row",
+];
+
 /// The WGSL twin: both tables as constant arrays and the lobe's functions, generated once.
 pub fn wgsl_source() -> &'static str {
     static SRC: OnceLock<String> = OnceLock::new();

@@ -263,11 +263,7 @@ pub fn dfg_glue(dfg: &ModelSpec, module: &str) -> Result<String, GpuError> {
     }
     let present = crate::library::closure(module);
     let need = crate::library::closure(&wrappers);
-    let items: Vec<&str> = crate::library::items()
-        .iter()
-        .filter(|i| need.contains(&i.name) && !present.contains(&i.name))
-        .map(|i| i.text.as_str())
-        .collect();
+    let items = crate::library::texts_of(&need.difference(&present).cloned().collect());
     Ok(format!(
         "{}\n{wrappers}\nfn rd_dfg(cos_v: f32, alpha: f32) -> vec2<f32> {{\n    return vec2<f32>(rd_dfg_scale(cos_v, alpha), rd_dfg_bias(cos_v, alpha));\n}}\n",
         items.join("\n")
