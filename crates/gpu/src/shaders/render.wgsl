@@ -608,39 +608,59 @@ fn rd_occ_triangle(r: RdRay, tri: u32, t_min: f32, t_max: f32) -> bool {
     return t > t_min && t < t_max;
 }
 
-/// TriMesh::hit as an any-hit test: the same slab test and stack (64 entries, or the scene's
-/// deepest BVH's depth + 1, which never fills: render/features.rs; children
-/// skipped when full, as on the CPU), ending at the first triangle hit. Until a hit, the
-/// CPU's traversal visits and culls the same nodes with the same `t_max`, so the two agree.
+/// The slab test of `node` (TriMesh's `slab`, glam's NaN rules written out): whether the ray
+/// may hit inside it between t_min and t_max.
+fn rd_occ_slab(node: BvhNode, r: RdRay, inv: vec3<f32>, t_min: f32, t_max: f32) -> bool {
+    let t0 = (node.lo - r.o) * inv;
+    let t1 = (node.hi - r.o) * inv;
+    let near = vec3<f32>(rd_gmin(t0.x, t1.x), rd_gmin(t0.y, t1.y), rd_gmin(t0.z, t1.z));
+    let far = vec3<f32>(rd_gmax(t0.x, t1.x), rd_gmax(t0.y, t1.y), rd_gmax(t0.z, t1.z));
+    let tn = rd_fmax(rd_gmax(near.x, rd_gmax(near.y, near.z)), t_min);
+    let tf = rd_fmin(rd_gmin(far.x, rd_gmin(far.y, far.z)), t_max);
+    return !(tn > tf);
+}
+
+/// TriMesh::occluded_binary: the same slab test and walk (both children tested at their
+/// parent, the left taken first, the right kept on the stack when both pass: 64 entries as
+/// on the CPU, or the scene's deepest BVH's depth + 1, which this walk never fills,
+/// render/features.rs), ending at the first triangle hit. Whatever the order, a hit is found
+/// exactly where some leaf whose slab tests pass holds one: the CPU's answer.
 fn rd_occ_mesh(r: RdRay, root: u32, t_min: f32, t_max: f32) -> bool {
     let inv = vec3<f32>(1.0 / r.d.x, 1.0 / r.d.y, 1.0 / r.d.z);
+    if !rd_occ_slab(sh_nodes[root], r, inv, t_min, t_max) {
+        return false;
+    }
     var stack: array<u32, 64>;
-    stack[0] = root;
-    var sp = 1u;
-    while sp > 0u {
-        sp -= 1u;
-        let node = sh_nodes[stack[sp]];
-        let t0 = (node.lo - r.o) * inv;
-        let t1 = (node.hi - r.o) * inv;
-        let near = vec3<f32>(rd_gmin(t0.x, t1.x), rd_gmin(t0.y, t1.y), rd_gmin(t0.z, t1.z));
-        let far = vec3<f32>(rd_gmax(t0.x, t1.x), rd_gmax(t0.y, t1.y), rd_gmax(t0.z, t1.z));
-        let tn = rd_fmax(rd_gmax(near.x, rd_gmax(near.y, near.z)), t_min);
-        let tf = rd_fmin(rd_gmin(far.x, rd_gmin(far.y, far.z)), t_max);
-        if tn > tf {
-            continue;
-        }
+    var sp = 0u;
+    var at = root;
+    loop {
+        let node = sh_nodes[at];
         if node.count > 0u {
             for (var k = 0u; k < node.count; k++) {
                 if rd_occ_triangle(r, node.start + k, t_min, t_max) {
                     return true;
                 }
             }
-        } else if sp + 2u <= 64u {
-            stack[sp] = node.start;
-            stack[sp + 1u] = node.start + 1u;
-            sp += 2u;
+        } else {
+            let l = node.start;
+            let hl = rd_occ_slab(sh_nodes[l], r, inv, t_min, t_max);
+            let hr = rd_occ_slab(sh_nodes[l + 1u], r, inv, t_min, t_max);
+            if hl || hr {
+                if hl && hr && sp < 64u {
+                    stack[sp] = l + 1u;
+                    sp += 1u;
+                }
+                at = select(l + 1u, l, hl);
+                continue;
+            }
         }
+        if sp == 0u {
+            return false;
+        }
+        sp -= 1u;
+        at = stack[sp];
     }
+    // Not reached (the loop returns); WGSL's validation asks for a return here.
     return false;
 }
 
