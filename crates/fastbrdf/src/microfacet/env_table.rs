@@ -37,7 +37,7 @@ use crate::math::Math;
 use crate::microfacet::env_brdf::{Dfg, TERM};
 use crate::model::{ErrorBound, Kind, Metric, ModelInfo, Ops, Zone};
 use crate::params::{Options, ParamKind, ParamSpec};
-use crate::plan::Plan;
+use crate::plan::{GeneratedSource, Plan};
 use crate::real::Real;
 use crate::wgsl::Emit;
 use std::sync::OnceLock;
@@ -108,12 +108,7 @@ pub struct Table {
 /// The exact terms of a table of side `SIZES[k]`, as f32: `[scale, bias]` of texel `(i, j)` at
 /// `j * N + i` (row `j` the roughness, as `fastbrdf lut` writes it).
 pub fn texels(k: usize) -> &'static [[f32; 2]] {
-    static T: [OnceLock<Vec<[f32; 2]>>; 4] = [
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-    ];
+    static T: [OnceLock<Vec<[f32; 2]>>; 4] = [const { OnceLock::new() }; 4];
     T[k].get_or_init(|| {
         let n = SIZES[k];
         let (amin, _) = crate::params::ALPHA.range();
@@ -226,12 +221,7 @@ const HEADER: &str = "// WGSL twin of microfacet/env_table.rs: the split-sum tab
 /// The table of side `SIZES[k]` alone, after [`HEADER`] (generated once): its quadrature is
 /// the costly part, so a shader that reads one size computes only that one.
 fn table_source(k: usize) -> &'static str {
-    static SRC: [OnceLock<String>; 4] = [
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-    ];
+    static SRC: [OnceLock<String>; 4] = [const { OnceLock::new() }; 4];
     SRC[k].get_or_init(|| {
         let n = SIZES[k];
         let list: Vec<String> = texels(k)
@@ -248,28 +238,40 @@ fn table_source(k: usize) -> &'static str {
 }
 
 /// The four tables as the library's generated sources, one per size.
-pub const WGSL_TABLES: [crate::plan::GeneratedSource; 4] = [
-    crate::plan::GeneratedSource {
-        file: "microfacet/env_table_data.wgsl (16)",
-        items: &["FB_ENV_TABLE_16"],
-        source: || table_source(0),
-    },
-    crate::plan::GeneratedSource {
-        file: "microfacet/env_table_data.wgsl (32)",
-        items: &["FB_ENV_TABLE_32"],
-        source: || table_source(1),
-    },
-    crate::plan::GeneratedSource {
-        file: "microfacet/env_table_data.wgsl (64)",
-        items: &["FB_ENV_TABLE_64"],
-        source: || table_source(2),
-    },
-    crate::plan::GeneratedSource {
-        file: "microfacet/env_table_data.wgsl (128)",
-        items: &["FB_ENV_TABLE_128"],
-        source: || table_source(3),
-    },
+pub const WGSL_TABLES: [GeneratedSource; 4] = [
+    table(
+        "microfacet/env_table_data.wgsl (16)",
+        &["FB_ENV_TABLE_16"],
+        || table_source(0),
+    ),
+    table(
+        "microfacet/env_table_data.wgsl (32)",
+        &["FB_ENV_TABLE_32"],
+        || table_source(1),
+    ),
+    table(
+        "microfacet/env_table_data.wgsl (64)",
+        &["FB_ENV_TABLE_64"],
+        || table_source(2),
+    ),
+    table(
+        "microfacet/env_table_data.wgsl (128)",
+        &["FB_ENV_TABLE_128"],
+        || table_source(3),
+    ),
 ];
+
+const fn table(
+    file: &'static str,
+    items: &'static [&'static str],
+    source: fn() -> &'static str,
+) -> GeneratedSource {
+    GeneratedSource {
+        file,
+        items,
+        source,
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -180,16 +180,7 @@ mod tests {
 
     /// `shader` with a stub `rd_brdf`, parsed and validated (naga).
     fn module(shader: &str) -> naga::Module {
-        let src = format!("{shader}\n{STUB}");
-        let module = naga::front::wgsl::parse_str(&src)
-            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&src)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::empty(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{e:?}"));
-        module
+        super::super::naga_module(&format!("{shader}\n{STUB}"))
     }
 
     /// The word of `member` (component `c`, 4 bytes each) in the shader's struct `name`.

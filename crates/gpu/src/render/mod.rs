@@ -558,6 +558,21 @@ fn render_scene(
     Ok(film)
 }
 
+/// `src` parsed and validated by naga, as a browser's or wgpu's WGSL compiler would take it
+/// (the render modules' tests); panics with naga's message.
+#[cfg(test)]
+fn naga_module(src: &str) -> naga::Module {
+    let module =
+        naga::front::wgsl::parse_str(src).unwrap_or_else(|e| panic!("{}", e.emit_to_string(src)));
+    naga::valid::Validator::new(
+        naga::valid::ValidationFlags::all(),
+        naga::valid::Capabilities::empty(),
+    )
+    .validate(&module)
+    .unwrap_or_else(|e| panic!("{e:?}"));
+    module
+}
+
 /// One tile of the sample grid: first sample column and row, size in samples.
 struct Tile {
     x0: u32,

@@ -241,15 +241,7 @@ mod tests {
 
     /// The render module with `m` validates (naga).
     fn validates(m: &ModelShader) {
-        let src = format!("{}\n{}", super::super::SHADER, m.source);
-        let module = naga::front::wgsl::parse_str(&src)
-            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&src)));
-        naga::valid::Validator::new(
-            naga::valid::ValidationFlags::all(),
-            naga::valid::Capabilities::empty(),
-        )
-        .validate(&module)
-        .unwrap_or_else(|e| panic!("{e:?}"));
+        super::super::naga_module(&format!("{}\n{}", super::super::SHADER, m.source));
     }
 
     /// A grey model: one slot, a plain call; coefficients after the header.

@@ -243,14 +243,7 @@ mod tests {
         let spec = ModelSpec::parse("cook-torrance", &[("alpha", "0.3")]).unwrap();
         for (meshes, env) in [(true, Env::None), (false, Env::Lit(None))] {
             let m = model_module(&spec, meshes, env).unwrap();
-            let module = naga::front::wgsl::parse_str(&m.wgsl)
-                .unwrap_or_else(|e| panic!("{}", e.emit_to_string(&m.wgsl)));
-            naga::valid::Validator::new(
-                naga::valid::ValidationFlags::all(),
-                naga::valid::Capabilities::empty(),
-            )
-            .validate(&module)
-            .unwrap_or_else(|e| panic!("{e:?}"));
+            super::super::naga_module(&m.wgsl);
         }
     }
 }
