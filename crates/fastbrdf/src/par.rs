@@ -115,24 +115,48 @@ pub fn for_each_part<P: Send, S, E: Send>(
 pub const LINGER_MAX: Duration = Duration::from_millis(5);
 
 /// The longest linger now: [`set_linger_max`]'s, else `FASTBRDF_LINGER_US` microseconds when
-/// that is set to a whole number (read at the first call), else [`LINGER_MAX`].
+/// that is set (read at the first call), else [`LINGER_MAX`]. A value that is not a whole
+/// number of microseconds leaves the default, with one line on stderr naming it.
 pub fn linger_max() -> Duration {
     let ns = LINGER_MAX_NS.load(Ordering::Relaxed);
     if ns != UNSET {
         return Duration::from_nanos(ns);
     }
-    let d = std::env::var("FASTBRDF_LINGER_US")
-        .ok()
-        .and_then(|v| v.trim().parse::<u64>().ok())
-        .map_or(LINGER_MAX, Duration::from_micros);
-    // A setter that ran meanwhile wins.
-    let _ = LINGER_MAX_NS.compare_exchange(
+    let var = std::env::var_os("FASTBRDF_LINGER_US");
+    let (d, bad) = match linger_from_env(var.as_deref()) {
+        Ok(d) => (d, None),
+        Err(msg) => (LINGER_MAX, Some(msg)),
+    };
+    // A setter that ran meanwhile wins; the thread that sets the value says what was wrong.
+    let set = LINGER_MAX_NS.compare_exchange(
         UNSET,
         nanos(d).min(UNSET - 1),
         Ordering::Relaxed,
         Ordering::Relaxed,
     );
+    if let (Ok(_), Some(msg)) = (set, bad) {
+        eprintln!("fastbrdf: {msg}");
+    }
     Duration::from_nanos(LINGER_MAX_NS.load(Ordering::Relaxed))
+}
+
+/// `FASTBRDF_LINGER_US`'s value as the longest linger: unset, [`LINGER_MAX`]; a whole number
+/// of microseconds (spaces around it allowed), that; anything else, what is wrong with it.
+fn linger_from_env(value: Option<&std::ffi::OsStr>) -> Result<Duration, String> {
+    let Some(v) = value else {
+        return Ok(LINGER_MAX);
+    };
+    v.to_str()
+        .and_then(|s| s.trim().parse::<u64>().ok())
+        .map(Duration::from_micros)
+        .ok_or_else(|| {
+            format!(
+                "FASTBRDF_LINGER_US={:?} is not a whole number of microseconds (0 turns the \
+                 linger off); the default {} us applies",
+                v,
+                LINGER_MAX.as_micros()
+            )
+        })
 }
 
 /// Sets the longest linger for the rest of the process, whatever `FASTBRDF_LINGER_US` says;
@@ -253,6 +277,24 @@ mod tests {
 
     /// The tests here run one at a time: the linger's settings and counts are the process's.
     static SERIAL: Mutex<()> = Mutex::new(());
+
+    /// FASTBRDF_LINGER_US: unset, the default; a whole number, that many microseconds; else
+    /// an error that names the variable and its value.
+    #[test]
+    fn linger_env_values() {
+        use super::{LINGER_MAX, linger_from_env};
+        use std::ffi::OsStr;
+        use std::time::Duration;
+        assert_eq!(linger_from_env(None), Ok(LINGER_MAX));
+        let us = |s: &str| linger_from_env(Some(OsStr::new(s)));
+        assert_eq!(us(" 250 "), Ok(Duration::from_micros(250)));
+        assert_eq!(us("0"), Ok(Duration::ZERO));
+        for bad in ["", "5ms", "-1", "1.5", "x"] {
+            let e = us(bad).unwrap_err();
+            assert!(e.contains(&format!("FASTBRDF_LINGER_US={bad:?}")), "{e}");
+            assert!(e.contains("5000 us"), "{e}");
+        }
+    }
 
     fn serial() -> std::sync::MutexGuard<'static, ()> {
         SERIAL
