@@ -86,7 +86,7 @@
 //! - The scene's features (`features.rs`): the shader's optional parts (micro-relief,
 //!   textures, glTF maps, tangents, shadow rays and each occluder kind) sit behind WGSL
 //!   constants, set false for the parts no object of the scene uses, so their code is dead.
-//!   Adapters that run both sides of every branch (lavapipe, SwiftShader) no longer pay for
+//!   Adapters that run both sides of every branch (lavapipe) no longer pay for
 //!   them in every fragment (the default sphere 3.4x to 4.2x faster on lavapipe); the picture
 //!   is the same to the bit.
 //! - Large images are cut into tiles of at most 2048 x 2048 samples (and at most the device's

@@ -36,9 +36,10 @@ pub const MAX_SAMPLES: u32 = super::TILE_SAMPLES;
 pub const PARAMS_NAME: &str = "fb_web_params";
 
 /// The renderer's shaders for a page's scene, with or without meshes: the page refuses glTF
-/// materials' textures and tints ([`scene`]), so their parts are off (`features.rs`), and
-/// without meshes the mesh occluders' (SwiftShader zero-initialises the traversal's stack in
-/// every fragment otherwise: about half of a frame, measured).
+/// materials' textures and tints ([`scene`]), so their parts are off (`features.rs`; on
+/// SwiftShader not measurably faster), and without meshes the mesh occluders' (SwiftShader
+/// zero-initialises the traversal's stack in every fragment otherwise: about half of a frame,
+/// measured).
 fn renderer(meshes: bool) -> String {
     let mut f = Features::all();
     for part in [

@@ -145,7 +145,7 @@ const RD_DEPTH_MAX: f32 = 0.99999994;
 // ---- the scene's features ---------------------------------------------------------------
 // What the scene uses (render/features.rs sets false those no object needs): the code behind
 // a false constant is dead and compilers drop it. Adapters that run both sides of a branch as
-// masked SIMD code (lavapipe, SwiftShader) would otherwise pay for every part in every
+// masked SIMD code (lavapipe) would otherwise pay for every part in every
 // fragment. Each guards a test of the object's (or the frame's) own flag, so the constants
 // change no value.
 const RD_USE_TEXTURE: bool = true;
