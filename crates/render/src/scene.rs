@@ -422,7 +422,11 @@ impl Scene {
             .iter()
             .enumerate()
             .any(|(i, o)| match &o.shape {
-                Shape::Sphere(s) => i != from && s.hit(&ray, t_min, t_max, false).is_some(),
+                // A convex object never shadows its own points seen from outside (the ray
+                // leaves along its outward normal); a sphere seen from inside does.
+                Shape::Sphere(s) => {
+                    (i != from || self.sees_inside(s)) && s.hit(&ray, t_min, t_max, false).is_some()
+                }
                 Shape::Plane(p) => i != from && p.hit(&ray, t_min, t_max, false).is_some(),
                 Shape::Mesh(m) => {
                     m.occluded_in(along.get(i).and_then(Option::as_ref), &ray, t_min, t_max)
@@ -503,12 +507,29 @@ impl Scene {
         }
     }
 
+    /// Whether the eye may see the inside of sphere `s`: it is inside, or on the surface
+    /// within a margin (there the search stays: only a clearly outside eye skips it).
+    #[inline]
+    fn sees_inside(&self, s: &crate::geometry::Sphere) -> bool {
+        (self.camera.eye - s.center).length() <= s.radius * (1.0 + 1e-3)
+    }
+
     /// Whether anything can block light from the points of object `from` (as
-    /// [`Scene::shadowed_from`] takes it): false only for a lone sphere or plane, whose own
-    /// points it never shadows; a renderer's loop asks once per object, not per point.
+    /// [`Scene::shadowed_from`] takes it): false only for a lone plane, or a lone sphere seen
+    /// from outside, whose own points it never shadows: a shadow ray leaves along the normal
+    /// facing the eye, and at a point seen from outside a sphere that is the outward normal
+    /// (seen from inside, the inward one: the ray meets the far wall). A renderer's loop asks
+    /// once per object, not per point.
     #[inline]
     pub fn may_shadow(&self, from: usize) -> bool {
-        !matches!(&self.objects[..], [only] if from == 0 && !matches!(only.shape, Shape::Mesh(_)))
+        match &self.objects[..] {
+            [only] if from == 0 => match &only.shape {
+                Shape::Plane(_) => false,
+                Shape::Sphere(s) => self.sees_inside(s),
+                Shape::Mesh(_) => true,
+            },
+            _ => true,
+        }
     }
 
     #[inline]

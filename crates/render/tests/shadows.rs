@@ -245,3 +245,45 @@ fn a_lone_object_skips_its_search_only_when_it_is_convex() {
         assert!(s.may_shadow(usize::MAX), "{what}: a point of no object");
     }
 }
+
+/// A sphere seen from inside shadows itself: the shadow ray leaves along the normal facing the
+/// eye, the inward one, and meets the far wall. `Scene::may_shadow` keeps the search for a lone
+/// sphere then, and `shadowed_from` tests the sphere against its own points (both skipped it
+/// for any sphere, so the inside of a sphere was lit by a light outside): it answers as
+/// `shadowed` for the inward normals, alone or on a floor.
+#[test]
+fn a_lone_sphere_seen_from_inside_shadows_itself() {
+    let mut rng = fastbrdf_render::env::Rng::new(7, 11);
+    let mut unit = || unit_vector(&mut rng);
+    let mut on_floor = SceneSpec::new();
+    on_floor.floor = true;
+    for spec in [SceneSpec::new(), on_floor] {
+        let mut s = scene(&spec);
+        let fastbrdf_render::scene::Shape::Sphere(sphere) = s.objects[0].shape else {
+            panic!("the default scene is a sphere")
+        };
+        assert_eq!(s.may_shadow(0), spec.floor, "seen from outside");
+        s.camera.eye = sphere.center + Vec3::new(0.1, 0.2, 0.3) * sphere.radius;
+        assert!(s.may_shadow(0), "seen from inside: the far wall");
+        let mut shadowed = 0;
+        for _ in 0..2000 {
+            let out = unit();
+            let (p, n) = (sphere.center + out * sphere.radius, -out);
+            let mut l = unit();
+            if l.dot(n) < 0.0 {
+                l = -l;
+            }
+            if l.dot(n) <= 1e-3 {
+                continue;
+            }
+            let want = s.shadowed(p, n, l, f32::INFINITY);
+            assert_eq!(
+                s.shadowed_from(0, p, n, l, f32::INFINITY),
+                want,
+                "p {p}, l {l}"
+            );
+            shadowed += u32::from(want);
+        }
+        assert!(shadowed > 1900, "{shadowed} of about 2000 rays blocked");
+    }
+}
