@@ -162,4 +162,10 @@ fn the_gpu_traversal_stack_is_the_cpus() {
         fastbrdf_render::geometry::BVH_STACK
     );
     assert!(shader.contains(&decl), "render.wgsl lacks `{decl}`");
+    // The slab test's widening: the CPU's f32, as its bits.
+    let widen = format!(
+        "bitcast<f32>(0x{:08x}u)",
+        fastbrdf_render::geometry::SLAB_WIDEN.to_bits()
+    );
+    assert!(shader.contains(&widen), "render.wgsl lacks `{widen}`");
 }

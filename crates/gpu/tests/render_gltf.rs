@@ -343,3 +343,46 @@ fn under_the_sky_the_gpu_converges_to_the_cpus_picture() {
         "without the texture: {m} vs {mref}"
     );
 }
+
+/// The per-scene shader (`fastbrdf_gpu::render::features`: the parts no object uses left out)
+/// draws the same bits as the shader with every part on: the glTF scene (tint, every map,
+/// tangents, a metallic-roughness texture, meshes and their shadow rays) under its lights
+/// and under the sky, the sky without shadow rays, and the scene without its maps.
+#[test]
+fn the_per_scene_shader_draws_the_same_bits() {
+    let Some(g) = common::gpu() else {
+        return;
+    };
+    let gs = read();
+    let sky = Arc::new(EnvMap::from_spec("sky").unwrap());
+    let o = Options {
+        width: 40,
+        height: 32,
+        ..opts()
+    };
+    let no_shadows = |mut s: Scene| {
+        s.shadows = false;
+        s
+    };
+    let cases = [
+        ("direct light", scene(&gs, None, 1, true)),
+        ("sky", scene(&gs, Some(sky.clone()), 2, true)),
+        (
+            "sky, no shadow rays",
+            no_shadows(scene(&gs, Some(sky), 2, true)),
+        ),
+        ("without maps", without_maps(scene(&gs, None, 1, true))),
+    ];
+    for (label, s) in cases {
+        fastbrdf_gpu::render::features::force_all(false);
+        let per_scene = gpu_render(&g.device, &g.queue, &s, &o).unwrap();
+        fastbrdf_gpu::render::features::force_all(true);
+        let all = gpu_render(&g.device, &g.queue, &s, &o);
+        fastbrdf_gpu::render::features::force_all(false);
+        let all = all.unwrap();
+        let differ = (per_scene.pixels.iter().zip(&all.pixels))
+            .filter(|(a, b)| a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits))
+            .count();
+        assert_eq!(differ, 0, "{label}: {differ} pixels differ");
+    }
+}

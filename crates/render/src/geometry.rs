@@ -129,10 +129,10 @@ pub struct TriMesh {
 }
 
 /// Entries of the binary tree's traversal stack (`TriMesh::hit_binary` and
-/// `TriMesh::occluded_binary`, and the GPU renderer's shadow rays, which use the same size;
-/// the CPU's 4-wide walk, `geometry::bvh4`, holds 3 * [`MAX_DEPTH`]). A depth-first walk that
-/// pushes both children of a popped node (the GPU's) holds at most depth + 1 entries; the
-/// ordered walk (`hit_binary`, which pushes only the farther child) at most depth. The build keeps the
+/// `TriMesh::occluded_binary`, and the GPU renderer's shadow rays, which walk as
+/// `occluded_binary` does and take at most this size; the CPU's 4-wide walk,
+/// `geometry::bvh4`, holds 3 * [`MAX_DEPTH`]). Both binary walks keep one child per inner
+/// node on their path (the farther, or the right), at most depth entries. The build keeps the
 /// depth (edges from the root to a leaf) at most [`MAX_DEPTH`] = 62 for ANY input of up to
 /// 2^32 triangles, so the stack never fills; see [`TriMesh::new`] for the argument.
 pub const BVH_STACK: usize = 64;
@@ -341,6 +341,12 @@ impl Build<'_> {
     }
 }
 
+/// The slab test's widening of each far bound, 1 + 2 gamma(3) (Pharr et al.'s robust
+/// ray-box test): a box the ray grazes is never culled by rounding. The GPU's twin
+/// (`render.wgsl`'s `rd_occ_slab`) writes the same f32 as its bits (`tests/overlap.rs`).
+pub const SLAB_WIDEN: f32 =
+    1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+
 /// Entry and exit distances of `r` (with `inv` = 1 / r.d) through a node's box, clipped to
 /// (t_min, t_max); `None` when it misses. The exit is widened by 2 gamma(3) (PBRT's bound on
 /// the slab test's rounding), so a box is never missed where a triangle inside it is hit. An
@@ -349,7 +355,7 @@ impl Build<'_> {
 /// such a box is kept.
 #[inline(always)]
 fn slab(n: &Node, o: Vec3, inv: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
-    const WIDEN: f32 = 1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
+    const WIDEN: f32 = SLAB_WIDEN;
     #[inline(always)]
     fn axis(lo: f32, hi: f32, o: f32, inv: f32, near: f32, far: f32) -> (f32, f32) {
         let (a, b) = ((lo - o) * inv, (hi - o) * inv);

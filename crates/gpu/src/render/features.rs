@@ -22,6 +22,16 @@
 //! it never shadows), as the CPU renderer skips them.
 
 use fastbrdf_render::geometry::BVH_STACK;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+static FORCE_ALL: AtomicBool = AtomicBool::new(false);
+
+/// Every part on in every render of this process from now on (the shader as written, as
+/// before the constants), for the tests that hold the per-scene shader to the same bits.
+#[doc(hidden)]
+pub fn force_all(on: bool) {
+    FORCE_ALL.store(on, Ordering::Relaxed);
+}
 use fastbrdf_render::scene::{Scene, Shape};
 
 /// Per constant: its name and the member, component and word of `struct Object` (the
@@ -90,6 +100,9 @@ impl Features {
         occluders: &[[u32; 12]],
     ) -> Self {
         let mut f = Self::all();
+        if FORCE_ALL.load(Ordering::Relaxed) {
+            return f;
+        }
         let objects: Vec<&[u32]> = objects.into_iter().collect();
         for &(name, _, _, word) in &OBJECT_FLAGS {
             f.set(name, objects.iter().any(|u| u[word] != 0));
@@ -106,7 +119,7 @@ impl Features {
             Shape::Mesh(m) if !m.triangles.is_empty() => Some(m.depth()),
             _ => None,
         });
-        // At least 2: the walk pushes two children at a time.
+        // At least 2 (one is never pushed on: the walk keeps at most depth entries).
         f.stack = depth.map(|d| d + 1).max().unwrap_or(0).clamp(2, BVH_STACK);
         f
     }
@@ -166,7 +179,7 @@ impl Features {
 #[cfg(test)]
 mod tests {
     use super::super::SHADER;
-    use super::super::objects::{Reach, object_data};
+    use super::super::objects::Reach;
     use super::super::scene_data::OccluderData;
     use super::*;
     use fastbrdf::ModelSpec;
@@ -221,7 +234,7 @@ mod tests {
         setup::scene(&spec, &loaded, Arc::new(Specular::new(&model).unwrap()))
     }
 
-    /// What `render_scene` decides for `scene`.
+    /// What `render_scene` decides for `scene` (the same preparation of each object).
     fn features(scene: &Scene) -> Features {
         let limits = wgpu::Limits::default();
         let reach = Reach {
@@ -229,7 +242,11 @@ mod tests {
             sample_per_distance: 1e-3,
         };
         let data: Vec<_> = (scene.objects.iter().enumerate())
-            .map(|(i, o)| object_data(&limits, o, i, &reach).unwrap())
+            .map(|(i, o)| {
+                super::super::prepare(&limits, o, i, &reach, None)
+                    .unwrap()
+                    .data
+            })
             .collect();
         let occluders = OccluderData::new(&limits, scene).unwrap();
         Features::new(
@@ -266,6 +283,11 @@ mod tests {
             ]
         ));
         assert!(!f.get("RD_OCC_MESHES") && !f.get("RD_USE_TEXTURE") && !f.get("RD_USE_UVS"));
+        // The eye inside a lone sphere: its far wall shadows it (`Scene::may_shadow`).
+        let mut inside = scene(|_| {});
+        inside.camera.eye = glam::Vec3::new(0.0, 0.1, 0.2);
+        let f = features(&inside);
+        assert!(f.get("RD_USE_SHADOWS") && f.get("RD_OCC_SPHERES"));
         // Shadows off: no shadow code whatever the objects.
         let f = features(&scene(|s| {
             s.floor = true;

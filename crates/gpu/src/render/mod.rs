@@ -65,12 +65,13 @@
 //!   shadow ray (`Scene::shadowed`: origin offset along the unbumped normal by
 //!   `SHADOW_EPS (1 + max |p|)`, no ray where only the bumped normal faces the light, a point
 //!   light's ray stopping short of it) and tests it like `Scene::occluded`: the sphere's and
-//!   plane's formulas, and for meshes the CPU's slab test, its stack (64 entries, children skipped
-//!   when full, as on the CPU; sized for the scene's deepest BVH, which never fills it,
-//!   `features.rs`) and Moller-Trumbore test, ending at the first hit. Before its
-//!   first hit the CPU's nearest-hit traversal culls the same nodes with the same `t_max`, so
-//!   any-hit gives the same answer; glam's NaN behaviour of `min`/`max` in the slab test (an
-//!   axis-parallel ray, e.g. a light straight above) is written out. The f32 constants
+//!   plane's formulas, and for meshes the walk of `TriMesh::occluded_binary`: the CPU's slab
+//!   test (`geometry::slab`, its far bounds widened by `SLAB_WIDEN`, its comparisons written
+//!   out so NaN from an axis-parallel ray, e.g. a light straight above, goes the same way),
+//!   children tested at their parent, its stack (64 entries, children skipped when full, as
+//!   on the CPU; sized for the scene's deepest BVH, which never fills it, `features.rs`) and
+//!   Moller-Trumbore test, ending at the first hit: a hit is found wherever a leaf whose slab
+//!   tests pass holds one, whatever the order. The f32 constants
 //!   (`SHADOW_EPS`, `1 - 1e-5`, `f32::MAX` standing for the infinite reach of a directional
 //!   light: the same decisions under `t < t_max`) come from the CPU in the frame uniform, so no
 //!   WGSL literal rounds differently. Memory: 36 bytes per triangle and 32 per node, checked
@@ -288,76 +289,50 @@ fn render_scene(
         eye: scene.camera.eye,
         sample_per_distance: 2.0 * th / (h * n) as f32,
     };
-    // Each object's shader, coefficients and data first: the scene's features (which parts
-    // of the shader any object uses, `features.rs`) decide every pipeline's module.
-    let mut prepared = Vec::with_capacity(scene.objects.len());
-    for (i, obj) in scene.objects.iter().enumerate() {
-        let spec = &obj.material.specular;
-        let (shader, coefs, params, mr) = match (&spec.rgb, user) {
-            // An RGB BRDF: the user's shader, compiled once.
-            (Some(_), Some(u)) => (None, Vec::new(), u.block.clone(), [0; 4]),
-            (Some(_), None) => {
-                return Err(GpuError::Input(format!(
-                    "'{}' is an RGB BRDF (measured data, a fitted model): CPU-only; the GPU \
-                     renderer shades with model instances and users' shaders",
-                    spec.id
-                )));
-            }
-            // The model the CPU renderer shades with (its channels, and a tint's zero
-            // model), its plans built once with the scene; one pipeline per distinct text.
-            (None, _) => {
-                let mr = obj
-                    .material
-                    .maps
-                    .as_ref()
-                    .and_then(|x| x.metallic_roughness.as_ref());
-                let mut model = models::model_shader(spec, mr)?;
-                let coefs = std::mem::take(&mut model.coefs);
-                let mr = model.mr;
-                (Some(model), coefs, Vec::new(), mr)
-            }
-        };
-        let mut data = object_data(&limits, obj, i, &reach)?;
-        data.uniform[MR_WORD..MR_WORD + 4].copy_from_slice(&mr);
-        prepared.push((shader, coefs, params, data));
-    }
-    let occluder_data = OccluderData::new(&limits, scene)?;
-    let features = Features::new(
-        scene,
-        prepared.iter().map(|p| p.3.uniform.as_slice()),
-        &occluder_data.objects,
-    );
-    let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
+    // Each object's data goes up first (its metallic-roughness words set), keeping its
+    // uniform's words: the scene's features (which parts of the shader any object uses,
+    // `features.rs`) decide every pipeline's module.
+    let mut uniforms = Vec::with_capacity(scene.objects.len());
+    let mut shaders = Vec::with_capacity(scene.objects.len());
     let mut objects = Vec::with_capacity(scene.objects.len());
-    for (shader, coefs, params, data) in prepared {
-        let key = match (&shader, user) {
-            (Some(model), _) => {
-                if !pipelines.contains_key(&model.key) {
-                    let p = Pipelines::new(device, &layouts, &features, model, env.as_ref())?;
-                    pipelines.insert(model.key.clone(), p);
-                }
-                model.key.clone()
-            }
-            (None, Some(u)) => {
-                if !pipelines.contains_key(USER_KEY) {
-                    let p = Pipelines::user(device, &layouts, &features, u.shader, env.as_ref())?;
-                    pipelines.insert(USER_KEY.to_string(), p);
-                }
-                USER_KEY.to_string()
-            }
-            (None, None) => unreachable!("an RGB BRDF without a user's shader is refused above"),
-        };
+    for (i, obj) in scene.objects.iter().enumerate() {
+        let p = prepare(&limits, obj, i, &reach, user)?;
+        let key = p
+            .shader
+            .as_ref()
+            .map_or(USER_KEY, |m| m.key.as_str())
+            .to_string();
+        uniforms.push(p.data.uniform.clone());
         objects.push(upload_object(
             device,
             queue,
             &layouts,
-            data,
-            (&coefs, &params),
+            p.data,
+            (&p.coefs, &p.params),
             key,
         )?);
+        shaders.push(p.shader);
+    }
+    let (features, occluders) = {
+        let d = OccluderData::new(&limits, scene)?;
+        let f = Features::new(scene, uniforms.iter().map(Vec::as_slice), &d.objects);
+        (f, Occluders::new(device, &d))
+    };
+    let mut pipelines: HashMap<String, Pipelines> = HashMap::new();
+    for shader in &shaders {
+        match (shader, user) {
+            (Some(model), _) if !pipelines.contains_key(&model.key) => {
+                let p = Pipelines::new(device, &layouts, &features, model, env.as_ref())?;
+                pipelines.insert(model.key.clone(), p);
+            }
+            (None, Some(u)) if !pipelines.contains_key(USER_KEY) => {
+                let p = Pipelines::user(device, &layouts, &features, u.shader, env.as_ref())?;
+                pipelines.insert(USER_KEY.to_string(), p);
+            }
+            _ => {}
+        }
     }
     let lights = lights_buffer(device, scene);
-    let occluders = Occluders::new(device, &occluder_data);
 
     let (tw_max, th_max) = (w.min(tile_px) * n, h.min(tile_px) * n);
     let target = |format, label, usage| {
@@ -556,6 +531,60 @@ fn render_scene(
         }
     }
     Ok(film)
+}
+
+/// An object ready to go up: its model's shader (`None`: the user's), the model's
+/// coefficients or the user's parameter block, and its data with the metallic-roughness words
+/// set (`render_scene`; the features' tests read the same).
+struct Prepared {
+    shader: Option<models::ModelShader>,
+    coefs: Vec<f32>,
+    params: Vec<f32>,
+    data: objects::ObjectData,
+}
+
+/// [`Prepared`] of object `i`. Errors: an RGB BRDF without a user's shader, a model the GPU
+/// cannot shade, and what `object_data` refuses.
+fn prepare(
+    limits: &wgpu::Limits,
+    obj: &fastbrdf_render::scene::Object,
+    i: usize,
+    reach: &Reach,
+    user: Option<&User>,
+) -> Result<Prepared, GpuError> {
+    let spec = &obj.material.specular;
+    let (shader, coefs, params, mr) = match (&spec.rgb, user) {
+        // An RGB BRDF: the user's shader, compiled once.
+        (Some(_), Some(u)) => (None, Vec::new(), u.block.clone(), [0; 4]),
+        (Some(_), None) => {
+            return Err(GpuError::Input(format!(
+                "'{}' is an RGB BRDF (measured data, a fitted model): CPU-only; the GPU \
+                 renderer shades with model instances and users' shaders",
+                spec.id
+            )));
+        }
+        // The model the CPU renderer shades with (its channels, and a tint's zero model), its
+        // plans built once with the scene; one pipeline per distinct shader text.
+        (None, _) => {
+            let mr = obj
+                .material
+                .maps
+                .as_ref()
+                .and_then(|x| x.metallic_roughness.as_ref());
+            let mut model = models::model_shader(spec, mr)?;
+            let coefs = std::mem::take(&mut model.coefs);
+            let mr = model.mr;
+            (Some(model), coefs, Vec::new(), mr)
+        }
+    };
+    let mut data = object_data(limits, obj, i, reach)?;
+    data.uniform[MR_WORD..MR_WORD + 4].copy_from_slice(&mr);
+    Ok(Prepared {
+        shader,
+        coefs,
+        params,
+        data,
+    })
 }
 
 /// `src` parsed and validated by naga, as a browser's or wgpu's WGSL compiler would take it

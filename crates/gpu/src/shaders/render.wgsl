@@ -520,38 +520,6 @@ fn rd_perturb(p: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
 
 // ---- shadow rays (twins: Scene::shadowed, Scene::occluded, the shapes' hit) -------------
 
-/// glam's Vec3::min per component: `if a < b { a } else { b }` (NaN-exact).
-fn rd_gmin(a: f32, b: f32) -> f32 {
-    return select(b, a, a < b);
-}
-
-/// glam's Vec3::max per component: `if a > b { a } else { b }` (NaN-exact).
-fn rd_gmax(a: f32, b: f32) -> f32 {
-    return select(b, a, a > b);
-}
-
-/// Rust's f32::max: the other operand when one is NaN.
-fn rd_fmax(a: f32, b: f32) -> f32 {
-    if a != a {
-        return b;
-    }
-    if b != b {
-        return a;
-    }
-    return max(a, b);
-}
-
-/// Rust's f32::min: the other operand when one is NaN.
-fn rd_fmin(a: f32, b: f32) -> f32 {
-    if a != a {
-        return b;
-    }
-    if b != b {
-        return a;
-    }
-    return min(a, b);
-}
-
 /// Sphere::hit with t in (t_min, t_max).
 fn rd_occ_sphere(r: RdRay, center: vec3<f32>, radius: f32, t_min: f32, t_max: f32) -> bool {
     let oc = r.o - center;
@@ -608,16 +576,25 @@ fn rd_occ_triangle(r: RdRay, tri: u32, t_min: f32, t_max: f32) -> bool {
     return t > t_min && t < t_max;
 }
 
-/// The slab test of `node` (TriMesh's `slab`, glam's NaN rules written out): whether the ray
-/// may hit inside it between t_min and t_max.
+/// One axis of geometry.rs's `slab`, its comparisons as written (NaN-exact): the entry and
+/// the widened exit along the axis, clipped to (near, far).
+fn rd_slab_axis(lo: f32, hi: f32, o: f32, inv: f32, near: f32, far: f32) -> vec2<f32> {
+    let a0 = (lo - o) * inv;
+    let b0 = (hi - o) * inv;
+    let lt = a0 < b0;
+    let a = select(b0, a0, lt);
+    let b = select(a0, b0, lt);
+    // geometry::SLAB_WIDEN's bits (1 + 2 gamma(3)).
+    let bw = b * bitcast<f32>(0x3f800003u);
+    return vec2<f32>(select(near, a, a > near), select(far, bw, bw < far));
+}
+
+/// geometry.rs's `slab` of `node`: whether the ray may hit inside it between t_min and t_max.
 fn rd_occ_slab(node: BvhNode, r: RdRay, inv: vec3<f32>, t_min: f32, t_max: f32) -> bool {
-    let t0 = (node.lo - r.o) * inv;
-    let t1 = (node.hi - r.o) * inv;
-    let near = vec3<f32>(rd_gmin(t0.x, t1.x), rd_gmin(t0.y, t1.y), rd_gmin(t0.z, t1.z));
-    let far = vec3<f32>(rd_gmax(t0.x, t1.x), rd_gmax(t0.y, t1.y), rd_gmax(t0.z, t1.z));
-    let tn = rd_fmax(rd_gmax(near.x, rd_gmax(near.y, near.z)), t_min);
-    let tf = rd_fmin(rd_gmin(far.x, rd_gmin(far.y, far.z)), t_max);
-    return !(tn > tf);
+    let x = rd_slab_axis(node.lo.x, node.hi.x, r.o.x, inv.x, t_min, t_max);
+    let y = rd_slab_axis(node.lo.y, node.hi.y, r.o.y, inv.y, x.x, x.y);
+    let z = rd_slab_axis(node.lo.z, node.hi.z, r.o.z, inv.z, y.x, y.y);
+    return z.x <= z.y;
 }
 
 /// TriMesh::occluded_binary: the same slab test and walk (both children tested at their
