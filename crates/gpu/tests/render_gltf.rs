@@ -374,15 +374,7 @@ fn the_per_scene_shader_draws_the_same_bits() {
         ("without maps", without_maps(scene(&gs, None, 1, true))),
     ];
     for (label, s) in cases {
-        fastbrdf_gpu::render::features::force_all(false);
-        let per_scene = gpu_render(&g.device, &g.queue, &s, &o).unwrap();
-        fastbrdf_gpu::render::features::force_all(true);
-        let all = gpu_render(&g.device, &g.queue, &s, &o);
-        fastbrdf_gpu::render::features::force_all(false);
-        let all = all.unwrap();
-        let differ = (per_scene.pixels.iter().zip(&all.pixels))
-            .filter(|(a, b)| a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits))
-            .count();
+        let differ = common::pixels_unlike_every_part_on(g, &s, &o);
         assert_eq!(differ, 0, "{label}: {differ} pixels differ");
     }
 }

@@ -310,3 +310,23 @@ pub fn owned(given: &[(&str, &str)]) -> Vec<(String, String)> {
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .collect()
 }
+
+/// How many pixels of `scene` (rendered on `g` with `o`) differ in their bits between the
+/// per-scene shader (`fastbrdf_gpu::render::features`: the parts no object uses left out)
+/// and the shader with every part on.
+pub fn pixels_unlike_every_part_on(
+    g: &Gpu,
+    scene: &fastbrdf_render::scene::Scene,
+    o: &fastbrdf_render::render::Options,
+) -> usize {
+    use fastbrdf_gpu::render::{features::force_all, render};
+    force_all(false);
+    let per_scene = render(&g.device, &g.queue, scene, o).unwrap();
+    force_all(true);
+    let all = render(&g.device, &g.queue, scene, o);
+    force_all(false);
+    let bits = |p: &glam::Vec3| p.to_array().map(f32::to_bits);
+    (per_scene.pixels.iter().zip(&all.unwrap().pixels))
+        .filter(|(a, b)| bits(a) != bits(b))
+        .count()
+}
