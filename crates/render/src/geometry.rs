@@ -128,12 +128,10 @@ pub struct TriMesh {
     pub(crate) bvh4: Bvh4,
 }
 
-/// Entries of the binary tree's traversal stack (`TriMesh::hit_binary` and
-/// `TriMesh::occluded_binary`, and the GPU renderer's shadow rays, which walk as
-/// `occluded_binary` does and take at most this size; the CPU's 4-wide walk,
-/// `geometry::bvh4`, holds 3 * [`MAX_DEPTH`]). Both binary walks keep one child per inner
-/// node on their path (the farther, or the right), at most depth entries. The build keeps the
-/// depth (edges from the root to a leaf) at most [`MAX_DEPTH`] = 62 for ANY input of up to
+/// Entries of the binary tree's traversal stack (`TriMesh::hit_binary`, `occluded_binary` and
+/// the GPU's shadow rays, which walk as `occluded_binary`; `geometry::bvh4` holds 3 *
+/// [`MAX_DEPTH`]). The binary walks keep one child per inner node on their path: at most depth
+/// entries, and the build keeps every depth at most [`MAX_DEPTH`] = 62 for ANY input of up to
 /// 2^32 triangles, so the stack never fills; see [`TriMesh::new`] for the argument.
 pub const BVH_STACK: usize = 64;
 
@@ -341,9 +339,7 @@ impl Build<'_> {
     }
 }
 
-/// The slab test's widening of each far bound, 1 + 2 gamma(3) (Pharr et al.'s robust
-/// ray-box test): a box the ray grazes is never culled by rounding. The GPU's twin
-/// (`render.wgsl`'s `rd_occ_slab`) writes the same f32 as its bits (`tests/overlap.rs`).
+/// The slab test's far-bound widening, 1 + 2 gamma(3) (see [`slab`]); the GPU writes its bits.
 pub const SLAB_WIDEN: f32 =
     1.0 + 2.0 * (3.0 * f32::EPSILON * 0.5) / (1.0 - 3.0 * f32::EPSILON * 0.5);
 
