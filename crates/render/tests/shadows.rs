@@ -196,6 +196,21 @@ fn leaving_a_convex_object_out_of_its_own_shadow_rays_changes_no_answer() {
     );
 }
 
+/// `l` turned to the side of `n`; `None` within `min_cos` of the tangent plane.
+fn on_the_side_of(n: Vec3, l: Vec3, min_cos: f32) -> Option<Vec3> {
+    let l = if l.dot(n) < 0.0 { -l } else { l };
+    (l.dot(n) > min_cos).then_some(l)
+}
+
+/// `Scene::shadowed_from` of object 0 at `p` (normal `n`) towards `l`, asserted equal to
+/// `Scene::shadowed`'s answer.
+fn shadowed_from_as_shadowed(s: &Scene, p: Vec3, n: Vec3, l: Vec3, what: &str) -> bool {
+    let want = s.shadowed(p, n, l, f32::INFINITY);
+    let got = s.shadowed_from(0, p, n, l, f32::INFINITY);
+    assert_eq!(got, want, "{what}: p {p}, l {l}");
+    want
+}
+
 /// A lone object: `Scene::shadowed_from` skips the search only for a sphere or a plane (the
 /// default scene's sphere: nothing can block it), and still searches a lone mesh, which can
 /// shadow itself (the face's nose and brows): both answers as `Scene::shadowed`, 20,000 rays
@@ -219,20 +234,9 @@ fn a_lone_object_skips_its_search_only_when_it_is_convex() {
         let mut shadowed = 0;
         for k in 0..20_000 {
             let (p, n) = points[k % points.len()];
-            let mut l = unit();
-            if l.dot(n) < 0.0 {
-                l = -l;
+            if let Some(l) = on_the_side_of(n, unit(), 0.0) {
+                shadowed += u32::from(shadowed_from_as_shadowed(&s, p, n, l, what));
             }
-            if l.dot(n) <= 0.0 {
-                continue;
-            }
-            let want = s.shadowed(p, n, l, f32::INFINITY);
-            assert_eq!(
-                s.shadowed_from(0, p, n, l, f32::INFINITY),
-                want,
-                "{what}: p {p}, l {l}"
-            );
-            shadowed += u32::from(want);
         }
         eprintln!("{what}: {shadowed} of 20000 rays blocked");
         assert_eq!(
@@ -269,20 +273,9 @@ fn a_lone_sphere_seen_from_inside_shadows_itself() {
         for _ in 0..2000 {
             let out = unit();
             let (p, n) = (sphere.center + out * sphere.radius, -out);
-            let mut l = unit();
-            if l.dot(n) < 0.0 {
-                l = -l;
+            if let Some(l) = on_the_side_of(n, unit(), 1e-3) {
+                shadowed += u32::from(shadowed_from_as_shadowed(&s, p, n, l, "inside"));
             }
-            if l.dot(n) <= 1e-3 {
-                continue;
-            }
-            let want = s.shadowed(p, n, l, f32::INFINITY);
-            assert_eq!(
-                s.shadowed_from(0, p, n, l, f32::INFINITY),
-                want,
-                "p {p}, l {l}"
-            );
-            shadowed += u32::from(want);
         }
         assert!(shadowed > 1900, "{shadowed} of about 2000 rays blocked");
     }

@@ -202,24 +202,9 @@ impl EnvForm for Table {
     }
 }
 
-/// The WGSL tables: one constant array per size, `FB_ENV_TABLE_<N>`, both terms interleaved
-/// (`2 (j N + i) + term`), the same f32 numbers as [`texels`] (generated once).
-pub fn wgsl_source() -> &'static str {
-    static SRC: OnceLock<String> = OnceLock::new();
-    SRC.get_or_init(|| {
-        let mut s = String::from(HEADER);
-        for k in 0..SIZES.len() {
-            s.push_str(&table_source(k)[HEADER.len()..]);
-        }
-        s
-    })
-}
-
-const HEADER: &str = "// WGSL twin of microfacet/env_table.rs: the split-sum tables (env-brdf at texel centres,\n\
-     // x = cos_v, y = perceptual roughness; f32, both terms interleaved), generated from it.\n";
-
-/// The table of side `SIZES[k]` alone, after [`HEADER`] (generated once): its quadrature is
-/// the costly part, so a shader that reads one size computes only that one.
+/// The WGSL table of side `SIZES[k]`, `FB_ENV_TABLE_<N>`, both terms interleaved
+/// (`2 (j N + i) + term`), the same f32 numbers as [`texels`] (generated once): one source per
+/// size, since the quadrature is the costly part and a shader reads one size.
 fn table_source(k: usize) -> &'static str {
     static SRC: [OnceLock<String>; 4] = [const { OnceLock::new() }; 4];
     SRC[k].get_or_init(|| {
@@ -229,7 +214,8 @@ fn table_source(k: usize) -> &'static str {
             .flat_map(|t| t.iter().map(|x| format!("{x:?}f")))
             .collect();
         format!(
-            "{HEADER}\n/// env-brdf's terms on the {n} x {n} table: (scale, bias) of texel (i, j) at 2 (j {n} + i).\n\
+            "// WGSL twin of microfacet/env_table.rs's texels, generated from it.\n\
+             \n/// env-brdf's terms on the {n} x {n} table: (scale, bias) of texel (i, j) at 2 (j {n} + i).\n\
              const FB_ENV_TABLE_{n} = array<f32, {}>({});\n",
             2 * n * n,
             list.join(", ")

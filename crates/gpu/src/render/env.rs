@@ -527,15 +527,18 @@ fn chunks(samples: u32, tile_samples: u64, max: u32) -> Vec<(u32, u32)> {
         .collect()
 }
 
+/// An `rd_brdf` that is black: for a module that shades no object with it (the background's,
+/// the features' tests).
+pub(super) const BLACK_BRDF: &str = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>, h: u32) -> RdSpec {\n    \
+    return RdSpec(vec3<f32>(0.0), vec3<f32>(0.0));\n}\n";
+
 /// The background pipeline (`rd_fs_env_background`): the render module with the
 /// environment and a black `rd_brdf` (no object is shaded by it).
 fn background_pipeline(
     device: &wgpu::Device,
     layout: &wgpu::PipelineLayout,
 ) -> Result<wgpu::RenderPipeline, GpuError> {
-    let src = format!(
-        "{SHADER}\n{ENV_SHADER}\n{DFG_STUB}\nfn rd_brdf(wi: vec3<f32>, wo: vec3<f32>, h: u32) -> RdSpec {{\n    return RdSpec(vec3<f32>(0.0), vec3<f32>(0.0));\n}}\n"
-    );
+    let src = format!("{SHADER}\n{ENV_SHADER}\n{DFG_STUB}\n{BLACK_BRDF}");
     validated(device, "the environment's background shader", || {
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("fastbrdf render env background"),

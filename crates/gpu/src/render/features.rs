@@ -18,10 +18,11 @@
 //! The constants are decided from the same words the shader tests ([`Features::new`] reads
 //! the objects' uniforms and occluder records), so a part is off only where every object's
 //! own flag would skip it: the picture is the same to the bit. The shadow rays are off where
-//! no object can be shadowed (`Scene::may_shadow`: a lone sphere or plane, whose own points
-//! it never shadows), as the CPU renderer skips them.
+//! no object can be shadowed (`Scene::may_shadow`: a lone plane, or a lone sphere seen from
+//! outside, whose own points it never shadows), as the CPU renderer skips them.
 
 use fastbrdf_render::geometry::BVH_STACK;
+use fastbrdf_render::scene::{Scene, Shape};
 use std::sync::atomic::{AtomicBool, Ordering};
 
 static FORCE_ALL: AtomicBool = AtomicBool::new(false);
@@ -32,7 +33,6 @@ static FORCE_ALL: AtomicBool = AtomicBool::new(false);
 pub fn force_all(on: bool) {
     FORCE_ALL.store(on, Ordering::Relaxed);
 }
-use fastbrdf_render::scene::{Scene, Shape};
 
 /// Per constant: its name and the member, component and word of `struct Object` (the
 /// uniform, `objects::object_data`'s layout) whose non-zero value turns the part on for that
@@ -72,8 +72,9 @@ pub struct Features {
     /// Entries of the mesh traversal's stack: the walk (`rd_occ_mesh`, the CPU's
     /// `occluded_binary`) keeps one child per inner node on its path, at most depth entries
     /// (`fastbrdf_render::geometry::BVH_STACK`), so the deepest mesh's depth + 1 never fills
-    /// it, as 64 never fills on the CPU (the build bounds every depth by 62): the same walk. Fewer entries cost less to zero and index on adapters
-    /// that keep the array in memory (lavapipe: 1.18x on the face under the sky).
+    /// it, as 64 never fills on the CPU (the build bounds every depth by 62): the same walk.
+    /// Fewer entries cost less to zero and index on adapters that keep the array in memory
+    /// (lavapipe: 1.18x on the face under the sky).
     stack: usize,
 }
 
@@ -189,12 +190,9 @@ mod tests {
     use std::path::PathBuf;
     use std::sync::Arc;
 
-    const STUB: &str = "fn rd_brdf(wi: vec3<f32>, wo: vec3<f32>, h: u32) -> RdSpec {\n    \
-        return RdSpec(vec3<f32>(0.0), vec3<f32>(0.0));\n}\n";
-
-    /// `shader` with a stub `rd_brdf`, parsed and validated (naga).
+    /// `shader` with a black `rd_brdf`, parsed and validated (naga).
     fn module(shader: &str) -> naga::Module {
-        super::super::naga_module(&format!("{shader}\n{STUB}"))
+        super::super::naga_module(&format!("{shader}\n{}", super::super::env::BLACK_BRDF))
     }
 
     /// The word of `member` (component `c`, 4 bytes each) in the shader's struct `name`.
