@@ -155,7 +155,7 @@ impl Source {
         if material.is_some() || metal.is_some() {
             return Err(value_error(format!(
                 "{arg}: a user's model ({}) takes neither material nor metal",
-                fastbrdf_io::shorten(id, 60)
+                fastbrdf_io::shorten_middle(id, 60)
             )));
         }
         if strategy != Strategy::Auto {

@@ -13,7 +13,7 @@ use fastbrdf::ModelSpec;
 use fastbrdf::colour::{self, Metal};
 use fastbrdf_analysis::materials::{self, Material};
 use fastbrdf_analysis::model_spec::{self, SpecError};
-use fastbrdf_io::shorten;
+use fastbrdf_io::{shorten, shorten_middle};
 
 /// The most characters of a given value quoted in a message.
 const QUOTE: usize = 40;
@@ -106,14 +106,14 @@ impl ModelArgs {
                 return Err(CliError::input(format!(
                     "--material {}: a user's model ({}) takes its values from --param only",
                     shorten(m, QUOTE),
-                    shorten(id, QUOTE)
+                    shorten_middle(id, QUOTE)
                 )));
             }
             if let Some(m) = &self.metal.metal {
                 return Err(CliError::input(format!(
                     "--metal {}: a user's model ({}) takes its values from --param only",
                     shorten(m, QUOTE),
-                    shorten(id, QUOTE)
+                    shorten_middle(id, QUOTE)
                 )));
             }
         }

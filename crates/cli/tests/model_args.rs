@@ -287,3 +287,37 @@ fn the_shared_options_read_alike_in_every_command() {
         }
     }
 }
+
+/// A user's model echoed in a message keeps both ends of its long path (the file's name is
+/// the part that tells the user which file), shortened in the middle to one line.
+#[test]
+fn a_long_user_model_path_keeps_its_file_name_in_messages() {
+    let dir = temp_dir("model-args-long-path");
+    let deep = (0..3).fold(dir.to_path_buf(), |p, _| p.join("d".repeat(100)));
+    std::fs::create_dir_all(&deep).unwrap();
+    let file = deep.join("mine.brdf");
+    let blinn = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../gpu/tests/data/brdf-explorer/blinn.brdf"
+    );
+    std::fs::copy(blinn, &file).unwrap();
+    let long = format!("file:{}", file.display());
+    let cases: [&[&str]; 2] = [
+        &[
+            "render", "--model", &long, "--metal", "gold", "--size", "16x16", "--out", "x.png",
+        ],
+        &["bench", "--gpu", "--model", &long, "--model", &long],
+    ];
+    for args in cases {
+        let r = fastbrdf(args, "");
+        assert_eq!(r.status.code(), Some(2), "{args:?}");
+        assert!(stdout(&r).is_empty(), "{args:?}");
+        let e = stderr(&r);
+        assert!(
+            e.contains("/mine.brdf") && e.contains("file:/"),
+            "{args:?}: {e}"
+        );
+        assert!(e.contains("bytes)..."), "{args:?}: {e}");
+        assert!(e.len() < 300, "{args:?}: {e}");
+    }
+}

@@ -8,7 +8,7 @@ use crate::{CliError, EXIT_CHECK_FAILED};
 use fastbrdf::sample::Strategy;
 use fastbrdf::user::{Builtin, UserBrdf};
 use fastbrdf_analysis::conform::{self, CHECKS, Config, Report};
-use fastbrdf_io::shorten;
+use fastbrdf_io::{shorten, shorten_middle};
 use std::sync::Arc;
 
 /// The most characters of a given value quoted in a message.
@@ -74,7 +74,7 @@ fn model(id: &str, args: &Args) -> Result<Arc<dyn UserBrdf>, CliError> {
             return Err(CliError::input(format!(
                 "--strategy {}: a user's model ({}) samples as its file says",
                 shorten(&args.strategy, QUOTE),
-                shorten(id, QUOTE)
+                shorten_middle(id, QUOTE)
             )));
         }
         return Ok(u);
@@ -100,10 +100,14 @@ fn reference(id: &str, args: &Args) -> Result<Arc<dyn UserBrdf>, CliError> {
         return Ok(u);
     }
     let spec = model_args::spec(id, &given, None, None, Use::AsIs).map_err(|e| {
-        CliError::input(format!("--reference {}: {}", shorten(id, QUOTE), e.message))
+        CliError::input(format!(
+            "--reference {}: {}",
+            shorten_middle(id, QUOTE),
+            e.message
+        ))
     })?;
     Ok(Arc::new(Builtin::new(&spec, Strategy::Auto).map_err(
-        |e| CliError::input(format!("--reference {}: {e}", shorten(id, QUOTE))),
+        |e| CliError::input(format!("--reference {}: {e}", shorten_middle(id, QUOTE))),
     )?))
 }
 

@@ -152,7 +152,7 @@ pub(super) fn read_uri(ctx: &Ctx, ptr: &str, uri: &str, dir: &Path) -> Result<Ve
             .decode(payload)
             .map_err(|e| ctx.err(ptr, format!("the data URI is not valid base64: {e}")));
     }
-    let short = fastbrdf_io::shorten(uri, 60);
+    let short = fastbrdf_io::shorten_middle(uri, 60);
     if uri.contains(':') {
         return Err(ctx.err(
             ptr,

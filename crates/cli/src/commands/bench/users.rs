@@ -9,7 +9,7 @@ use crate::model_args::{USER_PREFIX, is_user, pairs};
 use fastbrdf_analysis::speed::{self, Instructions, KernelRow};
 use fastbrdf_gpu::cost::Counts;
 use fastbrdf_gpu::user::{UserError, UserErrorKind, UserShader};
-use fastbrdf_io::shorten;
+use fastbrdf_io::{shorten, shorten_middle};
 
 /// The most characters of a given value quoted in a message.
 const QUOTE: usize = 60;
@@ -71,8 +71,8 @@ pub fn load(ids: &[String], params: &[String]) -> Result<Vec<UserModel>, CliErro
             return Err(CliError::input(format!(
                 "--model {}: bench's --model takes a user's model, file:PATH; choose built-in \
                  models with --models {}",
-                shorten(id, QUOTE),
-                shorten(id, QUOTE)
+                shorten_middle(id, QUOTE),
+                shorten_middle(id, QUOTE)
             )));
         }
         let path = &id[USER_PREFIX.len()..];
@@ -85,7 +85,7 @@ pub fn load(ids: &[String], params: &[String]) -> Result<Vec<UserModel>, CliErro
         if out.iter().any(|u| u.shader.name() == shader.name()) {
             return Err(CliError::input(format!(
                 "--model {}: given twice",
-                shorten(id, QUOTE)
+                shorten_middle(id, QUOTE)
             )));
         }
         let given: Vec<(String, String)> = all
