@@ -239,6 +239,7 @@ python_tests() {
         'import fastbrdf, sys; f = fastbrdf.__file__; assert "/python-wheel-venv/" in f, f'
     t=$SECONDS
     env -u CARGO -u RUSTC PATH="$PWD/$venv/bin:$norust" FASTBRDF_NEED_LLVM="$need_llvm" \
+        FASTBRDF_WHEEL_PROFILE="$profile" \
         "$venv/bin/python" -m pytest -q -p no:cacheprovider -n auto python/tests
     echo "test.sh: pytest in $((SECONDS - t)) s; the Python step in $((SECONDS - t0)) s" >&2
 }

@@ -44,6 +44,7 @@ do after a call and prints it: the CPU time the whole process uses in the 100 ms
 import argparse
 import os
 import resource
+import sys
 import time
 
 import numpy as np
@@ -208,7 +209,13 @@ def main():
     sizes = [int(float(x)) for x in a.n.split(",")]
     print(f"CPU: {cpu_name()}, {os.cpu_count()} logical cores; "
           f"RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset (all cores)')}")
-    print(f"fastbrdf {fastbrdf.__version__}; best of {a.repeats} interleaved rounds{'; each timed call after an untimed one' if a.warm_call else ''}"
+    build = getattr(fastbrdf, "BUILD", "unknown")
+    if build != "release":
+        print(f"sample_cost.py: this fastbrdf is a {build} build, not a release one: its figures "
+              "are several times slower than a user's (the test suite's wheel is built in Cargo's "
+              "dev profile); build one with `maturin build --release` and install it, or put its "
+              "files first on PYTHONPATH", file=sys.stderr)
+    print(f"fastbrdf {fastbrdf.__version__} ({build} build); best of {a.repeats} interleaved rounds{'; each timed call after an untimed one' if a.warm_call else ''}"
           f"{f'; {a.settle:g} ms pause before each method' if a.settle > 0 else ''}; float32 inputs; "
           f"{max(1, a.input_sets)} input set(s) in turn\n")
     print("| op | N | who | M elements/s | ns/element | vs Mitsuba (same layout) | Mitsuba's first (JIT) call |")

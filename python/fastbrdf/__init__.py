@@ -73,9 +73,14 @@ from ._tools import *  # noqa: F401,F403
 #: The package's version: the Rust workspace's (the wheel's version).
 __version__: str = str(_native.__version__)
 
+#: How the native module was built: ``"release"`` (``pip install``, ``maturin build --release``:
+#: what timings need) or ``"dev"`` (Cargo's dev profile, debug assertions on: the test suite's
+#: wheel, several times slower).
+BUILD: str = str(_native.BUILD)
+
 #: The modules whose public names make up the package (each lists them in ``__all__``).
 _MODULES = (_analysis, _conform, _measured, _model, _perelement, _render, _tools)
 
 __all__: List[str] = sorted(
-    ["MAX_VALUES", "__version__"] + [name for m in _MODULES for name in m.__all__]
+    ["BUILD", "MAX_VALUES", "__version__"] + [name for m in _MODULES for name in m.__all__]
 )

@@ -12,6 +12,7 @@ F32 = npt.NDArray[np.float32]
 F64 = npt.NDArray[np.float64]
 
 __version__: str
+BUILD: str
 MAX_VALUES: int
 MAX_ITEMS: int
 MAX_WEIGHT: float

@@ -70,6 +70,16 @@ fn _fastbrdf(m: &Bound<'_, PyModule>) -> PyResult<()> {
     fork::loaded();
     m.add_class::<handle::Handle>()?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The profile family, so that a timing script can tell the test suite's wheel (Cargo's dev
+    // profile, debug assertions on, several times slower) from a release build.
+    m.add(
+        "BUILD",
+        if cfg!(debug_assertions) {
+            "dev"
+        } else {
+            "release"
+        },
+    )?;
     m.add("MAX_VALUES", MAX_VALUES)?;
     m.add("MAX_ITEMS", MAX_ITEMS)?;
     m.add("MAX_WEIGHT", MAX_WEIGHT)?;

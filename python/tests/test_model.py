@@ -4,6 +4,7 @@ dtype rule and ``out=``."""
 
 import copy
 import json
+import os
 import pathlib
 import pickle
 import re
@@ -56,6 +57,15 @@ def test_version_is_the_workspaces():
     cargo = (ROOT / "Cargo.toml").read_text()
     version = re.search(r'^version = "([^"]+)"', cargo, re.M).group(1)
     assert fastbrdf.__version__ == version
+
+
+def test_build_names_the_wheels_profile():
+    # tools/test.sh says which profile it built the wheel in; elsewhere either is possible.
+    expected = os.environ.get("FASTBRDF_WHEEL_PROFILE")
+    if expected:
+        assert fastbrdf.BUILD == expected
+    assert fastbrdf.BUILD in ("dev", "release")
+    assert "BUILD" in fastbrdf.__all__
 
 
 def _cli_colour(cli, model, args, wi, wo):
