@@ -11,11 +11,13 @@ variant that cannot be set (no libLLVM for llvm_*) is reported and skipped.
 """
 
 import argparse
+import sys
 import time
 
 import drjit as dr
 import mitsuba as mi
 
+import fastbrdf
 import fastbrdf.mitsuba as fm
 
 
@@ -56,6 +58,9 @@ def main():
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--variants", default="scalar_rgb,llvm_ad_rgb")
     a = ap.parse_args()
+    if fastbrdf.BUILD != "release":
+        print(f"{sys.argv[0]}: a {fastbrdf.BUILD} build of fastbrdf (the test suite's wheel?): its "
+              "timings are several times a release build's", file=sys.stderr)
     ours = {"type": "fastbrdf", "model": "cook-torrance", "d": "ggx", "g": "smith-ggx",
             "f": "conductor", "eta": 0.2, "k": 3.0, "alpha": 0.3}
     native = {"type": "roughconductor", "distribution": "ggx", "alpha": 0.3, "eta": 0.2, "k": 3.0}
