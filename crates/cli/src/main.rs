@@ -86,10 +86,18 @@ impl From<fastbrdf_gpu::GpuError> for CliError {
     }
 }
 
+/// `fastbrdf --version`: the package's version and the commit it was built from (`build.rs`).
+const VERSION: &str = concat!(
+    env!("CARGO_PKG_VERSION"),
+    " (commit ",
+    env!("FASTBRDF_COMMIT"),
+    ")"
+);
+
 #[derive(Parser)]
 #[command(
     name = "fastbrdf",
-    version,
+    version = VERSION,
     about = "Exact and fast approximate specular reflectance models: evaluate, compare, check",
     long_about = "fastbrdf implements the exact reflectance models (cos^n, Beckmann, Ward, Cook-Torrance) \
 beside the cheaper stand-ins proposed by three papers and by production engines, in f32 and f64, \

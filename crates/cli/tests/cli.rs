@@ -464,3 +464,32 @@ fn nothing_reads_beside_the_repository() {
         hits.join("\n")
     );
 }
+
+/// `--version` names the package's version and the commit the binary was built from (what
+/// tools/equal_error.py records beside its figures): in a git checkout, HEAD's.
+#[test]
+fn version_names_the_commit() {
+    let r = fastbrdf(&["--version"], "");
+    assert!(r.status.success());
+    let out = stdout(&r);
+    let prefix = format!("fastbrdf {} (commit ", env!("CARGO_PKG_VERSION"));
+    let commit = out
+        .trim()
+        .strip_prefix(&prefix)
+        .and_then(|c| c.strip_suffix(')'))
+        .unwrap_or_else(|| panic!("{out}"));
+    let head = Command::new("git")
+        .args(["rev-parse", "HEAD"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string());
+    match head {
+        Some(head) => assert!(
+            commit.len() == 12 && head.starts_with(commit),
+            "{commit} is not HEAD ({head})"
+        ),
+        None => assert_eq!(commit, "unknown"),
+    }
+}
