@@ -351,14 +351,14 @@ pub const SLAB_WIDEN: f32 =
 /// such a box is kept.
 #[inline(always)]
 fn slab(n: &Node, o: Vec3, inv: Vec3, t_min: f32, t_max: f32) -> Option<f32> {
-    const WIDEN: f32 = SLAB_WIDEN;
     #[inline(always)]
     fn axis(lo: f32, hi: f32, o: f32, inv: f32, near: f32, far: f32) -> (f32, f32) {
         let (a, b) = ((lo - o) * inv, (hi - o) * inv);
         let (a, b) = if a < b { (a, b) } else { (b, a) };
+        let bw = b * SLAB_WIDEN;
         (
             if a > near { a } else { near },
-            if b * WIDEN < far { b * WIDEN } else { far },
+            if bw < far { bw } else { far },
         )
     }
     let (tn, tf) = axis(n.lo.x, n.hi.x, o.x, inv.x, t_min, t_max);
