@@ -156,7 +156,7 @@ pub fn inv_len<const NEAR: bool>(len2: f64) -> f64 {
 /// [`inv_len`] (`NEAR` as there). The same arithmetic for f32 and f64 models fed the same
 /// f32 input.
 #[inline(always)]
-fn unit64<T: Real, const NEAR: bool>(v: V3<T>) -> (V3<f64>, bool) {
+pub(crate) fn unit64<T: Real, const NEAR: bool>(v: V3<T>) -> (V3<f64>, bool) {
     let v = v.map(|c| c.f64());
     let len2 = dot(v, v);
     if std::mem::size_of::<T>() == 4 || (f64::MIN_POSITIVE..=f64::MAX).contains(&len2) {

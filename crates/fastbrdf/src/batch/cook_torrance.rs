@@ -13,6 +13,10 @@
 //! - (b) G has no slope distribution (`v-cavity`, `kelemen`, `neumann`: not a Smith term,
 //!   `ShadowForm::ANISO` false), with every D and `f` = `none` or `schlick`.
 //!
+//! Of (a), `ggx` with `smith-ggx` or `smith-ggx-correlated` and `f` = `none` or `schlick`,
+//! isotropic, is not the product of its parts but their closed form (`batch::ggx_closed`:
+//! 1.6x faster, within 1.5e-6 of f64, not the parts' bits).
+//!
 //! The exact Beckmann Smith terms (`smith`, `smith-beckmann-correlated`) vectorise since
 //! issue 30 (`math::fast::erfc`, branch-free, over the `Fast` backends) but take the generic
 //! path: their `erfc` and `exp` dominate, and fused kernels for them (built and timed, the
@@ -127,6 +131,20 @@ fn specialised(ct: &CookTorrance) -> Option<Box<dyn Imp>> {
         (D::BeckmannPower8(d), G::SmithRational(g), _) => every_f!(ct, d, g),
         (D::BeckmannPower16(d), G::SmithRational(g), _) => every_f!(ct, d, g),
         // (a) GGX with its Smith terms.
+        (D::Ggx(d), G::SmithGgx(g), F::None(f)) if closed(ct, d.alpha2(), g.alpha2()) => {
+            super::ggx_closed::kernel::<_, false>(d.alpha2(), ct.k.x, *f)
+        }
+        (D::Ggx(d), G::SmithGgx(g), F::Schlick(f)) if closed(ct, d.alpha2(), g.alpha2()) => {
+            super::ggx_closed::kernel::<_, false>(d.alpha2(), ct.k.x, *f)
+        }
+        (D::Ggx(d), G::SmithGgxCorrelated(g), F::None(f)) if closed(ct, d.alpha2(), g.alpha2()) => {
+            super::ggx_closed::kernel::<_, true>(d.alpha2(), ct.k.x, *f)
+        }
+        (D::Ggx(d), G::SmithGgxCorrelated(g), F::Schlick(f))
+            if closed(ct, d.alpha2(), g.alpha2()) =>
+        {
+            super::ggx_closed::kernel::<_, true>(d.alpha2(), ct.k.x, *f)
+        }
         (D::Ggx(d), G::SmithGgx(g), _) => every_f!(ct, d, g),
         (D::Ggx(d), G::SmithGgxCorrelated(g), _) => every_f!(ct, d, g),
         (D::Ggx(d), G::SmithGgxCorrelatedFast(g), _) => every_f!(ct, d, g),
@@ -141,6 +159,11 @@ fn specialised(ct: &CookTorrance) -> Option<Box<dyn Imp>> {
         (_, G::Neumann(g), F::Schlick(f)) => every_d!(ct, g, f),
         _ => return None,
     })
+}
+
+/// Whether GGX's closed form applies: isotropic, D's and G's slopes the same.
+fn closed(ct: &CookTorrance, d: f64, g: f64) -> bool {
+    ct.aniso.is_none() && d == g
 }
 
 /// Cook-Torrance's kernel: specialised where the rule gives one (module header), else the

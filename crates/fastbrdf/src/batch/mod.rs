@@ -30,6 +30,7 @@
 pub use crate::math::fast as math;
 
 mod cook_torrance;
+mod ggx_closed;
 pub mod per_element;
 pub mod sample;
 

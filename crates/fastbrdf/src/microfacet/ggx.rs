@@ -76,6 +76,13 @@ impl Ggx {
     }
 }
 
+impl Ggx {
+    /// `alpha^2` (`batch`'s closed form of Cook-Torrance with GGX).
+    pub fn alpha2(&self) -> f64 {
+        self.alpha2.x
+    }
+}
+
 impl DistForm for Ggx {
     const ANISO: bool = true;
     /// GGX's own Smith term (Walter et al. 2007, eq. 34).

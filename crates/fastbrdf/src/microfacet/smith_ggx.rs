@@ -261,6 +261,18 @@ impl SmithGgx {
             alpha2: K::new(a * a),
         })
     }
+
+    /// `alpha^2` (`batch`'s closed form of Cook-Torrance with GGX).
+    pub fn alpha2(&self) -> f64 {
+        self.alpha2.x
+    }
+}
+
+impl SmithGgxCorrelated {
+    /// `alpha^2` (`batch`'s closed form of Cook-Torrance with GGX).
+    pub fn alpha2(&self) -> f64 {
+        self.0.alpha2.x
+    }
 }
 
 impl ShadowForm for SmithGgx {
