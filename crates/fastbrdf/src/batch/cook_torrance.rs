@@ -15,7 +15,8 @@
 //!
 //! Of (a), `ggx` with `smith-ggx` or `smith-ggx-correlated` and `f` = `none` or `schlick`,
 //! isotropic, is not the product of its parts but their closed form (`batch::ggx_closed`:
-//! 1.6x faster, within 1.5e-6 of f64, not the parts' bits).
+//! 1.6x faster, within 2.5e-6 of f64 with `f = none`, not the parts' bits; 4 kernels, 12
+//! loops, beside the fused ones of the same triples, which the anisotropic models run).
 //!
 //! The exact Beckmann Smith terms (`smith`, `smith-beckmann-correlated`) vectorise since
 //! issue 30 (`math::fast::erfc`, branch-free, over the `Fast` backends) but take the generic
@@ -161,9 +162,10 @@ fn specialised(ct: &CookTorrance) -> Option<Box<dyn Imp>> {
     })
 }
 
-/// Whether GGX's closed form applies: isotropic, D's and G's slopes the same.
+/// Whether GGX's closed form applies: isotropic, no energy compensation, D's and G's slopes
+/// the same.
 fn closed(ct: &CookTorrance, d: f64, g: f64) -> bool {
-    ct.aniso.is_none() && d == g
+    ct.aniso.is_none() && ct.ms == Ms::None && d == g
 }
 
 /// Cook-Torrance's kernel: specialised where the rule gives one (module header), else the
