@@ -162,10 +162,10 @@ fn specialised(ct: &CookTorrance) -> Option<Box<dyn Imp>> {
     })
 }
 
-/// Whether GGX's closed form applies: isotropic, no energy compensation, D's and G's slopes
-/// the same.
+/// Whether GGX's closed form applies: isotropic, D's and G's slopes the same. (With an energy
+/// compensation, `kernel` never asks the rule.)
 fn closed(ct: &CookTorrance, d: f64, g: f64) -> bool {
-    ct.aniso.is_none() && ct.ms == Ms::None && d == g
+    ct.aniso.is_none() && d == g
 }
 
 /// Cook-Torrance's kernel: specialised where the rule gives one (module header), else the

@@ -74,9 +74,7 @@ impl Ggx {
             scale: K::new(a * a / std::f64::consts::PI),
         })
     }
-}
 
-impl Ggx {
     /// `alpha^2` (`batch`'s closed form of Cook-Torrance with GGX).
     pub fn alpha2(&self) -> f64 {
         self.alpha2.x
