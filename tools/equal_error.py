@@ -197,6 +197,12 @@ class Fastbrdf:
         self.has_sampler = "--sampler" in helptext
         self.has_aa = "--aa" in helptext
         self.has_env_sun = "--env-sun" in helptext
+        # `render --repeat 2`: the ladders time the second render of the process, a warm one
+        # as Mitsuba's after its warm-up render (`warm`, off with --cold-fastbrdf); the first
+        # render's time is kept apart (`last_cold`).
+        self.has_repeat = "--repeat" in helptext
+        self.warm = self.has_repeat
+        self.last_cold: Optional[float] = None
         v = subprocess.run([str(binary), "--version"], capture_output=True, text=True)
         self.version = v.stdout.strip()
 
@@ -210,11 +216,16 @@ class Fastbrdf:
 
     def render_seeded(self, scene: Dict[str, Any], extra: List[str], gpu: bool, seed: int) -> Tuple[np.ndarray, float]:
         """`render` for the ladders, which pass a seed: fastbrdf's renders are deterministic."""
-        return self.render(scene, extra, gpu)
+        return self.render(scene, extra, gpu, warm=self.warm and not gpu)
 
-    def render(self, scene: Dict[str, Any], extra: List[str], gpu: bool = False) -> Tuple[np.ndarray, float]:
+    def render(self, scene: Dict[str, Any], extra: List[str], gpu: bool = False,
+               warm: bool = False) -> Tuple[np.ndarray, float]:
+        """The picture and its render time: with `warm`, the second render of the process
+        (`--repeat 2`), the first's time in `last_cold`."""
         out = self.tmp / "fastbrdf.exr"
         cmd = [str(self.bin), "render", *self.args(scene), *extra, "--out", str(out)]
+        if warm:
+            cmd += ["--repeat", "2"]
         env = dict(os.environ)
         if gpu:
             cmd.append("--gpu")
@@ -230,6 +241,12 @@ class Fastbrdf:
         # (device, pipelines: mostly the driver compiling the shaders) is left out, as
         # Mitsuba's JIT compilation is.
         d = re.search(r"draws ([0-9.]+) s", p.stderr) if gpu else None
+        self.last_cold = float(m.group(1))
+        if warm:
+            then = re.search(r"render [0-9.]+ s \(then ([0-9.]+) s", p.stderr)
+            if not then:
+                raise RuntimeError(f"no 'render X s (then Y s' in fastbrdf's output: {p.stderr.strip()}")
+            return read_exr(out), float(then.group(1))
         return read_exr(out), float((d or m).group(1))
 
 
@@ -477,6 +494,7 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
     size = opts.size or L["size"]
     repeats = opts.repeats or L["repeats"]
     fb = Fastbrdf(pathlib.Path(opts.fastbrdf), size, tmp)
+    fb.warm = fb.has_repeat and not opts.cold_fastbrdf
     samplers = ["sobol", "independent"] if fb.has_sampler else [None]
     mi_obj: Optional[Mitsuba] = None
     mi_note = "not requested (--no-mitsuba)"
@@ -500,7 +518,10 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
         "repeats": repeats,
         "metric": "relMSE: mean over pixels and channels of (x - ref)^2 / (ref^2 + 1e-2)",
         "timing": "render only (fastbrdf's printed 'render X s', the model's set-up apart as load_dict is "
-        "Mitsuba's; on the GPU its 'draws X s' after the "
+        "Mitsuba's; "
+        + ("on the CPU its second render in one process (`render --repeat 2`'s 'then Y s'), as Mitsuba's after "
+           "a warm-up render, the first in cold_time_s; " if fb.warm else "")
+        + "on the GPU its 'draws X s' after the "
         "device and pipeline set-up; mi.render + dr.eval after a warm-up render of the same scene and "
         "sample count), median of the repeats, renderers interleaved"
         + (", each timed call (but the GPU's) right after an untimed call of its own" if opts.warm_call else ""),
@@ -617,7 +638,8 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
                         break
                     raise
                 err = rel_mse(img, ref_of(cname))
-                meas[(cname, n)] = {"times": [], "errors": [err] if cname.startswith("mitsuba") else []}
+                meas[(cname, n)] = {"times": [], "cold_times": [],
+                                    "errors": [err] if cname.startswith("mitsuba") else []}
                 order.append((cname, n, fn))
                 log(f"{name}: {cname} {n} spp: error {err:.4g}")
                 if err < STOP * target and not (cname in (default_name, target_name) and n < default_samples):
@@ -636,6 +658,9 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
                     fn(r + 1)
                 img, dt = fn(r + 1)
                 meas[(cname, n)]["times"].append(dt)
+                if fb.warm and cname in ("fastbrdf-cpu", "fastbrdf-before"):
+                    assert fb.last_cold is not None
+                    meas[(cname, n)]["cold_times"].append(fb.last_cold)
                 meas[(cname, n)]["errors"].append(rel_mse(img, ref_of(cname)))
         renderers: Dict[str, Any] = {}
         for (cname, n), m in meas.items():
@@ -645,6 +670,9 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
                 "time_s": median(m["times"]),
                 "times_s": m["times"],
                 "time_spread": spread(m["times"]),
+                # With the warm timing, the first render of each process (a cold one) too.
+                **({"cold_time_s": median(m["cold_times"]), "cold_times_s": m["cold_times"]}
+                   if m["cold_times"] else {}),
                 # fastbrdf is deterministic (the same error each time); Mitsuba: the mean over
                 # its seeds.
                 "error": float(np.mean(m["errors"])),
@@ -662,6 +690,12 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
         entry["fastbrdf_default"] = {"renderer": default_name, "samples": default_samples, "time_s": t_base,
                                      "how": how_base, "args": " ".join(default_args) or "(defaults)",
                                      "target_time_s": base["time_s"]}
+        # The same from the first render of each process (cold), where timed warm.
+        cold = [dict(p, time_s=p["cold_time_s"]) for p in renderers[default_name]["ladder"] if "cold_time_s" in p]
+        if cold:
+            t_cold, _ = time_to_error(cold, target) if target_name != default_name else (None, "")
+            entry["fastbrdf_default"]["cold_time_s"] = t_cold or next(
+                p["time_s"] for p in cold if p["samples"] == default_samples)
         for cname, rr in renderers.items():
             t, how = time_to_error(rr["ladder"], target)
             if cname == target_name:
@@ -736,6 +770,16 @@ def table(res: Dict[str, Any]) -> str:
             f"timing noise, (max - min) / median of {res['repeats']} repeats: median {100 * median(spreads):.0f}%, "
             f"worst {100 * max(spreads):.0f}%"
         )
+    colds = {n: e["fastbrdf_default"]["cold_time_s"] for n, e in res["scenes"].items()
+             if "cold_time_s" in e["fastbrdf_default"]}
+    if colds:
+        mj = {n: res["scenes"][n]["renderers"].get("mitsuba-multijitter", {}).get("time_to_target_s") for n in colds}
+        each = ", ".join(f"{n} {ms(t)}" + (f" ({mj[n] / t:.2g}x ahead of multijitter)" if mj[n] else "")
+                         for n, t in colds.items())
+        notes.append(
+            "fastbrdf CPU is timed at its second render in one process (`render --repeat 2`), as Mitsuba "
+            f"after its warm-up render; its first render in a fresh process (cold): {each}"
+        )
     if not res["mitsuba"].startswith("mitsuba "):
         notes.append(f"Mitsuba: {res['mitsuba']}")
     if res.get("gpu_note"):
@@ -763,6 +807,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     ap.add_argument("--no-warm-call", dest="warm_call", action="store_false",
                     help="time each ladder point right after the previous renderer's (before the tenth "
                     "pass: a fastbrdf render after Mitsuba's ran with Mitsuba's threads still spinning)")
+    ap.add_argument("--cold-fastbrdf", action="store_true",
+                    help="time fastbrdf's first render in its process (before the sixteenth pass), not "
+                    "its second (`render --repeat 2`, a warm process as Mitsuba's after its warm-up)")
     ap.add_argument("--mitsuba-variant", default="llvm_ad_rgb")
     ap.add_argument("--env-roll", type=int, default=512,
                     help="columns the sky is rolled by for Mitsuba's envmap (its u = fastbrdf's u - 1/2)")

@@ -59,9 +59,16 @@ def test_the_json_holds_ladders_targets_and_times(smoke):
                 # Times print to the millisecond: a 24x24 render may read 0.
                 assert p["time_s"] >= 0 and len(p["times_s"]) == res["repeats"]
                 assert math.isfinite(p["error"]) and p["error"] > 0
+        # The CPU's ladders are timed at the second render of each process (`render --repeat
+        # 2`, warm as Mitsuba's after its warm-up), the first (cold) kept beside them.
+        for cname in ("fastbrdf-cpu", "fastbrdf-before"):
+            for p in e["renderers"][cname]["ladder"]:
+                assert len(p["cold_times_s"]) == res["repeats"] and p["cold_time_s"] >= 0
+        assert d["cold_time_s"] >= 0
         # One row per scene in the table, and the CPU named above it.
         assert f"| {e['label']} | " in stdout and "before issue 30: " in stdout
     assert res["cpu"] in res["table_markdown"]
+    assert "--repeat 2" in res["timing"] and "(cold): sphere-directional" in res["table_markdown"]
 
 
 def test_errors_fall_as_samples_rise(smoke):

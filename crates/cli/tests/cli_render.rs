@@ -113,6 +113,16 @@ fn render_bad_input_is_exit_2_and_leaves_no_file() {
             "must end in .png or .exr".into(),
         ),
         (
+            vec!["render", "--model", "pow", "--repeat", "0", "--out", o],
+            "invalid value '0' for '--repeat <N>'".into(),
+        ),
+        (
+            vec![
+                "render", "--model", "pow", "--repeat", "2", "--gpu", "--out", o,
+            ],
+            "'--repeat <N>' cannot be used with '--gpu'".into(),
+        ),
+        (
             vec![
                 "compare",
                 "--models",
@@ -204,6 +214,58 @@ fn render_writes_png_and_exr_and_compare_reports_metrics() {
     );
     assert!(m[1]["rmse"].as_f64().unwrap() > 0.0 && m[1]["flip"].as_f64().unwrap() > 0.0);
     assert!(out.exists());
+    std::fs::remove_dir_all(&d).unwrap();
+}
+
+/// `--repeat N` renders N times, reports the later renders' times apart from the first's and
+/// writes the same picture as one render.
+#[test]
+fn render_repeat_times_each_render_and_writes_the_same_picture() {
+    let d = temp_dir("render-repeat");
+    let mut files = Vec::new();
+    for repeat in ["1", "3"] {
+        let out = d.join(format!("r{repeat}.exr"));
+        let r = fastbrdf(
+            &[
+                "render",
+                "--model",
+                "ggx",
+                "--mesh",
+                "face",
+                "--size",
+                "40x30",
+                "--spp",
+                "2",
+                "--repeat",
+                repeat,
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            "",
+        );
+        assert!(r.status.success(), "{}", stderr(&r));
+        let e = stderr(&r);
+        let then = e
+            .split("(then ")
+            .nth(1)
+            .map(|t| t.split(')').next().unwrap());
+        match repeat {
+            "1" => assert!(then.is_none(), "{e}"),
+            _ => {
+                let then = then.unwrap_or_else(|| panic!("no '(then ' in {e}"));
+                let (times, tail) = then.split_once(": ").unwrap();
+                assert_eq!(tail, "--repeat 3", "{e}");
+                let secs: Vec<f64> = times
+                    .split(", ")
+                    .map(|t| t.strip_suffix(" s").unwrap().parse().unwrap())
+                    .collect();
+                assert_eq!(secs.len(), 2, "{e}");
+                assert!(secs.iter().all(|&s| s > 0.0 && s < 60.0), "{e}");
+            }
+        }
+        files.push(std::fs::read(&out).unwrap());
+    }
+    assert!(files[0] == files[1], "--repeat changed the picture");
     std::fs::remove_dir_all(&d).unwrap();
 }
 

@@ -83,6 +83,34 @@ pub struct RenderArgs {
     /// itself).
     #[arg(long)]
     gpu: bool,
+    /// Render N times in this process and report each render's time (for timing; the
+    /// picture written is the first: renders are deterministic, every one is the same). The
+    /// first is a fresh process's render (its threads started, its memory first touched);
+    /// the later ones a warm process's, as `tools/equal_error.py` times Mitsuba 3's render
+    /// after a warm-up render. CPU only (with --gpu the draws are timed after the set-up).
+    #[arg(long, default_value_t = 1, value_name = "N", conflicts_with = "gpu",
+          value_parser = clap::value_parser!(u32).range(1..=100))]
+    repeat: u32,
+}
+
+/// What `finish` reports besides the first render's time: the model's set-up, where timed
+/// apart, and the later renders' times (`--repeat`).
+#[derive(Default)]
+struct Times {
+    set_up: Option<f64>,
+    later: Vec<f64>,
+}
+
+/// `--repeat`: runs `render` `n - 1` more times, dropping each picture (the same as the
+/// first), and returns each run's seconds.
+fn again<T>(n: u32, render: impl Fn() -> Result<T, CliError>) -> Result<Vec<f64>, CliError> {
+    (1..n)
+        .map(|_| {
+            let t = std::time::Instant::now();
+            drop(render()?);
+            Ok(t.elapsed().as_secs_f64())
+        })
+        .collect()
 }
 
 /// Renders one model on the GPU; returns the film and the adapter's label.
@@ -219,31 +247,60 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let t = std::time::Instant::now();
     if a.gpu && crate::model_args::is_user(&a.model) {
         let (film, label) = render_user_gpu(a, &spec, &loaded, &opts)?;
-        return finish(a, &spec, &opts, film, t, format!(", GPU: {label}"), None);
+        return finish(
+            a,
+            &spec,
+            &opts,
+            film,
+            t,
+            format!(", GPU: {label}"),
+            Times::default(),
+        );
     }
     if let Some(user) = a.model_args.user(&a.model)? {
         // A user's model: the whole BRDF (weights 0, 1), shaded by the CPU renderer with its
         // values from the GPU evaluator, one dispatch per batch of hits.
-        let film = render_rgb(
-            &spec,
-            &loaded,
-            &opts,
-            &a.model,
-            Arc::new(UserRgb::new(user)),
-        )?;
-        return finish(a, &spec, &opts, film, t, String::new(), None);
+        let user = Arc::new(UserRgb::new(user));
+        let film = render_rgb(&spec, &loaded, &opts, &a.model, user.clone())?;
+        let later = again(a.repeat, || {
+            render_rgb(&spec, &loaded, &opts, &a.model, user.clone())
+        })?;
+        let times = Times {
+            set_up: None,
+            later,
+        };
+        return finish(a, &spec, &opts, film, t, String::new(), times);
     }
     let model = a.model_args.spec(&a.model, Use::Shaded)?;
     if a.gpu {
         let (film, label) = render_model_gpu(&spec, &loaded, &opts, &a.model, &model)?;
-        return finish(a, &spec, &opts, film, t, format!(", GPU: {label}"), None);
+        return finish(
+            a,
+            &spec,
+            &opts,
+            film,
+            t,
+            format!(", GPU: {label}"),
+            Times::default(),
+        );
     }
     // The model's set-up (its spec and kernels) is timed apart from the render, as
     // `tools/equal_error.py` times Mitsuba's `mi.render` apart from `load_dict`.
     let specular = specular(&a.model, &model)?;
-    let set_up = t.elapsed().as_secs_f64();
-    let film = render_specular(&spec, &loaded, &opts, specular)?;
-    finish(a, &spec, &opts, film, t, String::new(), Some(set_up))
+    let set_up = Some(t.elapsed().as_secs_f64());
+    let film = render_specular(&spec, &loaded, &opts, specular.clone())?;
+    let later = again(a.repeat, || {
+        render_specular(&spec, &loaded, &opts, specular.clone())
+    })?;
+    finish(
+        a,
+        &spec,
+        &opts,
+        film,
+        t,
+        String::new(),
+        Times { set_up, later },
+    )
 }
 
 /// `render --scene FILE`: the glTF scene with its materials, `--param` given to every one.
@@ -257,12 +314,13 @@ fn render_gltf(
     let overrides = a.model_args.param.pairs()?;
     let t = std::time::Instant::now();
     let loaded = gltf_scene::load(file, spec)?;
-    let (film, gpu) = if a.gpu {
+    let (film, gpu, later) = if a.gpu {
         let (film, label) = render_gltf_gpu(&loaded, spec, opts, &overrides)?;
-        (film, format!(", GPU: {label}"))
+        (film, format!(", GPU: {label}"), Vec::new())
     } else {
-        let (film, _) = gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false)?;
-        (film, String::new())
+        let cpu = || gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false);
+        let (film, _) = cpu()?;
+        (film, String::new(), again(a.repeat, cpu)?)
     };
     let s = &loaded.scene;
     let on = format!(
@@ -284,7 +342,11 @@ fn render_gltf(
             ", a framing view"
         }
     );
-    finish(a, spec, opts, film, t, on, None)
+    let times = Times {
+        set_up: None,
+        later,
+    };
+    finish(a, spec, opts, film, t, on, times)
 }
 
 /// Renders a glTF scene on the GPU (`fastbrdf_gpu::render`: coloured materials, base colour
@@ -318,7 +380,8 @@ fn render_gltf_gpu(
 }
 
 /// Writes the picture and reports what was rendered, how and how long it took: from `t`, of
-/// which `set_up` seconds (where timed apart) went to the model's set-up before the render.
+/// which `times.set_up` seconds (where timed apart) went to the model's set-up before the
+/// render and `times.later` to the renders after the first (`--repeat`), reported apart.
 fn finish(
     a: &RenderArgs,
     spec: &SceneSpec,
@@ -326,8 +389,9 @@ fn finish(
     film: Film,
     t: std::time::Instant,
     on: String,
-    set_up: Option<f64>,
+    times: Times,
 ) -> Result<(), CliError> {
+    let Times { set_up, later } = times;
     // The GPU renders the N x N grid in every pixel (no adaptive antialiasing).
     let gpu_opts;
     let opts = if a.gpu {
@@ -340,7 +404,14 @@ fn finish(
         opts
     };
     let until_rendered = t.elapsed().as_secs_f64();
-    let rendered = until_rendered - set_up.unwrap_or(0.0);
+    let rendered = until_rendered - set_up.unwrap_or(0.0) - later.iter().sum::<f64>();
+    // "render X s (then Y s, Z s: --repeat 3)": the later renders, a warm process's.
+    let then = if later.is_empty() {
+        String::new()
+    } else {
+        let each: Vec<String> = later.iter().map(|s| format!("{s:.4} s")).collect();
+        format!(" (then {}: --repeat {})", each.join(", "), later.len() + 1)
+    };
     film.save(&a.out, a.scene.exposure)?;
     let total = t.elapsed().as_secs_f64();
     let set_up = set_up.map_or(String::new(), |s| format!("model set-up {s:.4} s, "));
@@ -357,7 +428,7 @@ fn finish(
         None => String::new(),
     };
     eprintln!(
-        "wrote {} ({}x{}, {} samples/pixel ({}x{} {}{env}), {:.4} s: {set_up}render {:.4} s, encode and write {:.4} s{on})",
+        "wrote {} ({}x{}, {} samples/pixel ({}x{} {}{env}), {:.4} s: {set_up}render {:.4} s{then}, encode and write {:.4} s{on})",
         a.out.display(),
         opts.width,
         opts.height,
