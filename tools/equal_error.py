@@ -646,8 +646,16 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
                     break
         log(f"{name}: timing {len(order)} ladder points x {repeats} repeats, interleaved"
             + (", each after an untimed call of its own" if opts.warm_call else ""))
+        prev = ""
         for r in range(repeats):
             for cname, n, fn in order:
+                if prev.startswith("mitsuba") and not cname.startswith("mitsuba"):
+                    # Mitsuba's threads keep spinning after its renders: in the fifteenth
+                    # pass's runs the first fastbrdf point of each repeat, right after
+                    # Mitsuba's longest render, took up to twice the time of the same render
+                    # in the "before" ladder (face, --spp 1: 8.1-16.6 ms against 8.2-10.0).
+                    time.sleep(opts.settle)
+                prev = cname
                 if opts.warm_call and cname != "fastbrdf-gpu":
                     # Mitsuba runs in this process and its threads keep spinning a while after
                     # a render: a fastbrdf render timed right after one took 12.3 ms (median of
@@ -807,6 +815,9 @@ def main(argv: Optional[List[str]] = None) -> int:
     ap.add_argument("--no-warm-call", dest="warm_call", action="store_false",
                     help="time each ladder point right after the previous renderer's (before the tenth "
                     "pass: a fastbrdf render after Mitsuba's ran with Mitsuba's threads still spinning)")
+    ap.add_argument("--settle", type=float, default=0.5, metavar="S",
+                    help="seconds to wait before a fastbrdf render that follows Mitsuba's, whose "
+                    "threads keep spinning after a render (default 0.5)")
     ap.add_argument("--cold-fastbrdf", action="store_true",
                     help="time fastbrdf's first render in its process (before the sixteenth pass), not "
                     "its second (`render --repeat 2`, a warm process as Mitsuba's after its warm-up)")
