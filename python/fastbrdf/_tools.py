@@ -56,8 +56,10 @@ def check(model: Optional[str] = None, full: bool = False) -> Dict[str, Any]:
     """Every documented bound of the registry (or of ``model``) re-measured on this machine, as
     ``fastbrdf check --json [--model M] [--full]``: ``{ok, bounds: [{model, reference, metric,
     zone, param, documented, measured, at_param, at_x, samples, ok}], f32: [{model, documented,
-    measured, configurations, evaluations, corners, at, finite, invalid, ok}]}``. A bound that
-    does not hold is ``ok: False`` (nothing is raised). ``full`` searches 32 times longer.
+    measured, configurations, evaluations, corners, at, finite, invalid, ok}], kernels: [{model,
+    documented, measured, isas, configurations, evaluations, at, finite, invalid, ok}]}`` (the
+    batch kernels that ``eval`` runs, on every instruction set of this CPU, against f64). A
+    bound that does not hold is ``ok: False`` (nothing is raised). ``full`` searches 32 times longer.
     Ctrl-C stops it.
 
     >>> r = fastbrdf.check("pow")

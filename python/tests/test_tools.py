@@ -44,11 +44,15 @@ def beside(cli, args, call):
 def test_check_equals_the_cli(cli, model):
     theirs, mine = beside(cli, ["check", "--json", "--model", model], lambda: fastbrdf.check(model))
     assert mine == theirs
-    assert set(mine) == {"ok", "bounds", "f32"}
+    assert set(mine) == {"ok", "bounds", "f32", "kernels"}
     assert [r["model"] for r in mine["f32"]] == [model]
     assert {r["model"] for r in mine["bounds"]} <= {model}
+    # The batch kernels on every instruction set of this CPU, held to the model's f32 bound.
+    [k] = mine["kernels"]
+    assert k["model"] == model and k["isas"] and k["isas"][-1] == "sse2"
+    assert k["ok"] and k["finite"] and 0 <= k["measured"] <= k["documented"]
     # ok is every row's verdict (the CLI's exit code says the same).
-    assert mine["ok"] == all(r["ok"] for r in mine["bounds"] + mine["f32"])
+    assert mine["ok"] == all(r["ok"] for r in mine["bounds"] + mine["f32"] + mine["kernels"])
 
 
 def test_check_keyword_names_and_errors():

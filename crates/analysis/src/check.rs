@@ -1,5 +1,5 @@
 //! `fastbrdf check`: every documented bound of the registry re-measured on this machine.
-//! Two families of checks:
+//! Four families of checks:
 //! - error against the reference model: a dense grid plus golden-section refinement over the
 //!   bound's parameter range (`fastbrdf::accuracy::worst`) and an adversarial search over the
 //!   parameter as a continuum and the input together (`accuracy::worst_search`); the larger
@@ -14,6 +14,10 @@
 //!   types them) evaluated at the ends of the input ranges, where a random search seldom
 //!   lands: zero, subnormal and tiny cosines, grazing and normal incidence, the issue's
 //!   points. Its maximum counts in the f32 row like the grid's and the search's.
+//! - the batch kernels (the SIMD code `eval` runs) against f64 on every instruction set of
+//!   this CPU ([`kernel_bound`], `accuracy::kernel_worst`): the f32 grid at every domain
+//!   configuration, the ends of the input ranges, and invalid inputs (which must give finite,
+//!   non-negative values), held to the model's f32 bound.
 
 use fastbrdf::entry::Entry;
 use fastbrdf::{ErrorBound, Given, Metric, ModelSpec, Zone, accuracy};
@@ -56,30 +60,65 @@ pub struct F32Row {
     pub ok: bool,
 }
 
+/// One model's batch kernel against f64 on every instruction set of this CPU, re-measured
+/// (no row for a shadowing term: it has no kernel of its own).
+#[derive(Clone, Debug, Serialize)]
+pub struct KernelRow {
+    pub model: &'static str,
+    /// The model's f32 bound: its kernels are held to it as its scalar f32 model is.
+    pub documented: f64,
+    /// The largest `|kernel - f64| / max(1, |f64|)` over every configuration, input and
+    /// instruction set (`null` in JSON if infinite).
+    pub measured: f64,
+    /// The instruction sets measured, best first (`avx512`, `avx2+fma`, `sse2`).
+    pub isas: Vec<&'static str>,
+    pub configurations: usize,
+    /// Kernel values compared or checked, all instruction sets together.
+    pub evaluations: usize,
+    pub at: String,
+    /// Every kernel value finite and non-negative, invalid inputs included.
+    pub finite: bool,
+    /// Where a non-finite or negative value was found ("" when none).
+    pub invalid: String,
+    pub ok: bool,
+}
+
 /// Every row of a check.
 #[derive(Clone, Debug)]
 pub struct CheckReport {
     pub bounds: Vec<BoundRow>,
     pub f32: Vec<F32Row>,
+    pub kernels: Vec<KernelRow>,
 }
 
 impl CheckReport {
     /// Whether every bound holds.
     pub fn ok(&self) -> bool {
-        self.bounds.iter().all(|r| r.ok) && self.f32.iter().all(|r| r.ok)
+        self.bounds.iter().all(|r| r.ok)
+            && self.f32.iter().all(|r| r.ok)
+            && self.kernels.iter().all(|r| r.ok)
     }
 
-    /// `fastbrdf check --json`'s object, `{"ok", "bounds", "f32"}` (the CLI and the Python
-    /// package print this one value).
+    /// `fastbrdf check --json`'s object, `{"ok", "bounds", "f32", "kernels"}` (the CLI and
+    /// the Python package print this one value).
     pub fn json(&self) -> serde_json::Value {
-        serde_json::json!({ "ok": self.ok(), "bounds": self.bounds, "f32": self.f32 })
+        serde_json::json!({
+            "ok": self.ok(),
+            "bounds": self.bounds,
+            "f32": self.f32,
+            "kernels": self.kernels,
+        })
     }
 
     /// How many bounds hold, of how many.
     pub fn holding(&self) -> (usize, usize) {
-        let held =
-            self.bounds.iter().filter(|r| r.ok).count() + self.f32.iter().filter(|r| r.ok).count();
-        (held, self.bounds.len() + self.f32.len())
+        let held = self.bounds.iter().filter(|r| r.ok).count()
+            + self.f32.iter().filter(|r| r.ok).count()
+            + self.kernels.iter().filter(|r| r.ok).count();
+        (
+            held,
+            self.bounds.len() + self.f32.len() + self.kernels.len(),
+        )
     }
 }
 
@@ -156,6 +195,49 @@ pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
         ok: worst.0 <= e.info.f32_bound && invalid.is_none(),
         invalid: invalid.unwrap_or_default(),
     }
+}
+
+/// Model `e`'s batch kernel against f64 on every instruction set of this CPU, at every
+/// domain configuration (`accuracy::kernel_worst`); `None` for a shadowing term.
+pub fn kernel_bound(e: &'static Entry) -> Option<KernelRow> {
+    if !has_kernel(e) {
+        return None;
+    }
+    let configs = accuracy::domain_configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
+    let mut row = KernelRow {
+        model: e.info.id,
+        documented: e.info.f32_bound,
+        measured: 0.0,
+        isas: Vec::new(),
+        configurations: configs.len(),
+        evaluations: 0,
+        at: String::new(),
+        finite: true,
+        invalid: String::new(),
+        ok: false,
+    };
+    for c in &configs {
+        let w = accuracy::kernel_worst(c)
+            .expect("domain configurations are valid")
+            .expect("a kernel for every kind but shadowing");
+        row.evaluations += w.evaluations;
+        row.isas = w.isas;
+        if !(w.err <= row.measured) || row.at.is_empty() {
+            row.measured = w.err;
+            row.at = format!("{} {}", fmt_params(c), w.at).trim().to_string();
+        }
+        if let (Some(bad), true) = (w.invalid, row.finite) {
+            row.finite = false;
+            row.invalid = format!("{} {bad}", fmt_params(c)).trim().to_string();
+        }
+    }
+    row.ok = row.finite && row.measured <= row.documented;
+    Some(row)
+}
+
+/// Whether `e` has a batch kernel of its own (every kind but a shadowing term).
+fn has_kernel(e: &Entry) -> bool {
+    e.info.kind != fastbrdf::Kind::Shadowing
 }
 
 /// Cosines at the ends of `[0, 1]`: 0, subnormal (`1e-45` is the smallest f32), the smallest
@@ -343,10 +425,13 @@ pub fn corners(info: &fastbrdf::ModelInfo) -> Corners {
     out
 }
 
-/// How many steps [`run`] reports to `progress` for `entries`: one per error bound and one
-/// per model.
+/// How many steps [`run`] reports to `progress` for `entries`: one per error bound, one per
+/// model, and one per model with a kernel.
 pub fn steps(entries: &[&'static Entry]) -> usize {
-    entries.iter().map(|e| e.info.bounds.len() + 1).sum()
+    entries
+        .iter()
+        .map(|e| e.info.bounds.len() + 1 + usize::from(has_kernel(e)))
+        .sum()
 }
 
 /// Re-measures every bound of `entries`, in parallel; `progress` is called [`steps`] times.
@@ -375,7 +460,19 @@ pub fn run(
             r
         })
         .collect();
-    CheckReport { bounds, f32 }
+    let kernels = entries
+        .par_iter()
+        .filter_map(|e| {
+            let r = kernel_bound(e)?;
+            progress();
+            Some(r)
+        })
+        .collect();
+    CheckReport {
+        bounds,
+        f32,
+        kernels,
+    }
 }
 
 #[cfg(test)]
@@ -404,8 +501,9 @@ mod tests {
         assert!(n_bounds >= 2);
         assert_eq!(r.bounds.len(), n_bounds);
         assert_eq!(r.f32.len(), 2);
+        assert_eq!(r.kernels.len(), 2);
         assert_eq!(calls.load(Ordering::Relaxed), steps(&entries));
-        assert_eq!(steps(&entries), n_bounds + 2);
+        assert_eq!(steps(&entries), n_bounds + 4);
         for b in &r.bounds {
             // An approximation differs from its reference somewhere, within its bound.
             assert!(b.measured > 0.0 && b.measured <= b.documented, "{b:?}");
@@ -417,8 +515,23 @@ mod tests {
             assert!(f.measured >= 0.0 && f.measured <= f.documented, "{f:?}");
             assert!(f.configurations > 0 && f.evaluations > 0);
         }
+        for k in &r.kernels {
+            assert!(k.finite && k.ok && k.invalid.is_empty(), "{k:?}");
+            assert!(k.measured >= 0.0 && k.measured <= k.documented, "{k:?}");
+            assert_eq!(
+                k.isas,
+                fastbrdf::batch::Isa::available()
+                    .iter()
+                    .map(|i| i.name())
+                    .collect::<Vec<_>>()
+            );
+            assert!(
+                k.configurations > 0 && k.evaluations > k.configurations,
+                "{k:?}"
+            );
+        }
         assert!(r.ok());
-        assert_eq!(r.holding(), (n_bounds + 2, n_bounds + 2));
+        assert_eq!(r.holding(), (n_bounds + 4, n_bounds + 4));
     }
 
     #[test]
@@ -427,11 +540,16 @@ mod tests {
         let mut r = CheckReport {
             bounds: vec![bound(e, &e.info.bounds[0], SMALL)],
             f32: vec![f32_bound(e, SMALL)],
+            kernels: vec![kernel_bound(e).unwrap()],
         };
         assert!(r.ok());
         r.f32[0].ok = false;
         assert!(!r.ok());
-        assert_eq!(r.holding(), (1, 2));
+        assert_eq!(r.holding(), (2, 3));
+        r.f32[0].ok = true;
+        r.kernels[0].ok = false;
+        assert!(!r.ok());
+        assert_eq!(r.holding(), (2, 3));
     }
 
     /// Issue 27: the corners reach the points the search missed (`fresnel-dielectric` at
@@ -476,6 +594,31 @@ mod tests {
             }
         }
         assert!(bad.is_empty(), "{}", bad.join("\n"));
+    }
+
+    /// Every model's batch kernel holds its model's f32 bound against f64, on every
+    /// instruction set of this CPU, finite and non-negative on invalid inputs too; the
+    /// measurement is not vacuous (an error above zero somewhere, every input evaluated).
+    #[test]
+    fn every_kernel_holds_its_f32_bound_on_every_isa() {
+        let mut bad = vec![];
+        for e in registry::all() {
+            let Some(k) = kernel_bound(e) else {
+                assert_eq!(e.info.kind, fastbrdf::Kind::Shadowing);
+                continue;
+            };
+            eprintln!(
+                "{:<28} {:>9.3e} {:>8} {}",
+                k.model, k.measured, k.evaluations, k.at
+            );
+            if !k.ok {
+                bad.push(format!("{k:?}"));
+            }
+        }
+        assert!(bad.is_empty(), "{}", bad.join("\n"));
+        let ct = kernel_bound(registry::find("cook-torrance").unwrap()).unwrap();
+        let isa = fastbrdf::batch::Isa::available()[0].name();
+        assert!(ct.measured > 0.0 && ct.at.contains(isa), "{ct:?}");
     }
 
     #[test]

@@ -284,6 +284,18 @@ fn check_verifies_one_model() {
             "{abs}"
         );
     }
+    // Its batch kernel on every instruction set of this CPU, against f64.
+    let k = &v["kernels"][0];
+    assert_eq!(v["kernels"].as_array().unwrap().len(), 1);
+    assert_eq!(
+        (&k["model"], &k["ok"], &k["finite"]),
+        (&"flog".into(), &true.into(), &true.into())
+    );
+    assert!(
+        k["measured"].as_f64().unwrap() <= k["documented"].as_f64().unwrap(),
+        "{k}"
+    );
+    assert_eq!(k["isas"].as_array().unwrap().last().unwrap(), "sse2");
 }
 
 // The model reference (docs/book/src/models.md) is `fastbrdf models`' output: tests/docs.rs,

@@ -1,5 +1,5 @@
 //! `fastbrdf check`: re-measures every documented bound of the registry on this machine and
-//! says whether each holds. Two families of checks:
+//! says whether each holds. Three families of checks:
 //! - error against the reference model: a dense grid plus golden-section refinement over the
 //!   bound's parameter range (`fastbrdf::accuracy::worst`) and an adversarial search over the
 //!   parameter as a continuum and the input together (`accuracy::worst_search`);
@@ -11,6 +11,9 @@
 //!   reproducible), and the corners of the domain (`check::corners`: zero, subnormal and tiny
 //!   cosines, grazing pairs, `eta` near 1 as typed). The search and the corners also fail a
 //!   model that returns a non-finite or negative value in either precision.
+//!
+//! - the batch kernels (the SIMD code `eval` runs) against f64 on every instruction set of
+//!   this CPU, held to the model's f32 bound, invalid inputs answered finite and >= 0.
 //!
 //! The measuring is fastbrdf-analysis::check; this command prints it.
 //!
@@ -25,7 +28,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Print JSON: {"ok", "bounds": [...], "f32": [...]}.
+    /// Print JSON: {"ok", "bounds": [...], "f32": [...], "kernels": [...]}.
     #[arg(long)]
     json: bool,
     /// Only this model.
@@ -96,30 +99,15 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             "\nf32 against f64 (|v32 - v64| / max(1, |v64|), same inputs, whole documented domain:\n  grid of parameter sets + adversarial search{} + corners)",
             if a.full { ", --full" } else { "" }
         );
+        print_table("searched", f32_rows.iter().map(|r| line!(r)));
         println!(
-            "  {:<24} {:>11} {:>11} {:>8} {:>10}  verdict",
-            "model", "documented", "measured", "configs", "searched"
+            "\nBatch kernels against f64 (what `eval` runs; every instruction set of this CPU: {}):\n  the f32 grid at every configuration, the ends of the inputs, invalid inputs (finite, >= 0)",
+            report
+                .kernels
+                .first()
+                .map_or(String::new(), |r| r.isas.join(", "))
         );
-        for r in f32_rows {
-            println!(
-                "  {:<24} {:>11.1e} {:>11.3e} {:>8} {:>10}  {}",
-                r.model,
-                r.documented,
-                r.measured,
-                r.configurations,
-                r.evaluations,
-                if !r.finite {
-                    "NON-FINITE OR NEGATIVE VALUE"
-                } else if r.ok {
-                    "ok"
-                } else {
-                    "EXCEEDED"
-                }
-            );
-            if !r.ok {
-                println!("      at {}", if r.finite { &r.at } else { &r.invalid });
-            }
-        }
+        print_table("values", report.kernels.iter().map(|r| line!(r)));
         let (n_ok, total) = report.holding();
         println!("\n{n_ok} of {total} documented bounds hold on this machine.");
     }
@@ -130,5 +118,61 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             code: 1,
             message: "some documented bounds do not hold (see above)".into(),
         })
+    }
+}
+
+/// The [`Line`] of an f32 or a kernel row (both have these fields).
+macro_rules! line {
+    ($r:expr) => {
+        Line {
+            model: $r.model,
+            documented: $r.documented,
+            measured: $r.measured,
+            counts: ($r.configurations, $r.evaluations),
+            ok: $r.ok,
+            finite: $r.finite,
+            at: &$r.at,
+            invalid: &$r.invalid,
+        }
+    };
+}
+use line;
+
+/// One row of the f32 or the kernels' table: the model, its bound and maximum,
+/// (configurations, evaluations), the verdict, and where it failed.
+struct Line<'a> {
+    model: &'a str,
+    documented: f64,
+    measured: f64,
+    counts: (usize, usize),
+    ok: bool,
+    finite: bool,
+    at: &'a str,
+    invalid: &'a str,
+}
+
+/// The f32 or the kernels' table: a header (`counted` names the evaluations' column) and
+/// one line per model, with where a failed one failed.
+fn print_table<'a>(counted: &str, lines: impl Iterator<Item = Line<'a>>) {
+    println!(
+        "  {:<24} {:>11} {:>11} {:>8} {:>10}  verdict",
+        "model", "documented", "measured", "configs", counted
+    );
+    for l in lines {
+        let verdict = if !l.finite {
+            "NON-FINITE OR NEGATIVE VALUE"
+        } else if l.ok {
+            "ok"
+        } else {
+            "EXCEEDED"
+        };
+        let (configurations, evaluations) = l.counts;
+        println!(
+            "  {:<24} {:>11.1e} {:>11.3e} {configurations:>8} {evaluations:>10}  {verdict}",
+            l.model, l.documented, l.measured
+        );
+        if !l.ok {
+            println!("      at {}", if l.finite { l.at } else { l.invalid });
+        }
     }
 }

@@ -246,15 +246,12 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     let loaded = setup::load(&spec)?;
     let t = std::time::Instant::now();
     if a.gpu && crate::model_args::is_user(&a.model) {
-        let (film, label) = render_user_gpu(a, &spec, &loaded, &opts)?;
-        return finish(
+        return finish_gpu(
             a,
             &spec,
             &opts,
-            film,
+            render_user_gpu(a, &spec, &loaded, &opts)?,
             t,
-            format!(", GPU: {label}"),
-            Times::default(),
         );
     }
     if let Some(user) = a.model_args.user(&a.model)? {
@@ -273,16 +270,8 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     }
     let model = a.model_args.spec(&a.model, Use::Shaded)?;
     if a.gpu {
-        let (film, label) = render_model_gpu(&spec, &loaded, &opts, &a.model, &model)?;
-        return finish(
-            a,
-            &spec,
-            &opts,
-            film,
-            t,
-            format!(", GPU: {label}"),
-            Times::default(),
-        );
+        let rendered = render_model_gpu(&spec, &loaded, &opts, &a.model, &model)?;
+        return finish_gpu(a, &spec, &opts, rendered, t);
     }
     // The model's set-up (its spec and kernels) is timed apart from the render, as
     // `tools/equal_error.py` times Mitsuba's `mi.render` apart from `load_dict`.
@@ -377,6 +366,18 @@ fn render_gltf_gpu(
     film.check_finite()
         .map_err(|e| CliError::input(format!("--scene {}: {e}", l.scene.file)))?;
     Ok((film, gpu.label()))
+}
+
+/// [`finish`] for a GPU render: its film and the adapter's label.
+fn finish_gpu(
+    a: &RenderArgs,
+    spec: &SceneSpec,
+    opts: &Options,
+    (film, label): (Film, String),
+    t: std::time::Instant,
+) -> Result<(), CliError> {
+    let on = format!(", GPU: {label}");
+    finish(a, spec, opts, film, t, on, Times::default())
 }
 
 /// Writes the picture and reports what was rendered, how and how long it took: from `t`, of

@@ -26,6 +26,7 @@
 
 pub mod bounds;
 pub mod configs;
+pub mod kernels;
 pub mod precision;
 
 pub use bounds::{
@@ -33,6 +34,7 @@ pub use bounds::{
     worst_at_grid, worst_search,
 };
 pub use configs::domain_configs;
+pub use kernels::{KernelWorst, kernel_worst};
 pub use precision::{Found, f32_search, f32_worst};
 
 use crate::error::Result;

@@ -19,81 +19,162 @@ pub fn f32_worst(spec: &ModelSpec) -> Result<(f64, String)> {
     use crate::model::ShadowInput;
     let m32 = spec.model::<f32>()?;
     let m64 = spec.model::<f64>()?;
-    let param = |name: &str, default: f64| match spec.get(name) {
-        Some(Given::Num(x)) => *x,
-        _ => default,
-    };
     let mut worst = (0.0, String::new());
     let mut note = |e: f64, what: &dyn Fn() -> String| {
         if !(e <= worst.0) {
             worst = (e, what());
         }
     };
-    match (&m32, &m64) {
-        (Model::Lobe(a), Model::Lobe(b)) => {
-            let n = param("n", 20.0);
-            for c in lobe_samples(n)
-                .into_iter()
-                .chain((0..=1000).map(|i| i as f64 / 1000.0))
-            {
-                let c32 = c as f32;
-                note(mixed_error(a.eval(c32), b.eval(c32 as f64)), &|| {
-                    format!("c={c32}")
-                });
-            }
+    if let (Model::Shadowing(a), Model::Shadowing(b)) = (&m32, &m64) {
+        for (wi, wo) in direction_pairs(400, 5) {
+            let (s32, s64) = shadow_inputs(wi, wo, true);
+            note(mixed_error(a.g(&s32), b.g(&s64)), &|| format!("{s32:?}"));
+            let (o32, o64) = (
+                ShadowInput { cos_l: None, ..s32 },
+                ShadowInput { cos_l: None, ..s64 },
+            );
+            note(mixed_error(a.g(&o32), b.g(&o64)), &|| format!("{o32:?}"));
         }
-        (Model::Distribution(a), Model::Distribution(b)) => {
-            for c in samples(&m64, param("alpha", 0.3)) {
-                let c32 = c as f32;
-                note(mixed_error(a.eval(c32), b.eval(c32 as f64)), &|| {
-                    format!("cos_h={c32}")
-                });
+        return Ok(worst);
+    }
+    let grid = Grid::of(spec, &m64).expect("every kind but shadowing has a grid");
+    for i in 0..grid.len() {
+        let (v32, v64) = match (&m32, &m64) {
+            (Model::Lobe(a), Model::Lobe(b)) => (a.eval(grid.x(i, 0)), b.eval(grid.x64(i, 0))),
+            (Model::Distribution(a), Model::Distribution(b)) => {
+                (a.eval(grid.x(i, 0)), b.eval(grid.x64(i, 0)))
             }
-        }
-        (Model::Shadowing(a), Model::Shadowing(b)) => {
-            for (wi, wo) in direction_pairs(400, 5) {
-                let (s32, s64) = shadow_inputs(wi, wo, true);
-                note(mixed_error(a.g(&s32), b.g(&s64)), &|| format!("{s32:?}"));
-                let (o32, o64) = (
-                    ShadowInput { cos_l: None, ..s32 },
-                    ShadowInput { cos_l: None, ..s64 },
-                );
-                note(mixed_error(a.g(&o32), b.g(&o64)), &|| format!("{o32:?}"));
+            (Model::Fresnel(a), Model::Fresnel(b)) => (a.f(grid.x(i, 0)), b.f(grid.x64(i, 0))),
+            (Model::Env(a), Model::Env(b)) => (
+                a.e(grid.x(i, 0), grid.x(i, 1)),
+                b.e(grid.x64(i, 0), grid.x64(i, 1)),
+            ),
+            (Model::Brdf(a), Model::Brdf(b)) => {
+                let (wi, wo) = grid.pair(i);
+                (a.eval(wi, wo), b.eval(wi.map(f64::from), wo.map(f64::from)))
             }
-        }
-        (Model::Fresnel(a), Model::Fresnel(b)) => {
-            for i in 0..=2000 {
-                let c32 = i as f32 / 2000.0;
-                note(mixed_error(a.f(c32), b.f(c32 as f64)), &|| {
-                    format!("cos={c32}")
-                });
-            }
-        }
-        (Model::Env(a), Model::Env(b)) => {
-            for i in 0..=40 {
-                let c32 = (i as f32 / 40.0).powi(2);
-                for j in 0..=20 {
-                    let a32 = 0.005f32 + (1.0 - 0.005) * (j as f32 / 20.0).powi(2);
-                    note(
-                        mixed_error(a.e(c32, a32), b.e(c32 as f64, a32 as f64)),
-                        &|| format!("cos_v={c32} alpha={a32}"),
-                    );
-                }
-            }
-        }
-        (Model::Brdf(a), Model::Brdf(b)) => {
-            for (wi, wo) in direction_pairs(600, 3) {
-                let (i32, o32) = (wi.map(|x| x as f32), wo.map(|x| x as f32));
-                let e = mixed_error(
-                    a.eval(i32, o32),
-                    b.eval(i32.map(f64::from), o32.map(f64::from)),
-                );
-                note(e, &|| format!("wi={i32:?} wo={o32:?}"));
-            }
-        }
-        _ => unreachable!("both precisions build the same kind"),
+            _ => unreachable!("both precisions build the same kind"),
+        };
+        note(mixed_error(v32, v64), &|| grid.at(i));
     }
     Ok(worst)
+}
+
+/// The f32 inputs [`f32_worst`] measures a model (but a shadowing term) on, as columns (the
+/// batch kernels' layout, which `super::kernels` feeds them in): a lobe's cosines, a
+/// distribution's `cos_h`, a Fresnel term's `cos_vh`, a split-sum term's (`cos_v`, `alpha`),
+/// a BRDF's direction pairs.
+pub(super) struct Grid {
+    pub(super) kind: GridKind,
+    /// One column per input (1, 2 or 6).
+    pub(super) cols: Vec<Vec<f32>>,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum GridKind {
+    Lobe,
+    Distribution,
+    Fresnel,
+    Env,
+    Brdf,
+}
+
+impl Grid {
+    /// The grid of `spec` (its model in f64: `m64`); `None` for a shadowing term.
+    pub(super) fn of(spec: &ModelSpec, m64: &Model<f64>) -> Option<Self> {
+        let param = |name: &str, default: f64| match spec.get(name) {
+            Some(Given::Num(x)) => *x,
+            _ => default,
+        };
+        let one = |kind, xs: Vec<f32>| {
+            Some(Self {
+                kind,
+                cols: vec![xs],
+            })
+        };
+        match m64 {
+            Model::Lobe(_) => one(
+                GridKind::Lobe,
+                lobe_samples(param("n", 20.0))
+                    .into_iter()
+                    .chain((0..=1000).map(|i| i as f64 / 1000.0))
+                    .map(|c| c as f32)
+                    .collect(),
+            ),
+            Model::Distribution(_) => one(
+                GridKind::Distribution,
+                samples(m64, param("alpha", 0.3))
+                    .into_iter()
+                    .map(|c| c as f32)
+                    .collect(),
+            ),
+            Model::Fresnel(_) => one(
+                GridKind::Fresnel,
+                (0..=2000).map(|i| i as f32 / 2000.0).collect(),
+            ),
+            Model::Env(_) => {
+                let (mut c, mut a) = (vec![], vec![]);
+                for i in 0..=40 {
+                    for j in 0..=20 {
+                        c.push((i as f32 / 40.0).powi(2));
+                        a.push(0.005f32 + (1.0 - 0.005) * (j as f32 / 20.0).powi(2));
+                    }
+                }
+                Some(Self {
+                    kind: GridKind::Env,
+                    cols: vec![c, a],
+                })
+            }
+            Model::Brdf(_) => {
+                let mut cols = vec![Vec::new(); 6];
+                for (wi, wo) in direction_pairs(600, 3) {
+                    for k in 0..3 {
+                        cols[k].push(wi[k] as f32);
+                        cols[k + 3].push(wo[k] as f32);
+                    }
+                }
+                Some(Self {
+                    kind: GridKind::Brdf,
+                    cols,
+                })
+            }
+            Model::Shadowing(_) => None,
+        }
+    }
+
+    pub(super) fn len(&self) -> usize {
+        self.cols[0].len()
+    }
+
+    /// Input `k` of element `i`, and in f64 (the same value).
+    pub(super) fn x(&self, i: usize, k: usize) -> f32 {
+        self.cols[k][i]
+    }
+    pub(super) fn x64(&self, i: usize, k: usize) -> f64 {
+        self.cols[k][i] as f64
+    }
+
+    /// Element `i` of a BRDF's grid as (`wi`, `wo`).
+    pub(super) fn pair(&self, i: usize) -> ([f32; 3], [f32; 3]) {
+        (
+            [self.x(i, 0), self.x(i, 1), self.x(i, 2)],
+            [self.x(i, 3), self.x(i, 4), self.x(i, 5)],
+        )
+    }
+
+    /// Where element `i` lies, as [`f32_worst`] reports it.
+    pub(super) fn at(&self, i: usize) -> String {
+        match self.kind {
+            GridKind::Lobe => format!("c={}", self.x(i, 0)),
+            GridKind::Distribution => format!("cos_h={}", self.x(i, 0)),
+            GridKind::Fresnel => format!("cos={}", self.x(i, 0)),
+            GridKind::Env => format!("cos_v={} alpha={}", self.x(i, 0), self.x(i, 1)),
+            GridKind::Brdf => {
+                let (wi, wo) = self.pair(i);
+                format!("wi={wi:?} wo={wo:?}")
+            }
+        }
+    }
 }
 
 /// What an adversarial search found: the largest mixed f32-vs-f64 error, where, and the
