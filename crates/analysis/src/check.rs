@@ -16,8 +16,9 @@
 //!   points. Its maximum counts in the f32 row like the grid's and the search's.
 //! - the batch kernels (the SIMD code `eval` runs) against f64 on every instruction set of
 //!   this CPU ([`kernel_bound`], `accuracy::kernel_worst`): the f32 grid at every domain
-//!   configuration, the ends of the input ranges, and invalid inputs (which must give finite,
-//!   non-negative values), held to the model's f32 bound.
+//!   configuration and at the one where the f32 search found its worst, the ends of the input
+//!   ranges, and invalid inputs (which must give finite, non-negative values), held to the
+//!   model's f32 bound.
 
 use fastbrdf::entry::Entry;
 use fastbrdf::{ErrorBound, Given, Metric, ModelSpec, Zone, accuracy};
@@ -159,6 +160,12 @@ pub fn fmt_params(spec: &ModelSpec) -> String {
 
 /// Model `e`'s f32 bound, re-measured: the worst of the grid of parameter sets and the search.
 pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
+    f32_bound_at(e, size).0
+}
+
+/// [`f32_bound`] and the configuration the search found its worst at (the kernels are
+/// measured there too: [`run`]).
+fn f32_bound_at(e: &'static Entry, size: accuracy::SearchSize) -> (F32Row, Option<ModelSpec>) {
     let configs = accuracy::domain_configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
     let mut worst = (0.0, String::new());
     for c in &configs {
@@ -183,7 +190,7 @@ pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
         worst = (corner.err, corner.at.clone());
     }
     let invalid = found.invalid.clone().or(corner.invalid.clone());
-    F32Row {
+    let row = F32Row {
         model: e.info.id,
         documented: e.info.f32_bound,
         measured: worst.0,
@@ -194,16 +201,20 @@ pub fn f32_bound(e: &'static Entry, size: accuracy::SearchSize) -> F32Row {
         finite: invalid.is_none(),
         ok: worst.0 <= e.info.f32_bound && invalid.is_none(),
         invalid: invalid.unwrap_or_default(),
-    }
+    };
+    (row, found.spec)
 }
 
 /// Model `e`'s batch kernel against f64 on every instruction set of this CPU, at every
-/// domain configuration (`accuracy::kernel_worst`); `None` for a shadowing term.
-pub fn kernel_bound(e: &'static Entry) -> Option<KernelRow> {
+/// domain configuration and at `also` (`accuracy::kernel_worst`; [`run`] passes the
+/// configuration where the f32 search found its worst, e.g. `n = 1e5`, beyond the grid's
+/// rows); `None` for a shadowing term.
+pub fn kernel_bound(e: &'static Entry, also: &[ModelSpec]) -> Option<KernelRow> {
     if !has_kernel(e) {
         return None;
     }
-    let configs = accuracy::domain_configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
+    let mut configs = accuracy::domain_configs(&e.info, e.info.kind == fastbrdf::Kind::Brdf);
+    configs.extend(also.iter().filter(|c| !c.is_coloured()).cloned());
     let mut row = KernelRow {
         model: e.info.id,
         documented: e.info.f32_bound,
@@ -452,18 +463,19 @@ pub fn run(
             r
         })
         .collect();
-    let f32 = entries
+    let (f32, worst): (Vec<F32Row>, Vec<Option<ModelSpec>>) = entries
         .par_iter()
         .map(|e| {
-            let r = f32_bound(e, size);
+            let r = f32_bound_at(e, size);
             progress();
             r
         })
-        .collect();
+        .unzip();
     let kernels = entries
         .par_iter()
-        .filter_map(|e| {
-            let r = kernel_bound(e)?;
+        .zip(&worst)
+        .filter_map(|(e, w)| {
+            let r = kernel_bound(e, w.as_slice())?;
             progress();
             Some(r)
         })
@@ -540,7 +552,7 @@ mod tests {
         let mut r = CheckReport {
             bounds: vec![bound(e, &e.info.bounds[0], SMALL)],
             f32: vec![f32_bound(e, SMALL)],
-            kernels: vec![kernel_bound(e).unwrap()],
+            kernels: vec![kernel_bound(e, &[]).unwrap()],
         };
         assert!(r.ok());
         r.f32[0].ok = false;
@@ -603,7 +615,7 @@ mod tests {
     fn every_kernel_holds_its_f32_bound_on_every_isa() {
         let mut bad = vec![];
         for e in registry::all() {
-            let Some(k) = kernel_bound(e) else {
+            let Some(k) = kernel_bound(e, &[]) else {
                 assert_eq!(e.info.kind, fastbrdf::Kind::Shadowing);
                 continue;
             };
@@ -616,9 +628,30 @@ mod tests {
             }
         }
         assert!(bad.is_empty(), "{}", bad.join("\n"));
-        let ct = kernel_bound(registry::find("cook-torrance").unwrap()).unwrap();
+        let ct = kernel_bound(registry::find("cook-torrance").unwrap(), &[]).unwrap();
         let isa = fastbrdf::batch::Isa::available()[0].name();
         assert!(ct.measured > 0.0 && ct.at.contains(isa), "{ct:?}");
+    }
+
+    /// `run` measures each kernel also where the f32 search found the scalar model's worst
+    /// (for phong often at the domain's n = 1e5, beyond the BRDF grid's rows), and it holds
+    /// there.
+    #[test]
+    fn the_kernels_are_measured_where_the_f32_search_found_its_worst() {
+        let e = registry::find("phong").unwrap();
+        let worst = f32_bound_at(e, SMALL)
+            .1
+            .expect("the search names its configuration");
+        let plain = kernel_bound(e, &[]).unwrap();
+        let k = kernel_bound(e, std::slice::from_ref(&worst)).unwrap();
+        assert_eq!(k.configurations, plain.configurations + 1);
+        assert!(k.evaluations > plain.evaluations && k.ok, "{k:?}");
+        let r = run(&[e], SMALL, &|| ());
+        assert_eq!(
+            r.kernels[0].configurations, k.configurations,
+            "{:?}",
+            r.kernels
+        );
     }
 
     #[test]

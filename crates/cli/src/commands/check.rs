@@ -101,7 +101,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
         );
         print_table("searched", f32_rows.iter().map(|r| line!(r)));
         println!(
-            "\nBatch kernels against f64 (what `eval` runs; every instruction set of this CPU: {}):\n  the f32 grid at every configuration, the ends of the inputs, invalid inputs (finite, >= 0)",
+            "\nBatch kernels against f64 (what `eval` runs; every instruction set of this CPU: {}):\n  the f32 grid at every configuration and the search's worst, the ends of the inputs, invalid inputs (finite, >= 0)",
             report
                 .kernels
                 .first()
