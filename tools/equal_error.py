@@ -189,7 +189,7 @@ def time_to_error(ladder: List[Dict[str, Any]], target: float) -> Tuple[Optional
 
 
 class Fastbrdf:
-    def __init__(self, binary: pathlib.Path, size: int, tmp: pathlib.Path):
+    def __init__(self, binary: pathlib.Path, size: int, tmp: pathlib.Path, cold: bool = False):
         self.bin, self.size, self.tmp = binary, size, tmp
         helptext = subprocess.run(
             [str(binary), "render", "--help"], capture_output=True, text=True, check=True
@@ -201,7 +201,7 @@ class Fastbrdf:
         # as Mitsuba's after its warm-up render (`warm`, off with --cold-fastbrdf); the first
         # render's time is kept apart (`last_cold`).
         self.has_repeat = "--repeat" in helptext
-        self.warm = self.has_repeat
+        self.warm = self.has_repeat and not cold
         self.last_cold: Optional[float] = None
         v = subprocess.run([str(binary), "--version"], capture_output=True, text=True)
         self.version = v.stdout.strip()
@@ -493,8 +493,7 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
     L = ladders(opts.quick, opts.full)
     size = opts.size or L["size"]
     repeats = opts.repeats or L["repeats"]
-    fb = Fastbrdf(pathlib.Path(opts.fastbrdf), size, tmp)
-    fb.warm = fb.has_repeat and not opts.cold_fastbrdf
+    fb = Fastbrdf(pathlib.Path(opts.fastbrdf), size, tmp, cold=opts.cold_fastbrdf)
     samplers = ["sobol", "independent"] if fb.has_sampler else [None]
     mi_obj: Optional[Mitsuba] = None
     mi_note = "not requested (--no-mitsuba)"

@@ -99,7 +99,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
             "\nf32 against f64 (|v32 - v64| / max(1, |v64|), same inputs, whole documented domain:\n  grid of parameter sets + adversarial search{} + corners)",
             if a.full { ", --full" } else { "" }
         );
-        print_table("searched", f32_rows.iter().map(|r| line!(r)));
+        print_table("searched", f32_rows.iter().map(|r| table_line!(r)));
         println!(
             "\nBatch kernels against f64 (what `eval` runs; every instruction set of this CPU: {}):\n  the f32 grid at every configuration and the search's worst, the ends of the inputs, invalid inputs (finite, >= 0)",
             report
@@ -107,7 +107,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
                 .first()
                 .map_or(String::new(), |r| r.isas.join(", "))
         );
-        print_table("values", report.kernels.iter().map(|r| line!(r)));
+        print_table("values", report.kernels.iter().map(|r| table_line!(r)));
         let (n_ok, total) = report.holding();
         println!("\n{n_ok} of {total} documented bounds hold on this machine.");
     }
@@ -122,7 +122,7 @@ pub fn run(a: &Args) -> Result<(), CliError> {
 }
 
 /// The [`Line`] of an f32 or a kernel row (both have these fields).
-macro_rules! line {
+macro_rules! table_line {
     ($r:expr) => {
         Line {
             model: $r.model,
@@ -136,7 +136,7 @@ macro_rules! line {
         }
     };
 }
-use line;
+use table_line;
 
 /// One row of the f32 or the kernels' table: the model, its bound and maximum,
 /// (configurations, evaluations), the verdict, and where it failed.

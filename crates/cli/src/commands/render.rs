@@ -101,16 +101,21 @@ struct Times {
     later: Vec<f64>,
 }
 
-/// `--repeat`: runs `render` `n - 1` more times, dropping each picture (the same as the
-/// first), and returns each run's seconds.
-fn again<T>(n: u32, render: impl Fn() -> Result<T, CliError>) -> Result<Vec<f64>, CliError> {
-    (1..n)
+/// `--repeat`: runs `render` `n` times (at least once) and returns the first result and
+/// the seconds of each later run, whose results (the same as the first) are dropped.
+fn repeated<T>(
+    n: u32,
+    render: impl Fn() -> Result<T, CliError>,
+) -> Result<(T, Vec<f64>), CliError> {
+    let first = render()?;
+    let later = (1..n)
         .map(|_| {
             let t = std::time::Instant::now();
             drop(render()?);
             Ok(t.elapsed().as_secs_f64())
         })
-        .collect()
+        .collect::<Result<_, CliError>>()?;
+    Ok((first, later))
 }
 
 /// Renders one model on the GPU; returns the film and the adapter's label.
@@ -258,8 +263,7 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
         // A user's model: the whole BRDF (weights 0, 1), shaded by the CPU renderer with its
         // values from the GPU evaluator, one dispatch per batch of hits.
         let user = Arc::new(UserRgb::new(user));
-        let film = render_rgb(&spec, &loaded, &opts, &a.model, user.clone())?;
-        let later = again(a.repeat, || {
+        let (film, later) = repeated(a.repeat, || {
             render_rgb(&spec, &loaded, &opts, &a.model, user.clone())
         })?;
         let times = Times {
@@ -277,8 +281,7 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     // `tools/equal_error.py` times Mitsuba's `mi.render` apart from `load_dict`.
     let specular = specular(&a.model, &model)?;
     let set_up = Some(t.elapsed().as_secs_f64());
-    let film = render_specular(&spec, &loaded, &opts, specular.clone())?;
-    let later = again(a.repeat, || {
+    let (film, later) = repeated(a.repeat, || {
         render_specular(&spec, &loaded, &opts, specular.clone())
     })?;
     finish(
@@ -307,9 +310,10 @@ fn render_gltf(
         let (film, label) = render_gltf_gpu(&loaded, spec, opts, &overrides)?;
         (film, format!(", GPU: {label}"), Vec::new())
     } else {
-        let cpu = || gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false);
-        let (film, _) = cpu()?;
-        (film, String::new(), again(a.repeat, cpu)?)
+        let ((film, _), later) = repeated(a.repeat, || {
+            gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false)
+        })?;
+        (film, String::new(), later)
     };
     let s = &loaded.scene;
     let on = format!(

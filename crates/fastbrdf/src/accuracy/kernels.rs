@@ -10,7 +10,6 @@ use super::mixed_error;
 use super::precision::{Grid, GridKind};
 use crate::batch::{Input, Isa, Kernel};
 use crate::error::Result;
-use crate::model::Model;
 use crate::spec::ModelSpec;
 
 /// Valid cosines at the ends of `[0, 1]`: zero, subnormal, the smallest normal, tiny,
@@ -81,7 +80,7 @@ pub fn kernel_worst(spec: &ModelSpec) -> Result<Option<KernelWorst>> {
             if i >= checked {
                 continue;
             }
-            let err = mixed_error(v, f64_at(&m64, &grid, i));
+            let err = mixed_error(v, grid.eval(&m64, i));
             if !(err <= found.err) {
                 let end = if i >= valid { " (an end)" } else { "" };
                 found.err = err;
@@ -90,21 +89,6 @@ pub fn kernel_worst(spec: &ModelSpec) -> Result<Option<KernelWorst>> {
         }
     }
     Ok(Some(found))
-}
-
-/// The f64 model at element `i` of `grid` (its f32 inputs, exactly).
-fn f64_at(m: &Model<f64>, g: &Grid, i: usize) -> f64 {
-    match m {
-        Model::Lobe(l) => l.eval(g.x64(i, 0)),
-        Model::Distribution(d) => d.eval(g.x64(i, 0)),
-        Model::Fresnel(f) => f.f(g.x64(i, 0)),
-        Model::Env(e) => e.e(g.x64(i, 0), g.x64(i, 1)),
-        Model::Brdf(b) => {
-            let (wi, wo) = g.pair(i);
-            b.eval(wi.map(f64::from), wo.map(f64::from))
-        }
-        Model::Shadowing(_) => unreachable!("no grid"),
-    }
 }
 
 /// A direction of cosine `c` with the azimuth `(ca, sa)`, its sine from f64.

@@ -39,22 +39,7 @@ pub fn f32_worst(spec: &ModelSpec) -> Result<(f64, String)> {
     }
     let grid = Grid::of(spec, &m64).expect("every kind but shadowing has a grid");
     for i in 0..grid.len() {
-        let (v32, v64) = match (&m32, &m64) {
-            (Model::Lobe(a), Model::Lobe(b)) => (a.eval(grid.x(i, 0)), b.eval(grid.x64(i, 0))),
-            (Model::Distribution(a), Model::Distribution(b)) => {
-                (a.eval(grid.x(i, 0)), b.eval(grid.x64(i, 0)))
-            }
-            (Model::Fresnel(a), Model::Fresnel(b)) => (a.f(grid.x(i, 0)), b.f(grid.x64(i, 0))),
-            (Model::Env(a), Model::Env(b)) => (
-                a.e(grid.x(i, 0), grid.x(i, 1)),
-                b.e(grid.x64(i, 0), grid.x64(i, 1)),
-            ),
-            (Model::Brdf(a), Model::Brdf(b)) => {
-                let (wi, wo) = grid.pair(i);
-                (a.eval(wi, wo), b.eval(wi.map(f64::from), wo.map(f64::from)))
-            }
-            _ => unreachable!("both precisions build the same kind"),
-        };
+        let (v32, v64) = (grid.eval(&m32, i), grid.eval(&m64, i));
         note(mixed_error(v32, v64), &|| grid.at(i));
     }
     Ok(worst)
@@ -152,6 +137,19 @@ impl Grid {
     }
     pub(super) fn x64(&self, i: usize, k: usize) -> f64 {
         self.cols[k][i] as f64
+    }
+
+    /// Model `m` (f32 or f64, of the grid's kind) at element `i`: its f32 inputs, exactly.
+    pub(super) fn eval<T: crate::real::Real>(&self, m: &Model<T>, i: usize) -> T {
+        let x = |k: usize| T::c(self.x64(i, k));
+        match m {
+            Model::Lobe(l) => l.eval(x(0)),
+            Model::Distribution(d) => d.eval(x(0)),
+            Model::Fresnel(f) => f.f(x(0)),
+            Model::Env(e) => e.e(x(0), x(1)),
+            Model::Brdf(b) => b.eval([x(0), x(1), x(2)], [x(3), x(4), x(5)]),
+            Model::Shadowing(_) => unreachable!("a shadowing term has no grid"),
+        }
     }
 
     /// Element `i` of a BRDF's grid as (`wi`, `wo`).
