@@ -117,10 +117,8 @@ fn render_bad_input_is_exit_2_and_leaves_no_file() {
             "invalid value '0' for '--repeat <N>'".into(),
         ),
         (
-            vec![
-                "render", "--model", "pow", "--repeat", "2", "--gpu", "--out", o,
-            ],
-            "'--repeat <N>' cannot be used with '--gpu'".into(),
+            vec!["render", "--model", "pow", "--repeat", "101", "--out", o],
+            "invalid value '101' for '--repeat <N>'".into(),
         ),
         (
             vec![

@@ -85,10 +85,11 @@ pub struct RenderArgs {
     gpu: bool,
     /// Render N times in this process and report each render's time (for timing; the
     /// picture written is the first: renders are deterministic, every one is the same). The
-    /// first is a fresh process's render (its threads started, its memory first touched);
-    /// the later ones a warm process's, as `tools/equal_error.py` times Mitsuba 3's render
-    /// after a warm-up render. CPU only (with --gpu the draws are timed after the set-up).
-    #[arg(long, default_value_t = 1, value_name = "N", conflicts_with = "gpu",
+    /// first is a fresh process's render (its threads started, its memory first touched; on
+    /// the GPU its first draws, which may compile the driver's shader variants); the later
+    /// ones a warm process's, as `tools/equal_error.py` times Mitsuba 3's render after a
+    /// warm-up render. With --gpu on one device, each render's draws reported too.
+    #[arg(long, default_value_t = 1, value_name = "N",
           value_parser = clap::value_parser!(u32).range(1..=100))]
     repeat: u32,
 }
@@ -118,14 +119,14 @@ fn repeated<T>(
     Ok((first, later))
 }
 
-/// Renders one model on the GPU; returns the film and the adapter's label.
+/// Renders one model on the GPU ([`gpu_repeated`]: `repeat` times).
 fn render_model_gpu(
     spec: &SceneSpec,
     loaded: &setup::Loaded,
     opts: &Options,
-    id: &str,
-    model: &ModelSpec,
-) -> Result<(Film, String), CliError> {
+    (id, model): (&str, &ModelSpec),
+    repeat: u32,
+) -> Result<(RenderedGpu, Vec<f64>), CliError> {
     if model.is_coloured() {
         // Before an adapter is looked for: the answer does not depend on the machine.
         return Err(CliError::input(format!(
@@ -139,37 +140,75 @@ fn render_model_gpu(
     let scene = setup::scene(spec, loaded, Arc::new(specular));
     let t0 = std::time::Instant::now();
     let gpu = fastbrdf_gpu::Gpu::new()?;
-    let pb = bar(1, "render (GPU)");
-    // The renderer reports progress 0 once everything is set up (device, pipelines, buffers)
-    // and before its first draw: from there on the time is the draws' (and the read-backs'),
-    // the part a faster GPU shortens; the set-up is mostly the driver's shader compilation,
-    // which tools/equal_error.py leaves out as it leaves out Mitsuba's JIT compilation.
-    let draws = std::cell::Cell::new(None);
-    let film = fastbrdf_gpu::render::render_with_progress(
-        &gpu.device,
-        &gpu.queue,
-        &scene,
-        opts,
-        &|d, t| {
-            if d == 0 && draws.get().is_none() {
-                draws.set(Some(std::time::Instant::now()));
-            }
-            pb.set_length(t as u64);
-            pb.set_position(d as u64);
-        },
-    )?;
-    pb.finish_and_clear();
-    let label = match draws.get() {
-        Some(start) => format!(
-            "{}; set-up {:.4} s, draws {:.4} s",
-            gpu.label(),
-            (start - t0).as_secs_f64(),
-            start.elapsed().as_secs_f64()
-        ),
-        None => gpu.label(),
-    };
-    Ok((film, label))
+    gpu_repeated(repeat, &gpu, t0, |progress| {
+        Ok(fastbrdf_gpu::render::render_with_progress(
+            &gpu.device,
+            &gpu.queue,
+            &scene,
+            opts,
+            progress,
+        )?)
+    })
 }
+
+/// A GPU render run `repeat` times on one device (`--repeat`), the progress bar on the first:
+/// the first film, the adapter's label with the first render's set-up and draws ("ADAPTER;
+/// set-up X s, draws Y s (then Z s: --repeat 2)", the later renders' draws in brackets) and
+/// the later renders' whole times. `render` passes its progress callback to the renderer,
+/// which reports progress 0 once everything is set up (device, pipelines, buffers) and before
+/// its first draw: from there on the time is the draws' (and the read-backs'), the part a
+/// faster GPU shortens; the set-up is mostly the driver's shader compilation, which
+/// tools/equal_error.py leaves out as it leaves out Mitsuba's JIT compilation. The first
+/// draws of a process may still compile (lavapipe builds a shader's variants at its first
+/// draw): the later ones are a warm device's.
+fn gpu_repeated(
+    repeat: u32,
+    gpu: &fastbrdf_gpu::Gpu,
+    t0: std::time::Instant,
+    render: impl Fn(&dyn Fn(usize, usize)) -> Result<Film, CliError>,
+) -> Result<(RenderedGpu, Vec<f64>), CliError> {
+    use std::time::Instant;
+    // One render from `start`: its film and, once it reported its first draw, the seconds
+    // from `start` to it and from it to the end.
+    let once = |start: Instant, progress: &dyn Fn(usize, usize)| {
+        let draws = std::cell::Cell::new(None);
+        let film = render(&|d, t| {
+            if d == 0 && draws.get().is_none() {
+                draws.set(Some(Instant::now()));
+            }
+            progress(d, t);
+        })?;
+        let timed = draws
+            .get()
+            .map(|s| ((s - start).as_secs_f64(), s.elapsed().as_secs_f64()));
+        Ok::<_, CliError>((film, timed))
+    };
+    let pb = bar(1, "render (GPU)");
+    let (film, first) = once(t0, &|d, t| {
+        pb.set_length(t as u64);
+        pb.set_position(d as u64);
+    })?;
+    pb.finish_and_clear();
+    let (mut later, mut later_draws) = (Vec::new(), Vec::new());
+    for _ in 1..repeat {
+        let t = Instant::now();
+        let (_, timed) = once(t, &|_, _| {})?;
+        later.push(t.elapsed().as_secs_f64());
+        later_draws.extend(timed.map(|(_, d)| d));
+    }
+    let mut label = gpu.label();
+    if let Some((set_up, draws)) = first {
+        label += &format!("; set-up {set_up:.4} s, draws {draws:.4} s");
+        if !later_draws.is_empty() {
+            let each: Vec<String> = later_draws.iter().map(|s| format!("{s:.4} s")).collect();
+            label += &format!(" (then {}: --repeat {repeat})", each.join(", "));
+        }
+    }
+    Ok(((film, label), later))
+}
+
+/// A GPU render's film and the adapter's label with its times ([`gpu_repeated`]).
+type RenderedGpu = (Film, String);
 
 /// A user's failure as the CLI's: the file's errors exit 2, the GPU's 1.
 fn user_error(e: UserError) -> CliError {
@@ -191,7 +230,7 @@ fn render_user_gpu(
     spec: &SceneSpec,
     loaded: &setup::Loaded,
     opts: &Options,
-) -> Result<(Film, String), CliError> {
+) -> Result<(RenderedGpu, Vec<f64>), CliError> {
     let path = a
         .model
         .strip_prefix(crate::model_args::USER_PREFIX)
@@ -216,29 +255,30 @@ fn render_user_gpu(
     let shader = UserShader::load(std::path::Path::new(path)).map_err(user_error)?;
     let given = a.model_args.param.pairs()?;
     let values = shader.values(&given).map_err(user_error)?;
+    let t0 = std::time::Instant::now();
     let gpu = fastbrdf_gpu::Gpu::new()?;
     let brdf = GpuBrdf::new(&gpu.device, &gpu.queue, shader.clone(), &given).map_err(user_error)?;
     let mut whole = spec.clone();
     (whole.kd, whole.ks) = (0.0, 1.0);
     let specular = Specular::rgb(&a.model, Arc::new(UserRgb::new(Arc::new(brdf))));
     let scene = setup::scene(&whole, loaded, Arc::new(specular));
-    let pb = bar(1, "render (GPU)");
-    let film = fastbrdf_gpu::render::render_user(
-        &gpu.device,
-        &gpu.queue,
-        &scene,
-        opts,
-        &shader,
-        &values,
-        &|d, t| {
-            pb.set_length(t as u64);
-            pb.set_position(d as u64);
-        },
-    )?;
-    pb.finish_and_clear();
-    film.check_finite()
+    let rendered = gpu_repeated(a.repeat, &gpu, t0, |progress| {
+        Ok(fastbrdf_gpu::render::render_user(
+            &gpu.device,
+            &gpu.queue,
+            &scene,
+            opts,
+            &shader,
+            &values,
+            progress,
+        )?)
+    })?;
+    rendered
+        .0
+        .0
+        .check_finite()
         .map_err(|e| CliError::input(format!("--model {}: {e}", a.model)))?;
-    Ok((film, gpu.label()))
+    Ok(rendered)
 }
 
 pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
@@ -274,7 +314,7 @@ pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
     }
     let model = a.model_args.spec(&a.model, Use::Shaded)?;
     if a.gpu {
-        let rendered = render_model_gpu(&spec, &loaded, &opts, &a.model, &model)?;
+        let rendered = render_model_gpu(&spec, &loaded, &opts, (&a.model, &model), a.repeat)?;
         return finish_gpu(a, &spec, &opts, rendered, t);
     }
     // The model's set-up (its spec and kernels) is timed apart from the render, as
@@ -307,8 +347,8 @@ fn render_gltf(
     let t = std::time::Instant::now();
     let loaded = gltf_scene::load(file, spec)?;
     let (film, gpu, later) = if a.gpu {
-        let (film, label) = render_gltf_gpu(&loaded, spec, opts, &overrides)?;
-        (film, format!(", GPU: {label}"), Vec::new())
+        let ((film, label), later) = render_gltf_gpu(&loaded, spec, opts, &overrides, a.repeat)?;
+        (film, format!(", GPU: {label}"), later)
     } else {
         let ((film, _), later) = repeated(a.repeat, || {
             gltf_scene::render_scene(&loaded, spec, opts, &overrides, "render", false)
@@ -350,26 +390,28 @@ fn render_gltf_gpu(
     spec: &SceneSpec,
     opts: &Options,
     overrides: &[(String, String)],
-) -> Result<(Film, String), CliError> {
+    repeat: u32,
+) -> Result<(RenderedGpu, Vec<f64>), CliError> {
     let specs = l.scene.specs(overrides)?;
     let scene = l.scene.scene(spec, l.env.clone(), &specs)?;
     fastbrdf_gpu::render::check(&scene)?;
+    let t0 = std::time::Instant::now();
     let gpu = fastbrdf_gpu::Gpu::new()?;
-    let pb = bar(1, "render (GPU)");
-    let film = fastbrdf_gpu::render::render_with_progress(
-        &gpu.device,
-        &gpu.queue,
-        &scene,
-        opts,
-        &|d, t| {
-            pb.set_length(t as u64);
-            pb.set_position(d as u64);
-        },
-    )?;
-    pb.finish_and_clear();
-    film.check_finite()
+    let rendered = gpu_repeated(repeat, &gpu, t0, |progress| {
+        Ok(fastbrdf_gpu::render::render_with_progress(
+            &gpu.device,
+            &gpu.queue,
+            &scene,
+            opts,
+            progress,
+        )?)
+    })?;
+    rendered
+        .0
+        .0
+        .check_finite()
         .map_err(|e| CliError::input(format!("--scene {}: {e}", l.scene.file)))?;
-    Ok((film, gpu.label()))
+    Ok(rendered)
 }
 
 /// [`finish`] for a GPU render: its film and the adapter's label.
@@ -377,11 +419,15 @@ fn finish_gpu(
     a: &RenderArgs,
     spec: &SceneSpec,
     opts: &Options,
-    (film, label): (Film, String),
+    ((film, label), later): (RenderedGpu, Vec<f64>),
     t: std::time::Instant,
 ) -> Result<(), CliError> {
     let on = format!(", GPU: {label}");
-    finish(a, spec, opts, film, t, on, Times::default())
+    let times = Times {
+        set_up: None,
+        later,
+    };
+    finish(a, spec, opts, film, t, on, times)
 }
 
 /// Writes the picture and reports what was rendered, how and how long it took: from `t`, of
