@@ -24,7 +24,9 @@ differ slightly. Time: the render alone (fastbrdf's printed "render X s", which 
 model's set-up as Mitsuba's time leaves out load_dict; Mitsuba's mi.render after a warm-up
 render of the same scene, sampler and sample count, so JIT compilation is excluded; fastbrdf
 --gpu's printed "draws X s", after the device and pipelines are set up, which is mostly the
-driver compiling shaders), the median of --repeats runs, renderers interleaved.
+driver compiling shaders; both fastbrdf's at the second render of one process, `render
+--repeat 2`, as Mitsuba's after its warm-up, the first kept as the cold time), the median of
+--repeats runs, renderers interleaved.
 """
 
 from __future__ import annotations
@@ -184,6 +186,19 @@ def time_to_error(ladder: List[Dict[str, Any]], target: float) -> Tuple[Optional
     return math.exp(math.log(t0) + (math.log(target) - math.log(e0)) / slope), "extrapolated"
 
 
+def point_at_error(ladder: List[Dict[str, Any]], target: float) -> Optional[Dict[str, Any]]:
+    """The cheapest point the ladder measured at or below `target` (a sample count the
+    renderer was run at, no interpolation): {samples, time_s, error}, or None when no point
+    reaches it. Interpolation between two points assumes a renderer could run between them,
+    which Mitsuba can (any sample count) and fastbrdf cannot (N x N samples, adaptive from
+    N = 2): this figure rounds each renderer up to a configuration it ran."""
+    pts = [p for p in ladder if p["error"] <= target and p["time_s"] > 0]
+    if not pts:
+        return None
+    p = min(pts, key=lambda p: p["time_s"])
+    return {"samples": p["samples"], "time_s": p["time_s"], "error": p["error"]}
+
+
 # ---------------------------------------------------------------------------------------------
 # fastbrdf
 
@@ -202,6 +217,9 @@ class Fastbrdf:
         # render's time is kept apart (`last_cold`).
         self.has_repeat = "--repeat" in helptext
         self.warm = self.has_repeat and not cold
+        # Since `--repeat` takes `--gpu` too, the GPU's ladders time the second render's draws
+        # on the same device (its first draws may compile the driver's shader variants).
+        self.gpu_warm = self.warm and "With --gpu on one device" in " ".join(helptext.split())
         self.last_cold: Optional[float] = None
         v = subprocess.run([str(binary), "--version"], capture_output=True, text=True)
         self.version = v.stdout.strip()
@@ -216,12 +234,12 @@ class Fastbrdf:
 
     def render_seeded(self, scene: Dict[str, Any], extra: List[str], gpu: bool, seed: int) -> Tuple[np.ndarray, float]:
         """`render` for the ladders, which pass a seed: fastbrdf's renders are deterministic."""
-        return self.render(scene, extra, gpu, warm=self.warm and not gpu)
+        return self.render(scene, extra, gpu, warm=self.gpu_warm if gpu else self.warm)
 
     def render(self, scene: Dict[str, Any], extra: List[str], gpu: bool = False,
                warm: bool = False) -> Tuple[np.ndarray, float]:
         """The picture and its render time: with `warm`, the second render of the process
-        (`--repeat 2`), the first's time in `last_cold`."""
+        (`--repeat 2`), the first's time in `last_cold` (on the GPU, the draws')."""
         out = self.tmp / "fastbrdf.exr"
         cmd = [str(self.bin), "render", *self.args(scene), *extra, "--out", str(out)]
         if warm:
@@ -241,7 +259,12 @@ class Fastbrdf:
         # (device, pipelines: mostly the driver compiling the shaders) is left out, as
         # Mitsuba's JIT compilation is.
         d = re.search(r"draws ([0-9.]+) s", p.stderr) if gpu else None
-        self.last_cold = float(m.group(1))
+        self.last_cold = float((d or m).group(1))
+        if warm and d:
+            then = re.search(r"draws [0-9.]+ s \(then ([0-9.]+) s", p.stderr)
+            if not then:
+                raise RuntimeError(f"no 'draws X s (then Y s' in fastbrdf's output: {p.stderr.strip()}")
+            return read_exr(out), float(then.group(1))
         if warm:
             then = re.search(r"render [0-9.]+ s \(then ([0-9.]+) s", p.stderr)
             if not then:
@@ -520,8 +543,10 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
         "Mitsuba's; "
         + ("on the CPU its second render in one process (`render --repeat 2`'s 'then Y s'), as Mitsuba's after "
            "a warm-up render, the first in cold_time_s; " if fb.warm else "")
-        + "on the GPU its 'draws X s' after the "
-        "device and pipeline set-up; mi.render + dr.eval after a warm-up render of the same scene and "
+        + "on the GPU its 'draws X s' after the device and pipeline set-up"
+        + (" (of the second render on one device, `--repeat 2`'s 'then Y s': a process's first draws may "
+           "compile the driver's shader variants; the first in cold_time_s)" if fb.gpu_warm else "")
+        + "; mi.render + dr.eval after a warm-up render of the same scene and "
         "sample count), median of the repeats, renderers interleaved"
         + (", each timed call (but the GPU's) right after an untimed call of its own" if opts.warm_call else ""),
         "scenes": {},
@@ -665,7 +690,8 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
                     fn(r + 1)
                 img, dt = fn(r + 1)
                 meas[(cname, n)]["times"].append(dt)
-                if fb.warm and cname in ("fastbrdf-cpu", "fastbrdf-before"):
+                if (fb.warm and cname in ("fastbrdf-cpu", "fastbrdf-before")
+                        or fb.gpu_warm and cname == "fastbrdf-gpu"):
                     assert fb.last_cold is not None
                     meas[(cname, n)]["cold_times"].append(fb.last_cold)
                 meas[(cname, n)]["errors"].append(rel_mse(img, ref_of(cname)))
@@ -713,6 +739,11 @@ def run(opts: argparse.Namespace, tmp: pathlib.Path) -> Dict[str, Any]:
             rr["how"] = how
             rr["ratio_vs_fastbrdf"] = (t / t_base) if t else None
             log(f"{name}: {cname}: time to target {t if t is None else round(t, 4)} s ({how})")
+        # The same at the ladders' own points (`point_at_error`), against fastbrdf's.
+        own = point_at_error(renderers[default_name]["ladder"], target)
+        for cname, rr in renderers.items():
+            pt = point_at_error(rr["ladder"], target)
+            rr["at_point"] = pt and dict(pt, ratio_vs_fastbrdf=pt["time_s"] / own["time_s"] if own else None)
         entry["renderers"] = renderers
         result["scenes"][name] = entry
         if opts.out_json:  # after every scene, so that an interrupted run keeps what it measured
@@ -786,6 +817,31 @@ def table(res: Dict[str, Any]) -> str:
         notes.append(
             "fastbrdf CPU is timed at its second render in one process (`render --repeat 2`), as Mitsuba "
             f"after its warm-up render; its first render in a fresh process (cold): {each}"
+        )
+    gpu_cold = []
+    for n, e in res["scenes"].items():
+        g = e["renderers"].get("fastbrdf-gpu", {})
+        cold = [dict(p, time_s=p["cold_time_s"]) for p in g.get("ladder", []) if "cold_time_s" in p]
+        t = time_to_error(cold, e["target_error"])[0] if cold else None
+        mj = e["renderers"].get("mitsuba-multijitter", {}).get("time_to_target_s")
+        if t:
+            gpu_cold.append(f"{n} {ms(t)}" + (f" ({t / mj:.2g}x multijitter's time)" if mj else ""))
+    if gpu_cold:
+        notes.append(
+            "fastbrdf GPU is timed at the draws of its second render on one device (`render --gpu --repeat 2`); "
+            "from its first render's draws (which may compile the driver's shader variants): " + ", ".join(gpu_cold)
+        )
+    at = []
+    for n, e in res["scenes"].items():
+        fb = e["renderers"][e["fastbrdf_default"]["renderer"]].get("at_point")
+        mj = e["renderers"].get("mitsuba-multijitter", {}).get("at_point")
+        if fb and mj:
+            at.append(f"{n} {fb['samples']} against {mj['samples']} spp, {ms(fb['time_s'])} against "
+                      f"{ms(mj['time_s'])} ({mj['ratio_vs_fastbrdf']:.2g}x)")
+    if at:
+        notes.append(
+            "at the ladders' own points (each renderer's cheapest measured sample count at or below "
+            "the target error, no interpolation), fastbrdf CPU against multijitter: " + "; ".join(at)
         )
     if not res["mitsuba"].startswith("mitsuba "):
         notes.append(f"Mitsuba: {res['mitsuba']}")

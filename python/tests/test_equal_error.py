@@ -54,6 +54,10 @@ def test_the_json_holds_ladders_targets_and_times(smoke):
         point = next(p for p in before["ladder"] if p["samples"] == d["samples"])
         assert point["error"] == e["target_error"] > 0
         assert base["ratio_vs_fastbrdf"] == pytest.approx(1.0)
+        # Its cheapest own ladder point at or below the target (the defaults' own error at
+        # the before-ladder's target: the default renderer reaches it).
+        assert base["at_point"]["error"] <= e["target_error"]
+        assert base["at_point"]["ratio_vs_fastbrdf"] == pytest.approx(1.0)
         for r in e["renderers"].values():
             for p in r["ladder"]:
                 # Times print to the millisecond: a 24x24 render may read 0.
@@ -93,6 +97,16 @@ def test_time_to_error_interpolates_log_log():
     assert how == "extrapolated" and t == pytest.approx(5.0, rel=1e-12)
     flat = [{"samples": n, "time_s": n, "error": 1.0} for n in (1, 2)]
     assert equal_error.time_to_error(flat, 0.5)[0] is None
+
+
+def test_point_at_error_takes_the_cheapest_measured_point_that_reaches_the_target():
+    ladder = [{"samples": n, "time_s": t, "error": e}
+              for n, t, e in [(1, 0.1, 4.0), (4, 0.4, 1.0), (16, 1.6, 0.25)]]
+    # Not the interpolated 0.2 s: the first point at or below the error, as it was run.
+    assert equal_error.point_at_error(ladder, 2.0) == {"samples": 4, "time_s": 0.4, "error": 1.0}
+    assert equal_error.point_at_error(ladder, 1.0)["samples"] == 4
+    assert equal_error.point_at_error(ladder, 4.0)["samples"] == 1
+    assert equal_error.point_at_error(ladder, 0.1) is None
 
 
 def test_rel_mse_and_the_exr_reader(cli, tmp_path):
