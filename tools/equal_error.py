@@ -252,25 +252,28 @@ class Fastbrdf:
         p = subprocess.run(cmd, capture_output=True, text=True, env=env)
         if p.returncode != 0:
             raise RuntimeError(f"{' '.join(cmd)}: {p.stderr.strip()}")
-        m = re.search(r"render ([0-9.]+) s", p.stderr)
-        if not m:
-            raise RuntimeError(f"no 'render X s' in fastbrdf's output: {p.stderr.strip()}")
-        # On the GPU, the draws alone where the binary reports them: the set-up before them
-        # (device, pipelines: mostly the driver compiling the shaders) is left out, as
-        # Mitsuba's JIT compilation is.
-        d = re.search(r"draws ([0-9.]+) s", p.stderr) if gpu else None
-        self.last_cold = float((d or m).group(1))
-        if warm and d:
-            then = re.search(r"draws [0-9.]+ s \(then ([0-9.]+) s", p.stderr)
-            if not then:
-                raise RuntimeError(f"no 'draws X s (then Y s' in fastbrdf's output: {p.stderr.strip()}")
-            return read_exr(out), float(then.group(1))
-        if warm:
-            then = re.search(r"render [0-9.]+ s \(then ([0-9.]+) s", p.stderr)
-            if not then:
-                raise RuntimeError(f"no 'render X s (then Y s' in fastbrdf's output: {p.stderr.strip()}")
-            return read_exr(out), float(then.group(1))
-        return read_exr(out), float((d or m).group(1))
+        t, self.last_cold = render_times(p.stderr, gpu, warm)
+        return read_exr(out), t
+
+
+def render_times(stderr: str, gpu: bool, warm: bool) -> Tuple[float, float]:
+    """From `fastbrdf render`'s report: (the time timed, the first render's). On the CPU
+    "render X s"; on the GPU the draws alone where the binary reports them ("draws X s": the
+    set-up before them, device and pipelines, mostly the driver compiling the shaders, is left
+    out as Mitsuba's JIT compilation is), else "render X s". With `warm` (`--repeat 2`) the time
+    timed is the second render's, "(then Y s", the first's the other."""
+    m = re.search(r"render ([0-9.]+) s", stderr)
+    if not m:
+        raise RuntimeError(f"no 'render X s' in fastbrdf's output: {stderr.strip()}")
+    d = re.search(r"draws ([0-9.]+) s", stderr) if gpu else None
+    what = "draws" if d else "render"
+    first = float((d or m).group(1))
+    if not warm:
+        return first, first
+    then = re.search(what + r" [0-9.]+ s \(then ([0-9.]+) s", stderr)
+    if not then:
+        raise RuntimeError(f"no '{what} X s (then Y s' in fastbrdf's output: {stderr.strip()}")
+    return float(then.group(1)), first
 
 
 # ---------------------------------------------------------------------------------------------
@@ -795,13 +798,11 @@ def table(res: Dict[str, Any]) -> str:
                 cells.append("-")
         lines.append("| " + " | ".join(cells) + " |")
     notes = []
-    for name, e in res["scenes"].items():
-        v = e.get("validation")
-        if v:
-            notes.append(
-                f"{name}: references differ by {100 * v['mean_rel_diff']:.2g}% per pixel on average "
-                f"(median {100 * v['median_rel_diff']:.2g}%, image means {100 * v['rel_diff_of_means']:.2g}%)"
-            )
+    agree = [f"{name} {100 * v['mean_rel_diff']:.2g}% (median {100 * v['median_rel_diff']:.2g}%, "
+             f"image means {100 * v['rel_diff_of_means']:.2g}%)"
+             for name, e in res["scenes"].items() if (v := e.get("validation"))]
+    if agree:
+        notes.append("the two renderers' references differ per pixel on average by: " + "; ".join(agree))
     spreads = [p["time_spread"] for e in res["scenes"].values() for r in e["renderers"].values() for p in r["ladder"]]
     if spreads:
         notes.append(

@@ -99,6 +99,22 @@ def test_time_to_error_interpolates_log_log():
     assert equal_error.time_to_error(flat, 0.5)[0] is None
 
 
+def test_render_times_reads_the_cpus_render_and_the_gpus_draws_cold_and_warm():
+    cpu = "wrote x.exr (8x8, ...: model set-up 0.0002 s, render 0.0150 s (then 0.0086 s: --repeat 2), encode ...)"
+    assert equal_error.render_times(cpu, False, True) == (0.0086, 0.0150)
+    assert equal_error.render_times(cpu, False, False) == (0.0150, 0.0150)
+    gpu = ("wrote x.exr (...: render 0.2878 s (then 0.1587 s: --repeat 2), encode and write 0.0270 s, "
+           "GPU: llvmpipe; set-up 0.1946 s, draws 0.0901 s (then 0.0763 s: --repeat 2))")
+    assert equal_error.render_times(gpu, True, True) == (0.0763, 0.0901)
+    assert equal_error.render_times(gpu, True, False) == (0.0901, 0.0901)
+    # An older binary's GPU report without the draws: the render's time.
+    assert equal_error.render_times("render 0.2 s, GPU: x", True, False) == (0.2, 0.2)
+    with pytest.raises(RuntimeError, match="draws X s"):
+        equal_error.render_times("render 0.2 s, GPU: x; set-up 0.1 s, draws 0.05 s)", True, True)
+    with pytest.raises(RuntimeError, match="no 'render X s'"):
+        equal_error.render_times("error: no GPU adapter found", False, False)
+
+
 def test_point_at_error_takes_the_cheapest_measured_point_that_reaches_the_target():
     ladder = [{"samples": n, "time_s": t, "error": e}
               for n, t, e in [(1, 0.1, 4.0), (4, 0.4, 1.0), (16, 1.6, 0.25)]]
