@@ -243,20 +243,12 @@ fn render_repeat_times_each_render_and_writes_the_same_picture() {
         );
         assert!(r.status.success(), "{}", stderr(&r));
         let e = stderr(&r);
-        let then = e
-            .split("(then ")
-            .nth(1)
-            .map(|t| t.split(')').next().unwrap());
+        let then = common::then_times(&e, "render ");
         match repeat {
-            "1" => assert!(then.is_none(), "{e}"),
+            "1" => assert!(then.is_none() && !e.contains("(then "), "{e}"),
             _ => {
-                let then = then.unwrap_or_else(|| panic!("no '(then ' in {e}"));
-                let (times, tail) = then.split_once(": ").unwrap();
+                let (secs, tail) = then.unwrap_or_else(|| panic!("no 'render X s (then ' in {e}"));
                 assert_eq!(tail, "--repeat 3", "{e}");
-                let secs: Vec<f64> = times
-                    .split(", ")
-                    .map(|t| t.strip_suffix(" s").unwrap().parse().unwrap())
-                    .collect();
                 assert_eq!(secs.len(), 2, "{e}");
                 assert!(secs.iter().all(|&s| s > 0.0 && s < 60.0), "{e}");
             }

@@ -305,19 +305,12 @@ fn render_gpu_matches_the_cpu_render_and_rejects_bad_input() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
-    let then = err
-        .split("draws ")
-        .nth(1)
-        .and_then(|t| t.split_once(" s (then "))
-        .map(|(_, t)| t.split(')').next().unwrap())
-        .unwrap_or_else(|| panic!("no 'draws X s (then ' in {err}"));
-    let (times, tail) = then.split_once(": ").unwrap();
-    assert_eq!(tail, "--repeat 3", "{err}");
-    let draws: Vec<f64> = times
-        .split(", ")
-        .map(|t| t.strip_suffix(" s").unwrap().parse().unwrap())
-        .collect();
-    assert!(draws.len() == 2 && draws.iter().all(|&s| s > 0.0), "{err}");
+    for key in ["render ", "draws "] {
+        let (secs, tail) = common::then_times(&err, key)
+            .unwrap_or_else(|| panic!("no '{key}X s (then ' in {err}"));
+        assert_eq!(tail, "--repeat 3", "{err}");
+        assert!(secs.len() == 2 && secs.iter().all(|&s| s > 0.0), "{err}");
+    }
     assert_eq!(std::fs::read(&again).unwrap(), std::fs::read(&gpu).unwrap());
     let a = image::open(&cpu).unwrap().to_rgb8();
     let b = image::open(&gpu).unwrap().to_rgb8();

@@ -85,7 +85,9 @@ fn render_gpu_scene_writes_the_cpus_picture() {
             out.to_str().unwrap(),
         ];
         if gpu {
-            args.push("--gpu");
+            // Two renders on one device (`--repeat`): the first is written, the second's
+            // draws reported beside the first's.
+            args.extend(["--gpu", "--repeat", "2"]);
         }
         let o = fastbrdf(&args, "");
         assert!(o.status.success(), "{args:?}: {}", stderr(&o));
@@ -95,6 +97,10 @@ fn render_gpu_scene_writes_the_cpus_picture() {
     let e = run(&gpu, true);
     assert!(
         e.contains("GPU") && e.contains("2 materials as gltf-pbr"),
+        "{e}"
+    );
+    assert!(
+        e.contains(" s (then ") && e.contains(": --repeat 2))"),
         "{e}"
     );
     run(&cpu, false);

@@ -11,7 +11,7 @@ use fastbrdf::ModelSpec;
 use fastbrdf_gpu::user::{GpuBrdf, UserError, UserErrorKind, UserShader};
 use fastbrdf_render::film::Film;
 use fastbrdf_render::render::Options;
-use fastbrdf_render::scene::Specular;
+use fastbrdf_render::scene::{Scene, Specular};
 use fastbrdf_render::setup::{self, SceneSpec};
 use fastbrdf_render::user::UserRgb;
 use std::path::PathBuf;
@@ -138,13 +138,23 @@ fn render_model_gpu(
     let mut specular = Specular::new(model)?;
     specular.id = id.into();
     let scene = setup::scene(spec, loaded, Arc::new(specular));
+    render_scene_gpu(&scene, opts, repeat)
+}
+
+/// Renders `scene` on a new device ([`fastbrdf_gpu::render::render_with_progress`]),
+/// `repeat` times ([`gpu_repeated`]), the device's creation in the first render's set-up.
+fn render_scene_gpu(
+    scene: &Scene,
+    opts: &Options,
+    repeat: u32,
+) -> Result<(RenderedGpu, Vec<f64>), CliError> {
     let t0 = std::time::Instant::now();
     let gpu = fastbrdf_gpu::Gpu::new()?;
     gpu_repeated(repeat, &gpu, t0, |progress| {
         Ok(fastbrdf_gpu::render::render_with_progress(
             &gpu.device,
             &gpu.queue,
-            &scene,
+            scene,
             opts,
             progress,
         )?)
@@ -395,17 +405,7 @@ fn render_gltf_gpu(
     let specs = l.scene.specs(overrides)?;
     let scene = l.scene.scene(spec, l.env.clone(), &specs)?;
     fastbrdf_gpu::render::check(&scene)?;
-    let t0 = std::time::Instant::now();
-    let gpu = fastbrdf_gpu::Gpu::new()?;
-    let rendered = gpu_repeated(repeat, &gpu, t0, |progress| {
-        Ok(fastbrdf_gpu::render::render_with_progress(
-            &gpu.device,
-            &gpu.queue,
-            &scene,
-            opts,
-            progress,
-        )?)
-    })?;
+    let rendered = render_scene_gpu(&scene, opts, repeat)?;
     rendered
         .0
         .0

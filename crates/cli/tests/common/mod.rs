@@ -109,3 +109,17 @@ pub fn hdr(w: u32, h: u32) -> Vec<u8> {
     }
     b
 }
+
+/// `--repeat`'s bracket after `key` in a render's report ("render 0.01 s (then 0.008 s, 0.007
+/// s: --repeat 3)" with `key` "render "; "draws " for the GPU's draws): the later renders'
+/// seconds and what follows them ("--repeat 3"); `None` without a bracket there.
+#[allow(dead_code)]
+pub fn then_times(report: &str, key: &str) -> Option<(Vec<f64>, String)> {
+    let (_, rest) = report.split_once(key)?.1.split_once(" s (then ")?;
+    let (times, tail) = rest.split(')').next()?.split_once(": ")?;
+    let secs = times
+        .split(", ")
+        .map(|t| t.strip_suffix(" s").and_then(|t| t.parse().ok()))
+        .collect::<Option<Vec<f64>>>()?;
+    Some((secs, tail.to_string()))
+}
