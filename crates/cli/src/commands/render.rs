@@ -272,7 +272,7 @@ fn render_user_gpu(
     (whole.kd, whole.ks) = (0.0, 1.0);
     let specular = Specular::rgb(&a.model, Arc::new(UserRgb::new(Arc::new(brdf))));
     let scene = setup::scene(&whole, loaded, Arc::new(specular));
-    let rendered = gpu_repeated(a.repeat, &gpu, t0, |progress| {
+    let ((film, label), later) = gpu_repeated(a.repeat, &gpu, t0, |progress| {
         Ok(fastbrdf_gpu::render::render_user(
             &gpu.device,
             &gpu.queue,
@@ -283,12 +283,9 @@ fn render_user_gpu(
             progress,
         )?)
     })?;
-    rendered
-        .0
-        .0
-        .check_finite()
+    film.check_finite()
         .map_err(|e| CliError::input(format!("--model {}: {e}", a.model)))?;
-    Ok(rendered)
+    Ok(((film, label), later))
 }
 
 pub fn run_render(a: &RenderArgs) -> Result<(), CliError> {
@@ -405,13 +402,10 @@ fn render_gltf_gpu(
     let specs = l.scene.specs(overrides)?;
     let scene = l.scene.scene(spec, l.env.clone(), &specs)?;
     fastbrdf_gpu::render::check(&scene)?;
-    let rendered = render_scene_gpu(&scene, opts, repeat)?;
-    rendered
-        .0
-        .0
-        .check_finite()
+    let ((film, label), later) = render_scene_gpu(&scene, opts, repeat)?;
+    film.check_finite()
         .map_err(|e| CliError::input(format!("--scene {}: {e}", l.scene.file)))?;
-    Ok(rendered)
+    Ok(((film, label), later))
 }
 
 /// [`finish`] for a GPU render: its film and the adapter's label.
